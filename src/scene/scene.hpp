@@ -1,0 +1,98 @@
+#pragma once
+// Typed, validated description of one run. Plain data: only src/scene/*.cpp knows YAML.
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "physics/contact_law.hpp"
+
+namespace asperity {
+
+// Junctions of one interface, as segmented from an image (or drawn by the generator).
+struct JunctionPopulation {
+  std::vector<double> area_m2;  // initial areas A0_i > 0
+  std::vector<double> x_m, y_m; // optional centre positions (empty when absent)
+  std::size_t size() const { return area_m2.size(); }
+};
+
+// Measured A(Q) samples of an experiment (optional).
+struct MeasuredCurve {
+  std::vector<double> Q_N, A_m2;
+};
+
+struct Experiment {
+  std::string name;
+  std::filesystem::path file;            // the experiment YAML (for provenance)
+  std::filesystem::path junctions_file;  // resolved CSV path
+  std::filesystem::path measured_file;   // resolved CSV path, empty when absent
+  double mass_kg = 0;      // slider mass M
+  double k_L = 0;          // N/m, loading spring
+  double v = 0;            // m/s, driving velocity
+  double E = 0;            // Pa
+  double nu = 0;
+  double sigma_exp = 0;    // Pa, measured frictional shear strength
+  JunctionPopulation junctions;
+  std::optional<MeasuredCurve> measured;
+};
+
+struct ModelSettings {
+  double eta = 100.0;        // 1/s
+  double epsilon = 0.90;
+  double c_min = 0.01;
+  double p = 1.5;
+  double alpha_b = 0.725e-15;  // m^(2p+2)/N² (m⁵/N² for p = 1.5)
+  JunctionShape junction_shape = JunctionShape::elliptic;
+  AreaLaw area_law = AreaLaw::until_first_slip;
+};
+
+enum class SolverMethod { reference, event };
+
+struct SolverSettings {
+  SolverMethod method = SolverMethod::event;
+  double Ct = 1e4;           // reference: dt = T0 / Ct
+  double tolerance = 1e-9;   // event solver: relative local error per step
+};
+
+struct StopSettings {
+  double time = 1.0;         // s, hard end of the run
+  bool at_first_peak = false;// stop once the first macroscopic peak of Q is confirmed
+  int cycles = -1;           // stop once this many stick-slip cycles are complete (-1: never)
+};
+
+// Names of the columns series.csv may hold, in file order.
+inline const std::vector<std::string>& all_series() {
+  static const std::vector<std::string> names{"t", "X", "V", "Q", "A", "n_slipping", "n_intact"};
+  return names;
+}
+
+struct OutputSettings {
+  double every = 1e-3;                  // s, sampling interval of series and loading-branch fit
+  std::vector<std::string> series = all_series();  // empty: no series.csv
+  double peak_min_drop = 1e-3;          // a Q maximum counts as a peak if Q then drops by this fraction
+};
+
+struct Scene {
+  std::filesystem::path file;           // the scene YAML
+  std::filesystem::path experiment_ref; // as written in the scene (relative to it)
+  Experiment experiment;
+  ModelSettings model;
+  SolverSettings solver;
+  StopSettings stop;
+  OutputSettings output;
+};
+
+// Contact law implied by an experiment and model settings (σ = σ_exp/ε, MODEL.md §2).
+inline ContactLaw make_contact_law(const Experiment& e, const ModelSettings& m) {
+  ContactLaw c;
+  c.E = e.E;
+  c.nu = e.nu;
+  c.epsilon = m.epsilon;
+  c.sigma = e.sigma_exp / m.epsilon;
+  c.alpha_b = m.alpha_b;
+  c.p = m.p;
+  c.shape = m.junction_shape;
+  return c;
+}
+
+}  // namespace asperity
