@@ -1,0 +1,61 @@
+#include "physics/universal_law.hpp"
+
+#include <boost/math/tools/roots.hpp>
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+namespace asperity {
+
+double UniversalForceLaw::phi_of_psi_exact(double psi) const {
+  if (psi == 0.0) return 0.0;
+  const double a = std::abs(psi);
+  // ψ(φ) increases from 0 to ∞ on [0, 1); ψ ≥ φ/κ(1) bounds the root from above.
+  const double hi = std::min(a * stiffness_factor(1.0, nu_, shape_), 1.0 - 1e-16);
+  auto fn = [&](double phi) { return psi_of_phi(phi) - a; };
+  boost::math::tools::eps_tolerance<double> tol(52);
+  std::uintmax_t it = 200;
+  double lo = 0.0, h = hi;
+  if (fn(h) < 0) h = 1.0 - 1e-16;  // cannot happen for κ ≤ κ(1); kept as a guard
+  const auto r = boost::math::tools::toms748_solve(fn, lo, h, -a, fn(h), tol, it);
+  const double phi = 0.5 * (r.first + r.second);
+  return psi < 0 ? -phi : phi;
+}
+
+double UniversalForceLaw::g_exact(double psi) const {
+  if (psi == 0.0) return stiffness_factor(1.0, nu_, shape_);
+  return phi_of_psi_exact(psi) / psi;
+}
+
+UniversalForceLaw::UniversalForceLaw(double nu, JunctionShape shape, double psi_max, double rel_tol)
+    : nu_(nu), shape_(shape), psi_max_(psi_max) {
+  if (!(psi_max > 0)) throw std::invalid_argument("UniversalForceLaw: psi_max must be > 0");
+  for (std::size_t n = 64;; n *= 2) {
+    const double h = psi_max / static_cast<double>(n - 1);
+    std::vector<double> y(n);
+    for (std::size_t i = 0; i < n; ++i) y[i] = g_exact(h * static_cast<double>(i));
+    const double dl = 0.0;  // g is even: g'(0) = 0
+    const double d = 1e-5 * psi_max;
+    const double dr = (g_exact(psi_max + d) - g_exact(psi_max - d)) / (2 * d);
+    boost::math::interpolators::cardinal_cubic_b_spline<double> s(y.data(), n, 0.0, h, dl, dr);
+    double err = 0;
+    auto check_interval = [&](std::size_t i) {
+      for (double frac : {0.25, 0.5, 0.75}) {
+        const double x = h * (static_cast<double>(i) + frac);
+        const double ex = g_exact(x);
+        err = std::max(err, std::abs(s(x) - ex) / ex);
+      }
+    };
+    const std::size_t stride = std::max<std::size_t>(1, n / 512);
+    for (std::size_t i = 0; i + 1 < n; i += stride) check_interval(i);
+    check_interval(n - 2);  // the end interval, where the boundary derivative matters most
+    if (err <= rel_tol || n >= (1u << 20)) {
+      spline_ = std::move(s);
+      nodes_ = n;
+      max_err_ = err;
+      return;
+    }
+  }
+}
+
+}  // namespace asperity

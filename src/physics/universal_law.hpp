@@ -1,0 +1,41 @@
+#pragma once
+// The universal dimensionless force law of a never-slipped junction (MODEL.md §4).
+// With φ = s f, s = sqrt(α_b / A0^(p+1)) (so A/A0 = 1 − φ²) and ψ = s ℓ0 E δ, Eq. (2)+(3)
+// reduce to ψ = φ / κ(1 − φ²): one increasing function per (ν, shape) for every junction,
+// p, α_b and E. Its inverse gives the force at any displacement without a per-junction
+// root solve: f = ℓ0 E δ g(ψ), with g(ψ) = Φ(ψ)/ψ = κ(A/A0) the current stiffness factor.
+#include <boost/math/interpolators/cardinal_cubic_b_spline.hpp>
+#include <cstddef>
+
+#include "physics/contact_law.hpp"
+
+namespace asperity {
+
+class UniversalForceLaw {
+ public:
+  // Tabulates g on ψ ∈ [0, psi_max], refining until the relative interpolation error,
+  // checked against the exact inverse between the nodes, is below rel_tol.
+  UniversalForceLaw(double nu, JunctionShape shape, double psi_max, double rel_tol = 1e-13);
+
+  double psi_of_phi(double phi) const { return phi / stiffness_factor(1.0 - phi * phi, nu_, shape_); }
+  double phi_of_psi_exact(double psi) const;  // root solve (Boost.Math TOMS 748)
+  // g(ψ) = κ(A/A0): from the table inside its range, exactly beyond it.
+  double g(double psi) const {
+    const double a = psi < 0 ? -psi : psi;  // g is even
+    return a <= psi_max_ ? spline_(a) : g_exact(a);
+  }
+  double g_exact(double psi) const;
+  double psi_max() const { return psi_max_; }
+  std::size_t nodes() const { return nodes_; }
+  double max_rel_error() const { return max_err_; }
+
+ private:
+  double nu_;
+  JunctionShape shape_;
+  double psi_max_;
+  std::size_t nodes_ = 0;
+  double max_err_ = 0;
+  boost::math::interpolators::cardinal_cubic_b_spline<double> spline_;
+};
+
+}  // namespace asperity
