@@ -34,6 +34,7 @@ struct Experiment {
   double sigma_exp = 0;    // Pa, measured frictional shear strength
   JunctionPopulation junctions;
   std::optional<MeasuredCurve> measured;
+  std::string description;  // free text from the experiment file (e.g. "stand-in data"); may be empty
 };
 
 struct ModelSettings {

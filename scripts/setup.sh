@@ -1,0 +1,14 @@
+#!/usr/bin/env bash
+# Installs the Debian packages asperity needs (run as root on Debian 12) and builds it.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+pkgs=(cmake g++ ninja-build libboost-dev libeigen3-dev libtbb-dev libnlopt-cxx-dev
+      libyaml-cpp-dev catch2 libcli11-dev gnuplot-nox)
+missing=()
+for p in "${pkgs[@]}"; do dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p"); done
+if [ ${#missing[@]} -gt 0 ]; then
+  apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive apt-get install -y -qq "${missing[@]}"
+fi
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
+ninja -C build -j "$(nproc)"

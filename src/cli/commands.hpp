@@ -1,0 +1,38 @@
+#pragma once
+// Subcommands of the `asperity` executable. Each lives in its own src/cli/<name>_command.cpp,
+// declares its add_* function here and is registered by one line in main.cpp (the library is
+// static, so self-registration would be dropped by the linker).
+//
+// add_* adds the subcommand and its options to `app` and returns the function main calls when
+// that subcommand was given. The function returns the exit code; it may instead throw
+// InputError (→ exit 2, what() printed as is) or SolverError (→ exit 3), which main maps.
+#include <CLI/CLI.hpp>
+#include <functional>
+
+namespace asperity::cli {
+
+inline constexpr int exit_ok = 0;
+inline constexpr int exit_failure = 1;  // command ran but its check failed (e.g. regress)
+inline constexpr int exit_input = 2;    // bad scene / arguments (InputError)
+inline constexpr int exit_solver = 3;   // solver could not go on (SolverError)
+
+struct Command {
+  CLI::App* sub = nullptr;        // the subcommand; main runs `run` when it was parsed
+  std::function<int()> run;
+};
+
+// asperity run SCENE.yaml [--out DIR] [--set key=value]... [--quiet] [--plot]
+Command add_run_command(CLI::App& app);  // run_command.cpp
+
+// asperity generate [--recipe data/standin/recipe.yaml] [--out data/standin] [--scenes DIR] [--quiet]
+Command add_generate_command(CLI::App& app);  // generate_command.cpp
+
+// Planned, by their owners (uncomment the matching line in main.cpp when adding one):
+// Command add_sweep_command(CLI::App& app);     // sweep_command.cpp
+// Command add_fit_command(CLI::App& app);       // fit_command.cpp
+// Command add_bench_command(CLI::App& app);     // bench_command.cpp
+// Command add_plot_command(CLI::App& app);      // plot_command.cpp
+// Command add_regress_command(CLI::App& app);   // regress_command.cpp
+// Command add_merge_command(CLI::App& app);     // merge_command.cpp
+
+}  // namespace asperity::cli

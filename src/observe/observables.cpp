@@ -1,0 +1,72 @@
+#include "observe/observables.hpp"
+
+#include <cmath>
+#include <vector>
+
+#include "observe/quadratic_fit.hpp"
+#include "observe/stick_slip.hpp"
+
+namespace asperity {
+
+Observables summarize(const Scene& scene, const RunInfo& info, const Recorder& rec,
+                      double wall_s, int ss_cycles_max) {
+  Observables o;
+  o.N = info.N;
+  o.A0 = info.A0;
+  o.K0 = info.K0;
+  o.T0 = info.T0;
+  o.dt = info.dt;
+
+  const auto& peaks = rec.peaks();
+  o.peak_found = !peaks.empty();
+  o.n_peaks = peaks.size();
+  const Extremum peak = o.peak_found ? peaks.front().max : rec.highest();
+  if (std::isfinite(peak.Q)) {
+    o.Q_s = peak.Q;
+    o.A_s = peak.A;
+    o.t_peak = peak.t;
+    o.area_drop_fraction = 1.0 - o.A_s / o.A0;
+  }
+
+  // Loading branch: the Recorder already cut it at the first confirmed peak; without one, cut
+  // it at the highest Q seen (a run that ends while still loading keeps all of it).
+  const std::vector<Sample>* branch = &rec.loading_branch();
+  std::vector<Sample> cut;
+  if (!o.peak_found && std::isfinite(peak.Q)) {
+    for (const auto& s : *branch)
+      if (s.t <= peak.t) cut.push_back(s);
+    branch = &cut;
+  }
+  const QuadraticFit q = fit_quadratic_area(*branch, info.A0);
+  o.alpha = q.alpha;
+  o.alpha_R2 = q.R2;
+  o.alpha_points = q.n_points;
+  const ShapeIndex sh = fit_power_law(*branch, info.A0);
+  o.shape_exponent = sh.n;
+  o.shape_prefactor = sh.c;
+
+  if (const auto& m = scene.experiment.measured) {
+    const QuadraticFit qm = fit_quadratic_area(*m, info.A0);
+    o.alpha_measured = qm.alpha;
+    o.alpha_measured_R2 = qm.R2;
+    o.shape_exponent_measured = fit_power_law(*m, info.A0).n;
+  }
+
+  const StickSlipStats ss = stick_slip_stats(peaks, ss_cycles_max);
+  o.ss_cycles = ss.n_cycles;
+  o.ss_drop = ss.mean_drop;
+  o.ss_period = ss.mean_period;
+
+  o.max_f_over_sigmaA = info.max_f_over_sigmaA;
+  o.max_f_over_sigma_exp_A = info.max_f_over_sigma_exp_A;
+  o.t_end = info.t_end;
+  o.steps = info.stats.steps;
+  o.rejected = info.stats.rejected;
+  o.force_evals = info.stats.force_evals;
+  o.slips = info.stats.slips;
+  o.repins = info.stats.repins;
+  o.wall_s = wall_s;
+  return o;
+}
+
+}  // namespace asperity

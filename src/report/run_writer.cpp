@@ -1,0 +1,299 @@
+#include "report/run_writer.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <system_error>
+
+#include "scene/load.hpp"
+
+namespace asperity {
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string g17(double x) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.17g", x);
+  return buf;
+}
+
+std::string yaml_string(const std::string& s) {
+  std::string out = "\"";
+  for (char c : s) {
+    switch (c) {
+      case '"': out += "\\\""; break;
+      case '\\': out += "\\\\"; break;
+      case '\n': out += "\\n"; break;
+      case '\t': out += "\\t"; break;
+      case '\r': out += "\\r"; break;
+      default: out += c;
+    }
+  }
+  return out + "\"";
+}
+
+const char* method_name(SolverMethod m) {
+  switch (m) {
+    case SolverMethod::reference: return "reference";
+    case SolverMethod::event: return "event";
+  }
+  return "unknown";
+}
+
+void write_file(const fs::path& path, const std::string& text) {
+  std::ofstream f(path, std::ios::binary | std::ios::trunc);
+  if (!f) throw std::runtime_error("cannot create " + path.string());
+  f << text;
+  f.close();
+  if (!f) throw std::runtime_error("cannot write " + path.string());
+}
+
+std::string shell_quote(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+// The directory a user means by `dir` ("runs/x/" and "runs/x" alike), made absolute.
+fs::path normal_dir(const fs::path& dir) {
+  fs::path p = fs::absolute(dir).lexically_normal();
+  if (!p.has_filename()) p = p.parent_path();
+  return p;
+}
+
+std::string unique_suffix() {
+  static std::atomic<unsigned> counter{0};
+  return std::to_string(::getpid()) + "-" + std::to_string(counter++);
+}
+
+// An existing DIR is replaced only when it is a run directory (holds nothing but the files a
+// run writes): `--out .` or a typo must never delete unrelated files.
+void check_replaceable_dir(const fs::path& target) {
+  static const char* const known[] = {"series.csv", "summary.yaml", "scene.yaml", "plot.png"};
+  if (fs::is_symlink(target) || !fs::is_directory(target))
+    throw std::runtime_error("refusing to replace " + target.string() + ": not a run directory");
+  for (const auto& e : fs::directory_iterator(target)) {
+    const std::string n = e.path().filename().string();
+    if (std::find(std::begin(known), std::end(known), n) == std::end(known) || !e.is_regular_file())
+      throw std::runtime_error("refusing to replace " + target.string() +
+                               ": not a run directory (it holds '" + n + "')");
+  }
+}
+
+}  // namespace
+
+void check_run_dir(const fs::path& dir) {
+  const fs::path target = normal_dir(dir);
+  if (fs::exists(fs::symlink_status(target))) check_replaceable_dir(target);
+}
+
+std::string yaml_double(double x) {
+  if (std::isnan(x)) return ".nan";
+  if (std::isinf(x)) return x > 0 ? ".inf" : "-.inf";
+  return g17(x);
+}
+
+void write_series_csv(std::ostream& out, const std::vector<Sample>& samples,
+                      const std::vector<std::string>& series) {
+  const auto& all = all_series();
+  for (const auto& name : series)
+    if (std::find(all.begin(), all.end(), name) == all.end())
+      throw std::invalid_argument("unknown series column '" + name + "'");
+  std::vector<std::size_t> cols;  // indices into all_series(), canonical order, no duplicates
+  for (std::size_t c = 0; c < all.size(); ++c)
+    if (std::find(series.begin(), series.end(), all[c]) != series.end()) cols.push_back(c);
+
+  for (std::size_t j = 0; j < cols.size(); ++j) out << (j ? "," : "") << all[cols[j]];
+  out << '\n';
+  std::string line;
+  char buf[40];
+  for (const auto& s : samples) {
+    line.clear();
+    for (std::size_t j = 0; j < cols.size(); ++j) {
+      if (j) line += ',';
+      switch (cols[j]) {
+        case 0: std::snprintf(buf, sizeof buf, "%.17g", s.t); break;
+        case 1: std::snprintf(buf, sizeof buf, "%.17g", s.X); break;
+        case 2: std::snprintf(buf, sizeof buf, "%.17g", s.V); break;
+        case 3: std::snprintf(buf, sizeof buf, "%.17g", s.Q); break;
+        case 4: std::snprintf(buf, sizeof buf, "%.17g", s.A); break;
+        case 5: std::snprintf(buf, sizeof buf, "%lld", static_cast<long long>(s.n_slipping)); break;
+        case 6: std::snprintf(buf, sizeof buf, "%lld", static_cast<long long>(s.n_intact)); break;
+        default: buf[0] = '\0';
+      }
+      line += buf;
+    }
+    line += '\n';
+    out << line;
+  }
+}
+
+std::string summary_yaml(const Scene& scene, const Observables& o, const std::vector<Peak>& peaks) {
+  std::ostringstream y;
+  auto d = [&](const char* key, double v) { y << key << ": " << yaml_double(v) << '\n'; };
+  auto i = [&](const char* key, long long v) { y << key << ": " << v << '\n'; };
+  y << "# asperity run summary (SI units: m, m², N, s)\n";
+  y << "asperity_version: " << yaml_string(ASPERITY_VERSION) << '\n';
+  y << "scene_file: " << yaml_string(scene.file.string()) << '\n';
+  y << "experiment: " << yaml_string(scene.experiment.name) << '\n';
+  y << "method: " << method_name(scene.solver.method) << '\n';
+  d("Ct", scene.solver.Ct);
+  d("tolerance", scene.solver.tolerance);
+  i("N", static_cast<long long>(o.N));
+  d("A0", o.A0);
+  d("K0", o.K0);
+  d("T0", o.T0);
+  d("dt", o.dt);
+  d("Q_s", o.Q_s);
+  d("A_s", o.A_s);
+  d("t_peak", o.t_peak);
+  y << "peak_found: " << (o.peak_found ? "true" : "false") << '\n';
+  d("alpha", o.alpha);
+  d("alpha_R2", o.alpha_R2);
+  i("alpha_points", static_cast<long long>(o.alpha_points));
+  d("shape_exponent", o.shape_exponent);
+  d("shape_prefactor", o.shape_prefactor);
+  d("area_drop_fraction", o.area_drop_fraction);
+  d("alpha_measured", o.alpha_measured);
+  d("alpha_measured_R2", o.alpha_measured_R2);
+  d("shape_exponent_measured", o.shape_exponent_measured);
+  i("ss_cycles", o.ss_cycles);
+  d("ss_drop", o.ss_drop);
+  d("ss_period", o.ss_period);
+  i("n_peaks", static_cast<long long>(o.n_peaks));
+  d("max_f_over_sigmaA", o.max_f_over_sigmaA);
+  d("max_f_over_sigma_exp_A", o.max_f_over_sigma_exp_A);
+  d("t_end", o.t_end);
+  i("steps", o.steps);
+  i("rejected", o.rejected);
+  i("force_evals", o.force_evals);
+  i("slips", o.slips);
+  i("repins", o.repins);
+  d("wall_s", o.wall_s);
+  // Confirmed peaks of Q and the trough after each (the stick-slip cycles).
+  if (peaks.empty()) {
+    y << "peaks: []\n";
+  } else {
+    y << "peaks:\n";
+    for (const auto& p : peaks)
+      y << "  - {t_max: " << yaml_double(p.max.t) << ", Q_max: " << yaml_double(p.max.Q)
+        << ", A_max: " << yaml_double(p.max.A) << ", t_min: " << yaml_double(p.min.t)
+        << ", Q_min: " << yaml_double(p.min.Q) << ", A_min: " << yaml_double(p.min.A) << "}\n";
+  }
+  return y.str();
+}
+
+void write_run(const fs::path& dir, const Scene& scene, const Observables& obs, const Recorder& rec,
+               const RunWriteOptions& opt) {
+  const fs::path target = normal_dir(dir);
+  const fs::path parent = target.parent_path();
+  const std::string name = target.filename().string();
+  std::error_code ec;
+  fs::create_directories(parent, ec);
+  if (ec) throw std::runtime_error("cannot create " + parent.string() + ": " + ec.message());
+
+  if (fs::exists(fs::symlink_status(target))) check_replaceable_dir(target);  // before any work
+
+  const fs::path tmp = parent / ("." + name + ".tmp-" + unique_suffix());
+  fs::remove_all(tmp, ec);
+  if (!fs::create_directory(tmp, ec) || ec)
+    throw std::runtime_error("cannot create " + tmp.string() + ": " + ec.message());
+  struct Cleanup {  // removes the temporary directory unless it was renamed into place
+    fs::path p;
+    bool armed = true;
+    ~Cleanup() {
+      std::error_code e;
+      if (armed) fs::remove_all(p, e);
+    }
+  } cleanup{tmp};
+
+  // Text first: a failure (e.g. scene_to_yaml throwing) happens before anything is written.
+  const std::string scene_text = scene_to_yaml(scene);
+  const std::string summary_text = summary_yaml(scene, obs, rec.peaks());
+  if (!scene.output.series.empty()) {
+    std::ostringstream csv;
+    write_series_csv(csv, rec.series(), scene.output.series);
+    write_file(tmp / "series.csv", csv.str());
+  }
+  write_file(tmp / "summary.yaml", summary_text);
+  write_file(tmp / "scene.yaml", scene_text);
+  if (opt.plot) write_run_plot(tmp);
+
+  // Replace: move an existing DIR aside, move the new one in, then delete the old one.
+  fs::path old;
+  if (fs::exists(fs::symlink_status(target))) {
+    check_replaceable_dir(target);
+    old = parent / ("." + name + ".old-" + unique_suffix());
+    fs::rename(target, old, ec);
+    if (ec) throw std::runtime_error("cannot replace " + target.string() + ": " + ec.message());
+  }
+  fs::rename(tmp, target, ec);
+  if (ec) {
+    std::error_code e2;
+    if (!old.empty()) fs::rename(old, target, e2);  // put the previous run back
+    throw std::runtime_error("cannot move " + tmp.string() + " to " + target.string() + ": " +
+                             ec.message());
+  }
+  cleanup.armed = false;
+  if (!old.empty()) fs::remove_all(old, ec);
+}
+
+bool write_run_plot(const fs::path& dir) {
+  const fs::path csv = dir / "series.csv";
+  std::ifstream in(csv);
+  std::string header;
+  if (!in || !std::getline(in, header)) return false;
+  std::vector<std::string> cols;
+  {
+    std::istringstream h(header);
+    for (std::string c; std::getline(h, c, ',');) cols.push_back(c);
+  }
+  auto col = [&](const std::string& n) -> int {
+    const auto it = std::find(cols.begin(), cols.end(), n);
+    return it == cols.end() ? -1 : static_cast<int>(it - cols.begin()) + 1;  // gnuplot: 1-based
+  };
+  const int ct = col("t"), cq = col("Q"), ca = col("A");
+  if (ct < 0 || cq < 0 || ca < 0) return false;
+  if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) return false;
+
+  const std::string t = std::to_string(ct), q = std::to_string(cq), a = std::to_string(ca);
+  std::ostringstream gp;
+  gp << "set terminal pngcairo size 900,1000 noenhanced\n"
+     << "set output 'plot.png'\n"
+     << "set datafile separator ','\n"
+     << "set key off\n"
+     << "set grid\n"
+     << "set multiplot layout 3,1\n"
+     << "set xlabel 't [s]'\nset ylabel 'Q [N]'\n"
+     << "plot 'series.csv' skip 1 using " << t << ":" << q << " with lines lw 1.5\n"
+     << "set ylabel 'A [mm^2]'\n"
+     << "plot 'series.csv' skip 1 using " << t << ":($" << a << "*1e6) with lines lw 1.5\n"
+     << "set xlabel 'Q [N]'\nset ylabel 'A [mm^2]'\n"
+     << "plot 'series.csv' skip 1 using " << q << ":($" << a << "*1e6) with lines lw 1.5\n"
+     << "unset multiplot\n";
+  const fs::path script = dir / ".plot.gp";
+  try {
+    write_file(script, gp.str());
+  } catch (const std::exception&) {
+    return false;
+  }
+  const std::string cmd = "cd " + shell_quote(dir.string()) + " && gnuplot .plot.gp >/dev/null 2>&1";
+  const int rc = std::system(cmd.c_str());
+  std::error_code ec;
+  fs::remove(script, ec);
+  if (rc != 0) {
+    fs::remove(dir / "plot.png", ec);
+    return false;
+  }
+  return fs::exists(dir / "plot.png");
+}
+
+}  // namespace asperity

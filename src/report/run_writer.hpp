@@ -1,0 +1,51 @@
+#pragma once
+// One run directory:
+//   series.csv    the sampled series the scene asks for (columns in all_series() order; absent
+//                 when scene.output.series is empty), values printed with %.17g;
+//   summary.yaml  every Observables field (%.17g, exact round trip), the solver settings and the
+//                 confirmed peaks;
+//   scene.yaml    the resolved scene (scene_to_yaml): `asperity run DIR/scene.yaml` repeats it;
+//   plot.png      optional: Q(t), A(t) and A(Q) via gnuplot.
+// The directory is built as a hidden temporary sibling and renamed into place, so an interrupted
+// run never leaves a half-written DIR (at worst a stale `.NAME.tmp-*` sibling).
+#include <filesystem>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "observe/observables.hpp"
+#include "observe/recorder.hpp"
+#include "scene/scene.hpp"
+
+namespace asperity {
+
+// %.17g (round-trips every double); YAML spellings .nan / .inf / -.inf for non-finite values.
+std::string yaml_double(double x);
+
+// Writes `series` columns (validated against all_series(), written in its order) of `samples`.
+// Throws std::invalid_argument on an unknown column name.
+void write_series_csv(std::ostream& out, const std::vector<Sample>& samples,
+                      const std::vector<std::string>& series);
+
+// The text of summary.yaml.
+std::string summary_yaml(const Scene& scene, const Observables& obs, const std::vector<Peak>& peaks);
+
+struct RunWriteOptions {
+  bool plot = false;  // also write plot.png (skipped silently without gnuplot or series)
+};
+
+// Writes the run directory `dir` atomically, replacing an existing run directory. Throws
+// std::runtime_error (with the path) when a file cannot be written, or when `dir` exists but
+// holds anything else than a run's files (so `--out .` never deletes unrelated files).
+void write_run(const std::filesystem::path& dir, const Scene& scene, const Observables& obs,
+               const Recorder& rec, const RunWriteOptions& opt = {});
+
+// Throws the error write_run would give for an existing `dir` that is not a run directory; call
+// it before a long run so it fails early.
+void check_run_dir(const std::filesystem::path& dir);
+
+// Renders DIR/plot.png from DIR/series.csv (needs columns t, Q, A). Returns false, silently,
+// when gnuplot is missing, the series lacks a column, or gnuplot fails.
+bool write_run_plot(const std::filesystem::path& dir);
+
+}  // namespace asperity

@@ -1,0 +1,33 @@
+#pragma once
+// Junction and measured-curve CSV files: a header row naming the columns (any order), then one
+// number per field in plain SI units. '#' lines are comments; blank lines are allowed before
+// the header and at the end of the file only. Unknown or duplicate columns are errors.
+//   junctions: area_m2 (required, > 0), x_m and y_m (optional, together)
+//   measured:  Q_N (>= 0), A_m2 (> 0), both required
+// Errors are InputError naming file, line, column and column name.
+#include <filesystem>
+#include <string>
+
+#include "scene/scene.hpp"
+
+namespace asperity {
+
+JunctionPopulation read_junctions_csv(const std::filesystem::path& csv);
+MeasuredCurve read_measured_csv(const std::filesystem::path& csv);
+
+// Deterministic bytes: '\n' line endings, shortest round-trip numbers (reading back gives the
+// same doubles bit for bit). Written through a temporary file renamed into place.
+// Throws std::runtime_error when the file cannot be written, std::invalid_argument when the
+// columns differ in length (x_m/y_m must be empty or as long as area_m2).
+void write_junctions_csv(const std::filesystem::path& csv, const JunctionPopulation& junctions);
+void write_measured_csv(const std::filesystem::path& csv, const MeasuredCurve& curve);
+
+namespace scene_io {
+// Same readers, naming `display` in errors (the path as the referring file spells it).
+JunctionPopulation read_junctions_csv(const std::filesystem::path& csv, const std::string& display);
+MeasuredCurve read_measured_csv(const std::filesystem::path& csv, const std::string& display);
+// Writes `text` to `path` through `path.tmp` + rename; throws std::runtime_error on failure.
+void write_text_file(const std::filesystem::path& path, const std::string& text);
+}  // namespace scene_io
+
+}  // namespace asperity

@@ -1,0 +1,74 @@
+#pragma once
+// Scene and experiment files → typed, validated structs (scene.hpp), and back to text.
+// The only code that knows YAML. Loading never writes anything.
+//
+// Every bad input throws InputError (input_error.hpp) with a one-line what():
+//   scenes/x.yaml:7: model.epsilon: must be in (0, 1], got 1.5
+//   --set model.eta=abc: model.eta: expected a number in SI units (1/s), got 'abc'
+//   data/x/junctions.csv:12:1: area_m2: junction area must be > 0, got -1e-08
+//
+// Scene YAML (only `experiment` is required; the rest defaults to the struct defaults, which are
+// the paper's values):
+//   experiment: ../../data/standin/P4.00N/experiment.yaml     # relative to the scene file
+//   # or: experiment: {file: ../x/experiment.yaml, mass: 0.2, k_L: 9400, E: 1.7e6, ...}
+//   #     (overridable: name, description, mass, k_L, v, E, nu, sigma_exp)
+//   model:  {eta: 100, epsilon: 0.9, c_min: 0.01, p: 1.5, alpha_b: 0.725e-15,
+//            junction_shape: elliptic|circular, area_law: until_first_slip|always}
+//   solver: {method: event|reference, Ct: 1e4, tolerance: 1e-9}
+//   stop:   {time: 1.0, at_first_peak: false, cycles: -1}
+//   output: {every: 1e-3, series: [t, X, V, Q, A, n_slipping, n_intact], peak_min_drop: 1e-3}
+//
+// Experiment YAML: name, mass [kg], k_L [N/m], v [m/s], E [Pa], nu, sigma_exp [Pa],
+// junctions (CSV path relative to the experiment file), optional measured (CSV), optional
+// description (free text). Numbers are plain SI numbers ("1.6e6", never "1.6 MPa").
+#include <yaml-cpp/yaml.h>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "scene/csv.hpp"
+#include "scene/input_error.hpp"
+#include "scene/scene.hpp"
+
+namespace asperity {
+
+// Reads an experiment file and its CSVs. `overrides` (optional) is a map of experiment values
+// that replace the file's (same keys as the scene's experiment map; `file` is ignored).
+Experiment load_experiment(const std::filesystem::path& yaml, const YAML::Node* overrides = nullptr);
+
+// Reads a scene, applies `overrides` ("dotted.key=value", value parsed as YAML, e.g.
+// "model.eta=50", "output.series=[t,Q,A]", "experiment=../other.yaml", "experiment.mass=0.2")
+// to the tree in order, then validates. Paths in overrides are relative to the scene file.
+// Setting a section (e.g. "model={eta: 50}") replaces the whole section.
+Scene load_scene(const std::filesystem::path& yaml, const std::vector<std::string>& overrides = {});
+
+// --- Building scenes from modified trees (sweeps, fits) -----------------------------------
+// The parsed scene file (parse errors → InputError). Keep it and derive variants from it.
+YAML::Node load_scene_tree(const std::filesystem::path& yaml);
+
+// A copy of `scene_tree` with `dotted_key` set to `value` (missing maps are created; setting
+// experiment.X when `experiment` is a path turns it into {file: path, X: value}). The input tree
+// is not modified, and unchanged nodes keep their file lines for error messages. `value` is
+// deep-copied. Key syntax errors or setting inside a non-map → InputError. Unknown keys are
+// reported by scene_from_tree. Not thread-safe on a shared tree: build variants on one thread.
+YAML::Node apply_override(YAML::Node scene_tree, const std::string& dotted_key, const YAML::Node& value);
+
+// Validates and converts a scene tree. Relative paths resolve against origin_file's folder;
+// errors name origin_file, the key, and the line when the node came from that file.
+Scene scene_from_tree(const YAML::Node& tree, const std::filesystem::path& origin_file);
+
+// --- Writing --------------------------------------------------------------------------------
+// The fully resolved scene: experiment as a map {file: <absolute path>, name, description and
+// every scalar}, every model/solver/stop/output value. Numbers are written as the shortest text
+// that reads back bit-identical, so load_scene of this text saved anywhere reproduces the same
+// Scene (except Scene::file and experiment_ref, which then name the new file and the absolute
+// path), provided the experiment file and its CSVs are unchanged.
+std::string scene_to_yaml(const Scene& scene);
+
+// An experiment file for `e` whose CSVs are at the given paths (relative to the experiment file;
+// measured_rel empty: no measured curve). Numbers round-trip exactly.
+std::string experiment_to_yaml(const Experiment& e, const std::string& junctions_rel,
+                               const std::string& measured_rel);
+
+}  // namespace asperity

@@ -1,0 +1,73 @@
+#include "scene/numbers.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <system_error>
+
+namespace asperity::scene_io {
+
+std::string format_double(double x) {
+  char buf[64];
+  const auto r = std::to_chars(buf, buf + sizeof buf, x);
+  return std::string(buf, r.ptr);
+}
+
+std::string_view trim(std::string_view s) {
+  auto blank = [](char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n'; };
+  while (!s.empty() && blank(s.front())) s.remove_prefix(1);
+  while (!s.empty() && blank(s.back())) s.remove_suffix(1);
+  return s;
+}
+
+NumberParse parse_double(std::string_view text, double& out) {
+  std::string_view s = trim(text);
+  if (s.empty()) return NumberParse::empty;
+  std::string lower(s);
+  std::transform(lower.begin(), lower.end(), lower.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  {
+    std::string_view l = lower;
+    if (l.front() == '+' || l.front() == '-') l.remove_prefix(1);
+    if (l == "nan" || l == ".nan" || l == "inf" || l == ".inf" || l == "infinity")
+      return NumberParse::not_finite;
+  }
+  if (s.front() == '+' && s.size() > 1 && s[1] != '-' && s[1] != '+') s.remove_prefix(1);
+  double v = 0;
+  const auto r = std::from_chars(s.data(), s.data() + s.size(), v, std::chars_format::general);
+  if (r.ec == std::errc::result_out_of_range) return NumberParse::not_finite;
+  if (r.ec != std::errc() || r.ptr == s.data()) return NumberParse::not_a_number;
+  if (r.ptr != s.data() + s.size()) {
+    const char c = *r.ptr;
+    const bool word_follows = c == ' ' || c == '\t' || std::isalpha(static_cast<unsigned char>(c)) ||
+                              c == '%' || c == '/' || c == '*' || c == '_';
+    return word_follows ? NumberParse::has_unit : NumberParse::not_a_number;
+  }
+  if (!std::isfinite(v)) return NumberParse::not_finite;
+  out = v;
+  return NumberParse::ok;
+}
+
+bool parse_int(std::string_view text, int& out) {
+  std::string_view s = trim(text);
+  if (!s.empty() && s.front() == '+') s.remove_prefix(1);
+  if (s.empty()) return false;
+  int v = 0;
+  const auto r = std::from_chars(s.data(), s.data() + s.size(), v);
+  if (r.ec != std::errc() || r.ptr != s.data() + s.size()) return false;
+  out = v;
+  return true;
+}
+
+std::string quote(std::string_view s) {
+  std::string q;
+  for (char c : s) {
+    if (c == '\n' || c == '\r' || c == '\t') c = ' ';
+    q += c;
+  }
+  if (q.size() > 40) q = q.substr(0, 37) + "...";
+  return "'" + q + "'";
+}
+
+}  // namespace asperity::scene_io

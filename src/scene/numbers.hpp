@@ -1,0 +1,25 @@
+#pragma once
+// Exact, strict number text for scene files and CSVs (no locale, no units, no NaN/inf).
+#include <string>
+#include <string_view>
+
+namespace asperity::scene_io {
+
+// Shortest text that reads back to exactly x (std::to_chars), e.g. 0.1 → "0.1", 7.25e-16.
+std::string format_double(double x);
+
+enum class NumberParse { ok, empty, not_a_number, has_unit, not_finite };
+
+// Parses all of `text` (surrounding blanks ignored, optional leading '+') as a finite double.
+// has_unit: a number followed by a word ("1.6 MPa"); not_finite: nan/inf/.inf or overflow.
+NumberParse parse_double(std::string_view text, double& out);
+
+// Strict integer (no fraction, no exponent).
+bool parse_int(std::string_view text, int& out);
+
+std::string_view trim(std::string_view s);
+
+// Value text for messages: single line, at most ~40 characters, in single quotes.
+std::string quote(std::string_view s);
+
+}  // namespace asperity::scene_io

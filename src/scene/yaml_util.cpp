@@ -1,0 +1,228 @@
+#include "scene/yaml_util.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <fstream>
+#include <sstream>
+
+#include "scene/numbers.hpp"
+
+namespace asperity::scene_io {
+
+namespace {
+
+int mark_line(const YAML::Node& n) {
+  if (!n.IsDefined()) return 0;
+  const YAML::Mark m = n.Mark();
+  return m.is_null() ? 0 : m.line + 1;
+}
+
+bool under(const std::string& key, const std::string& prefix) {
+  return key.size() > prefix.size() && key.compare(0, prefix.size(), prefix) == 0 &&
+         key[prefix.size()] == '.';
+}
+
+}  // namespace
+
+void fail(const Source& src, const YAML::Node& at, const std::string& key, const std::string& message,
+          int fallback_line) {
+  if (const int line = mark_line(at); line > 0) throw InputError(src.file, line, key, message);
+  if (src.sets) {
+    for (auto it = src.sets->rbegin(); it != src.sets->rend(); ++it)
+      if (key == it->key || under(key, it->key) || under(it->key, key))
+        throw InputError(it->text, 0, key, message);
+  }
+  throw InputError(src.file, fallback_line, key, message);
+}
+
+std::string join_key(const std::string& path, const std::string& key) {
+  return path.empty() ? key : path + "." + key;
+}
+
+std::string node_kind(const YAML::Node& n) {
+  if (!n.IsDefined() || n.IsNull()) return "nothing";
+  if (n.IsMap()) return "a map";
+  if (n.IsSequence()) return "a list";
+  return "the value " + quote(n.Scalar());
+}
+
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  auto lc = [](char c) { return static_cast<char>(std::tolower(static_cast<unsigned char>(c))); };
+  std::vector<std::size_t> prev(b.size() + 1), cur(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) prev[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    cur[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j)
+      cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + (lc(a[i - 1]) == lc(b[j - 1]) ? 0 : 1)});
+    std::swap(prev, cur);
+  }
+  return prev[b.size()];
+}
+
+std::string did_you_mean(const std::string& word, const std::vector<std::string>& candidates) {
+  std::size_t best = 3;
+  const std::string* pick = nullptr;
+  for (const auto& c : candidates) {
+    const std::size_t d = edit_distance(word, c);
+    if (d < best && d < std::min(word.size(), c.size())) best = d, pick = &c;
+  }
+  return pick ? " (did you mean '" + *pick + "'?)" : "";
+}
+
+std::string join(const std::vector<std::string>& v, const char* sep) {
+  std::string s;
+  for (std::size_t i = 0; i < v.size(); ++i) s += (i ? sep : "") + v[i];
+  return s;
+}
+
+void check_readable_file(const std::filesystem::path& path, const std::string& display) {
+  std::error_code ec;
+  const auto st = std::filesystem::status(path, ec);
+  if (!std::filesystem::exists(st)) throw InputError(display, 0, "", "file not found");
+  if (std::filesystem::is_directory(st)) throw InputError(display, 0, "", "is a directory, not a file");
+}
+
+YAML::Node load_yaml_file(const std::filesystem::path& path, const std::string& display) {
+  check_readable_file(path, display);
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(display, 0, "", "cannot open file");
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  if (in.bad()) throw InputError(display, 0, "", "cannot read file");
+  std::vector<YAML::Node> docs;
+  try {
+    docs = YAML::LoadAll(ss.str());
+  } catch (const YAML::Exception& e) {
+    throw InputError(display, e.mark.is_null() ? 0 : e.mark.line + 1, "", "malformed YAML: " + e.msg);
+  }
+  if (docs.size() > 1)
+    throw InputError(display, mark_line(docs[1]), "",
+                     "more than one YAML document ('---'); the file must hold exactly one");
+  return docs.empty() ? YAML::Node(YAML::NodeType::Null) : docs.front();
+}
+
+YAML::Node load_yaml_text(const std::string& text, const std::string& where, const std::string& key) {
+  try {
+    std::vector<YAML::Node> docs = YAML::LoadAll(text);
+    if (docs.size() > 1) throw InputError(where, 0, key, "the value holds more than one YAML document");
+    return docs.empty() ? YAML::Node(YAML::NodeType::Null) : strip_marks(docs.front());
+  } catch (const YAML::Exception& e) {
+    throw InputError(where, 0, key, "malformed YAML value: " + e.msg);
+  }
+}
+
+YAML::Node strip_marks(const YAML::Node& n) {
+  if (!n.IsDefined()) return YAML::Node(YAML::NodeType::Null);
+  switch (n.Type()) {
+    case YAML::NodeType::Scalar:
+      return YAML::Node(n.Scalar());
+    case YAML::NodeType::Sequence: {
+      YAML::Node out(YAML::NodeType::Sequence);
+      for (const auto& c : n) out.push_back(strip_marks(c));
+      return out;
+    }
+    case YAML::NodeType::Map: {
+      YAML::Node out(YAML::NodeType::Map);
+      for (auto it = n.begin(); it != n.end(); ++it) out[strip_marks(it->first)] = strip_marks(it->second);
+      return out;
+    }
+    default:
+      return YAML::Node(YAML::NodeType::Null);
+  }
+}
+
+MapView::MapView(Source src, const YAML::Node& node, std::string path, std::vector<std::string> allowed,
+                 int fallback_line)
+    : src_(std::move(src)), node_(node), path_(std::move(path)), fallback_line_(fallback_line) {
+  if (!node_.IsDefined() || node_.IsNull()) return;
+  if (!node_.IsMap())
+    fail(src_, node_, path_, "expected a map of 'key: value' entries, got " + node_kind(node_), fallback_line_);
+  for (auto it = node_.begin(); it != node_.end(); ++it) {
+    const YAML::Node kn = it->first;
+    if (!kn.IsScalar()) fail(src_, kn, path_, "keys must be plain names, got " + node_kind(kn), fallback_line_);
+    const std::string k = kn.Scalar();
+    for (const auto& e : entries_)
+      if (e.first == k)
+        fail(src_, kn, key(k),
+             "duplicate key (first given at line " + std::to_string(mark_line(e.second.first)) + ")",
+             fallback_line_);
+    if (std::find(allowed.begin(), allowed.end(), k) == allowed.end())
+      fail(src_, kn, key(k),
+           "unknown key " + quote(k) + did_you_mean(k, allowed) + "; valid keys here: " + join(allowed),
+           fallback_line_);
+    entries_.push_back({k, {kn, it->second}});
+  }
+}
+
+std::optional<YAML::Node> MapView::find(const std::string& k) const {
+  for (const auto& e : entries_)
+    if (e.first == k) return e.second.second;
+  return std::nullopt;
+}
+
+YAML::Node MapView::require(const std::string& k) const {
+  if (auto n = find(k)) return *n;
+  fail(src_, node_, key(k), "missing required key", fallback_line_);
+}
+
+void MapView::fail_at(const YAML::Node& at, const std::string& k, const std::string& msg) const {
+  // An empty value's Mark points past it (to the next token): name the key's line instead.
+  if (!at.IsDefined() || at.IsNull())
+    for (const auto& e : entries_)
+      if (e.first == k && e.second.second.is(at)) fail(src_, e.second.first, key(k), msg, fallback_line_);
+  fail(src_, at, key(k), msg, fallback_line_);
+}
+
+double MapView::number(const YAML::Node& n, const std::string& k, const char* unit) const {
+  const std::string in_unit = unit ? std::string(" in SI units (") + unit + ")" : std::string();
+  if (!n.IsDefined() || n.IsNull()) fail_at(n, k, "missing value (expected a number" + in_unit + ")");
+  if (!n.IsScalar()) fail_at(n, k, "expected a number" + in_unit + ", got " + node_kind(n));
+  double v = 0;
+  switch (parse_double(n.Scalar(), v)) {
+    case NumberParse::ok:
+      return v;
+    case NumberParse::has_unit:
+      fail_at(n, k, std::string("expected a plain number") + (unit ? in_unit : " (dimensionless)") +
+                        ", got " + quote(n.Scalar()));
+    case NumberParse::not_finite:
+      fail_at(n, k, "must be a finite number, got " + quote(n.Scalar()));
+    default:
+      fail_at(n, k, "expected a number" + in_unit + ", got " + quote(n.Scalar()));
+  }
+}
+
+int MapView::integer(const YAML::Node& n, const std::string& k) const {
+  if (!n.IsDefined() || n.IsNull()) fail_at(n, k, "missing value (expected an integer)");
+  int v = 0;
+  if (!n.IsScalar() || !parse_int(n.Scalar(), v)) fail_at(n, k, "expected an integer, got " + node_kind(n));
+  return v;
+}
+
+bool MapView::boolean(const YAML::Node& n, const std::string& k) const {
+  if (!n.IsDefined() || n.IsNull()) fail_at(n, k, "missing value (expected true or false)");
+  if (n.IsScalar()) {
+    const std::string s(trim(n.Scalar()));
+    if (s == "true" || s == "True" || s == "TRUE") return true;
+    if (s == "false" || s == "False" || s == "FALSE") return false;
+  }
+  fail_at(n, k, "expected true or false, got " + node_kind(n));
+}
+
+std::string MapView::string(const YAML::Node& n, const std::string& k) const {
+  if (!n.IsDefined() || n.IsNull()) fail_at(n, k, "missing value (expected text)");
+  if (!n.IsScalar()) fail_at(n, k, "expected text, got " + node_kind(n));
+  return n.Scalar();
+}
+
+std::vector<std::string> MapView::string_list(const YAML::Node& n, const std::string& k) const {
+  if (!n.IsDefined() || n.IsNull()) fail_at(n, k, "missing value (expected a list such as [t, Q, A])");
+  if (!n.IsSequence()) fail_at(n, k, "expected a list such as [t, Q, A], got " + node_kind(n));
+  std::vector<std::string> out;
+  for (const auto& c : n) {
+    if (!c.IsScalar()) fail(src_, c.Mark().is_null() ? n : c, key(k), "list items must be names, got " + node_kind(c), fallback_line_);
+    out.push_back(c.Scalar());
+  }
+  return out;
+}
+
+}  // namespace asperity::scene_io

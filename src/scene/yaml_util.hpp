@@ -1,0 +1,93 @@
+#pragma once
+// Internal to src/scene: typed, located reading of yaml-cpp trees. Every failure is an
+// InputError naming the file, the line (from the node's Mark) and the dotted key.
+#include <yaml-cpp/yaml.h>
+
+#include <filesystem>
+#include <initializer_list>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "scene/input_error.hpp"
+#include "scene/numbers.hpp"
+
+namespace asperity::scene_io {
+
+// A command-line override as applied to a scene tree.
+struct SetRecord {
+  std::string key;   // dotted key, e.g. model.eta
+  std::string text;  // "--set model.eta=abc" (what an error names instead of FILE:LINE)
+};
+
+// Where the nodes of a tree come from. Nodes with a Mark come from `file`; nodes without one
+// were put there by an override (apply_override strips marks), and an error on them names the
+// matching --set when known, else `file` without a line.
+struct Source {
+  std::string file;                              // display path
+  const std::vector<SetRecord>* sets = nullptr;  // overrides applied to this tree, in order
+};
+
+[[noreturn]] void fail(const Source& src, const YAML::Node& at, const std::string& key,
+                       const std::string& message, int fallback_line = 0);
+
+std::string join_key(const std::string& path, const std::string& key);
+std::string node_kind(const YAML::Node& n);  // "a map", "a list", "a value", "nothing"
+std::size_t edit_distance(const std::string& a, const std::string& b);  // case-insensitive
+// " (did you mean 'x'?)" when some candidate is within edit distance 2, else "".
+std::string did_you_mean(const std::string& word, const std::vector<std::string>& candidates);
+std::string join(const std::vector<std::string>& v, const char* sep = ", ");
+
+// InputError "file not found" / "is a directory" unless `path` is an existing non-directory.
+void check_readable_file(const std::filesystem::path& path, const std::string& display);
+
+// Reads a whole YAML file (first and only document); Null when empty. Parse errors → InputError.
+YAML::Node load_yaml_file(const std::filesystem::path& path, const std::string& display);
+// Parses YAML text (an override value); errors are reported against `where`.
+YAML::Node load_yaml_text(const std::string& text, const std::string& where, const std::string& key);
+
+// Deep copy without Marks (values coming from outside the file being read).
+YAML::Node strip_marks(const YAML::Node& n);
+
+// A map node with its keys checked: a map (or empty), scalar keys, no duplicates, no unknown keys.
+class MapView {
+ public:
+  MapView(Source src, const YAML::Node& node, std::string path, std::vector<std::string> allowed,
+          int fallback_line = 0);
+
+  const Source& source() const { return src_; }
+  const std::string& path() const { return path_; }
+  const YAML::Node& node() const { return node_; }
+  std::string key(const std::string& k) const { return join_key(path_, k); }
+  std::optional<YAML::Node> find(const std::string& k) const;
+  YAML::Node require(const std::string& k) const;  // missing → InputError
+  [[noreturn]] void fail_at(const YAML::Node& at, const std::string& k, const std::string& msg) const;
+
+  // Typed values. `unit` names the SI unit for the "1.6 MPa" message (nullptr: dimensionless).
+  double number(const YAML::Node& n, const std::string& k, const char* unit) const;
+  int integer(const YAML::Node& n, const std::string& k) const;
+  bool boolean(const YAML::Node& n, const std::string& k) const;
+  std::string string(const YAML::Node& n, const std::string& k) const;
+  std::vector<std::string> string_list(const YAML::Node& n, const std::string& k) const;
+  template <class E>
+  E enumeration(const YAML::Node& n, const std::string& k,
+                std::initializer_list<std::pair<const char*, E>> table) const {
+    const std::string s = string(n, k);
+    std::vector<std::string> names;
+    for (const auto& [name, value] : table) {
+      if (s == name) return value;
+      names.emplace_back(name);
+    }
+    fail_at(n, k, "unknown value " + quote(s) + did_you_mean(s, names) + "; valid: " + join(names));
+  }
+
+ private:
+  Source src_;
+  YAML::Node node_;
+  std::string path_;
+  int fallback_line_;
+  std::vector<std::pair<std::string, std::pair<YAML::Node, YAML::Node>>> entries_;  // key → (key node, value)
+};
+
+}  // namespace asperity::scene_io
