@@ -612,7 +612,7 @@ TEST_CASE("scene error: experiment map value <= 0 names the scene", "[scene]") {
   expect_error(box, [&] { load_scene(s); }, {"scene.yaml:3: experiment.k_L: must be > 0, got 0"});
 }
 
-TEST_CASE("scene error: nu outside (-1, 0.5]", "[scene]") {
+TEST_CASE("scene error: nu outside -1 < nu <= 0.5", "[scene]") {
   expect_experiment_error({{"nu", "nu: 0.6"}}, {"experiment.yaml:7: nu: must be in (-1, 0.5], got 0.6"});
   expect_experiment_error({{"nu", "nu: -1"}}, {"experiment.yaml:7: nu: must be in (-1, 0.5], got -1"});
 }
@@ -649,7 +649,7 @@ TEST_CASE("scene error: junction CSV structure", "[scene]") {
   expect_junctions_error("", {"junctions.csv:1: area_m2: missing header row"});
 }
 
-TEST_CASE("scene error: epsilon outside (0, 1]", "[scene]") {
+TEST_CASE("scene error: epsilon outside 0 < epsilon <= 1", "[scene]") {
   expect_scene_error("model:\n  epsilon: 1.5\n", {"scene.yaml:3: model.epsilon: must be in (0, 1], got 1.5"});
   expect_scene_error("model: {epsilon: 0}\n", {"scene.yaml:2: model.epsilon: must be in (0, 1], got 0"});
 }
@@ -675,7 +675,7 @@ TEST_CASE("scene error: Ct <= 0", "[scene]") {
   expect_scene_error("solver:\n  Ct: 0\n", {"scene.yaml:3: solver.Ct: must be > 0, got 0"});
 }
 
-TEST_CASE("scene error: tolerance outside (0, 0.1]", "[scene]") {
+TEST_CASE("scene error: tolerance outside 0 < tolerance <= 0.1", "[scene]") {
   expect_scene_error("solver:\n  tolerance: 0\n", {"scene.yaml:3: solver.tolerance: must be in (0, 0.1], got 0"});
   expect_scene_error("solver:\n  tolerance: 0.5\n", {"scene.yaml:3: solver.tolerance: must be in (0, 0.1], got 0.5"});
 }
