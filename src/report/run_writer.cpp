@@ -25,20 +25,6 @@ std::string g17(double x) {
   return buf;
 }
 
-std::string yaml_string(const std::string& s) {
-  std::string out = "\"";
-  for (char c : s) {
-    switch (c) {
-      case '"': out += "\\\""; break;
-      case '\\': out += "\\\\"; break;
-      case '\n': out += "\\n"; break;
-      case '\t': out += "\\t"; break;
-      case '\r': out += "\\r"; break;
-      default: out += c;
-    }
-  }
-  return out + "\"";
-}
 
 const char* method_name(SolverMethod m) {
   switch (m) {
@@ -141,9 +127,9 @@ std::string summary_yaml(const Scene& scene, const Observables& o, const std::ve
   auto d = [&](const char* key, double v) { y << key << ": " << yaml_double(v) << '\n'; };
   auto i = [&](const char* key, long long v) { y << key << ": " << v << '\n'; };
   y << "# asperity run summary (SI units: m, m², N, s)\n";
-  y << "asperity_version: " << yaml_string(ASPERITY_VERSION) << '\n';
-  y << "scene_file: " << yaml_string(scene.file.string()) << '\n';
-  y << "experiment: " << yaml_string(scene.experiment.name) << '\n';
+  y << "asperity_version: " << yaml_quoted(ASPERITY_VERSION) << '\n';
+  y << "scene_file: " << yaml_quoted(scene.file.string()) << '\n';
+  y << "experiment: " << yaml_quoted(scene.experiment.name) << '\n';
   y << "method: " << method_name(scene.solver.method) << '\n';
   d("Ct", scene.solver.Ct);
   d("tolerance", scene.solver.tolerance);

@@ -71,4 +71,7 @@ std::string scene_to_yaml(const Scene& scene);
 std::string experiment_to_yaml(const Experiment& e, const std::string& junctions_rel,
                                const std::string& measured_rel);
 
+// A double-quoted, escaped YAML scalar (deterministic bytes).
+std::string yaml_quoted(const std::string& s);
+
 }  // namespace asperity

@@ -8,9 +8,8 @@
 
 namespace asperity {
 
-namespace {
-
-std::string quoted(const std::string& s) {
+// A double-quoted YAML scalar with escapes (the one quoting used for every file we write).
+std::string yaml_quoted(const std::string& s) {
   static const char* hex = "0123456789ABCDEF";
   std::string out = "\"";
   for (unsigned char c : s) {
@@ -33,6 +32,9 @@ std::string quoted(const std::string& s) {
   return out + "\"";
 }
 
+namespace {
+
+
 std::string num(double x) {
   if (!std::isfinite(x)) throw std::invalid_argument("cannot write a non-finite number to a scene file");
   return scene_io::format_double(x);
@@ -50,9 +52,9 @@ std::string scene_to_yaml(const Scene& s) {
   std::string y;
   y += "# asperity scene, fully resolved: every value explicit, numbers round-trip exactly\n";
   y += "experiment:\n";
-  y += "  file: " + quoted(file) + "\n";
-  y += "  name: " + quoted(e.name) + "\n";
-  y += "  description: " + quoted(e.description) + "\n";
+  y += "  file: " + yaml_quoted(file) + "\n";
+  y += "  name: " + yaml_quoted(e.name) + "\n";
+  y += "  description: " + yaml_quoted(e.description) + "\n";
   y += "  mass: " + num(e.mass_kg) + "\n";
   y += "  k_L: " + num(e.k_L) + "\n";
   y += "  v: " + num(e.v) + "\n";
@@ -88,8 +90,8 @@ std::string scene_to_yaml(const Scene& s) {
 std::string experiment_to_yaml(const Experiment& e, const std::string& junctions_rel, const std::string& measured_rel) {
   if (junctions_rel.empty()) throw std::invalid_argument("experiment_to_yaml: junctions_rel must not be empty");
   std::string y;
-  y += "name: " + quoted(e.name) + "\n";
-  if (!e.description.empty()) y += "description: " + quoted(e.description) + "\n";
+  y += "name: " + yaml_quoted(e.name) + "\n";
+  if (!e.description.empty()) y += "description: " + yaml_quoted(e.description) + "\n";
   auto field = [&](const char* key, double x, const char* unit) {
     std::string l = std::string(key) + ": " + num(x);
     if (unit) l += std::string(l.size() < 28 ? 28 - l.size() : 1, ' ') + "# " + unit;
@@ -101,8 +103,8 @@ std::string experiment_to_yaml(const Experiment& e, const std::string& junctions
   field("E", e.E, "Pa");
   field("nu", e.nu, nullptr);
   field("sigma_exp", e.sigma_exp, "Pa");
-  y += "junctions: " + quoted(junctions_rel) + "\n";
-  if (!measured_rel.empty()) y += "measured: " + quoted(measured_rel) + "\n";
+  y += "junctions: " + yaml_quoted(junctions_rel) + "\n";
+  if (!measured_rel.empty()) y += "measured: " + yaml_quoted(measured_rel) + "\n";
   return y;
 }
 
