@@ -240,7 +240,7 @@ TEST_CASE("scene: fixture scene loads with its values and the paper's defaults",
   CHECK(s.solver.tolerance == 1e-9);
   CHECK(s.stop.cycles == -1);
   CHECK(s.output.every == 1e-3);
-  CHECK(s.output.peak_min_drop == 1e-3);
+  CHECK(s.output.peak_min_drop == 0.02);
 }
 
 TEST_CASE("scene: a scene naming only the experiment gets every struct default", "[scene]") {

@@ -16,7 +16,7 @@
 //            junction_shape: elliptic|circular, area_law: until_first_slip|always}
 //   solver: {method: event|reference, Ct: 1e4, tolerance: 1e-9}
 //   stop:   {time: 1.0, at_first_peak: false, cycles: -1}
-//   output: {every: 1e-3, series: [t, X, V, Q, A, n_slipping, n_intact], peak_min_drop: 1e-3}
+//   output: {every: 1e-3, series: [t, X, V, Q, A, n_slipping, n_intact], peak_min_drop: 0.02}
 //
 // Experiment YAML: name, mass [kg], k_L [N/m], v [m/s], E [Pa], nu, sigma_exp [Pa],
 // junctions (CSV path relative to the experiment file), optional measured (CSV), optional
