@@ -48,7 +48,7 @@ struct StandinRecipe {
   double run_peak_min_drop = 1e-3;
 
   // Scenes written with --scenes (scenes/paper/P*.yaml).
-  double scene_stop_time = 3.0;      // s
+  double scene_stop_time = 10.0;     // s
   double scene_every = 1e-3;         // s
 };
 
