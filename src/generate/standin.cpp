@@ -25,7 +25,6 @@ std::string g6(double x) { return fmt("%.6g", x); }
 
 std::string u64(std::uint64_t x) { return std::to_string(x); }
 
-const char* method_name(SolverMethod m) { return m == SolverMethod::reference ? "reference" : "event"; }
 
 std::string solver_text(const SolverSettings& s) {
   if (s.method == SolverMethod::reference) return "reference solver, Ct = " + g6(s.Ct);
@@ -128,26 +127,13 @@ StandinExperiment build_standin(const StandinRecipe& r, std::size_t i) {
 }
 
 std::string standin_scene_yaml(const StandinRecipe& r, const StandinExperiment& x, const std::string& rel) {
-  const ModelSettings m{};
-  const SolverSettings s{};
   auto num = [](double v) { return scene_io::format_double(v); };
   std::string y;
   y += "# Paper parameters (MODEL.md §2) on the stand-in experiment " + x.experiment.name + ".\n";
   y += "# STAND-IN data, not a measurement (see data/standin/README.md).\n";
   y += "# Written by `asperity generate --scenes`; regenerate rather than edit.\n";
   y += "experiment: " + rel + "\n";
-  y += "model:\n";
-  y += "  eta: " + num(m.eta) + "\n";
-  y += "  epsilon: " + num(m.epsilon) + "\n";
-  y += "  c_min: " + num(m.c_min) + "\n";
-  y += "  p: " + num(m.p) + "\n";
-  y += "  alpha_b: " + num(m.alpha_b) + "\n";
-  y += "  junction_shape: elliptic\n";
-  y += "  area_law: until_first_slip\n";
-  y += "solver:\n";
-  y += std::string("  method: ") + method_name(s.method) + "\n";
-  y += "  Ct: " + num(s.Ct) + "\n";
-  y += "  tolerance: " + num(s.tolerance) + "\n";
+  y += model_solver_yaml(ModelSettings{}, SolverSettings{});
   y += "stop:\n";
   y += "  time: " + num(r.scene_stop_time) + "\n";
   y += "output:\n";

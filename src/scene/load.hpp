@@ -71,6 +71,9 @@ std::string scene_to_yaml(const Scene& scene);
 std::string experiment_to_yaml(const Experiment& e, const std::string& junctions_rel,
                                const std::string& measured_rel);
 
+// The model: and solver: sections of a scene, exactly as scene_to_yaml writes them.
+std::string model_solver_yaml(const ModelSettings& m, const SolverSettings& solver);
+
 // A double-quoted, escaped YAML scalar (deterministic bytes).
 std::string yaml_quoted(const std::string& s);
 

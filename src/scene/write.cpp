@@ -46,6 +46,23 @@ const char* name_of(SolverMethod m) { return m == SolverMethod::reference ? "ref
 
 }  // namespace
 
+std::string model_solver_yaml(const ModelSettings& m, const SolverSettings& solver) {
+  std::string y;
+  y += "model:\n";
+  y += "  eta: " + num(m.eta) + "\n";
+  y += "  epsilon: " + num(m.epsilon) + "\n";
+  y += "  c_min: " + num(m.c_min) + "\n";
+  y += "  p: " + num(m.p) + "\n";
+  y += "  alpha_b: " + num(m.alpha_b) + "\n";
+  y += std::string("  junction_shape: ") + name_of(m.junction_shape) + "\n";
+  y += std::string("  area_law: ") + name_of(m.area_law) + "\n";
+  y += "solver:\n";
+  y += std::string("  method: ") + name_of(solver.method) + "\n";
+  y += "  Ct: " + num(solver.Ct) + "\n";
+  y += "  tolerance: " + num(solver.tolerance) + "\n";
+  return y;
+}
+
 std::string scene_to_yaml(const Scene& s) {
   const Experiment& e = s.experiment;
   const std::string file = e.file.empty() ? std::string() : std::filesystem::absolute(e.file).lexically_normal().string();
@@ -61,19 +78,7 @@ std::string scene_to_yaml(const Scene& s) {
   y += "  E: " + num(e.E) + "\n";
   y += "  nu: " + num(e.nu) + "\n";
   y += "  sigma_exp: " + num(e.sigma_exp) + "\n";
-  const ModelSettings& m = s.model;
-  y += "model:\n";
-  y += "  eta: " + num(m.eta) + "\n";
-  y += "  epsilon: " + num(m.epsilon) + "\n";
-  y += "  c_min: " + num(m.c_min) + "\n";
-  y += "  p: " + num(m.p) + "\n";
-  y += "  alpha_b: " + num(m.alpha_b) + "\n";
-  y += std::string("  junction_shape: ") + name_of(m.junction_shape) + "\n";
-  y += std::string("  area_law: ") + name_of(m.area_law) + "\n";
-  y += "solver:\n";
-  y += std::string("  method: ") + name_of(s.solver.method) + "\n";
-  y += "  Ct: " + num(s.solver.Ct) + "\n";
-  y += "  tolerance: " + num(s.solver.tolerance) + "\n";
+  y += model_solver_yaml(s.model, s.solver);
   y += "stop:\n";
   y += "  time: " + num(s.stop.time) + "\n";
   y += std::string("  at_first_peak: ") + (s.stop.at_first_peak ? "true" : "false") + "\n";

@@ -74,6 +74,7 @@ class EventModel {
       for (std::size_t i = 0; i < N; ++i) nl_insert(i, 0.0);
     } else {
       for (std::size_t i = 0; i < N; ++i) lin_insert(i, 0.0);
+      for (double a : A0_) A_fixed_ += a;  // linear junctions keep their area
     }
     for (std::size_t i = 0; i < N; ++i) heap_.push({d_s_[i], static_cast<std::uint32_t>(i)});
     n_intact_ = static_cast<std::int64_t>(N);
@@ -218,13 +219,6 @@ class EventModel {
     K_p_ = K; S_p_ = S; A_fixed_ = A;
   }
 
- public:
-  void init_area_sum() {
-    A_fixed_ = 0;
-    if (!nonlinear_) for (double a : A0_) A_fixed_ += a;
-  }
-
- private:
   const Experiment& e_;
   const ModelSettings& m_;
   ContactLaw law_;
@@ -258,7 +252,6 @@ RunInfo integrate_event(const Scene& scene, Recorder& rec) {
   const double t_stop = scene.stop.time;
 
   EventModel model(scene);
-  model.init_area_sum();
   auto rhs = [&](const State& y, State& dy, double t) {
     const double X = y[0] * L, V = y[1] * v;
     dy[0] = V / L;
@@ -279,16 +272,20 @@ RunInfo integrate_event(const Scene& scene, Recorder& rec) {
   enum Kind { kThreshold, kSlowUp, kSlowDown, kExtremumUp, kExtremumDown };
   struct Found { double t; Kind kind; };
   State ys;
-  auto eval = [&](Kind k, double tt) {
-    stepper.calc_state(tt, ys);
+  // Event function k on a state at time tt (scaled units).
+  auto value = [&](Kind k, const State& st) {
     switch (k) {
-      case kThreshold: return ys[0] * L - model.next_threshold();  // fires upward
-      case kSlowUp: return ys[1] * v - v_repin;                     // fires downward
-      case kSlowDown: return ys[1] * v + v_repin;                   // fires upward
-      case kExtremumUp: return ys[1] * v - v;                       // upward: Q maximum
-      case kExtremumDown: return ys[1] * v - v;                     // downward: Q minimum
+      case kThreshold: return st[0] * L - model.next_threshold();  // fires upward
+      case kSlowUp: return st[1] * v - v_repin;                     // fires downward
+      case kSlowDown: return st[1] * v + v_repin;                   // fires upward
+      case kExtremumUp:                                             // upward: Q maximum
+      case kExtremumDown: return st[1] * v - v;                     // downward: Q minimum
     }
     return 0.0;
+  };
+  auto eval = [&](Kind k, double tt) {
+    stepper.calc_state(tt, ys);
+    return value(k, ys);
   };
   auto fires = [](Kind k, double ga, double gb) {
     const bool up = k == kThreshold || k == kSlowDown || k == kExtremumUp;
@@ -304,17 +301,24 @@ RunInfo integrate_event(const Scene& scene, Recorder& rec) {
     double t_lo = t0;
     for (;;) {
       const double t_hi = std::min(t1, t_stop);
-      std::vector<Kind> active{kExtremumUp, kExtremumDown};
-      if (model.has_threshold()) active.push_back(kThreshold);
-      if (model.n_slipping() > 0) { active.push_back(kSlowUp); active.push_back(kSlowDown); }
-      std::optional<Found> first;
+      Kind active[5] = {kExtremumUp, kExtremumDown};
+      int n_active = 2;
+      if (model.has_threshold()) active[n_active++] = kThreshold;
+      if (model.n_slipping() > 0) { active[n_active++] = kSlowUp; active[n_active++] = kSlowDown; }
+      // Dense-output states at the probes, shared by every event function.
       double probe_t[kProbe + 1];
-      for (int j = 0; j <= kProbe; ++j) probe_t[j] = t_lo + (t_hi - t_lo) * j / kProbe;
-      for (Kind k : active) {
-        double ga = eval(k, probe_t[0]);
+      State probe_y[kProbe + 1];
+      for (int j = 0; j <= kProbe; ++j) {
+        probe_t[j] = t_lo + (t_hi - t_lo) * j / kProbe;
+        stepper.calc_state(probe_t[j], probe_y[j]);
+      }
+      std::optional<Found> first;
+      for (int a = 0; a < n_active; ++a) {
+        const Kind k = active[a];
+        double ga = value(k, probe_y[0]);
         for (int j = 1; j <= kProbe; ++j) {
           if (first && probe_t[j - 1] >= first->t) break;
-          const double gb = eval(k, probe_t[j]);
+          const double gb = value(k, probe_y[j]);
           if (fires(k, ga, gb)) {
             boost::math::tools::eps_tolerance<double> etol(50);
             std::uintmax_t it = 100;
