@@ -32,6 +32,23 @@ class UniversalForceLaw {
     return c[0] + t * (c[1] + t * (c[2] + t * c[3]));
   }
   double g_exact(double psi) const;
+  // g and its first three derivatives at ψ (inside the table: the interpolating cubic's own,
+  // so a Taylor sum of order 3 reproduces g exactly within one table interval). Returns false
+  // beyond the table, where no derivative is provided.
+  bool g_derivatives(double psi, double d[4]) const {
+    const double a = psi < 0 ? -psi : psi;
+    if (!(a < psi_max_)) return false;
+    const double u = a * inv_h_;
+    const std::size_t j = std::min(static_cast<std::size_t>(u), coef_.size() - 1);
+    const double t = u - static_cast<double>(j);
+    const auto& c = coef_[j];
+    const double s = psi < 0 ? -1.0 : 1.0;  // g even: odd derivatives change sign
+    d[0] = c[0] + t * (c[1] + t * (c[2] + t * c[3]));
+    d[1] = s * (c[1] + t * (2 * c[2] + t * 3 * c[3])) * inv_h_;
+    d[2] = (2 * c[2] + 6 * c[3] * t) * inv_h_ * inv_h_;
+    d[3] = s * 6 * c[3] * inv_h_ * inv_h_ * inv_h_;
+    return true;
+  }
   double psi_max() const { return psi_max_; }
   std::size_t nodes() const { return nodes_; }
   double max_rel_error() const { return max_err_; }

@@ -18,10 +18,12 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <queue>
 #include <vector>
 
 #include "physics/universal_law.hpp"
+#include "solve/binned_sum.hpp"
 #include "solve/integrate.hpp"
 
 namespace asperity {
@@ -71,7 +73,12 @@ class EventModel {
     }
     if (nonlinear_) {
       table_.emplace(law_.nu, law_.shape, 1.1 * psi_hi);
-      for (std::size_t i = 0; i < N; ++i) nl_insert(i, 0.0);
+      if (!always_ && N >= kBinnedMin) {
+        binned_.emplace(*table_, w_, c_, A0_, binned_rel_width(scene.solver.tolerance, psi_hi));
+        std::fill(nl_pos_.begin(), nl_pos_.end(), 0);  // "in the nonlinear set"; storage is binned_
+      } else {
+        for (std::size_t i = 0; i < N; ++i) nl_insert(i, 0.0);
+      }
     } else {
       for (std::size_t i = 0; i < N; ++i) lin_insert(i, 0.0);
       for (double a : A0_) A_fixed_ += a;  // linear junctions keep their area
@@ -84,6 +91,7 @@ class EventModel {
   double force(double X) const {
     ++force_evals_;
     double F = K_p_ * X - S_p_ + F_sl_;
+    if (binned_) return F + binned_->force(X);
     const std::size_t n = nl_w_.size();
     const double* w = nl_w_.data();
     const double* c = nl_c_.data();
@@ -102,6 +110,7 @@ class EventModel {
   // Total area at slider position X [m²].
   double area(double X) const {
     double A = A_fixed_;
+    if (binned_) return A + binned_->area(X);
     for (std::size_t j = 0; j < nl_w_.size(); ++j) {
       const double d = X - nl_x_[j];
       const double psi = nl_c_[j] * d;
@@ -154,6 +163,9 @@ class EventModel {
 
  private:
   static constexpr std::size_t npos = static_cast<std::size_t>(-1);
+  // Above this many junctions the never-slipped ones are summed in bins (binned_sum.hpp):
+  // O(bins) per force instead of O(N). Below it the exact sum is as fast, and exact.
+  static constexpr std::size_t kBinnedMin = 20000;
 
   void nl_insert(std::size_t i, double anchor) {
     nl_pos_[i] = nl_w_.size();
@@ -164,6 +176,11 @@ class EventModel {
     nl_A0_.push_back(A0_[i]);
   }
   void nl_remove(std::size_t i) {
+    if (binned_) {
+      binned_->remove(i);
+      nl_pos_[i] = npos;
+      return;
+    }
     const std::size_t p = nl_pos_[i], last = nl_w_.size() - 1;
     if (p != last) {
       const std::uint32_t moved = nl_idx_[last];
@@ -231,6 +248,7 @@ class EventModel {
   std::vector<std::uint32_t> nl_idx_;
   std::vector<double> nl_w_, nl_c_, nl_x_, nl_A0_;
   std::optional<UniversalForceLaw> table_;
+  std::optional<BinnedUniversalSum> binned_;  // large N under until_first_slip
   using Entry = std::pair<double, std::uint32_t>;
   std::priority_queue<Entry, std::vector<Entry>, std::greater<>> heap_;
   std::vector<std::uint32_t> slipping_;
