@@ -96,3 +96,28 @@ TEST_CASE("binned sums: a junction removed twice counts once, an emptied bin is 
   CHECK(B.force(0.7) == 0.0);
   CHECK(B.area(0.7) == 0.0);
 }
+
+#include "observe/observables.hpp"
+#include "support.hpp"
+
+TEST_CASE("event solver: 20 copies of each junction with 20x mass and spring give the same run scaled by 20 (binned vs direct sums)", "[solve][binned]") {
+  // n = 1000 junctions use the direct sum; 20 000 use the binned sums. Replicating every
+  // junction and scaling M and k_L by 20 leaves X(t) unchanged and scales Q and A by 20.
+  using namespace asperity::testing;
+  const auto areas = spread_areas(1000, 1e-9, 1e-7);
+  Scene one = paper_scene(areas);
+  one.stop.time = 2.5;
+  std::vector<double> rep;
+  for (double a : areas) rep.insert(rep.end(), 20, a);
+  Scene many = paper_scene(rep, 20 * 0.408);
+  many.experiment.k_L *= 20;
+  many.stop.time = 2.5;
+  const auto a = run(one), b = run(many);
+  const Observables oa = summarize(one, a.info, a.rec, 0), ob = summarize(many, b.info, b.rec, 0);
+  INFO("Q_s " << oa.Q_s << " vs " << ob.Q_s / 20 << ", slips " << oa.slips << " vs " << ob.slips);
+  CHECK(ob.slips == 20 * oa.slips);
+  CHECK_THAT(ob.Q_s / 20, Catch::Matchers::WithinRel(oa.Q_s, 1e-7));
+  CHECK_THAT(ob.A_s / 20, Catch::Matchers::WithinRel(oa.A_s, 1e-7));
+  CHECK_THAT(b.rec.series()[1500].A / 20, Catch::Matchers::WithinRel(a.rec.series()[1500].A, 1e-9));
+  CHECK_THAT(b.rec.series()[1500].Q / 20, Catch::Matchers::WithinRel(a.rec.series()[1500].Q, 1e-7));
+}

@@ -27,6 +27,9 @@ Command add_run_command(CLI::App& app);  // run_command.cpp
 // asperity generate [--recipe data/standin/recipe.yaml] [--out data/standin] [--scenes DIR] [--quiet]
 Command add_generate_command(CLI::App& app);  // generate_command.cpp
 
+// asperity reproduce SCENE.yaml... [--out results/paper] [--set k=v]... [--threads N] [--quiet]
+Command add_reproduce_command(CLI::App& app);  // reproduce_command.cpp
+
 // Planned, by their owners (uncomment the matching line in main.cpp when adding one):
 // Command add_sweep_command(CLI::App& app);     // sweep_command.cpp
 // Command add_fit_command(CLI::App& app);       // fit_command.cpp

@@ -1,0 +1,140 @@
+#include "report/paper_figures.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <sstream>
+
+#include "report/gnuplot.hpp"
+
+namespace asperity {
+namespace fs = std::filesystem;
+
+double loading_time_at(const std::vector<Sample>& loading, double Q) {
+  for (std::size_t i = 1; i < loading.size(); ++i) {
+    const Sample& a = loading[i - 1];
+    const Sample& b = loading[i];
+    if (a.Q <= Q && Q <= b.Q) {
+      const double f = b.Q > a.Q ? (Q - a.Q) / (b.Q - a.Q) : 0.0;
+      return a.t + f * (b.t - a.t);
+    }
+  }
+  if (!loading.empty() && Q == loading.front().Q) return loading.front().t;
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+namespace {
+
+std::vector<std::vector<double>> series_rows(const std::vector<Sample>& s) {
+  std::vector<std::vector<double>> rows;
+  rows.reserve(s.size());
+  for (const Sample& x : s) rows.push_back({x.t, x.Q, x.A * 1e6});
+  return rows;
+}
+
+// Measured samples as (t at equal model Q, Q, A [mm²]).
+std::vector<std::vector<double>> measured_rows(const PaperRun& r) {
+  std::vector<std::vector<double>> rows;
+  if (!r.scene.experiment.measured) return rows;
+  const auto& m = *r.scene.experiment.measured;
+  for (std::size_t i = 0; i < m.Q_N.size(); ++i)
+    rows.push_back({loading_time_at(r.loading, m.Q_N[i]), m.Q_N[i], m.A_m2[i] * 1e6});
+  return rows;
+}
+
+std::string gp_escape(const std::string& s) {
+  std::string o;
+  for (char c : s) o += c == '\'' ? std::string("''") : std::string(1, c);
+  return o;
+}
+
+const char* kColors[] = {"#1b9e77", "#d95f02", "#7570b3", "#e7298a", "#66a61e", "#e6ab02", "#a6761d", "#666666"};
+
+}  // namespace
+
+void write_figure3(const fs::path& out_dir, const PaperRun& small, const PaperRun& large,
+                   const std::string& label) {
+  std::ostringstream gp;
+  gp << gnuplot_block("ms", series_rows(small.series)) << gnuplot_block("me", measured_rows(small))
+     << gnuplot_block("ls", series_rows(large.series)) << gnuplot_block("le", measured_rows(large));
+  gp << "set terminal pngcairo size 1200,900 noenhanced font ',10'\n"
+     << "set output 'fig3_Q_A_t.png'\nset grid\nset key top left opaque box\n"
+     << "set multiplot layout 2,2 title '" << gp_escape(label)
+     << ": Figure 3 analogue. Measured A(Q) has no time axis: its samples sit at the model time "
+        "of equal Q (loading branch).'\n";
+  auto panel = [&](const PaperRun& r, const char* model, const char* meas, bool area) {
+    gp << "set title '" << gp_escape(r.scene.experiment.name) << " (N = " << r.obs.N << ")'\n"
+       << "set xlabel 't [s]'\nset ylabel '" << (area ? "A [mm^2]" : "Q [N]") << "'\n"
+       << "plot $" << model << " using 1:" << (area ? 3 : 2) << " with lines lw 1.5 lc rgb '#1f4e9a' title 'model'";
+    if (area && r.scene.experiment.measured)
+      gp << ", $" << meas << " using 1:3 with points pt 7 ps 0.6 lc rgb '#d95f02' title 'measured (stand-in)'";
+    gp << "\n";
+  };
+  panel(small, "ms", "me", false);
+  panel(large, "ls", "le", false);
+  panel(small, "ms", "me", true);
+  panel(large, "ls", "le", true);
+  gp << "unset multiplot\n";
+  run_gnuplot(out_dir, gp.str());
+}
+
+void write_figure4(const fs::path& out_dir, const std::vector<PaperRun>& runs, const std::string& label) {
+  std::ostringstream gp;
+  for (std::size_t k = 0; k < runs.size(); ++k) {
+    const PaperRun& r = runs[k];
+    std::vector<std::vector<double>> model, meas;
+    for (const Sample& s : r.loading)
+      model.push_back({s.Q, s.A * 1e6, s.Q / r.obs.Q_s, s.A / r.obs.A0});
+    if (r.scene.experiment.measured) {
+      const auto& m = *r.scene.experiment.measured;
+      for (std::size_t i = 0; i < m.Q_N.size(); ++i)
+        meas.push_back({m.Q_N[i], m.A_m2[i] * 1e6, m.Q_N[i] / r.obs.Q_s, m.A_m2[i] / r.obs.A0});
+    }
+    const std::string id = std::to_string(k);
+    gp << gnuplot_block(std::string("m").append(id), model) << gnuplot_block(std::string("e").append(id), meas);
+  }
+  gp << "set terminal pngcairo size 1300,600 noenhanced font ',10'\n"
+     << "set output 'fig4_A_Q.png'\nset grid\nset key outside right\n"
+     << "set multiplot layout 1,2 title '" << gp_escape(label)
+     << ": Figure 4 analogue. Lines: model loading branch; points: measured (stand-in).'\n";
+  for (int panel = 0; panel < 2; ++panel) {
+    const int cx = panel == 0 ? 1 : 3, cy = panel == 0 ? 2 : 4;
+    gp << (panel == 0 ? "set xlabel 'Q [N]'\nset ylabel 'A [mm^2]'\nset title 'A(Q)'\n"
+                      : "set xlabel 'Q / Q_s'\nset ylabel 'A / A0'\nset title 'normalised: a straight line is "
+                        "quasi-linear, a parabola quadratic'\n");
+    gp << "plot ";
+    for (std::size_t k = 0; k < runs.size(); ++k) {
+      const char* col = kColors[k % 8];
+      if (k) gp << ", ";
+      gp << "$m" << k << " using " << cx << ":" << cy << " with lines lw 2 lc rgb '" << col << "' title '"
+         << gp_escape(runs[k].scene.experiment.name) << "'";
+      if (runs[k].scene.experiment.measured)
+        gp << ", $e" << k << " using " << cx << ":" << cy << " with points pt 7 ps 0.4 lc rgb '" << col
+           << "' notitle";
+    }
+    gp << "\n";
+  }
+  gp << "unset multiplot\n";
+  run_gnuplot(out_dir, gp.str());
+}
+
+std::string paper_table_csv(const std::vector<PaperRun>& runs) {
+  std::ostringstream s;
+  s << "experiment,N,A0_m2,dt_s,Q_s_N,A_s_m2,t_peak_s,alpha_m2_per_N2,alpha_R2,alpha_measured_m2_per_N2,"
+       "shape_exponent,shape_exponent_measured,area_drop_fraction,ss_cycles,ss_drop_N,ss_period_s\n";
+  char buf[40];
+  auto g = [&](double x) {
+    std::snprintf(buf, sizeof buf, "%.17g", x);
+    return std::string(buf);
+  };
+  for (const PaperRun& r : runs) {
+    const Observables& o = r.obs;
+    s << r.scene.experiment.name << ',' << o.N << ',' << g(o.A0) << ',' << g(o.dt) << ',' << g(o.Q_s) << ','
+      << g(o.A_s) << ',' << g(o.t_peak) << ',' << g(o.alpha) << ',' << g(o.alpha_R2) << ','
+      << g(o.alpha_measured) << ',' << g(o.shape_exponent) << ',' << g(o.shape_exponent_measured) << ','
+      << g(o.area_drop_fraction) << ',' << o.ss_cycles << ',' << g(o.ss_drop) << ',' << g(o.ss_period) << '\n';
+  }
+  return s.str();
+}
+
+}  // namespace asperity

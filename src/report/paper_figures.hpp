@@ -1,0 +1,37 @@
+#pragma once
+// The paper reproduction's figures and table (main job), from runs held in memory.
+//   fig3_Q_A_t.png  analogue of the paper's Figure 3: Q(t) and A(t) for the smallest and the
+//                   largest load, model against the (stand-in) measurement;
+//   fig4_A_Q.png    analogue of Figure 4: A(Q) of every load, model loading branch against the
+//                   measured samples, absolute and normalised (A/A0 against Q/Q_s).
+//   table.csv       N, A0, dt, Q_s, A_s, t_peak, alpha, shape exponents, area drop, stick-slip.
+// A measured curve holds A(Q) only, without time: for Figure 3 its samples are placed at the
+// model's time of equal Q on the loading branch (said on the figure).
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "observe/observables.hpp"
+#include "observe/sample.hpp"
+#include "scene/scene.hpp"
+
+namespace asperity {
+
+struct PaperRun {
+  Scene scene;
+  Observables obs;
+  std::vector<Sample> series;   // every sample (t, Q, A needed)
+  std::vector<Sample> loading;  // loading branch up to the first peak
+};
+
+// Time at which the loading branch first reaches Q (linear interpolation); NaN beyond it.
+double loading_time_at(const std::vector<Sample>& loading, double Q);
+
+// `label` marks the data's origin on every figure (e.g. "STAND-IN data").
+void write_figure3(const std::filesystem::path& out_dir, const PaperRun& smallest,
+                   const PaperRun& largest, const std::string& label);
+void write_figure4(const std::filesystem::path& out_dir, const std::vector<PaperRun>& runs,
+                   const std::string& label);
+std::string paper_table_csv(const std::vector<PaperRun>& runs);
+
+}  // namespace asperity
