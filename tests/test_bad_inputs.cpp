@@ -22,7 +22,12 @@ std::string slurp(const fs::path& p) {
   s << f.rdbuf();
   return s.str();
 }
-std::string q(const fs::path& p) { return "'" + p.string() + "'"; }
+std::string q(const fs::path& p) {
+  std::string s(1, '\'');
+  s += p.string();
+  s += '\'';
+  return s;
+}
 void write(const fs::path& p, const std::string& text) { std::ofstream(p) << text; }
 
 struct Case { std::string file, line, key; };
