@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
 # Installs the Debian packages asperity needs (run as root on Debian 12) and builds it.
+#   scripts/setup.sh [--deps-only]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 pkgs=(cmake g++ ninja-build libboost-dev libeigen3-dev libtbb-dev libnlopt-cxx-dev
@@ -10,5 +11,6 @@ if [ ${#missing[@]} -gt 0 ]; then
   apt-get update -qq
   DEBIAN_FRONTEND=noninteractive apt-get install -y -qq "${missing[@]}"
 fi
+[ "${1:-}" = "--deps-only" ] && exit 0
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
 ninja -C build -j "$(nproc)"
