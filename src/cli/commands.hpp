@@ -30,12 +30,14 @@ Command add_generate_command(CLI::App& app);  // generate_command.cpp
 // asperity reproduce SCENE.yaml... [--out results/paper] [--set k=v]... [--threads N] [--quiet]
 Command add_reproduce_command(CLI::App& app);  // reproduce_command.cpp
 
+// asperity regress [--suite F] [--golden F] [--update --reason TEXT] [--threads N] [--all]
+Command add_regress_command(CLI::App& app);  // regress_command.cpp
+
 // Planned, by their owners (uncomment the matching line in main.cpp when adding one):
 // Command add_sweep_command(CLI::App& app);     // sweep_command.cpp
 // Command add_fit_command(CLI::App& app);       // fit_command.cpp
 // Command add_bench_command(CLI::App& app);     // bench_command.cpp
 // Command add_plot_command(CLI::App& app);      // plot_command.cpp
-// Command add_regress_command(CLI::App& app);   // regress_command.cpp
 // Command add_merge_command(CLI::App& app);     // merge_command.cpp
 
 }  // namespace asperity::cli

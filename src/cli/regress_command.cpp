@@ -1,0 +1,97 @@
+// asperity regress [--suite scenes/regression/suite.yaml] [--golden results/regression/golden.yaml]
+//                  [--update --reason TEXT] [--threads N] [--all]
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <thread>
+
+#include "cli/commands.hpp"
+#include "regress/regress.hpp"
+#include "scene/csv.hpp"
+#include "scene/input_error.hpp"
+
+namespace asperity::cli {
+namespace {
+
+struct RegressOptions {
+  std::string suite = "scenes/regression/suite.yaml";
+  std::string golden = "results/regression/golden.yaml";
+  bool update = false;
+  std::string reason;
+  int threads = 0;
+  bool all = false;
+};
+
+std::string today() {
+  const std::time_t t = std::time(nullptr);
+  char b[32];
+  std::strftime(b, sizeof b, "%Y-%m-%d", std::gmtime(&t));
+  return b;
+}
+
+int regress(const RegressOptions& opt) {
+  namespace fs = std::filesystem;
+  if (opt.update && opt.reason.empty())
+    throw InputError("--reason", 0, "reason", "--update needs --reason \"why the results changed\"");
+  const RegressSuite suite = load_regress_suite(opt.suite);
+  Golden golden;
+  if (!opt.update) {
+    if (!fs::exists(opt.golden))
+      throw InputError(opt.golden, 0, "", "no golden results: bless them with --update --reason \"...\"");
+    golden = load_golden(opt.golden);
+  } else if (fs::exists(opt.golden)) {
+    golden = load_golden(opt.golden);  // keep the history
+  }
+  const int threads = opt.threads > 0 ? opt.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const auto t0 = std::chrono::steady_clock::now();
+  const auto results = run_regress_suite(suite, opt.update, threads);
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+
+  if (opt.update) {
+    auto history = golden.history;
+    history.push_back({today(), ASPERITY_VERSION, opt.reason});
+    const Golden fresh = bless(results, history);
+    fs::create_directories(fs::path(opt.golden).parent_path());
+    scene_io::write_text_file(opt.golden, golden_to_yaml(fresh));
+    std::printf("blessed %zu entries in %.1f s wall (%d threads) -> %s\n", results.size(), wall, threads,
+                opt.golden.c_str());
+    return exit_ok;
+  }
+  const auto rows = compare(golden, results);
+  std::size_t bad = 0;
+  for (const auto& r : rows) bad += r.ok ? 0 : 1;
+  if (bad || opt.all) {
+    std::printf("%-28s %-20s %24s %24s %11s %11s  %s\n", "entry", "observable", "golden", "now", "|diff|",
+                "tolerance", "status");
+    for (const auto& r : rows) {
+      if (r.ok && !opt.all) continue;
+      std::printf("%-28s %-20s %24.17g %24.17g %11.3g %11.3g  %s%s%s\n", r.entry.c_str(), r.observable.c_str(),
+                  r.golden, r.now, std::abs(r.now - r.golden), r.tolerance, r.ok ? "ok" : "DRIFT",
+                  r.note.empty() ? "" : ": ", r.note.c_str());
+    }
+  }
+  std::printf("regress: %zu entries, %zu values compared, %zu drifted; %.1f s wall on %d threads\n",
+              results.size(), rows.size(), bad, wall, threads);
+  return bad ? exit_failure : exit_ok;
+}
+
+}  // namespace
+
+Command add_regress_command(CLI::App& app) {
+  auto opt = std::make_shared<RegressOptions>();
+  CLI::App* sub = app.add_subcommand("regress", "Run the regression suite and compare it with the golden results "
+                                                "(exit 1 on drift)");
+  sub->add_option("--suite", opt->suite, "Suite YAML (default scenes/regression/suite.yaml)");
+  sub->add_option("--golden", opt->golden, "Golden results (default results/regression/golden.yaml)");
+  sub->add_flag("--update", opt->update, "Re-bless: run with tightened twins, write new golden values and tolerances");
+  sub->add_option("--reason", opt->reason, "Why the results changed (required with --update; kept in the history)");
+  sub->add_option("--threads,-j", opt->threads, "Parallel runs (default: all cores)");
+  sub->add_flag("--all", opt->all, "Print every compared value, not only the drifted ones");
+  return Command{sub, [opt] { return regress(*opt); }};
+}
+
+}  // namespace asperity::cli
