@@ -114,7 +114,8 @@ std::vector<Drift> compare(const Golden& golden, const std::vector<RegressResult
       rows.push_back(d);
     }
   }
-  for (const auto& [name, obs] : golden.entries) {
+  for (const auto& entry : golden.entries) {
+    const std::string& name = entry.first;  // (clang 14 cannot capture structured bindings)
     const bool ran = std::any_of(results.begin(), results.end(), [&](const RegressResult& r) { return r.name == name; });
     if (!ran) rows.push_back({name, "(entry)", 0, 0, 0, false, "in golden but not in the suite"});
   }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdio>
 #include <fstream>
 #include <sstream>
 
@@ -82,6 +83,23 @@ void check_readable_file(const std::filesystem::path& path, const std::string& d
   if (std::filesystem::is_directory(st)) throw InputError(display, 0, "", "is a directory, not a file");
 }
 
+// YAML forbids C0 control characters other than tab, LF and CR (and DEL); yaml-cpp 0.7 can loop
+// forever on some of them (found by fuzz/fuzz_scene.cpp), so they are refused before parsing.
+static void check_yaml_text(const std::string& text, const std::string& display, const std::string& key) {
+  int line = 1, col = 0;
+  for (unsigned char c : text) {
+    ++col;
+    if (c == '\n') { ++line; col = 0; continue; }
+    if ((c < 0x20 && c != '\t' && c != '\r') || c == 0x7f) {
+      char hex[8];
+      std::snprintf(hex, sizeof hex, "0x%02x", c);
+      throw InputError(display, key.empty() ? line : 0, key,
+                       std::string("control character ") + hex + " is not allowed in YAML (binary file?)",
+                       key.empty() ? col : 0);
+    }
+  }
+}
+
 YAML::Node load_yaml_file(const std::filesystem::path& path, const std::string& display) {
   check_readable_file(path, display);
   std::ifstream in(path, std::ios::binary);
@@ -89,6 +107,7 @@ YAML::Node load_yaml_file(const std::filesystem::path& path, const std::string& 
   std::ostringstream ss;
   ss << in.rdbuf();
   if (in.bad()) throw InputError(display, 0, "", "cannot read file");
+  check_yaml_text(ss.str(), display, "");
   std::vector<YAML::Node> docs;
   try {
     docs = YAML::LoadAll(ss.str());
@@ -102,6 +121,7 @@ YAML::Node load_yaml_file(const std::filesystem::path& path, const std::string& 
 }
 
 YAML::Node load_yaml_text(const std::string& text, const std::string& where, const std::string& key) {
+  check_yaml_text(text, where, key);
   try {
     std::vector<YAML::Node> docs = YAML::LoadAll(text);
     if (docs.size() > 1) throw InputError(where, 0, key, "the value holds more than one YAML document");
