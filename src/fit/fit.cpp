@@ -345,7 +345,7 @@ FitResult run_fit(const FitSpec& spec, const FitOptions& options) {
   } else {
     std::vector<std::size_t> all(spec.experiments.size());
     for (std::size_t e = 0; e < all.size(); ++e) all[e] = e;
-    result.fits.push_back(make(all, "joint"));
+    result.fits.push_back(make(all, all.size() == 1 ? spec.experiments[0].name : std::string("joint")));
   }
 
   std::mutex progress_mutex;

@@ -175,7 +175,7 @@ FitSpec load_fit(const fs::path& path) {
       std::vector<std::pair<std::string, std::string>> fixed;
       std::vector<std::pair<std::string, YAML::Node>> set_nodes;
       FitExperiment fe;
-      YAML::Node target_node;
+      bool has_target = false;
       if (item.IsScalar()) {
         scene_node = item;
       } else if (item.IsMap()) {
@@ -200,7 +200,7 @@ FitSpec load_fit(const fs::path& path) {
           const MapView tv(src, *t, ev->key("target"), kTargetKeys);
           fe.target.drop_N = positive(tv, tv.require("drop"), "drop", "N");
           fe.target.period_s = positive(tv, tv.require("period"), "period", "s");
-          target_node = *t;
+          has_target = true;
         }
       } else {
         root.fail_at(item.Mark().is_null() ? en : item, ikey, "expected a scene path or a map {scene: path, set: {...}}, got " + node_kind(item));
@@ -215,7 +215,7 @@ FitSpec load_fit(const fs::path& path) {
         if (!fs::exists(st)) sv.fail_at(scene_node, skey, "scene file not found: " + quote(rel) + " (looked for " + display_path(scene_path) + ")");
         if (fs::is_directory(st)) sv.fail_at(scene_node, skey, "scene file is a directory: " + display_path(scene_path));
       }
-      if (spec.objective == FitObjective::stick_slip && !target_node.IsDefined())
+      if (spec.objective == FitObjective::stick_slip && !has_target)
         sv.fail_at(item, ev ? "target" : ikey, "the stick_slip objective needs target: {drop: N, period: s} for every experiment");
       for (const auto& f : forced_settings(spec.objective)) fixed.push_back(f);
 
