@@ -60,6 +60,22 @@ TEST_CASE("A valid fit file loads with its values", "[fit][load]") {
   CHECK(sc.model.alpha_b == 3e-16);
 }
 
+TEST_CASE("Building a scene variant leaves the template unchanged", "[fit][load]") {
+  const SceneTemplate t = SceneTemplate::load(shared_case().dir / "scene.yaml");
+  const double E0 = t.build().experiment.E;
+  const double alpha0 = t.build().model.alpha_b;
+  CHECK(E0 == 1.6e6);  // the experiment file's value
+  CHECK(t.build({{"experiment.E", 1.7e6}, {"model.alpha_b", 3e-16}}).experiment.E == 1.7e6);
+  CHECK(t.build().experiment.E == E0);
+  CHECK(t.build().model.alpha_b == alpha0);
+  CHECK(t.build({{"experiment.E", 1.5e6}}).experiment.E == 1.5e6);
+  CHECK(t.build().experiment.E == E0);
+  // Loading a fit checks its bounds and error bars by building variants: still unchanged.
+  const FitSpec s = load_fit(write_text(shared_case().dir / "eb.yaml", std::string(kGood) + "error_bars: {experiment.E: 0.1e6}\n"));
+  CHECK(s.experiments[0].scene.build().experiment.E == E0);
+  CHECK(s.experiments[0].scene.build().model.alpha_b == alpha0);
+}
+
 TEST_CASE("Fit file errors name file, line and key", "[fit][load]") {
   SECTION("unknown key") {
     const InputError e = load_error(std::string(kGood) + "optimiser: {}\n");

@@ -62,17 +62,20 @@ SceneTemplate SceneTemplate::load(const std::filesystem::path& scene_file,
   t.impl_ = std::make_shared<Impl>();
   t.impl_->file = scene_file;
   YAML::Node tree = load_scene_tree(scene_file);
-  for (const auto& [key, text] : fixed) tree = apply_override(tree, key, YAML::Load(text));
-  t.impl_->tree = tree;
+  for (const auto& [key, text] : fixed) tree.reset(apply_override(tree, key, YAML::Load(text)));
+  t.impl_->tree.reset(tree);
   return t;
 }
 
 Scene SceneTemplate::build(const std::vector<SceneSetting>& settings) const {
   if (!impl_) throw std::logic_error("SceneTemplate::build on an empty template");
   std::lock_guard<std::mutex> lock(impl_->mutex);
-  YAML::Node tree = impl_->tree;
+  // reset(), never `tree = ...`: yaml-cpp's Node assignment writes through to the node the
+  // handle refers to, which would change the template itself.
+  YAML::Node tree;
+  tree.reset(impl_->tree);
   for (const auto& s : settings)
-    tree = apply_override(tree, s.key, YAML::Node(scene_io::format_double(s.value)));
+    tree.reset(apply_override(tree, s.key, YAML::Node(scene_io::format_double(s.value))));
   return scene_from_tree(tree, impl_->file);
 }
 
