@@ -10,10 +10,18 @@ using namespace asperity::testing;
 
 namespace {
 
-// A fit case folder shared by these tests (built once: one model run).
+// A fit case folder shared by these tests (built once: one model run; removed at exit).
+struct SharedCase {
+  FitCase c = make_fit_case("load", 0.725e-15, 1.5, 0.1, 40);
+  ~SharedCase() {
+    std::error_code ec;
+    std::filesystem::remove_all(c.dir, ec);
+  }
+};
+
 const FitCase& shared_case() {
-  static const FitCase c = make_fit_case("load", 0.725e-15, 1.5, 0.1, 40);
-  return c;
+  static const SharedCase s;
+  return s.c;
 }
 
 const char* kGood =
