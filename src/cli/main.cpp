@@ -20,7 +20,7 @@ int main(int argc, char** argv) {
   std::vector<cli::Command> commands;
   commands.push_back(cli::add_run_command(app));
   // commands.push_back(cli::add_sweep_command(app));
-  // commands.push_back(cli::add_fit_command(app));
+  commands.push_back(cli::add_fit_command(app));
   commands.push_back(cli::add_generate_command(app));
   commands.push_back(cli::add_reproduce_command(app));
   // commands.push_back(cli::add_bench_command(app));

@@ -1,0 +1,362 @@
+#include "fit/fit.hpp"
+
+#include <nlopt.hpp>
+#include <omp.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <cassert>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <mutex>
+#include <stdexcept>
+
+#include "fit/objective.hpp"
+#include "observe/simulate.hpp"
+
+namespace asperity {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+std::string g6(double x) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.6g", x);
+  return buf;
+}
+
+// One experiment run at given settings: its residual and what the report needs.
+struct ExperimentEval {
+  double residual = Observables::nan;
+  Observables obs;
+  std::vector<Sample> loading;
+  double mass_kg = 0;
+  bool stand_in = false;
+  std::optional<MeasuredCurve> measured;
+  std::string error;  // empty: ran
+};
+
+ExperimentEval run_experiment(const FitSpec& spec, std::size_t e, const std::vector<SceneSetting>& settings,
+                              bool keep) {
+  omp_set_num_threads(1);  // this task is one of `threads` workers: no nested OpenMP team
+  ExperimentEval out;
+  try {
+    const FitExperiment& fe = spec.experiments[e];
+    const Scene scene = fe.scene.build(settings);
+    RunResult r = simulate(scene);
+    out.residual = experiment_residual(spec.objective, scene, r.obs, r.recorder.loading_branch(), fe.target);
+    if (std::isnan(out.residual)) {
+      out.error = "objective term of " + fe.name + " is NaN (model alpha = " + g6(r.obs.alpha) +
+                  ", measured alpha = " + g6(r.obs.alpha_measured) + ", Q_s = " + g6(r.obs.Q_s) +
+                  ", loading-branch points = " + std::to_string(r.recorder.loading_branch().size()) + ")";
+    }
+    if (keep) {
+      out.obs = r.obs;
+      out.loading = r.recorder.loading_branch();
+      out.mass_kg = scene.experiment.mass_kg;
+      out.stand_in = scene.experiment.description.find("STAND-IN") != std::string::npos;
+      out.measured = scene.experiment.measured;
+    }
+  } catch (const std::exception& ex) {
+    out.error = spec.experiments[e].name + ": " + ex.what();
+  }
+  return out;
+}
+
+struct Problem {
+  const FitSpec* spec = nullptr;
+  std::vector<std::size_t> exps;
+  std::vector<FreeVariable> vars;
+  std::vector<std::vector<SceneSetting>> extra;  // per exps[k]: fixed shifts (error bars)
+  std::vector<Evaluation> log;
+  std::string failure;
+  Clock::time_point t0;
+};
+
+std::vector<SceneSetting> settings_for(const Problem& pb, std::size_t k, const std::vector<double>& x) {
+  std::vector<SceneSetting> s = pb.extra[k];
+  for (std::size_t i = 0; i < pb.vars.size(); ++i) {
+    const FreeVariable& v = pb.vars[i];
+    if (v.experiment < 0 || static_cast<std::size_t>(v.experiment) == pb.exps[k])
+      s.push_back({pb.spec->parameters[v.parameter].key, x[i]});
+  }
+  return s;
+}
+
+// All experiments of the problem at x (in parallel); the objective is their sum in order.
+Evaluation evaluate(const Problem& pb, const std::vector<double>& x, std::vector<ExperimentEval>* runs = nullptr) {
+  const auto t0 = Clock::now();
+  std::vector<ExperimentEval> r(pb.exps.size());
+  // Isolated: a thread waiting here runs only these runs, never another task's optimizer (so
+  // each nlopt::opt stays on its own thread, with no nested optimize on one stack).
+  tbb::this_task_arena::isolate([&] {
+    tbb::parallel_for(std::size_t{0}, pb.exps.size(), [&](std::size_t k) {
+      r[k] = run_experiment(*pb.spec, pb.exps[k], settings_for(pb, k, x), runs != nullptr);
+    });
+  });
+  Evaluation ev;
+  ev.values = x;
+  ev.objective = 0;
+  for (const auto& e : r) {
+    ev.residuals.push_back(e.residual);
+    ev.objective += e.residual;
+    if (!e.error.empty() && ev.status == "ok") ev.status = e.error;
+  }
+  if (ev.status == "ok" && !std::isfinite(ev.objective)) ev.status = "objective is not finite: " + g6(ev.objective);
+  if (ev.status != "ok") ev.objective = Observables::nan;
+  ev.wall_s = seconds_since(t0);
+  if (runs) *runs = std::move(r);
+  return ev;
+}
+
+std::string values_text(const Problem& pb, const std::vector<double>& x) {
+  std::string s;
+  for (std::size_t i = 0; i < x.size(); ++i) s += (i ? ", " : "") + pb.vars[i].label + " = " + g6(x[i]);
+  return s;
+}
+
+double nlopt_objective(unsigned n, const double* u, double* /*grad: derivative-free*/, void* data) {
+  Problem& pb = *static_cast<Problem*>(data);
+  std::vector<double> x(n);
+  for (unsigned i = 0; i < n; ++i) {
+    const FitParameter& p = pb.spec->parameters[pb.vars[i].parameter];
+    x[i] = parameter_value(p, u[i]);
+    assert(x[i] >= p.lo && x[i] <= p.hi);
+  }
+  Evaluation ev = evaluate(pb, x);
+  ev.index = static_cast<int>(pb.log.size()) + 1;
+  pb.log.push_back(ev);
+  if (ev.status != "ok") {
+    pb.failure = "evaluation " + std::to_string(ev.index) + " (" + values_text(pb, x) + "): " + ev.status;
+    throw nlopt::forced_stop();  // caught by NLopt's C++ wrapper, rethrown by optimize()
+  }
+  return ev.objective;
+}
+
+struct OptimizeResult {
+  std::vector<double> best;
+  double objective = Observables::nan;
+  std::string stop_reason, failure;
+  std::vector<Evaluation> log;
+  double wall_s = 0;
+};
+
+OptimizeResult optimize(Problem pb, const std::vector<double>& start, double initial_step) {
+  const FitSpec& spec = *pb.spec;
+  const auto n = static_cast<unsigned>(pb.vars.size());
+  OptimizeResult out;
+  const auto t0 = Clock::now();
+  nlopt::opt opt(static_cast<nlopt::algorithm>(nlopt_algorithm_from_string(spec.algorithm.c_str())), n);
+  opt.set_lower_bounds(std::vector<double>(n, 0.0));
+  opt.set_upper_bounds(std::vector<double>(n, 1.0));
+  std::vector<double> xtol(n), u(n), step(n, initial_step);
+  for (unsigned i = 0; i < n; ++i) {
+    const FitParameter& p = spec.parameters[pb.vars[i].parameter];
+    u[i] = parameter_coordinate(p, start[i]);
+    // xtol_rel on x → absolute on the scaled coordinate: Δu = Δx/x / ln(hi/lo) (log scale),
+    // Δu = xtol_rel·|x_ref| / (hi − lo) (linear, x_ref = start, or the larger bound if 0).
+    const double ref = start[i] != 0 ? std::abs(start[i]) : std::max(std::abs(p.lo), std::abs(p.hi));
+    xtol[i] = p.log_scale ? spec.xtol_rel / std::log(p.hi / p.lo) : spec.xtol_rel * ref / (p.hi - p.lo);
+  }
+  opt.set_xtol_abs(xtol);
+  if (spec.ftol_rel > 0) opt.set_ftol_rel(spec.ftol_rel);
+  if (spec.ftol_abs > 0) opt.set_ftol_abs(spec.ftol_abs);
+  opt.set_maxeval(spec.max_evaluations);
+  opt.set_initial_step(step);
+  opt.set_min_objective(nlopt_objective, &pb);
+  double f = 0;
+  try {
+    out.stop_reason = nlopt_result_name(opt.optimize(u, f));
+  } catch (const nlopt::forced_stop&) {
+    out.stop_reason = "FORCED_STOP";
+    out.failure = pb.failure.empty() ? "NLopt forced stop" : pb.failure;
+  } catch (const nlopt::roundoff_limited&) {
+    out.stop_reason = "ROUNDOFF_LIMITED";  // best point so far is still the answer
+  } catch (const std::exception& e) {
+    out.stop_reason = "FAILURE";
+    out.failure = std::string("NLopt: ") + e.what();
+  }
+  out.wall_s = seconds_since(t0);
+  for (const auto& ev : pb.log)
+    if (ev.status == "ok" && !(ev.objective >= out.objective)) {
+      out.objective = ev.objective;
+      out.best = ev.values;
+    }
+  if (out.best.empty()) out.best.assign(n, Observables::nan);
+  out.log = std::move(pb.log);
+  return out;
+}
+
+void run_task(const FitSpec& spec, const FitOptions& options, Optimization& o, std::mutex& progress_mutex) {
+  Problem pb;
+  pb.spec = &spec;
+  pb.exps = o.experiments;
+  pb.vars = o.variables;
+  pb.extra.assign(o.experiments.size(), {});
+  OptimizeResult r = optimize(pb, o.start, spec.initial_step);
+  o.best = r.best;
+  o.objective = r.objective;
+  o.stop_reason = r.stop_reason;
+  o.failure = r.failure;
+  o.evaluations = static_cast<int>(r.log.size());
+  o.wall_s = r.wall_s;
+  o.log = std::move(r.log);
+  const bool have_best = std::isfinite(o.objective);
+
+  if (have_best) {  // the best runs, kept for the report (deterministic: same objective)
+    std::vector<ExperimentEval> runs;
+    const Evaluation ev = evaluate(pb, o.best, &runs);
+    for (std::size_t k = 0; k < runs.size(); ++k) {
+      ExperimentRun er;
+      er.experiment = o.experiments[k];
+      er.residual = runs[k].residual;
+      er.obs = runs[k].obs;
+      er.loading = std::move(runs[k].loading);
+      er.mass_kg = runs[k].mass_kg;
+      er.stand_in = runs[k].stand_in;
+      er.measured = std::move(runs[k].measured);
+      o.best_runs.push_back(std::move(er));
+    }
+    if (ev.status != "ok" && o.failure.empty()) o.failure = "re-run at the optimum failed: " + ev.status;
+  }
+
+  if (have_best && o.ok() && options.profile && spec.profile) {
+    const auto t0 = Clock::now();
+    const ProfileSettings& ps = spec.profile_settings;
+    const FitParameter& p = spec.parameters[ps.parameter];
+    o.profile_parameter = ps.parameter;
+    std::vector<ProfilePoint> pts(static_cast<std::size_t>(ps.points));
+    tbb::parallel_for(std::size_t{0}, pts.size(), [&](std::size_t i) {
+      ProfilePoint& pt = pts[i];
+      pt.factor = 1.0 + ps.span * (2.0 * static_cast<double>(i) / static_cast<double>(pts.size() - 1) - 1.0);
+      std::vector<double> x = o.best;
+      bool inside = true;
+      for (std::size_t j = 0; j < x.size(); ++j)
+        if (o.variables[j].parameter == ps.parameter) {
+          x[j] = o.best[j] * pt.factor;
+          pt.value = x[j];
+          inside = inside && x[j] >= p.lo && x[j] <= p.hi;
+        }
+      if (!inside) {
+        pt.status = "outside the bounds";
+        return;
+      }
+      const Evaluation ev = evaluate(pb, x);
+      pt.objective = ev.objective;
+      pt.status = ev.status;
+    });
+    o.profile = std::move(pts);
+    o.profile_wall_s = seconds_since(t0);
+  }
+
+  if (have_best && o.ok() && options.error_bars && !spec.error_bars.empty()) {
+    const auto t0 = Clock::now();
+    std::vector<ErrorBarRefit> refits;
+    for (const auto& eb : spec.error_bars)
+      for (const int sign : {-1, +1}) refits.push_back({eb.key, eb.bar, sign, {}, Observables::nan, 0, "", ""});
+    tbb::parallel_for(std::size_t{0}, refits.size(), [&](std::size_t i) {
+      ErrorBarRefit& rf = refits[i];
+      Problem q;
+      q.spec = &spec;
+      q.exps = o.experiments;
+      q.vars = o.variables;
+      for (const std::size_t e : o.experiments) {
+        const double nominal = scene_value(spec.experiments[e].scene.build(), rf.key);
+        q.extra.push_back({{rf.key, nominal + rf.sign * rf.bar}});
+      }
+      // Start at the optimum with a smaller first step: the shift moves it little.
+      OptimizeResult rr = optimize(std::move(q), o.best, spec.initial_step * 0.25);
+      rf.best = rr.best;
+      rf.objective = rr.objective;
+      rf.evaluations = static_cast<int>(rr.log.size());
+      rf.stop_reason = rr.stop_reason;
+      rf.failure = rr.failure;
+    });
+    o.refits = std::move(refits);
+    o.refits_wall_s = seconds_since(t0);
+  }
+
+  if (options.progress) {
+    std::string line = o.label + ": ";
+    if (o.best.empty() || !std::isfinite(o.objective)) line += "no successful evaluation";
+    else line += values_text(pb, o.best) + ", objective " + g6(o.objective);
+    line += ", " + std::to_string(o.evaluations) + " evaluations, " + o.stop_reason + ", " + g6(o.wall_s) + " s";
+    if (!o.failure.empty()) line += "; FAILED: " + o.failure;
+    std::lock_guard<std::mutex> lock(progress_mutex);
+    options.progress(line);
+  }
+}
+
+}  // namespace
+
+std::string nlopt_result_name(int result) {
+  const char* s = nlopt_result_to_string(static_cast<nlopt_result>(result));
+  return s ? s : "UNKNOWN_RESULT_" + std::to_string(result);
+}
+
+double parameter_value(const FitParameter& p, double u) {
+  u = std::clamp(u, 0.0, 1.0);
+  double x = p.log_scale ? std::exp(std::log(p.lo) + u * std::log(p.hi / p.lo)) : p.lo + u * (p.hi - p.lo);
+  if (u == 0.0) x = p.lo;  // exact ends, whatever the rounding of exp/log
+  if (u == 1.0) x = p.hi;
+  return std::clamp(x, p.lo, p.hi);
+}
+
+double parameter_coordinate(const FitParameter& p, double x) {
+  x = std::clamp(x, p.lo, p.hi);
+  const double u = p.log_scale ? std::log(x / p.lo) / std::log(p.hi / p.lo) : (x - p.lo) / (p.hi - p.lo);
+  return std::clamp(u, 0.0, 1.0);
+}
+
+FitResult run_fit(const FitSpec& spec, const FitOptions& options) {
+  if (spec.parameters.empty() || spec.experiments.empty())
+    throw std::invalid_argument("run_fit: a fit needs at least one parameter and one experiment");
+  const auto t0 = Clock::now();
+  FitResult result;
+  result.threads = std::max(1, options.threads);
+
+  auto make = [&](std::vector<std::size_t> exps, std::string label) {
+    Optimization o;
+    o.label = std::move(label);
+    o.experiments = std::move(exps);
+    for (std::size_t j = 0; j < spec.parameters.size(); ++j) {
+      const FitParameter& p = spec.parameters[j];
+      if (p.per_experiment && o.experiments.size() > 1) {
+        for (const std::size_t e : o.experiments) {
+          o.variables.push_back({j, static_cast<std::ptrdiff_t>(e), p.key + "@" + spec.experiments[e].name});
+          o.start.push_back(p.start);
+        }
+      } else {
+        o.variables.push_back({j, -1, p.key});
+        o.start.push_back(p.start);
+      }
+    }
+    return o;
+  };
+  if (spec.separate) {
+    for (std::size_t e = 0; e < spec.experiments.size(); ++e) result.fits.push_back(make({e}, spec.experiments[e].name));
+  } else {
+    std::vector<std::size_t> all(spec.experiments.size());
+    for (std::size_t e = 0; e < all.size(); ++e) all[e] = e;
+    result.fits.push_back(make(all, all.size() == 1 ? spec.experiments[0].name : std::string("joint")));
+  }
+
+  std::mutex progress_mutex;
+  tbb::task_arena arena(result.threads);
+  arena.execute([&] {
+    tbb::parallel_for(std::size_t{0}, result.fits.size(),
+                      [&](std::size_t i) { run_task(spec, options, result.fits[i], progress_mutex); });
+  });
+  result.wall_s = seconds_since(t0);
+  for (const auto& o : result.fits) result.fit_wall_s += o.wall_s;
+  return result;
+}
+
+}  // namespace asperity

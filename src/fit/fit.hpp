@@ -1,0 +1,118 @@
+#pragma once
+// Calibration with NLopt: minimises a FitSpec's objective over its free parameters (scaled to
+// [0, 1], log or linear), runs each experiment's scene per evaluation, keeps every evaluation,
+// then profiles the objective around the optimum and refits with each error-bar quantity at
+// nominal ± bar. Plain data in and out; fit_writer.hpp writes the results directory.
+//
+// Threads: one nlopt::opt per optimization, owned by the task that runs it. In a joint fit the
+// experiments of one evaluation run in parallel; with `separate` the per-experiment fits run in
+// parallel (TBB, `threads` workers). Runs are single-threaded inside (OpenMP set to 1 thread in
+// each task, so nothing oversubscribes the cores).
+//
+// Failures: an exception (SolverError, InputError) or a NaN objective inside an evaluation ends
+// that optimization with NLopt's forced stop; the reason is kept in Optimization::failure and
+// the best evaluation so far is reported.
+#include <cstddef>
+#include <functional>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "fit/fit_spec.hpp"
+#include "observe/observables.hpp"
+#include "observe/sample.hpp"
+
+namespace asperity {
+
+struct FitOptions {
+  int threads = 2;          // TBB workers
+  bool profile = true;      // and spec.profile
+  bool error_bars = true;   // and spec.error_bars non-empty
+  // Called (serialised) with one line after each finished optimization; may be empty.
+  std::function<void(const std::string&)> progress;
+};
+
+// One coordinate of an optimization: a parameter, shared or for one experiment.
+struct FreeVariable {
+  std::size_t parameter = 0;   // index into FitSpec::parameters
+  std::ptrdiff_t experiment = -1;  // index into FitSpec::experiments; -1: shared
+  std::string label;           // "model.alpha_b" or "model.alpha_b@P0.98N"
+};
+
+struct Evaluation {
+  int index = 0;                    // 1-based, in call order
+  std::vector<double> values;       // SI, one per free variable
+  double objective = std::numeric_limits<double>::quiet_NaN();
+  std::vector<double> residuals;    // per experiment of the optimization
+  std::string status = "ok";        // "ok" or why it failed
+  double wall_s = 0;
+};
+
+// The best run of one experiment (at the fitted values).
+struct ExperimentRun {
+  std::size_t experiment = 0;       // index into FitSpec::experiments
+  double residual = std::numeric_limits<double>::quiet_NaN();
+  Observables obs;
+  std::vector<Sample> loading;      // loading branch
+  double mass_kg = 0;
+  bool stand_in = false;            // the experiment's description says STAND-IN
+  std::optional<MeasuredCurve> measured;
+};
+
+struct ProfilePoint {
+  double factor = 1;                // x = x* · factor
+  double value = 0;                 // SI
+  double objective = std::numeric_limits<double>::quiet_NaN();
+  std::string status = "ok";
+};
+
+struct ErrorBarRefit {
+  std::string key;
+  double bar = 0;
+  int sign = 0;                     // −1: nominal − bar, +1: nominal + bar
+  std::vector<double> best;         // SI, per free variable (NaN when it failed)
+  double objective = std::numeric_limits<double>::quiet_NaN();
+  int evaluations = 0;
+  std::string stop_reason;
+  std::string failure;
+};
+
+struct Optimization {
+  std::string label;                     // experiment name (separate) or "joint"
+  std::vector<std::size_t> experiments;  // indices into FitSpec::experiments
+  std::vector<FreeVariable> variables;
+  std::vector<double> start;             // SI
+  std::vector<double> best;              // SI (NaN before any successful evaluation)
+  double objective = std::numeric_limits<double>::quiet_NaN();
+  std::string stop_reason;               // NLopt result, e.g. XTOL_REACHED, FORCED_STOP
+  std::string failure;                   // empty when the fit ended normally
+  int evaluations = 0;
+  double wall_s = 0;                     // the optimization itself
+  std::vector<Evaluation> log;
+  std::vector<ExperimentRun> best_runs;  // empty when no evaluation succeeded
+  std::vector<ProfilePoint> profile;
+  std::size_t profile_parameter = 0;
+  std::vector<ErrorBarRefit> refits;
+  double profile_wall_s = 0, refits_wall_s = 0;
+  bool ok() const { return failure.empty(); }
+};
+
+struct FitResult {
+  std::vector<Optimization> fits;  // one (joint) or one per experiment (separate)
+  double wall_s = 0;               // everything
+  double fit_wall_s = 0;           // sum of the optimizations' wall times (no profile, refits)
+  int threads = 1;
+};
+
+// NLopt's name of a result code (e.g. "XTOL_REACHED").
+std::string nlopt_result_name(int result);
+
+// Minimises; never throws for a failing evaluation (see Optimization::failure).
+FitResult run_fit(const FitSpec& spec, const FitOptions& options = {});
+
+// The physical value of scaled coordinate u ∈ [0, 1] (clamped), exactly within [lo, hi].
+double parameter_value(const FitParameter& p, double u);
+double parameter_coordinate(const FitParameter& p, double x);  // inverse
+
+}  // namespace asperity

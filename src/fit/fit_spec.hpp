@@ -1,0 +1,74 @@
+#pragma once
+// What to calibrate, against what, and how (plain data; src/scene/fit_load.cpp reads it from a
+// fit YAML file, tests may build it in code).
+#include <cstddef>
+#include <filesystem>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "scene/scene_template.hpp"
+
+namespace asperity {
+
+enum class FitObjective {
+  quadratic_alpha,  // Σ_e (α_model/α_measured − 1)²: the paper's calibration (MODEL.md §5)
+  area_curve,       // Σ_e mean_j ((A_model(Q_j) − A_j)/A0)² over the measured samples
+  stick_slip,       // Σ_e (drop/drop_target − 1)² + (period/period_target − 1)²
+};
+
+const char* objective_name(FitObjective o);
+
+struct FitParameter {
+  std::string key;              // numeric scene key (numeric_scene_keys()), e.g. model.alpha_b
+  double lo = 0, hi = 0;        // bounds, SI; respected exactly
+  double start = 0;             // SI, in [lo, hi]
+  bool log_scale = false;       // the optimizer moves log(x) (needs lo > 0)
+  bool per_experiment = false;  // one value per experiment (joint fits); else shared
+};
+
+// Stick-slip targets of one experiment (the stand-ins have no measured stick-slip).
+struct StickSlipTarget {
+  double drop_N = std::numeric_limits<double>::quiet_NaN();    // mean Q_max − Q_min
+  double period_s = std::numeric_limits<double>::quiet_NaN();  // mean time between peaks
+};
+
+struct FitExperiment {
+  std::string name;        // label in outputs (the experiment name of the scene)
+  SceneTemplate scene;     // the scene with the fit's fixed settings applied
+  StickSlipTarget target;  // stick_slip objective only
+};
+
+// A quantity measured with an error bar; the fit is repeated with it at nominal − bar and
+// nominal + bar (one at a time) to give the range of the fitted parameters.
+struct ErrorBar {
+  std::string key;  // numeric scene key, e.g. experiment.E
+  double bar = 0;   // absolute, SI (e.g. 0.1e6 Pa)
+};
+
+struct ProfileSettings {
+  std::size_t parameter = 0;  // index into FitSpec::parameters
+  double span = 0.2;          // relative: values x*·(1 ± span)
+  int points = 11;            // ≥ 2 (odd: includes the optimum)
+};
+
+struct FitSpec {
+  std::string name;                   // results/fits/<name>/
+  std::filesystem::path file;         // the fit file (provenance)
+  std::string description;
+  FitObjective objective = FitObjective::quadratic_alpha;
+  std::vector<FitParameter> parameters;
+  std::vector<FitExperiment> experiments;
+  bool separate = false;              // one independent fit per experiment (per-load fits)
+  std::string algorithm = "LN_BOBYQA";// NLopt name, derivative-free (LN_*/GN_*)
+  double xtol_rel = 1e-4;             // on each parameter (relative to its value)
+  double ftol_rel = 0;                // on the objective; 0: off
+  double ftol_abs = 0;                // on the objective; 0: off
+  int max_evaluations = 60;           // per optimization
+  double initial_step = 0.1;          // first step, as a fraction of each scaled box [0, 1]
+  bool profile = true;                // write profile.csv / profile.png
+  ProfileSettings profile_settings;
+  std::vector<ErrorBar> error_bars;   // empty: no error-bar refits
+};
+
+}  // namespace asperity

@@ -1,0 +1,397 @@
+#include "report/fit_writer.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <system_error>
+
+#include "report/run_writer.hpp"
+#include "scene/load.hpp"
+
+namespace asperity {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr double kGravity = 9.81;  // m/s², P = M g (as the stand-in recipe)
+
+void write_file(const fs::path& path, const std::string& text) {
+  std::ofstream f(path, std::ios::binary | std::ios::trunc);
+  if (!f) throw std::runtime_error("cannot create " + path.string());
+  f << text;
+  f.close();
+  if (!f) throw std::runtime_error("cannot write " + path.string());
+}
+
+std::string shell_quote(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+std::string csv_text(const std::string& s) {  // RFC 4180 quoting when needed
+  if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
+  std::string out = "\"";
+  for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c == '\n' || c == '\r' ? ' ' : c);
+  return out + "\"";
+}
+
+// gnuplot-safe file name for an experiment (names are free text).
+std::string file_stem(const std::string& name) {
+  std::string s;
+  for (char c : name) s += (std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-' || c == '_') ? c : '_';
+  return s.empty() ? std::string("experiment") : s;
+}
+
+std::string csv_num(double x) {  // %.17g: round-trips, "nan" for NaN (gnuplot and CSV readers parse it)
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.17g", x);
+  return buf;
+}
+
+fs::path normal_dir(const fs::path& dir) {
+  fs::path p = fs::absolute(dir).lexically_normal();
+  if (!p.has_filename()) p = p.parent_path();
+  return p;
+}
+
+std::string unique_suffix() {
+  static std::atomic<unsigned> counter{0};
+  return std::to_string(::getpid()) + "-" + std::to_string(counter++);
+}
+
+bool have_gnuplot() { return std::system("command -v gnuplot >/dev/null 2>&1") == 0; }
+
+void run_gnuplot(const fs::path& dir, const std::string& script) {
+  write_file(dir / ".plot.gp", script);
+  const std::string cmd = "cd " + shell_quote(dir.string()) + " && gnuplot .plot.gp >/dev/null 2>&1";
+  [[maybe_unused]] const int rc = std::system(cmd.c_str());  // a failed plot is not a failed fit
+  std::error_code ec;
+  fs::remove(dir / ".plot.gp", ec);
+}
+
+struct Range {
+  double value = Observables::nan, min = Observables::nan, max = Observables::nan, sigma = Observables::nan;
+};
+
+// Per variable: the range of the fitted value over the fit and all error-bar refits, and the
+// combined one-sigma change: quadrature sum over quantities of half the ± difference.
+std::vector<Range> error_bar_ranges(const Optimization& o) {
+  std::vector<Range> out(o.variables.size());
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    Range& r = out[i];
+    r.value = r.min = r.max = o.best[i];
+    double s2 = 0;
+    bool complete = true;
+    for (std::size_t k = 0; k < o.refits.size(); ++k) {
+      const double x = o.refits[k].best[i];
+      if (!std::isfinite(x)) {
+        complete = false;
+        continue;
+      }
+      r.min = std::min(r.min, x);
+      r.max = std::max(r.max, x);
+      if (o.refits[k].sign < 0)
+        for (const auto& q : o.refits)
+          if (q.key == o.refits[k].key && q.sign > 0 && std::isfinite(q.best[i])) s2 += std::pow(0.5 * (q.best[i] - x), 2);
+    }
+    r.sigma = complete ? std::sqrt(s2) : Observables::nan;
+  }
+  return out;
+}
+
+std::string fit_subdir(const FitSpec& spec, const Optimization& o) {
+  return spec.separate ? file_stem(o.label) : std::string();
+}
+
+std::string evaluations_csv(const Optimization& o, const FitSpec& spec) {
+  std::ostringstream c;
+  c << "evaluation";
+  for (const auto& v : o.variables) c << "," << csv_text(v.label);
+  c << ",objective";
+  for (const auto e : o.experiments) c << "," << csv_text("term_" + spec.experiments[e].name);
+  c << ",wall_s,status\n";
+  for (const auto& ev : o.log) {
+    c << ev.index;
+    for (const double x : ev.values) c << "," << csv_num(x);
+    c << "," << csv_num(ev.objective);
+    for (std::size_t k = 0; k < o.experiments.size(); ++k)
+      c << "," << csv_num(k < ev.residuals.size() ? ev.residuals[k] : Observables::nan);
+    c << "," << csv_num(ev.wall_s) << "," << csv_text(ev.status) << "\n";
+  }
+  return c.str();
+}
+
+std::string profile_csv(const Optimization& o) {
+  std::ostringstream c;
+  c << "factor,value,objective,status\n";
+  for (const auto& p : o.profile)
+    c << csv_num(p.factor) << "," << csv_num(p.value) << "," << csv_num(p.objective) << ","
+      << csv_text(p.status) << "\n";
+  return c.str();
+}
+
+// Writes the files of one optimization into `d` (plots when `plots`).
+void write_optimization(const fs::path& d, const FitSpec& spec, const Optimization& o, bool plots) {
+  fs::create_directories(d);
+  write_file(d / "evaluations.csv", evaluations_csv(o, spec));
+  if (!o.profile.empty()) write_file(d / "profile.csv", profile_csv(o));
+  for (const auto& r : o.best_runs) {
+    const std::string stem = "AQ_" + file_stem(spec.experiments[r.experiment].name);
+    std::ostringstream m;
+    m << "Q_N,A_m2\n";
+    for (const auto& s : r.loading) m << csv_num(s.Q) << "," << csv_num(s.A) << "\n";
+    write_file(d / (stem + "_model.csv"), m.str());
+    if (r.measured) {
+      std::ostringstream x;
+      x << "Q_N,A_m2\n";
+      for (std::size_t j = 0; j < r.measured->Q_N.size(); ++j)
+        x << csv_num(r.measured->Q_N[j]) << "," << csv_num(r.measured->A_m2[j]) << "\n";
+      write_file(d / (stem + "_measured.csv"), x.str());
+    }
+  }
+  if (!plots) return;
+  std::ostringstream gp;
+  gp << "set terminal pngcairo size 800,560 noenhanced\n"
+     << "set datafile separator ','\nset grid\n";
+  gp << "set output 'convergence.png'\n"
+     << "set title '" << spec.name << " / " << o.label << ": objective (" << objective_name(spec.objective)
+     << "), " << spec.algorithm << ", stop " << o.stop_reason << "'\n"
+     << "set xlabel 'evaluation'\nset ylabel 'objective'\nset logscale y\nset key top right\n"
+     << "best = 1e300\n"
+     << "plot 'evaluations.csv' skip 1 using 1:($" << (o.variables.size() + 2)
+     << " > 0 ? $" << (o.variables.size() + 2) << " : 1/0) with linespoints pt 7 ps 0.6 title 'objective', "
+     << "'' skip 1 using 1:(($" << (o.variables.size() + 2) << " > 0 && $" << (o.variables.size() + 2)
+     << " < best) ? (best = $" << (o.variables.size() + 2) << ") : best) with steps lw 2 title 'best so far'\n"
+     << "unset logscale y\n";
+  if (!o.profile.empty()) {
+    const std::string& key = spec.parameters[o.profile_parameter].key;
+    gp << "set output 'profile.png'\n"
+       << "set title '" << o.label << ": objective around the optimum, " << key << " varied (others fixed)'\n"
+       << "set xlabel '" << key << " [SI]'\nset ylabel 'objective'\nset key off\n"
+       << "plot 'profile.csv' skip 1 using 2:($3 == $3 ? $3 : 1/0) with linespoints pt 7 lw 1.5\n";
+  }
+  for (const auto& r : o.best_runs) {
+    const std::string name = spec.experiments[r.experiment].name;
+    const std::string stem = "AQ_" + file_stem(name);
+    gp << "set output '" << stem << ".png'\n"
+       << "set title '" << name << (r.stand_in ? " (STAND-IN data)" : "") << ": A(Q) on the loading branch at the fit'\n"
+       << "set xlabel 'Q [N]'\nset ylabel 'A [mm^2]'\nset key bottom left\n"
+       << "plot '" << stem << "_model.csv' skip 1 using 1:($2*1e6) with lines lw 2 title 'model (fitted)'";
+    if (r.measured)
+      gp << ", '" << stem << "_measured.csv' skip 1 using 1:($2*1e6) with points pt 7 ps 0.7 title '"
+         << (r.stand_in ? "stand-in measurement" : "measurement") << "'";
+    gp << "\n";
+  }
+  run_gnuplot(d, gp.str());
+}
+
+void check_replaceable(const fs::path& target) {
+  if (fs::is_symlink(target) || !fs::is_directory(target) || !fs::exists(target / "fit.yaml"))
+    throw std::runtime_error("refusing to replace " + target.string() + ": not a fit results directory (no fit.yaml)");
+}
+
+}  // namespace
+
+std::string fit_yaml(const FitSpec& spec, const FitResult& result) {
+  std::ostringstream y;
+  auto num = [](double x) { return yaml_double(x); };
+  bool stand_in = false;
+  for (const auto& o : result.fits)
+    for (const auto& r : o.best_runs) stand_in = stand_in || r.stand_in;
+  y << "# asperity fit results (SI units: m, m², N, s; alpha_b in m^(2p+2)/N²)\n";
+  if (stand_in)
+    y << "# STAND-IN DATA: the experiments fitted here are stand-ins generated by `asperity generate`,\n"
+         "# not measurements. The fitted values are properties of the stand-ins, not of the real experiments.\n";
+  y << "asperity_version: " << yaml_quoted(ASPERITY_VERSION) << "\n";
+  y << "fit_file: " << yaml_quoted(spec.file.string()) << "\n";
+  y << "name: " << yaml_quoted(spec.name) << "\n";
+  y << "description: " << yaml_quoted(spec.description) << "\n";
+  y << "data: " << (stand_in ? "stand-in" : "measured") << "\n";
+  y << "objective: " << objective_name(spec.objective) << "\n";
+  y << "mode: " << (spec.separate ? "separate" : "joint") << "\n";
+  y << "algorithm: " << spec.algorithm << "\n";
+  y << "xtol_rel: " << num(spec.xtol_rel) << "\nftol_rel: " << num(spec.ftol_rel) << "\nftol_abs: "
+    << num(spec.ftol_abs) << "\n";
+  y << "max_evaluations: " << spec.max_evaluations << "\ninitial_step: " << num(spec.initial_step) << "\n";
+  y << "threads: " << result.threads << "\n";
+  y << "wall_s: " << num(result.wall_s) << "   # everything: fits, re-runs, profiles, error-bar refits\n";
+  y << "fit_wall_s: " << num(result.fit_wall_s) << "   # sum of the optimizations alone\n";
+  int total = 0;
+  for (const auto& o : result.fits) total += o.evaluations;
+  y << "evaluations: " << total << "   # of the optimizations (without profiles and refits)\n";
+  y << "fits:\n";
+  for (const auto& o : result.fits) {
+    y << "  - label: " << yaml_quoted(o.label) << "\n";
+    y << "    files: " << yaml_quoted(fit_subdir(spec, o).empty() ? "." : fit_subdir(spec, o)) << "\n";
+    y << "    experiments: [";
+    for (std::size_t k = 0; k < o.experiments.size(); ++k) y << (k ? ", " : "") << yaml_quoted(spec.experiments[o.experiments[k]].name);
+    y << "]\n";
+    y << "    status: " << (o.ok() ? "ok" : "failed") << "\n";
+    if (!o.ok()) y << "    failure: " << yaml_quoted(o.failure) << "\n";
+    y << "    stop_reason: " << o.stop_reason << "   # NLopt result\n";
+    y << "    evaluations: " << o.evaluations << "\n";
+    y << "    wall_s: " << num(o.wall_s) << "\n";
+    y << "    objective: " << num(o.objective) << "\n";
+    y << "    parameters:\n";
+    for (std::size_t i = 0; i < o.variables.size(); ++i) {
+      const FitParameter& p = spec.parameters[o.variables[i].parameter];
+      y << "      " << yaml_quoted(o.variables[i].label) << ": {value: " << num(o.best[i]) << ", start: " << num(o.start[i])
+        << ", lo: " << num(p.lo) << ", hi: " << num(p.hi) << ", scale: " << (p.log_scale ? "log" : "linear");
+      const bool at_bound = o.best[i] == p.lo || o.best[i] == p.hi;
+      y << ", at_bound: " << (at_bound ? "true" : "false") << "}\n";
+    }
+    y << "    runs:   # the best run of each experiment\n";
+    for (const auto& r : o.best_runs) {
+      const Observables& b = r.obs;
+      y << "      " << yaml_quoted(spec.experiments[r.experiment].name) << ":\n";
+      y << "        stand_in: " << (r.stand_in ? "true" : "false") << "\n";
+      y << "        mass: " << num(r.mass_kg) << "\n";
+      y << "        term: " << num(r.residual) << "\n";
+      y << "        alpha: " << num(b.alpha) << "\n";
+      y << "        alpha_measured: " << num(b.alpha_measured) << "\n";
+      y << "        alpha_R2: " << num(b.alpha_R2) << "\n";
+      y << "        shape_exponent: " << num(b.shape_exponent) << "\n";
+      y << "        shape_exponent_measured: " << num(b.shape_exponent_measured) << "\n";
+      y << "        A0: " << num(b.A0) << "\n";
+      y << "        Q_s: " << num(b.Q_s) << "\n";
+      y << "        A_s: " << num(b.A_s) << "\n";
+      y << "        t_peak: " << num(b.t_peak) << "\n";
+      y << "        area_drop_fraction: " << num(b.area_drop_fraction) << "\n";
+      y << "        ss_cycles: " << b.ss_cycles << "\n";
+      y << "        ss_drop: " << num(b.ss_drop) << "\n";
+      y << "        ss_period: " << num(b.ss_period) << "\n";
+      y << "        run_wall_s: " << num(b.wall_s) << "\n";
+    }
+    if (!o.profile.empty()) {
+      const ProfileSettings& ps = spec.profile_settings;
+      double fmin = Observables::nan, fmin_at = Observables::nan;
+      for (const auto& p : o.profile)
+        if (std::isfinite(p.objective) && !(p.objective >= fmin)) fmin = p.objective, fmin_at = p.factor;
+      y << "    profile:\n";
+      y << "      parameter: " << spec.parameters[ps.parameter].key << "\n";
+      y << "      span: " << num(ps.span) << "\n      points: " << o.profile.size() << "\n";
+      const std::string sub = fit_subdir(spec, o);
+      y << "      file: " << yaml_quoted(sub.empty() ? "profile.csv" : sub + "/profile.csv") << "\n";
+      y << "      lowest_objective_at_factor: " << num(fmin_at) << "   # 1: the fit is the profile's minimum\n";
+      y << "      wall_s: " << num(o.profile_wall_s) << "\n";
+    }
+    if (!o.refits.empty()) {
+      y << "    error_bars:\n";
+      y << "      method: \"one at a time: refit (from the optimum) with each quantity at nominal - bar and nominal + bar, "
+           "the others nominal; min/max over the fit and all refits; sigma = quadrature sum over quantities of "
+           "|x(+bar) - x(-bar)|/2 (linear propagation of independent errors)\"\n";
+      y << "      wall_s: " << num(o.refits_wall_s) << "\n";
+      y << "      refits:\n";
+      for (const auto& rf : o.refits) {
+        y << "        - {key: " << rf.key << ", shift: " << num(rf.sign * rf.bar);
+        for (std::size_t i = 0; i < o.variables.size(); ++i) y << ", " << yaml_quoted(o.variables[i].label) << ": " << num(rf.best[i]);
+        y << ", objective: " << num(rf.objective) << ", evaluations: " << rf.evaluations << ", stop_reason: " << rf.stop_reason;
+        if (!rf.failure.empty()) y << ", failure: " << yaml_quoted(rf.failure);
+        y << "}\n";
+      }
+      const std::vector<Range> ranges = error_bar_ranges(o);
+      y << "      ranges:\n";
+      for (std::size_t i = 0; i < ranges.size(); ++i)
+        y << "        " << yaml_quoted(o.variables[i].label) << ": {value: " << num(ranges[i].value) << ", min: " << num(ranges[i].min)
+          << ", max: " << num(ranges[i].max) << ", sigma: " << num(ranges[i].sigma)
+          << ", sigma_relative: " << num(ranges[i].sigma / std::abs(ranges[i].value)) << "}\n";
+    }
+  }
+  return y.str();
+}
+
+void check_fit_dir(const fs::path& dir) {
+  const fs::path target = normal_dir(dir);
+  if (fs::exists(fs::symlink_status(target))) check_replaceable(target);
+}
+
+void write_fit(const fs::path& dir, const FitSpec& spec, const FitResult& result) {
+  const fs::path target = normal_dir(dir);
+  const fs::path parent = target.parent_path();
+  const std::string name = target.filename().string();
+  std::error_code ec;
+  fs::create_directories(parent, ec);
+  if (ec) throw std::runtime_error("cannot create " + parent.string() + ": " + ec.message());
+  if (fs::exists(fs::symlink_status(target))) check_replaceable(target);
+  const fs::path tmp = parent / ("." + name + ".tmp-" + unique_suffix());
+  fs::remove_all(tmp, ec);
+  if (!fs::create_directory(tmp, ec) || ec) throw std::runtime_error("cannot create " + tmp.string() + ": " + ec.message());
+  struct Cleanup {
+    fs::path p;
+    bool armed = true;
+    ~Cleanup() {
+      std::error_code e;
+      if (armed) fs::remove_all(p, e);
+    }
+  } cleanup{tmp};
+
+  const bool plots = have_gnuplot();
+  for (const auto& o : result.fits) write_optimization(tmp / fit_subdir(spec, o), spec, o, plots);
+
+  // fitted.csv: one row per (optimization, experiment).
+  std::ostringstream c;
+  c << "fit,experiment,stand_in,mass_kg,P_N";
+  for (const auto& p : spec.parameters) c << "," << csv_text(p.key) << "," << csv_text(p.key + "_min") << "," << csv_text(p.key + "_max");
+  c << ",objective,term,alpha,alpha_measured,Q_s_N,area_drop_fraction,shape_exponent,shape_exponent_measured,evaluations,wall_s,stop_reason,status\n";
+  for (const auto& o : result.fits) {
+    const std::vector<Range> ranges = error_bar_ranges(o);
+    for (const auto& r : o.best_runs) {
+      c << csv_text(o.label) << "," << csv_text(spec.experiments[r.experiment].name) << "," << (r.stand_in ? "true" : "false") << ","
+        << csv_num(r.mass_kg) << "," << csv_num(r.mass_kg * kGravity);
+      for (std::size_t j = 0; j < spec.parameters.size(); ++j) {
+        Range v;
+        for (std::size_t i = 0; i < o.variables.size(); ++i)
+          if (o.variables[i].parameter == j &&
+              (o.variables[i].experiment < 0 || static_cast<std::size_t>(o.variables[i].experiment) == r.experiment))
+            v = o.refits.empty() ? Range{o.best[i], Observables::nan, Observables::nan, Observables::nan} : ranges[i];
+        c << "," << csv_num(v.value) << "," << csv_num(v.min) << "," << csv_num(v.max);
+      }
+      c << "," << csv_num(o.objective) << "," << csv_num(r.residual) << "," << csv_num(r.obs.alpha) << ","
+        << csv_num(r.obs.alpha_measured) << "," << csv_num(r.obs.Q_s) << "," << csv_num(r.obs.area_drop_fraction) << ","
+        << csv_num(r.obs.shape_exponent) << "," << csv_num(r.obs.shape_exponent_measured) << "," << o.evaluations << ","
+        << csv_num(o.wall_s) << "," << o.stop_reason << "," << (o.ok() ? "ok" : "failed") << "\n";
+    }
+  }
+  write_file(tmp / "fitted.csv", c.str());
+  if (plots && spec.separate && result.fits.size() > 1) {
+    // First parameter against the load, with the error-bar range when computed.
+    const std::size_t col = 6;  // fitted.csv column of the first parameter's value (1-based)
+    std::ostringstream gp;
+    gp << "set terminal pngcairo size 800,560 noenhanced\nset datafile separator ','\nset grid\n"
+       << "set output 'fitted.png'\nset key top left\n"
+       << "set title '" << spec.name << ": fitted " << spec.parameters[0].key << " per experiment'\n"
+       << "set xlabel 'P = M g [N]'\nset ylabel '" << spec.parameters[0].key << "'\n"
+       << "plot 'fitted.csv' skip 1 using 5:" << col << ":(($" << col + 1 << " == $" << col + 1 << ") ? $" << col + 1
+       << " : $" << col << "):(($" << col + 2 << " == $" << col + 2 << ") ? $" << col + 2 << " : $" << col
+       << ") with yerrorbars pt 7 title 'fit (bars: error-bar range)'\n";
+    run_gnuplot(tmp, gp.str());
+  }
+  write_file(tmp / "fit.yaml", fit_yaml(spec, result));
+
+  fs::path old;
+  if (fs::exists(fs::symlink_status(target))) {
+    check_replaceable(target);
+    old = parent / ("." + name + ".old-" + unique_suffix());
+    fs::rename(target, old, ec);
+    if (ec) throw std::runtime_error("cannot replace " + target.string() + ": " + ec.message());
+  }
+  fs::rename(tmp, target, ec);
+  if (ec) {
+    std::error_code e2;
+    if (!old.empty()) fs::rename(old, target, e2);
+    throw std::runtime_error("cannot move " + tmp.string() + " to " + target.string() + ": " + ec.message());
+  }
+  cleanup.armed = false;
+  if (!old.empty()) fs::remove_all(old, ec);
+}
+
+}  // namespace asperity

@@ -1,0 +1,366 @@
+#include "scene/fit_load.hpp"
+
+#include <nlopt.hpp>
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <set>
+#include <system_error>
+
+#include "scene/numbers.hpp"
+#include "scene/yaml_util.hpp"
+
+namespace asperity {
+
+namespace fs = std::filesystem;
+using namespace scene_io;
+
+const char* objective_name(FitObjective o) {
+  switch (o) {
+    case FitObjective::quadratic_alpha: return "quadratic_alpha";
+    case FitObjective::area_curve: return "area_curve";
+    case FitObjective::stick_slip: return "stick_slip";
+  }
+  return "unknown";
+}
+
+namespace {
+
+const std::vector<std::string> kFitKeys{"name", "description", "objective", "separate", "experiments",
+                                        "parameters", "optimizer", "profile", "error_bars"};
+const std::vector<std::string> kExperimentKeys{"scene", "set", "target"};
+const std::vector<std::string> kTargetKeys{"drop", "period"};
+const std::vector<std::string> kParameterKeys{"lo", "hi", "start", "scale", "per_experiment"};
+const std::vector<std::string> kOptimizerKeys{"algorithm", "xtol_rel", "ftol_rel", "ftol_abs",
+                                              "max_evaluations", "initial_step"};
+const std::vector<std::string> kProfileKeys{"parameter", "span", "points"};
+
+std::string display_path(const fs::path& p) { return p.lexically_normal().string(); }
+
+// Units of the numeric scene keys, for messages ("1.6 MPa" → "expected a plain number in Pa").
+const char* unit_of(const std::string& key) {
+  if (key == "experiment.mass") return "kg";
+  if (key == "experiment.k_L") return "N/m";
+  if (key == "experiment.v") return "m/s";
+  if (key == "experiment.E" || key == "experiment.sigma_exp") return "Pa";
+  if (key == "model.eta") return "1/s";
+  if (key == "model.alpha_b") return "m^(2p+2)/N^2";
+  return nullptr;
+}
+
+bool all_names_ok(const std::string& s) {
+  return !s.empty() && s != "." && s != ".." &&
+         std::all_of(s.begin(), s.end(), [](char c) {
+           return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
+         });
+}
+
+// Forced settings per objective (see fit_load.hpp), applied after the user's `set`.
+std::vector<std::pair<std::string, std::string>> forced_settings(FitObjective o) {
+  if (o == FitObjective::stick_slip)
+    return {{"output.series", "[]"}, {"stop.at_first_peak", "false"}, {"stop.cycles", "5"}};
+  return {{"output.series", "[]"}, {"stop.at_first_peak", "true"}};
+}
+
+double positive(const MapView& v, const YAML::Node& n, const std::string& k, const char* unit) {
+  const double x = v.number(n, k, unit);
+  if (!(x > 0)) v.fail_at(n, k, "must be > 0, got " + format_double(x));
+  return x;
+}
+
+struct ParamNodes {  // where each parameter's values were written (for errors found later)
+  YAML::Node key, lo, hi, start;
+};
+
+}  // namespace
+
+std::string check_fit_algorithm(const std::string& name) {
+  const nlopt_algorithm a = nlopt_algorithm_from_string(name.c_str());
+  if (static_cast<int>(a) < 0) {
+    std::vector<std::string> names;
+    for (int i = 0; i < NLOPT_NUM_ALGORITHMS; ++i) {
+      const char* s = nlopt_algorithm_to_string(static_cast<nlopt_algorithm>(i));
+      if (s && (std::string(s).rfind("LN_", 0) == 0)) names.emplace_back(s);
+    }
+    return "unknown NLopt algorithm " + quote(name) + did_you_mean(name, names) +
+           "; derivative-free local ones: " + join(names);
+  }
+  if (name.rfind("LD_", 0) == 0 || name.rfind("GD_", 0) == 0)
+    return "NLopt algorithm " + quote(name) +
+           " needs gradients, which a simulation does not give; use a derivative-free one (LN_*, GN_*)";
+  if (name.find("AUGLAG") != std::string::npos || name.find("MLSL") != std::string::npos)
+    return "NLopt algorithm " + quote(name) +
+           " needs a subsidiary optimizer, which fit files do not set; use e.g. LN_BOBYQA";
+  return "";
+}
+
+FitSpec load_fit(const fs::path& path) {
+  const std::string display = display_path(path);
+  const YAML::Node root_node = load_yaml_file(path, display);
+  const Source src{display, nullptr};
+  const MapView root(src, root_node, "", kFitKeys, 1);
+  const fs::path base = path.parent_path();
+
+  FitSpec spec;
+  std::error_code ec;
+  spec.file = fs::weakly_canonical(fs::absolute(path), ec);
+  if (ec) spec.file = fs::absolute(path).lexically_normal();
+
+  if (auto n = root.find("name")) {
+    spec.name = root.string(*n, "name");
+    if (!all_names_ok(spec.name))
+      root.fail_at(*n, "name", "must be a folder name (letters, digits, '_', '-', '.'), got " + quote(spec.name));
+  } else {
+    spec.name = path.stem().string();
+  }
+  if (auto n = root.find("description")) spec.description = root.string(*n, "description");
+  YAML::Node objective_node = root.require("objective");
+  spec.objective = root.enumeration<FitObjective>(objective_node, "objective",
+                                                  {{"quadratic_alpha", FitObjective::quadratic_alpha},
+                                                   {"area_curve", FitObjective::area_curve},
+                                                   {"stick_slip", FitObjective::stick_slip}});
+  if (auto n = root.find("separate")) spec.separate = root.boolean(*n, "separate");
+
+  // --- parameters ---------------------------------------------------------------------------
+  std::vector<ParamNodes> pnodes;
+  {
+    const YAML::Node pn = root.require("parameters");
+    if (!pn.IsMap() || pn.size() == 0)
+      root.fail_at(pn, "parameters", "expected a map of free parameters, e.g. {model.alpha_b: {lo: 1e-16, hi: 3e-15, start: 7.25e-16}}, got " + node_kind(pn));
+    const MapView params(src, pn, "parameters", numeric_scene_keys());
+    for (auto it = pn.begin(); it != pn.end(); ++it) {
+      const std::string key = it->first.Scalar();
+      const MapView p(src, it->second, params.key(key), kParameterKeys);
+      if (!it->second.IsMap()) params.fail_at(it->second, key, "expected a map {lo:, hi:, start:}, got " + node_kind(it->second));
+      FitParameter fp;
+      fp.key = key;
+      ParamNodes nodes{it->first, p.require("lo"), p.require("hi"), p.require("start")};
+      const char* unit = unit_of(key);
+      fp.lo = p.number(nodes.lo, "lo", unit);
+      fp.hi = p.number(nodes.hi, "hi", unit);
+      fp.start = p.number(nodes.start, "start", unit);
+      if (!(fp.lo < fp.hi))
+        p.fail_at(nodes.hi, "hi", "must be > lo = " + format_double(fp.lo) + ", got " + format_double(fp.hi));
+      if (!(fp.start >= fp.lo && fp.start <= fp.hi))
+        p.fail_at(nodes.start, "start", "must be in [lo, hi] = [" + format_double(fp.lo) + ", " +
+                                            format_double(fp.hi) + "], got " + format_double(fp.start));
+      if (auto s = p.find("scale")) {
+        fp.log_scale = p.enumeration<bool>(*s, "scale", {{"linear", false}, {"log", true}});
+        if (fp.log_scale && !(fp.lo > 0))
+          p.fail_at(*s, "scale", "log scale needs lo > 0, got lo = " + format_double(fp.lo));
+      }
+      if (auto s = p.find("per_experiment")) {
+        fp.per_experiment = p.boolean(*s, "per_experiment");
+        if (fp.per_experiment && spec.separate)
+          p.fail_at(*s, "per_experiment", "has no effect with separate: true (every parameter is then per experiment); remove it");
+      }
+      spec.parameters.push_back(fp);
+      pnodes.push_back(nodes);
+    }
+  }
+
+  // --- experiments --------------------------------------------------------------------------
+  {
+    const YAML::Node en = root.require("experiments");
+    if (!en.IsSequence() || en.size() == 0)
+      root.fail_at(en, "experiments", "expected a non-empty list of scene files, got " + node_kind(en));
+    std::set<std::string> names;
+    for (std::size_t i = 0; i < en.size(); ++i) {
+      const YAML::Node item = en[i];
+      const std::string ikey = "experiments[" + std::to_string(i) + "]";
+      YAML::Node scene_node;
+      std::optional<MapView> ev;
+      std::vector<std::pair<std::string, std::string>> fixed;
+      std::vector<std::pair<std::string, YAML::Node>> set_nodes;
+      FitExperiment fe;
+      bool has_target = false;
+      if (item.IsScalar()) {
+        scene_node = item;
+      } else if (item.IsMap()) {
+        ev.emplace(src, item, ikey, kExperimentKeys);
+        scene_node = ev->require("scene");
+        if (auto s = ev->find("set")) {
+          if (!s->IsMap()) ev->fail_at(*s, "set", "expected a map of dotted scene keys, e.g. {model.eta: 50}, got " + node_kind(*s));
+          for (auto it = s->begin(); it != s->end(); ++it) {
+            if (!it->first.IsScalar()) ev->fail_at(it->first, "set", "keys must be dotted scene keys");
+            const std::string k = it->first.Scalar();
+            if (std::any_of(spec.parameters.begin(), spec.parameters.end(), [&](const FitParameter& p) { return p.key == k; }))
+              ev->fail_at(it->first, "set." + k, "is a free parameter of this fit; it cannot also be set");
+            YAML::Emitter out;
+            out << YAML::Flow << it->second;
+            fixed.emplace_back(k, out.c_str());
+            set_nodes.emplace_back(k, it->first);
+          }
+        }
+        if (auto t = ev->find("target")) {
+          if (spec.objective != FitObjective::stick_slip)
+            ev->fail_at(*t, "target", std::string("stick-slip targets are used by the stick_slip objective only, not ") + objective_name(spec.objective));
+          const MapView tv(src, *t, ev->key("target"), kTargetKeys);
+          fe.target.drop_N = positive(tv, tv.require("drop"), "drop", "N");
+          fe.target.period_s = positive(tv, tv.require("period"), "period", "s");
+          has_target = true;
+        }
+      } else {
+        root.fail_at(item.Mark().is_null() ? en : item, ikey, "expected a scene path or a map {scene: path, set: {...}}, got " + node_kind(item));
+      }
+      const MapView& sv = ev ? *ev : root;
+      const std::string skey = ev ? "scene" : ikey;
+      const std::string rel = sv.string(scene_node, skey);
+      const fs::path scene_path = base / fs::path(rel);
+      {
+        std::error_code e2;
+        const auto st = fs::status(scene_path, e2);
+        if (!fs::exists(st)) sv.fail_at(scene_node, skey, "scene file not found: " + quote(rel) + " (looked for " + display_path(scene_path) + ")");
+        if (fs::is_directory(st)) sv.fail_at(scene_node, skey, "scene file is a directory: " + display_path(scene_path));
+      }
+      if (spec.objective == FitObjective::stick_slip && !has_target)
+        sv.fail_at(item, ev ? "target" : ikey, "the stick_slip objective needs target: {drop: N, period: s} for every experiment");
+      for (const auto& f : forced_settings(spec.objective)) fixed.push_back(f);
+
+      Scene base_scene;
+      try {
+        fe.scene = SceneTemplate::load(scene_path, fixed);
+        base_scene = fe.scene.build();
+      } catch (const InputError& e) {
+        // A value from `set` carries no line of the scene file: name the fit file's line.
+        for (const auto& [k, kn] : set_nodes)
+          if (e.line == 0 && (e.key == k || e.key.rfind(k + ".", 0) == 0 || k.rfind(e.key, 0) == 0))
+            ev->fail_at(kn, "set." + k, e.message);
+        throw;
+      }
+      fe.name = base_scene.experiment.name;
+      if (!names.insert(fe.name).second)
+        sv.fail_at(scene_node, skey, "experiment " + quote(fe.name) + " is listed twice (outputs are named after it)");
+      if (spec.objective != FitObjective::stick_slip && !base_scene.experiment.measured)
+        sv.fail_at(scene_node, skey, std::string("objective ") + objective_name(spec.objective) +
+                                         " needs a measured A(Q) curve, and experiment " + quote(fe.name) + " (" +
+                                         display_path(base_scene.experiment.file) + ") has none (key `measured`)");
+      // Every value the optimizer may try must make a valid scene: check the bounds now.
+      for (std::size_t j = 0; j < spec.parameters.size(); ++j) {
+        const FitParameter& p = spec.parameters[j];
+        for (const auto& [which, x, node] : {std::tuple{"lo", p.lo, pnodes[j].lo}, std::tuple{"hi", p.hi, pnodes[j].hi}}) {
+          try {
+            fe.scene.build({{p.key, x}});
+          } catch (const InputError& e) {
+            const MapView pv(src, root.require("parameters")[p.key], "parameters." + p.key, kParameterKeys);
+            pv.fail_at(node, which, "invalid for experiment " + quote(fe.name) + ": " + e.message);
+          }
+        }
+      }
+      spec.experiments.push_back(std::move(fe));
+    }
+  }
+
+  // --- optimizer ----------------------------------------------------------------------------
+  YAML::Node algorithm_node;
+  if (auto on = root.find("optimizer")) {
+    const MapView o(src, *on, "optimizer", kOptimizerKeys);
+    if (auto n = o.find("algorithm")) {
+      spec.algorithm = o.string(*n, "algorithm");
+      if (const std::string why = check_fit_algorithm(spec.algorithm); !why.empty()) o.fail_at(*n, "algorithm", why);
+      algorithm_node = *n;
+    }
+    if (auto n = o.find("xtol_rel")) {
+      spec.xtol_rel = o.number(*n, "xtol_rel", nullptr);
+      if (!(spec.xtol_rel > 0 && spec.xtol_rel < 1)) o.fail_at(*n, "xtol_rel", "must be in (0, 1), got " + format_double(spec.xtol_rel));
+    }
+    if (auto n = o.find("ftol_rel")) {
+      spec.ftol_rel = o.number(*n, "ftol_rel", nullptr);
+      if (!(spec.ftol_rel >= 0 && spec.ftol_rel < 1)) o.fail_at(*n, "ftol_rel", "must be in [0, 1) (0: off), got " + format_double(spec.ftol_rel));
+    }
+    if (auto n = o.find("ftol_abs")) {
+      spec.ftol_abs = o.number(*n, "ftol_abs", nullptr);
+      if (!(spec.ftol_abs >= 0)) o.fail_at(*n, "ftol_abs", "must be >= 0 (0: off), got " + format_double(spec.ftol_abs));
+    }
+    if (auto n = o.find("max_evaluations")) {
+      spec.max_evaluations = o.integer(*n, "max_evaluations");
+      if (spec.max_evaluations < 1) o.fail_at(*n, "max_evaluations", "must be >= 1, got " + std::to_string(spec.max_evaluations));
+    }
+    if (auto n = o.find("initial_step")) {
+      spec.initial_step = o.number(*n, "initial_step", nullptr);
+      if (!(spec.initial_step > 0 && spec.initial_step <= 1))
+        o.fail_at(*n, "initial_step", "must be in (0, 1] (a fraction of each parameter's scaled range), got " + format_double(spec.initial_step));
+    }
+  }
+  {  // The algorithm must accept this many variables (e.g. LN_NEWUOA_BOUND needs ≥ 2).
+    std::size_t n = 0;
+    for (const auto& p : spec.parameters) n += (p.per_experiment && !spec.separate) ? spec.experiments.size() : 1;
+    try {
+      nlopt::opt trial(static_cast<nlopt::algorithm>(nlopt_algorithm_from_string(spec.algorithm.c_str())), static_cast<unsigned>(n));
+      trial.set_lower_bounds(std::vector<double>(n, 0.0));
+      trial.set_upper_bounds(std::vector<double>(n, 1.0));
+      trial.set_min_objective([](unsigned m, const double* x, double*, void*) {
+        double s = 0;
+        for (unsigned i = 0; i < m; ++i) s += (x[i] - 0.3) * (x[i] - 0.3);
+        return s;
+      }, nullptr);
+      trial.set_maxeval(3);
+      std::vector<double> x(n, 0.5);
+      double f = 0;
+      trial.optimize(x, f);
+    } catch (const std::invalid_argument& e) {
+      const std::string msg = "NLopt rejects " + spec.algorithm + " with " + std::to_string(n) + " free variable(s): " + e.what();
+      if (algorithm_node.IsDefined()) root.fail_at(algorithm_node, "optimizer.algorithm", msg);
+      throw InputError(display, 0, "optimizer.algorithm", msg);
+    } catch (const std::exception&) {
+      // Other stops of a 3-evaluation trial (e.g. roundoff) say nothing about the input.
+    }
+  }
+
+  // --- profile ------------------------------------------------------------------------------
+  if (auto pn = root.find("profile")) {
+    if (pn->IsScalar()) {
+      spec.profile = root.boolean(*pn, "profile");
+    } else {
+      const MapView p(src, *pn, "profile", kProfileKeys);
+      if (auto n = p.find("parameter")) {
+        const std::string k = p.string(*n, "parameter");
+        const auto it = std::find_if(spec.parameters.begin(), spec.parameters.end(), [&](const FitParameter& q) { return q.key == k; });
+        if (it == spec.parameters.end()) {
+          std::vector<std::string> keys;
+          for (const auto& q : spec.parameters) keys.push_back(q.key);
+          p.fail_at(*n, "parameter", "not a free parameter of this fit: " + quote(k) + did_you_mean(k, keys) + "; free: " + join(keys));
+        }
+        spec.profile_settings.parameter = static_cast<std::size_t>(it - spec.parameters.begin());
+      }
+      if (auto n = p.find("span")) {
+        spec.profile_settings.span = p.number(*n, "span", nullptr);
+        if (!(spec.profile_settings.span > 0 && spec.profile_settings.span < 1))
+          p.fail_at(*n, "span", "must be in (0, 1) (relative), got " + format_double(spec.profile_settings.span));
+      }
+      if (auto n = p.find("points")) {
+        spec.profile_settings.points = p.integer(*n, "points");
+        if (spec.profile_settings.points < 3 || spec.profile_settings.points > 201)
+          p.fail_at(*n, "points", "must be in [3, 201], got " + std::to_string(spec.profile_settings.points));
+      }
+    }
+  }
+
+  // --- error bars ---------------------------------------------------------------------------
+  if (auto bn = root.find("error_bars")) {
+    const MapView b(src, *bn, "error_bars", numeric_scene_keys());
+    if (bn->IsMap())
+      for (auto it = bn->begin(); it != bn->end(); ++it) {
+        const std::string k = it->first.Scalar();
+        if (std::any_of(spec.parameters.begin(), spec.parameters.end(), [&](const FitParameter& p) { return p.key == k; }))
+          b.fail_at(it->first, k, "is a free parameter of this fit; it has no error bar to propagate");
+        ErrorBar eb{k, positive(b, it->second, k, unit_of(k))};
+        for (const auto& e : spec.experiments) {
+          const double nominal = scene_value(e.scene.build(), k);
+          for (const double x : {nominal - eb.bar, nominal + eb.bar}) {
+            try {
+              e.scene.build({{k, x}});
+            } catch (const InputError& err) {
+              b.fail_at(it->second, k, "nominal ± bar gives an invalid scene for experiment " + quote(e.name) + ": " + err.message);
+            }
+          }
+        }
+        spec.error_bars.push_back(eb);
+      }
+  }
+  return spec;
+}
+
+}  // namespace asperity

@@ -1,0 +1,73 @@
+// Objective pieces against closed forms; failure handling of a fit.
+#include <catch2/catch.hpp>
+#include <cmath>
+
+#include "fit/fit.hpp"
+#include "fit/objective.hpp"
+#include "fit_support.hpp"
+#include "scene/fit_load.hpp"
+
+using namespace asperity;
+using namespace asperity::testing;
+
+TEST_CASE("model_area_at interpolates the monotone loading branch", "[fit][objective]") {
+  // A = A0 − c Q on a branch with a ringing back-step (Q decreasing) that must be ignored.
+  const double A0 = 1e-6, c = 1e-7;
+  std::vector<Sample> branch;
+  for (double Q : {0.0, 0.1, 0.2, 0.15, 0.3, 0.4}) {
+    Sample s;
+    s.Q = Q;
+    s.A = (Q == 0.15) ? 0.5e-6 : A0 - c * Q;  // the back-step has a wild area
+    branch.push_back(s);
+  }
+  const double Q_s = 0.45, A_s = A0 - c * 0.45;
+  const std::vector<double> Q{0.0, 0.05, 0.25, 0.42, 0.6};
+  const std::vector<double> A = model_area_at(branch, Q_s, A_s, Q);
+  CHECK(A[0] == Approx(A0).epsilon(1e-14));
+  CHECK(A[1] == Approx(A0 - c * 0.05).epsilon(1e-14));
+  CHECK(A[2] == Approx(A0 - c * 0.25).epsilon(1e-14));  // between 0.2 and 0.3: linear, exact
+  CHECK(A[3] == Approx(A0 - c * 0.42).epsilon(1e-14));  // between the last sample and the peak
+  CHECK(A[4] == A_s);                                   // beyond the peak: slid, area A_s
+}
+
+TEST_CASE("stick_slip objective counts a run without stick-slip as zero drop and period", "[fit][objective]") {
+  Scene s;
+  Observables o;
+  o.ss_cycles = 0;
+  CHECK(experiment_residual(FitObjective::stick_slip, s, o, {}, {0.1, 0.2}) == 2.0);
+  o.ss_cycles = 3;
+  o.ss_drop = 0.15;
+  o.ss_period = 0.1;
+  CHECK(experiment_residual(FitObjective::stick_slip, s, o, {}, {0.1, 0.2}) == Approx(0.25 + 0.25));
+}
+
+TEST_CASE("Scaled coordinates map exactly onto the bounds", "[fit][objective]") {
+  FitParameter lin{"model.p", 1.0, 2.0, 1.5, false, false};
+  FitParameter lg{"model.alpha_b", 1e-16, 5e-15, 7e-16, true, false};
+  for (const FitParameter& p : {lin, lg}) {
+    CHECK(parameter_value(p, 0.0) == p.lo);
+    CHECK(parameter_value(p, 1.0) == p.hi);
+    CHECK(parameter_value(p, -0.5) == p.lo);
+    CHECK(parameter_value(p, 1.5) == p.hi);
+    CHECK(parameter_value(p, parameter_coordinate(p, p.start)) == Approx(p.start).epsilon(1e-14));
+  }
+  CHECK(parameter_value(lg, 0.5) == Approx(std::sqrt(1e-16 * 5e-15)).epsilon(1e-14));  // geometric midpoint
+}
+
+TEST_CASE("A NaN objective ends the fit with a clear reason", "[fit][objective]") {
+  // stop.time 1e-6 s: the loading branch holds only Q = 0, so the model's alpha is NaN.
+  const FitCase c = make_fit_case("nan", 0.725e-15, 1.5, 0.1, 40);
+  const auto f = write_text(c.dir / "fit.yaml",
+                            "objective: quadratic_alpha\n"
+                            "experiments: [{scene: scene.yaml, set: {stop.time: 1.0e-6}}]\n"
+                            "parameters: {model.alpha_b: {lo: 1e-16, hi: 5e-15, start: 7e-16}}\n");
+  const FitResult r = run_fit(load_fit(f), FitOptions{1, false, false, {}});
+  const Optimization& o = r.fits[0];
+  CHECK_FALSE(o.ok());
+  CHECK(o.stop_reason == "FORCED_STOP");
+  CHECK(o.evaluations == 1);
+  CHECK(o.failure.find("NaN") != std::string::npos);
+  CHECK(o.failure.find("fit-nan") != std::string::npos);  // names the experiment
+  CHECK(std::isnan(o.objective));
+  std::filesystem::remove_all(c.dir);
+}
