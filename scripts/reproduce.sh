@@ -6,4 +6,5 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh
-build/asperity reproduce scenes/paper/P*.yaml --out results/paper --set stop.cycles=5 "$@"
+build/asperity reproduce scenes/paper/P*.yaml --out results/paper --set stop.cycles=5 \
+  --fit fits/paper_alpha_b.yaml "$@"

@@ -212,25 +212,35 @@ std::string claims_report(const std::vector<PaperRun>& base, const std::vector<V
   r << "## 5. With α_b calibrated: area decay and incipient slope match, but A(Q) is quasi-linear in the "
        "model and quadratic in the experiment\n\n";
   const bool have_cal = !calibrated.empty();
-  r << (have_cal ? "α_b calibrated per load with the paper's method (model quadratic α = measured α, "
-                   "`fits/`).\n\n"
+  if (have_cal) {
+    r << "α_b calibrated per load with the paper's method (model quadratic α = measured α, LN_BOBYQA on "
+         "log α_b; `fits/paper_alpha_b.yaml`): ";
+    for (std::size_t i = 0; i < calibrated.size(); ++i)
+      r << (i ? ", " : "") << calibrated[i].experiment << " " << fmt("%.4g", calibrated[i].alpha_b * 1e15) << "e-15 ("
+        << calibrated[i].evaluations << " runs, " << calibrated[i].stop_reason << ")";
+    r << ". The paper found 0.45e-15 at the smallest and 1.00e-15 at the largest load on the real data"
+      << (standin ? "; the stand-ins were generated with one α_b = 0.725e-15 and a measured area drop rising "
+                    "with load (MODEL.md §7), which is what makes the fitted α_b rise here" : "") << ".\n\n";
+  }
+  r << (have_cal ? ""
                  : "No calibration in this run: the model runs at the scenes' α_b.\n\n");
   r << "| experiment | α_b [1e-15] | area decay model | area decay measured | incipient slope model "
        "[mm²/N] | measured | n model | n measured |\n|---|---:|---:|---:|---:|---:|---:|---:|\n";
-  int quasi_linear = 0, quad_meas = 0, decay_ok = 0;
+  int quasi_linear = 0, quad_meas = 0, decay_ok = 0, slope_ok = 0;
   for (const auto& b : base) {
     const std::string& name = b.scene.experiment.name;
     const Observables* o = &b.obs;
+    const std::vector<Sample>* loading = &b.loading;
     double ab = b.scene.model.alpha_b;
     for (const auto& c : calibrated)
-      if (c.experiment == name) { o = &c.obs; ab = c.alpha_b; }
+      if (c.experiment == name) { o = &c.obs; ab = c.alpha_b; loading = &c.loading; }
     double dm = std::nan(""), sm = std::nan(""), smod = std::nan("");
     if (const auto& m = b.scene.experiment.measured) {
       dm = 1 - m->A_m2.back() / o->A0;
       sm = initial_slope(m->Q_N, m->A_m2, 0.3);
     }
     std::vector<double> q, a;
-    for (const auto& s : b.loading) { q.push_back(s.Q); a.push_back(s.A); }
+    for (const auto& s : *loading) { q.push_back(s.Q); a.push_back(s.A); }
     smod = initial_slope(q, a, 0.3);
     r << "| " << name << " | " << fmt("%.3f", ab * 1e15) << " | " << fmt("%.3f", o->area_drop_fraction) << " | "
       << fmt("%.3f", dm) << " | " << fmt("%.3f", smod * 1e6) << " | " << fmt("%.3f", sm * 1e6) << " | "
@@ -238,13 +248,21 @@ std::string claims_report(const std::vector<PaperRun>& base, const std::vector<V
     quasi_linear += o->shape_exponent < 1.6 ? 1 : 0;
     quad_meas += o->shape_exponent_measured > 1.7 ? 1 : 0;
     decay_ok += rel(o->area_drop_fraction, dm) < 0.25 ? 1 : 0;
+    slope_ok += rel(smod, sm) < 0.25 ? 1 : 0;
   }
-  r << "\n(The incipient-slope columns use the base runs' loading branch; area decay = 1 − A_s/A0.)\n\n"
+  r << "\n(Area decay = 1 − A_s/A0 at the peak; incipient slope = least-squares dA/dQ over Q ≤ 0.3 Q_s.)\n\n"
     << "Model quasi-linear (n < 1.6) at " << quasi_linear << " of " << base.size()
     << " loads; measured quadratic (n > 1.7) at " << quad_meas << "; area decay within 25 % of the measured one at "
-    << decay_ok << ".\n\n**" << (quasi_linear == static_cast<int>(base.size()) ? "Shape contrast reproduced" : "Shape contrast not fully reproduced")
-    << "**" << (standin ? ": the stand-in measured curves are quadratic by construction (MODEL.md §7), so only "
-                          "the model side is evidence." : ".") << "\n\n";
+    << decay_ok << "; incipient slope within 25 % at " << slope_ok << ".\n\n";
+  const int nb = static_cast<int>(base.size());
+  r << "**Area decay: " << (decay_ok == nb ? "reproduced" : "not reproduced at every load") << ". Incipient slope: "
+    << (slope_ok == nb ? "reproduced" : "not reproduced") << ". Shape contrast: "
+    << (quasi_linear == nb && quad_meas == nb ? "reproduced" : "not fully reproduced") << ".**";
+  if (standin)
+    r << " The stand-in \"measured\" curves are exact parabolas plus noise (MODEL.md §7): their slope at Q = 0 "
+         "is zero, so a quasi-linear model cannot match the incipient slope, and their quadratic shape is "
+         "built in, so only the model side of the shape contrast is evidence.";
+  r << "\n\n";
 
   // 6. Equal areas → quadratic.
   r << "## 6. Equal initial areas give an exactly quadratic A(Q) up to macroscopic sliding\n\n"

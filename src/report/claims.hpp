@@ -39,7 +39,9 @@ struct CalibratedRun {
   std::string experiment;
   double alpha_b = 0;        // m^(2p+2)/N²
   Observables obs;           // run at the calibrated α_b
+  std::vector<Sample> loading;  // its loading branch
   int evaluations = 0;
+  std::string stop_reason;   // NLopt's
 };
 
 // REPORT.md text. `base`: the runs at the scene settings; `calibrated`: may be empty.
