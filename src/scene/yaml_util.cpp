@@ -1,5 +1,8 @@
 #include "scene/yaml_util.hpp"
 
+#include <yaml-cpp/anchor.h>
+#include <yaml-cpp/eventhandler.h>
+
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
@@ -100,6 +103,48 @@ static void check_yaml_text(const std::string& text, const std::string& display,
   }
 }
 
+namespace {
+// Counts documents without building them. YAML::LoadAll loops forever on some malformed input
+// (e.g. a lone ',': every call "finds" another empty document; found by fuzz/fuzz_scene.cpp),
+// so documents are counted with a cap instead.
+struct DocumentCounter : YAML::EventHandler {
+  int documents = 0;
+  int second_line = 0;  // 1-based line where a second document starts
+  void OnDocumentStart(const YAML::Mark& m) override {
+    if (++documents == 2) second_line = m.line + 1;
+  }
+  void OnDocumentEnd() override {}
+  void OnNull(const YAML::Mark&, YAML::anchor_t) override {}
+  void OnAlias(const YAML::Mark&, YAML::anchor_t) override {}
+  void OnScalar(const YAML::Mark&, const std::string&, YAML::anchor_t, const std::string&) override {}
+  void OnSequenceStart(const YAML::Mark&, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {}
+  void OnSequenceEnd() override {}
+  void OnMapStart(const YAML::Mark&, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {}
+  void OnMapEnd() override {}
+};
+
+// The one document of `text` (Null when empty); parse errors and extra documents → InputError.
+YAML::Node load_one_document(const std::string& text, const std::string& display, const std::string& key) {
+  const int line_of = key.empty() ? 1 : 0;  // a --set value has no file line
+  try {
+    std::istringstream in(text);
+    YAML::Parser parser(in);
+    DocumentCounter counter;
+    while (counter.documents < 2 && parser.HandleNextDocument(counter)) {}
+    if (counter.documents > 1) {
+      const bool marker = text.find("---") != std::string::npos || text.find("...") != std::string::npos;
+      throw InputError(display, line_of * counter.second_line, key,
+                       marker ? "more than one YAML document ('---'); the file must hold exactly one"
+                              : "malformed YAML: content outside any map or list (a stray ',' or ']'?)");
+    }
+    return YAML::Load(text);
+  } catch (const YAML::Exception& e) {
+    throw InputError(display, line_of * (e.mark.is_null() ? 0 : e.mark.line + 1), key,
+                     (key.empty() ? "malformed YAML: " : "malformed YAML value: ") + e.msg);
+  }
+}
+}  // namespace
+
 YAML::Node load_yaml_file(const std::filesystem::path& path, const std::string& display) {
   check_readable_file(path, display);
   std::ifstream in(path, std::ios::binary);
@@ -108,27 +153,12 @@ YAML::Node load_yaml_file(const std::filesystem::path& path, const std::string& 
   ss << in.rdbuf();
   if (in.bad()) throw InputError(display, 0, "", "cannot read file");
   check_yaml_text(ss.str(), display, "");
-  std::vector<YAML::Node> docs;
-  try {
-    docs = YAML::LoadAll(ss.str());
-  } catch (const YAML::Exception& e) {
-    throw InputError(display, e.mark.is_null() ? 0 : e.mark.line + 1, "", "malformed YAML: " + e.msg);
-  }
-  if (docs.size() > 1)
-    throw InputError(display, mark_line(docs[1]), "",
-                     "more than one YAML document ('---'); the file must hold exactly one");
-  return docs.empty() ? YAML::Node(YAML::NodeType::Null) : docs.front();
+  return load_one_document(ss.str(), display, "");
 }
 
 YAML::Node load_yaml_text(const std::string& text, const std::string& where, const std::string& key) {
   check_yaml_text(text, where, key);
-  try {
-    std::vector<YAML::Node> docs = YAML::LoadAll(text);
-    if (docs.size() > 1) throw InputError(where, 0, key, "the value holds more than one YAML document");
-    return docs.empty() ? YAML::Node(YAML::NodeType::Null) : strip_marks(docs.front());
-  } catch (const YAML::Exception& e) {
-    throw InputError(where, 0, key, "malformed YAML value: " + e.msg);
-  }
+  return strip_marks(load_one_document(text, where, key));
 }
 
 YAML::Node strip_marks(const YAML::Node& n) {
