@@ -15,7 +15,7 @@ namespace asperity {
 struct SavingsOptions {
   std::vector<std::filesystem::path> scenes{"scenes/paper/P4.00N.yaml"};
   std::vector<std::string> overrides{"stop.time=8", "stop.cycles=5"};  // the baseline run
-  int repeats = 5;
+  int repeats = 5;          // baseline and variant run alternately, this many times each
   std::filesystem::path scratch;  // where run directories are written for timing (then removed)
   std::ostream* log = nullptr;
 };
@@ -24,6 +24,7 @@ struct SavingRow {
   std::string experiment, saving, variant;  // variant: what differs from the scene's defaults
   bool baseline = false;
   double wall_s = 0;        // median integration wall time [s]
+  double cpu_s = 0;         // median process CPU time of the same runs [s]
   double write_s = 0;       // writing the run directory (series.csv, summary, scene) [s]
   int repeats = 1;
   double t_end = 0;         // simulated [s]

@@ -38,6 +38,7 @@ WorkPrecisionRow make_row(const std::string& experiment, const std::string& meth
   r.method = method;
   r.setting = setting;
   r.wall_s = t.wall_s;
+  r.cpu_s = t.cpu_s;
   r.repeats = t.repeats;
   r.t_end = t.obs.t_end;
   r.steps = t.obs.steps;
@@ -136,12 +137,12 @@ TradeoffResult run_tradeoff(const TradeoffOptions& opt) {
 
 std::string work_precision_csv(const std::vector<WorkPrecisionRow>& rows) {
   std::ostringstream o;
-  o << "experiment,method,setting,wall_s,repeats,t_end_s,steps";
+  o << "experiment,method,setting,wall_s,cpu_s,repeats,t_end_s,steps";
   for (const auto& n : robust_names()) o << ",value_" << n;
   for (const auto& n : robust_names()) o << ",relerr_" << n;
   o << '\n';
   for (const auto& r : rows) {
-    o << r.experiment << ',' << r.method << ',' << g(r.setting) << ',' << g(r.wall_s, 4) << ',' << r.repeats
+    o << r.experiment << ',' << r.method << ',' << g(r.setting) << ',' << g(r.wall_s, 4) << ',' << g(r.cpu_s, 4) << ',' << r.repeats
       << ',' << g(r.t_end, 10) << ',' << r.steps;
     for (double x : r.value) o << ',' << g(x, 12);
     for (double x : r.error) o << ',' << g(x, 4);
@@ -198,7 +199,7 @@ std::string plot_script(const TradeoffResult& r) {
   gp << "set multiplot layout 2,3 title 'Work-precision on bench experiment " << exp
      << " (60 junctions, stand-in recipe): error vs converged event run (tol 1e-12)'\n"
      << "set logscale xy\nset format y '1e%T'\nset format x '1e%T'\nset grid\n"
-     << "set xlabel 'wall time [s]'\nset ylabel 'relative error'\nset key bottom left font ',9'\n";
+     << "set xlabel 'wall time [s]'\nset ylabel 'relative error'\nset key center right font ',9'\n";
   for (std::size_t i = 0; i < n_robust; ++i) {
     const int c = static_cast<int>(i) + 3;
     gp << "set title '" << robust_names()[i] << "'\n"

@@ -38,6 +38,7 @@ struct WorkPrecisionRow {
   std::string experiment, method;  // method: "reference" (setting = C_t) or "event" (tolerance)
   double setting = 0;
   double wall_s = 0;               // median wall time of the integration [s]
+  double cpu_s = 0;                // median process CPU time of the same runs [s]
   int repeats = 1;
   double t_end = 0;                // simulated time [s]
   std::int64_t steps = 0;
