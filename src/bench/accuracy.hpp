@@ -16,14 +16,16 @@ namespace asperity {
 
 struct AccuracyOptions {
   std::vector<std::filesystem::path> scenes;  // default: scenes/paper/*.yaml
-  std::vector<std::string> overrides{"stop.time=8", "stop.cycles=5"};
+  // 10 s: the heaviest stand-in (P6.40N) completes its fifth cycle at 8.04 s.
+  std::vector<std::string> overrides{"stop.time=10", "stop.cycles=5"};
   double converged_tolerance = 1e-12;
+  std::vector<double> tolerances;  // tested tolerances; empty: each scene's own (the default)
   std::ostream* log = nullptr;
 };
 
 struct AccuracyRow {
   std::string experiment;
-  double tolerance = 0;            // the scene's own (default) tolerance
+  double tolerance = 0;            // the tested tolerance (default: the scene's own)
   double wall_s = 0, converged_wall_s = 0;
   int cycles = 0, converged_cycles = 0;
   std::array<double, n_robust> value{}, converged{}, error{};

@@ -14,7 +14,7 @@ namespace asperity {
 
 struct SavingsOptions {
   std::vector<std::filesystem::path> scenes{"scenes/paper/P4.00N.yaml"};
-  std::vector<std::string> overrides{"stop.time=8", "stop.cycles=5"};  // the baseline run
+  std::vector<std::string> overrides{"stop.time=10", "stop.cycles=5"};  // the baseline run
   int repeats = 5;          // baseline and variant run alternately, this many times each
   std::filesystem::path scratch;  // where run directories are written for timing (then removed)
   std::ostream* log = nullptr;
