@@ -124,7 +124,7 @@ void write_savings(const fs::path& dir, const std::vector<SavingRow>& rows) {
      << "set title 'Model only what a scene requires: " << exp
      << " (stand-in), wall time of integration + writing the run directory'\n"
      << "set style data histograms\nset style histogram clustered gap 1\nset style fill solid 0.8 border -1\n"
-     << "set boxwidth 0.9\nset ylabel 'wall time [ms]'\nset grid ytics\nset yrange [0:*]\nset key top right\n"
+     << "set bmargin 5\nset boxwidth 0.9\nset ylabel 'wall time [ms]'\nset grid ytics\nset yrange [0:*]\nset key top right\n"
      << "plot $d using 2:xticlabels(1) title 'baseline' lc rgb '#4477aa', "
         "'' using 3 title 'variant (saving)' lc rgb '#ee6677'\n";
   render_png(dir / "savings.png", gp.str(), 1000, 600);
