@@ -7,6 +7,7 @@
 #include "bench/bench_scene.hpp"
 #include "observe/simulate.hpp"
 #include "scene/csv.hpp"
+#include "scene/numbers.hpp"
 
 namespace asperity {
 namespace fs = std::filesystem;
@@ -17,6 +18,8 @@ std::string g(double x, int digits = 6) {
   std::snprintf(buf, sizeof buf, "%.*g", digits, x);
   return buf;
 }
+// Shortest text that reads back to exactly x (values: errors can be recomputed from the CSV).
+std::string exact(double x) { return std::isfinite(x) ? scene_io::format_double(x) : "nan"; }
 }  // namespace
 
 bool AccuracyRow::within_targets() const {
@@ -79,8 +82,8 @@ std::string accuracy_csv(const std::vector<AccuracyRow>& rows) {
   for (const auto& r : rows) {
     o << r.experiment << ',' << g(r.tolerance) << ',' << g(r.wall_s, 4) << ',' << g(r.converged_wall_s, 4) << ','
       << r.cycles << ',' << r.converged_cycles;
-    for (double x : r.value) o << ',' << g(x, 12);
-    for (double x : r.converged) o << ',' << g(x, 12);
+    for (double x : r.value) o << ',' << exact(x);
+    for (double x : r.converged) o << ',' << exact(x);
     for (double x : r.error) o << ',' << g(x, 4);
     o << ',' << (r.within_targets() ? "yes" : "no") << '\n';
   }

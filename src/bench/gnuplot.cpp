@@ -10,16 +10,25 @@ namespace fs = std::filesystem;
 
 namespace {
 std::string shell_quote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
+  std::string q(1, '\'');
+  for (char c : s) {
+    if (c == '\'') q.append("'\\''");
+    else q.push_back(c);
+  }
+  q.push_back('\'');
+  return q;
 }
 }  // namespace
 
 bool render_png(const fs::path& png, const std::string& script, int width, int height) {
   if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) return false;
-  const fs::path tmp_png = png.parent_path() / ("." + png.filename().string() + ".tmp");
-  const fs::path gp = png.parent_path() / ("." + png.stem().string() + ".gp");
+  // Hidden siblings: ".NAME.png.tmp" and ".NAME.gp".
+  fs::path tmp_png = png.parent_path() / ".";
+  tmp_png += png.filename();
+  tmp_png += ".tmp";
+  fs::path gp = png.parent_path() / ".";
+  gp += png.stem();
+  gp += ".gp";
   std::string text = "set terminal pngcairo size " + std::to_string(width) + "," +
                      std::to_string(height) + " noenhanced\n";
   std::string out_name = tmp_png.string();

@@ -23,6 +23,8 @@ std::string g(double x, int digits = 6) {
   std::snprintf(buf, sizeof buf, "%.*g", digits, x);
   return buf;
 }
+// Shortest text that reads back to exactly x (values: errors can be recomputed from the CSV).
+std::string exact(double x) { return std::isfinite(x) ? scene_io::format_double(x) : "nan"; }
 
 // Scene overrides shared by every run of one experiment: stop after the peak and `cycles`
 // stick-slip cycles; no series (the loading branch the fit needs is kept regardless).
@@ -144,7 +146,7 @@ std::string work_precision_csv(const std::vector<WorkPrecisionRow>& rows) {
   for (const auto& r : rows) {
     o << r.experiment << ',' << r.method << ',' << g(r.setting) << ',' << g(r.wall_s, 4) << ',' << g(r.cpu_s, 4) << ',' << r.repeats
       << ',' << g(r.t_end, 10) << ',' << r.steps;
-    for (double x : r.value) o << ',' << g(x, 12);
+    for (double x : r.value) o << ',' << exact(x);
     for (double x : r.error) o << ',' << g(x, 4);
     o << '\n';
   }
