@@ -36,9 +36,11 @@ Command add_regress_command(CLI::App& app);  // regress_command.cpp
 // asperity fit FIT.yaml [--out DIR] [--threads N] [--no-profile] [--no-error-bars] [--quiet]
 Command add_fit_command(CLI::App& app);  // fit_command.cpp
 
+// asperity bench tradeoff|accuracy|savings [--out results/bench] [--quick] [--repeats N] ...
+Command add_bench_command(CLI::App& app);  // bench_command.cpp
+
 // Planned, by their owners (uncomment the matching line in main.cpp when adding one):
 // Command add_sweep_command(CLI::App& app);     // sweep_command.cpp
-// Command add_bench_command(CLI::App& app);     // bench_command.cpp
 // Command add_plot_command(CLI::App& app);      // plot_command.cpp
 // Command add_merge_command(CLI::App& app);     // merge_command.cpp
 

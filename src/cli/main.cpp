@@ -23,7 +23,7 @@ int main(int argc, char** argv) {
   commands.push_back(cli::add_fit_command(app));
   commands.push_back(cli::add_generate_command(app));
   commands.push_back(cli::add_reproduce_command(app));
-  // commands.push_back(cli::add_bench_command(app));
+  commands.push_back(cli::add_bench_command(app));
   // commands.push_back(cli::add_plot_command(app));
   commands.push_back(cli::add_regress_command(app));
   // commands.push_back(cli::add_merge_command(app));

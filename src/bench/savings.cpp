@@ -1,0 +1,135 @@
+#include "bench/savings.hpp"
+
+#include <chrono>
+#include <cstdio>
+#include <sstream>
+#include <system_error>
+
+#include "bench/bench_scene.hpp"
+#include "bench/gnuplot.hpp"
+#include "bench/timed_run.hpp"
+#include "observe/simulate.hpp"
+#include "report/run_writer.hpp"
+#include "scene/csv.hpp"
+
+namespace asperity {
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string g(double x, int digits = 6) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*g", digits, x);
+  return buf;
+}
+
+// Median time of writing the run directory of `scene` (what `asperity run` does after the
+// integration) into `scratch`.
+double write_time(const Scene& scene, const fs::path& scratch, int repeats) {
+  const RunResult r = simulate(scene);
+  std::vector<double> ts;
+  for (int i = 0; i < repeats; ++i) {
+    const fs::path dir = scratch / ("run" + std::to_string(i));
+    const auto t0 = std::chrono::steady_clock::now();
+    write_run(dir, scene, r.obs, r.recorder);
+    ts.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    std::error_code ec;
+    fs::remove_all(dir, ec);
+  }
+  return median(ts);
+}
+
+}  // namespace
+
+std::vector<SavingRow> run_savings(const SavingsOptions& opt) {
+  std::vector<SavingRow> rows;
+  const fs::path scratch = opt.scratch.empty() ? fs::temp_directory_path() / "asperity-bench-savings" : opt.scratch;
+  fs::create_directories(scratch);
+  struct Case {
+    const char* saving;
+    const char* variant;
+    bool baseline;
+    std::vector<std::string> extra;
+  };
+  const std::vector<Case> cases{
+      {"series", "all series columns", true, {}},
+      {"series", "output.series=[]", false, {"output.series=[]"}},
+      {"stop", "peak + 5 cycles", true, {"output.series=[]"}},
+      {"stop", "stop.at_first_peak=true", false, {"output.series=[]", "stop.at_first_peak=true"}},
+      {"area_law", "alpha_b=7.25e-16", true, {"output.series=[]", "model.alpha_b=7.25e-16"}},
+      {"area_law", "alpha_b=0 (linear)", false, {"output.series=[]", "model.alpha_b=0"}},
+  };
+  for (const fs::path& path : opt.scenes) {
+    for (std::size_t c = 0; c + 1 < cases.size(); c += 2) {
+      auto scene_of = [&](const Case& k) {
+        std::vector<std::string> o = opt.overrides;
+        o.insert(o.end(), k.extra.begin(), k.extra.end());
+        return bench_scene(path, o);
+      };
+      const Scene sa = scene_of(cases[c]), sb = scene_of(cases[c + 1]);
+      const auto [ta, tb] = timed_pair(sa, sb, opt.repeats);
+      for (int j = 0; j < 2; ++j) {
+        const Case& k = cases[c + static_cast<std::size_t>(j)];
+        const TimedRun& t = j == 0 ? ta : tb;
+        const Scene& scene = j == 0 ? sa : sb;
+        SavingRow r;
+        r.experiment = scene.experiment.name;
+        r.saving = k.saving;
+        r.variant = k.variant;
+        r.baseline = k.baseline;
+        r.wall_s = t.wall_s;
+        r.cpu_s = t.cpu_s;
+        r.repeats = t.repeats;
+        r.t_end = t.obs.t_end;
+        r.steps = t.obs.steps;
+        r.force_evals = t.obs.force_evals;
+        r.series_bytes = t.series_bytes;
+        r.write_s = write_time(scene, scratch, opt.repeats);
+        rows.push_back(r);
+        if (opt.log)
+          *opt.log << "  " << r.experiment << " (stand-in) " << r.saving << ": " << r.variant << ": integrate "
+                   << g(r.wall_s * 1e3, 4) << " ms wall (" << g(r.cpu_s * 1e3, 4) << " ms CPU) + write "
+                   << g(r.write_s * 1e3, 4) << " ms, t_end " << g(r.t_end, 5) << " s, series " << r.series_bytes
+                   << " B\n"
+                   << std::flush;
+      }
+    }
+  }
+  std::error_code ec;
+  fs::remove_all(scratch, ec);
+  return rows;
+}
+
+void write_savings(const fs::path& dir, const std::vector<SavingRow>& rows) {
+  fs::create_directories(dir);
+  std::ostringstream o;
+  o << "experiment,saving,variant,baseline,wall_s,cpu_s,write_s,total_s,repeats,t_end_s,steps,force_evals,series_bytes\n";
+  for (const auto& r : rows)
+    o << r.experiment << ',' << r.saving << ',' << r.variant << ',' << (r.baseline ? "yes" : "no") << ','
+      << g(r.wall_s, 4) << ',' << g(r.cpu_s, 4) << ',' << g(r.write_s, 4) << ',' << g(r.total_s(), 4) << ',' << r.repeats << ','
+      << g(r.t_end, 6) << ',' << r.steps << ',' << r.force_evals << ',' << r.series_bytes << '\n';
+  scene_io::write_text_file(dir / "savings.csv", o.str());
+  if (rows.empty()) return;
+
+  // Bar chart of the first scene: baseline and variant side by side per saving, in ms of CPU
+  // time (integration + writing): on a shared machine the wall time also measures the others.
+  const std::string exp = rows.front().experiment;
+  std::ostringstream gp;
+  gp << "$d << EOD\n";
+  for (std::size_t i = 0; i + 1 < rows.size(); i += 2) {
+    if (rows[i].experiment != exp) break;
+    gp << '"' << rows[i].saving << "\\n" << rows[i + 1].variant << "\\nvs " << rows[i].variant << "\" "
+       << g((rows[i].cpu_s + rows[i].write_s) * 1e3, 5) << ' '
+       << g((rows[i + 1].cpu_s + rows[i + 1].write_s) * 1e3, 5) << '\n';
+  }
+  gp << "EOD\n"
+     << "set title 'Model only what a scene requires: " << exp
+     << " (stand-in), CPU time of integration + writing the run directory'\n"
+     << "set style data histograms\nset style histogram clustered gap 1\nset style fill solid 0.8 border -1\n"
+     << "set bmargin 5\nset boxwidth 0.9\nset ylabel 'CPU time [ms]'\nset grid ytics\nset yrange [0:*]\nset key top right\n"
+     << "plot $d using 2:xticlabels(1) title 'baseline' lc rgb '#4477aa', "
+        "'' using 3 title 'variant (saving)' lc rgb '#ee6677'\n";
+  render_png(dir / "savings.png", gp.str(), 1000, 600);
+}
+
+}  // namespace asperity

@@ -1,0 +1,227 @@
+#include "bench/tradeoff.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "bench/bench_scene.hpp"
+#include "bench/gnuplot.hpp"
+#include "bench/timed_run.hpp"
+#include "scene/csv.hpp"
+#include "scene/numbers.hpp"
+
+namespace asperity {
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string g(double x, int digits = 6) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*g", digits, x);
+  return buf;
+}
+// Shortest text that reads back to exactly x (values: errors can be recomputed from the CSV).
+std::string exact(double x) { return std::isfinite(x) ? scene_io::format_double(x) : "nan"; }
+
+// Scene overrides shared by every run of one experiment: stop after the peak and `cycles`
+// stick-slip cycles; no series (the loading branch the fit needs is kept regardless).
+std::vector<std::string> run_overrides(double stop_time, int cycles) {
+  return {set_number("stop.time", stop_time), "stop.cycles=" + std::to_string(cycles),
+          "stop.at_first_peak=false", "output.series=[]"};
+}
+
+WorkPrecisionRow make_row(const std::string& experiment, const std::string& method, double setting,
+                          const TimedRun& t) {
+  WorkPrecisionRow r;
+  r.experiment = experiment;
+  r.method = method;
+  r.setting = setting;
+  r.wall_s = t.wall_s;
+  r.cpu_s = t.cpu_s;
+  r.repeats = t.repeats;
+  r.t_end = t.obs.t_end;
+  r.steps = t.obs.steps;
+  r.value = robust_values(t.obs);
+  return r;
+}
+
+}  // namespace
+
+TradeoffResult run_tradeoff(const TradeoffOptions& opt) {
+  TradeoffResult res;
+  auto log = [&](const std::string& s) {
+    if (opt.log) *opt.log << s << std::flush;
+  };
+  const std::vector<std::string> base = run_overrides(opt.stop_time, opt.cycles);
+  auto scene_with = [&](const fs::path& path, std::vector<std::string> base_o,
+                        std::vector<std::string> extra) {
+    base_o.insert(base_o.end(), extra.begin(), extra.end());
+    return bench_scene(path, base_o);
+  };
+  const Scene probe = scene_with(opt.scene, base, {});
+  const std::string name = probe.experiment.name;
+
+  // Converged solution and its check.
+  log("converged: event, tolerance " + g(opt.converged_tolerance) + " ... ");
+  const TimedRun conv = timed_run(
+      scene_with(opt.scene, base, {"solver.method=event", set_number("solver.tolerance", opt.converged_tolerance)}),
+      opt.repeats);
+  log(g(conv.wall_s, 3) + " s, t_end = " + g(conv.obs.t_end) + " s, " + std::to_string(conv.obs.ss_cycles) +
+      " cycles\n");
+  const Observables& ref_obs = conv.obs;
+
+  auto add = [&](const std::string& method, double setting, const TimedRun& t) {
+    WorkPrecisionRow r = make_row(name, method, setting, t);
+    r.error = relative_errors(t.obs, ref_obs);
+    std::string line = "  " + method + " " + g(setting) + ": wall " + g(r.wall_s, 3) + " s (" +
+                       std::to_string(r.repeats) + " runs), errors";
+    for (std::size_t i = 0; i < n_robust; ++i) line += " " + robust_names()[i] + " " + g(r.error[i], 2);
+    log(line + "\n");
+    res.rows.push_back(r);
+  };
+  add("event", opt.converged_tolerance, conv);
+  log("check: event, tolerance " + g(opt.check_tolerance) + "\n");
+  add("event", opt.check_tolerance,
+      timed_run(scene_with(opt.scene, base, {"solver.method=event", set_number("solver.tolerance", opt.check_tolerance)}),
+                opt.repeats));
+
+  for (double tol : opt.tolerances)
+    add("event", tol,
+        timed_run(scene_with(opt.scene, base, {"solver.method=event", set_number("solver.tolerance", tol)}), opt.repeats));
+  std::vector<const WorkPrecisionRow*> ref_rows;
+  for (double Ct : opt.Ct) {
+    log("reference, C_t = " + g(Ct) + " ...\n");
+    add("reference", Ct,
+        timed_run(scene_with(opt.scene, base, {"solver.method=reference", set_number("solver.Ct", Ct)}), opt.repeats));
+  }
+  for (const auto& r : res.rows)
+    if (r.method == "reference") ref_rows.push_back(&r);
+  for (std::size_t j = 0; j + 1 < ref_rows.size(); ++j)
+    for (std::size_t i = 0; i < n_robust; ++i) {
+      const auto& lo = *ref_rows[j];
+      const auto& hi = *ref_rows[j + 1];
+      res.orders.push_back({robust_names()[i], lo.setting, hi.setting,
+                            std::log(lo.error[i] / hi.error[i]) / std::log(hi.setting / lo.setting)});
+    }
+
+  // Side by side on the paper scene: the reference on a short window, the event solver (its
+  // default tolerance, as the scene sets it) through peak + cycles.
+  SpeedRatio& s = res.speed;
+  s.threads = omp_get_max_threads();
+  {
+    const Scene ev = scene_with(opt.ratio_scene, run_overrides(opt.ratio_stop_time, opt.cycles), {"solver.method=event"});
+    s.experiment = ev.experiment.name;
+    s.ev_tolerance = ev.solver.tolerance;
+    log("speed on " + s.experiment + ": event, tolerance " + g(s.ev_tolerance) + " ... ");
+    const TimedRun t = timed_run(ev, opt.repeats);
+    s.ev_t_end = t.obs.t_end;
+    s.ev_wall_s = t.wall_s;
+    s.ev_cycles = t.obs.ss_cycles;
+    log(g(s.ev_wall_s, 3) + " s for " + g(s.ev_t_end, 4) + " s simulated (" + std::to_string(s.ev_cycles) + " cycles)\n");
+  }
+  {
+    const Scene rf = scene_with(opt.ratio_scene, run_overrides(opt.ref_window_s, -1),
+                                {"solver.method=reference", set_number("solver.Ct", opt.ref_window_Ct)});
+    s.ref_Ct = opt.ref_window_Ct;
+    log("speed on " + s.experiment + ": reference, C_t = " + g(s.ref_Ct) + ", window " + g(opt.ref_window_s) +
+        " s, " + std::to_string(s.threads) + " OpenMP threads ... ");
+    const TimedRun t = timed_run(rf, 1);
+    s.ref_window_s = t.obs.t_end;  // n·dt ≥ the window
+    s.ref_wall_s = t.wall_s;
+    s.ref_steps = t.obs.steps;
+    log(g(s.ref_wall_s, 3) + " s for " + std::to_string(s.ref_steps) + " steps\n");
+  }
+  return res;
+}
+
+std::string work_precision_csv(const std::vector<WorkPrecisionRow>& rows) {
+  std::ostringstream o;
+  o << "experiment,method,setting,wall_s,cpu_s,repeats,t_end_s,steps";
+  for (const auto& n : robust_names()) o << ",value_" << n;
+  for (const auto& n : robust_names()) o << ",relerr_" << n;
+  o << '\n';
+  for (const auto& r : rows) {
+    o << r.experiment << ',' << r.method << ',' << g(r.setting) << ',' << g(r.wall_s, 4) << ',' << g(r.cpu_s, 4) << ',' << r.repeats
+      << ',' << g(r.t_end, 10) << ',' << r.steps;
+    for (double x : r.value) o << ',' << exact(x);
+    for (double x : r.error) o << ',' << g(x, 4);
+    o << '\n';
+  }
+  return o.str();
+}
+
+namespace {
+
+std::string speed_csv(const SpeedRatio& s) {
+  std::ostringstream o;
+  o << "experiment,ref_Ct,ref_window_s,ref_steps,ref_threads,ref_wall_s,ref_wall_per_simulated_s,"
+       "event_tolerance,event_t_end_s,event_cycles,event_wall_s,event_wall_per_simulated_s,ratio\n";
+  o << s.experiment << ',' << g(s.ref_Ct) << ',' << g(s.ref_window_s) << ',' << s.ref_steps << ',' << s.threads
+    << ',' << g(s.ref_wall_s, 4) << ',' << g(s.ref_wall_per_sim(), 4) << ',' << g(s.ev_tolerance) << ','
+    << g(s.ev_t_end, 6) << ',' << s.ev_cycles << ',' << g(s.ev_wall_s, 4) << ',' << g(s.ev_wall_per_sim(), 4)
+    << ',' << g(s.ratio(), 4) << '\n';
+  return o.str();
+}
+
+std::string order_csv(const std::vector<OrderRow>& rows) {
+  std::ostringstream o;
+  o << "observable,Ct_lo,Ct_hi,order\n";
+  for (const auto& r : rows) o << r.observable << ',' << g(r.Ct_lo) << ',' << g(r.Ct_hi) << ',' << g(r.order, 3) << '\n';
+  return o.str();
+}
+
+// Six log-log panels, error against wall time, one curve per method; errors below 1e-16
+// (or exactly 0) are drawn at 1e-16.
+std::string plot_script(const TradeoffResult& r) {
+  std::ostringstream gp;
+  for (const std::string method : {"reference", "event"}) {
+    gp << "$" << method << " << EOD\n";
+    std::vector<const WorkPrecisionRow*> rows;
+    for (const auto& row : r.rows) {
+      bool all_zero = true;  // the converged run itself
+      for (double e : row.error) all_zero = all_zero && e == 0.0;
+      if (row.method == method && !all_zero) rows.push_back(&row);
+    }
+    // Coarse to fine: C_t up, tolerance down.
+    std::sort(rows.begin(), rows.end(), [&](auto* a, auto* b) {
+      return method == "reference" ? a->setting < b->setting : a->setting > b->setting;
+    });
+    for (const WorkPrecisionRow* rp : rows) {
+      const auto& row = *rp;
+      gp << g(row.wall_s, 6) << ' ' << g(row.setting);
+      for (double e : row.error) gp << ' ' << g(std::isfinite(e) ? std::max(e, 1e-16) : NAN, 6);
+      gp << '\n';
+    }
+    gp << "EOD\n";
+  }
+  const std::string exp = r.rows.empty() ? "" : r.rows.front().experiment;
+  gp << "set multiplot layout 2,3 title 'Work-precision on bench experiment " << exp
+     << " (60 junctions, stand-in recipe): error vs converged event run (tol 1e-12)'\n"
+     << "set logscale xy\nset format y '1e%T'\nset format x '1e%T'\nset grid\n"
+     << "set xlabel 'wall time [s]'\nset ylabel 'relative error'\nset key center right font ',9'\n";
+  for (std::size_t i = 0; i < n_robust; ++i) {
+    const int c = static_cast<int>(i) + 3;
+    gp << "set title '" << robust_names()[i] << "'\n"
+       << "plot $reference using 1:" << c << " with linespoints pt 7 lw 2 title 'reference (Ct 1e2..)', "
+       << "'' using 1:" << c << ":(sprintf('%g',$2)) with labels offset 0,1 font ',8' notitle, "
+       << "$event using 1:" << c << " with linespoints pt 5 lw 2 title 'event (tol)', "
+       << "'' using 1:" << c << ":(sprintf('%g',$2)) with labels offset 0,-1 font ',7' notitle\n";
+  }
+  gp << "unset multiplot\n";
+  return gp.str();
+}
+
+}  // namespace
+
+void write_tradeoff(const fs::path& dir, const TradeoffResult& r) {
+  fs::create_directories(dir);
+  scene_io::write_text_file(dir / "work_precision.csv", work_precision_csv(r.rows));
+  scene_io::write_text_file(dir / "reference_order.csv", order_csv(r.orders));
+  scene_io::write_text_file(dir / "speed_ratio.csv", speed_csv(r.speed));
+  render_png(dir / "work_precision.png", plot_script(r), 1500, 900);
+}
+
+}  // namespace asperity
