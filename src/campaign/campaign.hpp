@@ -19,6 +19,7 @@ namespace asperity {
 // boolean spelled as in YAML). `text` is what the store prints (format_double for numbers).
 struct AxisValue {
   bool is_number = false;
+  bool is_yaml = false;  // `text` is a YAML list/map (set entries only, e.g. output.series: [])
   double number = 0;
   std::string text;
 };

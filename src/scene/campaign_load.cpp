@@ -33,6 +33,7 @@ bool is_path_key(const std::string& key) { return key == "experiment" || key == 
 
 YAML::Node override_value(const std::string& key, const AxisValue& v, const fs::path& campaign_dir) {
   if (v.is_number) return YAML::Node(format_double(v.number));
+  if (v.is_yaml) return YAML::Load(v.text);
   if (is_path_key(key)) return YAML::Node(fs::absolute(campaign_dir / v.text).lexically_normal().string());
   return YAML::Node(v.text);
 }
@@ -240,7 +241,13 @@ Campaign load_campaign(const fs::path& yaml) {
   std::vector<int> set_lines;
   if (auto n = m.find("set")) {
     for (const auto& [kn, vn] : free_map(m, *n, "set")) {
-      c.set.emplace_back(kn.Scalar(), scalar_value(src, vn, "set." + kn.Scalar()));
+      if (vn.IsSequence() || vn.IsMap()) {  // e.g. output.series: [t, Q]; checked by the scene loader
+        YAML::Emitter e;
+        e << YAML::Flow << vn;
+        c.set.emplace_back(kn.Scalar(), AxisValue{false, true, 0, e.c_str()});
+      } else {
+        c.set.emplace_back(kn.Scalar(), scalar_value(src, vn, "set." + kn.Scalar()));
+      }
       set_lines.push_back(line_of(kn));
     }
   }

@@ -1,0 +1,207 @@
+// src/campaign: the journal survives torn and corrupt lines; sweeps resume, are identical for 1
+// and 2 threads and for merged shards, and record failing points.
+#include <unistd.h>
+
+#include <catch2/catch.hpp>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "campaign/merge.hpp"
+#include "campaign/store.hpp"
+#include "campaign/sweep.hpp"
+#include "scene/campaign_load.hpp"
+
+namespace fs = std::filesystem;
+using namespace asperity;
+using Catch::Matchers::Contains;
+
+namespace {
+
+const fs::path kData = fs::path(ASPERITY_SOURCE_DIR) / "tests" / "data" / "campaign";
+
+fs::path temp_dir() {
+  static int counter = 0;
+  const fs::path d = fs::temp_directory_path() /
+                     ("asperity_store_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  for (std::string l; std::getline(in, l);) out.push_back(l);
+  return out;
+}
+
+// points.csv without the wall_s column (the only value allowed to differ between runs).
+std::vector<std::string> values_of(const fs::path& store) {
+  std::vector<std::string> out;
+  for (const std::string& l : lines_of(slurp(store / "points.csv"))) out.push_back(l.substr(0, l.rfind(',')));
+  return out;
+}
+
+SweepReport sweep(const Campaign& c, const fs::path& out, int threads = 1, Shard shard = {}) {
+  SweepOptions o;
+  o.out = out;
+  o.threads = threads;
+  o.shard = shard;
+  o.quiet = true;
+  return run_sweep(c, o);
+}
+
+const std::string kHeader = "index,hash,grid,status,x";
+
+}  // namespace
+
+TEST_CASE("journal rows survive a reopen and a torn last line is dropped", "[campaign]") {
+  const fs::path d = temp_dir();
+  {
+    Journal j(d, kHeader);
+    CHECK(j.entries().empty());
+    j.append("0,00000000000000aa,g,ok,1.5");
+    j.append("1,00000000000000bb,g,failed,\"a, b\"");
+    j.append("2,00000000000000cc,g,ok,3");
+  }
+  const std::string full = slurp(d / "journal.csv");
+  // Tear the last line at every byte position: the first two rows always survive.
+  const std::size_t third = full.find("2,00000000000000cc");
+  for (std::size_t cut = third + 1; cut < full.size(); ++cut) {
+    std::ofstream(d / "journal.csv", std::ios::binary | std::ios::trunc) << full.substr(0, cut);
+    Journal j(d, kHeader);
+    CHECK(j.dropped_lines() == 1);
+    REQUIRE(j.entries().size() == 2);
+    CHECK(j.entries().at(0).hash == 0xaa);
+    CHECK(j.entries().at(0).ok);
+    CHECK_FALSE(j.entries().at(1).ok);
+    CHECK(j.row(j.entries().at(1)) == "1,00000000000000bb,g,failed,\"a, b\"");
+    CHECK(slurp(d / "journal.csv") == full.substr(0, third));  // the torn bytes are gone
+  }
+  // Appending after recovery gives well-formed lines again.
+  {
+    Journal j(d, kHeader);
+    j.append("2,00000000000000cc,g,ok,3");
+  }
+  CHECK(slurp(d / "journal.csv") == full);
+}
+
+TEST_CASE("journal lines with a bad checksum are dropped and the header is checked", "[campaign]") {
+  const fs::path d = temp_dir();
+  {
+    Journal j(d, kHeader);
+    j.append("0,00000000000000aa,g,ok,1.5");
+    j.append("1,00000000000000bb,g,ok,2.5");
+    j.append("2,00000000000000cc,g,ok,3.5");
+  }
+  std::string text = slurp(d / "journal.csv");
+  text[text.find("2.5")] = '7';  // a flipped digit in the middle row
+  std::ofstream(d / "journal.csv", std::ios::binary | std::ios::trunc) << text;
+  {
+    Journal j(d, kHeader);
+    CHECK(j.dropped_lines() == 1);
+    CHECK(j.entries().size() == 2);
+    CHECK(j.entries().count(1) == 0);
+    CHECK(j.row(j.entries().at(2)) == "2,00000000000000cc,g,ok,3.5");
+  }
+  CHECK_THROWS_WITH(Journal(d, "index,hash,grid,status,y"), Contains("another campaign"));
+}
+
+TEST_CASE("a sweep resumed after a torn or corrupt journal reruns only those points", "[campaign]") {
+  const Campaign c = load_campaign(kData / "tiny.yaml");
+  const fs::path a = temp_dir() / "a";
+  const SweepReport full = sweep(c, a, 2);
+  CHECK(full.ran == c.size());
+  CHECK(full.ok == c.size());
+  const auto reference = values_of(a);
+  REQUIRE(reference.size() == c.size() + 1);
+
+  // Rerun: nothing to do.
+  CHECK(sweep(c, a).ran == 0);
+
+  // Tear the last journal line (as kill -9 in the middle of a write would), corrupt another.
+  std::string j = slurp(a / "journal.csv");
+  j.resize(j.size() - 7);
+  const std::size_t row3 = j.find("\n3,") + 1;
+  j[j.find(",ok,", row3) + 1] = 'O';
+  std::ofstream(a / "journal.csv", std::ios::binary | std::ios::trunc) << j;
+  fs::remove(a / "points.csv");
+  const SweepReport resumed = sweep(c, a, 2);
+  CHECK(resumed.dropped_lines == 2);
+  CHECK(resumed.ran == 2);
+  CHECK(resumed.skipped == c.size() - 2);
+  CHECK(values_of(a) == reference);
+  // Every journal line appears once per point: no duplicate rows in the final store.
+  CHECK(lines_of(slurp(a / "journal.csv")).size() == c.size() + 1);
+}
+
+TEST_CASE("sweep values are identical for 1 and 2 threads and for merged shards", "[campaign]") {
+  const Campaign c = load_campaign(kData / "tiny.yaml");
+  const fs::path d = temp_dir();
+  sweep(c, d / "one", 1);
+  sweep(c, d / "two", 2);
+  const auto one = values_of(d / "one");
+  CHECK(one.size() == c.size() + 1);
+  CHECK(values_of(d / "two") == one);
+
+  const SweepReport s0 = sweep(c, d / "s0", 2, Shard{0, 3});
+  const SweepReport s1 = sweep(c, d / "s1", 1, Shard{1, 3});
+  const SweepReport s2 = sweep(c, d / "s2", 2, Shard{2, 3});
+  CHECK(s0.ran + s1.ran + s2.ran == c.size());
+  CHECK(values_of(d / "s1").size() == 1 + 4);  // indices 1, 4, 7, 10
+  const MergeReport m = merge_stores({d / "s2", d / "s0", d / "s1"}, d / "merged");
+  CHECK(m.rows == c.size());
+  CHECK(m.duplicates == 0);
+  CHECK(values_of(d / "merged") == one);
+  // The merged store is a store: resuming it has nothing left to do.
+  CHECK(sweep(c, d / "merged").ran == 0);
+  // Merging into an existing store is refused.
+  CHECK_THROWS_WITH(merge_stores({d / "one", d / "merged"}, d / "merged"), Contains("already holds a store"));
+}
+
+TEST_CASE("a failing point is recorded with its error and counted and the campaign goes on", "[campaign]") {
+  const fs::path d = temp_dir();
+  // Ct = 2 makes the reference's explicit step unstable (SolverError) at every eta; Ct = 50 runs.
+  std::ofstream(d / "fail.yaml") << "name: fail\nscenes: [" << (kData / "tiny_scene.yaml").string() << "]\n"
+                                 << "set: {solver.method: reference, stop.time: 0.05}\n"
+                                 << "axes: {solver.Ct: [2, 200]}\n";
+  const Campaign c = load_campaign(d / "fail.yaml");
+  const SweepReport r = sweep(c, d / "store", 2);
+  CHECK(r.ran == 2);
+  CHECK(r.failed == 1);
+  CHECK(r.ok == 1);
+  const auto rows = lines_of(slurp(d / "store" / "points.csv"));
+  REQUIRE(rows.size() == 3);
+  const auto header = csv_split(rows[0]);
+  const auto failed = csv_split(rows[1]);
+  const std::size_t status = Journal::status_column(rows[0]);
+  CHECK(failed[status] == "failed");
+  CHECK_THAT(failed[status + 1], Contains("unstable"));
+  CHECK(csv_split(rows[2])[status] == "ok");
+
+  // The command line counts it and exits 1.
+  const std::string cmd = "'" + std::string(ASPERITY_BINARY) + "' sweep '" + (d / "fail.yaml").string() + "' --out '" +
+                          (d / "cli").string() + "' --quiet 2>'" + (d / "err.txt").string() + "'";
+  const int rc = std::system(cmd.c_str());
+  CHECK(WEXITSTATUS(rc) == 1);
+  CHECK_THAT(slurp(d / "err.txt"), Contains("1 ok, 1 failed"));
+}
+
+TEST_CASE("point hashes do not depend on where the project lives", "[campaign]") {
+  const Campaign c = load_campaign(kData / "tiny.yaml");
+  const Scene s = CampaignScenes(c).scene(point_at(c, 0));
+  const std::string text = canonical_scene_text(s, kData);
+  CHECK_THAT(text, Contains("file: \"../scene/exp_small/experiment.yaml\""));
+  CHECK(text.find(ASPERITY_SOURCE_DIR) == std::string::npos);
+}
