@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <catch2/catch.hpp>
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -13,6 +14,7 @@
 #include "campaign/merge.hpp"
 #include "campaign/store.hpp"
 #include "campaign/sweep.hpp"
+#include "report/heatmap.hpp"
 #include "scene/campaign_load.hpp"
 
 namespace fs = std::filesystem;
@@ -161,6 +163,14 @@ TEST_CASE("sweep values are identical for 1 and 2 threads and for merged shards"
   CHECK(s0.ran + s1.ran + s2.ran == c.size());
   CHECK(values_of(d / "s1").size() == 1 + 4);  // indices 1, 4, 7, 10
   const MergeReport m = merge_stores({d / "s2", d / "s0", d / "s1"}, d / "merged");
+  // Another split (shard 4/5 builds point 9 right after point 4).
+  std::vector<fs::path> fifths;
+  for (std::uint64_t i = 0; i < 5; ++i) {
+    fifths.push_back(d / ("f" + std::to_string(i)));
+    sweep(c, fifths.back(), 1, Shard{i, 5});
+  }
+  merge_stores(fifths, d / "merged5");
+  CHECK(values_of(d / "merged5") == one);
   CHECK(m.rows == c.size());
   CHECK(m.duplicates == 0);
   CHECK(values_of(d / "merged") == one);
@@ -204,4 +214,54 @@ TEST_CASE("point hashes do not depend on where the project lives", "[campaign]")
   const std::string text = canonical_scene_text(s, kData);
   CHECK_THAT(text, Contains("file: \"../scene/exp_small/experiment.yaml\""));
   CHECK(text.find(ASPERITY_SOURCE_DIR) == std::string::npos);
+}
+
+TEST_CASE("plot draws a PNG heat map with one cell per grid point and blanks for NaN", "[campaign]") {
+  const Campaign c = load_campaign(kData / "tiny.yaml");
+  const fs::path d = temp_dir();
+  sweep(c, d / "s", 2);
+  // Independent count of the blank cells: eta_eps rows whose ss_drop is not a finite number.
+  const auto rows = lines_of(slurp(d / "s" / "points.csv"));
+  const auto header = csv_split(rows[0]);
+  const std::size_t col = static_cast<std::size_t>(std::find(header.begin(), header.end(), "ss_drop") - header.begin());
+  std::size_t nan_cells = 0;
+  for (std::size_t i = 1; i < rows.size(); ++i) {
+    const auto f = csv_split(rows[i]);
+    if (f[2] == "eta_eps" && (f[col] == "nan" || f[col].empty())) ++nan_cells;
+  }
+  HeatmapOptions o;
+  o.x = "model.eta";
+  o.y = "model.epsilon";
+  o.z = "ss_drop";
+  const HeatmapReport r = plot_heatmap(d / "s", o);
+  CHECK(r.cells == 9);  // 3 eta × 3 epsilon (the mass grid does not vary both)
+  CHECK(r.used_grid == "eta_eps");
+  CHECK(r.blank == nan_cells);
+  CHECK(slurp(r.png).substr(1, 3) == "PNG");
+  o.z = "no_such_column";
+  CHECK_THROWS_WITH(plot_heatmap(d / "s", o), Contains("no column 'no_such_column'"));
+  // Over eta × mass both grids contribute points on the same cells: asks for a filter.
+  o.z = "Q_s";
+  o.y = "experiment.mass";
+  CHECK_THROWS_WITH(plot_heatmap(d / "s", o), Contains("--where"));
+}
+
+TEST_CASE("a point's scene does not depend on the points built before it", "[campaign]") {
+  const Campaign c = load_campaign(kData / "tiny.yaml");
+  std::vector<std::string> forward;
+  {
+    const CampaignScenes scenes(c);
+    for (std::uint64_t i = 0; i < c.size(); ++i)
+      forward.push_back(canonical_scene_text(scenes.scene(point_at(c, i)), kData));
+  }
+  const CampaignScenes scenes(c);
+  for (std::uint64_t i = c.size(); i-- > 0;) {
+    INFO("point " << i);
+    CHECK(canonical_scene_text(scenes.scene(point_at(c, i)), kData) == forward[i]);
+    // Each point alone, on a fresh loader, too.
+    CHECK(canonical_scene_text(CampaignScenes(c).scene(point_at(c, i)), kData) == forward[i]);
+  }
+  // The mass grid keeps the base scene's eta (100), whatever the grid before it set.
+  CHECK(CampaignScenes(c).scene(point_at(c, 9)).model.eta == 100);
+  CHECK(scenes.scene(point_at(c, 10)).model.eta == 100);
 }

@@ -184,7 +184,7 @@ static std::vector<BaseTree> base_trees(const Campaign& c, const std::vector<int
     for (std::size_t i = 0; i < c.set.size(); ++i) {
       const auto& [key, v] = c.set[i];
       try {
-        b.tree = apply_override(b.tree, key, override_value(key, v, dir));
+        b.tree.reset(apply_override(b.tree, key, override_value(key, v, dir)));
         if (set_lines) scene_from_tree(b.tree, p);
       } catch (const InputError& e) {
         if (!set_lines) throw;
@@ -320,8 +320,11 @@ CampaignScenes::CampaignScenes(CampaignScenes&&) noexcept = default;
 Scene CampaignScenes::scene(const Point& point) const {
   const BaseTree& b = impl_->bases.at(point.scene);
   const fs::path dir = impl_->campaign->file.parent_path();
+  // Node::operator= would write through to the shared base tree (yaml-cpp assigns the value,
+  // not the handle): rebind with reset() so every point starts from the untouched base.
   YAML::Node tree = b.tree;
-  for (const PointValue& pv : point.values) tree = apply_override(tree, pv.axis->key, override_value(pv.axis->key, pv.value, dir));
+  for (const PointValue& pv : point.values)
+    tree.reset(apply_override(tree, pv.axis->key, override_value(pv.axis->key, pv.value, dir)));
   return scene_from_tree(tree, b.file);
 }
 
