@@ -146,7 +146,10 @@ TEST_CASE("FNV-1a 64 matches the published test vectors", "[campaign]") {
 TEST_CASE("CSV fields with commas quotes and newlines survive a split", "[campaign]") {
   const std::vector<std::string> fields{"plain", "a,b", "say \"hi\"", "two\nlines", "", " pad "};
   std::string line;
-  for (std::size_t i = 0; i < fields.size(); ++i) line += (i ? "," : "") + csv_field(fields[i]);
+  for (std::size_t i = 0; i < fields.size(); ++i) {
+    if (i) line += ',';
+    line += csv_field(fields[i]);
+  }
   const auto back = csv_split(line);
   REQUIRE(back.size() == fields.size());
   CHECK(back[0] == "plain");
