@@ -95,6 +95,8 @@ TEST_CASE("bad campaign structure is reported at its line", "[campaign]") {
   check_error("grids:\n  - {name: a, combin: zip, axes: {model.eta: [1]}}\n", {3, "combin", "unknown key"});
   check_error("axes: {model.eta: [1]}\ngrids: [{axes: {model.eta: [1]}}]\n", {3, "grids", "either"});
   check_error("axes:\n  model.alpha_b: {logspace: [0, 1e-15, 3]}\n", {3, "logspace", "non-zero"});
+  check_error("time_limit: 0\n", {2, "time_limit", "must be > 0"});
+  check_error("time_limit: 10 min\n", {2, "time_limit", "SI units"});
 }
 
 TEST_CASE("bad axis values are reported at their line", "[campaign]") {

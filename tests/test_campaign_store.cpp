@@ -265,3 +265,26 @@ TEST_CASE("a point's scene does not depend on the points built before it", "[cam
   CHECK(CampaignScenes(c).scene(point_at(c, 9)).model.eta == 100);
   CHECK(scenes.scene(point_at(c, 10)).model.eta == 100);
 }
+
+TEST_CASE("a per-point time limit fails the point and series are stored by hash", "[campaign]") {
+  const fs::path d = temp_dir();
+  std::ofstream(d / "limit.yaml") << "name: limit\nscenes: [" << (kData / "tiny_scene.yaml").string() << "]\n"
+                                  << "time_limit: 1e-9\naxes: {model.eta: [50, 100]}\n";
+  const SweepReport r = sweep(load_campaign(d / "limit.yaml"), d / "limit", 2);
+  CHECK(r.failed == 2);
+  CHECK_THAT(slurp(d / "limit" / "points.csv"), Contains("per-point time limit of 1e-09 s exceeded"));
+
+  std::ofstream(d / "series.yaml") << "name: series\nscenes: [" << (kData / "tiny_scene.yaml").string() << "]\n"
+                                   << "series: true\naxes: {model.eta: [50, 100]}\n";
+  const Campaign c = load_campaign(d / "series.yaml");
+  CHECK(sweep(c, d / "series", 2).ok == 2);
+  const auto rows = lines_of(slurp(d / "series" / "points.csv"));
+  REQUIRE(rows.size() == 3);
+  for (std::size_t i = 1; i < rows.size(); ++i) {
+    const fs::path csv = d / "series" / "series" / (csv_split(rows[i])[1] + ".csv");
+    REQUIRE(fs::exists(csv));
+    const auto series = lines_of(slurp(csv));
+    CHECK(series.at(0) == "t,Q,A");  // the columns tiny_scene.yaml asks for
+    CHECK(series.size() > 100);      // 0.3 s sampled every 1 ms
+  }
+}

@@ -55,6 +55,7 @@ struct Campaign {
   std::vector<std::pair<std::string, AxisValue>> set;  // fixed overrides applied to every point
   std::vector<Grid> grids;
   bool series = false;                              // also store each point's series.csv
+  double time_limit_s = 0;                          // wall-clock limit per point (0: none)
 
   std::uint64_t size() const;                       // total points (overflow checked at load)
   // Every key some grid varies, in first-appearance order: the store's value columns.

@@ -177,7 +177,7 @@ void prepare_store(const fs::path& dir, const Campaign& c, const SweepOptions& o
 
 std::string store_header(const Campaign& c) {
   std::string h = "index,hash,grid,experiment";
-  for (const std::string& k : c.varied_keys()) h += "," + csv_field(k);
+  for (const std::string& k : c.varied_keys()) h.append(",").append(csv_field(k));
   h += ",status,error";
   for (const Column& col : kColumns) h += std::string(",") + col.name;
   return h + ",wall_s";
@@ -266,13 +266,13 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
     if (job->scene) {
       const auto t = std::chrono::steady_clock::now();
       try {
-        r = simulate(*job->scene);
+        r = simulate(*job->scene, c.time_limit_s);
+        if (r->recorder.timed_out())
+          job->error = "per-point time limit of " + num(c.time_limit_s) + " s exceeded at simulated t = " +
+                       num(r->recorder.last().t) + " s";
         for (const auto& [name, x] : {std::pair<const char*, double>{"Q_s", r->obs.Q_s}, {"A_s", r->obs.A_s},
                                       {"t_peak", r->obs.t_peak}, {"t_end", r->obs.t_end}})
-          if (!std::isfinite(x)) {
-            job->error = std::string("non-finite observable ") + name;
-            break;
-          }
+          if (job->error.empty() && !std::isfinite(x)) job->error = std::string("non-finite observable ") + name;
         if (c.series && job->error.empty()) {
           std::ostringstream csv;
           write_series_csv(csv, r->recorder.series(), job->scene->output.series);
@@ -289,9 +289,9 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
     std::string row = std::to_string(job->point.index) + "," + hex16(job->hash) + "," +
                       csv_field(c.grids[job->point.grid].name) + "," +
                       csv_field(job->scene ? job->scene->experiment.name : "");
-    for (const std::string& v : job->varied) row += "," + csv_field(v);
+    for (const std::string& v : job->varied) row.append(",").append(csv_field(v));
     row += job->failed ? ",failed," + csv_field(job->error) : ",ok,";
-    for (const Column& col : kColumns) row += "," + (r && !job->failed ? col.text(r->obs) : std::string());
+    for (const Column& col : kColumns) row.append(",").append(r && !job->failed ? col.text(r->obs) : std::string());
     row += "," + num(wall);
     job->row = std::move(row);
     job->scene.reset();  // free the junctions before the job waits for the writer

@@ -17,8 +17,8 @@ using namespace scene_io;
 
 namespace {
 
-const std::vector<std::string> kCampaignKeys{"name",  "description", "scene",   "scenes", "set",
-                                             "series", "combine",    "axes",    "grids"};
+const std::vector<std::string> kCampaignKeys{"name",   "description", "scene", "scenes", "set",
+                                             "series", "time_limit",  "combine", "axes",  "grids"};
 const std::vector<std::string> kGridKeys{"name", "combine", "axes"};
 
 int line_of(const YAML::Node& n) {
@@ -213,6 +213,10 @@ Campaign load_campaign(const fs::path& yaml) {
   }
   if (auto n = m.find("description")) m.string(*n, "description");
   if (auto n = m.find("series")) c.series = m.boolean(*n, "series");
+  if (auto n = m.find("time_limit")) {
+    c.time_limit_s = m.number(*n, "time_limit", "s");
+    if (!(c.time_limit_s > 0)) m.fail_at(*n, "time_limit", "must be > 0 (seconds of wall time per point), got " + format_double(c.time_limit_s));
+  }
 
   // Base scenes.
   const auto one = m.find("scene");

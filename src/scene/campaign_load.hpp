@@ -7,6 +7,7 @@
 //   scenes: [../scenes/paper/P0.98N.yaml, ...]   # or `scene: one.yaml`; base scenes
 //   set: {stop.time: 8, stop.cycles: 5}          # optional; applied to every point first
 //   series: false                                # optional; also store each point's series.csv
+//   time_limit: 600                              # optional; wall seconds per point, then failed
 //   # the axes, either one grid:
 //   combine: product                             # or zip (equal lengths); default product
 //   axes:
