@@ -131,6 +131,13 @@ TEST_CASE("a sweep resumed after a torn or corrupt journal reruns only those poi
 
   // Rerun: nothing to do.
   CHECK(sweep(c, a).ran == 0);
+  // A folder holding other files is not taken for a store.
+  const fs::path other = a.parent_path() / "other";
+  fs::create_directories(other);
+  std::ofstream(other / "points.csv") << "mine\n";
+  std::ofstream(other / "notes.txt") << "mine\n";
+  CHECK_THROWS_WITH(sweep(c, other), Contains("it holds 'notes.txt'"));
+  CHECK(slurp(other / "points.csv") == "mine\n");
 
   // Tear the last journal line (as kill -9 in the middle of a write would), corrupt another.
   std::string j = slurp(a / "journal.csv");

@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
@@ -201,6 +202,18 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
   const auto t0 = std::chrono::steady_clock::now();
   SweepReport rep;
   rep.store = opt.out.empty() ? fs::path("results") / c.name : opt.out;
+  // `--out .` or a typo must not write store files among unrelated ones (points.csv would be
+  // replaced): an existing folder may hold only what a store holds (a run killed at its start
+  // may have left some of it), including our temporary files (".NAME.tmp-*") and PNGs.
+  if (fs::is_directory(rep.store))
+    for (const auto& e : fs::directory_iterator(rep.store)) {
+      static const char* const known[] = {".lock", "campaign.yaml", "provenance.yaml", "journal.csv", "points.csv", "series"};
+      const std::string n = e.path().filename().string();
+      if (std::find(std::begin(known), std::end(known), n) == std::end(known) && n.find(".tmp-") == std::string::npos &&
+          e.path().extension() != ".png")  // heat maps drawn from the store
+        throw std::runtime_error("refusing to use " + rep.store.string() + " as a sweep store: it holds '" + n +
+                                 "', which no store holds");
+    }
   fs::create_directories(rep.store);
   StoreLock lock(rep.store);
   prepare_store(rep.store, c, opt);
