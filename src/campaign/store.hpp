@@ -51,8 +51,9 @@ class Journal {
   std::size_t dropped_lines() const { return dropped_; }  // found torn or corrupt at open
   const std::map<std::uint64_t, JournalEntry>& entries() const { return entries_; }  // by index
 
-  // Appends one row (no newline; first field the index, second the hash in hex, status column
-  // at `status_col`) durably. Not thread-safe: one writer.
+  // Appends one row (no newline; first field the index, second the hash in hex, a `status`
+  // column as in the header) durably (write + fdatasync). Not thread-safe: one writer, and
+  // entries() must not be read concurrently.
   void append(const std::string& row);
 
   // The row text of an entry.

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <ctime>
+#include <map>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -96,14 +97,14 @@ class Progress {
     const double since = std::chrono::duration<double>(now - last_).count();
     if (quiet_ || (since < (tty_ ? 0.2 : 10.0) && done_ + skipped_ < total_)) return;
     last_ = now;
-    print(now, false);
+    print(now);
   }
   void finish() {
     if (!quiet_ && tty_ && done_ > 0) std::fputc('\n', stderr);
   }
 
  private:
-  void print(std::chrono::steady_clock::time_point now, bool) {
+  void print(std::chrono::steady_clock::time_point now) {
     const double el = std::chrono::duration<double>(now - start_).count();
     const double rate = el > 0 ? static_cast<double>(done_) / el : 0;
     const std::uint64_t finished = done_ + skipped_;
@@ -228,9 +229,11 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
   const std::vector<std::string> varied_keys = c.varied_keys();
   const fs::path base_dir = c.file.parent_path();
 
-  // Count what is already done (for progress and the ETA); the pipeline re-checks the hash.
+  // What the journal holds at the start: the build stage reads this copy, never the journal's
+  // own index, which the writer stage updates concurrently. Counted for progress and the ETA.
+  const std::map<std::uint64_t, JournalEntry> done = journal.entries();
   std::uint64_t done_before = 0;
-  for (const auto& [index, e] : journal.entries())
+  for (const auto& [index, e] : done)
     if (index < total && shard.contains(index) && (e.ok || !opt.retry_failed)) ++done_before;
 
   CampaignScenes scenes(c);
@@ -251,9 +254,8 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
         job->error = e.what();
         job->hash = fnv1a64("invalid point: " + job->error);
       }
-      const auto& entries = journal.entries();
-      if (const auto it = entries.find(job->point.index);
-          it != entries.end() && it->second.hash == job->hash && (it->second.ok || !opt.retry_failed)) {
+      if (const auto it = done.find(job->point.index);
+          it != done.end() && it->second.hash == job->hash && (it->second.ok || !opt.retry_failed)) {
         ++rep.skipped;
         continue;
       }
