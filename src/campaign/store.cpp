@@ -125,8 +125,10 @@ std::string read_file_text(const fs::path& path) {
 
 void write_file_durably(const fs::path& path, const std::string& text) {
   static std::atomic<unsigned> counter{0};  // several threads may write files of one folder
-  const fs::path tmp = path.parent_path() / ("." + path.filename().string() + ".tmp-" + std::to_string(::getpid()) +
-                                             "-" + std::to_string(counter++));
+  std::string name = ".";  // (built by append: GCC 12 warns falsely on "." + std::string)
+  name.append(path.filename().string()).append(".tmp-").append(std::to_string(::getpid()));
+  name.append("-").append(std::to_string(counter++));
+  const fs::path tmp = path.parent_path() / name;
   const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (fd < 0) sys_fail("cannot create", tmp);
   write_all(fd, text.data(), text.size(), tmp);

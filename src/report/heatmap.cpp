@@ -130,7 +130,7 @@ HeatmapReport plot_heatmap(const fs::path& store, const HeatmapOptions& opt) {
   const fs::path png = opt.out.empty() ? store / ("heatmap_" + file_part(opt.z) + "_over_" + file_part(opt.x) + "_" +
                                                   file_part(opt.y) + ".png")
                                        : opt.out;
-  const fs::path tmp = png.parent_path() / ("." + png.filename().string() + ".tmp");
+  const fs::path tmp = png.parent_path() / std::string(".").append(png.filename().string()).append(".tmp");
   gp << "set output '" << tmp.string() << "'\n";
   std::string title = opt.z + " over " + opt.x + " x " + opt.y;
   for (const std::string& w : opt.where) title += ", " + w;
