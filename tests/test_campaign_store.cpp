@@ -295,3 +295,17 @@ TEST_CASE("a per-point time limit fails the point and series are stored by hash"
     CHECK(series.size() > 100);      // 0.3 s sampled every 1 ms
   }
 }
+
+TEST_CASE("a store with points.csv but no journal is plotted merged and resumed from points.csv", "[campaign]") {
+  const Campaign c = load_campaign(kData / "tiny.yaml");
+  const fs::path d = temp_dir();
+  sweep(c, d / "s", 2);
+  const auto before = values_of(d / "s");
+  fs::remove(d / "s" / "journal.csv");  // as in a clone: only points.csv is committed
+  CHECK(read_store(d / "s").rows.size() == c.size());
+  const SweepReport r = sweep(c, d / "s", 1);
+  CHECK(r.ran == 0);
+  CHECK(r.ok == c.size());
+  CHECK(values_of(d / "s") == before);
+  CHECK(lines_of(slurp(d / "s" / "journal.csv")).size() == c.size() + 1);
+}

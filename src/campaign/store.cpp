@@ -156,7 +156,22 @@ Journal::Journal(const fs::path& dir, const std::string& header)
     : header_(header), status_col_(status_column(header)) {
   const fs::path path = dir / "journal.csv";
   std::string good = header_ + ",check\n";
-  if (fs::exists(path)) {
+  if (!fs::exists(path) && fs::exists(dir / "points.csv")) {
+    // A store without its journal (e.g. a committed one: only points.csv is kept in git).
+    // points.csv is only ever written atomically, so its rows seed the journal as they are.
+    const std::string text = read_file_text(dir / "points.csv");
+    const std::size_t nl = text.find('\n');
+    if (nl == std::string::npos || text.compare(0, nl, header_) != 0)
+      throw std::runtime_error((dir / "points.csv").string() + " was written for another campaign or version "
+                               "(header differs); use another --out or remove the store");
+    for (std::size_t pos = nl + 1; pos < text.size();) {
+      const std::size_t end = text.find('\n', pos);
+      if (end == std::string::npos) break;
+      const std::string_view row(text.data() + pos, end - pos);
+      good.append(row).append(",").append(hex16(fnv1a64(row))).append("\n");
+      pos = end + 1;
+    }
+  } else if (fs::exists(path)) {
     const std::string text = read_file_text(path);
     std::size_t pos = 0;
     bool header_seen = false;
@@ -236,7 +251,24 @@ void Journal::write_points_impl(const fs::path& dir, const std::vector<const Jou
 
 StoreRows read_store(const fs::path& dir) {
   const fs::path path = dir / "journal.csv";
-  if (!fs::exists(path)) throw std::runtime_error("not a sweep store (no journal.csv): " + dir.string());
+  if (!fs::exists(path)) {  // a store without its journal (e.g. committed): its points.csv
+    if (!fs::exists(dir / "points.csv"))
+      throw std::runtime_error("not a sweep store (no journal.csv or points.csv): " + dir.string());
+    const std::string text = read_file_text(dir / "points.csv");
+    StoreRows s;
+    std::size_t pos = text.find('\n');
+    if (pos == std::string::npos) throw std::runtime_error("empty " + (dir / "points.csv").string());
+    s.header = text.substr(0, pos);
+    for (++pos; pos < text.size();) {
+      const std::size_t nl = text.find('\n', pos);
+      if (nl == std::string::npos) break;
+      const std::string row = text.substr(pos, nl - pos);
+      std::uint64_t index = 0;
+      if (parse_u64(std::string_view(row).substr(0, row.find(',')), index)) s.rows[index] = row;
+      pos = nl + 1;
+    }
+    return s;
+  }
   const std::string text = read_file_text(path);
   StoreRows s;
   std::size_t pos = text.find('\n');

@@ -40,6 +40,7 @@ struct JournalEntry {
 
 // Opens (creating when absent) DIR/journal.csv for appending, after recovering it: lines with a
 // bad checksum and a torn last line are dropped (the file is rewritten atomically without them).
+// A store holding points.csv but no journal (a committed store) is seeded from points.csv.
 // A header different from `header` (another campaign or version) → std::runtime_error.
 class Journal {
  public:
@@ -90,7 +91,8 @@ void write_file_durably(const std::filesystem::path& path, const std::string& te
 // Reads a whole file (std::runtime_error when it cannot).
 std::string read_file_text(const std::filesystem::path& path);
 
-// The journal's valid rows of DIR (read-only: for merge and plot of unfinished stores).
+// The journal's valid rows of DIR (read-only: for merge and plot of unfinished stores); the
+// rows of points.csv when the store has no journal.
 struct StoreRows {
   std::string header;                     // points.csv header
   std::map<std::uint64_t, std::string> rows;  // index → row text

@@ -60,7 +60,7 @@ HeatmapReport plot_heatmap(const fs::path& store, const HeatmapOptions& opt) {
     const auto it = std::find(cols.begin(), cols.end(), name);
     if (it == cols.end())
       throw InputError("asperity plot", 0, option,
-                       "no column '" + name + "' in " + (store / "journal.csv").string() + "; columns: " + s.header);
+                       "no column '" + name + "' in the store " + store.string() + "; columns: " + s.header);
     return static_cast<std::size_t>(it - cols.begin());
   };
   const std::size_t cx = column(opt.x, "--x"), cy = column(opt.y, "--y"), cz = column(opt.z, "--z");
