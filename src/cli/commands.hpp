@@ -39,9 +39,15 @@ Command add_fit_command(CLI::App& app);  // fit_command.cpp
 // asperity bench tradeoff|accuracy|savings [--out results/bench] [--quick] [--repeats N] ...
 Command add_bench_command(CLI::App& app);  // bench_command.cpp
 
-// Planned, by their owners (uncomment the matching line in main.cpp when adding one):
-// Command add_sweep_command(CLI::App& app);     // sweep_command.cpp
-// Command add_plot_command(CLI::App& app);      // plot_command.cpp
-// Command add_merge_command(CLI::App& app);     // merge_command.cpp
+// asperity sweep CAMPAIGN.yaml [--threads N] [--shard I/N] [--out DIR] [--quiet] [--retry-failed]
+// (exit 1 when any point of the shard failed)
+Command add_sweep_command(CLI::App& app);  // sweep_command.cpp
+
+// asperity merge DIR1 DIR2 ... --out DIR
+Command add_merge_command(CLI::App& app);  // merge_command.cpp
+
+// asperity plot STORE --x KEY --y KEY --z COLUMN [--where COL=VALUE]... [--out FILE.png]
+Command add_plot_command(CLI::App& app);  // plot_command.cpp
+
 
 }  // namespace asperity::cli

@@ -19,14 +19,14 @@ int main(int argc, char** argv) {
   // Registration: one line per subcommand.
   std::vector<cli::Command> commands;
   commands.push_back(cli::add_run_command(app));
-  // commands.push_back(cli::add_sweep_command(app));
+  commands.push_back(cli::add_sweep_command(app));
+  commands.push_back(cli::add_merge_command(app));
+  commands.push_back(cli::add_plot_command(app));
   commands.push_back(cli::add_fit_command(app));
   commands.push_back(cli::add_generate_command(app));
   commands.push_back(cli::add_reproduce_command(app));
   commands.push_back(cli::add_bench_command(app));
-  // commands.push_back(cli::add_plot_command(app));
   commands.push_back(cli::add_regress_command(app));
-  // commands.push_back(cli::add_merge_command(app));
 
   try {
     app.parse(argc, argv);

@@ -18,7 +18,8 @@ struct RunResult {
 };
 
 // Integrates the scene and summarizes it; obs.wall_s is the wall-clock time of integrate().
-// Throws SolverError as integrate() does.
-RunResult simulate(const Scene& scene);
+// Throws SolverError as integrate() does. wall_limit_s > 0: the run stops at the first sample
+// after that much wall time, and recorder.timed_out() says so (sweeps' per-point limit).
+RunResult simulate(const Scene& scene, double wall_limit_s = 0);
 
 }  // namespace asperity

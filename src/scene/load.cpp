@@ -295,7 +295,7 @@ YAML::Node set_path(const YAML::Node& node, const std::vector<std::string>& part
   if (cur.IsDefined() && cur.IsScalar() && here == "experiment") {  // path → {file: path}
     YAML::Node m(YAML::NodeType::Map);
     m[YAML::Node("file")] = cur;
-    cur = m;
+    cur.reset(m);  // rebind: `cur = m` would turn the caller's (shared) node into the map
   }
   if (cur.IsDefined() && !cur.IsNull() && !cur.IsMap())
     throw InputError(where, 0, dotted, "cannot set " + dotted + ": " + (here.empty() ? "the scene" : here) +

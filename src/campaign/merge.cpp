@@ -1,0 +1,91 @@
+#include "campaign/merge.hpp"
+
+#include <map>
+#include <stdexcept>
+#include <string>
+
+#include "campaign/store.hpp"
+#include "scene/load.hpp"
+
+namespace asperity {
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string provenance_line(const std::string& text, const std::string& key) {
+  const std::size_t at = text.find("\n" + key + ":");
+  if (at == std::string::npos) return "";
+  const std::size_t end = text.find('\n', at + 1);
+  return text.substr(at + 1, end == std::string::npos ? std::string::npos : end - at - 1);
+}
+
+}  // namespace
+
+MergeReport merge_stores(const std::vector<fs::path>& inputs, const fs::path& out) {
+  if (inputs.empty()) throw std::runtime_error("merge: no input stores");
+  if (fs::exists(out / "journal.csv"))
+    throw std::runtime_error("merge: " + out.string() + " already holds a store; choose a new --out");
+  MergeReport rep;
+  std::string header, campaign_hash, provenance;
+  std::map<std::uint64_t, std::string> rows;
+  for (const fs::path& in : inputs) {
+    const StoreRows s = read_store(in);
+    const std::string prov = read_file_text(in / "provenance.yaml");
+    const std::string h = provenance_line(prov, "campaign_fnv1a64");
+    if (header.empty()) {
+      header = s.header, campaign_hash = h, provenance = prov;
+    } else {
+      if (s.header != header) throw std::runtime_error("merge: " + in.string() + " has other columns than " + inputs[0].string());
+      if (h != campaign_hash)
+        throw std::runtime_error("merge: " + in.string() + " comes from another campaign text than " + inputs[0].string() +
+                                 " (" + h + " vs " + campaign_hash + ")");
+    }
+    for (const auto& [index, row] : s.rows) {
+      const auto [it, fresh] = rows.emplace(index, row);
+      if (fresh) continue;
+      ++rep.duplicates;
+      // Same point in two stores: same scene hash (column 2) required; the values then agree.
+      const auto a = csv_split(it->second), b = csv_split(row);
+      if (a.at(1) != b.at(1))
+        throw std::runtime_error("merge: point " + std::to_string(index) + " has two different scenes (hash " + a.at(1) +
+                                 " vs " + b.at(1) + " in " + in.string() + ")");
+    }
+  }
+  fs::create_directories(out);
+  StoreLock lock(out);
+  const std::size_t status_col = Journal::status_column(header);
+  std::string journal = header + ",check\n", points = header + "\n";
+  for (const auto& [index, row] : rows) {
+    journal += row + "," + hex16(fnv1a64(row)) + "\n";
+    points += row + "\n";
+    ++rep.rows;
+    if (csv_split(row).at(status_col) != "ok") ++rep.failed;
+  }
+  // Provenance of the first input, with its shard replaced by the list of merged stores.
+  std::string prov;
+  for (std::size_t pos = 0; pos < provenance.size();) {
+    const std::size_t nl = provenance.find('\n', pos);
+    const std::string line = provenance.substr(pos, nl == std::string::npos ? std::string::npos : nl - pos + 1);
+    pos = nl == std::string::npos ? provenance.size() : nl + 1;
+    if (line.rfind("shard:", 0) == 0) {
+      prov += "shard: \"0/1\"  # merged\nmerged_from:\n";
+      for (const fs::path& in : inputs) prov += "  - " + yaml_quoted(in.string()) + "\n";
+    } else {
+      prov += line;
+    }
+  }
+  write_file_durably(out / "campaign.yaml", read_file_text(inputs[0] / "campaign.yaml"));
+  write_file_durably(out / "provenance.yaml", prov);
+  for (const fs::path& in : inputs)
+    if (fs::is_directory(in / "series")) {
+      fs::create_directories(out / "series");
+      for (const auto& e : fs::directory_iterator(in / "series"))
+        if (e.path().extension() == ".csv")
+          fs::copy_file(e.path(), out / "series" / e.path().filename(), fs::copy_options::skip_existing);
+    }
+  write_file_durably(out / "journal.csv", journal);
+  write_file_durably(out / "points.csv", points);
+  return rep;
+}
+
+}  // namespace asperity

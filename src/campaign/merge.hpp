@@ -1,0 +1,21 @@
+#pragma once
+// Merges stores of one campaign (typically its shards, run with --shard I/N on several machines)
+// into one store, equal to the store an unsharded run writes (wall times aside).
+#include <cstdint>
+#include <filesystem>
+#include <vector>
+
+namespace asperity {
+
+struct MergeReport {
+  std::uint64_t rows = 0, failed = 0, duplicates = 0;  // duplicates: same point in two inputs
+};
+
+// Reads the journals of `inputs` (torn lines ignored), checks they come from the same campaign
+// text and store format, and writes `out` (journal.csv, points.csv, provenance.yaml with the
+// list of inputs, campaign.yaml, series/). Throws std::runtime_error on a mismatch, on one point
+// with two different scene hashes, or when `out` already holds a store. The merged store can be
+// resumed by `asperity sweep --out OUT` to fill gaps.
+MergeReport merge_stores(const std::vector<std::filesystem::path>& inputs, const std::filesystem::path& out);
+
+}  // namespace asperity

@@ -1,0 +1,340 @@
+#include "campaign/sweep.hpp"
+
+#include <omp.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <map>
+#include <memory>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+
+#include <tbb/info.h>
+#include <tbb/parallel_pipeline.h>
+#include <tbb/task_arena.h>
+
+#include "campaign/store.hpp"
+#include "observe/simulate.hpp"
+#include "report/run_writer.hpp"
+#include "scene/campaign_load.hpp"
+#include "scene/load.hpp"
+#include "scene/numbers.hpp"
+
+namespace asperity {
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string num(double x) {
+  if (std::isnan(x)) return "nan";
+  if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
+  return scene_io::format_double(x);
+}
+
+// The observable columns of a row, in header order.
+struct Column {
+  const char* name;
+  std::string (*text)(const Observables&);
+};
+#define D(f) Column{#f, [](const Observables& o) { return num(o.f); }}
+#define I(f) Column{#f, [](const Observables& o) { return std::to_string(o.f); }}
+const Column kColumns[] = {
+    I(N), D(A0), D(K0), D(T0), D(dt), D(Q_s), D(A_s), D(t_peak),
+    Column{"peak_found", [](const Observables& o) { return std::string(o.peak_found ? "true" : "false"); }},
+    D(alpha), D(alpha_R2), I(alpha_points), D(shape_exponent), D(shape_prefactor), D(area_drop_fraction),
+    D(alpha_measured), D(alpha_measured_R2), D(shape_exponent_measured), I(ss_cycles), D(ss_drop),
+    D(ss_period), I(n_peaks), D(max_f_over_sigmaA), D(max_f_over_sigma_exp_A), D(t_end), I(steps),
+    I(rejected), I(force_evals), I(slips), I(repins)};
+#undef D
+#undef I
+
+struct Job {
+  Point point;
+  std::optional<Scene> scene;
+  std::uint64_t hash = 0;
+  std::vector<std::string> varied;  // text of each varied key (store_header order)
+  std::string error;                // non-empty: failed
+  std::string row;
+  bool failed = false;
+};
+
+std::string utc_now() {
+  const std::time_t t = std::time(nullptr);
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buf;
+}
+
+std::string duration_text(double s) {
+  if (!std::isfinite(s)) return "?";
+  char buf[32];
+  const long t = std::lround(s);
+  if (t >= 3600) std::snprintf(buf, sizeof buf, "%ldh%02ldm", t / 3600, (t / 60) % 60);
+  else if (t >= 60) std::snprintf(buf, sizeof buf, "%ldm%02lds", t / 60, t % 60);
+  else std::snprintf(buf, sizeof buf, "%lds", t);
+  return buf;
+}
+
+// One line on a terminal (redrawn), or a plain log line every 10 s otherwise.
+class Progress {
+ public:
+  Progress(std::uint64_t total, std::uint64_t skipped, bool quiet)
+      : total_(total), skipped_(skipped), quiet_(quiet), tty_(::isatty(2) == 1),
+        start_(std::chrono::steady_clock::now()), last_(start_) {}
+
+  void point_done(bool failed) {
+    ++done_;
+    failed_ += failed ? 1 : 0;
+    const auto now = std::chrono::steady_clock::now();
+    const double since = std::chrono::duration<double>(now - last_).count();
+    if (quiet_ || (since < (tty_ ? 0.2 : 10.0) && done_ + skipped_ < total_)) return;
+    last_ = now;
+    print(now);
+  }
+  void finish() {
+    if (!quiet_ && tty_ && done_ > 0) std::fputc('\n', stderr);
+  }
+
+ private:
+  void print(std::chrono::steady_clock::time_point now) {
+    const double el = std::chrono::duration<double>(now - start_).count();
+    const double rate = el > 0 ? static_cast<double>(done_) / el : 0;
+    const std::uint64_t finished = done_ + skipped_;
+    const double eta = rate > 0 ? static_cast<double>(total_ - finished) / rate : NAN;
+    char line[200];
+    std::snprintf(line, sizeof line, "%llu/%llu points, %.2f points/s, ETA %s, %llu failed",
+                  static_cast<unsigned long long>(finished), static_cast<unsigned long long>(total_), rate,
+                  duration_text(eta).c_str(), static_cast<unsigned long long>(failed_));
+    if (tty_) {
+      const int width = 30;
+      const int fill = total_ ? static_cast<int>(width * static_cast<double>(finished) / static_cast<double>(total_)) : width;
+      std::fprintf(stderr, "\r[%s%s] %s\033[K", std::string(static_cast<std::size_t>(fill), '#').c_str(),
+                   std::string(static_cast<std::size_t>(width - fill), '.').c_str(), line);
+    } else {
+      std::fprintf(stderr, "sweep: %s\n", line);
+    }
+    std::fflush(stderr);
+  }
+  std::uint64_t total_, skipped_, done_ = 0, failed_ = 0;
+  bool quiet_, tty_;
+  std::chrono::steady_clock::time_point start_, last_;
+};
+
+// Whether the first point of any base scene runs on stand-in data (its experiment says so).
+bool uses_stand_ins(const Campaign& c) {
+  const CampaignScenes scenes(c);
+  const std::uint64_t per_scene = c.grids.front().size();
+  for (std::size_t s = 0; s < c.scenes.size(); ++s) {
+    try {
+      std::string d = scenes.scene(point_at(c, s * per_scene)).experiment.description;
+      for (char& ch : d) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+      if (d.find("stand-in") != std::string::npos) return true;
+    } catch (const std::exception&) {
+    }
+  }
+  return false;
+}
+
+std::string provenance_yaml(const Campaign& c, const std::string& campaign_text, const SweepOptions& opt) {
+  std::ostringstream y;
+  y << "# asperity sweep store: written once, when the store was started\n";
+  y << "campaign: " << yaml_quoted(c.name) << '\n';
+  y << "campaign_file: " << yaml_quoted(c.file.string()) << '\n';
+  y << "campaign_fnv1a64: " << yaml_quoted(hex16(fnv1a64(campaign_text))) << '\n';
+  y << "points: " << c.size() << '\n';
+  y << "shard: " << yaml_quoted(std::to_string(opt.shard.index) + "/" + std::to_string(opt.shard.count)) << '\n';
+  y << "asperity_version: " << yaml_quoted(ASPERITY_VERSION) << '\n';
+  y << "build_type: " << yaml_quoted(ASPERITY_BUILD_TYPE) << '\n';
+  y << "started_utc: " << yaml_quoted(utc_now()) << '\n';
+  y << "stand_in_data: " << (uses_stand_ins(c) ? "true  # STAND-IN experiments, not measurements" : "false") << '\n';
+  y << "hash: \"FNV-1a 64 of the resolved scene (scene_to_yaml, experiment file relative to the campaign folder)\"\n";
+  return y.str();
+}
+
+// Checks a resumed store was started from the same campaign text; starts a new one otherwise.
+void prepare_store(const fs::path& dir, const Campaign& c, const SweepOptions& opt) {
+  const std::string text = read_file_text(c.file);
+  const fs::path prov = dir / "provenance.yaml";
+  if (fs::exists(prov)) {
+    const std::string old = read_file_text(prov);
+    const std::string want = "campaign_fnv1a64: " + yaml_quoted(hex16(fnv1a64(text)));
+    if (old.find(want) == std::string::npos)
+      throw std::runtime_error("the campaign file changed since " + dir.string() +
+                               " was started (see its provenance.yaml); use another --out or remove the store");
+    return;
+  }
+  write_file_durably(dir / "campaign.yaml", text);
+  write_file_durably(prov, provenance_yaml(c, text, opt));
+}
+
+}  // namespace
+
+std::string store_header(const Campaign& c) {
+  std::string h = "index,hash,grid,experiment";
+  for (const std::string& k : c.varied_keys()) h.append(",").append(csv_field(k));
+  h += ",status,error";
+  for (const Column& col : kColumns) h += std::string(",") + col.name;
+  return h + ",wall_s";
+}
+
+std::string canonical_scene_text(const Scene& scene, const fs::path& base_dir) {
+  std::string text = scene_to_yaml(scene);
+  const fs::path& f = scene.experiment.file;
+  if (f.empty()) return text;
+  const std::string line = "  file: " + yaml_quoted(fs::absolute(f).lexically_normal().string()) + "\n";
+  std::error_code ec;
+  fs::path base = fs::weakly_canonical(fs::absolute(base_dir), ec);
+  if (ec) base = fs::absolute(base_dir).lexically_normal();
+  const std::string rel = fs::absolute(f).lexically_normal().lexically_relative(base).generic_string();
+  const std::size_t at = text.find(line);
+  if (at != std::string::npos) text.replace(at, line.size(), "  file: " + yaml_quoted(rel) + "\n");
+  return text;
+}
+
+SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
+  const auto t0 = std::chrono::steady_clock::now();
+  SweepReport rep;
+  rep.store = opt.out.empty() ? fs::path("results") / c.name : opt.out;
+  // `--out .` or a typo must not write store files among unrelated ones (points.csv would be
+  // replaced): an existing folder may hold only what a store holds (a run killed at its start
+  // may have left some of it), including our temporary files (".NAME.tmp-*") and PNGs.
+  if (fs::is_directory(rep.store))
+    for (const auto& e : fs::directory_iterator(rep.store)) {
+      static const char* const known[] = {".lock", "campaign.yaml", "provenance.yaml", "journal.csv", "points.csv", "series"};
+      const std::string n = e.path().filename().string();
+      if (std::find(std::begin(known), std::end(known), n) == std::end(known) && n.find(".tmp-") == std::string::npos &&
+          e.path().extension() != ".png")  // heat maps drawn from the store
+        throw std::runtime_error("refusing to use " + rep.store.string() + " as a sweep store: it holds '" + n +
+                                 "', which no store holds");
+    }
+  fs::create_directories(rep.store);
+  StoreLock lock(rep.store);
+  prepare_store(rep.store, c, opt);
+  const std::string header = store_header(c);
+  Journal journal(rep.store, header);
+  rep.dropped_lines = journal.dropped_lines();
+  if (c.series) fs::create_directories(rep.store / "series");
+
+  const std::uint64_t total = c.size();
+  const Shard shard = opt.shard;
+  rep.points = shard.size(total);
+  const std::vector<std::string> varied_keys = c.varied_keys();
+  const fs::path base_dir = c.file.parent_path();
+
+  // What the journal holds at the start: the build stage reads this copy, never the journal's
+  // own index, which the writer stage updates concurrently. Counted for progress and the ETA.
+  const std::map<std::uint64_t, JournalEntry> done = journal.entries();
+  std::uint64_t done_before = 0;
+  for (const auto& [index, e] : done)
+    if (index < total && shard.contains(index) && (e.ok || !opt.retry_failed)) ++done_before;
+
+  CampaignScenes scenes(c);
+  Progress progress(rep.points, done_before, opt.quiet);
+  const int threads = opt.threads > 0 ? opt.threads : tbb::info::default_concurrency();
+  std::uint64_t next = shard.index;
+
+  auto build = [&](tbb::flow_control& fc) -> std::shared_ptr<Job> {
+    while (next < total) {
+      auto job = std::make_shared<Job>();
+      job->point = point_at(c, next);
+      next += shard.count;
+      try {
+        job->scene = scenes.scene(job->point);
+        job->hash = fnv1a64(canonical_scene_text(*job->scene, base_dir));
+      } catch (const std::exception& e) {  // a bad combination of values: recorded, not fatal
+        job->scene.reset();
+        job->error = e.what();
+        job->hash = fnv1a64("invalid point: " + job->error);
+      }
+      if (const auto it = done.find(job->point.index);
+          it != done.end() && it->second.hash == job->hash && (it->second.ok || !opt.retry_failed)) {
+        ++rep.skipped;
+        continue;
+      }
+      const Point& p = job->point;
+      for (const std::string& k : varied_keys) {
+        std::string v;
+        bool mine = false;
+        for (const PointValue& pv : p.values)
+          if (pv.axis->key == k) v = pv.value.text, mine = true;
+        if (!mine && job->scene) v = CampaignScenes::value_text(*job->scene, k);
+        job->varied.push_back(v);
+      }
+      return job;
+    }
+    fc.stop();
+    return nullptr;
+  };
+
+  auto run = [&](std::shared_ptr<Job> job) -> std::shared_ptr<Job> {
+    omp_set_num_threads(1);  // see sweep.hpp: the points are the parallelism
+    std::optional<RunResult> r;
+    double wall = 0;
+    if (job->scene) {
+      const auto t = std::chrono::steady_clock::now();
+      try {
+        r = simulate(*job->scene, c.time_limit_s);
+        if (r->recorder.timed_out())
+          job->error = "per-point time limit of " + num(c.time_limit_s) + " s exceeded at simulated t = " +
+                       num(r->recorder.last().t) + " s";
+        for (const auto& [name, x] : {std::pair<const char*, double>{"Q_s", r->obs.Q_s}, {"A_s", r->obs.A_s},
+                                      {"t_peak", r->obs.t_peak}, {"t_end", r->obs.t_end}})
+          if (job->error.empty() && !std::isfinite(x)) job->error = std::string("non-finite observable ") + name;
+        if (c.series && job->error.empty()) {
+          std::ostringstream csv;
+          write_series_csv(csv, r->recorder.series(), job->scene->output.series);
+          write_file_durably(rep.store / "series" / (hex16(job->hash) + ".csv"), csv.str());
+        }
+      } catch (const SolverError& e) {
+        job->error = std::string("solver error: ") + e.what();
+      } catch (const std::exception& e) {
+        job->error = e.what();
+      }
+      wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+    }
+    job->failed = !job->error.empty();
+    std::string row = std::to_string(job->point.index) + "," + hex16(job->hash) + "," +
+                      csv_field(c.grids[job->point.grid].name) + "," +
+                      csv_field(job->scene ? job->scene->experiment.name : "");
+    for (const std::string& v : job->varied) row.append(",").append(csv_field(v));
+    row += job->failed ? ",failed," + csv_field(job->error) : ",ok,";
+    for (const Column& col : kColumns) row.append(",").append(r && !job->failed ? col.text(r->obs) : std::string());
+    row += "," + num(wall);
+    job->row = std::move(row);
+    job->scene.reset();  // free the junctions before the job waits for the writer
+    return job;
+  };
+
+  auto store = [&](std::shared_ptr<Job> job) {
+    journal.append(job->row);
+    ++rep.ran;
+    rep.failed_now += job->failed ? 1 : 0;
+    progress.point_done(job->failed);
+  };
+
+  tbb::task_arena arena(threads);
+  arena.execute([&] {
+    tbb::parallel_pipeline(static_cast<std::size_t>(2 * threads),
+                           tbb::make_filter<void, std::shared_ptr<Job>>(tbb::filter_mode::serial_in_order, build) &
+                               tbb::make_filter<std::shared_ptr<Job>, std::shared_ptr<Job>>(tbb::filter_mode::parallel, run) &
+                               tbb::make_filter<std::shared_ptr<Job>, void>(tbb::filter_mode::serial_out_of_order, store));
+  });
+  progress.finish();
+
+  auto mine = [&](std::uint64_t index) { return index < total && shard.contains(index); };
+  journal.write_points(rep.store, mine);
+  for (const auto& [index, e] : journal.entries())
+    if (mine(index)) (e.ok ? rep.ok : rep.failed) += 1;
+  rep.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return rep;
+}
+
+}  // namespace asperity

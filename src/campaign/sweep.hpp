@@ -1,0 +1,52 @@
+#pragma once
+// Runs the points of a campaign (or of one shard of it) into a result store (store.hpp), in
+// parallel with TBB, resuming whatever the store already holds.
+//
+// Parallelism: a tbb::parallel_pipeline inside a task_arena of `threads` threads:
+//   1. serial: next point of the shard → its scene (yaml-cpp trees are not shared across
+//      threads) → canonical hash; points already in the journal with the same hash are skipped;
+//   2. parallel: simulate (one model instance per point; threads pick up the next point as soon
+//      as they are free, so uneven run times balance); OpenMP is set to 1 thread in here: the
+//      cores are already busy with points, and an OpenMP team per point would oversubscribe them
+//      (and an OpenMP reduction's order would depend on the team size);
+//   3. serial, out of order: append the row to the journal (write + fdatasync), progress.
+// At most 2·threads points are in flight: memory does not grow with the campaign.
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+#include "campaign/campaign.hpp"
+#include "scene/scene.hpp"
+
+namespace asperity {
+
+struct SweepOptions {
+  int threads = 0;                   // 0: all hardware threads
+  Shard shard;                       // default 0/1: every point
+  std::filesystem::path out;         // empty: results/<campaign name>
+  bool quiet = false;                // no progress, no summary
+  bool retry_failed = false;         // rerun points the store holds as failed
+};
+
+struct SweepReport {
+  std::filesystem::path store;
+  std::uint64_t points = 0;          // points of this shard
+  std::uint64_t skipped = 0;         // already in the store (same scene hash)
+  std::uint64_t ran = 0;             // run now
+  std::uint64_t failed_now = 0;      // of those, failed
+  std::uint64_t ok = 0, failed = 0;  // rows of this shard in the store at the end
+  std::size_t dropped_lines = 0;     // torn/corrupt journal lines found at start
+  double wall_s = 0;
+};
+
+SweepReport run_sweep(const Campaign& campaign, const SweepOptions& options);
+
+// The points.csv header of a campaign: index, hash, experiment, every varied key, status, error,
+// every observable, the solver statistics and wall_s.
+std::string store_header(const Campaign& campaign);
+
+// The text the point hash is taken of: scene_to_yaml with the experiment file written relative
+// to `base_dir` (the campaign's folder), so the hash does not depend on where the project lives.
+std::string canonical_scene_text(const Scene& scene, const std::filesystem::path& base_dir);
+
+}  // namespace asperity

@@ -1,0 +1,349 @@
+#include "scene/campaign_load.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+
+#include "scene/load.hpp"
+#include "scene/numbers.hpp"
+#include "scene/yaml_util.hpp"
+
+namespace asperity {
+
+namespace fs = std::filesystem;
+using namespace scene_io;
+
+namespace {
+
+const std::vector<std::string> kCampaignKeys{"name",   "description", "scene", "scenes", "set",
+                                             "series", "time_limit",  "combine", "axes",  "grids"};
+const std::vector<std::string> kGridKeys{"name", "combine", "axes"};
+
+int line_of(const YAML::Node& n) {
+  if (!n.IsDefined()) return 0;
+  const YAML::Mark m = n.Mark();
+  return m.is_null() ? 0 : m.line + 1;
+}
+
+// Values naming files (the experiment) are relative to the campaign file; the scene loader
+// resolves them against the base scene, so they are handed over as absolute paths.
+bool is_path_key(const std::string& key) { return key == "experiment" || key == "experiment.file"; }
+
+YAML::Node override_value(const std::string& key, const AxisValue& v, const fs::path& campaign_dir) {
+  if (v.is_number) return YAML::Node(format_double(v.number));
+  if (v.is_yaml) return YAML::Load(v.text);
+  if (is_path_key(key)) return YAML::Node(fs::absolute(campaign_dir / v.text).lexically_normal().string());
+  return YAML::Node(v.text);
+}
+
+// The (key node, value node) pairs of a map whose keys are free (dotted scene keys), with the
+// checks MapView does for fixed keys: a map, scalar keys, no duplicates.
+std::vector<std::pair<YAML::Node, YAML::Node>> free_map(const MapView& parent, const YAML::Node& n,
+                                                        const std::string& k) {
+  if (!n.IsMap()) parent.fail_at(n, k, "expected a map of 'scene.key: values' entries, got " + node_kind(n));
+  std::vector<std::pair<YAML::Node, YAML::Node>> out;
+  for (auto it = n.begin(); it != n.end(); ++it) {
+    if (!it->first.IsScalar()) parent.fail_at(it->first, k, "keys must be dotted scene keys, got " + node_kind(it->first));
+    for (const auto& e : out)
+      if (e.first.Scalar() == it->first.Scalar())
+        fail(parent.source(), it->first, parent.key(k) + "." + it->first.Scalar(),
+             "duplicate key (first given at line " + std::to_string(line_of(e.first)) + ")");
+    out.emplace_back(it->first, it->second);
+  }
+  return out;
+}
+
+// One scalar as an axis/set value: a plain number, or text; numbers with units are rejected.
+AxisValue scalar_value(const Source& src, const YAML::Node& n, const std::string& key) {
+  if (!n.IsScalar()) fail(src, n, key, "values must be single numbers or texts, got " + node_kind(n));
+  AxisValue v;
+  v.text = n.Scalar();
+  double x = 0;
+  switch (parse_double(n.Scalar(), x)) {
+    case NumberParse::ok:
+      v.is_number = true;
+      v.number = x;
+      v.text = format_double(x);
+      break;
+    case NumberParse::has_unit:
+      fail(src, n, key, "expected a plain number in SI units, got " + quote(n.Scalar()));
+    case NumberParse::not_finite:
+      fail(src, n, key, "must be a finite number, got " + quote(n.Scalar()));
+    default:
+      if (trim(n.Scalar()).empty()) fail(src, n, key, "empty value");
+      break;
+  }
+  return v;
+}
+
+Axis parse_axis(const Source& src, const YAML::Node& kn, const YAML::Node& vn) {
+  Axis ax;
+  ax.key = kn.Scalar();
+  ax.line = line_of(kn);
+  auto fail_here = [&](const YAML::Node& at, const std::string& msg) {
+    fail(src, at.IsDefined() && !at.IsNull() && line_of(at) > 0 ? at : kn, ax.key, msg);
+  };
+  if (vn.IsSequence()) {
+    if (vn.size() == 0) fail_here(kn, "empty axis (give at least one value)");
+    for (const auto& item : vn) {
+      AxisValue v = scalar_value(src, item, ax.key);
+      for (const auto& prev : ax.values) {
+        if (prev.is_number != v.is_number)
+          fail_here(item, "mixed numbers and texts in one axis (" + quote(prev.text) + " and " + quote(v.text) + ")");
+        if (prev.text == v.text) fail_here(item, "value " + quote(v.text) + " listed twice");
+      }
+      ax.values.push_back(std::move(v));
+    }
+    return ax;
+  }
+  if (vn.IsMap()) {
+    const MapView m(src, vn, ax.key, {"linspace", "logspace"});
+    const auto lin = m.find("linspace");
+    const auto log = m.find("logspace");
+    if (!lin && !log) fail_here(kn, "empty axis: expected {linspace: [a, b, n]} or {logspace: [a, b, n]}");
+    if (lin && log) fail_here(kn, "give either linspace or logspace, not both");
+    const std::string which = lin ? "linspace" : "logspace";
+    const YAML::Node spec = lin ? *lin : *log;
+    ax.kind = lin ? Axis::Kind::linspace : Axis::Kind::logspace;
+    if (!spec.IsSequence() || spec.size() != 3)
+      m.fail_at(spec, which, "expected [first, last, count], got " + node_kind(spec));
+    ax.a = m.number(spec[0], which, nullptr);
+    ax.b = m.number(spec[1], which, nullptr);
+    int n = 0;
+    if (!spec[2].IsScalar() || !parse_int(spec[2].Scalar(), n))
+      m.fail_at(spec[2], which, "count must be an integer, got " + node_kind(spec[2]));
+    if (n < 1) m.fail_at(spec[2], which, "empty axis: count must be >= 1, got " + std::to_string(n));
+    if (n > 1 && ax.a == ax.b) m.fail_at(spec, which, "first == last with count > 1 repeats one value");
+    if (ax.kind == Axis::Kind::logspace && !(ax.a * ax.b > 0))
+      m.fail_at(spec, which, "end points must be non-zero and of one sign, got " + format_double(ax.a) + " and " +
+                                 format_double(ax.b));
+    ax.n = static_cast<std::uint64_t>(n);
+    return ax;
+  }
+  fail_here(vn, "expected a list of values, {linspace: [a, b, n]} or {logspace: [a, b, n]}, got " + node_kind(vn));
+  std::abort();  // fail_here throws
+}
+
+std::uint64_t checked_mul(std::uint64_t a, std::uint64_t b, const Source& src, const YAML::Node& at,
+                          const std::string& key) {
+  constexpr std::uint64_t cap = std::uint64_t(1) << 62;
+  if (b != 0 && a > cap / b) fail(src, at, key, "too many points (more than 2^62)");
+  return a * b;
+}
+
+Grid parse_grid(const Source& src, const MapView& m, const std::string& name) {
+  Grid g;
+  g.name = name;
+  if (auto n = m.find("combine"))
+    g.combine = m.enumeration<Combine>(*n, "combine", {{"product", Combine::product}, {"zip", Combine::zip}});
+  const YAML::Node axes = m.require("axes");
+  const auto entries = free_map(m, axes, "axes");
+  if (entries.empty()) m.fail_at(axes, "axes", "empty: give at least one axis");
+  for (const auto& [kn, vn] : entries) g.axes.push_back(parse_axis(src, kn, vn));
+  if (g.combine == Combine::zip)
+    for (std::size_t i = 1; i < g.axes.size(); ++i)
+      if (g.axes[i].size() != g.axes[0].size())
+        fail(src, entries[i].first, g.axes[i].key,
+             "zip needs axes of equal length: " + std::to_string(g.axes[i].size()) + " values here, " +
+                 std::to_string(g.axes[0].size()) + " in " + g.axes[0].key + " (line " +
+                 std::to_string(g.axes[0].line) + ")");
+  std::uint64_t s = 1;
+  for (const Axis& ax : g.axes) s = checked_mul(s, ax.size(), src, axes, m.key("axes"));
+  return g;
+}
+
+// A scene tree error caused by an override, re-reported at the campaign line that set it.
+[[noreturn]] void rethrow_at(const InputError& e, const std::string& campaign_file, int line, const std::string& key) {
+  std::string msg = e.message;
+  if (!e.key.empty() && e.key != key) msg = e.key + ": " + msg;
+  throw InputError(campaign_file, line, key, msg + " (on " + e.file + ")");
+}
+
+struct BaseTree {
+  fs::path file;
+  YAML::Node tree;  // the scene file with the campaign's `set` applied
+};
+
+}  // namespace
+
+struct CampaignScenes::Impl {
+  const Campaign* campaign = nullptr;
+  std::vector<BaseTree> bases;
+};
+
+// Loads each base scene and applies `set`; errors name the scene file (its own errors) or the
+// campaign's `set` line (the override's).
+static std::vector<BaseTree> base_trees(const Campaign& c, const std::vector<int>* set_lines) {
+  const fs::path dir = c.file.parent_path();
+  std::vector<BaseTree> out;
+  for (const fs::path& p : c.scenes) {
+    BaseTree b{p, load_scene_tree(p)};
+    if (set_lines) scene_from_tree(b.tree, p);  // the base scene alone: its own errors first
+    for (std::size_t i = 0; i < c.set.size(); ++i) {
+      const auto& [key, v] = c.set[i];
+      try {
+        b.tree.reset(apply_override(b.tree, key, override_value(key, v, dir)));
+        if (set_lines) scene_from_tree(b.tree, p);
+      } catch (const InputError& e) {
+        if (!set_lines) throw;
+        rethrow_at(e, c.file.lexically_normal().string(), (*set_lines)[i], "set." + key);
+      }
+    }
+    out.push_back(std::move(b));
+  }
+  return out;
+}
+
+Campaign load_campaign(const fs::path& yaml) {
+  const std::string display = yaml.lexically_normal().string();
+  const Source src{display, nullptr};
+  const YAML::Node root = load_yaml_file(yaml, display);
+  const MapView m(src, root, "", kCampaignKeys, 1);
+
+  Campaign c;
+  c.file = fs::absolute(yaml).lexically_normal();
+  c.name = yaml.stem().string();
+  if (auto n = m.find("name")) {
+    c.name = m.string(*n, "name");
+    const bool ok = !c.name.empty() && c.name.find_first_of("/\\") == std::string::npos && c.name != "." &&
+                    c.name != "..";
+    if (!ok) m.fail_at(*n, "name", "must be a plain folder name (no '/'), got " + quote(c.name));
+  }
+  if (auto n = m.find("description")) m.string(*n, "description");
+  if (auto n = m.find("series")) c.series = m.boolean(*n, "series");
+  if (auto n = m.find("time_limit")) {
+    c.time_limit_s = m.number(*n, "time_limit", "s");
+    if (!(c.time_limit_s > 0)) m.fail_at(*n, "time_limit", "must be > 0 (seconds of wall time per point), got " + format_double(c.time_limit_s));
+  }
+
+  // Base scenes.
+  const auto one = m.find("scene");
+  const auto many = m.find("scenes");
+  if (one && many) m.fail_at(*many, "scenes", "give either scene or scenes, not both");
+  if (!one && !many) m.require("scenes");
+  std::vector<std::string> scene_texts;
+  if (one) scene_texts.push_back(m.string(*one, "scene"));
+  if (many) {
+    scene_texts = m.string_list(*many, "scenes");
+    if (scene_texts.empty()) m.fail_at(*many, "scenes", "empty list: give at least one scene");
+  }
+  for (std::size_t i = 0; i < scene_texts.size(); ++i) {
+    const YAML::Node at = one ? *one : (*many)[i];
+    const std::string k = one ? "scene" : "scenes";
+    const fs::path p = yaml.parent_path() / scene_texts[i];
+    std::error_code ec;
+    if (!fs::is_regular_file(p, ec))
+      m.fail_at(at, k, "scene file not found: " + quote(scene_texts[i]) + " (looked for " + p.lexically_normal().string() + ")");
+    for (const auto& q : c.scenes)
+      if (fs::equivalent(q, p, ec)) m.fail_at(at, k, "scene " + quote(scene_texts[i]) + " listed twice");
+    c.scenes.push_back(p.lexically_normal());
+  }
+
+  // Fixed overrides.
+  std::vector<int> set_lines;
+  if (auto n = m.find("set")) {
+    for (const auto& [kn, vn] : free_map(m, *n, "set")) {
+      if (vn.IsSequence() || vn.IsMap()) {  // e.g. output.series: [t, Q]; checked by the scene loader
+        YAML::Emitter e;
+        e << YAML::Flow << vn;
+        c.set.emplace_back(kn.Scalar(), AxisValue{false, true, 0, e.c_str()});
+      } else {
+        c.set.emplace_back(kn.Scalar(), scalar_value(src, vn, "set." + kn.Scalar()));
+      }
+      set_lines.push_back(line_of(kn));
+    }
+  }
+
+  // Grids.
+  const auto axes = m.find("axes");
+  const auto grids = m.find("grids");
+  if (axes && grids) m.fail_at(*grids, "grids", "give either axes (one grid) or grids, not both");
+  if (grids) {
+    if (!grids->IsSequence() || grids->size() == 0)
+      m.fail_at(*grids, "grids", "expected a non-empty list of {name, combine, axes} maps, got " + node_kind(*grids));
+    if (m.find("combine")) m.fail_at(*m.find("combine"), "combine", "with grids, give combine inside each grid");
+    for (std::size_t i = 0; i < grids->size(); ++i) {
+      const MapView gm(src, (*grids)[i], "grids[" + std::to_string(i) + "]", kGridKeys, line_of(*grids));
+      std::string name = "grid_" + std::to_string(i);
+      if (auto n = gm.find("name")) name = gm.string(*n, "name");
+      c.grids.push_back(parse_grid(src, gm, name));
+    }
+  } else if (axes) {
+    c.grids.push_back(parse_grid(src, m, "grid_0"));
+  } else {
+    if (auto n = m.find("combine")) m.fail_at(*n, "combine", "combine without axes");
+    c.grids.push_back(Grid{"base", Combine::product, {}});  // just the base scenes
+  }
+  std::uint64_t total = 0;
+  for (const Grid& g : c.grids) {
+    total += checked_mul(g.size(), c.scenes.size(), src, root, "grids");
+    if (total > (std::uint64_t(1) << 62)) fail(src, root, "grids", "too many points (more than 2^62)");
+  }
+
+  // Keys given both as set and as an axis are a mistake (the axis would silently win).
+  for (const Grid& g : c.grids)
+    for (const Axis& ax : g.axes)
+      for (std::size_t i = 0; i < c.set.size(); ++i)
+        if (c.set[i].first == ax.key)
+          throw InputError(display, ax.line, ax.key,
+                           "also fixed by set (line " + std::to_string(set_lines[i]) + "); keep one");
+
+  // Semantic checks against the scenes: every base scene with `set`, then every list value and
+  // both end points of every space on the first base scene (unknown keys, out-of-range values).
+  const std::vector<BaseTree> bases = base_trees(c, &set_lines);
+  const fs::path dir = c.file.parent_path();
+  const BaseTree& first = bases.front();
+  for (const Grid& g : c.grids)
+    for (const Axis& ax : g.axes) {
+      std::vector<std::uint64_t> probe;
+      if (ax.kind == Axis::Kind::list)
+        for (std::uint64_t i = 0; i < ax.size(); ++i) probe.push_back(i);
+      else
+        probe = {0, ax.size() - 1};
+      for (const std::uint64_t i : probe) {
+        const AxisValue v = ax.value(i);
+        try {
+          scene_from_tree(apply_override(first.tree, ax.key, override_value(ax.key, v, dir)), first.file);
+        } catch (const InputError& e) {
+          rethrow_at(e, display, ax.line, ax.key);
+        }
+      }
+    }
+  return c;
+}
+
+CampaignScenes::CampaignScenes(const Campaign& campaign) : impl_(std::make_unique<Impl>()) {
+  impl_->campaign = &campaign;
+  impl_->bases = base_trees(campaign, nullptr);
+}
+CampaignScenes::~CampaignScenes() = default;
+CampaignScenes::CampaignScenes(CampaignScenes&&) noexcept = default;
+
+Scene CampaignScenes::scene(const Point& point) const {
+  const BaseTree& b = impl_->bases.at(point.scene);
+  const fs::path dir = impl_->campaign->file.parent_path();
+  // Node::operator= would write through to the shared base tree (yaml-cpp assigns the value,
+  // not the handle): rebind with reset() so every point starts from the untouched base.
+  YAML::Node tree = b.tree;
+  for (const PointValue& pv : point.values)
+    tree.reset(apply_override(tree, pv.axis->key, override_value(pv.axis->key, pv.value, dir)));
+  return scene_from_tree(tree, b.file);
+}
+
+std::string CampaignScenes::value_text(const Scene& scene, const std::string& key) {
+  YAML::Node n = YAML::Load(scene_to_yaml(scene));
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t dot = key.find('.', start);
+    const std::string part = key.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
+    if (!n.IsMap() || !n[part]) return "";
+    n = n[part];
+    if (dot == std::string::npos) break;
+    start = dot + 1;
+  }
+  return n.IsScalar() ? n.Scalar() : "";
+}
+
+}  // namespace asperity

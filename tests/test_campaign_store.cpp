@@ -1,0 +1,311 @@
+// src/campaign: the journal survives torn and corrupt lines; sweeps resume, are identical for 1
+// and 2 threads and for merged shards, and record failing points.
+#include <unistd.h>
+
+#include <catch2/catch.hpp>
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "campaign/merge.hpp"
+#include "campaign/store.hpp"
+#include "campaign/sweep.hpp"
+#include "report/heatmap.hpp"
+#include "scene/campaign_load.hpp"
+
+namespace fs = std::filesystem;
+using namespace asperity;
+using Catch::Matchers::Contains;
+
+namespace {
+
+const fs::path kData = fs::path(ASPERITY_SOURCE_DIR) / "tests" / "data" / "campaign";
+
+fs::path temp_dir() {
+  static int counter = 0;
+  const fs::path d = fs::temp_directory_path() /
+                     ("asperity_store_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  for (std::string l; std::getline(in, l);) out.push_back(l);
+  return out;
+}
+
+// points.csv without the wall_s column (the only value allowed to differ between runs).
+std::vector<std::string> values_of(const fs::path& store) {
+  std::vector<std::string> out;
+  for (const std::string& l : lines_of(slurp(store / "points.csv"))) out.push_back(l.substr(0, l.rfind(',')));
+  return out;
+}
+
+SweepReport sweep(const Campaign& c, const fs::path& out, int threads = 1, Shard shard = {}) {
+  SweepOptions o;
+  o.out = out;
+  o.threads = threads;
+  o.shard = shard;
+  o.quiet = true;
+  return run_sweep(c, o);
+}
+
+const std::string kHeader = "index,hash,grid,status,x";
+
+}  // namespace
+
+TEST_CASE("journal rows survive a reopen and a torn last line is dropped", "[campaign]") {
+  const fs::path d = temp_dir();
+  {
+    Journal j(d, kHeader);
+    CHECK(j.entries().empty());
+    j.append("0,00000000000000aa,g,ok,1.5");
+    j.append("1,00000000000000bb,g,failed,\"a, b\"");
+    j.append("2,00000000000000cc,g,ok,3");
+  }
+  const std::string full = slurp(d / "journal.csv");
+  // Tear the last line at every byte position: the first two rows always survive.
+  const std::size_t third = full.find("2,00000000000000cc");
+  for (std::size_t cut = third + 1; cut < full.size(); ++cut) {
+    std::ofstream(d / "journal.csv", std::ios::binary | std::ios::trunc) << full.substr(0, cut);
+    Journal j(d, kHeader);
+    CHECK(j.dropped_lines() == 1);
+    REQUIRE(j.entries().size() == 2);
+    CHECK(j.entries().at(0).hash == 0xaa);
+    CHECK(j.entries().at(0).ok);
+    CHECK_FALSE(j.entries().at(1).ok);
+    CHECK(j.row(j.entries().at(1)) == "1,00000000000000bb,g,failed,\"a, b\"");
+    CHECK(slurp(d / "journal.csv") == full.substr(0, third));  // the torn bytes are gone
+  }
+  // Appending after recovery gives well-formed lines again.
+  {
+    Journal j(d, kHeader);
+    j.append("2,00000000000000cc,g,ok,3");
+  }
+  CHECK(slurp(d / "journal.csv") == full);
+}
+
+TEST_CASE("journal lines with a bad checksum are dropped and the header is checked", "[campaign]") {
+  const fs::path d = temp_dir();
+  {
+    Journal j(d, kHeader);
+    j.append("0,00000000000000aa,g,ok,1.5");
+    j.append("1,00000000000000bb,g,ok,2.5");
+    j.append("2,00000000000000cc,g,ok,3.5");
+  }
+  std::string text = slurp(d / "journal.csv");
+  text[text.find("2.5")] = '7';  // a flipped digit in the middle row
+  std::ofstream(d / "journal.csv", std::ios::binary | std::ios::trunc) << text;
+  {
+    Journal j(d, kHeader);
+    CHECK(j.dropped_lines() == 1);
+    CHECK(j.entries().size() == 2);
+    CHECK(j.entries().count(1) == 0);
+    CHECK(j.row(j.entries().at(2)) == "2,00000000000000cc,g,ok,3.5");
+  }
+  CHECK_THROWS_WITH(Journal(d, "index,hash,grid,status,y"), Contains("another campaign"));
+}
+
+TEST_CASE("a sweep resumed after a torn or corrupt journal reruns only those points", "[campaign]") {
+  const Campaign c = load_campaign(kData / "tiny.yaml");
+  const fs::path a = temp_dir() / "a";
+  const SweepReport full = sweep(c, a, 2);
+  CHECK(full.ran == c.size());
+  CHECK(full.ok == c.size());
+  const auto reference = values_of(a);
+  REQUIRE(reference.size() == c.size() + 1);
+
+  // Rerun: nothing to do.
+  CHECK(sweep(c, a).ran == 0);
+  // A folder holding other files is not taken for a store.
+  const fs::path other = a.parent_path() / "other";
+  fs::create_directories(other);
+  std::ofstream(other / "points.csv") << "mine\n";
+  std::ofstream(other / "notes.txt") << "mine\n";
+  CHECK_THROWS_WITH(sweep(c, other), Contains("it holds 'notes.txt'"));
+  CHECK(slurp(other / "points.csv") == "mine\n");
+
+  // Tear the last journal line (as kill -9 in the middle of a write would), corrupt another.
+  std::string j = slurp(a / "journal.csv");
+  j.resize(j.size() - 7);
+  const std::size_t row3 = j.find("\n3,") + 1;
+  j[j.find(",ok,", row3) + 1] = 'O';
+  std::ofstream(a / "journal.csv", std::ios::binary | std::ios::trunc) << j;
+  fs::remove(a / "points.csv");
+  const SweepReport resumed = sweep(c, a, 2);
+  CHECK(resumed.dropped_lines == 2);
+  CHECK(resumed.ran == 2);
+  CHECK(resumed.skipped == c.size() - 2);
+  CHECK(values_of(a) == reference);
+  // Every journal line appears once per point: no duplicate rows in the final store.
+  CHECK(lines_of(slurp(a / "journal.csv")).size() == c.size() + 1);
+}
+
+TEST_CASE("sweep values are identical for 1 and 2 threads and for merged shards", "[campaign]") {
+  const Campaign c = load_campaign(kData / "tiny.yaml");
+  const fs::path d = temp_dir();
+  sweep(c, d / "one", 1);
+  sweep(c, d / "two", 2);
+  const auto one = values_of(d / "one");
+  CHECK(one.size() == c.size() + 1);
+  CHECK(values_of(d / "two") == one);
+
+  const SweepReport s0 = sweep(c, d / "s0", 2, Shard{0, 3});
+  const SweepReport s1 = sweep(c, d / "s1", 1, Shard{1, 3});
+  const SweepReport s2 = sweep(c, d / "s2", 2, Shard{2, 3});
+  CHECK(s0.ran + s1.ran + s2.ran == c.size());
+  CHECK(values_of(d / "s1").size() == 1 + 4);  // indices 1, 4, 7, 10
+  const MergeReport m = merge_stores({d / "s2", d / "s0", d / "s1"}, d / "merged");
+  // Another split (shard 4/5 builds point 9 right after point 4).
+  std::vector<fs::path> fifths;
+  for (std::uint64_t i = 0; i < 5; ++i) {
+    fifths.push_back(d / ("f" + std::to_string(i)));
+    sweep(c, fifths.back(), 1, Shard{i, 5});
+  }
+  merge_stores(fifths, d / "merged5");
+  CHECK(values_of(d / "merged5") == one);
+  CHECK(m.rows == c.size());
+  CHECK(m.duplicates == 0);
+  CHECK(values_of(d / "merged") == one);
+  // The merged store is a store: resuming it has nothing left to do.
+  CHECK(sweep(c, d / "merged").ran == 0);
+  // Merging into an existing store is refused.
+  CHECK_THROWS_WITH(merge_stores({d / "one", d / "merged"}, d / "merged"), Contains("already holds a store"));
+}
+
+TEST_CASE("a failing point is recorded with its error and counted and the campaign goes on", "[campaign]") {
+  const fs::path d = temp_dir();
+  // Ct = 2 makes the reference's explicit step unstable (SolverError) at every eta; Ct = 50 runs.
+  std::ofstream(d / "fail.yaml") << "name: fail\nscenes: [" << (kData / "tiny_scene.yaml").string() << "]\n"
+                                 << "set: {solver.method: reference, stop.time: 0.05}\n"
+                                 << "axes: {solver.Ct: [2, 200]}\n";
+  const Campaign c = load_campaign(d / "fail.yaml");
+  const SweepReport r = sweep(c, d / "store", 2);
+  CHECK(r.ran == 2);
+  CHECK(r.failed == 1);
+  CHECK(r.ok == 1);
+  const auto rows = lines_of(slurp(d / "store" / "points.csv"));
+  REQUIRE(rows.size() == 3);
+  const auto header = csv_split(rows[0]);
+  const auto failed = csv_split(rows[1]);
+  const std::size_t status = Journal::status_column(rows[0]);
+  CHECK(failed[status] == "failed");
+  CHECK_THAT(failed[status + 1], Contains("unstable"));
+  CHECK(csv_split(rows[2])[status] == "ok");
+
+  // The command line counts it and exits 1.
+  const std::string cmd = "'" + std::string(ASPERITY_BINARY) + "' sweep '" + (d / "fail.yaml").string() + "' --out '" +
+                          (d / "cli").string() + "' --quiet 2>'" + (d / "err.txt").string() + "'";
+  const int rc = std::system(cmd.c_str());
+  CHECK(WEXITSTATUS(rc) == 1);
+  CHECK_THAT(slurp(d / "err.txt"), Contains("1 ok, 1 failed"));
+}
+
+TEST_CASE("point hashes do not depend on where the project lives", "[campaign]") {
+  const Campaign c = load_campaign(kData / "tiny.yaml");
+  const Scene s = CampaignScenes(c).scene(point_at(c, 0));
+  const std::string text = canonical_scene_text(s, kData);
+  CHECK_THAT(text, Contains("file: \"../scene/exp_small/experiment.yaml\""));
+  CHECK(text.find(ASPERITY_SOURCE_DIR) == std::string::npos);
+}
+
+TEST_CASE("plot draws a PNG heat map with one cell per grid point and blanks for NaN", "[campaign]") {
+  const Campaign c = load_campaign(kData / "tiny.yaml");
+  const fs::path d = temp_dir();
+  sweep(c, d / "s", 2);
+  // Independent count of the blank cells: eta_eps rows whose ss_drop is not a finite number.
+  const auto rows = lines_of(slurp(d / "s" / "points.csv"));
+  const auto header = csv_split(rows[0]);
+  const std::size_t col = static_cast<std::size_t>(std::find(header.begin(), header.end(), "ss_drop") - header.begin());
+  std::size_t nan_cells = 0;
+  for (std::size_t i = 1; i < rows.size(); ++i) {
+    const auto f = csv_split(rows[i]);
+    if (f[2] == "eta_eps" && (f[col] == "nan" || f[col].empty())) ++nan_cells;
+  }
+  HeatmapOptions o;
+  o.x = "model.eta";
+  o.y = "model.epsilon";
+  o.z = "ss_drop";
+  const HeatmapReport r = plot_heatmap(d / "s", o);
+  CHECK(r.cells == 9);  // 3 eta × 3 epsilon (the mass grid does not vary both)
+  CHECK(r.used_grid == "eta_eps");
+  CHECK(r.blank == nan_cells);
+  CHECK(slurp(r.png).substr(1, 3) == "PNG");
+  o.z = "no_such_column";
+  CHECK_THROWS_WITH(plot_heatmap(d / "s", o), Contains("no column 'no_such_column'"));
+  // Over eta × mass both grids contribute points on the same cells: asks for a filter.
+  o.z = "Q_s";
+  o.y = "experiment.mass";
+  CHECK_THROWS_WITH(plot_heatmap(d / "s", o), Contains("--where"));
+}
+
+TEST_CASE("a point's scene does not depend on the points built before it", "[campaign]") {
+  const Campaign c = load_campaign(kData / "tiny.yaml");
+  std::vector<std::string> forward;
+  {
+    const CampaignScenes scenes(c);
+    for (std::uint64_t i = 0; i < c.size(); ++i)
+      forward.push_back(canonical_scene_text(scenes.scene(point_at(c, i)), kData));
+  }
+  const CampaignScenes scenes(c);
+  for (std::uint64_t i = c.size(); i-- > 0;) {
+    INFO("point " << i);
+    CHECK(canonical_scene_text(scenes.scene(point_at(c, i)), kData) == forward[i]);
+    // Each point alone, on a fresh loader, too.
+    CHECK(canonical_scene_text(CampaignScenes(c).scene(point_at(c, i)), kData) == forward[i]);
+  }
+  // The mass grid keeps the base scene's eta (100), whatever the grid before it set.
+  CHECK(CampaignScenes(c).scene(point_at(c, 9)).model.eta == 100);
+  CHECK(scenes.scene(point_at(c, 10)).model.eta == 100);
+}
+
+TEST_CASE("a per-point time limit fails the point and series are stored by hash", "[campaign]") {
+  const fs::path d = temp_dir();
+  std::ofstream(d / "limit.yaml") << "name: limit\nscenes: [" << (kData / "tiny_scene.yaml").string() << "]\n"
+                                  << "time_limit: 1e-9\naxes: {model.eta: [50, 100]}\n";
+  const SweepReport r = sweep(load_campaign(d / "limit.yaml"), d / "limit", 2);
+  CHECK(r.failed == 2);
+  CHECK_THAT(slurp(d / "limit" / "points.csv"), Contains("per-point time limit of 1e-09 s exceeded"));
+
+  std::ofstream(d / "series.yaml") << "name: series\nscenes: [" << (kData / "tiny_scene.yaml").string() << "]\n"
+                                   << "series: true\naxes: {model.eta: [50, 100]}\n";
+  const Campaign c = load_campaign(d / "series.yaml");
+  CHECK(sweep(c, d / "series", 2).ok == 2);
+  const auto rows = lines_of(slurp(d / "series" / "points.csv"));
+  REQUIRE(rows.size() == 3);
+  for (std::size_t i = 1; i < rows.size(); ++i) {
+    const fs::path csv = d / "series" / "series" / (csv_split(rows[i])[1] + ".csv");
+    REQUIRE(fs::exists(csv));
+    const auto series = lines_of(slurp(csv));
+    CHECK(series.at(0) == "t,Q,A");  // the columns tiny_scene.yaml asks for
+    CHECK(series.size() > 100);      // 0.3 s sampled every 1 ms
+  }
+}
+
+TEST_CASE("a store with points.csv but no journal is plotted merged and resumed from points.csv", "[campaign]") {
+  const Campaign c = load_campaign(kData / "tiny.yaml");
+  const fs::path d = temp_dir();
+  sweep(c, d / "s", 2);
+  const auto before = values_of(d / "s");
+  fs::remove(d / "s" / "journal.csv");  // as in a clone: only points.csv is committed
+  CHECK(read_store(d / "s").rows.size() == c.size());
+  const SweepReport r = sweep(c, d / "s", 1);
+  CHECK(r.ran == 0);
+  CHECK(r.ok == c.size());
+  CHECK(values_of(d / "s") == before);
+  CHECK(lines_of(slurp(d / "s" / "journal.csv")).size() == c.size() + 1);
+}
