@@ -17,7 +17,12 @@ double UniversalForceLaw::phi_of_psi_exact(double psi) const {
   boost::math::tools::eps_tolerance<double> tol(52);
   std::uintmax_t it = 200;
   double lo = 0.0, h = hi;
-  if (fn(h) < 0) h = 1.0 - 1e-16;  // cannot happen for κ ≤ κ(1); kept as a guard
+  if (fn(h) < 0) {
+    // ψ beyond ψ(1 − 1e-16) (~1e8): the area has vanished to double precision. Only trial
+    // stages of an integrator reach this far past a slip point (e.g. at huge damping), so
+    // return the saturated value rather than fail to bracket.
+    return psi < 0 ? -(1.0 - 1e-16) : 1.0 - 1e-16;
+  }
   const auto r = boost::math::tools::toms748_solve(fn, lo, h, -a, fn(h), tol, it);
   const double phi = 0.5 * (r.first + r.second);
   return psi < 0 ? -phi : phi;

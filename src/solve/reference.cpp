@@ -73,7 +73,9 @@ RunInfo integrate_reference(const Scene& scene, Recorder& rec) {
     const bool slow = std::abs(V) < v_repin;  // |Ẋ(t)|: the latest known velocity
     std::int64_t slips = 0;
     bool any_repin = false;
-#pragma omp parallel for schedule(static) reduction(+ : slips) reduction(|| : any_repin)
+    // Fork only when the junctions outweigh the fork-join cost (~µs per step): at N = 60 two
+    // threads were 8× slower than one (bench report).
+#pragma omp parallel for schedule(static) reduction(+ : slips) reduction(|| : any_repin) if (N >= 256)
     for (std::size_t i = 0; i < N; ++i) {
       double f;
       if (J.pinned[i]) {
