@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <filesystem>
+#include <system_error>
 #include <cstdio>
 #include <ctime>
 #include <map>
@@ -147,7 +149,11 @@ std::string provenance_yaml(const Campaign& c, const std::string& campaign_text,
   std::ostringstream y;
   y << "# asperity sweep store: written once, when the store was started\n";
   y << "campaign: " << yaml_quoted(c.name) << '\n';
-  y << "campaign_file: " << yaml_quoted(c.file.string()) << '\n';
+  // Relative to the working directory when inside it (a committed store names no machine path).
+  std::error_code ec;
+  const auto rel = std::filesystem::relative(c.file, ec);
+  const bool inside = !ec && !rel.empty() && rel.begin()->string() != "..";
+  y << "campaign_file: " << yaml_quoted(inside ? rel.string() : c.file.string()) << '\n';
   y << "campaign_fnv1a64: " << yaml_quoted(hex16(fnv1a64(campaign_text))) << '\n';
   y << "points: " << c.size() << '\n';
   y << "shard: " << yaml_quoted(std::to_string(opt.shard.index) + "/" + std::to_string(opt.shard.count)) << '\n';
