@@ -9,17 +9,14 @@
 #include "scene/csv.hpp"
 #include "scene/numbers.hpp"
 
+#include "bench/number_text.hpp"
+
 namespace asperity {
 namespace fs = std::filesystem;
 
 namespace {
-std::string g(double x, int digits = 6) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*g", digits, x);
-  return buf;
-}
-// Shortest text that reads back to exactly x (values: errors can be recomputed from the CSV).
-std::string exact(double x) { return std::isfinite(x) ? scene_io::format_double(x) : "nan"; }
+using bench_text::g;
+using bench_text::exact;
 }  // namespace
 
 bool AccuracyRow::within_targets() const {

@@ -6,22 +6,20 @@
 #include <system_error>
 
 #include "bench/bench_scene.hpp"
-#include "bench/gnuplot.hpp"
+#include "report/gnuplot.hpp"
 #include "bench/timed_run.hpp"
 #include "observe/simulate.hpp"
 #include "report/run_writer.hpp"
 #include "scene/csv.hpp"
+
+#include "bench/number_text.hpp"
 
 namespace asperity {
 namespace fs = std::filesystem;
 
 namespace {
 
-std::string g(double x, int digits = 6) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*g", digits, x);
-  return buf;
-}
+using bench_text::g;
 
 // Median time of writing the run directory of `scene` (what `asperity run` does after the
 // integration) into `scratch`.

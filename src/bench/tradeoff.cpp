@@ -8,23 +8,20 @@
 #include <sstream>
 
 #include "bench/bench_scene.hpp"
-#include "bench/gnuplot.hpp"
+#include "report/gnuplot.hpp"
 #include "bench/timed_run.hpp"
 #include "scene/csv.hpp"
 #include "scene/numbers.hpp"
+
+#include "bench/number_text.hpp"
 
 namespace asperity {
 namespace fs = std::filesystem;
 
 namespace {
 
-std::string g(double x, int digits = 6) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*g", digits, x);
-  return buf;
-}
-// Shortest text that reads back to exactly x (values: errors can be recomputed from the CSV).
-std::string exact(double x) { return std::isfinite(x) ? scene_io::format_double(x) : "nan"; }
+using bench_text::g;
+using bench_text::exact;
 
 // Scene overrides shared by every run of one experiment: stop after the peak and `cycles`
 // stick-slip cycles; no series (the loading branch the fit needs is kept regardless).

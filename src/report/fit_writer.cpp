@@ -1,4 +1,5 @@
 #include "report/fit_writer.hpp"
+#include "report/gnuplot.hpp"
 
 #include <unistd.h>
 
@@ -29,12 +30,6 @@ void write_file(const fs::path& path, const std::string& text) {
   f << text;
   f.close();
   if (!f) throw std::runtime_error("cannot write " + path.string());
-}
-
-std::string shell_quote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
 }
 
 std::string csv_text(const std::string& s) {  // RFC 4180 quoting when needed
@@ -68,14 +63,12 @@ std::string unique_suffix() {
   return std::to_string(::getpid()) + "-" + std::to_string(counter++);
 }
 
-bool have_gnuplot() { return std::system("command -v gnuplot >/dev/null 2>&1") == 0; }
 
-void run_gnuplot(const fs::path& dir, const std::string& script) {
-  write_file(dir / ".plot.gp", script);
-  const std::string cmd = "cd " + shell_quote(dir.string()) + " && gnuplot .plot.gp >/dev/null 2>&1";
-  [[maybe_unused]] const int rc = std::system(cmd.c_str());  // a failed plot is not a failed fit
-  std::error_code ec;
-  fs::remove(dir / ".plot.gp", ec);
+void plot_quietly(const fs::path& dir, const std::string& script) {
+  try {
+    run_gnuplot(dir, script);
+  } catch (const std::exception&) {  // a failed plot is not a failed fit
+  }
 }
 
 struct Range {
@@ -191,7 +184,7 @@ void write_optimization(const fs::path& d, const FitSpec& spec, const Optimizati
          << (r.stand_in ? "stand-in measurement" : "measurement") << "'";
     gp << "\n";
   }
-  run_gnuplot(d, gp.str());
+  plot_quietly(d, gp.str());
 }
 
 void check_replaceable(const fs::path& target) {
@@ -334,7 +327,7 @@ void write_fit(const fs::path& dir, const FitSpec& spec, const FitResult& result
     }
   } cleanup{tmp};
 
-  const bool plots = have_gnuplot();
+  const bool plots = gnuplot_available();
   for (const auto& o : result.fits) write_optimization(tmp / fit_subdir(spec, o), spec, o, plots);
 
   // fitted.csv: one row per (optimization, experiment).
@@ -373,7 +366,7 @@ void write_fit(const fs::path& dir, const FitSpec& spec, const FitResult& result
        << "plot 'fitted.csv' skip 1 using 5:" << col << ":(($" << col + 1 << " == $" << col + 1 << ") ? $" << col + 1
        << " : $" << col << "):(($" << col + 2 << " == $" << col + 2 << ") ? $" << col + 2 << " : $" << col
        << ") with yerrorbars pt 7 title 'fit (bars: error-bar range)'\n";
-    run_gnuplot(tmp, gp.str());
+    plot_quietly(tmp, gp.str());
   }
   write_file(tmp / "fit.yaml", fit_yaml(spec, result));
 

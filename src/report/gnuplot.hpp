@@ -16,6 +16,16 @@ bool gnuplot_available();
 // are written as blank lines, which gnuplot draws as gaps).
 std::string gnuplot_block(const std::string& name, const std::vector<std::vector<double>>& rows);
 
+// A shell word quoting `s` (single quotes), for paths handed to std::system.
+std::string shell_quote(const std::string& s);
+
+// Renders `png` from `script` (which must not set the terminal or output): the script is
+// prefixed with `set terminal pngcairo size W,H noenhanced` and an output to a hidden temporary
+// name that is renamed into place, so a failed plot never leaves a half-written PNG. Returns
+// false (writing nothing) when gnuplot is missing or fails.
+bool render_png(const std::filesystem::path& png, const std::string& script, int width = 1200,
+                int height = 800);
+
 // Runs `script` with `workdir` as current directory. Throws std::runtime_error naming the
 // script's first output line and gnuplot's exit status when gnuplot is missing or fails.
 void run_gnuplot(const std::filesystem::path& workdir, const std::string& script);

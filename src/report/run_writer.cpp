@@ -12,6 +12,7 @@
 #include <stdexcept>
 #include <system_error>
 
+#include "report/gnuplot.hpp"
 #include "scene/load.hpp"
 
 namespace asperity {
@@ -40,12 +41,6 @@ void write_file(const fs::path& path, const std::string& text) {
   f << text;
   f.close();
   if (!f) throw std::runtime_error("cannot write " + path.string());
-}
-
-std::string shell_quote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
 }
 
 // The directory a user means by `dir` ("runs/x/" and "runs/x" alike), made absolute.
@@ -248,7 +243,7 @@ bool write_run_plot(const fs::path& dir) {
   };
   const int ct = col("t"), cq = col("Q"), ca = col("A");
   if (ct < 0 || cq < 0 || ca < 0) return false;
-  if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) return false;
+  if (!gnuplot_available()) return false;
 
   const std::string t = std::to_string(ct), q = std::to_string(cq), a = std::to_string(ca);
   std::ostringstream gp;
