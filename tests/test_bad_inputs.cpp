@@ -2,6 +2,8 @@
 // refused with exit status 2 and one message naming the file, the line and the key, and nothing
 // may be written. Experiments are loaded through a scene, junction/measured CSVs through an
 // experiment, exactly as a user's files would be.
+#include <unistd.h>
+
 #include <sys/wait.h>
 
 #include <catch2/catch.hpp>
@@ -63,7 +65,7 @@ TEST_CASE("bad-input corpus: each file is refused naming file, line and key, and
   CHECK(files == cases.size());
   CHECK(cases.size() >= 50);
 
-  const fs::path work = fs::temp_directory_path() / "asperity_test_bad_inputs";
+  const fs::path work = fs::temp_directory_path() / ("asperity_test_bad_inputs-" + std::to_string(::getpid()));
   fs::remove_all(work);
   fs::create_directories(work);
   const fs::path junctions = src / "data/standin/P0.98N/junctions.csv";

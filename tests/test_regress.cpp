@@ -1,4 +1,6 @@
 // Regression runs: tolerances from the tightened twin, comparison, and drift detection end to end.
+#include <unistd.h>
+
 #include <sys/wait.h>
 
 #include <catch2/catch.hpp>
@@ -25,7 +27,7 @@ TEST_CASE("regress: tolerance is 10x the tightening change, floored at 10x the s
   CHECK_THAT(g.entries.at("x").at("ss_drop").tolerance, Catch::Matchers::WithinRel(0.5e-8, 1e-12));
   CHECK(g.entries.at("x").at("ss_cycles").tolerance == 1.0);
   // Round trip through the golden file, then compare: inside passes, outside drifts, NaN = NaN.
-  const fs::path f = fs::temp_directory_path() / "asperity_test_golden.yaml";
+  const fs::path f = fs::temp_directory_path() / ("asperity_test_golden-" + std::to_string(::getpid()) + ".yaml");
   std::ofstream(f) << golden_to_yaml(g);
   const Golden back = load_golden(f);
   CHECK(back.entries.at("x").at("Q_s").value == 2.0);
@@ -45,7 +47,7 @@ TEST_CASE("regress: tolerance is 10x the tightening change, floored at 10x the s
 
 TEST_CASE("asperity regress passes on the committed golden results and catches an injected drift", "[regress][cli]") {
   const fs::path src(ASPERITY_SOURCE_DIR);
-  const fs::path work = fs::temp_directory_path() / "asperity_test_regress";
+  const fs::path work = fs::temp_directory_path() / ("asperity_test_regress-" + std::to_string(::getpid()));
   fs::remove_all(work);
   fs::create_directories(work);
   auto run = [&](const std::string& args) {
@@ -65,13 +67,15 @@ TEST_CASE("asperity regress passes on the committed golden results and catches a
   text.replace(text.find(from), from.size(), "'" + (src / "scenes/paper/P0.98N.yaml").string() +
                                                  "', set: [stop.cycles=5, model.eta=100.5]");
   // Other scene paths are relative to the suite: keep the copy beside the original.
-  const fs::path drift = src / "scenes/regression" / ".drift_test_suite.yaml";
+  const fs::path drift = src / "scenes/regression" / (".drift_test_suite-" + std::to_string(::getpid()) + ".yaml");
   std::ofstream(drift) << text;
-  CHECK(run("--suite '" + drift.string() + "'") == 1);
+  const int rc = run("--suite '" + drift.string() + "'");
   fs::remove(drift);
   std::ifstream out(work / "out.txt");
   std::stringstream o;
   o << out.rdbuf();
+  INFO("regress output: " << o.str());
+  CHECK(rc == 1);
   CHECK(o.str().find("P0.98N_stick_slip") != std::string::npos);
   CHECK(o.str().find("DRIFT") != std::string::npos);
   CHECK(o.str().find("P6.40N_stick_slip") == std::string::npos);  // untouched entries still pass

@@ -1,4 +1,6 @@
 // The paper reproduction: loading-branch time lookup and `asperity reproduce` end to end.
+#include <unistd.h>
+
 #include <sys/wait.h>
 
 #include <catch2/catch.hpp>
@@ -26,7 +28,7 @@ TEST_CASE("loading_time_at inverts a linear loading branch and is NaN beyond it"
 
 TEST_CASE("asperity reproduce: table rows equal single runs, figures written", "[report][cli]") {
   const fs::path src(ASPERITY_SOURCE_DIR);
-  const fs::path work = fs::temp_directory_path() / "asperity_test_reproduce";
+  const fs::path work = fs::temp_directory_path() / ("asperity_test_reproduce-" + std::to_string(::getpid()));
   fs::remove_all(work);
   fs::create_directories(work);
   const fs::path s1 = src / "scenes/paper/P0.98N.yaml", s2 = src / "scenes/paper/P1.52N.yaml";
