@@ -44,3 +44,19 @@ inline Outcome run(const Scene& s, bool keep_series = true) {
 }
 
 }  // namespace asperity::testing
+
+#include <unistd.h>
+
+#include <filesystem>
+#include <string>
+
+namespace asperity::testing {
+// A path in the temporary folder unique to this process (test suites may run side by side).
+inline std::filesystem::path temp_path(const std::string& stem, const std::string& ext = "") {
+  std::string name = stem;
+  name += '-';
+  name += std::to_string(::getpid());
+  name += ext;
+  return std::filesystem::temp_directory_path() / name;
+}
+}  // namespace asperity::testing

@@ -14,6 +14,8 @@
 #include <string>
 #include <vector>
 
+#include "support.hpp"
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -65,7 +67,7 @@ TEST_CASE("bad-input corpus: each file is refused naming file, line and key, and
   CHECK(files == cases.size());
   CHECK(cases.size() >= 50);
 
-  const fs::path work = fs::temp_directory_path() / ("asperity_test_bad_inputs-" + std::to_string(::getpid()));
+  const fs::path work = asperity::testing::temp_path("asperity_test_bad_inputs");
   fs::remove_all(work);
   fs::create_directories(work);
   const fs::path junctions = src / "data/standin/P0.98N/junctions.csv";

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "support.hpp"
 #include "regress/regress.hpp"
 #include "scene/load.hpp"
 
@@ -27,7 +28,7 @@ TEST_CASE("regress: tolerance is 10x the tightening change, floored at 10x the s
   CHECK_THAT(g.entries.at("x").at("ss_drop").tolerance, Catch::Matchers::WithinRel(0.5e-8, 1e-12));
   CHECK(g.entries.at("x").at("ss_cycles").tolerance == 1.0);
   // Round trip through the golden file, then compare: inside passes, outside drifts, NaN = NaN.
-  const fs::path f = fs::temp_directory_path() / ("asperity_test_golden-" + std::to_string(::getpid()) + ".yaml");
+  const fs::path f = asperity::testing::temp_path("asperity_test_golden", ".yaml");
   std::ofstream(f) << golden_to_yaml(g);
   const Golden back = load_golden(f);
   CHECK(back.entries.at("x").at("Q_s").value == 2.0);
@@ -47,7 +48,7 @@ TEST_CASE("regress: tolerance is 10x the tightening change, floored at 10x the s
 
 TEST_CASE("asperity regress passes on the committed golden results and catches an injected drift", "[regress][cli]") {
   const fs::path src(ASPERITY_SOURCE_DIR);
-  const fs::path work = fs::temp_directory_path() / ("asperity_test_regress-" + std::to_string(::getpid()));
+  const fs::path work = asperity::testing::temp_path("asperity_test_regress");
   fs::remove_all(work);
   fs::create_directories(work);
   auto run = [&](const std::string& args) {
@@ -67,7 +68,7 @@ TEST_CASE("asperity regress passes on the committed golden results and catches a
   text.replace(text.find(from), from.size(), "'" + (src / "scenes/paper/P0.98N.yaml").string() +
                                                  "', set: [stop.cycles=5, model.eta=100.5]");
   // Other scene paths are relative to the suite: keep the copy beside the original.
-  const fs::path drift = src / "scenes/regression" / (".drift_test_suite-" + std::to_string(::getpid()) + ".yaml");
+  const fs::path drift = src / "scenes/regression" / asperity::testing::temp_path(".drift_test_suite", ".yaml").filename();
   std::ofstream(drift) << text;
   const int rc = run("--suite '" + drift.string() + "'");
   fs::remove(drift);

@@ -11,6 +11,7 @@
 #include <sstream>
 #include <string>
 
+#include "support.hpp"
 #include "observe/simulate.hpp"
 #include "report/paper_figures.hpp"
 #include "scene/load.hpp"
@@ -28,7 +29,7 @@ TEST_CASE("loading_time_at inverts a linear loading branch and is NaN beyond it"
 
 TEST_CASE("asperity reproduce: table rows equal single runs, figures written", "[report][cli]") {
   const fs::path src(ASPERITY_SOURCE_DIR);
-  const fs::path work = fs::temp_directory_path() / ("asperity_test_reproduce-" + std::to_string(::getpid()));
+  const fs::path work = asperity::testing::temp_path("asperity_test_reproduce");
   fs::remove_all(work);
   fs::create_directories(work);
   const fs::path s1 = src / "scenes/paper/P0.98N.yaml", s2 = src / "scenes/paper/P1.52N.yaml";
