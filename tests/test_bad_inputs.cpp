@@ -1,7 +1,8 @@
 // The bad-input corpus (tests/bad_inputs/, expectations in EXPECTED.tsv): every file must be
 // refused with exit status 2 and one message naming the file, the line and the key, and nothing
 // may be written. Experiments are loaded through a scene, junction/measured CSVs through an
-// experiment, exactly as a user's files would be.
+// experiment, exactly as a user's files would be; campaigns run through `asperity sweep`, fits
+// through `asperity fit` (their scene paths are relative to tests/bad_inputs/).
 #include <unistd.h>
 
 #include <sys/wait.h>
@@ -77,7 +78,13 @@ TEST_CASE("bad-input corpus: each file is refused naming file, line and key, and
     REQUIRE(fs::exists(file));
     fs::path scene;
     std::string command = "run";
-    if (c.file.rfind("scene_", 0) == 0) {
+    if (c.file.rfind("campaign_", 0) == 0) {
+      scene = file;
+      command = "sweep";
+    } else if (c.file.rfind("fit_", 0) == 0) {
+      scene = file;
+      command = "fit";
+    } else if (c.file.rfind("scene_", 0) == 0) {
       scene = file;
     } else if (c.file.rfind("experiment_", 0) == 0) {
       scene = work / "scene.yaml";

@@ -177,3 +177,15 @@ TEST_CASE("Fit file errors name file, line and key", "[fit][load]") {
     CHECK(e.key == "profile.parameter");
   }
 }
+
+TEST_CASE("NLopt algorithm names are checked against NLopt's own list", "[fit][load]") {
+  // Names from the NLopt manual: derivative-free ones pass, the rest are refused with a reason.
+  CHECK(check_fit_algorithm("LN_BOBYQA").empty());
+  CHECK(check_fit_algorithm("GN_DIRECT_L").empty());
+  CHECK(check_fit_algorithm("LN_BOBYQUA").find("did you mean 'LN_BOBYQA'") != std::string::npos);
+  CHECK(check_fit_algorithm("LD_LBFGS").find("gradients") != std::string::npos);
+  CHECK(check_fit_algorithm("LN_AUGLAG").find("subsidiary") != std::string::npos);
+  // Not names at all (nlopt_algorithm_from_string answers -1, not an enum value: found by fuzz_fit).
+  CHECK(check_fit_algorithm("").find("unknown") != std::string::npos);
+  CHECK(check_fit_algorithm(std::string("LN_BOBYQA\0x", 11)).find("unknown") != std::string::npos);
+}

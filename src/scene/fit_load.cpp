@@ -77,12 +77,20 @@ struct ParamNodes {  // where each parameter's values were written (for errors f
 }  // namespace
 
 std::string check_fit_algorithm(const std::string& name) {
-  const nlopt_algorithm a = nlopt_algorithm_from_string(name.c_str());
-  if (static_cast<int>(a) < 0) {
+  // By name over NLopt's list: nlopt_algorithm_from_string answers an unknown name with -1, which
+  // is not a value of the enum (undefined behaviour to hold in one; UBSan, found by fuzz_fit).
+  bool known = false;
+  for (int i = 0; i < NLOPT_NUM_ALGORITHMS && !known; ++i) {
+    const char* s = nlopt_algorithm_to_string(static_cast<nlopt_algorithm>(i));
+    known = s && name == s;
+  }
+  if (!known) {
     std::vector<std::string> names;
     for (int i = 0; i < NLOPT_NUM_ALGORITHMS; ++i) {
       const char* s = nlopt_algorithm_to_string(static_cast<nlopt_algorithm>(i));
-      if (s && (std::string(s).rfind("LN_", 0) == 0)) names.emplace_back(s);
+      // Only the ones a fit file can use (AUGLAG needs a subsidiary optimizer).
+      if (s && std::string(s).rfind("LN_", 0) == 0 && std::string(s).find("AUGLAG") == std::string::npos)
+        names.emplace_back(s);
     }
     return "unknown NLopt algorithm " + quote(name) + did_you_mean(name, names) +
            "; derivative-free local ones: " + join(names);
