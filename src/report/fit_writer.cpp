@@ -1,5 +1,6 @@
 #include "report/fit_writer.hpp"
 #include "report/gnuplot.hpp"
+#include "report/output_dir.hpp"
 
 #include <unistd.h>
 
@@ -24,14 +25,6 @@ namespace {
 
 constexpr double kGravity = 9.81;  // m/s², P = M g (as the stand-in recipe)
 
-void write_file(const fs::path& path, const std::string& text) {
-  std::ofstream f(path, std::ios::binary | std::ios::trunc);
-  if (!f) throw std::runtime_error("cannot create " + path.string());
-  f << text;
-  f.close();
-  if (!f) throw std::runtime_error("cannot write " + path.string());
-}
-
 std::string csv_text(const std::string& s) {  // RFC 4180 quoting when needed
   if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
   std::string out = "\"";
@@ -50,17 +43,6 @@ std::string csv_num(double x) {  // %.17g: round-trips, "nan" for NaN (gnuplot a
   char buf[40];
   std::snprintf(buf, sizeof buf, "%.17g", x);
   return buf;
-}
-
-fs::path normal_dir(const fs::path& dir) {
-  fs::path p = fs::absolute(dir).lexically_normal();
-  if (!p.has_filename()) p = p.parent_path();
-  return p;
-}
-
-std::string unique_suffix() {
-  static std::atomic<unsigned> counter{0};
-  return std::to_string(::getpid()) + "-" + std::to_string(counter++);
 }
 
 
@@ -308,83 +290,50 @@ void check_fit_dir(const fs::path& dir) {
 }
 
 void write_fit(const fs::path& dir, const FitSpec& spec, const FitResult& result) {
-  const fs::path target = normal_dir(dir);
-  const fs::path parent = target.parent_path();
-  const std::string name = target.filename().string();
-  std::error_code ec;
-  fs::create_directories(parent, ec);
-  if (ec) throw std::runtime_error("cannot create " + parent.string() + ": " + ec.message());
-  if (fs::exists(fs::symlink_status(target))) check_replaceable(target);
-  const fs::path tmp = parent / ("." + name + ".tmp-" + unique_suffix());
-  fs::remove_all(tmp, ec);
-  if (!fs::create_directory(tmp, ec) || ec) throw std::runtime_error("cannot create " + tmp.string() + ": " + ec.message());
-  struct Cleanup {
-    fs::path p;
-    bool armed = true;
-    ~Cleanup() {
-      std::error_code e;
-      if (armed) fs::remove_all(p, e);
-    }
-  } cleanup{tmp};
+  write_dir_atomically(dir, check_replaceable, [&](const fs::path& tmp) {
+    const bool plots = gnuplot_available();
+    for (const auto& o : result.fits) write_optimization(tmp / fit_subdir(spec, o), spec, o, plots);
 
-  const bool plots = gnuplot_available();
-  for (const auto& o : result.fits) write_optimization(tmp / fit_subdir(spec, o), spec, o, plots);
-
-  // fitted.csv: one row per (optimization, experiment).
-  std::ostringstream c;
-  c << "fit,experiment,stand_in,mass_kg,P_N";
-  for (const auto& p : spec.parameters) c << "," << csv_text(p.key) << "," << csv_text(p.key + "_min") << "," << csv_text(p.key + "_max");
-  c << ",objective,term,alpha,alpha_measured,Q_s_N,area_drop_fraction,shape_exponent,shape_exponent_measured,evaluations,wall_s,stop_reason,status\n";
-  for (const auto& o : result.fits) {
-    const std::vector<Range> ranges = error_bar_ranges(o);
-    for (const auto& r : o.best_runs) {
-      c << csv_text(o.label) << "," << csv_text(spec.experiments[r.experiment].name) << "," << (r.stand_in ? "true" : "false") << ","
-        << csv_num(r.mass_kg) << "," << csv_num(r.mass_kg * kGravity);
-      for (std::size_t j = 0; j < spec.parameters.size(); ++j) {
-        Range v;
-        for (std::size_t i = 0; i < o.variables.size(); ++i)
-          if (o.variables[i].parameter == j &&
-              (o.variables[i].experiment < 0 || static_cast<std::size_t>(o.variables[i].experiment) == r.experiment))
-            v = o.refits.empty() ? Range{o.best[i], Observables::nan, Observables::nan, Observables::nan} : ranges[i];
-        c << "," << csv_num(v.value) << "," << csv_num(v.min) << "," << csv_num(v.max);
+    // fitted.csv: one row per (optimization, experiment).
+    std::ostringstream c;
+    c << "fit,experiment,stand_in,mass_kg,P_N";
+    for (const auto& p : spec.parameters) c << "," << csv_text(p.key) << "," << csv_text(p.key + "_min") << "," << csv_text(p.key + "_max");
+    c << ",objective,term,alpha,alpha_measured,Q_s_N,area_drop_fraction,shape_exponent,shape_exponent_measured,evaluations,wall_s,stop_reason,status\n";
+    for (const auto& o : result.fits) {
+      const std::vector<Range> ranges = error_bar_ranges(o);
+      for (const auto& r : o.best_runs) {
+        c << csv_text(o.label) << "," << csv_text(spec.experiments[r.experiment].name) << "," << (r.stand_in ? "true" : "false") << ","
+          << csv_num(r.mass_kg) << "," << csv_num(r.mass_kg * kGravity);
+        for (std::size_t j = 0; j < spec.parameters.size(); ++j) {
+          Range v;
+          for (std::size_t i = 0; i < o.variables.size(); ++i)
+            if (o.variables[i].parameter == j &&
+                (o.variables[i].experiment < 0 || static_cast<std::size_t>(o.variables[i].experiment) == r.experiment))
+              v = o.refits.empty() ? Range{o.best[i], Observables::nan, Observables::nan, Observables::nan} : ranges[i];
+          c << "," << csv_num(v.value) << "," << csv_num(v.min) << "," << csv_num(v.max);
+        }
+        c << "," << csv_num(o.objective) << "," << csv_num(r.residual) << "," << csv_num(r.obs.alpha) << ","
+          << csv_num(r.obs.alpha_measured) << "," << csv_num(r.obs.Q_s) << "," << csv_num(r.obs.area_drop_fraction) << ","
+          << csv_num(r.obs.shape_exponent) << "," << csv_num(r.obs.shape_exponent_measured) << "," << o.evaluations << ","
+          << csv_num(o.wall_s) << "," << o.stop_reason << "," << (o.ok() ? "ok" : "failed") << "\n";
       }
-      c << "," << csv_num(o.objective) << "," << csv_num(r.residual) << "," << csv_num(r.obs.alpha) << ","
-        << csv_num(r.obs.alpha_measured) << "," << csv_num(r.obs.Q_s) << "," << csv_num(r.obs.area_drop_fraction) << ","
-        << csv_num(r.obs.shape_exponent) << "," << csv_num(r.obs.shape_exponent_measured) << "," << o.evaluations << ","
-        << csv_num(o.wall_s) << "," << o.stop_reason << "," << (o.ok() ? "ok" : "failed") << "\n";
     }
-  }
-  write_file(tmp / "fitted.csv", c.str());
-  if (plots && spec.separate && result.fits.size() > 1) {
-    // First parameter against the load, with the error-bar range when computed.
-    const std::size_t col = 6;  // fitted.csv column of the first parameter's value (1-based)
-    std::ostringstream gp;
-    gp << "set terminal pngcairo size 800,560 noenhanced\nset datafile separator ','\nset grid\n"
-       << "set output 'fitted.png'\nset key top left\n"
-       << "set title '" << spec.name << ": fitted " << spec.parameters[0].key << " per experiment'\n"
-       << "set xlabel 'P = M g [N]'\nset ylabel '" << spec.parameters[0].key << "'\n"
-       << "plot 'fitted.csv' skip 1 using 5:" << col << ":(($" << col + 1 << " == $" << col + 1 << ") ? $" << col + 1
-       << " : $" << col << "):(($" << col + 2 << " == $" << col + 2 << ") ? $" << col + 2 << " : $" << col
-       << ") with yerrorbars pt 7 title 'fit (bars: error-bar range)'\n";
-    plot_quietly(tmp, gp.str());
-  }
-  write_file(tmp / "fit.yaml", fit_yaml(spec, result));
-
-  fs::path old;
-  if (fs::exists(fs::symlink_status(target))) {
-    check_replaceable(target);
-    old = parent / ("." + name + ".old-" + unique_suffix());
-    fs::rename(target, old, ec);
-    if (ec) throw std::runtime_error("cannot replace " + target.string() + ": " + ec.message());
-  }
-  fs::rename(tmp, target, ec);
-  if (ec) {
-    std::error_code e2;
-    if (!old.empty()) fs::rename(old, target, e2);
-    throw std::runtime_error("cannot move " + tmp.string() + " to " + target.string() + ": " + ec.message());
-  }
-  cleanup.armed = false;
-  if (!old.empty()) fs::remove_all(old, ec);
+    write_file(tmp / "fitted.csv", c.str());
+    if (plots && spec.separate && result.fits.size() > 1) {
+      // First parameter against the load, with the error-bar range when computed.
+      const std::size_t col = 6;  // fitted.csv column of the first parameter's value (1-based)
+      std::ostringstream gp;
+      gp << "set terminal pngcairo size 800,560 noenhanced\nset datafile separator ','\nset grid\n"
+         << "set output 'fitted.png'\nset key top left\n"
+         << "set title '" << spec.name << ": fitted " << spec.parameters[0].key << " per experiment'\n"
+         << "set xlabel 'P = M g [N]'\nset ylabel '" << spec.parameters[0].key << "'\n"
+         << "plot 'fitted.csv' skip 1 using 5:" << col << ":(($" << col + 1 << " == $" << col + 1 << ") ? $" << col + 1
+         << " : $" << col << "):(($" << col + 2 << " == $" << col + 2 << ") ? $" << col + 2 << " : $" << col
+         << ") with yerrorbars pt 7 title 'fit (bars: error-bar range)'\n";
+      plot_quietly(tmp, gp.str());
+    }
+    write_file(tmp / "fit.yaml", fit_yaml(spec, result));
+  });
 }
 
 }  // namespace asperity

@@ -13,6 +13,7 @@
 #include <system_error>
 
 #include "report/gnuplot.hpp"
+#include "report/output_dir.hpp"
 #include "scene/load.hpp"
 
 namespace asperity {
@@ -33,26 +34,6 @@ const char* method_name(SolverMethod m) {
     case SolverMethod::event: return "event";
   }
   return "unknown";
-}
-
-void write_file(const fs::path& path, const std::string& text) {
-  std::ofstream f(path, std::ios::binary | std::ios::trunc);
-  if (!f) throw std::runtime_error("cannot create " + path.string());
-  f << text;
-  f.close();
-  if (!f) throw std::runtime_error("cannot write " + path.string());
-}
-
-// The directory a user means by `dir` ("runs/x/" and "runs/x" alike), made absolute.
-fs::path normal_dir(const fs::path& dir) {
-  fs::path p = fs::absolute(dir).lexically_normal();
-  if (!p.has_filename()) p = p.parent_path();
-  return p;
-}
-
-std::string unique_suffix() {
-  static std::atomic<unsigned> counter{0};
-  return std::to_string(::getpid()) + "-" + std::to_string(counter++);
 }
 
 // An existing DIR is replaced only when it is a run directory (holds nothing but the files a
@@ -174,57 +155,19 @@ std::string summary_yaml(const Scene& scene, const Observables& o, const std::ve
 
 void write_run(const fs::path& dir, const Scene& scene, const Observables& obs, const Recorder& rec,
                const RunWriteOptions& opt) {
-  const fs::path target = normal_dir(dir);
-  const fs::path parent = target.parent_path();
-  const std::string name = target.filename().string();
-  std::error_code ec;
-  fs::create_directories(parent, ec);
-  if (ec) throw std::runtime_error("cannot create " + parent.string() + ": " + ec.message());
-
-  if (fs::exists(fs::symlink_status(target))) check_replaceable_dir(target);  // before any work
-
-  const fs::path tmp = parent / ("." + name + ".tmp-" + unique_suffix());
-  fs::remove_all(tmp, ec);
-  if (!fs::create_directory(tmp, ec) || ec)
-    throw std::runtime_error("cannot create " + tmp.string() + ": " + ec.message());
-  struct Cleanup {  // removes the temporary directory unless it was renamed into place
-    fs::path p;
-    bool armed = true;
-    ~Cleanup() {
-      std::error_code e;
-      if (armed) fs::remove_all(p, e);
+  write_dir_atomically(dir, check_replaceable_dir, [&](const fs::path& tmp) {
+    // Text first: a failure (e.g. scene_to_yaml throwing) happens before anything is written.
+    const std::string scene_text = scene_to_yaml(scene);
+    const std::string summary_text = summary_yaml(scene, obs, rec.peaks());
+    if (!scene.output.series.empty()) {
+      std::ostringstream csv;
+      write_series_csv(csv, rec.series(), scene.output.series);
+      write_file(tmp / "series.csv", csv.str());
     }
-  } cleanup{tmp};
-
-  // Text first: a failure (e.g. scene_to_yaml throwing) happens before anything is written.
-  const std::string scene_text = scene_to_yaml(scene);
-  const std::string summary_text = summary_yaml(scene, obs, rec.peaks());
-  if (!scene.output.series.empty()) {
-    std::ostringstream csv;
-    write_series_csv(csv, rec.series(), scene.output.series);
-    write_file(tmp / "series.csv", csv.str());
-  }
-  write_file(tmp / "summary.yaml", summary_text);
-  write_file(tmp / "scene.yaml", scene_text);
-  if (opt.plot) write_run_plot(tmp);
-
-  // Replace: move an existing DIR aside, move the new one in, then delete the old one.
-  fs::path old;
-  if (fs::exists(fs::symlink_status(target))) {
-    check_replaceable_dir(target);
-    old = parent / ("." + name + ".old-" + unique_suffix());
-    fs::rename(target, old, ec);
-    if (ec) throw std::runtime_error("cannot replace " + target.string() + ": " + ec.message());
-  }
-  fs::rename(tmp, target, ec);
-  if (ec) {
-    std::error_code e2;
-    if (!old.empty()) fs::rename(old, target, e2);  // put the previous run back
-    throw std::runtime_error("cannot move " + tmp.string() + " to " + target.string() + ": " +
-                             ec.message());
-  }
-  cleanup.armed = false;
-  if (!old.empty()) fs::remove_all(old, ec);
+    write_file(tmp / "summary.yaml", summary_text);
+    write_file(tmp / "scene.yaml", scene_text);
+    if (opt.plot) write_run_plot(tmp);
+  });
 }
 
 bool write_run_plot(const fs::path& dir) {
