@@ -48,9 +48,19 @@ inline Outcome run(const Scene& s, bool keep_series = true) {
 #include <unistd.h>
 
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 
 namespace asperity::testing {
+// The whole text of a file (empty when it cannot be read).
+inline std::string slurp(const std::filesystem::path& p) {
+  std::ifstream f(p);
+  std::stringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
 // A path in the temporary folder unique to this process (test suites may run side by side).
 inline std::filesystem::path temp_path(const std::string& stem, const std::string& ext = "") {
   std::string name = stem;

@@ -21,12 +21,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string slurp(const fs::path& p) {
-  std::ifstream f(p);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
+using asperity::testing::slurp;
 std::string q(const fs::path& p) {
   std::string s(1, '\'');
   s += p.string();

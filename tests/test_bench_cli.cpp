@@ -10,18 +10,15 @@
 #include <string>
 #include <vector>
 
+#include "support.hpp"
+
 namespace fs = std::filesystem;
 
 namespace {
 
-std::string slurp(const fs::path& p) {
-  std::ifstream f(p);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
+using asperity::testing::slurp;
 
-int asperity(const std::string& args, const fs::path& work, std::string* err) {
+int run_cli(const std::string& args, const fs::path& work, std::string* err) {
   const std::string cmd = "cd '" + work.string() + "' && '" + ASPERITY_BINARY + "' " + args +
                           " >stdout.txt 2>stderr.txt";
   const int rc = std::system(cmd.c_str());
@@ -43,11 +40,11 @@ TEST_CASE("bench names a missing scene file and writes nothing", "[bench][cli]")
   fs::remove_all(w);
   fs::create_directories(w);
   std::string err;
-  CHECK(asperity("bench tradeoff --scene no_such_scene.yaml --out out", w, &err) == 2);
+  CHECK(run_cli("bench tradeoff --scene no_such_scene.yaml --out out", w, &err) == 2);
   CHECK_THAT(err, Catch::Matchers::Contains("no_such_scene.yaml"));
   CHECK_THAT(err, Catch::Matchers::Contains("not found"));
   CHECK(!fs::exists(w / "out"));
-  CHECK(asperity("bench accuracy --scenes-dir no_such_folder --out out", w, &err) == 2);
+  CHECK(run_cli("bench accuracy --scenes-dir no_such_folder --out out", w, &err) == 2);
   CHECK_THAT(err, Catch::Matchers::Contains("no_such_folder"));
   fs::remove_all(w);
 }
@@ -58,7 +55,7 @@ TEST_CASE("bench accuracy writes one row per scene and tolerance against the con
   fs::create_directories(w);
   const std::string scene = std::string(ASPERITY_SOURCE_DIR) + "/scenes/paper/P0.98N.yaml";
   std::string err;
-  REQUIRE(asperity("bench accuracy --scene '" + scene + "' --tolerance 1e-6 1e-9 --out out", w, &err) == 0);
+  REQUIRE(run_cli("bench accuracy --scene '" + scene + "' --tolerance 1e-6 1e-9 --out out", w, &err) == 0);
   std::istringstream csv(slurp(w / "out" / "accuracy.csv"));
   std::string header, line;
   REQUIRE(std::getline(csv, header));

@@ -8,17 +8,14 @@
 
 #include "fit_support.hpp"
 
+#include "support.hpp"
+
 using namespace asperity::testing;
 namespace fs = std::filesystem;
 
 namespace {
 
-std::string slurp(const fs::path& p) {
-  std::ifstream f(p);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
+using asperity::testing::slurp;
 
 int asperity_in(const fs::path& work, const std::string& args, std::string* err = nullptr) {
   const std::string cmd = "cd '" + work.string() + "' && '" + ASPERITY_BINARY + "' " + args +

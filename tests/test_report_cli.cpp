@@ -11,21 +11,23 @@
 #include <sstream>
 #include <string>
 
+#include "support.hpp"
+
 namespace fs = std::filesystem;
 
 namespace {
 
-std::string slurp(const fs::path& p) {
-  std::ifstream f(p);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
+using asperity::testing::slurp;
+
+std::string q(const fs::path& p) {
+  std::string s(1, '\'');
+  s += p.string();
+  s += '\'';
+  return s;
 }
 
-std::string q(const fs::path& p) { return "'" + p.string() + "'"; }
-
 // Runs the asperity binary with `args`; returns its exit status, stderr in `err`.
-int asperity(const std::string& args, const fs::path& work, std::string* err = nullptr) {
+int run_cli(const std::string& args, const fs::path& work, std::string* err = nullptr) {
   const fs::path errf = work / "stderr.txt";
   const std::string cmd = "cd " + q(work) + " && " + q(ASPERITY_BINARY) + " " + args + " >" +
                           q(work / "stdout.txt") + " 2>" + q(errf);
@@ -65,7 +67,7 @@ fs::path make_case() {
 TEST_CASE("asperity run writes a run directory whose scene.yaml repeats the run", "[report][observe]") {
   const fs::path w = make_case();
   std::string err;
-  REQUIRE(asperity("run scenes/tiny.yaml --quiet --set model.eta=50", w, &err) == 0);
+  REQUIRE(run_cli("run scenes/tiny.yaml --quiet --set model.eta=50", w, &err) == 0);
   INFO(err);
   const fs::path d1 = w / "results" / "runs" / "tiny";  // default: results/runs/<stem>/
   REQUIRE(fs::exists(d1 / "summary.yaml"));
@@ -73,7 +75,7 @@ TEST_CASE("asperity run writes a run directory whose scene.yaml repeats the run"
   CHECK(slurp(d1 / "series.csv").rfind("t,X,V,Q,A,n_slipping,n_intact\n", 0) == 0);
   CHECK(slurp(w / "stdout.txt").empty());
 
-  REQUIRE(asperity("run " + q(d1 / "scene.yaml") + " --out again", w, &err) == 0);
+  REQUIRE(run_cli("run " + q(d1 / "scene.yaml") + " --out again", w, &err) == 0);
   const fs::path d2 = w / "again";
   CHECK(stable_summary(d1) == stable_summary(d2));
   CHECK(slurp(d1 / "series.csv") == slurp(d2 / "series.csv"));
@@ -85,16 +87,16 @@ TEST_CASE("asperity run writes a run directory whose scene.yaml repeats the run"
 TEST_CASE("asperity run: bad input exits 2 with one line, solver failure exits 3", "[report][observe]") {
   const fs::path w = make_case();
   std::string err;
-  CHECK(asperity("run scenes/tiny.yaml --out bad --set model.epsilon=1.5", w, &err) == 2);
+  CHECK(run_cli("run scenes/tiny.yaml --out bad --set model.epsilon=1.5", w, &err) == 2);
   CHECK(std::count(err.begin(), err.end(), '\n') == 1);
   CHECK(err.find("model.epsilon") != std::string::npos);
   CHECK_FALSE(fs::exists(w / "bad"));
 
-  CHECK(asperity("run scenes/missing.yaml --out bad", w, &err) == 2);
+  CHECK(run_cli("run scenes/missing.yaml --out bad", w, &err) == 2);
   CHECK_FALSE(fs::exists(w / "bad"));
 
   // C_t = 1: the explicit step is unstable and the reference solver refuses to run.
-  CHECK(asperity("run scenes/tiny.yaml --out bad --set solver.Ct=1", w, &err) == 3);
+  CHECK(run_cli("run scenes/tiny.yaml --out bad --set solver.Ct=1", w, &err) == 3);
   CHECK(err.find("unstable") != std::string::npos);
   CHECK_FALSE(fs::exists(w / "bad"));
   fs::remove_all(w);

@@ -12,6 +12,8 @@
 
 #include "report/run_writer.hpp"
 
+#include "support.hpp"
+
 using namespace asperity;
 namespace fs = std::filesystem;
 
@@ -24,12 +26,7 @@ fs::path fresh_dir(const std::string& name) {
   return d;
 }
 
-std::string slurp(const fs::path& p) {
-  std::ifstream f(p);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
+using asperity::testing::slurp;
 
 bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
