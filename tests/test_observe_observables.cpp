@@ -30,14 +30,17 @@ RunInfo info_with(double A0) {
 }
 
 // Quadratic loading A = A0 − α Q², Q = t, up to the peak at t = 0.5, then a drop.
+// The junction slips at t = 0.3; with_drop: the slider sticks at t = 0.65.
 void feed(Recorder& rec, double A0, double alpha, bool with_drop) {
   for (int i = 0; i <= 100; ++i) {
+    if (i == 30) rec.population({0.3, 1, false, 1, 2});
     const double t = 0.01 * i;
     const double Q = t <= 0.5 ? t : 0.5 - 0.5 * (t - 0.5);
     const double A = A0 - alpha * std::min(Q, 0.5) * std::min(Q, 0.5);
     rec.sample({t, 0, 0, Q, A, 0, 1});
     if (with_drop && i == 50) rec.extremum({0.5, 0.5, A, true});
     if (with_drop && i == 60) rec.extremum({0.6, 0.45, A, false});
+    if (with_drop && i == 65) rec.population({0.65, 0, true, 0, 2});
   }
 }
 
@@ -49,6 +52,7 @@ TEST_CASE("summarize: peak, quadratic fit on the loading branch, solver info", "
   feed(rec, A0, alpha, true);
   const Observables o = summarize(scene_with(A0), info_with(A0), rec, 3.5);
   CHECK(o.peak_found);
+  CHECK(o.peak_rule == PeakRule::stick);
   CHECK(o.Q_s == 0.5);
   CHECK(o.t_peak == 0.5);
   CHECK(o.A_s == Approx(A0 - alpha * 0.25));
@@ -67,7 +71,7 @@ TEST_CASE("summarize: peak, quadratic fit on the loading branch, solver info", "
   CHECK(std::isnan(o.alpha_measured));
 }
 
-TEST_CASE("summarize without a confirmed peak uses the highest Q and cuts the fit there", "[observe]") {
+TEST_CASE("summarize without a peak uses the highest Q after the first slip and cuts the fit there", "[observe]") {
   const double A0 = 1e-5, alpha = 4e-6;
   Recorder rec(0.01, false, 1e-3, false, -1);
   feed(rec, A0, alpha, false);  // the drop after t = 0.5 is never reported as extrema
@@ -80,6 +84,7 @@ TEST_CASE("summarize without a confirmed peak uses the highest Q and cuts the fi
   s.experiment.measured = m;
   const Observables o = summarize(s, info_with(A0), rec, 0);
   CHECK_FALSE(o.peak_found);
+  CHECK(o.peak_rule == PeakRule::none);
   CHECK(o.Q_s == 0.5);
   CHECK(o.t_peak == Approx(0.5));
   CHECK(o.alpha_points == 51);

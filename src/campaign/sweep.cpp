@@ -291,8 +291,11 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
         if (r->recorder.timed_out())
           job->error = "per-point time limit of " + num(c.time_limit_s) + " s exceeded at simulated t = " +
                        num(r->recorder.last().t) + " s";
-        for (const auto& [name, x] : {std::pair<const char*, double>{"Q_s", r->obs.Q_s}, {"A_s", r->obs.A_s},
-                                      {"t_peak", r->obs.t_peak}, {"t_end", r->obs.t_end}})
+        // A run that ends before any junction slips has no peak (Q_s = NaN) and is not a failure.
+        const bool peak = r->obs.peak_found;
+        for (const auto& [name, x] : {std::pair<const char*, double>{"Q_s", peak ? r->obs.Q_s : 0.0},
+                                      {"A_s", peak ? r->obs.A_s : 0.0}, {"t_peak", peak ? r->obs.t_peak : 0.0},
+                                      {"t_end", r->obs.t_end}})
           if (job->error.empty() && !std::isfinite(x)) job->error = std::string("non-finite observable ") + name;
         if (c.series && job->error.empty()) {
           std::ostringstream csv;

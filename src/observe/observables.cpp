@@ -18,23 +18,24 @@ Observables summarize(const Scene& scene, const RunInfo& info, const Recorder& r
   o.dt = info.dt;
 
   const auto& peaks = rec.peaks();
-  o.peak_found = !peaks.empty();
+  const FirstPeak first = rec.first_peak();
+  o.peak_found = first.found();
+  o.peak_rule = first.rule;
   o.n_peaks = peaks.size();
-  const Extremum peak = o.peak_found ? peaks.front().max : rec.highest();
-  if (std::isfinite(peak.Q)) {
-    o.Q_s = peak.Q;
-    o.A_s = peak.A;
-    o.t_peak = peak.t;
+  if (std::isfinite(first.max.Q)) {
+    o.Q_s = first.max.Q;
+    o.A_s = first.max.A;
+    o.t_peak = first.max.t;
     o.area_drop_fraction = 1.0 - o.A_s / o.A0;
   }
 
-  // Loading branch: the Recorder already cut it at the first confirmed peak; without one, cut
-  // it at the highest Q seen (a run that ends while still loading keeps all of it).
+  // Loading branch: the Recorder already cut it at a confirmed peak; otherwise cut it at the
+  // peak found (a run that ends while still loading keeps all of it).
   const std::vector<Sample>* branch = &rec.loading_branch();
   std::vector<Sample> cut;
-  if (!o.peak_found && std::isfinite(peak.Q)) {
+  if (peaks.empty() && std::isfinite(o.t_peak)) {
     for (const auto& s : *branch)
-      if (s.t <= peak.t) cut.push_back(s);
+      if (s.t <= o.t_peak) cut.push_back(s);
     branch = &cut;
   }
   const QuadraticFit q = fit_quadratic_area(*branch, info.A0);

@@ -23,7 +23,9 @@ struct Observables {
   double Q_s = nan;       // N
   double A_s = nan;       // m², A at the peak
   double t_peak = nan;    // s
-  bool peak_found = false;// a confirmed peak; else Q_s is the highest Q seen
+  bool peak_found = false;// the contact failed (peak_rule ≠ none); else Q_s is the highest Q
+                          // after the first slip (NaN without a slip)
+  PeakRule peak_rule = PeakRule::none;  // how the peak was found (recorder.hpp)
   // Shape of A(Q) on the loading branch.
   double alpha = nan;     // m²/N², A ≈ A0 − α Q² (A0 fixed)
   double alpha_R2 = nan;  // R² of that fit

@@ -118,6 +118,7 @@ std::string summary_yaml(const Scene& scene, const Observables& o, const std::ve
   d("A_s", o.A_s);
   d("t_peak", o.t_peak);
   y << "peak_found: " << (o.peak_found ? "true" : "false") << '\n';
+  y << "peak_rule: " << to_string(o.peak_rule) << "  # how the first peak was found (README: The static friction peak)\n";
   d("alpha", o.alpha);
   d("alpha_R2", o.alpha_R2);
   i("alpha_points", static_cast<long long>(o.alpha_points));

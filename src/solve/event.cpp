@@ -375,8 +375,13 @@ RunInfo integrate_event(const Scene& scene, Recorder& rec) {
       }
       // A discontinuity of the force law: apply it and restart the integrator there.
       const double X = y[0] * L;
-      if (first->kind == kThreshold) model.slip_crossed(X);
-      if (model.n_slipping() > 0 && std::abs(y[1] * v) < v_repin) model.repin_all(X);
+      const std::int64_t new_slips = first->kind == kThreshold ? model.slip_crossed(X) : 0;
+      const bool stick = model.n_slipping() > 0 && std::abs(y[1] * v) < v_repin;
+      if (stick) model.repin_all(X);
+      if (new_slips > 0 || stick) {
+        rec.population({t, new_slips, stick, model.n_slipping(), static_cast<std::int64_t>(info.N)});
+        if (rec.done()) finished = true;
+      }
       if (!std::isfinite(y[0]) || !std::isfinite(y[1]))
         throw SolverError("event solver: non-finite state at t = " + std::to_string(t) + " s");
       stepper.initialize(y, t, stepper.current_time_step());

@@ -134,6 +134,8 @@ RunInfo integrate_reference(const Scene& scene, Recorder& rec) {
     A_sum = A;
     n_slipping = ns;
     n_intact = ni;
+    if (slips > 0 || any_repin)
+      rec.population({t, slips, any_repin, ns, static_cast<std::int64_t>(N)});
     // Extrema of Q: V crosses v between steps; Q is largest/smallest at the nearer step.
     const double Q = Q_at(n, X);
     if (prevV < v && V >= v) rec.extremum(Q >= prevQ ? Extremum{t, Q, A, true} : Extremum{prevt, prevQ, prevA, true});
