@@ -337,6 +337,10 @@ TEST_CASE("REPORT.md says no evidence for a failed variant and a failed calibrat
   CHECK_FALSE(co.reference.has_value());
   const std::string md = claims_report(base, variants, cal, "");
   CHECK(md.find("First half: **No evidence**") != std::string::npos);
+  // Claim 3's bracket per load: E20 lacks its eta = 50 run, the others have the whole scan.
+  CHECK(md.find("| E20 | 5 (0.050) | – | 5 (0.050) | 5 (0.050) | 0 (–) | 0 (–) | 0 (–) | (150, 180] | No evidence |") != std::string::npos);
+  CHECK(md.find("| (150, 180] | Reproduced |") != std::string::npos);
+  CHECK(md.find("Second half: **No evidence**") != std::string::npos);
   CHECK(md.find("**Calibration of E20 failed**") != std::string::npos);
   CHECK(md.find("**Area decay: No evidence. Incipient slope: No evidence.") != std::string::npos);
   CHECK(md.find("| E20 | 0.725 | **no** |") != std::string::npos);  // the scene's alpha_b, said so

@@ -161,10 +161,7 @@ const CalibratedRun* find_calibration(const Calibration& cal, const std::string&
   return nullptr;
 }
 
-std::string eta_text(double eta) {
-  if (std::isinf(eta)) return eta < 0 ? "none" : "–";
-  return fmt("%g", eta);
-}
+std::string eta_text(double eta) { return fmt("%g", eta); }
 
 }  // namespace
 
@@ -276,8 +273,12 @@ std::string claims_report(const std::vector<PaperRun>& base, const std::vector<V
     const VanishBracket vb = claim3_vanish_bracket(l, rules);
     vanish.push_back(vb.verdict);
     vanish_ok += vb.verdict == Verdict::reproduced ? 1 : 0;
-    r << " (" << eta_text(vb.last_with) << ", " << (std::isinf(vb.first_without) ? std::string("> ") + eta_text(eta_cols.back()) : eta_text(vb.first_without))
-      << "] | " << verdict_text(vb.verdict) << " |\n";
+    std::string bracket;
+    if (std::isnan(vb.last_with)) bracket = "–";
+    else if (std::isinf(vb.first_without)) bracket = "> " + eta_text(vb.last_with) + " (not in the scan)";
+    else if (std::isinf(vb.last_with)) bracket = "≤ " + eta_text(vb.first_without) + " (none at any η)";
+    else bracket = "(" + eta_text(vb.last_with) + ", " + eta_text(vb.first_without) + "]";
+    r << " " << bracket << " | " << verdict_text(vb.verdict) << " |\n";
   }
   const EtaComparison e50 = claim3_eta50_vs_base(co, rules);
   const Verdict v3b = combine(std::span<const Verdict>(vanish));
