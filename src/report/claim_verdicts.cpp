@@ -68,6 +68,7 @@ Verdict claim1_dt(const ClaimObservables& c, const ClaimRules& r) {
 }
 
 Verdict claim2_stick_slip(const LoadObservables& l) {
+  if (l.base_eta != 100) return Verdict::no_evidence;  // the claim is about η = 100
   if (l.base.ss_cycles > 0) return Verdict::reproduced;
   return could_show_stick_slip(l, l.base) ? Verdict::not_reproduced : Verdict::no_evidence;
 }

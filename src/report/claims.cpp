@@ -22,8 +22,10 @@ namespace {
 
 const char* const kReferenceLabelText = "reference Ct=100, 0.25 s";
 
-// Claim 3's η scan beside the base runs' η = 100 (1/s).
-const std::vector<double> kEtaScan{0.0, 50.0, 150.0, 180.0, 200.0, 250.0};
+// Claim 3's η scan beside the base runs' η = 100 (1/s). 160 and 220 sit at the edges of the
+// claim's range [162, 220] (ClaimRules): every bracket is then inside or outside it, never
+// straddling it because the grid is coarse.
+const std::vector<double> kEtaScan{0.0, 50.0, 150.0, 160.0, 180.0, 200.0, 220.0, 250.0};
 
 std::string eta_label(double eta) {
   char label[32];
