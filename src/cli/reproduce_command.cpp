@@ -97,31 +97,34 @@ int reproduce(const ReproduceOptions& opt) {
     for (const auto& r : runs) base.push_back(r.scene);
     const auto variants = run_variants(base, paper_claim_variants(), threads);
     n_variant_runs = variants.size();
-    std::vector<CalibratedRun> calibrated;
+    Calibration calibration;
     if (!opt.fit.empty()) {
+      calibration.fit_file = opt.fit;
       FitOptions fo;
       fo.threads = threads;
       fo.profile = false;
       fo.error_bars = false;
       const FitResult fr = run_fit(spec_of_fit, fo);
       for (const Optimization& f : fr.fits) {
-        if (!f.ok() || f.best_runs.empty() || f.best.empty()) {
-          std::fprintf(stderr, "calibration %s failed: %s\n", f.label.c_str(), f.failure.c_str());
-          continue;
-        }
+        // A failed calibration stays in the report as failed: claim 5 then has no evidence at that load.
         CalibratedRun c;
         c.experiment = f.label;
-        c.alpha_b = f.best.front();
-        c.obs = f.best_runs.front().obs;
-        c.loading = f.best_runs.front().loading;
-        c.evaluations = f.evaluations;
-        c.stop_reason = f.stop_reason;
-        calibrated.push_back(std::move(c));
+        if (!f.ok() || f.best_runs.empty() || f.best.empty()) {
+          c.failure = f.failure.empty() ? std::string("no successful evaluation") : f.failure;
+          std::fprintf(stderr, "calibration %s failed: %s\n", f.label.c_str(), c.failure.c_str());
+        } else {
+          c.alpha_b = f.best.front();
+          c.obs = f.best_runs.front().obs;
+          c.loading = f.best_runs.front().loading;
+          c.evaluations = f.evaluations;
+          c.stop_reason = f.stop_reason;
+        }
+        calibration.runs.push_back(std::move(c));
       }
       n_variant_runs += static_cast<std::size_t>(std::accumulate(
           fr.fits.begin(), fr.fits.end(), 0, [](int a, const Optimization& f) { return a + f.evaluations; }));
     }
-    scene_io::write_text_file(out / "REPORT.md", claims_report(runs, variants, calibrated, label));
+    scene_io::write_text_file(out / "REPORT.md", claims_report(runs, variants, calibration, label));
     wall_claims = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
   }
   if (!opt.quiet) {

@@ -56,6 +56,13 @@ ExperimentEval run_experiment(const FitSpec& spec, std::size_t e, const std::vec
       out.error = "objective term of " + fe.name + " is NaN (model alpha = " + g6(r.obs.alpha) +
                   ", measured alpha = " + g6(r.obs.alpha_measured) + ", Q_s = " + g6(r.obs.Q_s) +
                   ", loading-branch points = " + std::to_string(r.recorder.loading_branch().size()) + ")";
+    } else if (!r.obs.peak_found) {
+      // Without a confirmed peak, Q_s, the loading branch and every objective built on them
+      // come from wherever the run stopped: a number, but not the one the fit is about.
+      out.error = fe.name + " (" + scene.experiment.file.lexically_normal().string() +
+                  "): no confirmed static friction peak before stop.time = " + g6(scene.stop.time) +
+                  " s (highest Q " + g6(r.obs.Q_s) + " N at t = " + g6(r.obs.t_peak) +
+                  " s); the objective would use an unfinished loading branch: raise stop.time";
     }
     if (keep) {
       out.obs = r.obs;

@@ -9,9 +9,11 @@
 // parallel (TBB, `threads` workers). Runs are single-threaded inside (OpenMP set to 1 thread in
 // each task, so nothing oversubscribes the cores).
 //
-// Failures: an exception (SolverError, InputError) or a NaN objective inside an evaluation ends
-// that optimization with NLopt's forced stop; the reason is kept in Optimization::failure and
-// the best evaluation so far is reported.
+// Failures: an exception (SolverError, InputError), a NaN objective, or a run without a
+// confirmed static friction peak (Observables::peak_found: its loading branch and Q_s are not
+// the peak's) inside an evaluation ends that optimization with NLopt's forced stop; the reason
+// is kept in Optimization::failure (status "failed", `asperity fit` exits 1) and the best
+// evaluation so far is reported.
 #include <cstddef>
 #include <functional>
 #include <limits>

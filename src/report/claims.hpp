@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "observe/observables.hpp"
+#include "report/claim_verdicts.hpp"
 #include "report/paper_figures.hpp"
 #include "scene/scene.hpp"
 
@@ -34,9 +35,10 @@ std::vector<ClaimVariant> paper_claim_variants();
 std::vector<VariantRun> run_variants(const std::vector<Scene>& base, const std::vector<ClaimVariant>& variants,
                                      int threads);
 
-// α_b calibrated per experiment (the paper's quadratic_alpha), when a calibration was run.
+// α_b calibrated per experiment (the paper's quadratic_alpha), when a calibration was asked for.
 struct CalibratedRun {
   std::string experiment;
+  std::string failure;       // non-empty: the calibration of this experiment failed (fields below unset)
   double alpha_b = 0;        // m^(2p+2)/N²
   Observables obs;           // run at the calibrated α_b
   std::vector<Sample> loading;  // its loading branch
@@ -44,8 +46,17 @@ struct CalibratedRun {
   std::string stop_reason;   // NLopt's
 };
 
-// REPORT.md text. `base`: the runs at the scene settings; `calibrated`: may be empty.
+struct Calibration {
+  std::string fit_file;              // empty: no calibration asked for
+  std::vector<CalibratedRun> runs;   // one per experiment of the fit, failed ones included
+};
+
+// The observables the verdicts read (report/claim_verdicts.hpp), from the runs of this reproduction.
+ClaimObservables claim_observables(const std::vector<PaperRun>& base, const std::vector<VariantRun>& variants,
+                                   const Calibration& calibration);
+
+// REPORT.md text. `base`: the runs at the scene settings (smallest load first).
 std::string claims_report(const std::vector<PaperRun>& base, const std::vector<VariantRun>& variants,
-                          const std::vector<CalibratedRun>& calibrated, const std::string& data_label);
+                          const Calibration& calibration, const std::string& data_label);
 
 }  // namespace asperity

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <optional>
 #include <set>
 #include <system_error>
@@ -75,6 +76,47 @@ struct ParamNodes {  // where each parameter's values were written (for errors f
 };
 
 }  // namespace
+
+namespace {
+std::string g4(double x) {  // message numbers: 4 significant digits
+  char b[40];
+  std::snprintf(b, sizeof b, "%.4g", x);
+  return b;
+}
+}  // namespace
+
+std::string measured_curve_problem(const MeasuredCurve& curve, double A0_sum) {
+  // Least squares of A = a + b x with x = Q² (b = −α), over the finite points.
+  std::vector<double> x, y;
+  for (std::size_t i = 0; i < curve.Q_N.size() && i < curve.A_m2.size(); ++i)
+    if (std::isfinite(curve.Q_N[i]) && std::isfinite(curve.A_m2[i])) {
+      x.push_back(curve.Q_N[i] * curve.Q_N[i]);
+      y.push_back(curve.A_m2[i]);
+    }
+  const std::size_t n = x.size();
+  if (n < 3) return "measured A(Q) has " + std::to_string(n) + " point(s); a fit needs at least 3";
+  double mx = 0, my = 0;
+  for (std::size_t i = 0; i < n; ++i) { mx += x[i]; my += y[i]; }
+  mx /= static_cast<double>(n);
+  my /= static_cast<double>(n);
+  double sxx = 0, sxy = 0;
+  for (std::size_t i = 0; i < n; ++i) { sxx += (x[i] - mx) * (x[i] - mx); sxy += (x[i] - mx) * (y[i] - my); }
+  if (!(sxx > 0)) return "measured A(Q) has a single value of Q; a fit needs A over a range of Q";
+  const double b = sxy / sxx, a = my - b * mx;
+  double ss_res = 0;
+  for (std::size_t i = 0; i < n; ++i) ss_res += (y[i] - a - b * x[i]) * (y[i] - a - b * x[i]);
+  const double se_alpha = std::sqrt(ss_res / static_cast<double>(n - 2) / sxx);
+  const double alpha = -b;
+  if (!(alpha > kMeasuredAlphaMinSigmas * se_alpha))
+    return "measured A(Q) does not decrease with Q: the fit A = a - alpha Q^2 gives alpha = " + g4(alpha) +
+           " +- " + g4(se_alpha) + " m^2/N^2 (a fit needs alpha > " + g4(kMeasuredAlphaMinSigmas) +
+           " standard errors)";
+  if (!(std::abs(a / A0_sum - 1) <= kMeasuredA0Tolerance))
+    return "measured A(Q = 0) = " + g4(a) + " m^2 (intercept of A = a - alpha Q^2) is " +
+           g4(a / A0_sum) + " x the sum of the junction areas, " + g4(A0_sum) +
+           " m^2 (allowed: within " + g4(kMeasuredA0Tolerance * 100) + " %; wrong unit or wrong file?)";
+  return "";
+}
 
 std::string check_fit_algorithm(const std::string& name) {
   // By name over NLopt's list: nlopt_algorithm_from_string answers an unknown name with -1, which
@@ -245,6 +287,25 @@ FitSpec load_fit(const fs::path& path) {
         sv.fail_at(scene_node, skey, std::string("objective ") + objective_name(spec.objective) +
                                          " needs a measured A(Q) curve, and experiment " + quote(fe.name) + " (" +
                                          display_path(base_scene.experiment.file) + ") has none (key `measured`)");
+      if (spec.objective != FitObjective::stick_slip) {
+        double A0_sum = 0;
+        for (const double a : base_scene.experiment.junctions.area_m2) A0_sum += a;
+        if (const std::string why = measured_curve_problem(*base_scene.experiment.measured, A0_sum); !why.empty()) {
+          // Located at the experiment file's `measured:` line, the key the user would fix.
+          const fs::path& ef = base_scene.experiment.file;
+          const std::string edisplay = display_path(ef);
+          int line = 0;
+          try {
+            const YAML::Node m = load_yaml_file(ef, edisplay)["measured"];
+            if (m.IsDefined()) line = m.Mark().line + 1;
+          } catch (const std::exception&) {
+            // the file was read a moment ago; without it the message keeps no line
+          }
+          throw InputError(edisplay, line, "measured",
+                           why + " (" + display_path(base_scene.experiment.measured_file) + ", experiment " +
+                               quote(fe.name) + " of " + display + ")");
+        }
+      }
       // Every value the optimizer may try must make a valid scene: check the bounds now.
       for (std::size_t j = 0; j < spec.parameters.size(); ++j) {
         const FitParameter& p = spec.parameters[j];

@@ -20,13 +20,24 @@
 //   profile: {parameter: model.alpha_b, span: 0.2, points: 11}   # or false
 //   error_bars: {experiment.E: 0.1e6, experiment.k_L: 200, ...}  # one-at-a-time ± refits
 //
+// The measured A(Q) of every experiment of a quadratic_alpha or area_curve fit must be what
+// such a fit can use (else InputError at the experiment file's `measured` line):
+//   - decreasing: the least-squares fit A = a − α Q² (a free) has α > 3 standard errors of α
+//     (the stand-ins' 0.2 % noise leaves α at hundreds of standard errors; a curve that rises or
+//     stays flat within its noise fails);
+//   - anchored at Σ A0: |a / Σ A0 − 1| ≤ 10 % (a measured area in mm² instead of m² is off by
+//     1e6, a neighbouring load's curve by ≥ 30 % on the stand-ins; the paper's area decay is
+//     15–30 %, so a larger offset would be as large as the signal the fit calibrates to; a linear
+//     A(Q) with a 30 % decay shifts a by only 5.6 %).
 // Each experiment's scene is run with forced settings that the objective needs: output.series
 // = [] always; stop.at_first_peak = true for quadratic_alpha and area_curve (only the loading
 // branch matters); stop.at_first_peak = false and stop.cycles = 5 for stick_slip.
 #include <filesystem>
+#include <string>
 
 #include "fit/fit_spec.hpp"
 #include "scene/input_error.hpp"
+#include "scene/scene.hpp"
 
 namespace asperity {
 
@@ -35,5 +46,11 @@ FitSpec load_fit(const std::filesystem::path& fit_yaml);
 // NLopt's name of an algorithm is accepted by load_fit (derivative-free, needs no subsidiary
 // optimizer); "" when it is, else the reason.
 std::string check_fit_algorithm(const std::string& name);
+
+// The two rules above for one measured curve and the experiment's Σ A0 [m²]: "" when it is
+// usable, else the reason (one line, no location).
+inline constexpr double kMeasuredAlphaMinSigmas = 3.0;
+inline constexpr double kMeasuredA0Tolerance = 0.10;
+std::string measured_curve_problem(const MeasuredCurve& curve, double A0_sum);
 
 }  // namespace asperity
