@@ -74,7 +74,9 @@ TEST_CASE("bench accuracy writes one row per scene and tolerance against the con
     // The error column is |value − converged| / converged of the other two columns.
     const double v = std::stod(f[col("value_Q_s")]), c = std::stod(f[col("converged_Q_s")]);
     CHECK(std::abs(std::stod(f[col("relerr_Q_s")]) - std::abs(v - c) / c) < 1e-3 * std::abs(v - c) / c + 1e-15);
-    CHECK(std::abs(v - c) / c < 1e-4);
+    // A few times the errors measured on P0.98N: 5.7e-9 at tolerance 1e-6, 2.0e-11 at 1e-9.
+    const double tol = std::stod(f[col("tolerance")]);
+    CHECK(std::abs(v - c) / c < (tol > 1e-7 ? 3e-8 : 1e-10));
     CHECK(f[col("within_targets")] == "yes");
     ++rows;
   }
