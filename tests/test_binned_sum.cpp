@@ -66,8 +66,10 @@ TEST_CASE("binned universal sums match the direct sums within the tolerance that
     for (double tol : {1e-6, 1e-9, 1e-12}) {
       const auto [ef, ea] = worst_error(p, U, binned_rel_width(tol, p.psi_hi));
       INFO("tol " << tol << " force " << ef << " area " << ea);
-      CHECK(ef < tol);
-      CHECK(ea < tol);
+      // The width leaves a margin: measured 7e-9 to 1.5e-8 at tol 1e-6, 1.4e-11 to 3.3e-11 at
+      // 1e-9, 1.9e-14 to 2.9e-14 at 1e-12 (force, area; both shapes).
+      CHECK(ef < 0.1 * tol);
+      CHECK(ea < 0.1 * tol);
     }
   }
 }
@@ -116,8 +118,10 @@ TEST_CASE("event solver: 20 copies of each junction with 20x mass and spring giv
   const Observables oa = summarize(one, a.info, a.rec, 0), ob = summarize(many, b.info, b.rec, 0);
   INFO("Q_s " << oa.Q_s << " vs " << ob.Q_s / 20 << ", slips " << oa.slips << " vs " << ob.slips);
   CHECK(ob.slips == 20 * oa.slips);
-  CHECK_THAT(ob.Q_s / 20, Catch::Matchers::WithinRel(oa.Q_s, 1e-7));
-  CHECK_THAT(ob.A_s / 20, Catch::Matchers::WithinRel(oa.A_s, 1e-7));
-  CHECK_THAT(b.rec.series()[1500].A / 20, Catch::Matchers::WithinRel(a.rec.series()[1500].A, 1e-9));
-  CHECK_THAT(b.rec.series()[1500].Q / 20, Catch::Matchers::WithinRel(a.rec.series()[1500].Q, 1e-7));
+  // Measured: Q_s 2.7e-12, A_s 6.7e-11, A(t) 9.1e-11, Q(t) 4.5e-12 (the binned sums' error at
+  // the default tolerance).
+  CHECK_THAT(ob.Q_s / 20, Catch::Matchers::WithinRel(oa.Q_s, 1e-11));
+  CHECK_THAT(ob.A_s / 20, Catch::Matchers::WithinRel(oa.A_s, 3e-10));
+  CHECK_THAT(b.rec.series()[1500].A / 20, Catch::Matchers::WithinRel(a.rec.series()[1500].A, 3e-10));
+  CHECK_THAT(b.rec.series()[1500].Q / 20, Catch::Matchers::WithinRel(a.rec.series()[1500].Q, 2e-11));
 }

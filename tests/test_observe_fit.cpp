@@ -19,8 +19,8 @@ TEST_CASE("quadratic fit recovers alpha exactly on exact-quadratic data", "[obse
   }
   const QuadraticFit f = fit_quadratic_area(s, A0);
   CHECK(f.n_points == s.size());
-  CHECK(f.alpha == Approx(alpha).epsilon(1e-12));
-  CHECK(f.R2 == Approx(1.0).epsilon(1e-12));
+  CHECK(f.alpha == Approx(alpha).epsilon(1e-14));
+  CHECK(f.R2 == Approx(1.0).epsilon(1e-14));
 
   // The same through a measured curve (spans of Q and A).
   MeasuredCurve c;
@@ -29,8 +29,8 @@ TEST_CASE("quadratic fit recovers alpha exactly on exact-quadratic data", "[obse
     c.A_m2.push_back(x.A);
   }
   const QuadraticFit g = fit_quadratic_area(c, A0);
-  CHECK(g.alpha == Approx(alpha).epsilon(1e-12));
-  CHECK(g.R2 == Approx(1.0).epsilon(1e-12));
+  CHECK(g.alpha == Approx(alpha).epsilon(1e-14));
+  CHECK(g.R2 == Approx(1.0).epsilon(1e-14));
 }
 
 TEST_CASE("quadratic fit of linear data has R2 < 1 and the least-squares alpha", "[observe]") {
@@ -61,8 +61,8 @@ TEST_CASE("power-law exponent recovers n = 1 and n = 2", "[observe]") {
       A.push_back(A0 - c * std::pow(Q.back(), n));
     }
     const ShapeIndex s = fit_power_law(Q, A, A0);
-    CHECK(s.n == Approx(n).epsilon(1e-9));
-    CHECK(s.c == Approx(c).epsilon(1e-9));
+    CHECK(s.n == Approx(n).epsilon(1e-14));
+    CHECK(s.c == Approx(c).epsilon(2e-14));
     // Q > 0.05 Q_max: i > 15.
     CHECK(s.n_points == 300 - 15);
   }
@@ -73,7 +73,7 @@ TEST_CASE("power-law fit ignores points without area loss", "[observe]") {
   const std::vector<double> Q{0.0, 0.5, 1.0, 2.0, 4.0}, A{1.0, 1.0, 1.0 - 0.01, 1.0 - 0.04, 1.0 - 0.16};
   const ShapeIndex s = fit_power_law(Q, A, A0);
   CHECK(s.n_points == 3);
-  CHECK(s.n == Approx(2.0).epsilon(1e-12));
+  CHECK(s.n == Approx(2.0).epsilon(1e-14));
   const std::vector<double> Qd{1.0}, Ad{0.5};
   CHECK(std::isnan(fit_power_law(Qd, Ad, A0).n));
 }

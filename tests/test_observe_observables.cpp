@@ -55,12 +55,12 @@ TEST_CASE("summarize: peak, quadratic fit on the loading branch, solver info", "
   CHECK(o.peak_rule == PeakRule::stick);
   CHECK(o.Q_s == 0.5);
   CHECK(o.t_peak == 0.5);
-  CHECK(o.A_s == Approx(A0 - alpha * 0.25));
-  CHECK(o.area_drop_fraction == Approx(alpha * 0.25 / A0));
+  CHECK(o.A_s == Approx(A0 - alpha * 0.25).epsilon(1e-14));
+  CHECK(o.area_drop_fraction == Approx(alpha * 0.25 / A0).epsilon(1e-14));
   CHECK(o.alpha_points == 51);  // samples t = 0 … 0.5
-  CHECK(o.alpha == Approx(alpha).epsilon(1e-10));
-  CHECK(o.alpha_R2 == Approx(1.0).epsilon(1e-10));
-  CHECK(o.shape_exponent == Approx(2.0).epsilon(1e-9));
+  CHECK(o.alpha == Approx(alpha).epsilon(1e-14));
+  CHECK(o.alpha_R2 == Approx(1.0).epsilon(1e-14));
+  CHECK(o.shape_exponent == Approx(2.0).epsilon(3e-14));
   CHECK(o.ss_cycles == 0);
   CHECK(std::isnan(o.ss_drop));
   CHECK(o.n_peaks == 1);
@@ -86,10 +86,10 @@ TEST_CASE("summarize without a peak uses the highest Q after the first slip and 
   CHECK_FALSE(o.peak_found);
   CHECK(o.peak_rule == PeakRule::none);
   CHECK(o.Q_s == 0.5);
-  CHECK(o.t_peak == Approx(0.5));
+  CHECK(o.t_peak == Approx(0.5).epsilon(1e-14));
   CHECK(o.alpha_points == 51);
-  CHECK(o.alpha == Approx(alpha).epsilon(1e-10));
-  CHECK(o.alpha_measured == Approx(2 * alpha).epsilon(1e-10));
-  CHECK(o.alpha_measured_R2 == Approx(1.0).epsilon(1e-10));
-  CHECK(o.shape_exponent_measured == Approx(2.0).epsilon(1e-9));
+  CHECK(o.alpha == Approx(alpha).epsilon(1e-14));
+  CHECK(o.alpha_measured == Approx(2 * alpha).epsilon(1e-14));
+  CHECK(o.alpha_measured_R2 == Approx(1.0).epsilon(1e-14));
+  CHECK(o.shape_exponent_measured == Approx(2.0).epsilon(2e-14));
 }

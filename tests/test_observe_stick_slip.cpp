@@ -26,8 +26,8 @@ TEST_CASE("stick-slip stats on a synthetic sequence of extrema", "[observe]") {
   REQUIRE(rec.peaks().size() == 8);
   const StickSlipStats s = stick_slip_stats(rec.peaks());
   CHECK(s.n_cycles == 5);
-  CHECK(s.mean_drop == Approx(0.12).epsilon(1e-12));
-  CHECK(s.mean_period == Approx(0.13).epsilon(1e-12));
+  CHECK(s.mean_drop == Approx(0.12).epsilon(1e-14));
+  CHECK(s.mean_period == Approx(0.13).epsilon(1e-14));
 
   const StickSlipStats all = stick_slip_stats(rec.peaks(), 100);
   CHECK(all.n_cycles == 7);
@@ -43,12 +43,12 @@ TEST_CASE("stick-slip stats average the first n cycles only", "[observe]") {
   }
   const StickSlipStats s2 = stick_slip_stats(p, 2);
   CHECK(s2.n_cycles == 2);
-  CHECK(s2.mean_drop == Approx(1.5));
-  CHECK(s2.mean_period == Approx(1.5));
+  CHECK(s2.mean_drop == Approx(1.5).epsilon(1e-14));
+  CHECK(s2.mean_period == Approx(1.5).epsilon(1e-14));
   const StickSlipStats s5 = stick_slip_stats(p, 5);
   CHECK(s5.n_cycles == 3);  // the 4th peak closes the 3rd cycle; its own drop has no period
-  CHECK(s5.mean_drop == Approx(2.0));
-  CHECK(s5.mean_period == Approx(2.0));
+  CHECK(s5.mean_drop == Approx(2.0).epsilon(1e-14));
+  CHECK(s5.mean_period == Approx(2.0).epsilon(1e-14));
 }
 
 TEST_CASE("stick-slip stats are NaN without a complete cycle", "[observe]") {

@@ -1,7 +1,5 @@
 #include "bench/tradeoff.hpp"
 
-#include <omp.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -104,33 +102,6 @@ TradeoffResult run_tradeoff(const TradeoffOptions& opt) {
                             std::log(lo.error[i] / hi.error[i]) / std::log(hi.setting / lo.setting)});
     }
 
-  // Side by side on the paper scene: the reference on a short window, the event solver (its
-  // default tolerance, as the scene sets it) through peak + cycles.
-  SpeedRatio& s = res.speed;
-  s.threads = omp_get_max_threads();
-  {
-    const Scene ev = scene_with(opt.ratio_scene, run_overrides(opt.ratio_stop_time, opt.cycles), {"solver.method=event"});
-    s.experiment = ev.experiment.name;
-    s.ev_tolerance = ev.solver.tolerance;
-    log("speed on " + s.experiment + ": event, tolerance " + g(s.ev_tolerance) + " ... ");
-    const TimedRun t = timed_run(ev, opt.repeats);
-    s.ev_t_end = t.obs.t_end;
-    s.ev_wall_s = t.wall_s;
-    s.ev_cycles = t.obs.ss_cycles;
-    log(g(s.ev_wall_s, 3) + " s for " + g(s.ev_t_end, 4) + " s simulated (" + std::to_string(s.ev_cycles) + " cycles)\n");
-  }
-  {
-    const Scene rf = scene_with(opt.ratio_scene, run_overrides(opt.ref_window_s, -1),
-                                {"solver.method=reference", set_number("solver.Ct", opt.ref_window_Ct)});
-    s.ref_Ct = opt.ref_window_Ct;
-    log("speed on " + s.experiment + ": reference, C_t = " + g(s.ref_Ct) + ", window " + g(opt.ref_window_s) +
-        " s, " + std::to_string(s.threads) + " OpenMP threads ... ");
-    const TimedRun t = timed_run(rf, 1);
-    s.ref_window_s = t.obs.t_end;  // n·dt ≥ the window
-    s.ref_wall_s = t.wall_s;
-    s.ref_steps = t.obs.steps;
-    log(g(s.ref_wall_s, 3) + " s for " + std::to_string(s.ref_steps) + " steps\n");
-  }
   return res;
 }
 
@@ -151,17 +122,6 @@ std::string work_precision_csv(const std::vector<WorkPrecisionRow>& rows) {
 }
 
 namespace {
-
-std::string speed_csv(const SpeedRatio& s) {
-  std::ostringstream o;
-  o << "experiment,ref_Ct,ref_window_s,ref_steps,ref_threads,ref_wall_s,ref_wall_per_simulated_s,"
-       "event_tolerance,event_t_end_s,event_cycles,event_wall_s,event_wall_per_simulated_s,ratio\n";
-  o << s.experiment << ',' << g(s.ref_Ct) << ',' << g(s.ref_window_s) << ',' << s.ref_steps << ',' << s.threads
-    << ',' << g(s.ref_wall_s, 4) << ',' << g(s.ref_wall_per_sim(), 4) << ',' << g(s.ev_tolerance) << ','
-    << g(s.ev_t_end, 6) << ',' << s.ev_cycles << ',' << g(s.ev_wall_s, 4) << ',' << g(s.ev_wall_per_sim(), 4)
-    << ',' << g(s.ratio(), 4) << '\n';
-  return o.str();
-}
 
 std::string order_csv(const std::vector<OrderRow>& rows) {
   std::ostringstream o;
@@ -217,7 +177,6 @@ void write_tradeoff(const fs::path& dir, const TradeoffResult& r) {
   fs::create_directories(dir);
   scene_io::write_text_file(dir / "work_precision.csv", work_precision_csv(r.rows));
   scene_io::write_text_file(dir / "reference_order.csv", order_csv(r.orders));
-  scene_io::write_text_file(dir / "speed_ratio.csv", speed_csv(r.speed));
   render_png(dir / "work_precision.png", plot_script(r), 1500, 900);
 }
 

@@ -1,4 +1,4 @@
-// asperity bench tradeoff|accuracy|savings [--out results/bench] [--quick] ...
+// asperity bench tradeoff|speed|accuracy|savings [--out results/bench] [--quick] ...
 // Benchmarks that print measured figures and write them under results/bench/ (issue 3).
 #include <omp.h>
 
@@ -13,6 +13,7 @@
 #include "bench/accuracy.hpp"
 #include "bench/bench_scene.hpp"
 #include "bench/savings.hpp"
+#include "bench/speed_ratio.hpp"
 #include "bench/tradeoff.hpp"
 #include "cli/commands.hpp"
 
@@ -26,8 +27,10 @@ struct BenchOptions {
   int threads = 1;
   // tradeoff
   std::string scene = "bench/scenes/P0.20N.yaml";
-  std::string ratio_scene = "scenes/paper/P4.00N.yaml";
   std::vector<double> Ct;
+  // speed
+  std::string speed_scene = "scenes/paper/P4.00N.yaml";
+  std::vector<double> whole_Ct;
   double window = 2e-3;
   // accuracy, savings
   std::string scenes_dir = "scenes/paper";
@@ -52,16 +55,13 @@ void machine_line(const BenchOptions& b) {
 int tradeoff(const BenchOptions& b) {
   TradeoffOptions o;
   o.scene = b.scene;
-  o.ratio_scene = b.ratio_scene;
   o.repeats = b.repeats;
-  o.ref_window_s = b.window;
   o.log = &std::cout;
   if (!b.Ct.empty()) o.Ct = b.Ct;
   if (b.quick) {
     if (b.Ct.empty()) o.Ct = {1e2, 1e3};
     o.tolerances = {1e-4, 1e-6, 1e-8, 1e-10};
     o.repeats = 1;
-    o.ref_window_s = std::min(o.ref_window_s, 5e-4);
   }
   machine_line(b);
   const TradeoffResult r = run_tradeoff(o);
@@ -69,13 +69,30 @@ int tradeoff(const BenchOptions& b) {
   std::printf("reference order of convergence (log error ratio / log C_t ratio):\n");
   for (const auto& x : r.orders)
     std::printf("  %-9s C_t %g -> %g: %.3g\n", x.observable.c_str(), x.Ct_lo, x.Ct_hi, x.order);
-  const SpeedRatio& s = r.speed;
-  std::printf("speed on %s (stand-in): reference (C_t = %g, %d threads) %.4g s wall for a %.4g s window "
-              "= %.4g s per simulated second; event (tolerance %g) %.4g s wall through peak + %d cycles "
-              "(%.4g s simulated) = %.4g s per simulated second; ratio %.3g\n",
-              s.experiment.c_str(), s.ref_Ct, s.threads, s.ref_wall_s, s.ref_window_s, s.ref_wall_per_sim(),
-              s.ev_tolerance, s.ev_wall_s, s.ev_cycles, s.ev_t_end, s.ev_wall_per_sim(), s.ratio());
-  std::printf("-> %s/{work_precision.csv,work_precision.png,reference_order.csv,speed_ratio.csv}\n", b.out.c_str());
+  std::printf("-> %s/{work_precision.csv,work_precision.png,reference_order.csv}\n", b.out.c_str());
+  return exit_ok;
+}
+
+int speed(const BenchOptions& b) {
+  SpeedOptions o;
+  o.scene = b.speed_scene;
+  o.repeats = b.quick ? 1 : b.repeats;
+  o.window_s = b.window;
+  o.log = &std::cout;
+  if (!b.whole_Ct.empty()) o.whole_run_Ct = b.whole_Ct;
+  if (b.quick) {
+    o.event_tolerances = {1e-4, 1e-6};
+    if (b.whole_Ct.empty()) o.whole_run_Ct = {10, 20};
+  }
+  machine_line(b);
+  const SpeedResult r = run_speed(o);
+  write_speed(b.out, r);
+  std::printf("%s (stand-in), whole run = first peak + %d stick-slip cycles (%.4g s simulated):\n",
+              r.experiment.c_str(), o.cycles, r.T_run);
+  for (const auto& c : r.comparisons)
+    std::printf("  %s [%s]: reference %.4g s, event %.4g s wall -> ratio %.3g wall, %.3g CPU\n", c.comparison.c_str(),
+                c.basis.c_str(), c.reference.wall_s, c.event.wall_s, c.ratio_wall(), c.ratio_cpu());
+  std::printf("-> %s/{speed_ratio.csv,speed_runs.csv}\n", b.out.c_str());
   return exit_ok;
 }
 
@@ -123,7 +140,7 @@ int savings(const BenchOptions& b) {
 
 Command add_bench_command(CLI::App& app) {
   auto opt = std::make_shared<BenchOptions>();
-  CLI::App* sub = app.add_subcommand("bench", "Benchmarks: speed-accuracy trade, accuracy on the stand-ins, savings");
+  CLI::App* sub = app.add_subcommand("bench", "Benchmarks: speed-accuracy trade, speed ratio, accuracy on the stand-ins, savings");
   sub->require_subcommand(1);
   sub->fallthrough();  // --out, --quick, --repeats also after the sub-subcommand
   sub->add_option("--out,-o", opt->out, "Output folder")->capture_default_str();
@@ -137,13 +154,17 @@ Command add_bench_command(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::Range(1, 256));
 
-  CLI::App* t = sub->add_subcommand("tradeoff", "Work-precision study (reference C_t vs event tolerance) and "
-                                                "the reference/event speed ratio on P4.00N");
+  CLI::App* t = sub->add_subcommand("tradeoff", "Work-precision study (reference C_t vs event tolerance)");
   t->add_option("--scene", opt->scene, "Work-precision experiment (the reference must finish it)")
       ->capture_default_str();
-  t->add_option("--ratio-scene", opt->ratio_scene, "Scene of the speed ratio")->capture_default_str();
   t->add_option("--ct", opt->Ct, "Reference C_t values (default 1e2 1e3 1e4)")->check(CLI::PositiveNumber);
-  t->add_option("--window", opt->window, "Simulated window of the timed reference on the ratio scene [s]")
+  CLI::App* sp = sub->add_subcommand("speed", "Reference vs event solver over the whole run (peak + 5 cycles) of "
+                                              "a paper scene, each with its error against a tight event run");
+  sp->add_option("--scene", opt->speed_scene, "Scene")->capture_default_str();
+  sp->add_option("--ct", opt->whole_Ct, "C_t of the whole reference runs (default 25 100; the last is the "
+                                        "one compared and extrapolated to 1e4)")
+      ->check(CLI::PositiveNumber);
+  sp->add_option("--window", opt->window, "Early window of the per-step cost check at C_t 1e4 [s]")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
   CLI::App* a = sub->add_subcommand("accuracy", "Default tolerance vs converged (1e-12) on the paper scenes, "
@@ -155,8 +176,9 @@ Command add_bench_command(CLI::App& app) {
   CLI::App* s = sub->add_subcommand("savings", "Wall time saved by series=[], stop.at_first_peak, alpha_b=0");
   s->add_option("--scene", opt->scenes, "Scene(s) (default scenes/paper/P4.00N.yaml)");
 
-  return Command{sub, [opt, t, a, s] {
+  return Command{sub, [opt, t, sp, a, s] {
     if (t->parsed()) return tradeoff(*opt);
+    if (sp->parsed()) return speed(*opt);
     if (a->parsed()) return accuracy(*opt);
     if (s->parsed()) return savings(*opt);
     return exit_input;
