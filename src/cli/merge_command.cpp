@@ -24,9 +24,10 @@ Command add_merge_command(CLI::App& app) {
   sub->add_flag("--quiet,-q", a->quiet, "Print nothing on success");
   return Command{sub, [a] {
                    const std::vector<std::filesystem::path> in(a->in.begin(), a->in.end());
-                   check_ours(a->out, "merge", "--out");  // a new or empty folder (or one merge wrote)
+                   // Only into a new or empty folder: the result is a store (no marker, so that
+                   // sweep can resume it), and merge never adds to an existing one.
+                   check_ours(a->out, "merge", "--out");
                    const MergeReport r = merge_stores(in, a->out);
-                   write_marker(a->out, "merge");
                    if (!a->quiet)
                      std::printf("merged %zu stores: %llu points (%llu failed, %llu in more than one store) -> %s\n",
                                  in.size(), static_cast<unsigned long long>(r.rows),

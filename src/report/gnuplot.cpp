@@ -109,15 +109,27 @@ std::string unique_suffix() {
 bool gnuplot_available() { return !find_gnuplot().empty(); }
 
 std::string gnuplot_quote(const std::string& text) {
-  std::string q(1, '\'');
+  // Single-quoted pieces joined with "'" by gnuplot's `.` operator. Doubling the quote is not
+  // enough: gnuplot 5.4 misreads two doubled quotes in a row (a syntax error at best).
+  std::string out, piece;
+  bool empty = true;
+  const auto emit = [&](const std::string& literal) {
+    if (!empty) out += " . ";
+    out += literal;
+    empty = false;
+  };
   for (const char c : text) {
     const auto u = static_cast<unsigned char>(c);
-    if (c == '\'') q += "''";
-    else if (u < 0x20 || u == 0x7f) q += '?';
-    else q += c;
+    if (c == '\'') {
+      if (!piece.empty()) emit("'" + piece + "'");
+      piece.clear();
+      emit("\"'\"");
+    } else {
+      piece += (u < 0x20 || u == 0x7f) ? '?' : c;
+    }
   }
-  q += '\'';
-  return q;
+  if (!piece.empty() || empty) emit("'" + piece + "'");
+  return out;
 }
 
 std::string gnuplot_block(const std::string& name, const std::vector<std::vector<double>>& rows) {
@@ -205,7 +217,7 @@ bool render_png(const fs::path& png, const std::string& script, int width, int h
   // gnuplot writes to a name of our own making (no user text in `set output`), in the target's
   // folder so that the rename is atomic.
   const fs::path dir = png.parent_path().empty() ? fs::path(".") : png.parent_path();
-  const std::string tmp_name = ".asperity-plot-" + unique_suffix() + ".png.tmp";
+  const std::string tmp_name = ".plot.tmp-" + unique_suffix();  // the ".NAME.tmp-*" pattern of output_dir
   const fs::path tmp = dir / tmp_name;
   const std::string text = "set terminal pngcairo size " + std::to_string(width) + "," + std::to_string(height) +
                            " noenhanced\nset output " + gnuplot_quote(tmp_name) + "\n" + script + "\nunset output\n";

@@ -16,10 +16,11 @@ namespace asperity {
 // True when `gnuplot` is on the PATH.
 bool gnuplot_available();
 
-// A gnuplot single-quoted string literal holding `text`. Inside single quotes gnuplot expands
-// nothing (no backquote commands, no macros, no backslash escapes); the one special character,
-// `'`, is doubled. Control characters (bytes below 0x20 and 0x7f), which could end the command
-// line, become '?'. Every other byte, including UTF-8, is kept as is.
+// A gnuplot string expression whose value is `text`: single-quoted pieces (inside single quotes
+// gnuplot expands nothing: no backquote commands, no macros, no backslash escapes) joined by `.`
+// with "'" for each quote. Control characters (bytes below 0x20 and 0x7f), which could end the
+// command line, become '?'. Every other byte, including UTF-8, is kept. Usable wherever gnuplot
+// takes a string (titles, labels, tic labels, key entries, set output).
 std::string gnuplot_quote(const std::string& text);
 
 // A data block `$name << EOD ... EOD` with one row per entry of `rows` (values %.10g; NaN rows
