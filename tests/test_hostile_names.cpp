@@ -177,6 +177,7 @@ TEST_CASE("hostile names and paths through run --plot, reproduce, fit, sweep and
           }
       }
     CHECK(folders == n);
+    CHECK(drawn(w / out / "fitted.png"));  // fitted values against the load, all fits
     if (asperity::gnuplot_available()) CHECK(pngs == n);
   }
 

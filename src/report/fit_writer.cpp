@@ -305,6 +305,7 @@ void write_fit(const fs::path& dir, const FitSpec& spec, const FitResult& result
     c << "fit,experiment,stand_in,mass_kg,P_N";
     for (const auto& p : spec.parameters) c << "," << csv_text(p.key) << "," << csv_text(p.key + "_min") << "," << csv_text(p.key + "_max");
     c << ",objective,term,alpha,alpha_measured,Q_s_N,area_drop_fraction,shape_exponent,shape_exponent_measured,evaluations,wall_s,stop_reason,status\n";
+    std::vector<std::vector<double>> first;  // (P, value, low, high) of the first parameter, for fitted.png
     for (const auto& o : result.fits) {
       const std::vector<Range> ranges = error_bar_ranges(o);
       for (const auto& r : o.best_runs) {
@@ -317,6 +318,9 @@ void write_fit(const fs::path& dir, const FitSpec& spec, const FitResult& result
                 (o.variables[i].experiment < 0 || static_cast<std::size_t>(o.variables[i].experiment) == r.experiment))
               v = o.refits.empty() ? Range{o.best[i], Observables::nan, Observables::nan, Observables::nan} : ranges[i];
           c << "," << csv_num(v.value) << "," << csv_num(v.min) << "," << csv_num(v.max);
+          if (j == 0)
+            first.push_back({r.mass_kg * kGravity, v.value, std::isnan(v.min) ? v.value : v.min,
+                             std::isnan(v.max) ? v.value : v.max});
         }
         c << "," << csv_num(o.objective) << "," << csv_num(r.residual) << "," << csv_num(r.obs.alpha) << ","
           << csv_num(r.obs.alpha_measured) << "," << csv_num(r.obs.Q_s) << "," << csv_num(r.obs.area_drop_fraction) << ","
@@ -327,15 +331,13 @@ void write_fit(const fs::path& dir, const FitSpec& spec, const FitResult& result
     write_file(tmp / "fitted.csv", c.str());
     if (plots && spec.separate && result.fits.size() > 1) {
       // First parameter against the load, with the error-bar range when computed.
-      const std::size_t col = 6;  // fitted.csv column of the first parameter's value (1-based)
+      // The numbers travel in a data block: fitted.csv's quoted names may hold commas.
       std::ostringstream gp;
-      gp << "set terminal pngcairo size 800,560 noenhanced\nset datafile separator ','\nset grid\n"
+      gp << gnuplot_block("fitted", first) << "set terminal pngcairo size 800,560 noenhanced\nset grid\n"
          << "set output 'fitted.png'\nset key top left\n"
          << "set title " << gnuplot_quote(spec.name + ": fitted " + spec.parameters[0].key + " per experiment")
          << "\nset xlabel 'P = M g [N]'\nset ylabel " << gnuplot_quote(spec.parameters[0].key) << "\n"
-         << "plot 'fitted.csv' skip 1 using 5:" << col << ":(($" << col + 1 << " == $" << col + 1 << ") ? $" << col + 1
-         << " : $" << col << "):(($" << col + 2 << " == $" << col + 2 << ") ? $" << col + 2 << " : $" << col
-         << ") with yerrorbars pt 7 title 'fit (bars: error-bar range)'\n";
+         << "plot $fitted using 1:2:3:4 with yerrorbars pt 7 title 'fit (bars: error-bar range)'\n";
       plot_quietly(tmp, gp.str());
     }
     write_file(tmp / "fit.yaml", fit_yaml(spec, result));
