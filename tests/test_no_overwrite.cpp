@@ -87,7 +87,7 @@ std::vector<std::string> plot_args(const std::string& out) {
 
 }  // namespace
 
-TEST_CASE("no command writes into a folder it did not create; each replaces its own", "[cli][overwrite]") {
+TEST_CASE("no command writes into a folder it did not create, and each replaces its own", "[cli][overwrite]") {
   const fs::path w = make_case("dirs");
   const std::string refused = "user: --out: refusing to write there: it is not empty and was not written by asperity ";
   check_refused(w, {"run", "s1.yaml", "--out", "user", "--quiet"}, refused + "run");
