@@ -126,7 +126,7 @@ TEST_CASE("reproduce leaves no stale REPORT.md and refuses scenes whose run fold
   fs::remove_all(w);
 }
 
-TEST_CASE("merge --out only into a new or empty folder", "[cli][overwrite][campaign]") {
+TEST_CASE("merge --out and sweep --out only into a new or empty folder or a store", "[cli][overwrite][campaign]") {
   const fs::path w = make_case("merge");
   REQUIRE(run_argv(w, {"sweep", "camp.yaml", "--quiet", "-j", "1"}).status == 0);
   check_refused(w, {"merge", "results/camp", "--out", "user", "--quiet"},
@@ -136,6 +136,10 @@ TEST_CASE("merge --out only into a new or empty folder", "[cli][overwrite][campa
   CHECK(slurp(w / "m_empty" / "points.csv") == slurp(w / "results" / "camp" / "points.csv"));
   CHECK(run_argv(w, {"merge", "results/camp", "--out", "m_new", "--quiet"}).status == 0);
   CHECK(fs::exists(w / "m_new" / "points.csv"));
+  // A sweep resumes a store (here the merged one: nothing left to run), never a user's folder.
+  CHECK(run_argv(w, {"sweep", "camp.yaml", "--out", "m_new", "--quiet"}).status == 0);
+  check_refused(w, {"sweep", "camp.yaml", "--out", "user", "--quiet"},
+                "user: --out: refusing to write there: it is not empty and was not written by asperity sweep");
   fs::remove_all(w);
 }
 

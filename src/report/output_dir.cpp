@@ -54,8 +54,7 @@ void check_ours(const fs::path& dir, const std::string& command, const std::stri
   if (has_marker(target, command) || (fs::is_directory(st) && legacy_ours && legacy_ours(target))) return;
   const std::string why = fs::is_symlink(st)      ? "it is a symbolic link"
                           : !fs::is_directory(st) ? "it is a file, not a folder"
-                                                  : "it is not empty and was not written by asperity " + command +
-                                                        " (no " + kMarkerFile + " marker)";
+                                                  : "it is not empty and was not written by asperity " + command;
   throw InputError(dir.string(), 0, option, "refusing to write there: " + why + "; choose a new or empty folder");
 }
 
