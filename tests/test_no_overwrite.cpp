@@ -158,6 +158,12 @@ TEST_CASE("plot --out writes only .png files and replaces only PNGs it drew", "[
   REQUIRE(fs::file_size(w / "user" / "photo.png") > 100);
   CHECK_FALSE(asperity::png_is_ours(w / "user" / "photo.png"));
   check_refused(w, plot_args("user/photo.png"), "user/photo.png: --out: refusing to replace a file asperity did not write");
+  // Inside the store (asperity's folder) an untagged PNG is a heat map from before the tag.
+  fs::copy_file(w / "user" / "photo.png", w / "results" / "camp" / "legacy.png");
+  CHECK(run_argv(w, plot_args("results/camp/legacy.png")).status == 0);
+  CHECK(asperity::png_is_ours(w / "results" / "camp" / "legacy.png"));
+  write(w / "results" / "camp" / "notes.png", "not a PNG\n");
+  check_refused(w, plot_args("results/camp/notes.png"), "results/camp/notes.png: --out: refusing to replace");
   // Its own PNG it replaces, and the default heat map in the store too.
   CHECK(run_argv(w, plot_args("mine.png")).status == 0);
   CHECK(asperity::png_is_ours(w / "mine.png"));

@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <map>
 #include <set>
 #include <sstream>
@@ -54,15 +55,20 @@ std::vector<std::string> distinct_sorted(const std::vector<std::vector<std::stri
 }
 
 // The PNG a plot may write: --out must name a .png file; an existing file is replaced only when
-// render_png wrote it (a PNG tagged as ours) or, for the default name inside the store, when it
-// is a PNG (heat maps written before the tag existed).
-void check_png_target(const fs::path& png, bool from_out) {
+// render_png wrote it (a PNG tagged as ours) or, inside the store folder (asperity's own), when
+// it is a PNG (heat maps drawn before the tag existed, e.g. the committed ones).
+void check_png_target(const fs::path& png, const fs::path& store, bool from_out) {
   if (from_out && png.extension() != ".png")
     throw InputError(png.string(), 0, "--out", "must name a .png file (a plot never writes other files)");
   std::error_code ec;
   const auto st = fs::symlink_status(png, ec);
   if (!fs::exists(st) || png_is_ours(png)) return;
-  if (!from_out && fs::is_regular_file(st) && read_file_text(png).rfind("\x89PNG\r\n\x1a\n", 0) == 0) return;
+  const fs::path folder = png.parent_path().empty() ? fs::path(".") : png.parent_path();
+  if (fs::is_regular_file(st) && fs::equivalent(folder, store, ec)) {
+    char head[8] = {};
+    std::ifstream(png, std::ios::binary).read(head, sizeof head);
+    if (std::string(head, sizeof head) == std::string("\x89PNG\r\n\x1a\n", 8)) return;
+  }
   throw InputError(png.string(), 0, from_out ? "--out" : "plot",
                    "refusing to replace a file asperity did not write (only PNGs drawn by asperity are replaced); "
                    "choose a new name");
@@ -74,7 +80,7 @@ HeatmapReport plot_heatmap(const fs::path& store, const HeatmapOptions& opt) {
   const fs::path png = opt.out.empty() ? store / ("heatmap_" + file_part(opt.z) + "_over_" + file_part(opt.x) + "_" +
                                                   file_part(opt.y) + ".png")
                                        : opt.out;
-  check_png_target(png, !opt.out.empty());
+  check_png_target(png, store, !opt.out.empty());
   const StoreRows s = read_store(store);
   const std::vector<std::string> cols = csv_split(s.header);
   auto column = [&](const std::string& name, const char* option) -> std::size_t {
