@@ -33,8 +33,10 @@ int sweep(const SweepArgs& a) {
   check_ours(store, "sweep", "--out", [](const std::filesystem::path& d) {
     if (first_line_is(d / "provenance.yaml", "# asperity sweep store: written once, when the store was started"))
       return true;
-    for (const auto& e : std::filesystem::directory_iterator(d))
-      if (e.path().filename() != ".lock" && e.path().filename() != "campaign.yaml") return false;
+    for (const auto& e : std::filesystem::directory_iterator(d)) {
+      const std::string n = e.path().filename().string();
+      if (n != ".lock" && n != "campaign.yaml" && n.find(".tmp") == std::string::npos) return false;
+    }
     return true;
   });
   opt.threads = a.threads;
