@@ -67,8 +67,8 @@ TEST_CASE("asperity fit writes the results directory", "[fit][cli]") {
   fs::create_directories(c.dir / "other");
   write_text(c.dir / "other" / "keep.txt", "x");
   std::string err;
-  CHECK(asperity_in(c.dir, "fit f.yaml --quiet --out other", &err) == 1);
-  CHECK(err.find("refusing to replace") != std::string::npos);
+  CHECK(asperity_in(c.dir, "fit f.yaml --quiet --out other", &err) == 2);
+  CHECK(err.rfind("other: --out: refusing to write there", 0) == 0);
   CHECK(fs::exists(c.dir / "other" / "keep.txt"));
   fs::remove_all(c.dir);
 }

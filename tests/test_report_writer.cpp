@@ -144,6 +144,7 @@ TEST_CASE("run writer replaces a run atomically and omits an empty series", "[re
   fs::create_directories(dir);
   std::ofstream(dir / "series.csv") << "old\n";
   std::ofstream(dir / "plot.png") << "old\n";
+  std::ofstream(dir / ".asperity") << "created by asperity run\n";  // the marker: a run wrote it
 
   Scene scene = small_scene();
   scene.output.series.clear();
@@ -170,7 +171,7 @@ TEST_CASE("run writer refuses to replace a directory that is not a run", "[repor
   std::ofstream(dir / "thesis.tex") << "precious\n";
   Recorder rec(0.01, true, 1e-3, false, -1);
   CHECK_THROWS_WITH(write_run(dir, small_scene(), Observables{}, rec),
-                    Catch::Contains("not a run directory"));
+                    Catch::Contains("not written by asperity run"));
   CHECK(fs::exists(dir / "thesis.tex"));
   CHECK_FALSE(fs::exists(dir / "summary.yaml"));
   for (const auto& e : fs::directory_iterator(dir.parent_path()))

@@ -121,8 +121,10 @@ void write_savings(const fs::path& dir, const std::vector<SavingRow>& rows) {
        << g((rows[i + 1].cpu_s + rows[i + 1].write_s) * 1e3, 5) << '\n';
   }
   gp << "EOD\n"
-     << "set title 'Model only what a scene requires: " << exp
-     << " (stand-in), CPU time of integration + writing the run directory'\n"
+     << "set title "
+     << gnuplot_quote("Model only what a scene requires: " + exp +
+                      " (stand-in), CPU time of integration + writing the run directory")
+     << "\n"
      << "set style data histograms\nset style histogram clustered gap 1\nset style fill solid 0.8 border -1\n"
      << "set bmargin 5\nset boxwidth 0.9\nset ylabel 'CPU time [ms]'\nset grid ytics\nset yrange [0:*]\nset key top right\n"
      << "plot $d using 2:xticlabels(1) title 'baseline' lc rgb '#4477aa', "

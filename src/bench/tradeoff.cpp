@@ -155,8 +155,10 @@ std::string plot_script(const TradeoffResult& r) {
     gp << "EOD\n";
   }
   const std::string exp = r.rows.empty() ? "" : r.rows.front().experiment;
-  gp << "set multiplot layout 2,3 title 'Work-precision on bench experiment " << exp
-     << " (60 junctions, stand-in recipe): error vs converged event run (tol 1e-12)'\n"
+  gp << "set multiplot layout 2,3 title "
+     << gnuplot_quote("Work-precision on bench experiment " + exp +
+                      " (60 junctions, stand-in recipe): error vs converged event run (tol 1e-12)")
+     << "\n"
      << "set logscale xy\nset format y '1e%T'\nset format x '1e%T'\nset grid\n"
      << "set xlabel 'wall time [s]'\nset ylabel 'relative error'\nset key center right font ',9'\n";
   for (std::size_t i = 0; i < n_robust; ++i) {

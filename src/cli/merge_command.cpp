@@ -7,6 +7,7 @@
 
 #include "campaign/merge.hpp"
 #include "cli/commands.hpp"
+#include "report/output_dir.hpp"
 
 namespace asperity::cli {
 
@@ -23,6 +24,9 @@ Command add_merge_command(CLI::App& app) {
   sub->add_flag("--quiet,-q", a->quiet, "Print nothing on success");
   return Command{sub, [a] {
                    const std::vector<std::filesystem::path> in(a->in.begin(), a->in.end());
+                   // Only into a new or empty folder: the result is a store (no marker, so that
+                   // sweep can resume it), and merge never adds to an existing one.
+                   check_ours(a->out, "merge", "--out");
                    const MergeReport r = merge_stores(in, a->out);
                    if (!a->quiet)
                      std::printf("merged %zu stores: %llu points (%llu failed, %llu in more than one store) -> %s\n",

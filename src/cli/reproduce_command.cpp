@@ -20,6 +20,7 @@
 #include "report/claims.hpp"
 #include "scene/fit_load.hpp"
 #include "report/paper_figures.hpp"
+#include "report/output_dir.hpp"
 #include "report/run_writer.hpp"
 #include "scene/csv.hpp"
 #include "scene/load.hpp"
@@ -52,12 +53,19 @@ int reproduce(const ReproduceOptions& opt) {
                                        "model.alpha_b alone, like fits/paper_alpha_b.yaml");
   }
   const fs::path out(opt.out);
-  fs::create_directories(out);
+  // Only into a new or empty folder, or one reproduce wrote (before markers: its table.csv).
+  check_ours(out, "reproduce", "--out",
+             [](const fs::path& d) { return first_line_is(d / "table.csv", kPaperTableHeader); });
   std::vector<fs::path> dirs;
   for (const auto& s : opt.scenes) {
     dirs.push_back(out / fs::path(s).stem());
+    if (std::count(dirs.begin(), dirs.end(), dirs.back()) > 1)
+      throw InputError(s, 0, "", "two scenes share the file name " + fs::path(s).filename().string() +
+                                     ": their run folders in " + out.string() + " would collide");
     check_run_dir(dirs.back());
   }
+  fs::create_directories(out);
+  write_marker(out, "reproduce");
   const int threads = opt.threads > 0 ? opt.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   std::vector<std::string> errors(runs.size());
   tbb::task_arena arena(threads);
@@ -83,6 +91,7 @@ int reproduce(const ReproduceOptions& opt) {
   bool standin = false;
   for (const auto& r : runs) standin = standin || r.scene.experiment.description.find("STAND-IN") != std::string::npos;
   const std::string label = standin ? "STAND-IN data, not measurements" : "";
+  fs::remove(out / "REPORT.md");  // a previous one would describe other runs
   scene_io::write_text_file(out / "table.csv", paper_table_csv(runs));
   if (!runs.empty()) {
     write_figure3(out, runs.front(), runs.back(), label);

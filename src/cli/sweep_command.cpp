@@ -1,10 +1,12 @@
 // asperity sweep CAMPAIGN.yaml [--threads N] [--shard I/N] [--out DIR] [--quiet] [--retry-failed]
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <string>
 
 #include "campaign/sweep.hpp"
 #include "cli/commands.hpp"
+#include "report/output_dir.hpp"
 #include "scene/campaign_load.hpp"
 
 namespace asperity::cli {
@@ -25,6 +27,18 @@ int sweep(const SweepArgs& a) {
   }
   if (a.threads < 0) throw InputError("", 0, "--threads", "must be >= 0 (0: all cores)");
   const Campaign c = load_campaign(a.campaign);
+  // Only into a new or empty folder or a store (its provenance.yaml, or what a sweep killed at its
+  // very start leaves): never among a user's files.
+  const std::filesystem::path store = a.out.empty() ? std::filesystem::path("results") / c.name : std::filesystem::path(a.out);
+  check_ours(store, "sweep", "--out", [](const std::filesystem::path& d) {
+    if (first_line_is(d / "provenance.yaml", "# asperity sweep store: written once, when the store was started"))
+      return true;
+    for (const auto& e : std::filesystem::directory_iterator(d)) {
+      const std::string n = e.path().filename().string();
+      if (n != ".lock" && n != "campaign.yaml" && n.find(".tmp") == std::string::npos) return false;
+    }
+    return true;
+  });
   opt.threads = a.threads;
   opt.out = a.out;
   opt.quiet = a.quiet;

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -14,6 +15,7 @@
 #include <stdexcept>
 #include <system_error>
 
+#include "campaign/store.hpp"
 #include "report/run_writer.hpp"
 #include "scene/load.hpp"
 
@@ -25,18 +27,21 @@ namespace {
 
 constexpr double kGravity = 9.81;  // m/s², P = M g (as the stand-in recipe)
 
-std::string csv_text(const std::string& s) {  // RFC 4180 quoting when needed
-  if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
-  std::string out = "\"";
-  for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c == '\n' || c == '\r' ? ' ' : c);
-  return out + "\"";
-}
+std::string csv_text(const std::string& s) { return csv_field(s); }
 
-// gnuplot-safe file name for an experiment (names are free text).
+// File-name stem for an experiment (names are free text). A name made only of letters, digits,
+// '.', '-' and '_' (not starting with '.', at most 80 bytes) is its own stem; any other name gets
+// its other bytes replaced by '_' and "+" and the FNV-1a 64 hash of the whole name appended, so
+// that "x y" and "x_y" (or two long names with a common start) never share files. '+' is not in
+// the plain set, so a hashed stem never equals a plain one.
 std::string file_stem(const std::string& name) {
+  const auto plain = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-' || c == '_'; };
+  const bool as_is = !name.empty() && name.size() <= 80 && name.front() != '.' && std::all_of(name.begin(), name.end(), plain);
+  if (as_is) return name;
   std::string s;
-  for (char c : name) s += (std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-' || c == '_') ? c : '_';
-  return s.empty() ? std::string("experiment") : s;
+  for (char c : name.substr(0, 60)) s += plain(c) ? c : '_';
+  if (!s.empty() && s.front() == '.') s.front() = '_';
+  return s + "+" + hex16(fnv1a64(name));
 }
 
 // The fit file as provenance: relative to the working directory when inside it, as sweep
@@ -147,8 +152,9 @@ void write_optimization(const fs::path& d, const FitSpec& spec, const Optimizati
   gp << "set terminal pngcairo size 800,560 noenhanced\n"
      << "set datafile separator ','\nset grid\n";
   gp << "set output 'convergence.png'\n"
-     << "set title '" << spec.name << " / " << o.label << ": objective (" << objective_name(spec.objective)
-     << "), " << spec.algorithm << ", stop " << o.stop_reason << "'\n"
+     << "set title " << gnuplot_quote(spec.name + " / " + o.label + ": objective (" + objective_name(spec.objective) +
+                                      "), " + spec.algorithm + ", stop " + o.stop_reason)
+     << "\n"
      << "set xlabel 'evaluation'\nset ylabel 'objective'\nset logscale y\nset key top right\n"
      << "best = 1e300\n"
      << "plot 'evaluations.csv' skip 1 using 1:($" << (o.variables.size() + 2)
@@ -159,28 +165,31 @@ void write_optimization(const fs::path& d, const FitSpec& spec, const Optimizati
   if (!o.profile.empty()) {
     const std::string& key = spec.parameters[o.profile_parameter].key;
     gp << "set output 'profile.png'\n"
-       << "set title '" << o.label << ": objective around the optimum, " << key << " varied (others fixed)'\n"
-       << "set xlabel '" << key << " [SI]'\nset ylabel 'objective'\nset key off\n"
+       << "set title " << gnuplot_quote(o.label + ": objective around the optimum, " + key + " varied (others fixed)")
+       << "\nset xlabel " << gnuplot_quote(key + " [SI]") << "\nset ylabel 'objective'\nset key off\n"
        << "plot 'profile.csv' skip 1 using 2:($3 == $3 ? $3 : 1/0) with linespoints pt 7 lw 1.5\n";
   }
   for (const auto& r : o.best_runs) {
     const std::string name = spec.experiments[r.experiment].name;
     const std::string stem = "AQ_" + file_stem(name);
-    gp << "set output '" << stem << ".png'\n"
-       << "set title '" << name << (r.stand_in ? " (STAND-IN data)" : "") << ": A(Q) on the loading branch at the fit'\n"
-       << "set xlabel 'Q [N]'\nset ylabel 'A [mm^2]'\nset key bottom left\n"
-       << "plot '" << stem << "_model.csv' skip 1 using 1:($2*1e6) with lines lw 2 title 'model (fitted)'";
+    gp << "set output " << gnuplot_quote(stem + ".png") << "\n"
+       << "set title " << gnuplot_quote(name + (r.stand_in ? " (STAND-IN data)" : "") + ": A(Q) on the loading branch at the fit")
+       << "\nset xlabel 'Q [N]'\nset ylabel 'A [mm^2]'\nset key bottom left\n"
+       << "plot " << gnuplot_quote(stem + "_model.csv") << " skip 1 using 1:($2*1e6) with lines lw 2 title 'model (fitted)'";
     if (r.measured)
-      gp << ", '" << stem << "_measured.csv' skip 1 using 1:($2*1e6) with points pt 7 ps 0.7 title '"
+      gp << ", " << gnuplot_quote(stem + "_measured.csv") << " skip 1 using 1:($2*1e6) with points pt 7 ps 0.7 title '"
          << (r.stand_in ? "stand-in measurement" : "measurement") << "'";
     gp << "\n";
   }
   plot_quietly(d, gp.str());
 }
 
+constexpr const char* kFitHeader = "# asperity fit results (SI units: m, m², N, s; alpha_b in m^(2p+2)/N²)";
+
+// A fit directory is replaced only when asperity fit wrote it (a folder from before the marker
+// existed is recognised by the first line of its fit.yaml).
 void check_replaceable(const fs::path& target) {
-  if (fs::is_symlink(target) || !fs::is_directory(target) || !fs::exists(target / "fit.yaml"))
-    throw std::runtime_error("refusing to replace " + target.string() + ": not a fit results directory (no fit.yaml)");
+  check_ours(target, "fit", "--out", [](const fs::path& d) { return first_line_is(d / "fit.yaml", kFitHeader); });
 }
 
 }  // namespace
@@ -191,7 +200,7 @@ std::string fit_yaml(const FitSpec& spec, const FitResult& result) {
   bool stand_in = false;
   for (const auto& o : result.fits)
     for (const auto& r : o.best_runs) stand_in = stand_in || r.stand_in;
-  y << "# asperity fit results (SI units: m, m², N, s; alpha_b in m^(2p+2)/N²)\n";
+  y << kFitHeader << "\n";
   if (stand_in)
     y << "# STAND-IN DATA: the experiments fitted here are stand-ins generated by `asperity generate`,\n"
          "# not measurements. The fitted values are properties of the stand-ins, not of the real experiments.\n";
@@ -293,10 +302,7 @@ std::string fit_yaml(const FitSpec& spec, const FitResult& result) {
   return y.str();
 }
 
-void check_fit_dir(const fs::path& dir) {
-  const fs::path target = normal_dir(dir);
-  if (fs::exists(fs::symlink_status(target))) check_replaceable(target);
-}
+void check_fit_dir(const fs::path& dir) { check_replaceable(dir); }  // names the folder as given
 
 void write_fit(const fs::path& dir, const FitSpec& spec, const FitResult& result) {
   write_dir_atomically(dir, check_replaceable, [&](const fs::path& tmp) {
@@ -308,6 +314,7 @@ void write_fit(const fs::path& dir, const FitSpec& spec, const FitResult& result
     c << "fit,experiment,stand_in,mass_kg,P_N";
     for (const auto& p : spec.parameters) c << "," << csv_text(p.key) << "," << csv_text(p.key + "_min") << "," << csv_text(p.key + "_max");
     c << ",objective,term,alpha,alpha_measured,Q_s_N,area_drop_fraction,shape_exponent,shape_exponent_measured,evaluations,wall_s,stop_reason,status\n";
+    std::vector<std::vector<double>> first;  // (P, value, low, high) of the first parameter, for fitted.png
     for (const auto& o : result.fits) {
       const std::vector<Range> ranges = error_bar_ranges(o);
       for (const auto& r : o.best_runs) {
@@ -320,6 +327,9 @@ void write_fit(const fs::path& dir, const FitSpec& spec, const FitResult& result
                 (o.variables[i].experiment < 0 || static_cast<std::size_t>(o.variables[i].experiment) == r.experiment))
               v = o.refits.empty() ? Range{o.best[i], Observables::nan, Observables::nan, Observables::nan} : ranges[i];
           c << "," << csv_num(v.value) << "," << csv_num(v.min) << "," << csv_num(v.max);
+          if (j == 0)
+            first.push_back({r.mass_kg * kGravity, v.value, std::isnan(v.min) ? v.value : v.min,
+                             std::isnan(v.max) ? v.value : v.max});
         }
         c << "," << csv_num(o.objective) << "," << csv_num(r.residual) << "," << csv_num(r.obs.alpha) << ","
           << csv_num(r.obs.alpha_measured) << "," << csv_num(r.obs.Q_s) << "," << csv_num(r.obs.area_drop_fraction) << ","
@@ -330,18 +340,17 @@ void write_fit(const fs::path& dir, const FitSpec& spec, const FitResult& result
     write_file(tmp / "fitted.csv", c.str());
     if (plots && spec.separate && result.fits.size() > 1) {
       // First parameter against the load, with the error-bar range when computed.
-      const std::size_t col = 6;  // fitted.csv column of the first parameter's value (1-based)
+      // The numbers travel in a data block: fitted.csv's quoted names may hold commas.
       std::ostringstream gp;
-      gp << "set terminal pngcairo size 800,560 noenhanced\nset datafile separator ','\nset grid\n"
+      gp << gnuplot_block("fitted", first) << "set terminal pngcairo size 800,560 noenhanced\nset grid\n"
          << "set output 'fitted.png'\nset key top left\n"
-         << "set title '" << spec.name << ": fitted " << spec.parameters[0].key << " per experiment'\n"
-         << "set xlabel 'P = M g [N]'\nset ylabel '" << spec.parameters[0].key << "'\n"
-         << "plot 'fitted.csv' skip 1 using 5:" << col << ":(($" << col + 1 << " == $" << col + 1 << ") ? $" << col + 1
-         << " : $" << col << "):(($" << col + 2 << " == $" << col + 2 << ") ? $" << col + 2 << " : $" << col
-         << ") with yerrorbars pt 7 title 'fit (bars: error-bar range)'\n";
+         << "set title " << gnuplot_quote(spec.name + ": fitted " + spec.parameters[0].key + " per experiment")
+         << "\nset xlabel 'P = M g [N]'\nset ylabel " << gnuplot_quote(spec.parameters[0].key) << "\n"
+         << "plot $fitted using 1:2:3:4 with yerrorbars pt 7 title 'fit (bars: error-bar range)'\n";
       plot_quietly(tmp, gp.str());
     }
     write_file(tmp / "fit.yaml", fit_yaml(spec, result));
+    write_marker(tmp, "fit");
   });
 }
 

@@ -1,30 +1,135 @@
 #include "report/gnuplot.hpp"
 
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/mman.h>
+#include <sys/socket.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
+#include <atomic>
+#include <cerrno>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
+#include <iterator>
 #include <stdexcept>
 #include <system_error>
 
-#include "scene/csv.hpp"
+extern char** environ;
 
 namespace asperity {
 namespace fs = std::filesystem;
 
-std::string shell_quote(const std::string& s) {
-  std::string q(1, '\'');
-  for (char c : s) {
-    if (c == '\'') q.append("'\\''");
-    else q.push_back(c);
+namespace {
+
+// gnuplot's full path from $PATH (empty when absent): spawned directly, never through a shell.
+fs::path find_gnuplot() {
+  const char* path = std::getenv("PATH");
+  std::string dirs = path ? path : "/usr/local/bin:/usr/bin:/bin";
+  for (std::size_t pos = 0; pos <= dirs.size();) {
+    const std::size_t end = std::min(dirs.find(':', pos), dirs.size());
+    const fs::path dir = dirs.substr(pos, end - pos);
+    const fs::path exe = (dir.empty() ? fs::path(".") : dir) / "gnuplot";
+    std::error_code ec;
+    if (fs::is_regular_file(exe, ec) && ::access(exe.c_str(), X_OK) == 0) return exe;
+    pos = end + 1;
   }
-  q.push_back('\'');
-  return q;
+  return {};
 }
 
-bool gnuplot_available() { return std::system("command -v gnuplot >/dev/null 2>&1") == 0; }
+// Closes a file descriptor when it goes out of scope.
+struct Fd {
+  int fd = -1;
+  ~Fd() {
+    if (fd >= 0) ::close(fd);
+  }
+  void reset() {
+    if (fd >= 0) ::close(fd);
+    fd = -1;
+  }
+};
+
+std::uint32_t crc32(const unsigned char* p, std::size_t n, std::uint32_t crc = 0xffffffffu) {
+  for (std::size_t i = 0; i < n; ++i) {
+    crc ^= p[i];
+    for (int k = 0; k < 8; ++k) crc = (crc >> 1) ^ (0xedb88320u & (0u - (crc & 1u)));
+  }
+  return crc;
+}
+
+constexpr unsigned char kPngSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+const std::string kOurText = std::string("Software") + '\0' + "asperity";
+
+std::uint32_t be32(const std::string& s, std::size_t at) {
+  std::uint32_t v = 0;
+  for (int i = 0; i < 4; ++i) v = (v << 8) | static_cast<unsigned char>(s[at + i]);
+  return v;
+}
+
+std::string read_all(const fs::path& p, std::size_t max_bytes) {
+  std::ifstream f(p, std::ios::binary);
+  std::string s(max_bytes, '\0');
+  f.read(s.data(), static_cast<std::streamsize>(max_bytes));
+  s.resize(static_cast<std::size_t>(f.gcount()));
+  return s;
+}
+
+// Inserts the tEXt chunk "Software" = "asperity" after IHDR (the first chunk, 25 bytes).
+bool tag_png(const fs::path& png) {
+  std::ifstream in(png, std::ios::binary);
+  std::string s((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (s.size() < 33 || std::memcmp(s.data(), kPngSignature, 8) != 0 || s.compare(12, 4, "IHDR") != 0) return false;
+  std::string chunk;
+  auto put32 = [&](std::uint32_t v) {
+    for (int i = 3; i >= 0; --i) chunk.push_back(static_cast<char>((v >> (8 * i)) & 0xffu));
+  };
+  put32(static_cast<std::uint32_t>(kOurText.size()));
+  const std::string body = "tEXt" + kOurText;
+  chunk += body;
+  put32(crc32(reinterpret_cast<const unsigned char*>(body.data()), body.size()) ^ 0xffffffffu);
+  s.insert(33, chunk);
+  std::ofstream out(png, std::ios::binary | std::ios::trunc);
+  out << s;
+  out.close();
+  return static_cast<bool>(out);
+}
+
+std::string unique_suffix() {
+  static std::atomic<unsigned> counter{0};
+  return std::to_string(::getpid()) + "-" + std::to_string(counter++);
+}
+
+}  // namespace
+
+bool gnuplot_available() { return !find_gnuplot().empty(); }
+
+std::string gnuplot_quote(const std::string& text) {
+  // Single-quoted pieces joined with "'" by gnuplot's `.` operator. Doubling the quote is not
+  // enough: gnuplot 5.4 misreads two doubled quotes in a row (a syntax error at best).
+  std::string out, piece;
+  bool empty = true;
+  const auto emit = [&](const std::string& literal) {
+    if (!empty) out += " . ";
+    out += literal;
+    empty = false;
+  };
+  for (const char c : text) {
+    const auto u = static_cast<unsigned char>(c);
+    if (c == '\'') {
+      if (!piece.empty()) emit("'" + piece + "'");
+      piece.clear();
+      emit("\"'\"");
+    } else {
+      piece += (u < 0x20 || u == 0x7f) ? '?' : c;
+    }
+  }
+  if (!piece.empty() || empty) emit("'" + piece + "'");
+  return out;
+}
 
 std::string gnuplot_block(const std::string& name, const std::vector<std::vector<double>>& rows) {
   std::string s = "$" + name + " << EOD\n";
@@ -45,52 +150,111 @@ std::string gnuplot_block(const std::string& name, const std::vector<std::vector
 }
 
 void run_gnuplot(const fs::path& workdir, const std::string& script) {
-  if (!gnuplot_available())
+  const fs::path exe = find_gnuplot();
+  if (exe.empty())
     throw std::runtime_error("gnuplot not found: install it (apt-get install gnuplot-nox) to draw plots");
-  const fs::path file = workdir / (".plot-" + std::to_string(::getpid()) + ".gp");
-  {
-    std::ofstream f(file, std::ios::binary | std::ios::trunc);
-    f << script;
-    if (!f) throw std::runtime_error("cannot write " + file.string());
+  // The script goes through a socket (send with MSG_NOSIGNAL: a gnuplot that dies early gives
+  // EPIPE, not a SIGPIPE that would kill us); its messages go to an anonymous memory file.
+  int sv[2];
+  if (::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, sv) != 0)
+    throw std::runtime_error(std::string("cannot start gnuplot: ") + std::strerror(errno));
+  Fd ours{sv[0]}, theirs{sv[1]};
+  Fd err{::memfd_create("gnuplot-stderr", MFD_CLOEXEC)};
+  if (err.fd < 0) throw std::runtime_error(std::string("cannot start gnuplot: ") + std::strerror(errno));
+
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  posix_spawn_file_actions_adddup2(&fa, theirs.fd, 0);
+  posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_adddup2(&fa, err.fd, 2);
+  posix_spawn_file_actions_addchdir_np(&fa, workdir.empty() ? "." : workdir.c_str());
+  char arg0[] = "gnuplot";
+  char* argv[] = {arg0, nullptr};
+  pid_t pid = 0;
+  const int spawned = ::posix_spawn(&pid, exe.c_str(), &fa, nullptr, argv, environ);
+  posix_spawn_file_actions_destroy(&fa);
+  if (spawned != 0) throw std::runtime_error("cannot start gnuplot: " + std::string(std::strerror(spawned)));
+  theirs.reset();
+
+  std::size_t sent = 0;
+  while (sent < script.size()) {
+    const ssize_t n = ::send(ours.fd, script.data() + sent, script.size() - sent, MSG_NOSIGNAL);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;  // gnuplot stopped reading (an error): its status says why
+    sent += static_cast<std::size_t>(n);
   }
-  const std::string cmd = "cd " + shell_quote(workdir.string()) + " && gnuplot " + file.filename().string() + " 2>" +
-                          file.filename().string() + ".err";
-  const int rc = std::system(cmd.c_str());
-  std::string err;
-  {
-    std::ifstream e(workdir / (file.filename().string() + ".err"));
-    std::getline(e, err);
+  ours.reset();  // end of input: gnuplot exits
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
   }
-  std::error_code ec;
-  fs::remove(file, ec);
-  fs::remove(workdir / (file.filename().string() + ".err"), ec);
-  if (rc != 0) throw std::runtime_error("gnuplot failed (status " + std::to_string(rc) + "): " + err);
+  if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return;
+
+  // The first non-blank line of gnuplot's messages that names the problem.
+  std::string msg(4096, '\0');
+  const ssize_t got = ::pread(err.fd, msg.data(), msg.size(), 0);
+  msg.resize(got > 0 ? static_cast<std::size_t>(got) : 0);
+  std::string first;
+  for (std::size_t pos = 0; pos < msg.size();) {
+    const std::size_t nl = std::min(msg.find('\n', pos), msg.size());
+    const std::string line = msg.substr(pos, nl - pos);
+    pos = nl + 1;
+    if (line.find("line ") != std::string::npos || line.find("rror") != std::string::npos) {
+      first = line;
+      break;
+    }
+    if (first.empty() && line.find_first_not_of(" \t^") != std::string::npos) first = line;
+  }
+  const int code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  throw std::runtime_error("gnuplot failed (status " + std::to_string(code) + "): " + first);
 }
 
-bool render_png(const fs::path& png, const std::string& script, int width, int height) {
-  if (!gnuplot_available()) return false;
-  // Hidden siblings: ".NAME.png.tmp" and ".NAME.gp".
-  fs::path tmp_png = png.parent_path() / ".";
-  tmp_png += png.filename();
-  tmp_png += ".tmp";
-  fs::path gp = png.parent_path() / ".";
-  gp += png.stem();
-  gp += ".gp";
-  std::string text = "set terminal pngcairo size " + std::to_string(width) + "," +
-                     std::to_string(height) + " noenhanced\n";
-  std::string out_name = tmp_png.string();
-  for (char& c : out_name) if (c == '\'') c = '_';  // never inside gnuplot's quotes
-  text += "set output '" + out_name + "'\n" + script + "\nunset output\n";
-  scene_io::write_text_file(gp, text);
-  const int rc = std::system(("gnuplot " + shell_quote(gp.string()) + " >/dev/null 2>&1").c_str());
-  std::error_code ec;
-  fs::remove(gp, ec);
-  if (rc != 0 || !fs::exists(tmp_png)) {
-    fs::remove(tmp_png, ec);
+bool render_png(const fs::path& png, const std::string& script, int width, int height, std::string* error) {
+  if (!gnuplot_available()) {
+    if (error) *error = "gnuplot not found";
     return false;
   }
-  fs::rename(tmp_png, png, ec);
-  return !ec;
+  // gnuplot writes to a name of our own making (no user text in `set output`), in the target's
+  // folder so that the rename is atomic.
+  const fs::path dir = png.parent_path().empty() ? fs::path(".") : png.parent_path();
+  const std::string tmp_name = ".plot.tmp-" + unique_suffix();  // the ".NAME.tmp-*" pattern of output_dir
+  const fs::path tmp = dir / tmp_name;
+  const std::string text = "set terminal pngcairo size " + std::to_string(width) + "," + std::to_string(height) +
+                           " noenhanced\nset output " + gnuplot_quote(tmp_name) + "\n" + script + "\nunset output\n";
+  std::error_code ec;
+  try {
+    run_gnuplot(dir, text);
+  } catch (const std::exception& e) {
+    if (error) *error = e.what();
+    fs::remove(tmp, ec);
+    return false;
+  }
+  if (!fs::exists(tmp) || !tag_png(tmp)) {
+    if (error) *error = "gnuplot wrote no PNG";
+    fs::remove(tmp, ec);
+    return false;
+  }
+  fs::rename(tmp, png, ec);
+  if (ec) {
+    if (error) *error = "cannot move the plot to " + png.string() + ": " + ec.message();
+    fs::remove(tmp, ec);
+    return false;
+  }
+  return true;
+}
+
+bool png_is_ours(const fs::path& png) {
+  std::error_code ec;
+  if (!fs::is_regular_file(fs::symlink_status(png, ec))) return false;
+  const std::string s = read_all(png, 1 << 16);
+  if (s.size() < 8 || std::memcmp(s.data(), kPngSignature, 8) != 0) return false;
+  for (std::size_t at = 8; at + 12 <= s.size();) {  // chunks: length, type, data, CRC
+    const std::uint32_t len = be32(s, at);
+    const std::string type = s.substr(at + 4, 4);
+    if (type == "IDAT" || type == "IEND" || at + 12 + len > s.size()) return false;
+    if (type == "tEXt" && s.compare(at + 8, len, kOurText) == 0 && len == kOurText.size()) return true;
+    at += 12 + static_cast<std::size_t>(len);
+  }
+  return false;
 }
 
 }  // namespace asperity

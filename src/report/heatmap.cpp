@@ -4,12 +4,15 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <map>
 #include <set>
 #include <sstream>
 #include <stdexcept>
+#include <system_error>
 
 #include "campaign/store.hpp"
+#include "report/gnuplot.hpp"
 #include "scene/input_error.hpp"
 #include "scene/numbers.hpp"
 
@@ -51,9 +54,33 @@ std::vector<std::string> distinct_sorted(const std::vector<std::vector<std::stri
   return out;
 }
 
+// The PNG a plot may write: --out must name a .png file; an existing file is replaced only when
+// render_png wrote it (a PNG tagged as ours) or, inside the store folder (asperity's own), when
+// it is a PNG (heat maps drawn before the tag existed, e.g. the committed ones).
+void check_png_target(const fs::path& png, const fs::path& store, bool from_out) {
+  if (from_out && png.extension() != ".png")
+    throw InputError(png.string(), 0, "--out", "must name a .png file (a plot never writes other files)");
+  std::error_code ec;
+  const auto st = fs::symlink_status(png, ec);
+  if (!fs::exists(st) || png_is_ours(png)) return;
+  const fs::path folder = png.parent_path().empty() ? fs::path(".") : png.parent_path();
+  if (fs::is_regular_file(st) && fs::equivalent(folder, store, ec)) {
+    char head[8] = {};
+    std::ifstream(png, std::ios::binary).read(head, sizeof head);
+    if (std::string(head, sizeof head) == std::string("\x89PNG\r\n\x1a\n", 8)) return;
+  }
+  throw InputError(png.string(), 0, from_out ? "--out" : "plot",
+                   "refusing to replace a file asperity did not write (only PNGs drawn by asperity are replaced); "
+                   "choose a new name");
+}
+
 }  // namespace
 
 HeatmapReport plot_heatmap(const fs::path& store, const HeatmapOptions& opt) {
+  const fs::path png = opt.out.empty() ? store / ("heatmap_" + file_part(opt.z) + "_over_" + file_part(opt.x) + "_" +
+                                                  file_part(opt.y) + ".png")
+                                       : opt.out;
+  check_png_target(png, store, !opt.out.empty());
   const StoreRows s = read_store(store);
   const std::vector<std::string> cols = csv_split(s.header);
   auto column = [&](const std::string& name, const char* option) -> std::size_t {
@@ -126,22 +153,19 @@ HeatmapReport plot_heatmap(const fs::path& store, const HeatmapOptions& opt) {
 
   const bool stand_in = read_file_text(store / "provenance.yaml").find("stand_in_data: true") != std::string::npos;
   std::ostringstream gp;
-  gp << "set terminal pngcairo size 900,700 noenhanced\n";
-  const fs::path png = opt.out.empty() ? store / ("heatmap_" + file_part(opt.z) + "_over_" + file_part(opt.x) + "_" +
-                                                  file_part(opt.y) + ".png")
-                                       : opt.out;
-  const fs::path tmp = png.parent_path() / std::string(".").append(png.filename().string()).append(".tmp");
-  gp << "set output '" << tmp.string() << "'\n";
+  // Every text from the store or the command line enters the script as a gnuplot_quote literal;
+  // line breaks of the title are gnuplot's "\n" between them.
   std::string title = opt.z + " over " + opt.x + " x " + opt.y;
   for (const std::string& w : opt.where) title += ", " + w;
-  if (stand_in) title += "\\nSTAND-IN experiments, not measurements";
-  title += "\\n(blank: no value: NaN, e.g. no stick-slip cycle, or failed/missing point)";
-  gp << "set title \"" << title << "\"\n";
-  gp << "set xlabel '" << opt.x << "'\nset ylabel '" << opt.y << "'\nset cblabel '" << opt.z << "'\n";
+  gp << "set title " << gnuplot_quote(title);
+  if (stand_in) gp << " . \"\\n\" . " << gnuplot_quote("STAND-IN experiments, not measurements");
+  gp << " . \"\\n\" . " << gnuplot_quote("(blank: no value: NaN, e.g. no stick-slip cycle, or failed/missing point)") << "\n";
+  gp << "set xlabel " << gnuplot_quote(opt.x) << "\nset ylabel " << gnuplot_quote(opt.y) << "\nset cblabel "
+     << gnuplot_quote(opt.z) << "\n";
   gp << "set palette defined (0 '#440154', 1 '#3b528b', 2 '#21908d', 3 '#5dc963', 4 '#fde725')\n";
   auto tics = [&](const char* axis, const std::vector<std::string>& v) {
     gp << "set " << axis << "tics (";
-    for (std::size_t i = 0; i < v.size(); ++i) gp << (i ? ", " : "") << "\"" << v[i] << "\" " << i;
+    for (std::size_t i = 0; i < v.size(); ++i) gp << (i ? ", " : "") << gnuplot_quote(v[i]) << " " << i;
     gp << ")\n";
   };
   tics("x", xs);
@@ -166,17 +190,9 @@ HeatmapReport plot_heatmap(const fs::path& store, const HeatmapOptions& opt) {
   else
     gp << "set label 1 'no finite value' at graph 0.5,0.5 center\nplot NaN notitle\n";
 
-  FILE* pipe = ::popen("gnuplot", "w");
-  if (!pipe) throw std::runtime_error("cannot start gnuplot");
-  const std::string script = gp.str();
-  std::fwrite(script.data(), 1, script.size(), pipe);
-  const int rc = ::pclose(pipe);
-  std::error_code ec;
-  if (rc != 0 || !fs::exists(tmp)) {
-    fs::remove(tmp, ec);
-    throw std::runtime_error("gnuplot failed (is gnuplot installed?) while drawing " + png.string());
-  }
-  fs::rename(tmp, png);
+  std::string error;
+  if (!render_png(png, gp.str(), 900, 700, &error))
+    throw std::runtime_error("cannot draw " + png.string() + ": " + error);
   rep.png = png;
   return rep;
 }

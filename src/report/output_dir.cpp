@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <system_error>
 
+#include "scene/input_error.hpp"
+
 namespace asperity {
 namespace fs = std::filesystem;
 
@@ -22,6 +24,38 @@ void write_file(const fs::path& path, const std::string& text) {
   f << text;
   f.close();
   if (!f) throw std::runtime_error("cannot write " + path.string());
+}
+
+void write_marker(const fs::path& dir, const std::string& command) {
+  write_file(dir / kMarkerFile, "created by asperity " + command + "\n");
+}
+
+bool has_marker(const fs::path& dir, const std::string& command) {
+  std::error_code ec;
+  if (!fs::is_directory(fs::symlink_status(dir, ec))) return false;
+  return first_line_is(dir / kMarkerFile, "created by asperity " + command);
+}
+
+bool first_line_is(const fs::path& file, const std::string& line) {
+  std::error_code ec;
+  if (!fs::is_regular_file(fs::symlink_status(file, ec))) return false;
+  std::ifstream f(file, std::ios::binary);
+  std::string first;
+  return static_cast<bool>(std::getline(f, first)) && first == line;
+}
+
+void check_ours(const fs::path& dir, const std::string& command, const std::string& option,
+                const std::function<bool(const fs::path&)>& legacy_ours) {
+  const fs::path target = normal_dir(dir);
+  std::error_code ec;
+  const auto st = fs::symlink_status(target, ec);
+  if (!fs::exists(st)) return;
+  if (fs::is_directory(st) && fs::is_empty(target, ec) && !ec) return;
+  if (has_marker(target, command) || (fs::is_directory(st) && legacy_ours && legacy_ours(target))) return;
+  const std::string why = fs::is_symlink(st)      ? "it is a symbolic link"
+                          : !fs::is_directory(st) ? "it is a file, not a folder"
+                                                  : "it is not empty and was not written by asperity " + command;
+  throw InputError(dir.string(), 0, option, "refusing to write there: " + why + "; choose a new or empty folder");
 }
 
 namespace {

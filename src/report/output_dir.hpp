@@ -15,6 +15,27 @@ std::filesystem::path normal_dir(const std::filesystem::path& dir);
 // std::runtime_error naming the path.
 void write_file(const std::filesystem::path& path, const std::string& text);
 
+// Every folder a command creates carries a marker file, `.asperity`, holding
+// "created by asperity COMMAND". A command writes into, or replaces, an existing folder only when
+// it is empty or carries the marker of the same command (or, for folders written before the marker
+// existed, `legacy_ours(dir)` recognises it); anything else is refused, so no command overwrites a
+// folder or file it did not create.
+inline constexpr const char* kMarkerFile = ".asperity";
+
+// Writes the marker of `command` into `dir`.
+void write_marker(const std::filesystem::path& dir, const std::string& command);
+
+// True when `dir` exists, is a real directory (not a symlink) and carries the marker of `command`.
+bool has_marker(const std::filesystem::path& dir, const std::string& command);
+
+// Throws InputError (file: the folder, key: `option`, e.g. "--out"; exit 2 in the CLI) unless
+// `dir` is absent, an empty directory, carries the marker of `command`, or `legacy_ours(dir)`.
+void check_ours(const std::filesystem::path& dir, const std::string& command, const std::string& option,
+                const std::function<bool(const std::filesystem::path&)>& legacy_ours = {});
+
+// True when the first line of `file` is `line` (recognises files we wrote before markers).
+bool first_line_is(const std::filesystem::path& file, const std::string& line);
+
 // Replaces `dir` by a new directory filled by `fill(tmp)`. When `dir` exists,
 // `check_replaceable(dir)` runs first and must throw if the directory is not ours to replace;
 // the old directory is moved aside, put back if the new one cannot be moved in, and deleted

@@ -5,6 +5,7 @@
 #include <limits>
 #include <sstream>
 
+#include "campaign/store.hpp"
 #include "report/gnuplot.hpp"
 
 namespace asperity {
@@ -42,12 +43,6 @@ std::vector<std::vector<double>> measured_rows(const PaperRun& r) {
   return rows;
 }
 
-std::string gp_escape(const std::string& s) {
-  std::string o;
-  for (char c : s) o += c == '\'' ? std::string("''") : std::string(1, c);
-  return o;
-}
-
 const char* kColors[] = {"#1b9e77", "#d95f02", "#7570b3", "#e7298a", "#66a61e", "#e6ab02", "#a6761d", "#666666"};
 
 }  // namespace
@@ -59,11 +54,12 @@ void write_figure3(const fs::path& out_dir, const PaperRun& small, const PaperRu
      << gnuplot_block("ls", series_rows(large.series)) << gnuplot_block("le", measured_rows(large));
   gp << "set terminal pngcairo size 1200,900 noenhanced font ',10'\n"
      << "set output 'fig3_Q_A_t.png'\nset grid\nset key top left opaque box\n"
-     << "set multiplot layout 2,2 title '" << gp_escape(label)
-     << ": Figure 3 analogue. Measured A(Q) has no time axis: its samples sit at the model time "
-        "of equal Q (loading branch).'\n";
+     << "set multiplot layout 2,2 title "
+     << gnuplot_quote(label + ": Figure 3 analogue. Measured A(Q) has no time axis: its samples sit at the model time "
+                              "of equal Q (loading branch).")
+     << "\n";
   auto panel = [&](const PaperRun& r, const char* model, const char* meas, bool area) {
-    gp << "set title '" << gp_escape(r.scene.experiment.name) << " (N = " << r.obs.N << ")'\n"
+    gp << "set title " << gnuplot_quote(r.scene.experiment.name + " (N = " + std::to_string(r.obs.N) + ")") << "\n"
        << "set xlabel 't [s]'\nset ylabel '" << (area ? "A [mm^2]" : "Q [N]") << "'\n"
        << "plot $" << model << " using 1:" << (area ? 3 : 2) << " with lines lw 1.5 lc rgb '#1f4e9a' title 'model'";
     if (area && r.scene.experiment.measured)
@@ -95,8 +91,8 @@ void write_figure4(const fs::path& out_dir, const std::vector<PaperRun>& runs, c
   }
   gp << "set terminal pngcairo size 1300,600 noenhanced font ',10'\n"
      << "set output 'fig4_A_Q.png'\nset grid\nset key outside right\n"
-     << "set multiplot layout 1,2 title '" << gp_escape(label)
-     << ": Figure 4 analogue. Lines: model loading branch; points: measured (stand-in).'\n";
+     << "set multiplot layout 1,2 title "
+     << gnuplot_quote(label + ": Figure 4 analogue. Lines: model loading branch; points: measured (stand-in).") << "\n";
   for (int panel = 0; panel < 2; ++panel) {
     const int cx = panel == 0 ? 1 : 3, cy = panel == 0 ? 2 : 4;
     gp << (panel == 0 ? "set xlabel 'Q [N]'\nset ylabel 'A [mm^2]'\nset title 'A(Q)'\n"
@@ -106,8 +102,8 @@ void write_figure4(const fs::path& out_dir, const std::vector<PaperRun>& runs, c
     for (std::size_t k = 0; k < runs.size(); ++k) {
       const char* col = kColors[k % 8];
       if (k) gp << ", ";
-      gp << "$m" << k << " using " << cx << ":" << cy << " with lines lw 2 lc rgb '" << col << "' title '"
-         << gp_escape(runs[k].scene.experiment.name) << "'";
+      gp << "$m" << k << " using " << cx << ":" << cy << " with lines lw 2 lc rgb '" << col << "' title "
+         << gnuplot_quote(runs[k].scene.experiment.name);
       if (runs[k].scene.experiment.measured)
         gp << ", $e" << k << " using " << cx << ":" << cy << " with points pt 7 ps 0.4 lc rgb '" << col
            << "' notitle";
@@ -120,8 +116,7 @@ void write_figure4(const fs::path& out_dir, const std::vector<PaperRun>& runs, c
 
 std::string paper_table_csv(const std::vector<PaperRun>& runs) {
   std::ostringstream s;
-  s << "experiment,N,A0_m2,dt_s,Q_s_N,A_s_m2,t_peak_s,alpha_m2_per_N2,alpha_R2,alpha_measured_m2_per_N2,"
-       "shape_exponent,shape_exponent_measured,area_drop_fraction,ss_cycles,ss_drop_N,ss_period_s\n";
+  s << kPaperTableHeader << '\n';
   char buf[40];
   auto g = [&](double x) {
     std::snprintf(buf, sizeof buf, "%.17g", x);
@@ -129,7 +124,7 @@ std::string paper_table_csv(const std::vector<PaperRun>& runs) {
   };
   for (const PaperRun& r : runs) {
     const Observables& o = r.obs;
-    s << r.scene.experiment.name << ',' << o.N << ',' << g(o.A0) << ',' << g(o.dt) << ',' << g(o.Q_s) << ','
+    s << csv_field(r.scene.experiment.name) << ',' << o.N << ',' << g(o.A0) << ',' << g(o.dt) << ',' << g(o.Q_s) << ','
       << g(o.A_s) << ',' << g(o.t_peak) << ',' << g(o.alpha) << ',' << g(o.alpha_R2) << ','
       << g(o.alpha_measured) << ',' << g(o.shape_exponent) << ',' << g(o.shape_exponent_measured) << ','
       << g(o.area_drop_fraction) << ',' << o.ss_cycles << ',' << g(o.ss_drop) << ',' << g(o.ss_period) << '\n';

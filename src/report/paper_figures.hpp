@@ -32,6 +32,10 @@ void write_figure3(const std::filesystem::path& out_dir, const PaperRun& smalles
                    const PaperRun& largest, const std::string& label);
 void write_figure4(const std::filesystem::path& out_dir, const std::vector<PaperRun>& runs,
                    const std::string& label);
+// table.csv: a header line (kPaperTableHeader), then one row per run (names CSV-quoted).
 std::string paper_table_csv(const std::vector<PaperRun>& runs);
+inline constexpr const char* kPaperTableHeader =
+    "experiment,N,A0_m2,dt_s,Q_s_N,A_s_m2,t_peak_s,alpha_m2_per_N2,alpha_R2,alpha_measured_m2_per_N2,"
+    "shape_exponent,shape_exponent_measured,area_drop_fraction,ss_cycles,ss_drop_N,ss_period_s";
 
 }  // namespace asperity

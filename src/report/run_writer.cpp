@@ -36,26 +36,26 @@ const char* method_name(SolverMethod m) {
   return "unknown";
 }
 
-// An existing DIR is replaced only when it is a run directory (holds nothing but the files a
-// run writes): `--out .` or a typo must never delete unrelated files.
-void check_replaceable_dir(const fs::path& target) {
+constexpr const char* kSummaryHeader = "# asperity run summary (SI units: m, m², N, s)";
+
+// A run directory written before the marker existed: our summary, and nothing but run files.
+bool legacy_run_dir(const fs::path& target) {
   static const char* const known[] = {"series.csv", "summary.yaml", "scene.yaml", "plot.png"};
-  if (fs::is_symlink(target) || !fs::is_directory(target))
-    throw std::runtime_error("refusing to replace " + target.string() + ": not a run directory");
+  if (!first_line_is(target / "summary.yaml", kSummaryHeader)) return false;
   for (const auto& e : fs::directory_iterator(target)) {
     const std::string n = e.path().filename().string();
-    if (std::find(std::begin(known), std::end(known), n) == std::end(known) || !e.is_regular_file())
-      throw std::runtime_error("refusing to replace " + target.string() +
-                               ": not a run directory (it holds '" + n + "')");
+    if (std::find(std::begin(known), std::end(known), n) == std::end(known) || !e.is_regular_file()) return false;
   }
+  return true;
 }
+
+// An existing DIR is replaced only when asperity run wrote it: `--out .` or a typo must never
+// delete unrelated files.
+void check_replaceable_dir(const fs::path& target) { check_ours(target, "run", "--out", legacy_run_dir); }
 
 }  // namespace
 
-void check_run_dir(const fs::path& dir) {
-  const fs::path target = normal_dir(dir);
-  if (fs::exists(fs::symlink_status(target))) check_replaceable_dir(target);
-}
+void check_run_dir(const fs::path& dir) { check_replaceable_dir(dir); }  // names the folder as given
 
 std::string yaml_double(double x) {
   if (std::isnan(x)) return ".nan";
@@ -102,7 +102,7 @@ std::string summary_yaml(const Scene& scene, const Observables& o, const std::ve
   std::ostringstream y;
   auto d = [&](const char* key, double v) { y << key << ": " << yaml_double(v) << '\n'; };
   auto i = [&](const char* key, long long v) { y << key << ": " << v << '\n'; };
-  y << "# asperity run summary (SI units: m, m², N, s)\n";
+  y << kSummaryHeader << '\n';
   y << "asperity_version: " << yaml_quoted(ASPERITY_VERSION) << '\n';
   y << "scene_file: " << yaml_quoted(scene.file.string()) << '\n';
   y << "experiment: " << yaml_quoted(scene.experiment.name) << '\n';
@@ -167,6 +167,7 @@ void write_run(const fs::path& dir, const Scene& scene, const Observables& obs, 
     }
     write_file(tmp / "summary.yaml", summary_text);
     write_file(tmp / "scene.yaml", scene_text);
+    write_marker(tmp, "run");
     if (opt.plot) write_run_plot(tmp);
   });
 }
@@ -204,17 +205,10 @@ bool write_run_plot(const fs::path& dir) {
      << "set xlabel 'Q [N]'\nset ylabel 'A [mm^2]'\n"
      << "plot 'series.csv' skip 1 using " << q << ":($" << a << "*1e6) with lines lw 1.5\n"
      << "unset multiplot\n";
-  const fs::path script = dir / ".plot.gp";
   try {
-    write_file(script, gp.str());
+    run_gnuplot(dir, gp.str());
   } catch (const std::exception&) {
-    return false;
-  }
-  const std::string cmd = "cd " + shell_quote(dir.string()) + " && gnuplot .plot.gp >/dev/null 2>&1";
-  const int rc = std::system(cmd.c_str());
-  std::error_code ec;
-  fs::remove(script, ec);
-  if (rc != 0) {
+    std::error_code ec;
     fs::remove(dir / "plot.png", ec);
     return false;
   }

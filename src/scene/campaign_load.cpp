@@ -208,8 +208,8 @@ Campaign load_campaign(const fs::path& yaml) {
   if (auto n = m.find("name")) {
     c.name = m.string(*n, "name");
     const bool ok = !c.name.empty() && c.name.find_first_of("/\\") == std::string::npos && c.name != "." &&
-                    c.name != "..";
-    if (!ok) m.fail_at(*n, "name", "must be a plain folder name (no '/'), got " + quote(c.name));
+                    c.name != ".." && !has_control_char(c.name);
+    if (!ok) m.fail_at(*n, "name", "must be a plain folder name (no '/', no control characters), got " + quote(c.name));
   }
   if (auto n = m.find("description")) m.string(*n, "description");
   if (auto n = m.find("series")) c.series = m.boolean(*n, "series");
@@ -267,7 +267,10 @@ Campaign load_campaign(const fs::path& yaml) {
     for (std::size_t i = 0; i < grids->size(); ++i) {
       const MapView gm(src, (*grids)[i], "grids[" + std::to_string(i) + "]", kGridKeys, line_of(*grids));
       std::string name = "grid_" + std::to_string(i);
-      if (auto n = gm.find("name")) name = gm.string(*n, "name");
+      if (auto n = gm.find("name")) {
+        name = gm.string(*n, "name");
+        if (has_control_char(name)) gm.fail_at(*n, "name", "must not hold control characters (newline, tab, ...), got " + quote(name));
+      }
       c.grids.push_back(parse_grid(src, gm, name));
     }
   } else if (axes) {

@@ -106,6 +106,8 @@ Experiment load_experiment_impl(const fs::path& path, const std::string& display
     const Pick p = required("name");
     e.name = p.view->string(p.node, "name");
     if (trim(e.name).empty()) p.view->fail_at(p.node, "name", "must not be empty");
+    if (has_control_char(e.name))
+      p.view->fail_at(p.node, "name", "must not hold control characters (newline, tab, ...), got " + quote(e.name));
   }
   if (const Pick p = pick("description")) e.description = p.view->string(p.node, "description");
 

@@ -64,6 +64,7 @@ std::string quote(std::string_view s) {
   std::string q;
   for (char c : s) {
     if (c == '\n' || c == '\r' || c == '\t') c = ' ';
+    else if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';  // messages stay one clean line
     q += c;
   }
   if (q.size() > 40) q = q.substr(0, 37) + "...";

@@ -22,4 +22,13 @@ std::string_view trim(std::string_view s);
 // Value text for messages: single line, at most ~40 characters, in single quotes.
 std::string quote(std::string_view s);
 
+// True when `s` holds a control character (a byte below 0x20, e.g. newline or tab, or 0x7f).
+// Names (experiments, campaigns, grids) must not: they become table rows, folder names and plot
+// titles, where a line break would split a row or end a command.
+inline bool has_control_char(std::string_view s) {
+  for (const char c : s)
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) return true;
+  return false;
+}
+
 }  // namespace asperity::scene_io

@@ -1,0 +1,219 @@
+// No command overwrites a file or folder it did not create: run, fit, reproduce, merge and plot
+// refuse (exit 2, one line "PATH: --out: ...") to write into a user's folder or over a user's
+// file, which stay byte-identical; they replace what they wrote themselves (the .asperity
+// marker, or a PNG tagged by render_png). Also: reproduce leaves no stale REPORT.md, and the fit
+// outputs of experiments named "x y" and "x_y" do not collide.
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "cli_spawn.hpp"
+#include "report/gnuplot.hpp"
+
+namespace fs = std::filesystem;
+using asperity::testing::CliResult;
+using asperity::testing::run_argv;
+using asperity::testing::slurp;
+using asperity::testing::snapshot;
+
+namespace {
+
+const fs::path kExp = fs::path(ASPERITY_SOURCE_DIR) / "tests" / "data" / "scene" / "exp_small";
+
+void write(const fs::path& p, const std::string& text) {
+  fs::create_directories(p.parent_path());
+  std::ofstream f(p, std::ios::binary);
+  f << text;
+}
+
+std::string experiment_yaml(const std::string& name, double mass) {
+  return "name: \"" + name + "\"\nmass: " + std::to_string(mass) +
+         "\nk_L: 9200\nv: 1.0e-4\nE: 1.6e6\nnu: 0.5\nsigma_exp: 0.23e6\njunctions: junctions.csv\nmeasured: "
+         "measured.csv\n";
+}
+
+// A working folder with two short scenes (s1: experiment "x y", s2: "x_y", other mass), a fit of
+// both separately, a campaign, and a user's folder `user/` holding files of every name a
+// command writes.
+fs::path make_case(const std::string& tag) {
+  const fs::path w = asperity::testing::temp_path("asperity-nooverwrite-" + tag);
+  fs::remove_all(w);
+  fs::create_directories(w);
+  fs::copy_file(kExp / "junctions.csv", w / "junctions.csv");
+  fs::copy_file(kExp / "measured.csv", w / "measured.csv");
+  write(w / "e1.yaml", experiment_yaml("x y", 0.1));
+  write(w / "e2.yaml", experiment_yaml("x_y", 0.12));
+  for (const char* k : {"1", "2"})
+    write(w / (std::string("s") + k + ".yaml"),
+          std::string("experiment: e") + k + ".yaml\nsolver: {method: event, tolerance: 1e-8}\nstop: {time: 0.3}\n");
+  write(w / "fit.yaml",
+        "name: xy\nobjective: quadratic_alpha\nseparate: true\nexperiments: [s1.yaml, s2.yaml]\n"
+        "parameters:\n  model.alpha_b: {lo: 0.1e-15, hi: 5.0e-15, start: 0.725e-15, scale: log}\n"
+        "optimizer: {algorithm: LN_BOBYQA, max_evaluations: 3}\n");
+  write(w / "camp.yaml", "name: camp\nscenes: [s1.yaml]\naxes:\n  model.eta: [0, 100]\n  model.epsilon: [0.5, 0.9]\n");
+  for (const char* f : {"thesis.tex", "table.csv", "points.csv", "summary.yaml", "scene.yaml", "REPORT.md"})
+    write(w / "user" / f, std::string("the user's own ") + f + "\n");
+  write(w / "user" / "fit.yaml", "# the user's fit file\nname: mine\n");
+  return w;
+}
+
+// The command is refused with exit 2 and one line naming the folder and --out, and nothing under
+// `w` changed.
+void check_refused(const fs::path& w, const std::vector<std::string>& args, const std::string& prefix) {
+  const auto before = snapshot(w);
+  const CliResult r = run_argv(w, args);
+  INFO(args.front() << ": " << r.err);
+  CHECK(r.status == 2);
+  CHECK(r.err.rfind(prefix, 0) == 0);
+  CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+  CHECK(snapshot(w) == before);
+}
+
+const std::vector<std::string> kPlotAxes{"--x", "model.eta", "--y", "model.epsilon", "--z", "Q_s", "--quiet"};
+
+std::vector<std::string> plot_args(const std::string& out) {
+  std::vector<std::string> a{"plot", "results/camp"};
+  a.insert(a.end(), kPlotAxes.begin(), kPlotAxes.end());
+  if (!out.empty()) a.insert(a.end(), {"--out", out});
+  return a;
+}
+
+}  // namespace
+
+TEST_CASE("no command writes into a folder it did not create, and each replaces its own", "[cli][overwrite]") {
+  const fs::path w = make_case("dirs");
+  const std::string refused = "user: --out: refusing to write there: it is not empty and was not written by asperity ";
+  check_refused(w, {"run", "s1.yaml", "--out", "user", "--quiet"}, refused + "run");
+  check_refused(w, {"fit", "fit.yaml", "--out", "user", "--quiet", "--no-profile", "--no-error-bars"}, refused + "fit");
+  check_refused(w, {"reproduce", "s1.yaml", "--out", "user", "--quiet", "--no-claims"}, refused + "reproduce");
+
+  // Each command's own folder is replaced (run, fit) or written again (reproduce); another
+  // command's folder is not its own.
+  for (int k = 0; k < 2; ++k) {
+    CHECK(run_argv(w, {"run", "s1.yaml", "--out", "r", "--quiet"}).status == 0);
+    CHECK(run_argv(w, {"fit", "fit.yaml", "--out", "f", "--quiet", "--no-profile", "--no-error-bars"}).status != 2);
+    CHECK(run_argv(w, {"reproduce", "s1.yaml", "--out", "p", "--quiet", "--no-claims"}).status == 0);
+  }
+  CHECK(slurp(w / "r" / ".asperity") == "created by asperity run\n");
+  CHECK(slurp(w / "f" / ".asperity") == "created by asperity fit\n");
+  CHECK(slurp(w / "p" / ".asperity") == "created by asperity reproduce\n");
+  check_refused(w, {"fit", "fit.yaml", "--out", "r", "--quiet"}, "r: --out: refusing to write there");
+  check_refused(w, {"run", "s1.yaml", "--out", "p", "--quiet"}, "p: --out: refusing to write there");
+  // An empty folder is fine.
+  fs::create_directories(w / "empty");
+  CHECK(run_argv(w, {"run", "s1.yaml", "--out", "empty", "--quiet"}).status == 0);
+  CHECK(fs::exists(w / "empty" / "summary.yaml"));
+  fs::remove_all(w);
+}
+
+TEST_CASE("reproduce leaves no stale REPORT.md and refuses scenes whose run folders collide", "[cli][overwrite]") {
+  const fs::path w = make_case("report");
+  REQUIRE(run_argv(w, {"reproduce", "s1.yaml", "--out", "p", "--quiet", "--no-claims"}).status == 0);
+  write(w / "p" / "REPORT.md", "# verdicts of another run\n");
+  REQUIRE(run_argv(w, {"reproduce", "s1.yaml", "--out", "p", "--quiet", "--no-claims"}).status == 0);
+  CHECK_FALSE(fs::exists(w / "p" / "REPORT.md"));
+  // Two scenes named s1.yaml in different folders would share p/s1/.
+  write(w / "other" / "s1.yaml", "experiment: ../e2.yaml\nstop: {time: 0.3}\n");
+  check_refused(w, {"reproduce", "s1.yaml", "other/s1.yaml", "--out", "q", "--quiet", "--no-claims"},
+                "other/s1.yaml: two scenes share the file name s1.yaml");
+  fs::remove_all(w);
+}
+
+TEST_CASE("merge --out and sweep --out only into a new or empty folder or a store", "[cli][overwrite][campaign]") {
+  const fs::path w = make_case("merge");
+  REQUIRE(run_argv(w, {"sweep", "camp.yaml", "--quiet", "-j", "1"}).status == 0);
+  check_refused(w, {"merge", "results/camp", "--out", "user", "--quiet"},
+                "user: --out: refusing to write there: it is not empty and was not written by asperity merge");
+  fs::create_directories(w / "m_empty");
+  CHECK(run_argv(w, {"merge", "results/camp", "--out", "m_empty", "--quiet"}).status == 0);
+  CHECK(slurp(w / "m_empty" / "points.csv") == slurp(w / "results" / "camp" / "points.csv"));
+  CHECK(run_argv(w, {"merge", "results/camp", "--out", "m_new", "--quiet"}).status == 0);
+  CHECK(fs::exists(w / "m_new" / "points.csv"));
+  // A sweep resumes a store (here the merged one: nothing left to run), never a user's folder.
+  CHECK(run_argv(w, {"sweep", "camp.yaml", "--out", "m_new", "--quiet"}).status == 0);
+  check_refused(w, {"sweep", "camp.yaml", "--out", "user", "--quiet"},
+                "user: --out: refusing to write there: it is not empty and was not written by asperity sweep");
+  fs::remove_all(w);
+}
+
+TEST_CASE("plot --out writes only .png files and replaces only PNGs it drew", "[cli][overwrite][campaign]") {
+  const fs::path w = make_case("plot");
+  REQUIRE(run_argv(w, {"sweep", "camp.yaml", "--quiet", "-j", "1"}).status == 0);
+  check_refused(w, plot_args("user/thesis.tex"), "user/thesis.tex: --out: must name a .png file");
+  check_refused(w, plot_args("new.tex"), "new.tex: --out: must name a .png file");
+  if (!asperity::gnuplot_available()) {
+    WARN("gnuplot not installed: the PNG cases are not checked");
+    fs::remove_all(w);
+    return;
+  }
+  // A PNG drawn by gnuplot directly (not by asperity) is the user's.
+  asperity::run_gnuplot(w / "user", "set terminal pngcairo size 200,100\nset output 'photo.png'\nplot x\n");
+  REQUIRE(fs::file_size(w / "user" / "photo.png") > 100);
+  CHECK_FALSE(asperity::png_is_ours(w / "user" / "photo.png"));
+  check_refused(w, plot_args("user/photo.png"), "user/photo.png: --out: refusing to replace a file asperity did not write");
+  // Inside the store (asperity's folder) an untagged PNG is a heat map from before the tag.
+  fs::copy_file(w / "user" / "photo.png", w / "results" / "camp" / "legacy.png");
+  CHECK(run_argv(w, plot_args("results/camp/legacy.png")).status == 0);
+  CHECK(asperity::png_is_ours(w / "results" / "camp" / "legacy.png"));
+  write(w / "results" / "camp" / "notes.png", "not a PNG\n");
+  check_refused(w, plot_args("results/camp/notes.png"), "results/camp/notes.png: --out: refusing to replace");
+  // Its own PNG it replaces, and the default heat map in the store too.
+  CHECK(run_argv(w, plot_args("mine.png")).status == 0);
+  CHECK(asperity::png_is_ours(w / "mine.png"));
+  CHECK(run_argv(w, plot_args("mine.png")).status == 0);
+  CHECK(run_argv(w, plot_args("")).status == 0);
+  CHECK(run_argv(w, plot_args("")).status == 0);
+  CHECK(asperity::png_is_ours(w / "results" / "camp" / "heatmap_Q_s_over_model_eta_model_epsilon.png"));
+  // The tag keeps the PNG valid: libpng (through gnuplot) reads it without a CRC complaint, and
+  // does complain once one byte of the tag is changed.
+  auto libpng_says = [&](const fs::path& png) {
+    const fs::path err = w / "libpng.txt";
+    const std::string cmd = "cd '" + w.string() + "' && printf \"set terminal dumb\\nset output '/dev/null'\\nplot '" +
+                            png.filename().string() + "' binary filetype=png with rgbimage\\n\" | gnuplot 2>'" +
+                            err.string() + "'";
+    CHECK(std::system(cmd.c_str()) == 0);
+    return slurp(err);
+  };
+  CHECK(libpng_says(w / "mine.png").find("CRC") == std::string::npos);
+  {
+    std::string bytes = slurp(w / "mine.png");
+    const std::size_t at = bytes.find("asperity");
+    REQUIRE(at != std::string::npos);
+    bytes[at] = 'A';
+    write(w / "bad.png", bytes);
+  }
+  CHECK(libpng_says(w / "bad.png").find("CRC error") != std::string::npos);
+  CHECK_FALSE(asperity::png_is_ours(w / "bad.png"));
+  fs::remove_all(w);
+}
+
+TEST_CASE("experiments named \"x y\" and \"x_y\" get separate fit outputs", "[cli][overwrite][fit]") {
+  const fs::path w = make_case("xy");
+  const CliResult r = run_argv(w, {"fit", "fit.yaml", "--out", "f", "--quiet", "--no-profile", "--no-error-bars"});
+  INFO(r.err);
+  REQUIRE(r.status != 2);
+  const YAML::Node y = YAML::LoadFile((w / "f" / "fit.yaml").string());
+  REQUIRE(y["fits"].size() == 2);
+  std::set<std::string> folders;
+  for (const auto& f : y["fits"]) {
+    const std::string dir = f["files"].as<std::string>();
+    folders.insert(dir);
+    CHECK(fs::exists(w / "f" / dir / "evaluations.csv"));
+    // Its own A(Q) files, named after its own experiment.
+    std::size_t model_files = 0;
+    for (const auto& e : fs::directory_iterator(w / "f" / dir))
+      model_files += e.path().filename().string().size() > 10 &&
+                     e.path().filename().string().ends_with("_model.csv");
+    CHECK(model_files == 1);
+  }
+  CHECK(folders.size() == 2);
+  CHECK(folders.count("x_y") == 1);  // the plain name keeps its own name
+  fs::remove_all(w);
+}
