@@ -161,7 +161,7 @@ std::string provenance_yaml(const Campaign& c, const std::string& campaign_text,
   y << "build_type: " << yaml_quoted(ASPERITY_BUILD_TYPE) << '\n';
   y << "started_utc: " << yaml_quoted(utc_now()) << '\n';
   y << "stand_in_data: " << (uses_stand_ins(c) ? "true  # STAND-IN experiments, not measurements" : "false") << '\n';
-  y << "hash: \"FNV-1a 64 of the resolved scene (scene_to_yaml, experiment file relative to the campaign folder)\"\n";
+  y << "hash: \"FNV-1a 64 of the resolved scene (scene_to_yaml, experiment file relative to the campaign folder) and of the bytes of its junctions and measured CSVs\"\n";
   return y.str();
 }
 
@@ -191,17 +191,29 @@ std::string store_header(const Campaign& c) {
   return h + ",wall_s";
 }
 
-std::string canonical_scene_text(const Scene& scene, const fs::path& base_dir) {
+std::uint64_t FileHashes::of(const fs::path& file) {
+  const std::string key = fs::absolute(file).lexically_normal().string();
+  if (const auto it = by_path_.find(key); it != by_path_.end()) return it->second;
+  return by_path_[key] = fnv1a64(read_file_text(file));
+}
+
+std::string canonical_scene_text(const Scene& scene, const fs::path& base_dir, FileHashes& data) {
   std::string text = scene_to_yaml(scene);
-  const fs::path& f = scene.experiment.file;
-  if (f.empty()) return text;
-  const std::string line = "  file: " + yaml_quoted(fs::absolute(f).lexically_normal().string()) + "\n";
-  std::error_code ec;
-  fs::path base = fs::weakly_canonical(fs::absolute(base_dir), ec);
-  if (ec) base = fs::absolute(base_dir).lexically_normal();
-  const std::string rel = fs::absolute(f).lexically_normal().lexically_relative(base).generic_string();
-  const std::size_t at = text.find(line);
-  if (at != std::string::npos) text.replace(at, line.size(), "  file: " + yaml_quoted(rel) + "\n");
+  const Experiment& e = scene.experiment;
+  const fs::path& f = e.file;
+  if (!f.empty()) {
+    const std::string line = "  file: " + yaml_quoted(fs::absolute(f).lexically_normal().string()) + "\n";
+    std::error_code ec;
+    fs::path base = fs::weakly_canonical(fs::absolute(base_dir), ec);
+    if (ec) base = fs::absolute(base_dir).lexically_normal();
+    const std::string rel = fs::absolute(f).lexically_normal().lexically_relative(base).generic_string();
+    const std::size_t at = text.find(line);
+    if (at != std::string::npos) text.replace(at, line.size(), "  file: " + yaml_quoted(rel) + "\n");
+  }
+  // The data by content, not by name (an edited CSV keeps its name).
+  text += "data:\n";
+  text += "  junctions_fnv1a64: " + yaml_quoted(e.junctions_file.empty() ? "" : hex16(data.of(e.junctions_file))) + "\n";
+  text += "  measured_fnv1a64: " + yaml_quoted(e.measured_file.empty() ? "" : hex16(data.of(e.measured_file))) + "\n";
   return text;
 }
 
@@ -243,6 +255,7 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
     if (index < total && shard.contains(index) && (e.ok || !opt.retry_failed)) ++done_before;
 
   CampaignScenes scenes(c);
+  FileHashes data_hashes;  // used by the build stage only (serial)
   Progress progress(rep.points, done_before, opt.quiet);
   const int threads = opt.threads > 0 ? opt.threads : tbb::info::default_concurrency();
   std::uint64_t next = shard.index;
@@ -254,16 +267,19 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
       next += shard.count;
       try {
         job->scene = scenes.scene(job->point);
-        job->hash = fnv1a64(canonical_scene_text(*job->scene, base_dir));
+        job->hash = fnv1a64(canonical_scene_text(*job->scene, base_dir, data_hashes));
       } catch (const std::exception& e) {  // a bad combination of values: recorded, not fatal
         job->scene.reset();
         job->error = e.what();
         job->hash = fnv1a64("invalid point: " + job->error);
       }
-      if (const auto it = done.find(job->point.index);
-          it != done.end() && it->second.hash == job->hash && (it->second.ok || !opt.retry_failed)) {
-        ++rep.skipped;
-        continue;
+      if (const auto it = done.find(job->point.index); it != done.end()) {
+        if (it->second.hash == job->hash && (it->second.ok || !opt.retry_failed)) {
+          ++rep.skipped;
+          continue;
+        }
+        // Stored from another scene or other data: rerun; the new row supersedes the stale one.
+        if (it->second.hash != job->hash) ++rep.changed;
       }
       const Point& p = job->point;
       for (const std::string& k : varied_keys) {
