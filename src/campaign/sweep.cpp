@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <algorithm>
+#include <atomic>
 #include <cctype>
 #include <cmath>
 #include <filesystem>
@@ -88,8 +89,8 @@ std::string duration_text(double s) {
 // One line on a terminal (redrawn), or a plain log line every 10 s otherwise.
 class Progress {
  public:
-  Progress(std::uint64_t total, std::uint64_t skipped, bool quiet)
-      : total_(total), skipped_(skipped), quiet_(quiet), tty_(::isatty(2) == 1),
+  Progress(std::uint64_t total, bool quiet)
+      : total_(total), skipped_(0), quiet_(quiet), tty_(::isatty(2) == 1),
         start_(std::chrono::steady_clock::now()), last_(start_) {}
 
   void point_done(bool failed) {
@@ -97,10 +98,13 @@ class Progress {
     failed_ += failed ? 1 : 0;
     const auto now = std::chrono::steady_clock::now();
     const double since = std::chrono::duration<double>(now - last_).count();
-    if (quiet_ || (since < (tty_ ? 0.2 : 10.0) && done_ + skipped_ < total_)) return;
+    if (quiet_ || (since < (tty_ ? 0.2 : 10.0) && done_ + skipped_.load() < total_)) return;
     last_ = now;
     print(now);
   }
+  // A point found in the store with its current hash (counted by the build stage, which runs
+  // ahead of the writer: a stale stored point is not counted as finished).
+  void skipped_one() { ++skipped_; }
   void finish() {
     if (!quiet_ && tty_ && done_ > 0) std::fputc('\n', stderr);
   }
@@ -109,7 +113,7 @@ class Progress {
   void print(std::chrono::steady_clock::time_point now) {
     const double el = std::chrono::duration<double>(now - start_).count();
     const double rate = el > 0 ? static_cast<double>(done_) / el : 0;
-    const std::uint64_t finished = done_ + skipped_;
+    const std::uint64_t finished = std::min(total_, done_ + skipped_);
     const double eta = rate > 0 ? static_cast<double>(total_ - finished) / rate : NAN;
     char line[200];
     std::snprintf(line, sizeof line, "%llu/%llu points, %.2f points/s, ETA %s, %llu failed",
@@ -125,7 +129,9 @@ class Progress {
     }
     std::fflush(stderr);
   }
-  std::uint64_t total_, skipped_, done_ = 0, failed_ = 0;
+  std::uint64_t total_;
+  std::atomic<std::uint64_t> skipped_;  // incremented by the build stage while the writer reads it
+  std::uint64_t done_ = 0, failed_ = 0;
   bool quiet_, tty_;
   std::chrono::steady_clock::time_point start_, last_;
 };
@@ -248,15 +254,12 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
   const fs::path base_dir = c.file.parent_path();
 
   // What the journal holds at the start: the build stage reads this copy, never the journal's
-  // own index, which the writer stage updates concurrently. Counted for progress and the ETA.
+  // own index, which the writer stage updates concurrently.
   const std::map<std::uint64_t, JournalEntry> done = journal.entries();
-  std::uint64_t done_before = 0;
-  for (const auto& [index, e] : done)
-    if (index < total && shard.contains(index) && (e.ok || !opt.retry_failed)) ++done_before;
 
   CampaignScenes scenes(c);
   FileHashes data_hashes;  // used by the build stage only (serial)
-  Progress progress(rep.points, done_before, opt.quiet);
+  Progress progress(rep.points, opt.quiet);
   const int threads = opt.threads > 0 ? opt.threads : tbb::info::default_concurrency();
   std::uint64_t next = shard.index;
 
@@ -276,6 +279,7 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
       if (const auto it = done.find(job->point.index); it != done.end()) {
         if (it->second.hash == job->hash && (it->second.ok || !opt.retry_failed)) {
           ++rep.skipped;
+          progress.skipped_one();
           continue;
         }
         // Stored from another scene or other data: rerun; the new row supersedes the stale one.
