@@ -311,3 +311,21 @@ TEST_CASE("a store with points.csv but no journal is plotted merged and resumed 
   CHECK(values_of(d / "s") == before);
   CHECK(lines_of(slurp(d / "s" / "journal.csv")).size() == c.size() + 1);
 }
+
+TEST_CASE("the typed scene used to recognise stored points hashes like the checked one", "[campaign]") {
+  const Campaign c = load_campaign(kData / "tiny.yaml");  // numeric axes only: every point has one
+  const CampaignScenes scenes(c);
+  FileHashes data;
+  for (std::uint64_t i = 0; i < c.size(); ++i) {
+    INFO("point " << i);
+    const auto quick = scenes.unchecked_scene(point_at(c, i));
+    REQUIRE(quick);
+    CHECK(canonical_scene_text(*quick, kData, data) == canonical_scene_text(scenes.scene(point_at(c, i)), kData, data));
+  }
+  // A key that is not a plain number (here an enumeration) has none: the checked scene decides.
+  const fs::path d = temp_dir();
+  std::ofstream(d / "enum.yaml") << "name: enum\nscenes: [" << (kData / "tiny_scene.yaml").string() << "]\n"
+                                 << "axes: {model.junction_shape: [elliptic, circular]}\n";
+  const Campaign e = load_campaign(d / "enum.yaml");
+  CHECK_FALSE(CampaignScenes(e).unchecked_scene(point_at(e, 0)));
+}

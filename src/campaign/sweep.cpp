@@ -268,6 +268,14 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
       auto job = std::make_shared<Job>();
       job->point = point_at(c, next);
       next += shard.count;
+      // Stored points are recognised without reading their data again when they can be.
+      if (const auto it = done.find(job->point.index); it != done.end() && (it->second.ok || !opt.retry_failed))
+        if (const auto quick = scenes.unchecked_scene(job->point);
+            quick && fnv1a64(canonical_scene_text(*quick, base_dir, data_hashes)) == it->second.hash) {
+          ++rep.skipped;
+          progress.skipped_one();
+          continue;
+        }
       try {
         job->scene = scenes.scene(job->point);
         job->hash = fnv1a64(canonical_scene_text(*job->scene, base_dir, data_hashes));
