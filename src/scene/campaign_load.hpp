@@ -39,7 +39,9 @@ namespace asperity {
 Campaign load_campaign(const std::filesystem::path& yaml);
 
 // Builds the scene of each point of a loaded campaign (base scene tree + set + the point's axis
-// values). Not thread-safe (yaml-cpp trees are shared): use from one thread at a time.
+// values). Each point gets a tree of its own, parsed from the base scene's text (read once), so
+// its cost does not grow with the points built before it. Not thread-safe (unchecked_scene fills
+// a cache on first use): use from one thread at a time.
 class CampaignScenes {
  public:
   explicit CampaignScenes(const Campaign& campaign);
