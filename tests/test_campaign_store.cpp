@@ -218,7 +218,8 @@ TEST_CASE("a failing point is recorded with its error and counted and the campai
 TEST_CASE("point hashes do not depend on where the project lives", "[campaign]") {
   const Campaign c = load_campaign(kData / "tiny.yaml");
   const Scene s = CampaignScenes(c).scene(point_at(c, 0));
-  const std::string text = canonical_scene_text(s, kData);
+  FileHashes data;
+  const std::string text = canonical_scene_text(s, kData, data);
   CHECK_THAT(text, Contains("file: \"../scene/exp_small/experiment.yaml\""));
   CHECK(text.find(ASPERITY_SOURCE_DIR) == std::string::npos);
 }
@@ -256,17 +257,18 @@ TEST_CASE("plot draws a PNG heat map with one cell per grid point and blanks for
 TEST_CASE("a point's scene does not depend on the points built before it", "[campaign]") {
   const Campaign c = load_campaign(kData / "tiny.yaml");
   std::vector<std::string> forward;
+  FileHashes data;
   {
     const CampaignScenes scenes(c);
     for (std::uint64_t i = 0; i < c.size(); ++i)
-      forward.push_back(canonical_scene_text(scenes.scene(point_at(c, i)), kData));
+      forward.push_back(canonical_scene_text(scenes.scene(point_at(c, i)), kData, data));
   }
   const CampaignScenes scenes(c);
   for (std::uint64_t i = c.size(); i-- > 0;) {
     INFO("point " << i);
-    CHECK(canonical_scene_text(scenes.scene(point_at(c, i)), kData) == forward[i]);
+    CHECK(canonical_scene_text(scenes.scene(point_at(c, i)), kData, data) == forward[i]);
     // Each point alone, on a fresh loader, too.
-    CHECK(canonical_scene_text(CampaignScenes(c).scene(point_at(c, i)), kData) == forward[i]);
+    CHECK(canonical_scene_text(CampaignScenes(c).scene(point_at(c, i)), kData, data) == forward[i]);
   }
   // The mass grid keeps the base scene's eta (100), whatever the grid before it set.
   CHECK(CampaignScenes(c).scene(point_at(c, 9)).model.eta == 100);
@@ -308,4 +310,22 @@ TEST_CASE("a store with points.csv but no journal is plotted merged and resumed 
   CHECK(r.ok == c.size());
   CHECK(values_of(d / "s") == before);
   CHECK(lines_of(slurp(d / "s" / "journal.csv")).size() == c.size() + 1);
+}
+
+TEST_CASE("the typed scene used to recognise stored points hashes like the checked one", "[campaign]") {
+  const Campaign c = load_campaign(kData / "tiny.yaml");  // numeric axes only: every point has one
+  const CampaignScenes scenes(c);
+  FileHashes data;
+  for (std::uint64_t i = 0; i < c.size(); ++i) {
+    INFO("point " << i);
+    const auto quick = scenes.unchecked_scene(point_at(c, i));
+    REQUIRE(quick);
+    CHECK(canonical_scene_text(*quick, kData, data) == canonical_scene_text(scenes.scene(point_at(c, i)), kData, data));
+  }
+  // A key that is not a plain number (here an enumeration) has none: the checked scene decides.
+  const fs::path d = temp_dir();
+  std::ofstream(d / "enum.yaml") << "name: enum\nscenes: [" << (kData / "tiny_scene.yaml").string() << "]\n"
+                                 << "axes: {model.junction_shape: [elliptic, circular]}\n";
+  const Campaign e = load_campaign(d / "enum.yaml");
+  CHECK_FALSE(CampaignScenes(e).unchecked_scene(point_at(e, 0)));
 }

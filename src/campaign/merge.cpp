@@ -19,6 +19,28 @@ std::string provenance_line(const std::string& text, const std::string& key) {
   return text.substr(at + 1, end == std::string::npos ? std::string::npos : end - at - 1);
 }
 
+// One point found in two inputs: its identity (the scene hash, which covers the bytes of the
+// junctions and measured CSVs) and, when both ran to the end, its values (wall_s aside) must
+// agree; otherwise one of the stores is stale and merging would keep either silently.
+void check_same_point(std::uint64_t index, const std::string& kept, const std::string& other, const fs::path& kept_in,
+                      const fs::path& other_in, const std::string& header) {
+  const auto a = csv_split(kept), b = csv_split(other);
+  const auto names = csv_split(header);
+  const std::string point = "merge: point " + std::to_string(index) + " (grid " + a.at(2) + ", experiment " + a.at(3) + ")";
+  if (a.at(1) != b.at(1))
+    throw std::runtime_error(point + " was computed from different scenes or data: hash " + a.at(1) + " in " +
+                             kept_in.string() + ", " + b.at(1) + " in " + other_in.string() +
+                             " (the hash covers the scene and the bytes of its junctions and measured CSVs); "
+                             "resume the stale store with asperity sweep --out, then merge");
+  const std::size_t status = Journal::status_column(header);
+  if (a.at(status) != "ok" || b.at(status) != "ok") return;
+  for (std::size_t i = status + 2; i + 1 < names.size() && i + 1 < a.size(); ++i)  // observables; wall_s is last
+    if (a.at(i) != b.at(i))
+      throw std::runtime_error(point + ", hash " + a.at(1) + ": " + names.at(i) + " = " + a.at(i) + " in " +
+                               kept_in.string() + " but " + b.at(i) + " in " + other_in.string() +
+                               " (another build or machine?); merge stores computed by one build");
+}
+
 }  // namespace
 
 MergeReport merge_stores(const std::vector<fs::path>& inputs, const fs::path& out) {
@@ -28,6 +50,7 @@ MergeReport merge_stores(const std::vector<fs::path>& inputs, const fs::path& ou
   MergeReport rep;
   std::string header, campaign_hash, provenance;
   std::map<std::uint64_t, std::string> rows;
+  std::map<std::uint64_t, fs::path> from;  // the input each kept row comes from (for messages)
   for (const fs::path& in : inputs) {
     const StoreRows s = read_store(in);
     const std::string prov = read_file_text(in / "provenance.yaml");
@@ -42,13 +65,14 @@ MergeReport merge_stores(const std::vector<fs::path>& inputs, const fs::path& ou
     }
     for (const auto& [index, row] : s.rows) {
       const auto [it, fresh] = rows.emplace(index, row);
-      if (fresh) continue;
-      ++rep.duplicates;
-      // Same point in two stores: same scene hash (column 2) required; the values then agree.
-      const auto a = csv_split(it->second), b = csv_split(row);
-      if (a.at(1) != b.at(1))
-        throw std::runtime_error("merge: point " + std::to_string(index) + " has two different scenes (hash " + a.at(1) +
-                                 " vs " + b.at(1) + " in " + in.string() + ")");
+      if (!fresh) {
+        ++rep.duplicates;
+        check_same_point(index, it->second, row, from.at(index), in, header);
+        // Both agree (or one failed): keep a row that ran to the end.
+        if (csv_split(it->second).at(Journal::status_column(header)) != "ok") it->second = row, from[index] = in;
+      } else {
+        from.emplace(index, in);
+      }
     }
   }
   fs::create_directories(out);

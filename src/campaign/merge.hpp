@@ -13,9 +13,11 @@ struct MergeReport {
 
 // Reads the journals of `inputs` (torn lines ignored), checks they come from the same campaign
 // text and store format, and writes `out` (journal.csv, points.csv, provenance.yaml with the
-// list of inputs, campaign.yaml, series/). Throws std::runtime_error on a mismatch, on one point
-// with two different scene hashes, or when `out` already holds a store. The merged store can be
-// resumed by `asperity sweep --out OUT` to fill gaps.
+// list of inputs, campaign.yaml, series/). Throws std::runtime_error, before writing anything, on
+// a mismatch, on one point stored with two different scene hashes (the hash covers the bytes of
+// the junctions and measured CSVs: one store is stale) or with two different values, or when
+// `out` already holds a store. A point that failed in one input and ran in another keeps the
+// row that ran. The merged store can be resumed by `asperity sweep --out OUT` to fill gaps.
 MergeReport merge_stores(const std::vector<std::filesystem::path>& inputs, const std::filesystem::path& out);
 
 }  // namespace asperity

@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <algorithm>
+#include <atomic>
 #include <cctype>
 #include <cmath>
 #include <filesystem>
@@ -88,8 +89,8 @@ std::string duration_text(double s) {
 // One line on a terminal (redrawn), or a plain log line every 10 s otherwise.
 class Progress {
  public:
-  Progress(std::uint64_t total, std::uint64_t skipped, bool quiet)
-      : total_(total), skipped_(skipped), quiet_(quiet), tty_(::isatty(2) == 1),
+  Progress(std::uint64_t total, bool quiet)
+      : total_(total), skipped_(0), quiet_(quiet), tty_(::isatty(2) == 1),
         start_(std::chrono::steady_clock::now()), last_(start_) {}
 
   void point_done(bool failed) {
@@ -97,10 +98,13 @@ class Progress {
     failed_ += failed ? 1 : 0;
     const auto now = std::chrono::steady_clock::now();
     const double since = std::chrono::duration<double>(now - last_).count();
-    if (quiet_ || (since < (tty_ ? 0.2 : 10.0) && done_ + skipped_ < total_)) return;
+    if (quiet_ || (since < (tty_ ? 0.2 : 10.0) && done_ + skipped_.load() < total_)) return;
     last_ = now;
     print(now);
   }
+  // A point found in the store with its current hash (counted by the build stage, which runs
+  // ahead of the writer: a stale stored point is not counted as finished).
+  void skipped_one() { ++skipped_; }
   void finish() {
     if (!quiet_ && tty_ && done_ > 0) std::fputc('\n', stderr);
   }
@@ -109,7 +113,7 @@ class Progress {
   void print(std::chrono::steady_clock::time_point now) {
     const double el = std::chrono::duration<double>(now - start_).count();
     const double rate = el > 0 ? static_cast<double>(done_) / el : 0;
-    const std::uint64_t finished = done_ + skipped_;
+    const std::uint64_t finished = std::min(total_, done_ + skipped_);
     const double eta = rate > 0 ? static_cast<double>(total_ - finished) / rate : NAN;
     char line[200];
     std::snprintf(line, sizeof line, "%llu/%llu points, %.2f points/s, ETA %s, %llu failed",
@@ -125,7 +129,9 @@ class Progress {
     }
     std::fflush(stderr);
   }
-  std::uint64_t total_, skipped_, done_ = 0, failed_ = 0;
+  std::uint64_t total_;
+  std::atomic<std::uint64_t> skipped_;  // incremented by the build stage while the writer reads it
+  std::uint64_t done_ = 0, failed_ = 0;
   bool quiet_, tty_;
   std::chrono::steady_clock::time_point start_, last_;
 };
@@ -161,7 +167,7 @@ std::string provenance_yaml(const Campaign& c, const std::string& campaign_text,
   y << "build_type: " << yaml_quoted(ASPERITY_BUILD_TYPE) << '\n';
   y << "started_utc: " << yaml_quoted(utc_now()) << '\n';
   y << "stand_in_data: " << (uses_stand_ins(c) ? "true  # STAND-IN experiments, not measurements" : "false") << '\n';
-  y << "hash: \"FNV-1a 64 of the resolved scene (scene_to_yaml, experiment file relative to the campaign folder)\"\n";
+  y << "hash: \"FNV-1a 64 of the resolved scene (scene_to_yaml, experiment file relative to the campaign folder) and of the bytes of its junctions and measured CSVs\"\n";
   return y.str();
 }
 
@@ -191,17 +197,29 @@ std::string store_header(const Campaign& c) {
   return h + ",wall_s";
 }
 
-std::string canonical_scene_text(const Scene& scene, const fs::path& base_dir) {
+std::uint64_t FileHashes::of(const fs::path& file) {
+  const std::string key = fs::absolute(file).lexically_normal().string();
+  if (const auto it = by_path_.find(key); it != by_path_.end()) return it->second;
+  return by_path_[key] = fnv1a64(read_file_text(file));
+}
+
+std::string canonical_scene_text(const Scene& scene, const fs::path& base_dir, FileHashes& data) {
   std::string text = scene_to_yaml(scene);
-  const fs::path& f = scene.experiment.file;
-  if (f.empty()) return text;
-  const std::string line = "  file: " + yaml_quoted(fs::absolute(f).lexically_normal().string()) + "\n";
-  std::error_code ec;
-  fs::path base = fs::weakly_canonical(fs::absolute(base_dir), ec);
-  if (ec) base = fs::absolute(base_dir).lexically_normal();
-  const std::string rel = fs::absolute(f).lexically_normal().lexically_relative(base).generic_string();
-  const std::size_t at = text.find(line);
-  if (at != std::string::npos) text.replace(at, line.size(), "  file: " + yaml_quoted(rel) + "\n");
+  const Experiment& e = scene.experiment;
+  const fs::path& f = e.file;
+  if (!f.empty()) {
+    const std::string line = "  file: " + yaml_quoted(fs::absolute(f).lexically_normal().string()) + "\n";
+    std::error_code ec;
+    fs::path base = fs::weakly_canonical(fs::absolute(base_dir), ec);
+    if (ec) base = fs::absolute(base_dir).lexically_normal();
+    const std::string rel = fs::absolute(f).lexically_normal().lexically_relative(base).generic_string();
+    const std::size_t at = text.find(line);
+    if (at != std::string::npos) text.replace(at, line.size(), "  file: " + yaml_quoted(rel) + "\n");
+  }
+  // The data by content, not by name (an edited CSV keeps its name).
+  text += "data:\n";
+  text += "  junctions_fnv1a64: " + yaml_quoted(e.junctions_file.empty() ? "" : hex16(data.of(e.junctions_file))) + "\n";
+  text += "  measured_fnv1a64: " + yaml_quoted(e.measured_file.empty() ? "" : hex16(data.of(e.measured_file))) + "\n";
   return text;
 }
 
@@ -236,14 +254,12 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
   const fs::path base_dir = c.file.parent_path();
 
   // What the journal holds at the start: the build stage reads this copy, never the journal's
-  // own index, which the writer stage updates concurrently. Counted for progress and the ETA.
+  // own index, which the writer stage updates concurrently.
   const std::map<std::uint64_t, JournalEntry> done = journal.entries();
-  std::uint64_t done_before = 0;
-  for (const auto& [index, e] : done)
-    if (index < total && shard.contains(index) && (e.ok || !opt.retry_failed)) ++done_before;
 
   CampaignScenes scenes(c);
-  Progress progress(rep.points, done_before, opt.quiet);
+  FileHashes data_hashes;  // used by the build stage only (serial)
+  Progress progress(rep.points, opt.quiet);
   const int threads = opt.threads > 0 ? opt.threads : tbb::info::default_concurrency();
   std::uint64_t next = shard.index;
 
@@ -252,18 +268,30 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
       auto job = std::make_shared<Job>();
       job->point = point_at(c, next);
       next += shard.count;
+      // Stored points are recognised without reading their data again when they can be.
+      if (const auto it = done.find(job->point.index); it != done.end() && (it->second.ok || !opt.retry_failed))
+        if (const auto quick = scenes.unchecked_scene(job->point);
+            quick && fnv1a64(canonical_scene_text(*quick, base_dir, data_hashes)) == it->second.hash) {
+          ++rep.skipped;
+          progress.skipped_one();
+          continue;
+        }
       try {
         job->scene = scenes.scene(job->point);
-        job->hash = fnv1a64(canonical_scene_text(*job->scene, base_dir));
+        job->hash = fnv1a64(canonical_scene_text(*job->scene, base_dir, data_hashes));
       } catch (const std::exception& e) {  // a bad combination of values: recorded, not fatal
         job->scene.reset();
         job->error = e.what();
         job->hash = fnv1a64("invalid point: " + job->error);
       }
-      if (const auto it = done.find(job->point.index);
-          it != done.end() && it->second.hash == job->hash && (it->second.ok || !opt.retry_failed)) {
-        ++rep.skipped;
-        continue;
+      if (const auto it = done.find(job->point.index); it != done.end()) {
+        if (it->second.hash == job->hash && (it->second.ok || !opt.retry_failed)) {
+          ++rep.skipped;
+          progress.skipped_one();
+          continue;
+        }
+        // Stored from another scene or other data: rerun; the new row supersedes the stale one.
+        if (it->second.hash != job->hash) ++rep.changed;
       }
       const Point& p = job->point;
       for (const std::string& k : varied_keys) {

@@ -3,8 +3,11 @@
 // parallel with TBB, resuming whatever the store already holds.
 //
 // Parallelism: a tbb::parallel_pipeline inside a task_arena of `threads` threads:
-//   1. serial: next point of the shard → its scene (yaml-cpp trees are not shared across
-//      threads) → canonical hash; points already in the journal with the same hash are skipped;
+//   1. serial: next point of the shard → canonical hash of its scene; points already in the
+//      journal with the same hash are skipped. A stored point is first tried with the typed
+//      scene (CampaignScenes::unchecked_scene: no file read, no YAML), so a no-op resume costs
+//      microseconds per point; otherwise the checked scene is built (yaml-cpp, one tree per
+//      point) and the data files' bytes are hashed once per file per sweep;
 //   2. parallel: simulate (one model instance per point; threads pick up the next point as soon
 //      as they are free, so uneven run times balance); OpenMP is set to 1 thread in here: the
 //      cores are already busy with points, and an OpenMP team per point would oversubscribe them
@@ -13,6 +16,7 @@
 // At most 2·threads points are in flight: memory does not grow with the campaign.
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <string>
 
 #include "campaign/campaign.hpp"
@@ -32,6 +36,7 @@ struct SweepReport {
   std::filesystem::path store;
   std::uint64_t points = 0;          // points of this shard
   std::uint64_t skipped = 0;         // already in the store (same scene hash)
+  std::uint64_t changed = 0;         // in the store with another hash (scene or data changed): rerun
   std::uint64_t ran = 0;             // run now
   std::uint64_t failed_now = 0;      // of those, failed
   std::uint64_t ok = 0, failed = 0;  // rows of this shard in the store at the end
@@ -45,8 +50,19 @@ SweepReport run_sweep(const Campaign& campaign, const SweepOptions& options);
 // every observable, the solver statistics and wall_s.
 std::string store_header(const Campaign& campaign);
 
+// FNV-1a 64 of the bytes of data files, each read once per instance (one per sweep): a path's
+// size and mtime do not prove its contents unchanged, its bytes do.
+class FileHashes {
+ public:
+  std::uint64_t of(const std::filesystem::path& file);  // std::runtime_error when unreadable
+ private:
+  std::map<std::string, std::uint64_t> by_path_;
+};
+
 // The text the point hash is taken of: scene_to_yaml with the experiment file written relative
-// to `base_dir` (the campaign's folder), so the hash does not depend on where the project lives.
-std::string canonical_scene_text(const Scene& scene, const std::filesystem::path& base_dir);
+// to `base_dir` (the campaign's folder), so the hash does not depend on where the project lives,
+// followed by the hashes of the bytes of the junctions and measured CSVs: a point whose data
+// changed has another hash, so a resume recomputes it and merge refuses to mix it.
+std::string canonical_scene_text(const Scene& scene, const std::filesystem::path& base_dir, FileHashes& data);
 
 }  // namespace asperity

@@ -54,6 +54,10 @@ int sweep(const SweepArgs& a) {
                  static_cast<unsigned long long>(r.ok), static_cast<unsigned long long>(r.failed),
                  r.dropped_lines ? (", " + std::to_string(r.dropped_lines) + " torn/corrupt journal line(s) dropped and rerun").c_str() : "");
   }
+  // Said even with --quiet: stored values were replaced.
+  if (r.changed > 0)
+    std::fprintf(stderr, "%s: %llu stored point(s) recomputed: their scene or data (the bytes of a junctions or measured CSV) changed since they were stored; the new rows supersede the stale ones\n",
+                 c.name.c_str(), static_cast<unsigned long long>(r.changed));
   return r.failed > 0 ? exit_failure : exit_ok;
 }
 

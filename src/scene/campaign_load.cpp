@@ -4,6 +4,8 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <fstream>
+#include <sstream>
 #include <limits>
 
 #include "scene/load.hpp"
@@ -161,37 +163,91 @@ Grid parse_grid(const Source& src, const MapView& m, const std::string& name) {
   throw InputError(campaign_file, line, key, msg + " (on " + e.file + ")");
 }
 
-struct BaseTree {
+// A base scene: its file's text, read once and checked by the loader, parsed again for every
+// point. A fresh tree per point, because yaml-cpp merges the memory of every tree a node is
+// copied into with the tree it came from: points built from one shared base tree made that
+// base's memory grow with each point built, and each copy cost O(points built so far).
+struct BaseScene {
   fs::path file;
-  YAML::Node tree;  // the scene file with the campaign's `set` applied
+  std::string text;
 };
+
+YAML::Node parse_base(const BaseScene& b) {
+  try {
+    return YAML::Load(b.text);  // the text passed load_scene_tree's checks when it was read
+  } catch (const YAML::Exception& e) {
+    throw InputError(b.file.lexically_normal().string(), e.mark.is_null() ? 0 : e.mark.line + 1, "",
+                     "malformed YAML: " + e.msg);
+  }
+}
 
 }  // namespace
 
 struct CampaignScenes::Impl {
   const Campaign* campaign = nullptr;
-  std::vector<BaseTree> bases;
+  std::vector<BaseScene> bases;
+  bool typed_ready = false;
+  std::vector<std::optional<Scene>> typed_bases;  // base scene + set, without junctions (lazy)
 };
 
-// Loads each base scene and applies `set`; errors name the scene file (its own errors) or the
-// campaign's `set` line (the override's).
-static std::vector<BaseTree> base_trees(const Campaign& c, const std::vector<int>* set_lines) {
+namespace {
+
+// Plain numeric scene keys and their typed fields (unchecked_scene).
+struct NumberField {
+  const char* key;
+  double* (*field)(Scene&);
+};
+const NumberField kNumberFields[] = {
+    {"model.eta", [](Scene& s) { return &s.model.eta; }},
+    {"model.epsilon", [](Scene& s) { return &s.model.epsilon; }},
+    {"model.c_min", [](Scene& s) { return &s.model.c_min; }},
+    {"model.p", [](Scene& s) { return &s.model.p; }},
+    {"model.alpha_b", [](Scene& s) { return &s.model.alpha_b; }},
+    {"solver.Ct", [](Scene& s) { return &s.solver.Ct; }},
+    {"solver.tolerance", [](Scene& s) { return &s.solver.tolerance; }},
+    {"stop.time", [](Scene& s) { return &s.stop.time; }},
+    {"output.every", [](Scene& s) { return &s.output.every; }},
+    {"output.peak_min_drop", [](Scene& s) { return &s.output.peak_min_drop; }},
+    {"experiment.mass", [](Scene& s) { return &s.experiment.mass_kg; }},
+    {"experiment.k_L", [](Scene& s) { return &s.experiment.k_L; }},
+    {"experiment.v", [](Scene& s) { return &s.experiment.v; }},
+    {"experiment.E", [](Scene& s) { return &s.experiment.E; }},
+    {"experiment.nu", [](Scene& s) { return &s.experiment.nu; }},
+    {"experiment.sigma_exp", [](Scene& s) { return &s.experiment.sigma_exp; }},
+};
+
+}  // namespace
+
+// The tree of a base scene with the campaign's `set` applied; errors name the scene file (its
+// own errors) or, when `set_lines` is given, the campaign's `set` line (the override's).
+static YAML::Node base_tree(const Campaign& c, const BaseScene& b, const std::vector<int>* set_lines) {
   const fs::path dir = c.file.parent_path();
-  std::vector<BaseTree> out;
-  for (const fs::path& p : c.scenes) {
-    BaseTree b{p, load_scene_tree(p)};
-    if (set_lines) scene_from_tree(b.tree, p);  // the base scene alone: its own errors first
-    for (std::size_t i = 0; i < c.set.size(); ++i) {
-      const auto& [key, v] = c.set[i];
-      try {
-        b.tree.reset(apply_override(b.tree, key, override_value(key, v, dir)));
-        if (set_lines) scene_from_tree(b.tree, p);
-      } catch (const InputError& e) {
-        if (!set_lines) throw;
-        rethrow_at(e, c.file.lexically_normal().string(), (*set_lines)[i], "set." + key);
-      }
+  YAML::Node tree = parse_base(b);
+  if (set_lines) scene_from_tree(tree, b.file);  // the base scene alone: its own errors first
+  for (std::size_t i = 0; i < c.set.size(); ++i) {
+    const auto& [key, v] = c.set[i];
+    try {
+      tree.reset(apply_override(tree, key, override_value(key, v, dir)));
+      if (set_lines) scene_from_tree(tree, b.file);
+    } catch (const InputError& e) {
+      if (!set_lines) throw;
+      rethrow_at(e, c.file.lexically_normal().string(), (*set_lines)[i], "set." + key);
     }
-    out.push_back(std::move(b));
+  }
+  return tree;
+}
+
+// Reads each base scene once (the loader's checks: a regular file, no control characters, one
+// document).
+static std::vector<BaseScene> base_scenes(const Campaign& c) {
+  std::vector<BaseScene> out;
+  for (const fs::path& p : c.scenes) {
+    load_scene_tree(p);
+    std::ifstream in(p, std::ios::binary);
+    std::ostringstream text;
+    text << in.rdbuf();
+    if (!in) throw InputError(p.lexically_normal().string(), 0, "", "cannot read file");
+    out.push_back({p, text.str()});
   }
   return out;
 }
@@ -295,9 +351,10 @@ Campaign load_campaign(const fs::path& yaml) {
 
   // Semantic checks against the scenes: every base scene with `set`, then every list value and
   // both end points of every space on the first base scene (unknown keys, out-of-range values).
-  const std::vector<BaseTree> bases = base_trees(c, &set_lines);
+  const std::vector<BaseScene> bases = base_scenes(c);
+  for (const BaseScene& b : bases) base_tree(c, b, &set_lines);
   const fs::path dir = c.file.parent_path();
-  const BaseTree& first = bases.front();
+  const BaseScene& first = bases.front();
   for (const Grid& g : c.grids)
     for (const Axis& ax : g.axes) {
       std::vector<std::uint64_t> probe;
@@ -308,7 +365,7 @@ Campaign load_campaign(const fs::path& yaml) {
       for (const std::uint64_t i : probe) {
         const AxisValue v = ax.value(i);
         try {
-          scene_from_tree(apply_override(first.tree, ax.key, override_value(ax.key, v, dir)), first.file);
+          scene_from_tree(apply_override(base_tree(c, first, nullptr), ax.key, override_value(ax.key, v, dir)), first.file);
         } catch (const InputError& e) {
           rethrow_at(e, display, ax.line, ax.key);
         }
@@ -319,20 +376,48 @@ Campaign load_campaign(const fs::path& yaml) {
 
 CampaignScenes::CampaignScenes(const Campaign& campaign) : impl_(std::make_unique<Impl>()) {
   impl_->campaign = &campaign;
-  impl_->bases = base_trees(campaign, nullptr);
+  impl_->bases = base_scenes(campaign);
 }
 CampaignScenes::~CampaignScenes() = default;
 CampaignScenes::CampaignScenes(CampaignScenes&&) noexcept = default;
 
 Scene CampaignScenes::scene(const Point& point) const {
-  const BaseTree& b = impl_->bases.at(point.scene);
+  const BaseScene& b = impl_->bases.at(point.scene);
   const fs::path dir = impl_->campaign->file.parent_path();
-  // Node::operator= would write through to the shared base tree (yaml-cpp assigns the value,
-  // not the handle): rebind with reset() so every point starts from the untouched base.
-  YAML::Node tree = b.tree;
+  YAML::Node tree = base_tree(*impl_->campaign, b, nullptr);  // this point's own tree
   for (const PointValue& pv : point.values)
     tree.reset(apply_override(tree, pv.axis->key, override_value(pv.axis->key, pv.value, dir)));
   return scene_from_tree(tree, b.file);
+}
+
+std::optional<Scene> CampaignScenes::unchecked_scene(const Point& point) const {
+  Impl& im = *impl_;
+  if (!im.typed_ready) {
+    for (const BaseScene& b : im.bases) {
+      std::optional<Scene> s;
+      try {
+        s = scene_from_tree(base_tree(*im.campaign, b, nullptr), b.file);
+        s->experiment.junctions = {};  // the hash names the data by its files' bytes
+        s->experiment.measured.reset();
+      } catch (const std::exception&) {
+        s.reset();  // scene() reports it, point by point
+      }
+      im.typed_bases.push_back(std::move(s));
+    }
+    im.typed_ready = true;
+  }
+  const std::optional<Scene>& base = im.typed_bases.at(point.scene);
+  if (!base) return std::nullopt;
+  Scene s = *base;
+  for (const PointValue& pv : point.values) {
+    if (!pv.value.is_number) return std::nullopt;
+    const NumberField* f = nullptr;
+    for (const NumberField& n : kNumberFields)
+      if (pv.axis->key == n.key) f = &n;
+    if (!f) return std::nullopt;
+    *f->field(s) = pv.value.number;
+  }
+  return s;
 }
 
 std::string CampaignScenes::value_text(const Scene& scene, const std::string& key) {
