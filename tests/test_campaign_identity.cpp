@@ -122,11 +122,11 @@ TEST_CASE("merge refuses stores whose rows disagree for one point", "[campaign][
   CHECK(ok.rows == 2);
   CHECK(ok.duplicates == 2);
   // Same hash, different value (a store from another build, here forged): refused, naming the column.
-  const std::string q = column(dir / "fresh2", "Q_s").at(1);
+  const std::string q = column(dir / "fresh2", "t_end").at(1);
   fs::remove(dir / "fresh2" / "journal.csv");  // read_store then reads points.csv
   edit(dir / "fresh2" / "points.csv", "," + q + ",", ",1" + q + ",");
   CHECK_THROWS_WITH(merge_stores({dir / "fresh", dir / "fresh2"}, dir / "merged2"),
-                    Contains("point 1 (grid grid_0, experiment small), hash ") && Contains("Q_s = " + q));
+                    Contains("(grid grid_0, experiment small), hash ") && Contains("t_end = " + q));
   CHECK_FALSE(fs::exists(dir / "merged2"));
   fs::remove_all(dir);
 }
