@@ -30,17 +30,19 @@ RunInfo info_with(double A0) {
 }
 
 // Quadratic loading A = A0 − α Q², Q = t, up to the peak at t = 0.5, then a drop.
-// The junction slips at t = 0.3; with_drop: the slider sticks at t = 0.65.
+// One of two junctions slips at t = 0.3; with_drop: the other slips at 0.55 and the slider
+// sticks at t = 0.65.
 void feed(Recorder& rec, double A0, double alpha, bool with_drop) {
   for (int i = 0; i <= 100; ++i) {
-    if (i == 30) rec.population({0.3, 1, false, 1, 2});
+    if (i == 30) rec.population({0.3, 1, false, 1});
     const double t = 0.01 * i;
     const double Q = t <= 0.5 ? t : 0.5 - 0.5 * (t - 0.5);
     const double A = A0 - alpha * std::min(Q, 0.5) * std::min(Q, 0.5);
     rec.sample({t, 0, 0, Q, A, 0, 1});
     if (with_drop && i == 50) rec.extremum({0.5, 0.5, A, true});
     if (with_drop && i == 60) rec.extremum({0.6, 0.45, A, false});
-    if (with_drop && i == 65) rec.population({0.65, 0, true, 0, 2});
+    if (with_drop && i == 55) rec.population({0.55, 1, false, 0});
+    if (with_drop && i == 65) rec.population({0.65, 0, true, 0});
   }
 }
 

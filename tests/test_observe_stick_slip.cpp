@@ -10,12 +10,12 @@ namespace {
 // A sawtooth of extrema: peak j at t = t0 + j·T with Q = Qs − j·0.01, trough Q_peak − drop.
 // A junction slips before the first peak and the slider sticks after every trough.
 void feed_sawtooth(Recorder& rec, int n_peaks, double t0, double T, double Qs, double drop) {
-  rec.population({0.5 * t0, 1, false, 1, 2});
+  rec.population({0.5 * t0, 1, false, 0});
   for (int j = 0; j < n_peaks && !rec.done(); ++j) {
     const double tp = t0 + j * T, Qp = Qs - 0.01 * j;
     rec.extremum({tp, Qp, 1e-5, true});
     rec.extremum({tp + 0.2 * T, Qp - drop, 1e-5, false});
-    rec.population({tp + 0.3 * T, 0, true, 0, 2});
+    rec.population({tp + 0.3 * T, 0, true, 0});
   }
 }
 }  // namespace
@@ -65,10 +65,10 @@ TEST_CASE("stick-slip stats are NaN without a complete cycle", "[observe]") {
 
 TEST_CASE("Recorder confirms a stick-slip peak after the first one only beyond min_drop", "[observe]") {
   Recorder rec(1e-3, false, 0.01, false, -1);
-  rec.population({0.01, 1, false, 1, 2});
+  rec.population({0.01, 1, false, 0});
   rec.extremum({0.05, 0.900, 0, true});
   rec.extremum({0.06, 0.800, 0, false});
-  rec.population({0.07, 0, true, 0, 2});  // the first peak: the slider sticks
+  rec.population({0.07, 0, true, 0});
   REQUIRE(rec.peaks().size() == 1);
   rec.extremum({0.10, 1.000, 0, true});
   rec.extremum({0.11, 0.995, 0, false});  // 0.5 % < 1 %: precursor, not a peak
@@ -93,12 +93,13 @@ TEST_CASE("Recorder stops at the first peak and cuts the loading branch there", 
     rec.sample({t, 0, 0, 10.0 * t, 1e-5, 0, 0});
   }
   CHECK(rec.loading_branch().size() == 11);
-  rec.population({0.05, 1, false, 1, 2});
+  rec.population({0.05, 1, false, 1});
   rec.extremum({0.055, 0.6, 1e-5, true});
   CHECK_FALSE(rec.done());
   rec.extremum({0.09, 0.5, 1e-5, false});
+  rec.population({0.092, 1, false, 0});  // the last junction gives way
   CHECK_FALSE(rec.done());
-  rec.population({0.095, 0, true, 0, 2});
+  rec.population({0.095, 0, true, 0});   // and the slider sticks
   CHECK(rec.done());
   REQUIRE(rec.peaks().size() == 1);
   // Samples after the peak time were dropped from the loading branch, kept in the series.

@@ -91,10 +91,10 @@ TEST_CASE("run writer: files, header, summary round trip with identical doubles"
   const Scene scene = small_scene();
   Recorder rec(0.01, true, 1e-3, false, -1);
   for (int i = 0; i < 5; ++i) rec.sample({0.01 * i, 1e-7 * i, 1e-5, 0.1 * i, 1e-5 - 1e-8 * i, i, 3 - i});
-  rec.population({0.02, 1, false, 1, 3});
+  rec.population({0.02, 1, false, 0});
   rec.extremum({0.035, 0.35, 9.9e-6, true});
   rec.extremum({0.045, 0.30, 9.9e-6, false});
-  rec.population({0.048, 0, true, 0, 3});
+  rec.population({0.048, 0, true, 0});
   const Observables o = awkward_observables();
   write_run(dir, scene, o, rec);
 

@@ -28,11 +28,11 @@ void print_summary(const Scene& scene, const Observables& o, const std::filesyst
               scene.file.string().c_str(), o.N, o.A0 * 1e6, o.dt * 1e6, scene.solver.Ct, method);
   std::printf("  Q_s = %.6g N, A_s = %.6g mm^2 (area drop %.3g %%) at t_peak = %.6g s%s\n", o.Q_s,
               o.A_s * 1e6, 100.0 * o.area_drop_fraction, o.t_peak,
-              o.peak_rule == PeakRule::stick          ? " (peak before the first stick)"
-              : o.peak_rule == PeakRule::all_slipping ? " (peak: every junction slipping)"
+              o.peak_rule == PeakRule::stick          ? " (peak: closed by a stick after every junction slipped)"
+              : o.peak_rule == PeakRule::all_slipped ? " (peak: every junction has slipped)"
               : o.peak_rule == PeakRule::steady_sliding
-                  ? " (no maximum after every junction slipped: steady sliding)"
-                  : " (no peak: the run ended before the contact failed)");
+                  ? " (every junction has slipped, no maximum followed: steady sliding)"
+                  : " (no peak: the run ended before every junction had slipped)");
   std::printf("  alpha = %.6g m^2/N^2 (R^2 = %.6f, %zu points), shape exponent n = %.4g\n", o.alpha,
               o.alpha_R2, o.alpha_points, o.shape_exponent);
   if (!std::isnan(o.alpha_measured))

@@ -8,7 +8,7 @@ const char* to_string(PeakRule r) {
   switch (r) {
     case PeakRule::none: return "none";
     case PeakRule::stick: return "stick";
-    case PeakRule::all_slipping: return "all_slipping";
+    case PeakRule::all_slipped: return "all_slipped";
     case PeakRule::steady_sliding: return "steady_sliding";
   }
   return "none";
@@ -58,8 +58,8 @@ void Recorder::first_peak_extremum(const Extremum& e) {
       have_best_ = true;
       have_best_trough_ = false;
     }
-    // Every junction slipping: friction can no longer rise; this maximum closes the search.
-    if (failed_) confirm_first(PeakRule::all_slipping);
+    // The whole interface has slipped: this maximum is the last one of the first macroscopic slip.
+    if (failed_) confirm_first(PeakRule::all_slipped);
   } else if (have_best_ && (!have_best_trough_ || e.Q < best_trough_.Q)) {
     best_trough_ = e;
     have_best_trough_ = true;
@@ -69,13 +69,10 @@ void Recorder::first_peak_extremum(const Extremum& e) {
 void Recorder::population(const PopulationChange& c) {
   if (c.new_slips > 0) slipped_ = true;
   if (!peaks_.empty()) return;
-  if (c.stick) {
-    // A stick after a maximum ends the first macroscopic slip. Without one (a junction that
-    // slipped while the slider was still at rest) the contact holds again: keep searching.
-    if (have_best_) return confirm_first(PeakRule::stick);
-    failed_ = false;
-  }
-  if (slipped_ && c.n_junctions > 0 && c.n_slipping == c.n_junctions) failed_ = true;
+  // A stick after every junction has slipped ends the first macroscopic slip; earlier sticks
+  // (precursors, ringing of a weakly damped slider) do not.
+  if (c.stick && failed_ && have_best_) return confirm_first(PeakRule::stick);
+  if (slipped_ && c.n_intact == 0) failed_ = true;
 }
 
 void Recorder::confirm_first(PeakRule rule) {

@@ -3,12 +3,13 @@
 // population) and decides where the static friction peak is and when the run may stop.
 // Solver-independent: both solvers feed it the same way.
 //
-// The first macroscopic peak (MODEL.md §5, README "The static friction peak"): the highest
-// maximum of Q from the first junction slip until the contact fails, i.e. until the first stick
-// (every slipping junction repins) or, without a stick, until the first maximum of Q after every
-// junction is slipping (that maximum included). No threshold on the size of the drop is used, so
-// it does not depend on the solver tolerance and holds for drops well under 1 %. Later peaks
-// (stick-slip cycles) are maxima followed by a drop of at least `min_drop` of Q.
+// The first macroscopic peak (MODEL.md §5, README "The static friction peak") ends the first
+// macroscopic slip, the one in which the whole interface gives way: it is the highest maximum of
+// Q from the first junction slip until, after every junction has slipped at least once, either
+// the next maximum of Q (included) or a stick (every slipping junction repins). Earlier sticks and
+// drops are precursors. No threshold on the size of a drop is used, so the peak does not depend
+// on the solver tolerance and holds for drops well under 1 %. Later peaks (stick-slip cycles) are
+// maxima followed by a drop of at least `min_drop` of Q.
 #include <chrono>
 #include <cstdint>
 #include <limits>
@@ -24,12 +25,11 @@ struct Peak {        // a confirmed macroscopic peak of Q and the trough that fo
 
 // How the first macroscopic peak was found.
 enum class PeakRule : std::uint8_t {
-  none,            // not found: the run ended before the contact failed (Q_s: highest Q after
-                   // the first slip, NaN without any slip)
-  stick,           // highest maximum of Q between the first slip and the first stick
-  all_slipping,    // the contact failed without stopping: highest maximum up to the first one
-                   // after every junction was slipping
-  steady_sliding,  // every junction slipping and no maximum followed (overdamped glide): Q_s is
+  none,            // not found: the run ended before every junction had slipped (Q_s: highest
+                   // Q after the first slip, NaN without any slip)
+  all_slipped,     // closed by the first maximum of Q after every junction had slipped
+  stick,           // closed by a stick after every junction had slipped
+  steady_sliding,  // every junction has slipped and neither followed (overdamped glide): Q_s is
                    // the highest Q reached, the approach to steady sliding
 };
 const char* to_string(PeakRule r);
@@ -94,7 +94,7 @@ class Recorder {
   std::chrono::steady_clock::time_point deadline_{};
   // First peak: search state.
   bool slipped_ = false;       // some junction has slipped
-  bool failed_ = false;        // every junction slipping since the last stick
+  bool failed_ = false;        // every junction has slipped at least once
   bool have_best_ = false;     // a maximum of Q after the first slip
   Extremum best_{};            // the highest such maximum
   bool have_best_trough_ = false;

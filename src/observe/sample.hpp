@@ -18,13 +18,12 @@ struct Extremum {
 
 // A change of the junction population at time t: `new_slips` junctions started to slip, and/or
 // (`stick`) every slipping junction repinned because the slider nearly stopped (|Ẋ| < c_min v).
-// n_slipping is the count after the change, out of n_junctions.
+// n_intact: junctions that have never slipped, after the change.
 struct PopulationChange {
   double t = 0;
   std::int64_t new_slips = 0;
   bool stick = false;
-  std::int64_t n_slipping = 0;
-  std::int64_t n_junctions = 0;
+  std::int64_t n_intact = 0;
 };
 
 }  // namespace asperity

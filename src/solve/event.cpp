@@ -379,7 +379,7 @@ RunInfo integrate_event(const Scene& scene, Recorder& rec) {
       const bool stick = model.n_slipping() > 0 && std::abs(y[1] * v) < v_repin;
       if (stick) model.repin_all(X);
       if (new_slips > 0 || stick) {
-        rec.population({t, new_slips, stick, model.n_slipping(), static_cast<std::int64_t>(info.N)});
+        rec.population({t, new_slips, stick, model.n_intact()});
         if (rec.done()) finished = true;
       }
       if (!std::isfinite(y[0]) || !std::isfinite(y[1]))

@@ -135,7 +135,7 @@ RunInfo integrate_reference(const Scene& scene, Recorder& rec) {
     n_slipping = ns;
     n_intact = ni;
     if (slips > 0 || any_repin)
-      rec.population({t, slips, any_repin, ns, static_cast<std::int64_t>(N)});
+      rec.population({t, slips, any_repin, ni});
     // Extrema of Q: V crosses v between steps; Q is largest/smallest at the nearer step.
     const double Q = Q_at(n, X);
     if (prevV < v && V >= v) rec.extremum(Q >= prevQ ? Extremum{t, Q, A, true} : Extremum{prevt, prevQ, prevA, true});
