@@ -18,7 +18,6 @@ void Recorder::sample(const Sample& s) {
   if (keep_series_) series_.push_back(s);
   if (peaks_.empty()) loading_.push_back(s);
   if (s.Q > highest_.Q) highest_ = {s.t, s.Q, s.A, true};
-  if (has_deadline_ && std::chrono::steady_clock::now() > deadline_) done_ = timed_out_ = true;
 }
 
 void Recorder::extremum(const Extremum& e) {

@@ -1,7 +1,6 @@
 #pragma once
 // Receives what a solver sees (samples at fixed instants, extrema of Q) and decides when the
 // run may stop. Solver-independent: both solvers feed it the same way.
-#include <chrono>
 #include <cstdint>
 #include <limits>
 #include <vector>
@@ -28,12 +27,8 @@ class Recorder {
   void sample(const Sample& s);
   void extremum(const Extremum& e);
   bool done() const { return done_; }
-  // Optional wall-clock limit (sweeps): the first sample past it ends the run (done()) and
-  // marks it timed_out().
-  void set_wall_deadline(std::chrono::steady_clock::time_point t) {
-    deadline_ = t;
-    has_deadline_ = true;
-  }
+  // A sweep's per-point time limit ended the run (the solver checks it: solve/run_limits.hpp).
+  void mark_timed_out() { done_ = timed_out_ = true; }
   bool timed_out() const { return timed_out_; }
 
   const std::vector<Sample>& series() const { return series_; }
@@ -52,8 +47,7 @@ class Recorder {
   int stop_after_cycles_;
   std::int64_t next_index_ = 0;
   bool done_ = false;
-  bool has_deadline_ = false, timed_out_ = false;
-  std::chrono::steady_clock::time_point deadline_{};
+  bool timed_out_ = false;
   bool have_candidate_ = false;
   Extremum candidate_{};  // latest maximum not yet confirmed by a drop
   std::vector<Sample> series_, loading_;

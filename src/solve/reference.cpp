@@ -36,7 +36,7 @@ RunInfo initial_info(const Scene& scene) {
   return info;
 }
 
-RunInfo integrate_reference(const Scene& scene, Recorder& rec) {
+RunInfo integrate_reference(const Scene& scene, Recorder& rec, const RunLimits& limits) {
   const auto& e = scene.experiment;
   const auto& m = scene.model;
   const ContactLaw law = make_contact_law(e, m);
@@ -67,7 +67,9 @@ RunInfo integrate_reference(const Scene& scene, Recorder& rec) {
   double prevQ = 0, prevA = info.A0, prevV = 0, prevt = 0;
   double max_ratio = 0, max_ratio_exp = 0;
   std::int64_t n = 0;
+  LimitGuard guard(limits);
   for (n = 1; n <= n_end && !rec.done(); ++n) {
+    if ((info.stopped_by = guard.check(info.stats.slips)) != LimitHit::none) break;
     const double t = static_cast<double>(n) * dt;
     const double X1 = X + dt * V + 0.5 * dt * dt * gamma;
     const bool slow = std::abs(V) < v_repin;  // |Ẋ(t)|: the latest known velocity
@@ -149,9 +151,9 @@ RunInfo integrate_reference(const Scene& scene, Recorder& rec) {
   return info;
 }
 
-RunInfo integrate(const Scene& scene, Recorder& rec) {
-  return scene.solver.method == SolverMethod::reference ? integrate_reference(scene, rec)
-                                                        : integrate_event(scene, rec);
+RunInfo integrate(const Scene& scene, Recorder& rec, const RunLimits& limits) {
+  return scene.solver.method == SolverMethod::reference ? integrate_reference(scene, rec, limits)
+                                                        : integrate_event(scene, rec, limits);
 }
 
 }  // namespace asperity
