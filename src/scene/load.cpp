@@ -79,7 +79,7 @@ fs::path referenced_file(const MapView& v, const YAML::Node& n, const std::strin
   const std::string why = input_file_problem(p, max_bytes);
   if (why == "file not found")
     v.fail_at(n, k, std::string(what) + " not found: " + quote(rel) + " (looked for " + display_path(p) + ")");
-  if (!why.empty()) v.fail_at(n, k, std::string(what) + " " + display_path(p) + " " + why);
+  if (!why.empty()) v.fail_at(n, k, std::string(what) + " " + why + ": " + display_path(p));
   return p;
 }
 
@@ -169,7 +169,7 @@ void check_resources(const Scene& s, const MapView& model, const MapView& stop, 
   if (!(samples <= kMaxSamples)) {
     const auto [v, kn] = blame(output, "every", stop, "time");
     v->fail_at(kn.second, kn.first,
-               "stop.time / output.every = " + format_short(samples - 1) + " samples, more than the " +
+               "too many samples: stop.time / output.every = " + format_short(samples - 1) + ", more than the " +
                    format_short(kMaxSamples) + " a run may record (output.every must be >= stop.time * 1e-7 = " +
                    format_short(s.stop.time / (kMaxSamples - 1)) + " s)");
   }
@@ -179,7 +179,7 @@ void check_resources(const Scene& s, const MapView& model, const MapView& stop, 
   if (!(eta_time <= kMaxEtaTime)) {
     const auto [v, kn] = blame(model, "eta", stop, "time");
     v->fail_at(kn.second, kn.first,
-               "model.eta * stop.time = " + format_short(eta_time) + " is more than " + format_short(kMaxEtaTime) +
+               "too strong damping: eta * stop.time = " + format_short(eta_time) + " is more than " + format_short(kMaxEtaTime) +
                    ": damping that strong needs explicit steps shorter than ~3/eta, i.e. over " +
                    format_short(eta_time / 3.3) + " steps (the slider is overdamped long before: eta = " +
                    format_double(s.model.eta) + " 1/s, stop.time = " + format_double(s.stop.time) + " s)");
