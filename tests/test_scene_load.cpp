@@ -672,7 +672,7 @@ TEST_CASE("scene error: negative alpha_b", "[scene]") {
 }
 
 TEST_CASE("scene error: Ct <= 0", "[scene]") {
-  expect_scene_error("solver:\n  Ct: 0\n", {"scene.yaml:3: solver.Ct: must be > 0, got 0"});
+  expect_scene_error("solver:\n  Ct: 0\n", {"scene.yaml:3: solver.Ct: must be >= 1, got 0"});
 }
 
 TEST_CASE("scene error: tolerance outside 0 < tolerance <= 0.1", "[scene]") {

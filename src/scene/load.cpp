@@ -52,6 +52,8 @@ const std::vector<std::string> kOutputKeys{"every", "series", "peak_min_drop"};
 constexpr double kMinTolerance = 1e-14;  // ≈ 45 machine epsilons
 constexpr double kMaxSamples = 1e7;      // samples of one run (≈ 0.6–1.1 GB in memory)
 constexpr double kMaxEtaTime = 1e6;      // η · stop.time: ≤ ~3·10^5 steps forced by damping
+constexpr double kMaxPeriods = 1e6;     // slider oscillations in stop.time (≥ 2·10^7 event steps)
+constexpr double kMaxReferenceSteps = 1e9;  // steps of the reference solver
 constexpr double kMaxP = 10;             // model.p
 constexpr double kMinSlipAreaFraction = 1e-6;  // A_s/A0 at a junction's first slip
 
@@ -158,7 +160,8 @@ Experiment load_experiment_impl(const fs::path& path, const std::string& display
 
 // Checks across keys, once every value is known: the work a scene asks for must be bounded.
 // Each error names the key the user set (the first of the pair that was given).
-void check_resources(const Scene& s, const MapView& model, const MapView& stop, const MapView& output) {
+void check_resources(const Scene& s, const MapView& model, const MapView& stop, const MapView& output,
+                     const MapView& solver) {
   auto blame = [](const MapView& a, const char* ka, const MapView& b, const char* kb) {
     if (auto n = a.find(ka)) return std::make_pair(&a, std::make_pair(std::string(ka), *n));
     if (auto n = b.find(kb)) return std::make_pair(&b, std::make_pair(std::string(kb), *n));
@@ -184,6 +187,32 @@ void check_resources(const Scene& s, const MapView& model, const MapView& stop, 
                    format_short(eta_time / 3.3) + " steps (the slider is overdamped long before: eta = " +
                    format_double(s.model.eta) + " 1/s, stop.time = " + format_double(s.stop.time) + " s)");
   }
+  // Time scales: the slider oscillates at ω = sqrt((k_L + K0)/M) with K0 = Σ k_i(A0) =
+  // E κ(1) Σ ℓ0_i (κ(1) = 1/((1+ν)(1−ν/2)) for both shapes); every solver needs several steps
+  // per period (the event solver ~20, the reference C_t per T0 = 2π/sqrt(K0/M)).
+  double sum_l0 = 0;
+  for (const double a : s.experiment.junctions.area_m2) sum_l0 += initial_diameter(a);
+  const double K0 = s.experiment.E * sum_l0 / ((1.0 + s.experiment.nu) * (1.0 - 0.5 * s.experiment.nu));
+  const double M = s.experiment.mass_kg;
+  const double periods = s.stop.time * std::sqrt((s.experiment.k_L + K0) / M) / (2.0 * M_PI);
+  if (!(periods <= kMaxPeriods)) {
+    const auto [v, kn] = blame(stop, "time", stop, "time");
+    v->fail_at(kn.second, kn.first,
+               "too many slider oscillations: " + format_short(periods) + " periods of 2 pi sqrt(M/(k_L + K0)) in " +
+                   format_double(s.stop.time) + " s, more than " + format_short(kMaxPeriods) + " (mass = " +
+                   format_double(M) + " kg, k_L = " + format_double(s.experiment.k_L) + " N/m, K0 = " + format_short(K0) +
+                   " N/m)");
+  }
+  if (s.solver.method == SolverMethod::reference && K0 > 0) {
+    const double steps = s.stop.time * s.solver.Ct / (2.0 * M_PI * std::sqrt(M / K0));
+    if (!(steps <= kMaxReferenceSteps)) {
+      const auto [v, kn] = blame(solver, "Ct", stop, "time");
+      v->fail_at(kn.second, kn.first,
+                 "too many reference steps: stop.time * Ct / T0 = " + format_short(steps) + ", more than " +
+                     format_short(kMaxReferenceSteps) + " (dt = T0/Ct = " + format_short(2.0 * M_PI * std::sqrt(M / K0) / s.solver.Ct) +
+                     " s)");
+    }
+  }
 }
 
 // The area law A = A0 − α_b f²/A0^p is used between A0 and the area at the first slip,
@@ -198,11 +227,15 @@ void check_area_law_domain(const Scene& s, const MapView& model) {
     const double phi = law.slip_phi(A0);
     const double kept = 1.0 - phi * phi;
     if (kept >= kMinSlipAreaFraction) continue;
-    std::string key = "alpha_b";
-    if (model.find("p")) key = "p";
-    const auto n = model.find(key);
+    // Blame a model key the user gave: one set by --set or a sweep (no file mark) first.
+    std::string key;
+    for (const char* k : {"p", "alpha_b", "epsilon"})
+      if (auto n = model.find(k); n && key.empty() && n->Mark().is_null()) key = k;
+    for (const char* k : {"p", "alpha_b", "epsilon"})
+      if (key.empty() && model.find(k)) key = k;
+    const auto n = key.empty() ? std::nullopt : model.find(key);
     const std::string msg =
-        "junctions of " + format_short(A0) + " m^2 would keep only " + format_short(kept) +
+        "junctions of " + format_short(A0) + " m^2 would keep only " + (kept > 0 ? format_short(kept) : "nothing") +
         " of their area at their first slip (A = A0 - alpha_b f^2/A0^p with p = " + format_double(s.model.p) +
         ", alpha_b = " + format_double(s.model.alpha_b) + ", sigma = sigma_exp/epsilon = " + format_short(law.sigma) +
         " Pa; at least " + format_short(kMinSlipAreaFraction) + " is needed for the law to be meaningful)";
@@ -284,7 +317,7 @@ Scene scene_from_tree_impl(const YAML::Node& tree, const fs::path& origin, const
       x.method = m.enumeration<SolverMethod>(*n, "method", {{"reference", SolverMethod::reference}, {"event", SolverMethod::event}});
     if (auto n = m.find("Ct")) {
       x.Ct = m.number(*n, "Ct", nullptr);
-      check(x.Ct > 0, m, *n, "Ct", "> 0", x.Ct);
+      check(x.Ct >= 1, m, *n, "Ct", ">= 1", x.Ct, "reference steps per T0; fewer is unstable for any scene");
     }
     if (auto n = m.find("tolerance")) {
       x.tolerance = m.number(*n, "tolerance", nullptr);
@@ -344,7 +377,7 @@ Scene scene_from_tree_impl(const YAML::Node& tree, const fs::path& origin, const
       check(x.peak_min_drop > 0 && x.peak_min_drop < 1, m, *n, "peak_min_drop", "in (0, 1)", x.peak_min_drop);
     }
   }
-  check_resources(s, model_view, stop_view, output_view);
+  check_resources(s, model_view, stop_view, output_view, solver_view);
   check_area_law_domain(s, model_view);
   return s;
 }

@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <cstdint>
 #include <functional>
 #include <limits>
@@ -77,10 +78,14 @@ class EventModel {
       // 1e10 times too stiff: the run crawled at 1e-9 s steps), while g is as smooth on [0, 1e-3].
       // Shipped scenes have ψ_s ~ 1, so their table is unchanged.
       table_.emplace(law_.nu, law_.shape, std::max(1.1 * psi_hi, 1e-3));
-      if (!(table_->max_rel_error() <= 1e-11))
-        throw SolverError("event solver: the universal force law's table is only accurate to " +
-                          std::to_string(table_->max_rel_error()) + " (psi up to " + std::to_string(1.1 * psi_hi) +
-                          "): junctions outside the contact law's range");
+      if (!(table_->max_rel_error() <= 1e-11)) {
+        char msg[200];
+        std::snprintf(msg, sizeof msg,
+                      "event solver: the universal force law's table is only accurate to %.3g (psi up to %.3g): "
+                      "junctions outside the contact law's range",
+                      table_->max_rel_error(), 1.1 * psi_hi);
+        throw SolverError(msg);
+      }
       if (!always_ && N >= kBinnedMin) {
         binned_.emplace(*table_, w_, c_, A0_, binned_rel_width(scene.solver.tolerance, psi_hi));
         std::fill(nl_pos_.begin(), nl_pos_.end(), 0);  // "in the nonlinear set"; storage is binned_
@@ -395,9 +400,14 @@ RunInfo integrate_event(const Scene& scene, Recorder& rec, const RunLimits& limi
       // A threshold at or behind X would never fire (its event function starts ≥ 0): the slip
       // distance (1 − ε) f_s/k of a repinned junction is below the resolution of X. Never the
       // case in a physical population; refused rather than letting the junction overload.
-      if (model.has_threshold() && model.next_threshold() <= X)
-        throw SolverError("event solver: a junction's slip distance is below the resolution of the slider "
-                          "position at t = " + std::to_string(t) + " s: check the junction areas and sigma_exp");
+      if (model.has_threshold() && model.next_threshold() <= X) {
+        char msg[200];
+        std::snprintf(msg, sizeof msg,
+                      "event solver: a junction's slip distance is below the resolution of the slider position "
+                      "(X = %.3g m) at t = %.3g s: check the junction areas and sigma_exp",
+                      X, t);
+        throw SolverError(msg);
+      }
       stepper.initialize(y, t, stepper.current_time_step());
       break;
     }

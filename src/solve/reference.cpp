@@ -5,6 +5,8 @@
 #include <Eigen/Eigenvalues>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <limits>
 
 #include "solve/integrate.hpp"
 #include "solve/junction_state.hpp"
@@ -14,6 +16,8 @@ namespace asperity {
 double reference_spectral_radius(double omega_dt, double eta_dt) {
   // Variables (X, h V, h² γ) for X'' = −ω² X − η Ẋ; the same map as the step below.
   const double a = omega_dt * omega_dt, b = eta_dt;
+  // Eigen's eigensolver does not return on a matrix with inf or NaN (an absurd dt).
+  if (!std::isfinite(a) || !std::isfinite(b)) return std::numeric_limits<double>::infinity();
   Eigen::Matrix3d m;
   // x1 = x + u + g/2;  g1 = −a x1 − b u;  u1 = u + (g + g1)/2
   m << 1, 1, 0.5,                           // x1
@@ -46,9 +50,13 @@ RunInfo integrate_reference(const Scene& scene, Recorder& rec, const RunLimits& 
   const double v_repin = m.c_min * v;
   {
     const double rho = reference_spectral_radius(std::sqrt((info.K0 + kL) / M) * dt, m.eta * dt);
-    if (rho > 1.0 + 1e-12)
-      throw SolverError("reference step unstable: spectral radius " + std::to_string(rho) +
-                        " > 1 at dt = " + std::to_string(dt) + " s (raise solver.Ct or lower model.eta)");
+    if (rho > 1.0 + 1e-12) {
+      char msg[200];
+      std::snprintf(msg, sizeof msg,
+                    "reference step unstable: spectral radius %.6g > 1 at dt = %.6g s (raise solver.Ct or lower model.eta)",
+                    rho, dt);
+      throw SolverError(msg);
+    }
   }
   JunctionState J(e.junctions.area_m2, law);
   const std::size_t N = J.size();
