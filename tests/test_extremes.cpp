@@ -10,6 +10,7 @@
 #include <chrono>
 #include <limits>
 
+#include "observe/simulate.hpp"
 #include "physics/contact_law.hpp"
 #include "support.hpp"
 
@@ -411,4 +412,70 @@ TEST_CASE("a 1000 s run ends exactly at 1000 s with no drift in the stick-slip c
   // Bounded: the slip force plus the damping force M η Ẋ (Ẋ ≤ v before the slip).
   CHECK(late.max.Q <= f_s + Meta_v);
   CHECK(late.max.Q > f_s);
+}
+
+TEST_CASE("sigma_exp = 1e-2 Pa: the slider moves as the free oscillator on k_L, promptly", "[extremes][limits]") {
+  // Junction forces ≤ Σ σ A0 ≈ 1e-8 N against k_L X ≈ 1e-2 N: X(t) is the closed-form
+  // oscillator without junctions. The universal-law table used to be built over ψ ≤ 3e-8 only,
+  // where its spline came out 1e10 times too stiff: X stuck at 1e-18 m, 1e-9 s steps, no end.
+  Scene s = paper_scene(spread_areas(294, 1e-9, 1e-7), 0.1);
+  s.experiment.sigma_exp = 1e-2;
+  s.stop.time = 0.05;
+  s.stop.wall_time = 30;  // fail, not hang, if it regresses
+  const auto t0 = std::chrono::steady_clock::now();
+  const auto out = run(s);
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  CHECK(out.info.t_end == 0.05);
+  CHECK(out.info.stopped_by == LimitHit::none);
+  CHECK(out.info.stats.slips > 294);  // every junction slipped (and chatters while V < c_min v)
+  const double err = oscillator_error(s, out.rec, 0.0, 0.05);
+  std::printf("sigma_exp = 1e-2: |X - free oscillator| / max X = %.3g, %lld slips, %.2f s wall\n", err,
+              static_cast<long long>(out.info.stats.slips), wall);
+  CHECK(err < 1e-5);
+  CHECK(wall < 30.0);  // measured ≈ 1.2 s; unbounded before
+}
+
+TEST_CASE("the slip and wall-time limits stop both solvers inside their loops", "[extremes][limits]") {
+  omp_set_num_threads(1);
+  Scene s = paper_scene(spread_areas(40, 1e-9, 1e-7), 0.1);
+  s.stop.time = 2.0;
+  for (const SolverMethod m : {SolverMethod::event, SolverMethod::reference}) {
+    INFO((m == SolverMethod::event ? "event" : "reference"));
+    s.solver.method = m;
+    s.solver.Ct = 100;
+    // Slips: the run ends at the step or event where the count reaches the limit.
+    const auto full = run(s);
+    REQUIRE(full.info.stats.slips >= 40);
+    RunLimits few;
+    few.max_slips = 10;
+    Recorder rec = make_recorder(s);
+    const RunInfo cut = integrate(s, rec, few);
+    CHECK(cut.stopped_by == LimitHit::max_slips);
+    CHECK(cut.stats.slips >= 10);
+    CHECK(cut.stats.slips < 10 + 40);  // one step or event slips at most every junction once
+    CHECK(cut.t_end < full.info.t_end);
+    // The scene key does the same through simulate(), with a message naming it.
+    Scene k = s;
+    k.stop.max_slips = 10;
+    CHECK_THROWS_WITH(simulate(k), Contains("stop.max_slips: run stopped after") && Contains("slips at simulated t ="));
+  }
+  // Wall time: a run of hours (reference at C_t = 1e6 over 100 s) stops within the limit.
+  s.solver.method = SolverMethod::reference;
+  s.solver.Ct = 1e6;
+  s.stop.time = 100;
+  s.stop.wall_time = 0.2;
+  const auto t0 = std::chrono::steady_clock::now();
+  try {
+    simulate(s);
+    FAIL("no limit reached");
+  } catch (const SolverError& e) {
+    CHECK_THAT(std::string(e.what()), Contains("stop.wall_time: run stopped after 0.2 s of wall time"));
+  }
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  CHECK(wall < 1.0);  // the clock is read every 64 steps, not only when a sample is recorded
+  // A sweep's per-point limit below stop.wall_time marks the recorder instead of throwing.
+  const RunResult r = simulate(s, 0.1);
+  CHECK(r.recorder.timed_out());
+  CHECK(r.info.stopped_by == LimitHit::wall_time);
+  CHECK(r.info.t_end < 100);
 }

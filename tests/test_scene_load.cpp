@@ -619,8 +619,8 @@ TEST_CASE("scene error: nu outside -1 < nu <= 0.5", "[scene]") {
 
 TEST_CASE("scene error: negative junction area names the CSV line and column", "[scene]") {
   expect_junctions_error("# areas\ny_m,area_m2,x_m\n0,1e-8,0\n0,-1e-8,0\n",
-                         {"junctions.csv:4:2: area_m2: junction area must be > 0, got -1e-08"});
-  expect_junctions_error("area_m2\n1e-8\n0\n", {"junctions.csv:3:1: area_m2: junction area must be > 0, got 0"});
+                         {"junctions.csv:4:2: area_m2: junction area must be in [1e-20, 1] m^2, got -1e-08"});
+  expect_junctions_error("area_m2\n1e-8\n0\n", {"junctions.csv:3:1: area_m2: junction area must be in [1e-20, 1] m^2, got 0"});
 }
 
 TEST_CASE("scene error: NaN junction area", "[scene]") {
@@ -664,7 +664,7 @@ TEST_CASE("scene error: c_min outside (0, 1)", "[scene]") {
 }
 
 TEST_CASE("scene error: negative p", "[scene]") {
-  expect_scene_error("model:\n  p: -0.5\n", {"scene.yaml:3: model.p: must be >= 0, got -0.5"});
+  expect_scene_error("model:\n  p: -0.5\n", {"scene.yaml:3: model.p: must be in [0, 10], got -0.5"});
 }
 
 TEST_CASE("scene error: negative alpha_b", "[scene]") {
@@ -672,12 +672,12 @@ TEST_CASE("scene error: negative alpha_b", "[scene]") {
 }
 
 TEST_CASE("scene error: Ct <= 0", "[scene]") {
-  expect_scene_error("solver:\n  Ct: 0\n", {"scene.yaml:3: solver.Ct: must be > 0, got 0"});
+  expect_scene_error("solver:\n  Ct: 0\n", {"scene.yaml:3: solver.Ct: must be >= 1, got 0"});
 }
 
 TEST_CASE("scene error: tolerance outside 0 < tolerance <= 0.1", "[scene]") {
-  expect_scene_error("solver:\n  tolerance: 0\n", {"scene.yaml:3: solver.tolerance: must be in (0, 0.1], got 0"});
-  expect_scene_error("solver:\n  tolerance: 0.5\n", {"scene.yaml:3: solver.tolerance: must be in (0, 0.1], got 0.5"});
+  expect_scene_error("solver:\n  tolerance: 0\n", {"scene.yaml:3: solver.tolerance: must be in [1e-14, 0.1], got 0"});
+  expect_scene_error("solver:\n  tolerance: 0.5\n", {"scene.yaml:3: solver.tolerance: must be in [1e-14, 0.1], got 0.5"});
 }
 
 TEST_CASE("scene error: stop.time <= 0", "[scene]") {
@@ -757,5 +757,5 @@ TEST_CASE("scene error: override naming a missing experiment file", "[scene]") {
 TEST_CASE("scene error: a value overridden in the file keeps the file's line for other keys", "[scene]") {
   Sandbox box;
   const fs::path s = box.scene("experiment: exp/experiment.yaml\nmodel:\n  eta: 100\n  p: -2\n");
-  expect_error(box, [&] { load_scene(s, {"model.eta=50"}); }, {"scene.yaml:4: model.p: must be >= 0, got -2"});
+  expect_error(box, [&] { load_scene(s, {"model.eta=50"}); }, {"scene.yaml:4: model.p: must be in [0, 10], got -2"});
 }

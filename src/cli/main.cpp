@@ -1,6 +1,8 @@
 // asperity: onset of sliding of rough elastomer contacts (independent-asperity model).
 // Parses the command line and dispatches to one subcommand (see cli/commands.hpp).
 #include <exception>
+#include <new>
+#include <string>
 #include <iostream>
 #include <vector>
 
@@ -8,7 +10,17 @@
 #include "scene/load.hpp"
 #include "solve/integrate.hpp"
 
-int main(int argc, char** argv) {
+namespace {
+
+// One line on stderr, whatever the text holds.
+void print_line(const std::string& prefix, const std::string& text) {
+  std::string s = prefix + text;
+  for (char& c : s)
+    if (c == '\n' || c == '\r') c = ' ';
+  std::cerr << s << '\n';
+}
+
+int run_cli(int argc, char** argv) {
   namespace cli = asperity::cli;
   CLI::App app{"asperity: onset of sliding of elastomer multicontacts "
                "(independent-asperity model, Scheibert, Sahli & Peyrard 2020)"};
@@ -39,15 +51,29 @@ int main(int argc, char** argv) {
     for (const auto& c : commands)
       if (c.sub->parsed()) return c.run();
   } catch (const asperity::InputError& e) {
-    std::cerr << e.what() << '\n';
+    print_line("", e.what());
     return cli::exit_input;
   } catch (const asperity::SolverError& e) {
-    std::cerr << "solver error: " << e.what() << '\n';
+    print_line("solver error: ", e.what());
     return cli::exit_solver;
-  } catch (const std::exception& e) {
-    std::cerr << "error: " << e.what() << '\n';
-    return cli::exit_failure;
   }
   std::cerr << app.help();
   return cli::exit_input;
+}
+
+}  // namespace
+
+// Everything that escapes a command (a library's exception, memory exhausted) becomes one line
+// and a non-zero exit, never std::terminate's "terminate called after...".
+int main(int argc, char** argv) {
+  try {
+    return run_cli(argc, argv);
+  } catch (const std::bad_alloc&) {
+    print_line("error: ", "out of memory");
+  } catch (const std::exception& e) {
+    print_line("error: ", e.what());
+  } catch (...) {
+    print_line("error: ", "unknown exception");
+  }
+  return asperity::cli::exit_failure;
 }

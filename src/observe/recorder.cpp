@@ -31,7 +31,6 @@ void Recorder::sample(const Sample& s) {
   if (s.Q > highest_.Q) highest_ = here;
   if (slipped_ && s.Q > highest_after_slip_.Q) highest_after_slip_ = here;
   if (failed_ && s.Q > highest_after_failure_.Q) highest_after_failure_ = here;
-  if (has_deadline_ && std::chrono::steady_clock::now() > deadline_) done_ = timed_out_ = true;
 }
 
 void Recorder::extremum(const Extremum& e) {

@@ -10,7 +10,6 @@
 // drops are precursors. No threshold on the size of a drop is used, so the peak does not depend
 // on the solver tolerance and holds for drops well under 1 %. Later peaks (stick-slip cycles) are
 // maxima followed by a drop of at least `min_drop` of Q.
-#include <chrono>
 #include <cstdint>
 #include <limits>
 #include <vector>
@@ -56,12 +55,8 @@ class Recorder {
   void extremum(const Extremum& e);
   void population(const PopulationChange& c);
   bool done() const { return done_; }
-  // Optional wall-clock limit (sweeps): the first sample past it ends the run (done()) and
-  // marks it timed_out().
-  void set_wall_deadline(std::chrono::steady_clock::time_point t) {
-    deadline_ = t;
-    has_deadline_ = true;
-  }
+  // A sweep's per-point time limit ended the run (the solver checks it: solve/run_limits.hpp).
+  void mark_timed_out() { done_ = timed_out_ = true; }
   bool timed_out() const { return timed_out_; }
 
   const std::vector<Sample>& series() const { return series_; }
@@ -90,8 +85,7 @@ class Recorder {
   int stop_after_cycles_;
   std::int64_t next_index_ = 0;
   bool done_ = false;
-  bool has_deadline_ = false, timed_out_ = false;
-  std::chrono::steady_clock::time_point deadline_{};
+  bool timed_out_ = false;
   // First peak: search state.
   bool slipped_ = false;       // some junction has slipped
   bool failed_ = false;        // every junction has slipped at least once

@@ -12,11 +12,15 @@ Recorder make_recorder(const Scene& scene) {
 
 RunResult simulate(const Scene& scene, double wall_limit_s) {
   Recorder rec = make_recorder(scene);
+  RunLimits limits = run_limits(scene);
+  const bool sweep_limit = wall_limit_s > 0 && wall_limit_s < limits.wall_time_s;
+  if (sweep_limit) limits.wall_time_s = wall_limit_s;
   const auto t0 = std::chrono::steady_clock::now();
-  if (wall_limit_s > 0)
-    rec.set_wall_deadline(t0 + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                                   std::chrono::duration<double>(wall_limit_s)));
-  RunInfo info = integrate(scene, rec);
+  RunInfo info = integrate(scene, rec, limits);
+  if (info.stopped_by == LimitHit::wall_time && sweep_limit)
+    rec.mark_timed_out();
+  else if (info.stopped_by != LimitHit::none)
+    throw SolverError(limit_message(scene, limits, info.stopped_by, info.t_end, info.stats.slips));
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   Observables obs = summarize(scene, info, rec, wall);
   return RunResult{std::move(info), std::move(rec), std::move(obs)};

@@ -18,8 +18,10 @@ struct RunResult {
 };
 
 // Integrates the scene and summarizes it; obs.wall_s is the wall-clock time of integrate().
-// Throws SolverError as integrate() does. wall_limit_s > 0: the run stops at the first sample
-// after that much wall time, and recorder.timed_out() says so (sweeps' per-point limit).
+// Throws SolverError as integrate() does, and when the run reached stop.wall_time or
+// stop.max_slips (limit_message). wall_limit_s > 0 (a sweep's per-point limit), when below
+// stop.wall_time: the solver stops once that much wall time has passed, and
+// recorder.timed_out() says so instead of an exception.
 RunResult simulate(const Scene& scene, double wall_limit_s = 0);
 
 }  // namespace asperity

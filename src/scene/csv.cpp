@@ -40,12 +40,7 @@ std::vector<std::string> split_fields(std::string_view line) {
 
 Table read_table(const std::filesystem::path& path, const std::string& display,
                  const std::vector<std::string>& allowed, const std::vector<std::string>& required) {
-  check_readable_file(path, display);
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(display, 0, "", "cannot open file");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  std::string text = ss.str();
+  std::string text = read_input_file(path, display, kMaxCsvBytes);
   if (text.rfind("\xEF\xBB\xBF", 0) == 0) text.erase(0, 3);  // UTF-8 byte-order mark
 
   Table t;
@@ -107,7 +102,6 @@ Table read_table(const std::filesystem::path& path, const std::string& display,
     t.rows.push_back(std::move(row));
     t.lines.push_back(line_no);
   }
-  if (in.bad()) throw InputError(display, 0, "", "cannot read file");
   if (!t.header_line)
     throw InputError(display, std::max(line_no, 1), required.empty() ? "" : required.front(),
                      "missing header row (expected columns " + scene_io::join(allowed) + ")");
@@ -131,8 +125,10 @@ JunctionPopulation read_junctions_csv(const std::filesystem::path& csv, const st
   p.area_m2.reserve(t.rows.size());
   for (std::size_t i = 0; i < t.rows.size(); ++i) {
     const double a = t.rows[i][static_cast<std::size_t>(ca)];
-    if (!(a > 0))
-      throw InputError(display, t.lines[i], "area_m2", "junction area must be > 0, got " + format_double(a), ca + 1);
+    // 1e-20 m² (0.01 nm², below one atom) to 1 m²: outside it the contact law has no meaning,
+    // and A0^(p+1), slip distances and time scales leave the range of double.
+    if (!(a >= 1e-20 && a <= 1.0))
+      throw InputError(display, t.lines[i], "area_m2", "junction area must be in [1e-20, 1] m^2, got " + format_double(a), ca + 1);
     p.area_m2.push_back(a);
     if (cx >= 0) {
       p.x_m.push_back(t.rows[i][static_cast<std::size_t>(cx)]);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <optional>
 #include <system_error>
 
@@ -44,8 +45,17 @@ const std::vector<std::string> kExperimentMapKeys{"file", "name", "description",
                                                   "v", "E", "nu", "sigma_exp"};
 const std::vector<std::string> kModelKeys{"eta", "epsilon", "c_min", "p", "alpha_b", "junction_shape", "area_law"};
 const std::vector<std::string> kSolverKeys{"method", "Ct", "tolerance"};
-const std::vector<std::string> kStopKeys{"time", "at_first_peak", "cycles"};
+const std::vector<std::string> kStopKeys{"time", "at_first_peak", "cycles", "wall_time", "max_slips"};
 const std::vector<std::string> kOutputKeys{"every", "series", "peak_min_drop"};
+
+// Limits that keep every run finite in time and memory (see check_resources).
+constexpr double kMinTolerance = 1e-14;  // ≈ 45 machine epsilons
+constexpr double kMaxSamples = 1e6;      // samples of one run (1e6: 0.3 GB resident, 0.1 GB of series.csv)
+constexpr double kMaxEtaTime = 1e6;      // η · stop.time: ≤ ~3·10^5 steps forced by damping
+constexpr double kMaxPeriods = 1e6;     // slider oscillations in stop.time (≥ 2·10^7 event steps)
+constexpr double kMaxReferenceSteps = 1e9;  // steps of the reference solver
+constexpr double kMaxP = 10;             // model.p
+constexpr double kMinSlipAreaFraction = 1e-6;  // A_s/A0 at a junction's first slip
 
 std::string display_path(const fs::path& p) { return p.lexically_normal().string(); }
 
@@ -55,21 +65,23 @@ fs::path resolved(const fs::path& p) {
   return ec ? fs::absolute(p).lexically_normal() : r;
 }
 
-void check(bool ok, const MapView& v, const YAML::Node& n, const std::string& k, const std::string& range, double x) {
-  if (!ok) v.fail_at(n, k, "must be " + range + ", got " + format_double(x));
+// "must be RANGE, got X" (and " (WHY)" when given: the reason for a limit that is not obvious).
+void check(bool ok, const MapView& v, const YAML::Node& n, const std::string& k, const std::string& range, double x,
+           const std::string& why = "") {
+  if (!ok) v.fail_at(n, k, "must be " + range + ", got " + format_double(x) + (why.empty() ? "" : " (" + why + ")"));
 }
 
-// A file named by `k` (value node n, read by view v), relative to base_dir; must exist.
+// A file named by `k` (value node n, read by view v), relative to base_dir; must be a regular
+// file of at most max_bytes (refused here, at the line that names it, before anything reads it).
 fs::path referenced_file(const MapView& v, const YAML::Node& n, const std::string& k, const fs::path& base_dir,
-                         const char* what) {
+                         const char* what, std::uintmax_t max_bytes) {
   const std::string rel = v.string(n, k);
   if (trim(rel).empty()) v.fail_at(n, k, std::string("empty path (expected ") + what + ")");
   const fs::path p = base_dir / fs::path(rel);
-  std::error_code ec;
-  const auto st = fs::status(p, ec);
-  if (!fs::exists(st))
+  const std::string why = input_file_problem(p, max_bytes);
+  if (why == "file not found")
     v.fail_at(n, k, std::string(what) + " not found: " + quote(rel) + " (looked for " + display_path(p) + ")");
-  if (fs::is_directory(st)) v.fail_at(n, k, std::string(what) + " is a directory, not a file: " + display_path(p));
+  if (!why.empty()) v.fail_at(n, k, std::string(what) + " " + why + ": " + display_path(p));
   return p;
 }
 
@@ -136,16 +148,103 @@ Experiment load_experiment_impl(const fs::path& path, const std::string& display
   const fs::path base = path.parent_path();
   {
     const YAML::Node n = f.require("junctions");
-    const fs::path csv = referenced_file(f, n, "junctions", base, "junctions CSV");
+    const fs::path csv = referenced_file(f, n, "junctions", base, "junctions CSV", kMaxCsvBytes);
     e.junctions_file = resolved(csv);
     e.junctions = scene_io::read_junctions_csv(csv, display_path(csv));
   }
   if (auto n = f.find("measured")) {
-    const fs::path csv = referenced_file(f, *n, "measured", base, "measured CSV");
+    const fs::path csv = referenced_file(f, *n, "measured", base, "measured CSV", kMaxCsvBytes);
     e.measured_file = resolved(csv);
     e.measured = scene_io::read_measured_csv(csv, display_path(csv));
   }
   return e;
+}
+
+// Checks across keys, once every value is known: the work a scene asks for must be bounded.
+// Each error names the key the user set (the first of the pair that was given).
+void check_resources(const Scene& s, const MapView& model, const MapView& stop, const MapView& output,
+                     const MapView& solver) {
+  auto blame = [](const MapView& a, const char* ka, const MapView& b, const char* kb) {
+    if (auto n = a.find(ka)) return std::make_pair(&a, std::make_pair(std::string(ka), *n));
+    if (auto n = b.find(kb)) return std::make_pair(&b, std::make_pair(std::string(kb), *n));
+    return std::make_pair(&a, std::make_pair(std::string(ka), YAML::Node(YAML::NodeType::Null)));
+  };
+  // Samples are kept in memory (56 bytes each, twice while on the loading branch).
+  const double intervals = s.stop.time / s.output.every;
+  if (!(intervals <= kMaxSamples * (1 + 1e-12))) {
+    const auto [v, kn] = blame(output, "every", stop, "time");
+    v->fail_at(kn.second, kn.first,
+               "too many samples: stop.time / output.every = " + format_short(intervals) + ", more than the " +
+                   format_short(kMaxSamples) + " a run may record (output.every must be >= stop.time * 1e-6 = " +
+                   format_short(s.stop.time / kMaxSamples) + " s)");
+  }
+  // Damping rate η forces explicit steps shorter than ~3/η on both solvers (the reference's
+  // is unstable beyond η dt = 2; the event solver's Dormand–Prince stability limit is 3.3/η).
+  const double eta_time = s.model.eta * s.stop.time;
+  if (!(eta_time <= kMaxEtaTime)) {
+    const auto [v, kn] = blame(model, "eta", stop, "time");
+    v->fail_at(kn.second, kn.first,
+               "too strong damping: eta * stop.time = " + format_short(eta_time) + " is more than " + format_short(kMaxEtaTime) +
+                   ": damping that strong needs explicit steps shorter than ~3/eta, i.e. over " +
+                   format_short(eta_time / 3.3) + " steps (the slider is overdamped long before: eta = " +
+                   format_double(s.model.eta) + " 1/s, stop.time = " + format_double(s.stop.time) + " s)");
+  }
+  // Time scales: the slider oscillates at ω = sqrt((k_L + K0)/M) with K0 = Σ k_i(A0) =
+  // E κ(1) Σ ℓ0_i (κ(1) = 1/((1+ν)(1−ν/2)) for both shapes); every solver needs several steps
+  // per period (the event solver ~20, the reference C_t per T0 = 2π/sqrt(K0/M)).
+  double sum_l0 = 0;
+  for (const double a : s.experiment.junctions.area_m2) sum_l0 += initial_diameter(a);
+  const double K0 = s.experiment.E * sum_l0 / ((1.0 + s.experiment.nu) * (1.0 - 0.5 * s.experiment.nu));
+  const double M = s.experiment.mass_kg;
+  const double periods = s.stop.time * std::sqrt((s.experiment.k_L + K0) / M) / (2.0 * M_PI);
+  if (!(periods <= kMaxPeriods)) {
+    const auto [v, kn] = blame(stop, "time", stop, "time");
+    v->fail_at(kn.second, kn.first,
+               "too many slider oscillations: " + format_short(periods) + " periods of 2 pi sqrt(M/(k_L + K0)) in " +
+                   format_double(s.stop.time) + " s, more than " + format_short(kMaxPeriods) + " (mass = " +
+                   format_double(M) + " kg, k_L = " + format_double(s.experiment.k_L) + " N/m, K0 = " + format_short(K0) +
+                   " N/m)");
+  }
+  if (s.solver.method == SolverMethod::reference && K0 > 0) {
+    const double steps = s.stop.time * s.solver.Ct / (2.0 * M_PI * std::sqrt(M / K0));
+    if (!(steps <= kMaxReferenceSteps)) {
+      const auto [v, kn] = blame(solver, "Ct", stop, "time");
+      v->fail_at(kn.second, kn.first,
+                 "too many reference steps: stop.time * Ct / T0 = " + format_short(steps) + ", more than " +
+                     format_short(kMaxReferenceSteps) + " (dt = T0/Ct = " + format_short(2.0 * M_PI * std::sqrt(M / K0) / s.solver.Ct) +
+                     " s)");
+    }
+  }
+}
+
+// The area law A = A0 − α_b f²/A0^p is used between A0 and the area at the first slip,
+// A_s = A0 (1 − φ_s²). If a junction would lose all but a tiny part of its area before it
+// slips, the law is far outside any measured range, 1 − φ_s² is lost to rounding (and is 0 in
+// double beyond β ~ 1e15, where the solvers divide by zero), and its slip distance is tiny.
+void check_area_law_domain(const Scene& s, const MapView& model) {
+  if (s.model.alpha_b == 0 || s.experiment.junctions.size() == 0) return;
+  const ContactLaw law = make_contact_law(s.experiment, s.model);
+  const auto [lo, hi] = std::minmax_element(s.experiment.junctions.area_m2.begin(), s.experiment.junctions.area_m2.end());
+  for (const double A0 : {*lo, *hi}) {  // φ_s is monotonic in A0
+    const double phi = law.slip_phi(A0);
+    const double kept = 1.0 - phi * phi;
+    if (kept >= kMinSlipAreaFraction) continue;
+    // Blame a model key the user gave: one set by --set or a sweep (no file mark) first.
+    std::string key;
+    for (const char* k : {"p", "alpha_b", "epsilon"})
+      if (auto n = model.find(k); n && key.empty() && n->Mark().is_null()) key = k;
+    for (const char* k : {"p", "alpha_b", "epsilon"})
+      if (key.empty() && model.find(k)) key = k;
+    const auto n = key.empty() ? std::nullopt : model.find(key);
+    const std::string msg =
+        "junctions of " + format_short(A0) + " m^2 would keep only " + (kept > 0 ? format_short(kept) : "nothing") +
+        " of their area at their first slip (A = A0 - alpha_b f^2/A0^p with p = " + format_double(s.model.p) +
+        ", alpha_b = " + format_double(s.model.alpha_b) + ", sigma = sigma_exp/epsilon = " + format_short(law.sigma) +
+        " Pa; at least " + format_short(kMinSlipAreaFraction) + " is needed for the law to be meaningful)";
+    if (n) model.fail_at(*n, key, msg);
+    // Neither key set in the scene: the experiment (areas, sigma_exp) is what is out of range.
+    throw InputError(s.experiment.junctions_file.string(), 0, "area_m2", msg);
+  }
 }
 
 YAML::Node section(const MapView& root, const std::string& k) {
@@ -176,13 +275,14 @@ Scene scene_from_tree_impl(const YAML::Node& tree, const fs::path& origin, const
       root.fail_at(en, "experiment",
                    "expected the path of an experiment file or a map {file: path, ...}, got " + node_kind(en));
     }
-    const fs::path p = referenced_file(*fv, fn, fk, origin.parent_path(), "experiment file");
+    const fs::path p = referenced_file(*fv, fn, fk, origin.parent_path(), "experiment file", kMaxYamlBytes);
     s.experiment_ref = fn.Scalar();
     s.experiment = load_experiment_impl(p, display_path(p), ov ? &*ov : nullptr);
   }
 
+  const MapView model_view(src, section(root, "model"), "model", kModelKeys);
   {
-    const MapView m(src, section(root, "model"), "model", kModelKeys);
+    const MapView& m = model_view;
     auto& x = s.model;
     if (auto n = m.find("eta")) {
       x.eta = m.number(*n, "eta", "1/s");
@@ -198,7 +298,8 @@ Scene scene_from_tree_impl(const YAML::Node& tree, const fs::path& origin, const
     }
     if (auto n = m.find("p")) {
       x.p = m.number(*n, "p", nullptr);
-      check(x.p >= 0, m, *n, "p", ">= 0", x.p);
+      check(x.p >= 0 && x.p <= kMaxP, m, *n, "p", "in [0, 10]", x.p,
+            "A0^(p+1) must stay a normal double for areas in [1e-20, 1] m^2");
     }
     if (auto n = m.find("alpha_b")) {
       x.alpha_b = m.number(*n, "alpha_b", "m^(2p+2)/N^2");
@@ -210,22 +311,26 @@ Scene scene_from_tree_impl(const YAML::Node& tree, const fs::path& origin, const
     if (auto n = m.find("area_law"))
       x.area_law = m.enumeration<AreaLaw>(*n, "area_law", {{"until_first_slip", AreaLaw::until_first_slip}, {"always", AreaLaw::always}});
   }
+  const MapView solver_view(src, section(root, "solver"), "solver", kSolverKeys);
   {
-    const MapView m(src, section(root, "solver"), "solver", kSolverKeys);
+    const MapView& m = solver_view;
     auto& x = s.solver;
     if (auto n = m.find("method"))
       x.method = m.enumeration<SolverMethod>(*n, "method", {{"reference", SolverMethod::reference}, {"event", SolverMethod::event}});
     if (auto n = m.find("Ct")) {
       x.Ct = m.number(*n, "Ct", nullptr);
-      check(x.Ct > 0, m, *n, "Ct", "> 0", x.Ct);
+      check(x.Ct >= 1, m, *n, "Ct", ">= 1", x.Ct, "reference steps per T0; fewer is unstable for any scene");
     }
     if (auto n = m.find("tolerance")) {
       x.tolerance = m.number(*n, "tolerance", nullptr);
-      check(x.tolerance > 0 && x.tolerance <= 0.1, m, *n, "tolerance", "in (0, 0.1]", x.tolerance);
+      check(x.tolerance >= kMinTolerance && x.tolerance <= 0.1, m, *n, "tolerance", "in [1e-14, 0.1]", x.tolerance,
+            "relative error per step; below ~50 machine epsilons the error control only chases rounding and "
+            "the steps shrink without bound");
     }
   }
+  const MapView stop_view(src, section(root, "stop"), "stop", kStopKeys);
   {
-    const MapView m(src, section(root, "stop"), "stop", kStopKeys);
+    const MapView& m = stop_view;
     auto& x = s.stop;
     if (auto n = m.find("time")) {
       x.time = m.number(*n, "time", "s");
@@ -237,9 +342,19 @@ Scene scene_from_tree_impl(const YAML::Node& tree, const fs::path& origin, const
       if (x.cycles != -1 && x.cycles < 1)
         m.fail_at(*n, "cycles", "must be -1 (never) or >= 1, got " + std::to_string(x.cycles));
     }
+    if (auto n = m.find("wall_time")) {
+      x.wall_time = m.number(*n, "wall_time", "s");
+      check(x.wall_time > 0, m, *n, "wall_time", "> 0", x.wall_time, "seconds of wall-clock time for one run");
+    }
+    if (auto n = m.find("max_slips")) {
+      const double k = m.number(*n, "max_slips", nullptr);
+      check(k >= 1 && k <= 1e18 && k == std::floor(k), m, *n, "max_slips", "a whole number in [1, 1e18]", k);
+      x.max_slips = static_cast<std::int64_t>(k);
+    }
   }
+  const MapView output_view(src, section(root, "output"), "output", kOutputKeys);
   {
-    const MapView m(src, section(root, "output"), "output", kOutputKeys);
+    const MapView& m = output_view;
     auto& x = s.output;
     if (auto n = m.find("every")) {
       x.every = m.number(*n, "every", "s");
@@ -264,6 +379,8 @@ Scene scene_from_tree_impl(const YAML::Node& tree, const fs::path& origin, const
       check(x.peak_min_drop > 0 && x.peak_min_drop < 1, m, *n, "peak_min_drop", "in (0, 1)", x.peak_min_drop);
     }
   }
+  check_resources(s, model_view, stop_view, output_view, solver_view);
+  check_area_law_domain(s, model_view);
   return s;
 }
 

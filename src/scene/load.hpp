@@ -15,12 +15,19 @@
 //   model:  {eta: 100, epsilon: 0.9, c_min: 0.01, p: 1.5, alpha_b: 0.725e-15,
 //            junction_shape: elliptic|circular, area_law: until_first_slip|always}
 //   solver: {method: event|reference, Ct: 1e4, tolerance: 1e-9}
-//   stop:   {time: 1.0, at_first_peak: false, cycles: -1}
+//   stop:   {time: 1.0, at_first_peak: false, cycles: -1,
+//            wall_time: 3600, max_slips: 0}   # limits per run; max_slips 0: 10^6 + 10^4 N max(1, time/s)
 //   output: {every: 1e-3, series: [t, X, V, Q, A, n_slipping, n_intact], peak_min_drop: 0.02}
 //
 // Experiment YAML: name, mass [kg], k_L [N/m], v [m/s], E [Pa], nu, sigma_exp [Pa],
 // junctions (CSV path relative to the experiment file), optional measured (CSV), optional
 // description (free text). Numbers are plain SI numbers ("1.6e6", never "1.6 MPa").
+//
+// Bounds that keep every run finite (each refused with file:line: key): solver.tolerance ≥ 1e-14;
+// stop.time/output.every ≤ 1e6 samples; model.eta·stop.time ≤ 1e6; ≤ 1e6 slider periods
+// 2π sqrt(M/(k_L+K0)) in stop.time; ≤ 1e9 reference steps; solver.Ct ≥ 1; model.p ≤ 10; junction
+// areas in [1e-20, 1] m²; every junction keeps ≥ 1e-6 of its area at its first slip. Input files
+// must be regular files of at most 16 MiB (YAML) or 256 MiB (CSV) (scene_io::read_input_file).
 #include <yaml-cpp/yaml.h>
 
 #include <filesystem>

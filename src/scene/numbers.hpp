@@ -8,6 +8,9 @@ namespace asperity::scene_io {
 // Shortest text that reads back to exactly x (std::to_chars), e.g. 0.1 → "0.1", 7.25e-16.
 std::string format_double(double x);
 
+// Three significant digits for derived values in messages, e.g. 1.5e+07, 0.000209.
+std::string format_short(double x);
+
 enum class NumberParse { ok, empty, not_a_number, has_unit, not_finite };
 
 // Parses all of `text` (surrounding blanks ignored, optional leading '+') as a finite double.

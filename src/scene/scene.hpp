@@ -1,5 +1,6 @@
 #pragma once
 // Typed, validated description of one run. Plain data: only src/scene/*.cpp knows YAML.
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -59,6 +60,10 @@ struct StopSettings {
   double time = 1.0;         // s, hard end of the run
   bool at_first_peak = false;// stop once the first macroscopic peak of Q is confirmed
   int cycles = -1;           // stop once this many stick-slip cycles are complete (-1: never)
+  // Resource limits, checked inside the solver loops (solve/run_limits.hpp): reaching one ends
+  // the run with a SolverError naming the key. The defaults never trigger on the shipped scenes.
+  double wall_time = 3600.0; // s of wall-clock time for one run
+  std::int64_t max_slips = 0;// pinned → slipping transitions; 0: automatic (default_max_slips)
 };
 
 // Names of the columns series.csv may hold, in file order.

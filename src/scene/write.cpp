@@ -83,6 +83,10 @@ std::string scene_to_yaml(const Scene& s) {
   y += "  time: " + num(s.stop.time) + "\n";
   y += std::string("  at_first_peak: ") + (s.stop.at_first_peak ? "true" : "false") + "\n";
   y += "  cycles: " + std::to_string(s.stop.cycles) + "\n";
+  // Limits only when set: a default one leaves the text (and so the sweep store's scene hash)
+  // as it was before the keys existed.
+  if (s.stop.wall_time != StopSettings{}.wall_time) y += "  wall_time: " + num(s.stop.wall_time) + "\n";
+  if (s.stop.max_slips != 0) y += "  max_slips: " + std::to_string(s.stop.max_slips) + "\n";
   y += "output:\n";
   y += "  every: " + num(s.output.every) + "\n";
   y += "  series: [";

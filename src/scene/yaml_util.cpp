@@ -3,10 +3,15 @@
 #include <yaml-cpp/anchor.h>
 #include <yaml-cpp/eventhandler.h>
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cstdio>
-#include <fstream>
+#include <cstring>
 #include <sstream>
 
 #include "scene/numbers.hpp"
@@ -79,11 +84,74 @@ std::string join(const std::vector<std::string>& v, const char* sep) {
   return s;
 }
 
-void check_readable_file(const std::filesystem::path& path, const std::string& display) {
-  std::error_code ec;
-  const auto st = std::filesystem::status(path, ec);
-  if (!std::filesystem::exists(st)) throw InputError(display, 0, "", "file not found");
-  if (std::filesystem::is_directory(st)) throw InputError(display, 0, "", "is a directory, not a file");
+namespace {
+
+std::string size_text(std::uintmax_t bytes) {
+  char buf[32];
+  if (bytes >= (std::uintmax_t{1} << 20) && bytes % (std::uintmax_t{1} << 20) == 0)
+    std::snprintf(buf, sizeof buf, "%ju MiB", bytes >> 20);
+  else if (bytes >= 1000000)
+    std::snprintf(buf, sizeof buf, "%.3g MB", static_cast<double>(bytes) * 1e-6);
+  else
+    std::snprintf(buf, sizeof buf, "%ju bytes", bytes);
+  return buf;
+}
+
+// "" when `st` describes a regular file of at most max_bytes.
+std::string stat_problem(const struct stat& st, std::uintmax_t max_bytes) {
+  if (S_ISDIR(st.st_mode)) return "is a directory, not a file";
+  if (!S_ISREG(st.st_mode)) {
+    const char* kind = S_ISCHR(st.st_mode)    ? "a character device"
+                       : S_ISBLK(st.st_mode)  ? "a block device"
+                       : S_ISFIFO(st.st_mode) ? "a FIFO (named pipe)"
+                       : S_ISSOCK(st.st_mode) ? "a socket"
+                                              : "not a file";
+    return std::string("is ") + kind + ", not a regular file";
+  }
+  const auto size = static_cast<std::uintmax_t>(st.st_size);
+  if (size > max_bytes)
+    return "is " + size_text(size) + ", more than the " + size_text(max_bytes) + " an input file of this kind may have";
+  return "";
+}
+
+// Closes a file descriptor on every path out.
+struct Fd {
+  int fd;
+  ~Fd() {
+    if (fd >= 0) ::close(fd);
+  }
+};
+
+}  // namespace
+
+std::string input_file_problem(const std::filesystem::path& path, std::uintmax_t max_bytes) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) return errno == ENOENT || errno == ENOTDIR ? "file not found" : std::strerror(errno);
+  return stat_problem(st, max_bytes);
+}
+
+std::string read_input_file(const std::filesystem::path& path, const std::string& display, std::uintmax_t max_bytes) {
+  // Checked by path first, so that a FIFO or device is never opened at all; then on the open
+  // file (O_NONBLOCK: opening a FIFO swapped in meanwhile does not wait for a writer).
+  if (std::string why = input_file_problem(path, max_bytes); !why.empty()) throw InputError(display, 0, "", why);
+  const Fd f{::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC)};
+  if (f.fd < 0) throw InputError(display, 0, "", std::string("cannot open file: ") + std::strerror(errno));
+  struct stat st {};
+  if (::fstat(f.fd, &st) != 0) throw InputError(display, 0, "", std::string("cannot read file: ") + std::strerror(errno));
+  if (std::string why = stat_problem(st, max_bytes); !why.empty()) throw InputError(display, 0, "", why);
+  std::string text;
+  text.reserve(static_cast<std::size_t>(st.st_size));
+  char buf[1 << 16];
+  for (;;) {
+    const ssize_t n = ::read(f.fd, buf, sizeof buf);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) throw InputError(display, 0, "", std::string("cannot read file: ") + std::strerror(errno));
+    if (n == 0) break;
+    text.append(buf, static_cast<std::size_t>(n));
+    if (text.size() > max_bytes)  // grew while being read
+      throw InputError(display, 0, "", "is more than the " + size_text(max_bytes) + " an input file of this kind may have");
+  }
+  return text;
 }
 
 // YAML forbids C0 control characters other than tab, LF and CR (and DEL); yaml-cpp 0.7 can loop
@@ -146,14 +214,9 @@ YAML::Node load_one_document(const std::string& text, const std::string& display
 }  // namespace
 
 YAML::Node load_yaml_file(const std::filesystem::path& path, const std::string& display) {
-  check_readable_file(path, display);
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(display, 0, "", "cannot open file");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  if (in.bad()) throw InputError(display, 0, "", "cannot read file");
-  check_yaml_text(ss.str(), display, "");
-  return load_one_document(ss.str(), display, "");
+  const std::string text = read_input_file(path, display, kMaxYamlBytes);
+  check_yaml_text(text, display, "");
+  return load_one_document(text, display, "");
 }
 
 YAML::Node load_yaml_text(const std::string& text, const std::string& where, const std::string& key) {

@@ -3,6 +3,7 @@
 // InputError naming the file, the line (from the node's Mark) and the dotted key.
 #include <yaml-cpp/yaml.h>
 
+#include <cstdint>
 #include <filesystem>
 #include <initializer_list>
 #include <optional>
@@ -39,10 +40,27 @@ std::size_t edit_distance(const std::string& a, const std::string& b);  // case-
 std::string did_you_mean(const std::string& word, const std::vector<std::string>& candidates);
 std::string join(const std::vector<std::string>& v, const char* sep = ", ");
 
-// InputError "file not found" / "is a directory" unless `path` is an existing non-directory.
-void check_readable_file(const std::filesystem::path& path, const std::string& display);
+// Size caps of input files, far above any real one, so that a wrong path (a disk image, a log)
+// fails at once instead of filling memory. YAML: hand-written scenes, experiments, campaigns
+// and fits are kilobytes; yaml-cpp needs ~100 bytes of memory per byte of text, so 16 MiB is
+// the most that loads in a couple of GB. CSV: the 10^6-junction population is 23 MB; 256 MiB
+// (~10^7 junctions) still loads in ~2 GB and runs in ~2 GB more.
+inline constexpr std::uintmax_t kMaxYamlBytes = std::uintmax_t{16} << 20;
+inline constexpr std::uintmax_t kMaxCsvBytes = std::uintmax_t{256} << 20;
 
-// Reads a whole YAML file (first and only document); Null when empty. Parse errors → InputError.
+// Why `path` cannot be an input file: "" when it is a regular file (after symlinks) of at most
+// max_bytes, else e.g. "file not found", "is a directory, not a file", "is a character device, not a
+// regular file", "is 17 GB, more than the 16 MiB an input file may have".
+std::string input_file_problem(const std::filesystem::path& path, std::uintmax_t max_bytes);
+
+// The whole text of an input file; any problem above (checked on the opened file, so a file
+// swapped after the check is caught too) or a read error → InputError "display: message".
+// Never blocks on a FIFO and never reads more than max_bytes + 1 bytes.
+std::string read_input_file(const std::filesystem::path& path, const std::string& display,
+                            std::uintmax_t max_bytes);
+
+// Reads a whole YAML file (first and only document, read_input_file with kMaxYamlBytes); Null
+// when empty. Parse errors → InputError.
 YAML::Node load_yaml_file(const std::filesystem::path& path, const std::string& display);
 // Parses YAML text (an override value); errors are reported against `where`.
 YAML::Node load_yaml_text(const std::string& text, const std::string& where, const std::string& key);

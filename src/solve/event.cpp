@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <cstdint>
 #include <functional>
 #include <limits>
@@ -72,7 +73,19 @@ class EventModel {
       }
     }
     if (nonlinear_) {
-      table_.emplace(law_.nu, law_.shape, 1.1 * psi_hi);
+      // At least ψ ≤ 1e-3: a table over a tiny range (slip thresholds of ψ < 1e-6, e.g.
+      // sigma_exp = 1e-2 Pa) comes out of the spline fit wrong by orders of magnitude (force
+      // 1e10 times too stiff: the run crawled at 1e-9 s steps), while g is as smooth on [0, 1e-3].
+      // Shipped scenes have ψ_s ~ 1, so their table is unchanged.
+      table_.emplace(law_.nu, law_.shape, std::max(1.1 * psi_hi, 1e-3));
+      if (!(table_->max_rel_error() <= 1e-11)) {
+        char msg[200];
+        std::snprintf(msg, sizeof msg,
+                      "event solver: the universal force law's table is only accurate to %.3g (psi up to %.3g): "
+                      "junctions outside the contact law's range",
+                      table_->max_rel_error(), 1.1 * psi_hi);
+        throw SolverError(msg);
+      }
       if (!always_ && N >= kBinnedMin) {
         binned_.emplace(*table_, w_, c_, A0_, binned_rel_width(scene.solver.tolerance, psi_hi));
         std::fill(nl_pos_.begin(), nl_pos_.end(), 0);  // "in the nonlinear set"; storage is binned_
@@ -259,7 +272,7 @@ class EventModel {
 
 }  // namespace
 
-RunInfo integrate_event(const Scene& scene, Recorder& rec) {
+RunInfo integrate_event(const Scene& scene, Recorder& rec, const RunLimits& limits) {
   const auto& e = scene.experiment;
   const auto& m = scene.model;
   RunInfo info = initial_info(scene);
@@ -313,7 +326,12 @@ RunInfo integrate_event(const Scene& scene, Recorder& rec) {
 
   std::int64_t steps = 0;
   bool finished = false;
+  LimitGuard guard(limits);
   while (!finished && !rec.done()) {
+    if ((info.stopped_by = guard.check(model.slips())) != LimitHit::none) {
+      t = std::min(stepper.current_time(), t_stop);  // everything up to here is recorded
+      break;
+    }
     const auto [t0, t1] = stepper.do_step(rhs);
     ++steps;
     double t_lo = t0;
@@ -384,6 +402,17 @@ RunInfo integrate_event(const Scene& scene, Recorder& rec) {
       }
       if (!std::isfinite(y[0]) || !std::isfinite(y[1]))
         throw SolverError("event solver: non-finite state at t = " + std::to_string(t) + " s");
+      // A threshold at or behind X would never fire (its event function starts ≥ 0): the slip
+      // distance (1 − ε) f_s/k of a repinned junction is below the resolution of X. Never the
+      // case in a physical population; refused rather than letting the junction overload.
+      if (model.has_threshold() && model.next_threshold() <= X) {
+        char msg[200];
+        std::snprintf(msg, sizeof msg,
+                      "event solver: a junction's slip distance is below the resolution of the slider position "
+                      "(X = %.3g m) at t = %.3g s: check the junction areas and sigma_exp",
+                      X, t);
+        throw SolverError(msg);
+      }
       stepper.initialize(y, t, stepper.current_time_step());
       break;
     }

@@ -6,6 +6,7 @@
 
 #include "observe/recorder.hpp"
 #include "scene/scene.hpp"
+#include "solve/run_limits.hpp"
 
 namespace asperity {
 
@@ -29,6 +30,7 @@ struct RunInfo {
   double T0 = 0;       // s, 2π / sqrt(K0 / M)
   double dt = 0;       // s, T0 / C_t (the reference's step; reported for every method)
   double t_end = 0;    // s, where the run stopped
+  LimitHit stopped_by = LimitHit::none;  // a resource limit ended the run before stop.time
   double max_f_over_sigmaA = 0;     // max_i,t f_i / (σ A_i) after transitions (claim 7: ≤ 1)
   double max_f_over_sigma_exp_A = 0;// the same against σ_exp (may exceed 1)
   SolverStats stats;
@@ -37,9 +39,18 @@ struct RunInfo {
 // Initial quantities shared by all solvers.
 RunInfo initial_info(const Scene& scene);
 
-RunInfo integrate_reference(const Scene& scene, Recorder& rec);
-RunInfo integrate_event(const Scene& scene, Recorder& rec);
-RunInfo integrate(const Scene& scene, Recorder& rec);
+// `limits` (default: run_limits(scene)) are checked every step and event; a run that reaches
+// one returns early with stopped_by set (simulate() turns that into a SolverError).
+RunInfo integrate_reference(const Scene& scene, Recorder& rec, const RunLimits& limits);
+RunInfo integrate_event(const Scene& scene, Recorder& rec, const RunLimits& limits);
+RunInfo integrate(const Scene& scene, Recorder& rec, const RunLimits& limits);
+inline RunInfo integrate_reference(const Scene& scene, Recorder& rec) {
+  return integrate_reference(scene, rec, run_limits(scene));
+}
+inline RunInfo integrate_event(const Scene& scene, Recorder& rec) {
+  return integrate_event(scene, rec, run_limits(scene));
+}
+inline RunInfo integrate(const Scene& scene, Recorder& rec) { return integrate(scene, rec, run_limits(scene)); }
 
 // Spectral radius of the reference's one-step map for the linearised slider (stiffness
 // k_L + K0, damping η); > 1 means the explicit step is unstable.

@@ -5,6 +5,8 @@
 #include <Eigen/Eigenvalues>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <limits>
 
 #include "solve/integrate.hpp"
 #include "solve/junction_state.hpp"
@@ -14,6 +16,8 @@ namespace asperity {
 double reference_spectral_radius(double omega_dt, double eta_dt) {
   // Variables (X, h V, h² γ) for X'' = −ω² X − η Ẋ; the same map as the step below.
   const double a = omega_dt * omega_dt, b = eta_dt;
+  // Eigen's eigensolver does not return on a matrix with inf or NaN (an absurd dt).
+  if (!std::isfinite(a) || !std::isfinite(b)) return std::numeric_limits<double>::infinity();
   Eigen::Matrix3d m;
   // x1 = x + u + g/2;  g1 = −a x1 − b u;  u1 = u + (g + g1)/2
   m << 1, 1, 0.5,                           // x1
@@ -36,7 +40,7 @@ RunInfo initial_info(const Scene& scene) {
   return info;
 }
 
-RunInfo integrate_reference(const Scene& scene, Recorder& rec) {
+RunInfo integrate_reference(const Scene& scene, Recorder& rec, const RunLimits& limits) {
   const auto& e = scene.experiment;
   const auto& m = scene.model;
   const ContactLaw law = make_contact_law(e, m);
@@ -46,9 +50,13 @@ RunInfo integrate_reference(const Scene& scene, Recorder& rec) {
   const double v_repin = m.c_min * v;
   {
     const double rho = reference_spectral_radius(std::sqrt((info.K0 + kL) / M) * dt, m.eta * dt);
-    if (rho > 1.0 + 1e-12)
-      throw SolverError("reference step unstable: spectral radius " + std::to_string(rho) +
-                        " > 1 at dt = " + std::to_string(dt) + " s (raise solver.Ct or lower model.eta)");
+    if (rho > 1.0 + 1e-12) {
+      char msg[200];
+      std::snprintf(msg, sizeof msg,
+                    "reference step unstable: spectral radius %.6g > 1 at dt = %.6g s (raise solver.Ct or lower model.eta)",
+                    rho, dt);
+      throw SolverError(msg);
+    }
   }
   JunctionState J(e.junctions.area_m2, law);
   const std::size_t N = J.size();
@@ -67,7 +75,9 @@ RunInfo integrate_reference(const Scene& scene, Recorder& rec) {
   double prevQ = 0, prevA = info.A0, prevV = 0, prevt = 0;
   double max_ratio = 0, max_ratio_exp = 0;
   std::int64_t n = 0;
+  LimitGuard guard(limits);
   for (n = 1; n <= n_end && !rec.done(); ++n) {
+    if ((info.stopped_by = guard.check(info.stats.slips)) != LimitHit::none) break;
     const double t = static_cast<double>(n) * dt;
     const double X1 = X + dt * V + 0.5 * dt * dt * gamma;
     const bool slow = std::abs(V) < v_repin;  // |Ẋ(t)|: the latest known velocity
@@ -151,9 +161,9 @@ RunInfo integrate_reference(const Scene& scene, Recorder& rec) {
   return info;
 }
 
-RunInfo integrate(const Scene& scene, Recorder& rec) {
-  return scene.solver.method == SolverMethod::reference ? integrate_reference(scene, rec)
-                                                        : integrate_event(scene, rec);
+RunInfo integrate(const Scene& scene, Recorder& rec, const RunLimits& limits) {
+  return scene.solver.method == SolverMethod::reference ? integrate_reference(scene, rec, limits)
+                                                        : integrate_event(scene, rec, limits);
 }
 
 }  // namespace asperity
