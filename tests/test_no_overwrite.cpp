@@ -217,3 +217,29 @@ TEST_CASE("experiments named \"x y\" and \"x_y\" get separate fit outputs", "[cl
   CHECK(folders.count("x_y") == 1);  // the plain name keeps its own name
   fs::remove_all(w);
 }
+
+TEST_CASE("generate and bench write only into folders they created", "[cli][overwrite]") {
+  const fs::path w = make_case("gen");
+  const fs::path src(ASPERITY_SOURCE_DIR);
+  const std::string recipe = (src / "bench" / "recipe.yaml").string();
+  write(w / "notes" / "README.md", "# my notes\n");
+  const std::string refused = "refusing to write there: it is not empty and was not written by asperity ";
+  check_refused(w, {"generate", "--recipe", recipe, "--out", "notes", "--quiet"}, "notes: --out: " + refused + "generate");
+  check_refused(w, {"generate", "--recipe", recipe, "--out", "g", "--scenes", "user", "--quiet"},
+                "user: --scenes: " + refused + "generate");
+  check_refused(w, {"bench", "savings", "--out", "user", "--quick"}, "user: --out: " + refused + "bench");
+  // Its own folders are written again.
+  for (int k = 0; k < 2; ++k)
+    CHECK(run_argv(w, {"generate", "--recipe", recipe, "--out", "g", "--scenes", "gs", "--quiet"}).status == 0);
+  CHECK(slurp(w / "g" / ".asperity") == "created by asperity generate\n");
+  CHECK(slurp(w / "gs" / ".asperity") == "created by asperity generate\n");
+  // Folders written before markers existed are recognised: the committed stand-ins and bench results.
+  const fs::path old = w / "old";
+  fs::create_directories(old);
+  fs::copy(src / "bench" / "data", old / "data", fs::copy_options::recursive);
+  fs::copy(src / "bench" / "scenes", old / "scenes", fs::copy_options::recursive);
+  fs::remove(old / "data" / ".asperity");
+  fs::remove(old / "scenes" / ".asperity");
+  CHECK(run_argv(w, {"generate", "--recipe", recipe, "--out", "old/data", "--scenes", "old/scenes", "--quiet"}).status == 0);
+  fs::remove_all(w);
+}

@@ -2,7 +2,9 @@
 // Benchmarks that print measured figures and write them under results/bench/ (issue 3).
 #include <omp.h>
 
+#include <algorithm>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <thread>
 #include <iostream>
@@ -16,6 +18,7 @@
 #include "bench/speed_ratio.hpp"
 #include "bench/tradeoff.hpp"
 #include "cli/commands.hpp"
+#include "report/output_dir.hpp"
 
 namespace asperity::cli {
 namespace {
@@ -45,7 +48,26 @@ std::string load_average() {
   return in >> one ? one : "unknown";
 }
 
+// The files the benchmarks write: a folder holding only these (before markers existed) is ours.
+bool bench_folder(const std::filesystem::path& d) {
+  static const char* const ours[] = {"accuracy.csv", "reference_order.csv", "savings.csv", "savings.png",
+                                     "speed_ratio.csv", "speed_runs.csv", "work_precision.csv", "work_precision.png"};
+  bool any = false;
+  for (const auto& e : std::filesystem::directory_iterator(d)) {
+    const std::string n = e.path().filename().string();
+    if (n.rfind(".savings-scratch", 0) == 0) continue;
+    if (std::find(std::begin(ours), std::end(ours), n) == std::end(ours)) return false;
+    any = true;
+  }
+  return any;
+}
+
+// Before minutes of benchmarking: refuse an --out that is not ours (the folder is made, and
+// marked, only when the results are written).
+void check_out(const BenchOptions& b) { check_ours(b.out, "bench", "--out", bench_folder); }
+
 void machine_line(const BenchOptions& b) {
+  check_out(b);
   omp_set_num_threads(b.threads);
   std::printf("(%d OpenMP thread(s) for the reference, %u hardware threads, load average %s; "
               "wall-clock timings on this machine)\n",
@@ -66,6 +88,7 @@ int tradeoff(const BenchOptions& b) {
   machine_line(b);
   const TradeoffResult r = run_tradeoff(o);
   write_tradeoff(b.out, r);
+  write_marker(b.out, "bench");
   std::printf("reference order of convergence (log error ratio / log C_t ratio):\n");
   for (const auto& x : r.orders)
     std::printf("  %-9s C_t %g -> %g: %.3g\n", x.observable.c_str(), x.Ct_lo, x.Ct_hi, x.order);
@@ -87,6 +110,7 @@ int speed(const BenchOptions& b) {
   machine_line(b);
   const SpeedResult r = run_speed(o);
   write_speed(b.out, r);
+  write_marker(b.out, "bench");
   std::printf("%s (stand-in), whole run = first peak + %d stick-slip cycles (%.4g s simulated):\n",
               r.experiment.c_str(), o.cycles, r.T_run);
   for (const auto& c : r.comparisons)
@@ -110,6 +134,7 @@ int accuracy(const BenchOptions& b) {
   o.log = &std::cout;
   const auto rows = run_accuracy(o);
   write_accuracy(b.out, rows);
+  write_marker(b.out, "bench");
   int ok = 0;
   for (const auto& r : rows) ok += r.within_targets();
   std::printf("%d of %zu runs within the targets (1e-4 loading branch, 1e-2 stick-slip) -> %s/accuracy.csv\n",
@@ -126,6 +151,7 @@ int savings(const BenchOptions& b) {
   machine_line(b);
   const auto rows = run_savings(o);
   write_savings(b.out, rows);
+  write_marker(b.out, "bench");
   auto cpu_ms = [](const SavingRow& r) { return (r.cpu_s + r.write_s) * 1e3; };
   for (std::size_t i = 0; i + 1 < rows.size(); i += 2)
     std::printf("  %s %s: %s %.4g ms CPU -> %s %.4g ms CPU (x%.3g; wall %.4g -> %.4g ms)\n",

@@ -1,5 +1,7 @@
 // asperity generate [--recipe data/standin/recipe.yaml] [--out data/standin] [--scenes DIR] [--quiet]
 // Rebuilds the stand-in experiments (MODEL.md §7) from their recipe; same recipe, same bytes.
+#include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -7,6 +9,7 @@
 #include "cli/commands.hpp"
 #include "generate/recipe.hpp"
 #include "generate/standin.hpp"
+#include "report/output_dir.hpp"
 
 namespace asperity::cli {
 namespace {
@@ -18,13 +21,35 @@ struct GenerateCliOptions {
   bool quiet = false;
 };
 
+// Folders written before markers existed: the stand-in README's first line, or scenes that all
+// say they were written by `asperity generate --scenes`.
+bool standin_folder(const std::filesystem::path& d) {
+  return first_line_is(d / "README.md", "# Stand-in experiments — NOT measurements");
+}
+bool scenes_folder(const std::filesystem::path& d) {
+  bool any = false;
+  for (const auto& e : std::filesystem::directory_iterator(d)) {
+    if (e.path().filename() == kMarkerFile) continue;
+    std::ifstream in(e.path());
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (e.path().extension() != ".yaml" || text.find("Written by `asperity generate --scenes`") == std::string::npos)
+      return false;
+    any = true;
+  }
+  return any;
+}
+
 int generate(const GenerateCliOptions& o) {
   const StandinRecipe recipe = load_recipe(o.recipe);
+  check_ours(o.out, "generate", "--out", standin_folder);
+  if (!o.scenes.empty()) check_ours(o.scenes, "generate", "--scenes", scenes_folder);
   GenerateOptions g;
   g.out_dir = o.out;
   g.scenes_dir = o.scenes;
   g.log = o.quiet ? nullptr : &std::cout;
   const auto xs = generate_standins(recipe, g);
+  write_marker(o.out, "generate");
+  if (!o.scenes.empty()) write_marker(o.scenes, "generate");
   if (!o.quiet) {
     std::cout << "wrote " << xs.size() << " stand-in experiments and README.md to " << o.out;
     if (!o.scenes.empty()) std::cout << ", scenes to " << o.scenes;
