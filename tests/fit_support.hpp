@@ -57,9 +57,4 @@ inline FitCase make_fit_case(const std::string& tag, double alpha_b, double p, d
   return c;
 }
 
-inline std::filesystem::path write_text(const std::filesystem::path& p, const std::string& text) {
-  std::ofstream(p) << text;
-  return p;
-}
-
 }  // namespace asperity::testing

@@ -61,6 +61,13 @@ inline std::string slurp(const std::filesystem::path& p) {
   return s.str();
 }
 
+// Writes `text` to `p` byte for byte, making its parent folders; returns `p`.
+inline std::filesystem::path write_text(const std::filesystem::path& p, const std::string& text) {
+  if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path());
+  std::ofstream(p, std::ios::binary) << text;
+  return p;
+}
+
 // A path in the temporary folder unique to this process (test suites may run side by side).
 inline std::filesystem::path temp_path(const std::string& stem, const std::string& ext = "") {
   std::string name = stem;

@@ -33,7 +33,7 @@ std::string q(const fs::path& p) {
   s += '\'';
   return s;
 }
-void write(const fs::path& p, const std::string& text) { std::ofstream(p) << text; }
+void write(const fs::path& p, const std::string& text) { asperity::testing::write_text(p, text); }
 
 struct Case {
   std::string file, location, key, message;  // location: LINE or LINE:COLUMN

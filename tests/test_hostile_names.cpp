@@ -42,9 +42,14 @@ const std::vector<std::string> kHostile = {
     std::string(300, 'L') + "'.system(\"touch PWNED\").'",
 };
 
-void write(const fs::path& p, const std::string& text) {
-  std::ofstream f(p, std::ios::binary);
-  f << text;
+using asperity::testing::write_text;
+
+// "<prefix><i><suffix>", built by appending: GCC 12 warns falsely (-Wrestrict) on "lit" + std::string&&.
+std::string numbered(const char* prefix, std::size_t i, const char* suffix) {
+  std::string s(prefix);
+  s += std::to_string(i);
+  s += suffix;
+  return s;
 }
 
 // A fresh folder with the five-junction fixture experiment under each hostile name:
@@ -56,13 +61,13 @@ fs::path hostile_case(const std::string& tag) {
   fs::copy_file(kExp / "junctions.csv", w / "junctions.csv");
   fs::copy_file(kExp / "measured.csv", w / "measured.csv");
   for (std::size_t i = 0; i < kHostile.size(); ++i) {
-    write(w / ("e" + std::to_string(i) + ".yaml"),
+    write_text(w / (numbered("e", i, ".yaml")),
           "# hostile name on line 2\nname: " + asperity::yaml_quoted(kHostile[i]) +
               "\nmass: 0.1\nk_L: 9200\nv: 1.0e-4\nE: 1.6e6\nnu: 0.5\nsigma_exp: 0.23e6\n"
               "junctions: junctions.csv\nmeasured: measured.csv\n");
-    write(w / ("s" + std::to_string(i) + ".yaml"),
-          "experiment: e" + std::to_string(i) +
-              ".yaml\nsolver: {method: event, tolerance: 1e-8}\nstop: {time: 0.3}\noutput: {series: [t, Q, A]}\n");
+    write_text(w / (numbered("s", i, ".yaml")),
+          numbered("experiment: e", i, ".yaml\n") +
+              "solver: {method: event, tolerance: 1e-8}\nstop: {time: 0.3}\noutput: {series: [t, Q, A]}\n");
   }
   return w;
 }
@@ -121,7 +126,7 @@ TEST_CASE("hostile names and paths through run --plot, reproduce, fit, sweep and
   // run --plot, into a hostile --out folder.
   for (std::size_t i = 0; i < n; ++i) {
     const std::string out = "run '$(touch PWNED)\"`touch PWNED`" + std::to_string(i);
-    const auto r = run_argv(w, {"run", "s" + std::to_string(i) + ".yaml", "--out", out, "--plot", "--quiet"});
+    const auto r = run_argv(w, {"run", numbered("s", i, ".yaml"), "--out", out, "--plot", "--quiet"});
     REQUIRE(r.status == 0);
     CHECK(YAML::LoadFile((w / out / "summary.yaml").string())["experiment"].as<std::string>() == kHostile[i]);
     CHECK(drawn(w / out / "plot.png"));
@@ -130,7 +135,7 @@ TEST_CASE("hostile names and paths through run --plot, reproduce, fit, sweep and
   // reproduce: every name in Figure 4's keys and in table.csv, one row each.
   {
     std::vector<std::string> args{"reproduce"};
-    for (std::size_t i = 0; i < n; ++i) args.push_back("s" + std::to_string(i) + ".yaml");
+    for (std::size_t i = 0; i < n; ++i) args.push_back(numbered("s", i, ".yaml"));
     const std::string out = "rep'.system(\"touch PWNED\").'";
     args.insert(args.end(), {"--out", out, "--no-claims", "--quiet", "-j", "2"});
     const auto r = run_argv(w, args);
@@ -155,7 +160,7 @@ TEST_CASE("hostile names and paths through run --plot, reproduce, fit, sweep and
     for (std::size_t i = 0; i < n; ++i) fit += (i ? ", s" : "s") + std::to_string(i) + ".yaml";
     fit += "]\nparameters:\n  model.alpha_b: {lo: 0.1e-15, hi: 5.0e-15, start: 0.725e-15, scale: log}\n"
            "optimizer: {algorithm: LN_BOBYQA, max_evaluations: 3}\n";
-    write(w / "fit.yaml", fit);
+    write_text(w / "fit.yaml", fit);
     const std::string out = "fit \"'$(touch PWNED)";
     const auto r = run_argv(w, {"fit", "fit.yaml", "--out", out, "--no-profile", "--no-error-bars", "--quiet"});
     INFO(r.err);
@@ -187,7 +192,7 @@ TEST_CASE("hostile names and paths through run --plot, reproduce, fit, sweep and
     std::string camp = "name: " + asperity::yaml_quoted(kHostile[0]) + "\nscenes: [";
     for (std::size_t i = 0; i < n; ++i) camp += (i ? ", s" : "s") + std::to_string(i) + ".yaml";
     camp += "]\nset: {stop.time: 0.3}\naxes:\n  model.eta: [0, 100]\n  model.epsilon: [0.5, 0.9]\n";
-    write(w / "camp.yaml", camp);
+    write_text(w / "camp.yaml", camp);
     const auto s = run_argv(w, {"sweep", "camp.yaml", "--quiet", "-j", "2"});
     INFO(s.err);
     REQUIRE(s.status == 0);
@@ -220,17 +225,17 @@ TEST_CASE("hostile names and paths through run --plot, reproduce, fit, sweep and
 TEST_CASE("names with control characters are refused at load with file:line: key: and nothing written",
           "[cli][hostile]") {
   const fs::path w = hostile_case("ctl");
-  write(w / "e_nl.yaml",
+  write_text(w / "e_nl.yaml",
         "# a newline in the name\nname: \"a\\nsystem(\\\"touch PWNED\\\")\"\nmass: 0.1\nk_L: 9200\nv: 1.0e-4\n"
         "E: 1.6e6\nnu: 0.5\nsigma_exp: 0.23e6\njunctions: junctions.csv\nmeasured: measured.csv\n");
-  write(w / "s_nl.yaml", "experiment: e_nl.yaml\nstop: {time: 0.3}\n");
-  write(w / "fit_nl.yaml",
+  write_text(w / "s_nl.yaml", "experiment: e_nl.yaml\nstop: {time: 0.3}\n");
+  write_text(w / "fit_nl.yaml",
         "objective: quadratic_alpha\nexperiments: [s_nl.yaml]\n"
         "parameters: {model.alpha_b: {lo: 1e-16, hi: 5e-15, start: 1e-15}}\n");
-  write(w / "camp_tab.yaml", "name: \"c\\td\"\nscenes: [s0.yaml]\naxes: {model.eta: [0, 100]}\n");
-  write(w / "camp_grid.yaml",
+  write_text(w / "camp_tab.yaml", "name: \"c\\td\"\nscenes: [s0.yaml]\naxes: {model.eta: [0, 100]}\n");
+  write_text(w / "camp_grid.yaml",
         "name: cg\nscenes: [s0.yaml]\ngrids:\n  - name: \"g\\rh\"\n    axes: {model.eta: [0, 100]}\n");
-  write(w / "camp_exp.yaml", "name: ce\nscenes: [s_nl.yaml]\naxes: {model.eta: [0, 100]}\n");
+  write_text(w / "camp_exp.yaml", "name: ce\nscenes: [s_nl.yaml]\naxes: {model.eta: [0, 100]}\n");
   const auto before = snapshot(w);
 
   const std::string exp_prefix = "e_nl.yaml:2: name: must not hold control characters";

@@ -27,11 +27,7 @@ namespace {
 
 const fs::path kExp = fs::path(ASPERITY_SOURCE_DIR) / "tests" / "data" / "scene" / "exp_small";
 
-void write(const fs::path& p, const std::string& text) {
-  fs::create_directories(p.parent_path());
-  std::ofstream f(p, std::ios::binary);
-  f << text;
-}
+using asperity::testing::write_text;
 
 std::string experiment_yaml(const std::string& name, double mass) {
   return "name: \"" + name + "\"\nmass: " + std::to_string(mass) +
@@ -48,19 +44,19 @@ fs::path make_case(const std::string& tag) {
   fs::create_directories(w);
   fs::copy_file(kExp / "junctions.csv", w / "junctions.csv");
   fs::copy_file(kExp / "measured.csv", w / "measured.csv");
-  write(w / "e1.yaml", experiment_yaml("x y", 0.1));
-  write(w / "e2.yaml", experiment_yaml("x_y", 0.12));
+  write_text(w / "e1.yaml", experiment_yaml("x y", 0.1));
+  write_text(w / "e2.yaml", experiment_yaml("x_y", 0.12));
   for (const char* k : {"1", "2"})
-    write(w / (std::string("s") + k + ".yaml"),
+    write_text(w / (std::string("s") + k + ".yaml"),
           std::string("experiment: e") + k + ".yaml\nsolver: {method: event, tolerance: 1e-8}\nstop: {time: 0.3}\n");
-  write(w / "fit.yaml",
+  write_text(w / "fit.yaml",
         "name: xy\nobjective: quadratic_alpha\nseparate: true\nexperiments: [s1.yaml, s2.yaml]\n"
         "parameters:\n  model.alpha_b: {lo: 0.1e-15, hi: 5.0e-15, start: 0.725e-15, scale: log}\n"
         "optimizer: {algorithm: LN_BOBYQA, max_evaluations: 3}\n");
-  write(w / "camp.yaml", "name: camp\nscenes: [s1.yaml]\naxes:\n  model.eta: [0, 100]\n  model.epsilon: [0.5, 0.9]\n");
+  write_text(w / "camp.yaml", "name: camp\nscenes: [s1.yaml]\naxes:\n  model.eta: [0, 100]\n  model.epsilon: [0.5, 0.9]\n");
   for (const char* f : {"thesis.tex", "table.csv", "points.csv", "summary.yaml", "scene.yaml", "REPORT.md"})
-    write(w / "user" / f, std::string("the user's own ") + f + "\n");
-  write(w / "user" / "fit.yaml", "# the user's fit file\nname: mine\n");
+    write_text(w / "user" / f, std::string("the user's own ") + f + "\n");
+  write_text(w / "user" / "fit.yaml", "# the user's fit file\nname: mine\n");
   return w;
 }
 
@@ -116,11 +112,11 @@ TEST_CASE("no command writes into a folder it did not create, and each replaces 
 TEST_CASE("reproduce leaves no stale REPORT.md and refuses scenes whose run folders collide", "[cli][overwrite]") {
   const fs::path w = make_case("report");
   REQUIRE(run_argv(w, {"reproduce", "s1.yaml", "--out", "p", "--quiet", "--no-claims"}).status == 0);
-  write(w / "p" / "REPORT.md", "# verdicts of another run\n");
+  write_text(w / "p" / "REPORT.md", "# verdicts of another run\n");
   REQUIRE(run_argv(w, {"reproduce", "s1.yaml", "--out", "p", "--quiet", "--no-claims"}).status == 0);
   CHECK_FALSE(fs::exists(w / "p" / "REPORT.md"));
   // Two scenes named s1.yaml in different folders would share p/s1/.
-  write(w / "other" / "s1.yaml", "experiment: ../e2.yaml\nstop: {time: 0.3}\n");
+  write_text(w / "other" / "s1.yaml", "experiment: ../e2.yaml\nstop: {time: 0.3}\n");
   check_refused(w, {"reproduce", "s1.yaml", "other/s1.yaml", "--out", "q", "--quiet", "--no-claims"},
                 "other/s1.yaml: two scenes share the file name s1.yaml");
   fs::remove_all(w);
@@ -162,7 +158,7 @@ TEST_CASE("plot --out writes only .png files and replaces only PNGs it drew", "[
   fs::copy_file(w / "user" / "photo.png", w / "results" / "camp" / "legacy.png");
   CHECK(run_argv(w, plot_args("results/camp/legacy.png")).status == 0);
   CHECK(asperity::png_is_ours(w / "results" / "camp" / "legacy.png"));
-  write(w / "results" / "camp" / "notes.png", "not a PNG\n");
+  write_text(w / "results" / "camp" / "notes.png", "not a PNG\n");
   check_refused(w, plot_args("results/camp/notes.png"), "results/camp/notes.png: --out: refusing to replace");
   // Its own PNG it replaces, and the default heat map in the store too.
   CHECK(run_argv(w, plot_args("mine.png")).status == 0);
@@ -187,7 +183,7 @@ TEST_CASE("plot --out writes only .png files and replaces only PNGs it drew", "[
     const std::size_t at = bytes.find("asperity");
     REQUIRE(at != std::string::npos);
     bytes[at] = 'A';
-    write(w / "bad.png", bytes);
+    write_text(w / "bad.png", bytes);
   }
   CHECK(libpng_says(w / "bad.png").find("CRC error") != std::string::npos);
   CHECK_FALSE(asperity::png_is_ours(w / "bad.png"));
@@ -222,7 +218,7 @@ TEST_CASE("generate and bench write only into folders they created", "[cli][over
   const fs::path w = make_case("gen");
   const fs::path src(ASPERITY_SOURCE_DIR);
   const std::string recipe = (src / "bench" / "recipe.yaml").string();
-  write(w / "notes" / "README.md", "# my notes\n");
+  write_text(w / "notes" / "README.md", "# my notes\n");
   const std::string refused = "refusing to write there: it is not empty and was not written by asperity ";
   check_refused(w, {"generate", "--recipe", recipe, "--out", "notes", "--quiet"}, "notes: --out: " + refused + "generate");
   check_refused(w, {"generate", "--recipe", recipe, "--out", "g", "--scenes", "user", "--quiet"},

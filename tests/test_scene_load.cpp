@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "support.hpp"
 #include "scene/load.hpp"
 
 namespace fs = std::filesystem;
@@ -31,11 +32,7 @@ std::string read_text(const fs::path& p) {
   return ss.str();
 }
 
-void write_text(const fs::path& p, const std::string& s) {
-  fs::create_directories(p.parent_path());
-  std::ofstream out(p, std::ios::binary);
-  out << s;
-}
+using asperity::testing::write_text;
 
 std::set<std::string> listing(const fs::path& dir) {
   std::set<std::string> names;
