@@ -11,7 +11,7 @@
 #include "observe/simulate.hpp"
 #include "scene/csv.hpp"
 #include "scene/load.hpp"
-#include "scene/numbers.hpp"
+#include "io/numbers.hpp"
 #include "support.hpp"
 
 namespace asperity::testing {

@@ -11,7 +11,7 @@
 #include "campaign/merge.hpp"
 #include "campaign/store.hpp"
 #include "campaign/sweep.hpp"
-#include "scene/campaign_load.hpp"
+#include "campaign/campaign_load.hpp"
 #include "support.hpp"
 
 namespace fs = std::filesystem;

@@ -6,7 +6,7 @@
 #include <fstream>
 #include <string>
 
-#include "scene/campaign_load.hpp"
+#include "campaign/campaign_load.hpp"
 
 namespace fs = std::filesystem;
 using namespace asperity;

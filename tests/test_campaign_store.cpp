@@ -15,7 +15,7 @@
 #include "campaign/store.hpp"
 #include "campaign/sweep.hpp"
 #include "report/heatmap.hpp"
-#include "scene/campaign_load.hpp"
+#include "campaign/campaign_load.hpp"
 
 namespace fs = std::filesystem;
 using namespace asperity;

@@ -3,7 +3,7 @@
 #include <string>
 
 #include "fit_support.hpp"
-#include "scene/fit_load.hpp"
+#include "fit/fit_load.hpp"
 
 using namespace asperity;
 using namespace asperity::testing;

@@ -5,7 +5,7 @@
 #include "fit/fit.hpp"
 #include "fit/objective.hpp"
 #include "fit_support.hpp"
-#include "scene/fit_load.hpp"
+#include "fit/fit_load.hpp"
 
 using namespace asperity;
 using namespace asperity::testing;

@@ -9,7 +9,7 @@
 
 #include "generate/recipe.hpp"
 #include "generate/standin.hpp"
-#include "scene/input_error.hpp"
+#include "io/input_error.hpp"
 #include "scene/load.hpp"
 
 using namespace asperity;

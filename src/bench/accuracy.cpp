@@ -7,7 +7,7 @@
 #include "bench/bench_scene.hpp"
 #include "observe/simulate.hpp"
 #include "scene/csv.hpp"
-#include "scene/numbers.hpp"
+#include "io/numbers.hpp"
 
 #include "bench/number_text.hpp"
 

@@ -2,9 +2,9 @@
 
 #include <algorithm>
 
-#include "scene/input_error.hpp"
+#include "io/input_error.hpp"
 #include "scene/load.hpp"
-#include "scene/numbers.hpp"
+#include "io/numbers.hpp"
 
 namespace asperity {
 namespace fs = std::filesystem;

@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <string>
 
-#include "scene/numbers.hpp"
+#include "io/numbers.hpp"
 
 namespace asperity::bench_text {
 

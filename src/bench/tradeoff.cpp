@@ -9,7 +9,7 @@
 #include "report/gnuplot.hpp"
 #include "bench/timed_run.hpp"
 #include "scene/csv.hpp"
-#include "scene/numbers.hpp"
+#include "io/numbers.hpp"
 
 #include "bench/number_text.hpp"
 

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "scene/numbers.hpp"
+#include "io/numbers.hpp"
 
 namespace asperity {
 

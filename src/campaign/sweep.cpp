@@ -25,9 +25,9 @@
 #include "campaign/store.hpp"
 #include "observe/simulate.hpp"
 #include "report/run_writer.hpp"
-#include "scene/campaign_load.hpp"
+#include "campaign/campaign_load.hpp"
 #include "scene/load.hpp"
-#include "scene/numbers.hpp"
+#include "io/numbers.hpp"
 
 namespace asperity {
 namespace fs = std::filesystem;

@@ -9,7 +9,7 @@
 #include "cli/commands.hpp"
 #include "fit/fit.hpp"
 #include "report/fit_writer.hpp"
-#include "scene/fit_load.hpp"
+#include "fit/fit_load.hpp"
 
 namespace asperity::cli {
 namespace {

@@ -12,7 +12,7 @@
 #include "cli/commands.hpp"
 #include "regress/regress.hpp"
 #include "scene/csv.hpp"
-#include "scene/input_error.hpp"
+#include "io/input_error.hpp"
 
 namespace asperity::cli {
 namespace {

@@ -18,7 +18,7 @@
 #include "observe/simulate.hpp"
 #include "fit/fit.hpp"
 #include "report/claims.hpp"
-#include "scene/fit_load.hpp"
+#include "fit/fit_load.hpp"
 #include "report/paper_figures.hpp"
 #include "report/output_dir.hpp"
 #include "report/run_writer.hpp"

@@ -7,7 +7,7 @@
 #include "campaign/sweep.hpp"
 #include "cli/commands.hpp"
 #include "report/output_dir.hpp"
-#include "scene/campaign_load.hpp"
+#include "campaign/campaign_load.hpp"
 
 namespace asperity::cli {
 namespace {

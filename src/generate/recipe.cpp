@@ -4,8 +4,8 @@
 #include <charconv>
 #include <cmath>
 
-#include "scene/numbers.hpp"
-#include "scene/yaml_util.hpp"
+#include "io/numbers.hpp"
+#include "io/yaml_util.hpp"
 
 namespace asperity {
 

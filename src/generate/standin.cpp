@@ -8,7 +8,7 @@
 
 #include "observe/simulate.hpp"
 #include "scene/load.hpp"
-#include "scene/numbers.hpp"
+#include "io/numbers.hpp"
 #include "solve/integrate.hpp"
 
 namespace asperity {

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "observe/observables.hpp"
-#include "scene/regress_io.hpp"
+#include "regress/regress_io.hpp"
 
 namespace asperity {
 

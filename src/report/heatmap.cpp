@@ -13,8 +13,8 @@
 
 #include "campaign/store.hpp"
 #include "report/gnuplot.hpp"
-#include "scene/input_error.hpp"
-#include "scene/numbers.hpp"
+#include "io/input_error.hpp"
+#include "io/numbers.hpp"
 
 namespace asperity {
 namespace fs = std::filesystem;

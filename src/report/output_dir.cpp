@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <system_error>
 
-#include "scene/input_error.hpp"
+#include "io/input_error.hpp"
 
 namespace asperity {
 namespace fs = std::filesystem;

@@ -5,9 +5,9 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "scene/input_error.hpp"
-#include "scene/numbers.hpp"
-#include "scene/yaml_util.hpp"
+#include "io/input_error.hpp"
+#include "io/numbers.hpp"
+#include "io/yaml_util.hpp"
 
 namespace asperity {
 

@@ -6,8 +6,8 @@
 #include <optional>
 #include <system_error>
 
-#include "scene/numbers.hpp"
-#include "scene/yaml_util.hpp"
+#include "io/numbers.hpp"
+#include "io/yaml_util.hpp"
 
 namespace asperity {
 

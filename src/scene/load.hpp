@@ -35,7 +35,7 @@
 #include <vector>
 
 #include "scene/csv.hpp"
-#include "scene/input_error.hpp"
+#include "io/input_error.hpp"
 #include "scene/scene.hpp"
 
 namespace asperity {

@@ -4,7 +4,7 @@
 #include <stdexcept>
 
 #include "scene/load.hpp"
-#include "scene/numbers.hpp"
+#include "io/numbers.hpp"
 
 namespace asperity {
 

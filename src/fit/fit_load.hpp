@@ -36,7 +36,7 @@
 #include <string>
 
 #include "fit/fit_spec.hpp"
-#include "scene/input_error.hpp"
+#include "io/input_error.hpp"
 #include "scene/scene.hpp"
 
 namespace asperity {

@@ -1,11 +1,11 @@
-#include "scene/regress_io.hpp"
+#include "regress/regress_io.hpp"
 
 #include <cmath>
 #include <set>
 #include <sstream>
 
 #include "scene/load.hpp"
-#include "scene/yaml_util.hpp"
+#include "io/yaml_util.hpp"
 
 namespace asperity {
 namespace fs = std::filesystem;

@@ -1,4 +1,4 @@
-#include "scene/yaml_util.hpp"
+#include "io/yaml_util.hpp"
 
 #include <yaml-cpp/anchor.h>
 #include <yaml-cpp/eventhandler.h>
@@ -14,7 +14,7 @@
 #include <cstring>
 #include <sstream>
 
-#include "scene/numbers.hpp"
+#include "io/numbers.hpp"
 
 namespace asperity::scene_io {
 

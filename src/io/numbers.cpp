@@ -1,4 +1,4 @@
-#include "scene/numbers.hpp"
+#include "io/numbers.hpp"
 
 #include <algorithm>
 #include <cctype>

@@ -31,7 +31,7 @@
 #include <string>
 
 #include "campaign/campaign.hpp"
-#include "scene/input_error.hpp"
+#include "io/input_error.hpp"
 #include "scene/scene.hpp"
 
 namespace asperity {

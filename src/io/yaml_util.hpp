@@ -11,8 +11,8 @@
 #include <utility>
 #include <vector>
 
-#include "scene/input_error.hpp"
-#include "scene/numbers.hpp"
+#include "io/input_error.hpp"
+#include "io/numbers.hpp"
 
 namespace asperity::scene_io {
 

@@ -1,4 +1,4 @@
-#include "scene/fit_load.hpp"
+#include "fit/fit_load.hpp"
 
 #include <nlopt.hpp>
 #include <yaml-cpp/yaml.h>
@@ -10,8 +10,8 @@
 #include <set>
 #include <system_error>
 
-#include "scene/numbers.hpp"
-#include "scene/yaml_util.hpp"
+#include "io/numbers.hpp"
+#include "io/yaml_util.hpp"
 
 namespace asperity {
 

@@ -1,4 +1,4 @@
-#include "scene/campaign_load.hpp"
+#include "campaign/campaign_load.hpp"
 
 #include <yaml-cpp/yaml.h>
 
@@ -9,8 +9,8 @@
 #include <limits>
 
 #include "scene/load.hpp"
-#include "scene/numbers.hpp"
-#include "scene/yaml_util.hpp"
+#include "io/numbers.hpp"
+#include "io/yaml_util.hpp"
 
 namespace asperity {
 
