@@ -5,12 +5,9 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include <atomic>
 #include <cerrno>
 #include <charconv>
 #include <cstring>
-#include <fstream>
-#include <sstream>
 #include <stdexcept>
 
 namespace asperity {
@@ -20,26 +17,6 @@ namespace {
 
 [[noreturn]] void sys_fail(const std::string& what, const fs::path& p) {
   throw std::runtime_error(what + " " + p.string() + ": " + std::strerror(errno));
-}
-
-void write_all(int fd, const char* data, std::size_t n, const fs::path& p) {
-  while (n > 0) {
-    const ssize_t w = ::write(fd, data, n);
-    if (w < 0) {
-      if (errno == EINTR) continue;
-      sys_fail("cannot write", p);
-    }
-    data += w;
-    n -= static_cast<std::size_t>(w);
-  }
-}
-
-void fsync_dir(const fs::path& dir) {
-  const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY);
-  if (fd >= 0) {
-    ::fsync(fd);
-    ::close(fd);
-  }
 }
 
 bool parse_u64(std::string_view s, std::uint64_t& out, int base = 10) {
@@ -58,84 +35,6 @@ bool checked_row(std::string_view line, std::string_view& row) {
 }
 
 }  // namespace
-
-std::uint64_t fnv1a64(std::string_view bytes) {
-  std::uint64_t h = 14695981039346656037ull;
-  for (const unsigned char c : bytes) {
-    h ^= c;
-    h *= 1099511628211ull;
-  }
-  return h;
-}
-
-std::string hex16(std::uint64_t h) {
-  static const char* digits = "0123456789abcdef";
-  std::string s(16, '0');
-  for (int i = 15; i >= 0; --i, h >>= 4) s[static_cast<std::size_t>(i)] = digits[h & 0xf];
-  return s;
-}
-
-std::string csv_field(std::string_view in) {
-  std::string s(in);
-  for (char& c : s)
-    if (c == '\n' || c == '\r') c = ' ';
-  const bool quote = s.find_first_of(",\"") != std::string::npos ||
-                     (!s.empty() && (s.front() == ' ' || s.back() == ' ' || s.front() == '\t'));
-  if (!quote) return s;
-  std::string q = "\"";
-  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return q + "\"";
-}
-
-std::vector<std::string> csv_split(std::string_view line) {
-  std::vector<std::string> out;
-  std::string cur;
-  bool quoted = false, in_quotes = false;
-  for (std::size_t i = 0; i < line.size(); ++i) {
-    const char c = line[i];
-    if (in_quotes) {
-      if (c == '"') {
-        if (i + 1 < line.size() && line[i + 1] == '"') cur += '"', ++i;
-        else in_quotes = false;
-      } else {
-        cur += c;
-      }
-    } else if (c == '"' && cur.empty() && !quoted) {
-      in_quotes = quoted = true;
-    } else if (c == ',') {
-      out.push_back(std::move(cur));
-      cur.clear();
-      quoted = false;
-    } else {
-      cur += c;
-    }
-  }
-  if (in_quotes) throw std::runtime_error("unterminated quote in CSV line");
-  out.push_back(std::move(cur));
-  return out;
-}
-
-std::string read_file_text(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error("cannot open " + path.string());
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-void write_file_durably(const fs::path& path, const std::string& text) {
-  static std::atomic<unsigned> counter{0};  // several threads may write files of one folder
-  std::string name = ".";  // (built by append: GCC 12 warns falsely on "." + std::string)
-  name.append(path.filename().string()).append(".tmp-").append(std::to_string(::getpid()));
-  name.append("-").append(std::to_string(counter++));
-  const fs::path tmp = path.parent_path() / name;
-  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) sys_fail("cannot create", tmp);
-  write_all(fd, text.data(), text.size(), tmp);
-  if (::fsync(fd) != 0 || ::close(fd) != 0) sys_fail("cannot write", tmp);
-  if (::rename(tmp.c_str(), path.c_str()) != 0) sys_fail("cannot rename into", path);
-  fsync_dir(path.parent_path().empty() ? fs::path(".") : path.parent_path());
-}
 
 std::size_t Journal::status_column(const std::string& header) {
   const auto cols = csv_split(header);
@@ -223,7 +122,7 @@ Journal::~Journal() {
 
 void Journal::append(const std::string& row) {
   const std::string line = row + "," + hex16(fnv1a64(row)) + "\n";
-  write_all(fd_, line.data(), line.size(), "journal.csv");
+  if (!write_fully(fd_, line)) sys_fail("cannot write", "journal.csv");
   if (::fdatasync(fd_) != 0) sys_fail("cannot sync", "journal.csv");
   add_entry(row, size_);
   size_ += line.size();

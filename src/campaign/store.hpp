@@ -18,18 +18,12 @@
 #include <string_view>
 #include <vector>
 
+// The store is written with these (its users call them through this header too).
+#include "io/atomic_file.hpp"
+#include "io/csv.hpp"
+#include "io/hash.hpp"
+
 namespace asperity {
-
-// FNV-1a 64-bit (offset basis 14695981039346656037, prime 1099511628211): stable across runs,
-// machines and library versions, unlike std::hash / boost::hash.
-std::uint64_t fnv1a64(std::string_view bytes);
-std::string hex16(std::uint64_t h);  // 16 lowercase hex digits
-
-// CSV fields: quoted ("..." with "" escapes) when they hold ',', '"' or blanks at the ends;
-// newlines become spaces (one line per row, always).
-std::string csv_field(std::string_view s);
-// Splits one CSV line (RFC 4180 quoting). Throws std::runtime_error on an unterminated quote.
-std::vector<std::string> csv_split(std::string_view line);
 
 struct JournalEntry {
   std::uint64_t hash = 0;       // canonical scene hash of the point
@@ -84,12 +78,6 @@ void Journal::write_points(const std::filesystem::path& dir, Keep keep) const {
     if (keep(index)) rows.push_back(&e);
   write_points_impl(dir, rows);
 }
-
-// Writes `text` to `path` atomically (temp sibling, fsync, rename, fsync of the folder).
-void write_file_durably(const std::filesystem::path& path, const std::string& text);
-
-// Reads a whole file (std::runtime_error when it cannot).
-std::string read_file_text(const std::filesystem::path& path);
 
 // The journal's valid rows of DIR (read-only: for merge and plot of unfinished stores); the
 // rows of points.csv when the store has no journal.

@@ -24,7 +24,7 @@
 
 #include "campaign/store.hpp"
 #include "observe/simulate.hpp"
-#include "report/run_writer.hpp"
+#include "observe/series_csv.hpp"
 #include "campaign/campaign_load.hpp"
 #include "scene/load.hpp"
 #include "io/numbers.hpp"

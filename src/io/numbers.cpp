@@ -15,6 +15,12 @@ std::string format_double(double x) {
   return std::string(buf, r.ptr);
 }
 
+std::string format_g17(double x) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.17g", x);
+  return buf;
+}
+
 std::string format_short(double x) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.3g", x);

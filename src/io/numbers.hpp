@@ -8,6 +8,10 @@ namespace asperity::scene_io {
 // Shortest text that reads back to exactly x (std::to_chars), e.g. 0.1 → "0.1", 7.25e-16.
 std::string format_double(double x);
 
+// %.17g: round-trips too, in the longer spelling series.csv, summary.yaml and the fit tables
+// have always used (their bytes must not change); "nan"/"inf" when not finite.
+std::string format_g17(double x);
+
 // Three significant digits for derived values in messages, e.g. 1.5e+07, 0.000209.
 std::string format_short(double x);
 

@@ -15,7 +15,9 @@
 #include <stdexcept>
 #include <system_error>
 
-#include "campaign/store.hpp"
+#include "io/csv.hpp"
+#include "io/hash.hpp"
+#include "io/numbers.hpp"
 #include "report/run_writer.hpp"
 #include "scene/load.hpp"
 
@@ -25,9 +27,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// Numbers of the fit tables: %.17g round-trips, "nan" for NaN (gnuplot and CSV readers parse it).
+using scene_io::format_g17;
 constexpr double kGravity = 9.81;  // m/s², P = M g (as the stand-in recipe)
-
-std::string csv_text(const std::string& s) { return csv_field(s); }
 
 // File-name stem for an experiment (names are free text). A name made only of letters, digits,
 // '.', '-' and '_' (not starting with '.', at most 80 bytes) is its own stem; any other name gets
@@ -53,11 +55,6 @@ std::string provenance_path(const fs::path& file) {
   return (inside ? rel : file).generic_string();
 }
 
-std::string csv_num(double x) {  // %.17g: round-trips, "nan" for NaN (gnuplot and CSV readers parse it)
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.17g", x);
-  return buf;
-}
 
 
 void plot_quietly(const fs::path& dir, const std::string& script) {
@@ -104,17 +101,17 @@ std::string fit_subdir(const FitSpec& spec, const Optimization& o) {
 std::string evaluations_csv(const Optimization& o, const FitSpec& spec) {
   std::ostringstream c;
   c << "evaluation";
-  for (const auto& v : o.variables) c << "," << csv_text(v.label);
+  for (const auto& v : o.variables) c << "," << csv_field(v.label);
   c << ",objective";
-  for (const auto e : o.experiments) c << "," << csv_text("term_" + spec.experiments[e].name);
+  for (const auto e : o.experiments) c << "," << csv_field("term_" + spec.experiments[e].name);
   c << ",wall_s,status\n";
   for (const auto& ev : o.log) {
     c << ev.index;
-    for (const double x : ev.values) c << "," << csv_num(x);
-    c << "," << csv_num(ev.objective);
+    for (const double x : ev.values) c << "," << format_g17(x);
+    c << "," << format_g17(ev.objective);
     for (std::size_t k = 0; k < o.experiments.size(); ++k)
-      c << "," << csv_num(k < ev.residuals.size() ? ev.residuals[k] : Observables::nan);
-    c << "," << csv_num(ev.wall_s) << "," << csv_text(ev.status) << "\n";
+      c << "," << format_g17(k < ev.residuals.size() ? ev.residuals[k] : Observables::nan);
+    c << "," << format_g17(ev.wall_s) << "," << csv_field(ev.status) << "\n";
   }
   return c.str();
 }
@@ -123,28 +120,28 @@ std::string profile_csv(const Optimization& o) {
   std::ostringstream c;
   c << "factor,value,objective,status\n";
   for (const auto& p : o.profile)
-    c << csv_num(p.factor) << "," << csv_num(p.value) << "," << csv_num(p.objective) << ","
-      << csv_text(p.status) << "\n";
+    c << format_g17(p.factor) << "," << format_g17(p.value) << "," << format_g17(p.objective) << ","
+      << csv_field(p.status) << "\n";
   return c.str();
 }
 
 // Writes the files of one optimization into `d` (plots when `plots`).
 void write_optimization(const fs::path& d, const FitSpec& spec, const Optimization& o, bool plots) {
   fs::create_directories(d);
-  write_file(d / "evaluations.csv", evaluations_csv(o, spec));
-  if (!o.profile.empty()) write_file(d / "profile.csv", profile_csv(o));
+  scene_io::write_text_file(d / "evaluations.csv", evaluations_csv(o, spec));
+  if (!o.profile.empty()) scene_io::write_text_file(d / "profile.csv", profile_csv(o));
   for (const auto& r : o.best_runs) {
     const std::string stem = "AQ_" + file_stem(spec.experiments[r.experiment].name);
     std::ostringstream m;
     m << "Q_N,A_m2\n";
-    for (const auto& s : r.loading) m << csv_num(s.Q) << "," << csv_num(s.A) << "\n";
-    write_file(d / (stem + "_model.csv"), m.str());
+    for (const auto& s : r.loading) m << format_g17(s.Q) << "," << format_g17(s.A) << "\n";
+    scene_io::write_text_file(d / (stem + "_model.csv"), m.str());
     if (r.measured) {
       std::ostringstream x;
       x << "Q_N,A_m2\n";
       for (std::size_t j = 0; j < r.measured->Q_N.size(); ++j)
-        x << csv_num(r.measured->Q_N[j]) << "," << csv_num(r.measured->A_m2[j]) << "\n";
-      write_file(d / (stem + "_measured.csv"), x.str());
+        x << format_g17(r.measured->Q_N[j]) << "," << format_g17(r.measured->A_m2[j]) << "\n";
+      scene_io::write_text_file(d / (stem + "_measured.csv"), x.str());
     }
   }
   if (!plots) return;
@@ -312,32 +309,32 @@ void write_fit(const fs::path& dir, const FitSpec& spec, const FitResult& result
     // fitted.csv: one row per (optimization, experiment).
     std::ostringstream c;
     c << "fit,experiment,stand_in,mass_kg,P_N";
-    for (const auto& p : spec.parameters) c << "," << csv_text(p.key) << "," << csv_text(p.key + "_min") << "," << csv_text(p.key + "_max");
+    for (const auto& p : spec.parameters) c << "," << csv_field(p.key) << "," << csv_field(p.key + "_min") << "," << csv_field(p.key + "_max");
     c << ",objective,term,alpha,alpha_measured,Q_s_N,area_drop_fraction,shape_exponent,shape_exponent_measured,evaluations,wall_s,stop_reason,status\n";
     std::vector<std::vector<double>> first;  // (P, value, low, high) of the first parameter, for fitted.png
     for (const auto& o : result.fits) {
       const std::vector<Range> ranges = error_bar_ranges(o);
       for (const auto& r : o.best_runs) {
-        c << csv_text(o.label) << "," << csv_text(spec.experiments[r.experiment].name) << "," << (r.stand_in ? "true" : "false") << ","
-          << csv_num(r.mass_kg) << "," << csv_num(r.mass_kg * kGravity);
+        c << csv_field(o.label) << "," << csv_field(spec.experiments[r.experiment].name) << "," << (r.stand_in ? "true" : "false") << ","
+          << format_g17(r.mass_kg) << "," << format_g17(r.mass_kg * kGravity);
         for (std::size_t j = 0; j < spec.parameters.size(); ++j) {
           Range v;
           for (std::size_t i = 0; i < o.variables.size(); ++i)
             if (o.variables[i].parameter == j &&
                 (o.variables[i].experiment < 0 || static_cast<std::size_t>(o.variables[i].experiment) == r.experiment))
               v = o.refits.empty() ? Range{o.best[i], Observables::nan, Observables::nan, Observables::nan} : ranges[i];
-          c << "," << csv_num(v.value) << "," << csv_num(v.min) << "," << csv_num(v.max);
+          c << "," << format_g17(v.value) << "," << format_g17(v.min) << "," << format_g17(v.max);
           if (j == 0)
             first.push_back({r.mass_kg * kGravity, v.value, std::isnan(v.min) ? v.value : v.min,
                              std::isnan(v.max) ? v.value : v.max});
         }
-        c << "," << csv_num(o.objective) << "," << csv_num(r.residual) << "," << csv_num(r.obs.alpha) << ","
-          << csv_num(r.obs.alpha_measured) << "," << csv_num(r.obs.Q_s) << "," << csv_num(r.obs.area_drop_fraction) << ","
-          << csv_num(r.obs.shape_exponent) << "," << csv_num(r.obs.shape_exponent_measured) << "," << o.evaluations << ","
-          << csv_num(o.wall_s) << "," << o.stop_reason << "," << (o.ok() ? "ok" : "failed") << "\n";
+        c << "," << format_g17(o.objective) << "," << format_g17(r.residual) << "," << format_g17(r.obs.alpha) << ","
+          << format_g17(r.obs.alpha_measured) << "," << format_g17(r.obs.Q_s) << "," << format_g17(r.obs.area_drop_fraction) << ","
+          << format_g17(r.obs.shape_exponent) << "," << format_g17(r.obs.shape_exponent_measured) << "," << o.evaluations << ","
+          << format_g17(o.wall_s) << "," << o.stop_reason << "," << (o.ok() ? "ok" : "failed") << "\n";
       }
     }
-    write_file(tmp / "fitted.csv", c.str());
+    scene_io::write_text_file(tmp / "fitted.csv", c.str());
     if (plots && spec.separate && result.fits.size() > 1) {
       // First parameter against the load, with the error-bar range when computed.
       // The numbers travel in a data block: fitted.csv's quoted names may hold commas.
@@ -349,7 +346,7 @@ void write_fit(const fs::path& dir, const FitSpec& spec, const FitResult& result
          << "plot $fitted using 1:2:3:4 with yerrorbars pt 7 title 'fit (bars: error-bar range)'\n";
       plot_quietly(tmp, gp.str());
     }
-    write_file(tmp / "fit.yaml", fit_yaml(spec, result));
+    scene_io::write_text_file(tmp / "fit.yaml", fit_yaml(spec, result));
     write_marker(tmp, "fit");
   });
 }

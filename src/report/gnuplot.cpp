@@ -1,57 +1,20 @@
 #include "report/gnuplot.hpp"
 
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/mman.h>
-#include <sys/socket.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
-#include <atomic>
-#include <cerrno>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <iterator>
 #include <stdexcept>
 #include <system_error>
 
-extern char** environ;
+#include "io/atomic_file.hpp"
 
 namespace asperity {
 namespace fs = std::filesystem;
 
 namespace {
-
-// gnuplot's full path from $PATH (empty when absent): spawned directly, never through a shell.
-fs::path find_gnuplot() {
-  const char* path = std::getenv("PATH");
-  std::string dirs = path ? path : "/usr/local/bin:/usr/bin:/bin";
-  for (std::size_t pos = 0; pos <= dirs.size();) {
-    const std::size_t end = std::min(dirs.find(':', pos), dirs.size());
-    const fs::path dir = dirs.substr(pos, end - pos);
-    const fs::path exe = (dir.empty() ? fs::path(".") : dir) / "gnuplot";
-    std::error_code ec;
-    if (fs::is_regular_file(exe, ec) && ::access(exe.c_str(), X_OK) == 0) return exe;
-    pos = end + 1;
-  }
-  return {};
-}
-
-// Closes a file descriptor when it goes out of scope.
-struct Fd {
-  int fd = -1;
-  ~Fd() {
-    if (fd >= 0) ::close(fd);
-  }
-  void reset() {
-    if (fd >= 0) ::close(fd);
-    fd = -1;
-  }
-};
 
 std::uint32_t crc32(const unsigned char* p, std::size_t n, std::uint32_t crc = 0xffffffffu) {
   for (std::size_t i = 0; i < n; ++i) {
@@ -92,20 +55,15 @@ bool tag_png(const fs::path& png) {
   chunk += body;
   put32(crc32(reinterpret_cast<const unsigned char*>(body.data()), body.size()) ^ 0xffffffffu);
   s.insert(33, chunk);
-  std::ofstream out(png, std::ios::binary | std::ios::trunc);
-  out << s;
-  out.close();
-  return static_cast<bool>(out);
-}
-
-std::string unique_suffix() {
-  static std::atomic<unsigned> counter{0};
-  return std::to_string(::getpid()) + "-" + std::to_string(counter++);
+  try {
+    write_file_atomically(png, s, Durability::unsynced);
+  } catch (const std::runtime_error&) {
+    return false;
+  }
+  return true;
 }
 
 }  // namespace
-
-bool gnuplot_available() { return !find_gnuplot().empty(); }
 
 std::string gnuplot_quote(const std::string& text) {
   // Single-quoted pieces joined with "'" by gnuplot's `.` operator. Doubling the quote is not
@@ -149,65 +107,6 @@ std::string gnuplot_block(const std::string& name, const std::vector<std::vector
   return s + "EOD\n";
 }
 
-void run_gnuplot(const fs::path& workdir, const std::string& script) {
-  const fs::path exe = find_gnuplot();
-  if (exe.empty())
-    throw std::runtime_error("gnuplot not found: install it (apt-get install gnuplot-nox) to draw plots");
-  // The script goes through a socket (send with MSG_NOSIGNAL: a gnuplot that dies early gives
-  // EPIPE, not a SIGPIPE that would kill us); its messages go to an anonymous memory file.
-  int sv[2];
-  if (::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, sv) != 0)
-    throw std::runtime_error(std::string("cannot start gnuplot: ") + std::strerror(errno));
-  Fd ours{sv[0]}, theirs{sv[1]};
-  Fd err{::memfd_create("gnuplot-stderr", MFD_CLOEXEC)};
-  if (err.fd < 0) throw std::runtime_error(std::string("cannot start gnuplot: ") + std::strerror(errno));
-
-  posix_spawn_file_actions_t fa;
-  posix_spawn_file_actions_init(&fa);
-  posix_spawn_file_actions_adddup2(&fa, theirs.fd, 0);
-  posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_adddup2(&fa, err.fd, 2);
-  posix_spawn_file_actions_addchdir_np(&fa, workdir.empty() ? "." : workdir.c_str());
-  char arg0[] = "gnuplot";
-  char* argv[] = {arg0, nullptr};
-  pid_t pid = 0;
-  const int spawned = ::posix_spawn(&pid, exe.c_str(), &fa, nullptr, argv, environ);
-  posix_spawn_file_actions_destroy(&fa);
-  if (spawned != 0) throw std::runtime_error("cannot start gnuplot: " + std::string(std::strerror(spawned)));
-  theirs.reset();
-
-  std::size_t sent = 0;
-  while (sent < script.size()) {
-    const ssize_t n = ::send(ours.fd, script.data() + sent, script.size() - sent, MSG_NOSIGNAL);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) break;  // gnuplot stopped reading (an error): its status says why
-    sent += static_cast<std::size_t>(n);
-  }
-  ours.reset();  // end of input: gnuplot exits
-  int status = 0;
-  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-  }
-  if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return;
-
-  // The first non-blank line of gnuplot's messages that names the problem.
-  std::string msg(4096, '\0');
-  const ssize_t got = ::pread(err.fd, msg.data(), msg.size(), 0);
-  msg.resize(got > 0 ? static_cast<std::size_t>(got) : 0);
-  std::string first;
-  for (std::size_t pos = 0; pos < msg.size();) {
-    const std::size_t nl = std::min(msg.find('\n', pos), msg.size());
-    const std::string line = msg.substr(pos, nl - pos);
-    pos = nl + 1;
-    if (line.find("line ") != std::string::npos || line.find("rror") != std::string::npos) {
-      first = line;
-      break;
-    }
-    if (first.empty() && line.find_first_not_of(" \t^") != std::string::npos) first = line;
-  }
-  const int code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  throw std::runtime_error("gnuplot failed (status " + std::to_string(code) + "): " + first);
-}
-
 bool render_png(const fs::path& png, const std::string& script, int width, int height, std::string* error) {
   if (!gnuplot_available()) {
     if (error) *error = "gnuplot not found";
@@ -216,7 +115,7 @@ bool render_png(const fs::path& png, const std::string& script, int width, int h
   // gnuplot writes to a name of our own making (no user text in `set output`), in the target's
   // folder so that the rename is atomic.
   const fs::path dir = png.parent_path().empty() ? fs::path(".") : png.parent_path();
-  const std::string tmp_name = ".plot.tmp-" + unique_suffix();  // the ".NAME.tmp-*" pattern of output_dir
+  const std::string tmp_name = ".plot.tmp-" + unique_tmp_suffix();  // the ".NAME.tmp-*" pattern of output_dir
   const fs::path tmp = dir / tmp_name;
   const std::string text = "set terminal pngcairo size " + std::to_string(width) + "," + std::to_string(height) +
                            " noenhanced\nset output " + gnuplot_quote(tmp_name) + "\n" + script + "\nunset output\n";

@@ -4,17 +4,14 @@
 //
 // Text from inputs (experiment and campaign names, paths, --where values) is data, never code:
 // it enters a script only through gnuplot_quote(), and gnuplot is started without a shell
-// (posix_spawn of `gnuplot` found on the PATH, script on its standard input).
+// (io/gnuplot_runner.hpp: posix_spawn of `gnuplot` found on the PATH, script on its standard input).
 #include <filesystem>
 #include <string>
 #include <vector>
 
-#include "observe/sample.hpp"
+#include "io/gnuplot_runner.hpp"  // gnuplot_available, run_gnuplot: the runner the plots use
 
 namespace asperity {
-
-// True when `gnuplot` is on the PATH.
-bool gnuplot_available();
 
 // A gnuplot string expression whose value is `text`: single-quoted pieces (inside single quotes
 // gnuplot expands nothing: no backquote commands, no macros, no backslash escapes) joined by `.`
@@ -38,10 +35,5 @@ bool render_png(const std::filesystem::path& png, const std::string& script, int
 // True when `png` is a PNG file written by render_png (it carries a tEXt chunk
 // "Software" = "asperity"): the only existing files a plot may replace.
 bool png_is_ours(const std::filesystem::path& png);
-
-// Runs `script` with `workdir` as current directory (relative file names in the script refer to
-// it). Throws std::runtime_error naming gnuplot's first error line and its exit status when
-// gnuplot is missing or fails.
-void run_gnuplot(const std::filesystem::path& workdir, const std::string& script);
 
 }  // namespace asperity

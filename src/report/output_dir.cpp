@@ -1,8 +1,5 @@
 #include "report/output_dir.hpp"
 
-#include <unistd.h>
-
-#include <atomic>
 #include <fstream>
 #include <stdexcept>
 #include <system_error>
@@ -18,16 +15,8 @@ fs::path normal_dir(const fs::path& dir) {
   return p;
 }
 
-void write_file(const fs::path& path, const std::string& text) {
-  std::ofstream f(path, std::ios::binary | std::ios::trunc);
-  if (!f) throw std::runtime_error("cannot create " + path.string());
-  f << text;
-  f.close();
-  if (!f) throw std::runtime_error("cannot write " + path.string());
-}
-
 void write_marker(const fs::path& dir, const std::string& command) {
-  write_file(dir / kMarkerFile, "created by asperity " + command + "\n");
+  scene_io::write_text_file(dir / kMarkerFile, "created by asperity " + command + "\n");
 }
 
 bool has_marker(const fs::path& dir, const std::string& command) {
@@ -58,13 +47,6 @@ void check_ours(const fs::path& dir, const std::string& command, const std::stri
   throw InputError(dir.string(), 0, option, "refusing to write there: " + why + "; choose a new or empty folder");
 }
 
-namespace {
-std::string unique_suffix() {
-  static std::atomic<unsigned> counter{0};
-  return std::to_string(::getpid()) + "-" + std::to_string(counter++);
-}
-}  // namespace
-
 void write_dir_atomically(const fs::path& dir, const std::function<void(const fs::path&)>& check_replaceable,
                           const std::function<void(const fs::path&)>& fill) {
   const fs::path target = normal_dir(dir);
@@ -75,7 +57,7 @@ void write_dir_atomically(const fs::path& dir, const std::function<void(const fs
   if (ec) throw std::runtime_error("cannot create " + parent.string() + ": " + ec.message());
   if (fs::exists(fs::symlink_status(target))) check_replaceable(target);  // before any work
 
-  const fs::path tmp = parent / ("." + name + ".tmp-" + unique_suffix());
+  const fs::path tmp = parent / ("." + name + ".tmp-" + unique_tmp_suffix());
   fs::remove_all(tmp, ec);
   if (!fs::create_directory(tmp, ec) || ec)
     throw std::runtime_error("cannot create " + tmp.string() + ": " + ec.message());
@@ -94,7 +76,7 @@ void write_dir_atomically(const fs::path& dir, const std::function<void(const fs
   fs::path old;
   if (fs::exists(fs::symlink_status(target))) {
     check_replaceable(target);
-    old = parent / ("." + name + ".old-" + unique_suffix());
+    old = parent / ("." + name + ".old-" + unique_tmp_suffix());
     fs::rename(target, old, ec);
     if (ec) throw std::runtime_error("cannot replace " + target.string() + ": " + ec.message());
   }

@@ -6,14 +6,12 @@
 #include <functional>
 #include <string>
 
+#include "io/atomic_file.hpp"  // scene_io::write_text_file: the files inside such a directory
+
 namespace asperity {
 
 // The directory a user means by `dir` ("runs/x/" and "runs/x" alike), made absolute.
 std::filesystem::path normal_dir(const std::filesystem::path& dir);
-
-// Writes `text` to `path` (no temporary: for files inside a directory being built). Throws
-// std::runtime_error naming the path.
-void write_file(const std::filesystem::path& path, const std::string& text);
 
 // Every folder a command creates carries a marker file, `.asperity`, holding
 // "created by asperity COMMAND". A command writes into, or replaces, an existing folder only when

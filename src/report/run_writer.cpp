@@ -12,6 +12,8 @@
 #include <stdexcept>
 #include <system_error>
 
+#include "io/numbers.hpp"
+#include "observe/series_csv.hpp"
 #include "report/gnuplot.hpp"
 #include "report/output_dir.hpp"
 #include "scene/load.hpp"
@@ -20,12 +22,6 @@ namespace asperity {
 namespace fs = std::filesystem;
 
 namespace {
-
-std::string g17(double x) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.17g", x);
-  return buf;
-}
 
 
 const char* method_name(SolverMethod m) {
@@ -60,42 +56,7 @@ void check_run_dir(const fs::path& dir) { check_replaceable_dir(dir); }  // name
 std::string yaml_double(double x) {
   if (std::isnan(x)) return ".nan";
   if (std::isinf(x)) return x > 0 ? ".inf" : "-.inf";
-  return g17(x);
-}
-
-void write_series_csv(std::ostream& out, const std::vector<Sample>& samples,
-                      const std::vector<std::string>& series) {
-  const auto& all = all_series();
-  for (const auto& name : series)
-    if (std::find(all.begin(), all.end(), name) == all.end())
-      throw std::invalid_argument("unknown series column '" + name + "'");
-  std::vector<std::size_t> cols;  // indices into all_series(), canonical order, no duplicates
-  for (std::size_t c = 0; c < all.size(); ++c)
-    if (std::find(series.begin(), series.end(), all[c]) != series.end()) cols.push_back(c);
-
-  for (std::size_t j = 0; j < cols.size(); ++j) out << (j ? "," : "") << all[cols[j]];
-  out << '\n';
-  std::string line;
-  char buf[40];
-  for (const auto& s : samples) {
-    line.clear();
-    for (std::size_t j = 0; j < cols.size(); ++j) {
-      if (j) line += ',';
-      switch (cols[j]) {
-        case 0: std::snprintf(buf, sizeof buf, "%.17g", s.t); break;
-        case 1: std::snprintf(buf, sizeof buf, "%.17g", s.X); break;
-        case 2: std::snprintf(buf, sizeof buf, "%.17g", s.V); break;
-        case 3: std::snprintf(buf, sizeof buf, "%.17g", s.Q); break;
-        case 4: std::snprintf(buf, sizeof buf, "%.17g", s.A); break;
-        case 5: std::snprintf(buf, sizeof buf, "%lld", static_cast<long long>(s.n_slipping)); break;
-        case 6: std::snprintf(buf, sizeof buf, "%lld", static_cast<long long>(s.n_intact)); break;
-        default: buf[0] = '\0';
-      }
-      line += buf;
-    }
-    line += '\n';
-    out << line;
-  }
+  return scene_io::format_g17(x);
 }
 
 std::string summary_yaml(const Scene& scene, const Observables& o, const std::vector<Peak>& peaks) {
@@ -163,10 +124,10 @@ void write_run(const fs::path& dir, const Scene& scene, const Observables& obs, 
     if (!scene.output.series.empty()) {
       std::ostringstream csv;
       write_series_csv(csv, rec.series(), scene.output.series);
-      write_file(tmp / "series.csv", csv.str());
+      scene_io::write_text_file(tmp / "series.csv", csv.str());
     }
-    write_file(tmp / "summary.yaml", summary_text);
-    write_file(tmp / "scene.yaml", scene_text);
+    scene_io::write_text_file(tmp / "summary.yaml", summary_text);
+    scene_io::write_text_file(tmp / "scene.yaml", scene_text);
     write_marker(tmp, "run");
     if (opt.plot) write_run_plot(tmp);
   });

@@ -15,17 +15,13 @@
 
 #include "observe/observables.hpp"
 #include "observe/recorder.hpp"
+#include "observe/series_csv.hpp"  // write_series_csv (series.csv)
 #include "scene/scene.hpp"
 
 namespace asperity {
 
 // %.17g (round-trips every double); YAML spellings .nan / .inf / -.inf for non-finite values.
 std::string yaml_double(double x);
-
-// Writes `series` columns (validated against all_series(), written in its order) of `samples`.
-// Throws std::invalid_argument on an unknown column name.
-void write_series_csv(std::ostream& out, const std::vector<Sample>& samples,
-                      const std::vector<std::string>& series);
 
 // The text of summary.yaml.
 std::string summary_yaml(const Scene& scene, const Observables& obs, const std::vector<Peak>& peaks);

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <string>
 
+#include "io/atomic_file.hpp"  // scene_io::write_text_file, for the writers that include this
 #include "scene/scene.hpp"
 
 namespace asperity {
@@ -16,7 +17,7 @@ JunctionPopulation read_junctions_csv(const std::filesystem::path& csv);
 MeasuredCurve read_measured_csv(const std::filesystem::path& csv);
 
 // Deterministic bytes: '\n' line endings, shortest round-trip numbers (reading back gives the
-// same doubles bit for bit). Written through a temporary file renamed into place.
+// same doubles bit for bit). Written atomically (io/atomic_file.hpp, no fsync).
 // Throws std::runtime_error when the file cannot be written, std::invalid_argument when the
 // columns differ in length (x_m/y_m must be empty or as long as area_m2).
 void write_junctions_csv(const std::filesystem::path& csv, const JunctionPopulation& junctions);
@@ -26,8 +27,6 @@ namespace scene_io {
 // Same readers, naming `display` in errors (the path as the referring file spells it).
 JunctionPopulation read_junctions_csv(const std::filesystem::path& csv, const std::string& display);
 MeasuredCurve read_measured_csv(const std::filesystem::path& csv, const std::string& display);
-// Writes `text` to `path` through `path.tmp` + rename; throws std::runtime_error on failure.
-void write_text_file(const std::filesystem::path& path, const std::string& text);
 }  // namespace scene_io
 
 }  // namespace asperity

@@ -1,0 +1,42 @@
+#pragma once
+// The one way the project writes a file: the text goes to a hidden temporary sibling
+// (".NAME.tmp-PID-N", a name no user file has and that the store and output folders recognise as
+// ours) that is renamed over `path`, so a reader sees the old file or the new one, never half of
+// one. Durability::synced also fsyncs the file before the rename and the folder after it, so the
+// new file survives a power cut (the campaign store needs that; a run folder or a CSV a command
+// writes once does not, and skips the cost).
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+namespace asperity {
+
+enum class Durability { unsynced, synced };
+
+// "PID-N", unique within the machine while the process lives: the tail of every temporary name
+// (".NAME.tmp-PID-N" files here, the output folders' and plots' temporaries in report/).
+std::string unique_tmp_suffix();
+
+// Throws std::runtime_error naming the path and the system's reason; the temporary is removed.
+void write_file_atomically(const std::filesystem::path& path, const std::string& text, Durability durability);
+
+// Temp sibling, fsync, rename, fsync of the folder (the campaign store's files).
+inline void write_file_durably(const std::filesystem::path& path, const std::string& text) {
+  write_file_atomically(path, text, Durability::synced);
+}
+
+// Writes all of `bytes` to the open descriptor `fd` (retrying short writes and EINTR); false with
+// errno set on failure. For the store's append-only journal.
+bool write_fully(int fd, std::string_view bytes);
+
+// Reads a whole file (std::runtime_error when it cannot).
+std::string read_file_text(const std::filesystem::path& path);
+
+namespace scene_io {
+// Temp sibling + rename, no fsync (CSVs, YAML and reports a command writes once).
+inline void write_text_file(const std::filesystem::path& path, const std::string& text) {
+  write_file_atomically(path, text, Durability::unsynced);
+}
+}  // namespace scene_io
+
+}  // namespace asperity

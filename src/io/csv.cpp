@@ -1,0 +1,151 @@
+#include "io/csv.hpp"
+
+#include <algorithm>
+#include <sstream>
+#include <stdexcept>
+
+#include "io/input_error.hpp"
+#include "io/numbers.hpp"
+#include "io/yaml_util.hpp"
+
+namespace asperity {
+
+using namespace scene_io;
+
+std::string csv_field(std::string_view in) {
+  std::string s(in);
+  for (char& c : s)
+    if (c == '\n' || c == '\r') c = ' ';
+  const bool quote = s.find_first_of(",\"") != std::string::npos ||
+                     (!s.empty() && (s.front() == ' ' || s.back() == ' ' || s.front() == '\t'));
+  if (!quote) return s;
+  std::string q = "\"";
+  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
+std::vector<std::string> csv_split(std::string_view line) {
+  std::vector<std::string> out;
+  std::string cur;
+  bool quoted = false, in_quotes = false;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (in_quotes) {
+      if (c == '"') {
+        if (i + 1 < line.size() && line[i + 1] == '"') cur += '"', ++i;
+        else in_quotes = false;
+      } else {
+        cur += c;
+      }
+    } else if (c == '"' && cur.empty() && !quoted) {
+      in_quotes = quoted = true;
+    } else if (c == ',') {
+      out.push_back(std::move(cur));
+      cur.clear();
+      quoted = false;
+    } else {
+      cur += c;
+    }
+  }
+  if (in_quotes) throw std::runtime_error("unterminated quote in CSV line");
+  out.push_back(std::move(cur));
+  return out;
+}
+
+std::string csv_number(double x) { return format_double(x); }
+
+int CsvTable::column(const std::string& name) const {
+  auto it = std::find(columns.begin(), columns.end(), name);
+  return it == columns.end() ? -1 : static_cast<int>(it - columns.begin());
+}
+
+namespace {
+
+// Numeric fields are never quoted: split at every comma, blanks around a field ignored.
+std::vector<std::string> split_plain_fields(std::string_view line) {
+  std::vector<std::string> out;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t comma = line.find(',', start);
+    out.emplace_back(trim(line.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start)));
+    if (comma == std::string_view::npos) break;
+    start = comma + 1;
+  }
+  return out;
+}
+
+}  // namespace
+
+CsvTable read_numeric_csv(const std::filesystem::path& path, const std::string& display,
+                          const std::vector<std::string>& allowed, const std::vector<std::string>& required) {
+  std::string text = read_input_file(path, display, kMaxCsvBytes);
+  if (text.rfind("\xEF\xBB\xBF", 0) == 0) text.erase(0, 3);  // UTF-8 byte-order mark
+
+  CsvTable t;
+  int line_no = 0, blank_line = 0;
+  std::istringstream lines(text);
+  std::string raw;
+  while (std::getline(lines, raw)) {
+    ++line_no;
+    const std::string_view line = trim(raw);
+    if (line.empty()) {
+      if (t.header_line && !blank_line) blank_line = line_no;
+      continue;
+    }
+    if (line.front() == '#') continue;
+    if (blank_line)
+      throw InputError(display, blank_line, "", "blank line inside the data (only trailing blank lines are allowed)");
+    std::vector<std::string> fields = split_plain_fields(line);
+    if (!t.header_line) {
+      t.header_line = line_no;
+      for (std::size_t c = 0; c < fields.size(); ++c) {
+        const std::string& name = fields[c];
+        const int col = static_cast<int>(c) + 1;
+        if (name.empty()) throw InputError(display, line_no, "", "empty column name in the header", col);
+        if (std::find(allowed.begin(), allowed.end(), name) == allowed.end())
+          throw InputError(display, line_no, name,
+                           "unknown column " + quote(name) + did_you_mean(name, allowed) +
+                               "; valid columns: " + join(allowed),
+                           col);
+        if (t.column(name) >= 0) throw InputError(display, line_no, name, "duplicate column", col);
+        t.columns.push_back(name);
+      }
+      for (const auto& r : required)
+        if (t.column(r) < 0)
+          throw InputError(display, line_no, r, "missing required column (header must name " + join(required) + ")");
+      continue;
+    }
+    if (fields.size() != t.columns.size())
+      throw InputError(display, line_no, "",
+                       "expected " + std::to_string(t.columns.size()) + " fields (" + join(t.columns) + "), got " +
+                           std::to_string(fields.size()),
+                       static_cast<int>(std::min(fields.size(), t.columns.size())) + 1);
+    std::vector<double> row(fields.size());
+    for (std::size_t c = 0; c < fields.size(); ++c) {
+      const int col = static_cast<int>(c) + 1;
+      switch (parse_double(fields[c], row[c])) {
+        case NumberParse::ok:
+          break;
+        case NumberParse::empty:
+          throw InputError(display, line_no, t.columns[c], "empty field (expected a number)", col);
+        case NumberParse::has_unit:
+          throw InputError(display, line_no, t.columns[c],
+                           "expected a plain number in SI units, got " + quote(fields[c]), col);
+        case NumberParse::not_finite:
+          throw InputError(display, line_no, t.columns[c], "must be a finite number, got " + quote(fields[c]), col);
+        default:
+          throw InputError(display, line_no, t.columns[c], "expected a number, got " + quote(fields[c]), col);
+      }
+    }
+    t.rows.push_back(std::move(row));
+    t.lines.push_back(line_no);
+  }
+  if (!t.header_line)
+    throw InputError(display, std::max(line_no, 1), required.empty() ? "" : required.front(),
+                     "missing header row (expected columns " + join(allowed) + ")");
+  if (t.rows.empty())
+    throw InputError(display, t.header_line, required.empty() ? "" : required.front(), "no data rows after the header");
+  return t;
+}
+
+}  // namespace asperity

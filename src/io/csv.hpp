@@ -1,0 +1,44 @@
+#pragma once
+// The project's CSV codec. Two kinds of file share it:
+//  - numeric input tables (junctions, measured curves): a header row naming the columns (any
+//    order), then one plain number per field; '#' lines are comments; blank lines only before
+//    the header and at the end. Errors are InputError "FILE:LINE:COL: COLUMN: message".
+//  - text tables we write and read back (the campaign store's points.csv and journal): fields
+//    quoted as RFC 4180 when they must be.
+// Numbers are written as the shortest text that reads back bit for bit (csv_number) or, where a
+// file has always used it, as %.17g (format_g17 in io/numbers.hpp); either way the bytes depend
+// only on the values. Rows end in '\n'.
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace asperity {
+
+// --- text fields --------------------------------------------------------------------------
+// Quoted ("..." with "" escapes) when the field holds ',', '"' or blanks at the ends; newlines
+// become spaces (one line per row, always).
+std::string csv_field(std::string_view s);
+// Splits one CSV line (RFC 4180 quoting). Throws std::runtime_error on an unterminated quote.
+std::vector<std::string> csv_split(std::string_view line);
+
+// --- numbers ------------------------------------------------------------------------------
+// Shortest text that reads back to exactly x ("nan", "inf", "-inf" when not finite).
+std::string csv_number(double x);
+
+// --- numeric input tables -----------------------------------------------------------------
+struct CsvTable {
+  std::vector<std::string> columns;  // header names in file order
+  int header_line = 0;               // 1-based
+  std::vector<int> lines;            // 1-based line of each row
+  std::vector<std::vector<double>> rows;
+  int column(const std::string& name) const;  // index in `columns`, -1 when absent
+};
+
+// Reads `path` (at most kMaxCsvBytes; a UTF-8 byte-order mark is skipped), naming `display` in
+// errors. Every header name must be in `allowed` (once), every name in `required` present, and
+// every field a finite plain number; at least one data row.
+CsvTable read_numeric_csv(const std::filesystem::path& path, const std::string& display,
+                          const std::vector<std::string>& allowed, const std::vector<std::string>& required);
+
+}  // namespace asperity
