@@ -6,7 +6,7 @@
 
 #include "bench/bench_scene.hpp"
 #include "observe/simulate.hpp"
-#include "scene/csv.hpp"
+#include "io/atomic_file.hpp"
 #include "io/numbers.hpp"
 
 #include "bench/number_text.hpp"

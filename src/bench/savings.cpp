@@ -10,7 +10,7 @@
 #include "bench/timed_run.hpp"
 #include "observe/simulate.hpp"
 #include "report/run_writer.hpp"
-#include "scene/csv.hpp"
+#include "io/atomic_file.hpp"
 
 #include "bench/number_text.hpp"
 

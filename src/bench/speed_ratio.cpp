@@ -9,7 +9,7 @@
 #include "bench/bench_scene.hpp"
 #include "bench/number_text.hpp"
 #include "bench/timed_run.hpp"
-#include "scene/csv.hpp"
+#include "io/atomic_file.hpp"
 
 namespace asperity {
 namespace fs = std::filesystem;

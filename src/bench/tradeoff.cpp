@@ -8,7 +8,7 @@
 #include "bench/bench_scene.hpp"
 #include "report/gnuplot.hpp"
 #include "bench/timed_run.hpp"
-#include "scene/csv.hpp"
+#include "io/atomic_file.hpp"
 #include "io/numbers.hpp"
 
 #include "bench/number_text.hpp"

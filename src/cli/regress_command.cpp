@@ -11,7 +11,7 @@
 
 #include "cli/commands.hpp"
 #include "regress/regress.hpp"
-#include "scene/csv.hpp"
+#include "io/atomic_file.hpp"
 #include "io/input_error.hpp"
 
 namespace asperity::cli {

@@ -22,7 +22,7 @@
 #include "report/paper_figures.hpp"
 #include "report/output_dir.hpp"
 #include "report/run_writer.hpp"
-#include "scene/csv.hpp"
+#include "io/atomic_file.hpp"
 #include "scene/load.hpp"
 
 namespace asperity::cli {

@@ -6,6 +6,7 @@
 #include <ostream>
 #include <stdexcept>
 
+#include "io/atomic_file.hpp"
 #include "observe/simulate.hpp"
 #include "scene/load.hpp"
 #include "io/numbers.hpp"

@@ -1,8 +1,5 @@
 #include "report/claims.hpp"
 
-#include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -14,93 +11,10 @@
 #include <sstream>
 
 #include "observe/quadratic_fit.hpp"
-#include "observe/simulate.hpp"
 
 namespace asperity {
 
 namespace {
-
-const char* const kReferenceLabelText = "reference Ct=100, 0.25 s";
-
-// Claim 3's η scan beside the base runs' η = 100 (1/s). 160 and 220 sit at the edges of the
-// claim's range [162, 220] (ClaimRules): every bracket is then inside or outside it, never
-// straddling it because the grid is coarse.
-const std::vector<double> kEtaScan{0.0, 50.0, 150.0, 160.0, 180.0, 200.0, 220.0, 250.0};
-
-std::string eta_label(double eta) {
-  char label[32];
-  std::snprintf(label, sizeof label, "eta=%g", eta);
-  return label;
-}
-
-}  // namespace
-
-std::vector<ClaimVariant> paper_claim_variants() {
-  std::vector<ClaimVariant> v;
-  for (double eta : kEtaScan) {
-    v.push_back({eta_label(eta), [eta](Scene& s) { s.model.eta = eta; }});
-  }
-  v.push_back({"c_min=1e-5", [](Scene& s) { s.model.c_min = 1e-5; }});
-  v.push_back({"equal_areas", [](Scene& s) {
-                 auto& a = s.experiment.junctions.area_m2;
-                 double sum = 0;
-                 for (double x : a) sum += x;
-                 a.assign(a.size(), sum / static_cast<double>(a.size()));
-                 s.experiment.junctions.x_m.clear();
-                 s.experiment.junctions.y_m.clear();
-                 s.experiment.measured.reset();
-                 s.stop.at_first_peak = true;
-               }});
-  v.push_back({"circular", [](Scene& s) { s.model.junction_shape = JunctionShape::circular; }});
-  v.push_back({"area_law=always", [](Scene& s) { s.model.area_law = AreaLaw::always; }});
-  // Claim 7 needs the explicit solver, which measures f/(σA) at every junction and step; at
-  // C_t = 100 it costs about a minute per simulated second here, so a window of the loading.
-  v.push_back({kReferenceLabelText,
-               [](Scene& s) {
-                 s.solver.method = SolverMethod::reference;
-                 s.solver.Ct = 100;
-                 s.stop.time = 0.25;  // the first slips start near 0.19 s on the smallest stand-in
-                 s.stop.cycles = -1;
-                 s.output.series.clear();
-               },
-               false});
-  return v;
-}
-
-std::vector<VariantRun> run_variants(const std::vector<Scene>& base, const std::vector<ClaimVariant>& variants,
-                                     int threads) {
-  struct Job { std::size_t scene, variant; };
-  std::vector<Job> jobs;
-  for (std::size_t v = 0; v < variants.size(); ++v)
-    for (std::size_t s = 0; s < base.size(); ++s)
-      if (variants[v].all_experiments || s == 0) jobs.push_back({s, v});
-  // Longest first: the reference window dominates.
-  std::stable_sort(jobs.begin(), jobs.end(), [&](const Job& a, const Job& b) {
-    return !variants[a.variant].all_experiments && variants[b.variant].all_experiments;
-  });
-  std::vector<VariantRun> out(jobs.size());
-  tbb::task_arena arena(std::max(1, threads));
-  arena.execute([&] {
-    tbb::parallel_for(std::size_t{0}, jobs.size(), [&](std::size_t j) {
-      Scene s = base[jobs[j].scene];
-      const ClaimVariant& v = variants[jobs[j].variant];
-      v.apply(s);
-      s.output.series.clear();  // only observables are needed
-      out[j].experiment = s.experiment.name;
-      out[j].label = v.label;
-      try {
-        out[j].obs = simulate(s).obs;
-      } catch (const std::exception& e) {
-        out[j].error = e.what();
-      }
-    }, tbb::simple_partitioner());
-  });
-  return out;
-}
-
-namespace {
-
-const char* const kReferenceLabel = kReferenceLabelText;
 
 std::string fmt(const char* f, double x) {
   char b[64];
@@ -177,8 +91,8 @@ ClaimObservables claim_observables(const std::vector<PaperRun>& base, const std:
     l.base = b.obs;
     l.base_eta = b.scene.model.eta;
     l.past_first_peak = !b.scene.stop.at_first_peak && b.scene.stop.cycles != 0;
-    for (double eta : kEtaScan)
-      if (eta != l.base_eta) l.eta_scan.emplace_back(eta, variant_obs(variants, name, eta_label(eta)));
+    for (double eta : kClaimEtaScan)
+      if (eta != l.base_eta) l.eta_scan.emplace_back(eta, variant_obs(variants, name, eta_variant_label(eta)));
     l.c_min_low = variant_obs(variants, name, "c_min=1e-5");
     l.equal_areas = variant_obs(variants, name, "equal_areas");
     l.circular = variant_obs(variants, name, "circular");
@@ -188,7 +102,7 @@ ClaimObservables claim_observables(const std::vector<PaperRun>& base, const std:
       l.calibrated = compare_areas(b.scene, cr->alpha_b, cr->obs, cr->loading);
     c.loads.push_back(std::move(l));
   }
-  if (!base.empty()) c.reference = variant_obs(variants, base.front().scene.experiment.name, kReferenceLabel);
+  if (!base.empty()) c.reference = variant_obs(variants, base.front().scene.experiment.name, kReferenceVariantLabel);
   return c;
 }
 
@@ -251,7 +165,7 @@ std::string claims_report(const std::vector<PaperRun>& base, const std::vector<V
   // 3. η.
   r << "## 3. η = 50 and 100 virtually identical; stick-slip vanishes for η ≳ 180–200\n\n";
   std::vector<double> eta_cols{100};
-  for (double e : kEtaScan) eta_cols.push_back(e);
+  for (double e : kClaimEtaScan) eta_cols.push_back(e);
   std::sort(eta_cols.begin(), eta_cols.end());
   eta_cols.erase(std::unique(eta_cols.begin(), eta_cols.end()), eta_cols.end());
   r << "Stick-slip cycles (mean drop / Q_s) per η; the bracket is (largest η with stick-slip, smallest larger η "
@@ -374,7 +288,7 @@ std::string claims_report(const std::vector<PaperRun>& base, const std::vector<V
 
   // 7. Forces vs σ A.
   r << "## 7. Forces exceed σ_exp A transiently but stay below σ A = σ_exp A/ε\n\n";
-  if (const VariantRun* v = base.empty() ? nullptr : find_run(variants, base.front().scene.experiment.name, kReferenceLabel)) {
+  if (const VariantRun* v = base.empty() ? nullptr : find_run(variants, base.front().scene.experiment.name, kReferenceVariantLabel)) {
     if (!v->error.empty())
       r << "Reference run (" << v->label << ") on " << v->experiment << " failed: " << v->error << "\n\n";
     else

@@ -5,7 +5,8 @@
 #include <limits>
 #include <sstream>
 
-#include "campaign/store.hpp"
+#include "io/csv.hpp"
+#include "io/numbers.hpp"
 #include "report/gnuplot.hpp"
 
 namespace asperity {
@@ -117,11 +118,7 @@ void write_figure4(const fs::path& out_dir, const std::vector<PaperRun>& runs, c
 std::string paper_table_csv(const std::vector<PaperRun>& runs) {
   std::ostringstream s;
   s << kPaperTableHeader << '\n';
-  char buf[40];
-  auto g = [&](double x) {
-    std::snprintf(buf, sizeof buf, "%.17g", x);
-    return std::string(buf);
-  };
+  const auto g = [](double x) { return scene_io::format_g17(x); };
   for (const PaperRun& r : runs) {
     const Observables& o = r.obs;
     s << csv_field(r.scene.experiment.name) << ',' << o.N << ',' << g(o.A0) << ',' << g(o.dt) << ',' << g(o.Q_s) << ','

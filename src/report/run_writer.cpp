@@ -12,6 +12,7 @@
 #include <stdexcept>
 #include <system_error>
 
+#include "io/csv.hpp"
 #include "io/numbers.hpp"
 #include "observe/series_csv.hpp"
 #include "report/gnuplot.hpp"
@@ -139,9 +140,10 @@ bool write_run_plot(const fs::path& dir) {
   std::string header;
   if (!in || !std::getline(in, header)) return false;
   std::vector<std::string> cols;
-  {
-    std::istringstream h(header);
-    for (std::string c; std::getline(h, c, ',');) cols.push_back(c);
+  try {
+    cols = csv_split(header);
+  } catch (const std::runtime_error&) {
+    return false;
   }
   auto col = [&](const std::string& n) -> int {
     const auto it = std::find(cols.begin(), cols.end(), n);

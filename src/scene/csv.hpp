@@ -8,7 +8,6 @@
 #include <filesystem>
 #include <string>
 
-#include "io/atomic_file.hpp"  // scene_io::write_text_file, for the writers that include this
 #include "scene/scene.hpp"
 
 namespace asperity {
