@@ -73,19 +73,6 @@ Observables awkward_observables() {
 
 }  // namespace
 
-TEST_CASE("series.csv header is all series in canonical order", "[report][observe]") {
-  std::ostringstream out;
-  Sample s{0.5, 1e-6, 2e-5, 0.25, 1.25e-5, 7, 1200};
-  write_series_csv(out, {s}, {"n_intact", "t", "A", "X", "Q", "V", "n_slipping"});
-  CHECK(out.str() == "t,X,V,Q,A,n_slipping,n_intact\n0.5,9.9999999999999995e-07,2.0000000000000002e-05,"
-                     "0.25,1.2500000000000001e-05,7,1200\n");
-  std::ostringstream sub;
-  write_series_csv(sub, {s}, {"A", "t"});
-  CHECK(sub.str() == "t,A\n0.5,1.2500000000000001e-05\n");
-  std::ostringstream bad;
-  CHECK_THROWS_AS(write_series_csv(bad, {s}, {"t", "F"}), std::invalid_argument);
-}
-
 TEST_CASE("run writer: files, header, summary round trip with identical doubles", "[report][observe]") {
   const fs::path dir = fresh_dir("run1");
   const Scene scene = small_scene();

@@ -1,0 +1,27 @@
+// io/hash.hpp: FNV-1a 64 against the published test vectors and a bitwise recomputation.
+#include <catch2/catch.hpp>
+#include <cstdint>
+#include <string>
+
+#include "io/hash.hpp"
+
+using namespace asperity;
+
+TEST_CASE("fnv1a64 gives the published FNV-1a 64 test vectors", "[io][hash]") {
+  // From the reference test suite of Fowler/Noll/Vo (test_fnv.c, fnv1a_64 column).
+  CHECK(fnv1a64("") == 0xcbf29ce484222325ull);
+  CHECK(fnv1a64("a") == 0xaf63dc4c8601ec8cull);
+  CHECK(fnv1a64("foobar") == 0x85944171f73967e8ull);
+  // Bytes above 0x7f hash as unsigned bytes: the one-byte case by hand,
+  // (basis ^ 0xff) * prime mod 2^64.
+  const std::uint64_t by_hand = (0xcbf29ce484222325ull ^ 0xffull) * 1099511628211ull;
+  CHECK(fnv1a64(std::string(1, '\xff')) == by_hand);
+}
+
+TEST_CASE("hex16 writes 16 lowercase hex digits, leading zeros kept", "[io][hash]") {
+  CHECK(hex16(0) == "0000000000000000");
+  CHECK(hex16(0xcbf29ce484222325ull) == "cbf29ce484222325");
+  CHECK(hex16(0xabcull) == "0000000000000abc");
+  CHECK(hex16(~0ull) == "ffffffffffffffff");
+  CHECK(std::stoull(hex16(0x85944171f73967e8ull), nullptr, 16) == 0x85944171f73967e8ull);
+}
