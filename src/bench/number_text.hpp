@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <string>
 
-#include "io/numbers.hpp"
+#include "io/csv.hpp"
 
 namespace asperity::bench_text {
 
@@ -16,6 +16,6 @@ inline std::string g(double x, int digits = 6) {
 }
 // Shortest text that reads back to exactly x ("nan" when not finite): errors can be
 // recomputed from a CSV.
-inline std::string exact(double x) { return std::isfinite(x) ? scene_io::format_double(x) : "nan"; }
+inline std::string exact(double x) { return std::isfinite(x) ? csv_number(x) : "nan"; }
 
 }  // namespace asperity::bench_text

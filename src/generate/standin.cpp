@@ -16,11 +16,7 @@ namespace asperity {
 
 namespace {
 
-std::string fmt(const char* f, double x) {
-  char b[64];
-  std::snprintf(b, sizeof b, f, x);
-  return b;
-}
+const auto fmt = scene_io::format_printf;
 
 std::string g6(double x) { return fmt("%.6g", x); }
 

@@ -21,6 +21,12 @@ std::string format_g17(double x) {
   return buf;
 }
 
+std::string format_printf(const char* format, double x) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, format, x);
+  return buf;
+}
+
 std::string format_short(double x) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.3g", x);

@@ -10,17 +10,14 @@
 #include <span>
 #include <sstream>
 
+#include "io/numbers.hpp"
 #include "observe/quadratic_fit.hpp"
 
 namespace asperity {
 
 namespace {
 
-std::string fmt(const char* f, double x) {
-  char b[64];
-  std::snprintf(b, sizeof b, f, x);
-  return b;
-}
+const auto fmt = scene_io::format_printf;
 
 // Numbers of a table cell; "–" for unknown.
 std::string cell(const char* f, double x) { return std::isnan(x) ? std::string("–") : fmt(f, x); }
