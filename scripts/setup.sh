@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
-# Installs the Debian packages asperity needs (run as root on Debian 12) and builds it.
+# Installs the Debian packages asperity needs (run as root on Debian 12; python3 runs the layer
+# check of every build, scripts/check_layers.py) and builds it.
 #   scripts/setup.sh [--deps-only]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 pkgs=(cmake g++ ninja-build libboost-dev libeigen3-dev libtbb-dev libnlopt-cxx-dev
-      libyaml-cpp-dev catch2 libcli11-dev gnuplot-nox)
+      libyaml-cpp-dev catch2 libcli11-dev gnuplot-nox python3)
 missing=()
 for p in "${pkgs[@]}"; do dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p"); done
 if [ ${#missing[@]} -gt 0 ]; then
