@@ -1,7 +1,6 @@
 #include "report/paper_figures.hpp"
 
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <sstream>
 

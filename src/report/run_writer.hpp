@@ -9,13 +9,11 @@
 // The directory is built as a hidden temporary sibling and renamed into place, so an interrupted
 // run never leaves a half-written DIR (at worst a stale `.NAME.tmp-*` sibling).
 #include <filesystem>
-#include <ostream>
 #include <string>
 #include <vector>
 
 #include "observe/observables.hpp"
 #include "observe/recorder.hpp"
-#include "observe/series_csv.hpp"  // write_series_csv (series.csv)
 #include "scene/scene.hpp"
 
 namespace asperity {
