@@ -6,7 +6,8 @@ Usage: scripts/check_layers.py [SRC_DIR] [--rules FILE] [--allow FILE]
   --rules  the layers, one per line, lowest first; folders on one line share a layer; '#'
            starts a comment (default: SRC_DIR/layers.txt)
   --allow  upward includes tolerated for now, one "FILE INCLUDED" per line, FILE relative to
-           SRC_DIR (default: SRC_DIR/layers_allowed.txt when it exists)
+           SRC_DIR (default: SRC_DIR/layers_allowed.txt when it exists); an entry that matches
+           nothing is reported as no longer needed (not an error)
 A file in folder F may include "G/x.hpp" only when G's layer is not above F's; a folder that no
 layer names is an error too. Prints every offence as 'FILE:LINE: includes G/x.hpp (layer F -> G)',
 then a count; exit status 1 when there is any, else 0.
@@ -57,7 +58,7 @@ def main(argv):
                 return 2
             allowed.add(tuple(words))
 
-    offences, tolerated, unplaced = [], [], set()
+    offences, tolerated, unplaced, used = [], [], set(), set()
     for root, dirs, files in os.walk(src):
         dirs.sort()
         for name in sorted(files):
@@ -80,11 +81,17 @@ def main(argv):
                         continue
                     line = f"{os.path.join(src, rel)}:{ln}: includes {target} (layer {folder} -> {to})"
                     key = (rel.replace(os.sep, "/"), target)
-                    (tolerated if key in allowed else offences).append(line)
+                    if key in allowed:
+                        tolerated.append(line)
+                        used.add(key)
+                    else:
+                        offences.append(line)
     for line in offences:
         print(line)
     for line in tolerated:
         print(line + f" [tolerated by {allow}]")
+    for f, inc in sorted(allowed - used):  # stale: the include is gone, so is the need
+        print(f"{allow}: '{f} {inc}' is no longer needed; delete the line")
     for folder in sorted(unplaced):
         print(f"{src}/{folder}/: folder on no layer")
     print(f"{len(offences)} upward include(s), {len(unplaced)} unplaced folder(s)"

@@ -29,6 +29,8 @@ out=$("$python" "$checker" "$tmp/src"); rc=$?
 printf 'observe/series.hpp report/other.hpp\n' > "$tmp/src/layers_allowed.txt"
 out=$("$python" "$checker" "$tmp/src"); rc=$?
 [ $rc -eq 1 ] || { echo "FAIL: an allowance for another header excused the include (exit $rc)"; exit 1; }
+echo "$out" | grep -qF "'observe/series.hpp report/other.hpp' is no longer needed" ||
+  { echo "FAIL: a stale allowance is not reported:"; echo "$out"; exit 1; }
 
 # A folder on no layer is an error too.
 rm "$tmp/src/layers_allowed.txt"
