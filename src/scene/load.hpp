@@ -37,6 +37,7 @@
 #include "scene/csv.hpp"
 #include "io/input_error.hpp"
 #include "scene/scene.hpp"
+#include "scene/typed_scene.hpp"
 
 namespace asperity {
 
@@ -64,6 +65,10 @@ YAML::Node apply_override(YAML::Node scene_tree, const std::string& dotted_key, 
 // Validates and converts a scene tree. Relative paths resolve against origin_file's folder;
 // errors name origin_file, the key, and the line when the node came from that file.
 Scene scene_from_tree(const YAML::Node& tree, const std::filesystem::path& origin_file);
+
+// scene_from_tree, kept with where each key came from, so that variants with numbers changed
+// are built and checked without the tree (typed_scene.hpp). The tree is not kept.
+TypedScene typed_scene_from_tree(const YAML::Node& tree, const std::filesystem::path& origin_file);
 
 // --- Writing --------------------------------------------------------------------------------
 // The fully resolved scene: experiment as a map {file: <absolute path>, name, description and
