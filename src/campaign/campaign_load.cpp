@@ -7,8 +7,10 @@
 #include <fstream>
 #include <sstream>
 #include <limits>
+#include <map>
 
 #include "scene/load.hpp"
+#include "scene/scene_keys.hpp"
 #include "io/numbers.hpp"
 #include "io/yaml_util.hpp"
 
@@ -188,35 +190,10 @@ struct CampaignScenes::Impl {
   std::vector<BaseScene> bases;
   bool typed_ready = false;
   std::vector<std::optional<Scene>> typed_bases;  // base scene + set, without junctions (lazy)
+  // Base scene + set + a point's values that are not numbers (e.g. another experiment file),
+  // converted once per distinct combination; nothing when that alone is not a valid scene.
+  std::map<std::string, std::optional<TypedScene>> checked;
 };
-
-namespace {
-
-// Plain numeric scene keys and their typed fields (unchecked_scene).
-struct NumberField {
-  const char* key;
-  double* (*field)(Scene&);
-};
-const NumberField kNumberFields[] = {
-    {"model.eta", [](Scene& s) { return &s.model.eta; }},
-    {"model.epsilon", [](Scene& s) { return &s.model.epsilon; }},
-    {"model.c_min", [](Scene& s) { return &s.model.c_min; }},
-    {"model.p", [](Scene& s) { return &s.model.p; }},
-    {"model.alpha_b", [](Scene& s) { return &s.model.alpha_b; }},
-    {"solver.Ct", [](Scene& s) { return &s.solver.Ct; }},
-    {"solver.tolerance", [](Scene& s) { return &s.solver.tolerance; }},
-    {"stop.time", [](Scene& s) { return &s.stop.time; }},
-    {"output.every", [](Scene& s) { return &s.output.every; }},
-    {"output.peak_min_drop", [](Scene& s) { return &s.output.peak_min_drop; }},
-    {"experiment.mass", [](Scene& s) { return &s.experiment.mass_kg; }},
-    {"experiment.k_L", [](Scene& s) { return &s.experiment.k_L; }},
-    {"experiment.v", [](Scene& s) { return &s.experiment.v; }},
-    {"experiment.E", [](Scene& s) { return &s.experiment.E; }},
-    {"experiment.nu", [](Scene& s) { return &s.experiment.nu; }},
-    {"experiment.sigma_exp", [](Scene& s) { return &s.experiment.sigma_exp; }},
-};
-
-}  // namespace
 
 // The tree of a base scene with the campaign's `set` applied; errors name the scene file (its
 // own errors) or, when `set_lines` is given, the campaign's `set` line (the override's).
@@ -351,21 +328,18 @@ Campaign load_campaign(const fs::path& yaml) {
 
   // Semantic checks against the scenes: every base scene with `set`, then every list value and
   // both end points of every space on the first base scene (unknown keys, out-of-range values).
-  const std::vector<BaseScene> bases = base_scenes(c);
-  for (const BaseScene& b : bases) base_tree(c, b, &set_lines);
-  const fs::path dir = c.file.parent_path();
-  const BaseScene& first = bases.front();
-  for (const Grid& g : c.grids)
-    for (const Axis& ax : g.axes) {
+  for (const BaseScene& b : base_scenes(c)) base_tree(c, b, &set_lines);
+  const CampaignScenes scenes(c);
+  for (std::size_t gi = 0; gi < c.grids.size(); ++gi)
+    for (const Axis& ax : c.grids[gi].axes) {
       std::vector<std::uint64_t> probe;
       if (ax.kind == Axis::Kind::list)
         for (std::uint64_t i = 0; i < ax.size(); ++i) probe.push_back(i);
       else
         probe = {0, ax.size() - 1};
       for (const std::uint64_t i : probe) {
-        const AxisValue v = ax.value(i);
         try {
-          scene_from_tree(apply_override(base_tree(c, first, nullptr), ax.key, override_value(ax.key, v, dir)), first.file);
+          scenes.scene(Point{0, gi, 0, {PointValue{&ax, ax.value(i)}}});
         } catch (const InputError& e) {
           rethrow_at(e, display, ax.line, ax.key);
         }
@@ -382,9 +356,44 @@ CampaignScenes::~CampaignScenes() = default;
 CampaignScenes::CampaignScenes(CampaignScenes&&) noexcept = default;
 
 Scene CampaignScenes::scene(const Point& point) const {
-  const BaseScene& b = impl_->bases.at(point.scene);
-  const fs::path dir = impl_->campaign->file.parent_path();
-  YAML::Node tree = base_tree(*impl_->campaign, b, nullptr);  // this point's own tree
+  Impl& im = *impl_;
+  const BaseScene& b = im.bases.at(point.scene);
+  const fs::path dir = im.campaign->file.parent_path();
+  // Numbers are set on a typed scene; the other values (paths, names) select which typed scene.
+  std::vector<const PointValue*> other;
+  std::vector<NumberSetting> numbers;
+  bool typed = true;
+  for (const PointValue& pv : point.values) {
+    const SceneKey* k = find_scene_key(pv.axis->key);
+    if (pv.value.is_number && TypedScene::settable(k, pv.value.number)) {
+      numbers.push_back({k, pv.value.number});
+      continue;
+    }
+    // A later value above an earlier number's key (experiment after experiment.mass) replaces it.
+    for (const NumberSetting& n : numbers)
+      if (std::string(n.key->name).rfind(pv.axis->key + ".", 0) == 0) typed = false;
+    other.push_back(&pv);
+  }
+  if (typed) {
+    std::string id = std::to_string(point.scene);
+    for (const PointValue* pv : other) id += "\n" + pv->axis->key + "=" + pv->value.text;
+    auto it = im.checked.find(id);
+    if (it == im.checked.end()) {
+      if (im.checked.size() >= 64) im.checked.clear();  // bounded: each holds its junctions
+      std::optional<TypedScene> t;
+      try {
+        YAML::Node tree = base_tree(*im.campaign, b, nullptr);
+        for (const PointValue* pv : other)
+          tree.reset(apply_override(tree, pv->axis->key, override_value(pv->axis->key, pv->value, dir)));
+        t.emplace(typed_scene_from_tree(tree, b.file));
+      } catch (const InputError&) {
+        // Reported point by point below (the point's numbers may also make it valid).
+      }
+      it = im.checked.emplace(id, std::move(t)).first;
+    }
+    if (it->second) return it->second->with(numbers);
+  }
+  YAML::Node tree = base_tree(*im.campaign, b, nullptr);  // this point's own tree
   for (const PointValue& pv : point.values)
     tree.reset(apply_override(tree, pv.axis->key, override_value(pv.axis->key, pv.value, dir)));
   return scene_from_tree(tree, b.file);
@@ -411,27 +420,15 @@ std::optional<Scene> CampaignScenes::unchecked_scene(const Point& point) const {
   Scene s = *base;
   for (const PointValue& pv : point.values) {
     if (!pv.value.is_number) return std::nullopt;
-    const NumberField* f = nullptr;
-    for (const NumberField& n : kNumberFields)
-      if (pv.axis->key == n.key) f = &n;
-    if (!f) return std::nullopt;
-    *f->field(s) = pv.value.number;
+    const SceneKey* k = find_scene_key(pv.axis->key);
+    if (!k || k->kind != KeyKind::number) return std::nullopt;
+    k->set(s, pv.value.number);
   }
   return s;
 }
 
 std::string CampaignScenes::value_text(const Scene& scene, const std::string& key) {
-  YAML::Node n = YAML::Load(scene_to_yaml(scene));
-  std::size_t start = 0;
-  while (true) {
-    const std::size_t dot = key.find('.', start);
-    const std::string part = key.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
-    if (!n.IsMap() || !n[part]) return "";
-    n = n[part];
-    if (dot == std::string::npos) break;
-    start = dot + 1;
-  }
-  return n.IsScalar() ? n.Scalar() : "";
+  return scene_value_text(scene, key);
 }
 
 }  // namespace asperity

@@ -38,10 +38,12 @@ namespace asperity {
 
 Campaign load_campaign(const std::filesystem::path& yaml);
 
-// Builds the scene of each point of a loaded campaign (base scene tree + set + the point's axis
-// values). Each point gets a tree of its own, parsed from the base scene's text (read once), so
-// its cost does not grow with the points built before it. Not thread-safe (unchecked_scene fills
-// a cache on first use): use from one thread at a time.
+// Builds the scene of each point of a loaded campaign (base scene + set + the point's axis
+// values). The base scene with set and with the point's non-numeric values (another experiment
+// file, a solver method) is loaded once per distinct combination; the point's numbers are set
+// on its typed fields (typed_scene.hpp) and checked like the loader would. When that combination
+// alone is not a valid scene, the point gets a tree of its own, parsed from the base scene's text
+// (read once). Not thread-safe (both fill caches on first use): use from one thread at a time.
 class CampaignScenes {
  public:
   explicit CampaignScenes(const Campaign& campaign);
