@@ -23,7 +23,8 @@
 // junctions (CSV path relative to the experiment file), optional measured (CSV), optional
 // description (free text). Numbers are plain SI numbers ("1.6e6", never "1.6 MPa").
 //
-// Bounds that keep every run finite (each refused with file:line: key): solver.tolerance ≥ 1e-14;
+// Keys, units and ranges: scene_keys.hpp (one table). Bounds that keep every run finite (each
+// refused with file:line: key; the cross-key ones in validate.hpp, also for typed variants): solver.tolerance ≥ 1e-14;
 // stop.time/output.every ≤ 1e6 samples; model.eta·stop.time ≤ 1e6; ≤ 1e6 slider periods
 // 2π sqrt(M/(k_L+K0)) in stop.time; ≤ 1e9 reference steps; solver.Ct ≥ 1; model.p ≤ 10; junction
 // areas in [1e-20, 1] m²; every junction keeps ≥ 1e-6 of its area at its first slip. Input files
