@@ -15,7 +15,9 @@ const std::array<double, n_robust>& robust_targets() {
 }
 
 std::array<double, n_robust> robust_values(const Observables& o) {
-  return {o.Q_s, o.A_s, o.t_peak, o.alpha, o.ss_drop, o.ss_period};
+  std::array<double, n_robust> v{};
+  for (std::size_t i = 0; i < n_robust; ++i) v[i] = observable_field(robust_names()[i]).value(o);
+  return v;
 }
 
 std::array<double, n_robust> relative_errors(const Observables& run, const Observables& converged) {

@@ -4,8 +4,6 @@
 
 #include <cmath>
 #include <cstdlib>
-#include <fstream>
-#include <sstream>
 #include <limits>
 
 #include "scene/load.hpp"
@@ -27,17 +25,6 @@ int line_of(const YAML::Node& n) {
   if (!n.IsDefined()) return 0;
   const YAML::Mark m = n.Mark();
   return m.is_null() ? 0 : m.line + 1;
-}
-
-// Values naming files (the experiment) are relative to the campaign file; the scene loader
-// resolves them against the base scene, so they are handed over as absolute paths.
-bool is_path_key(const std::string& key) { return key == "experiment" || key == "experiment.file"; }
-
-YAML::Node override_value(const std::string& key, const AxisValue& v, const fs::path& campaign_dir) {
-  if (v.is_number) return YAML::Node(format_double(v.number));
-  if (v.is_yaml) return YAML::Load(v.text);
-  if (is_path_key(key)) return YAML::Node(fs::absolute(campaign_dir / v.text).lexically_normal().string());
-  return YAML::Node(v.text);
 }
 
 // The (key node, value node) pairs of a map whose keys are free (dotted scene keys), with the
@@ -156,101 +143,7 @@ Grid parse_grid(const Source& src, const MapView& m, const std::string& name) {
   return g;
 }
 
-// A scene tree error caused by an override, re-reported at the campaign line that set it.
-[[noreturn]] void rethrow_at(const InputError& e, const std::string& campaign_file, int line, const std::string& key) {
-  std::string msg = e.message;
-  if (!e.key.empty() && e.key != key) msg = e.key + ": " + msg;
-  throw InputError(campaign_file, line, key, msg + " (on " + e.file + ")");
-}
-
-// A base scene: its file's text, read once and checked by the loader, parsed again for every
-// point. A fresh tree per point, because yaml-cpp merges the memory of every tree a node is
-// copied into with the tree it came from: points built from one shared base tree made that
-// base's memory grow with each point built, and each copy cost O(points built so far).
-struct BaseScene {
-  fs::path file;
-  std::string text;
-};
-
-YAML::Node parse_base(const BaseScene& b) {
-  try {
-    return YAML::Load(b.text);  // the text passed load_scene_tree's checks when it was read
-  } catch (const YAML::Exception& e) {
-    throw InputError(b.file.lexically_normal().string(), e.mark.is_null() ? 0 : e.mark.line + 1, "",
-                     "malformed YAML: " + e.msg);
-  }
-}
-
 }  // namespace
-
-struct CampaignScenes::Impl {
-  const Campaign* campaign = nullptr;
-  std::vector<BaseScene> bases;
-  bool typed_ready = false;
-  std::vector<std::optional<Scene>> typed_bases;  // base scene + set, without junctions (lazy)
-};
-
-namespace {
-
-// Plain numeric scene keys and their typed fields (unchecked_scene).
-struct NumberField {
-  const char* key;
-  double* (*field)(Scene&);
-};
-const NumberField kNumberFields[] = {
-    {"model.eta", [](Scene& s) { return &s.model.eta; }},
-    {"model.epsilon", [](Scene& s) { return &s.model.epsilon; }},
-    {"model.c_min", [](Scene& s) { return &s.model.c_min; }},
-    {"model.p", [](Scene& s) { return &s.model.p; }},
-    {"model.alpha_b", [](Scene& s) { return &s.model.alpha_b; }},
-    {"solver.Ct", [](Scene& s) { return &s.solver.Ct; }},
-    {"solver.tolerance", [](Scene& s) { return &s.solver.tolerance; }},
-    {"stop.time", [](Scene& s) { return &s.stop.time; }},
-    {"output.every", [](Scene& s) { return &s.output.every; }},
-    {"output.peak_min_drop", [](Scene& s) { return &s.output.peak_min_drop; }},
-    {"experiment.mass", [](Scene& s) { return &s.experiment.mass_kg; }},
-    {"experiment.k_L", [](Scene& s) { return &s.experiment.k_L; }},
-    {"experiment.v", [](Scene& s) { return &s.experiment.v; }},
-    {"experiment.E", [](Scene& s) { return &s.experiment.E; }},
-    {"experiment.nu", [](Scene& s) { return &s.experiment.nu; }},
-    {"experiment.sigma_exp", [](Scene& s) { return &s.experiment.sigma_exp; }},
-};
-
-}  // namespace
-
-// The tree of a base scene with the campaign's `set` applied; errors name the scene file (its
-// own errors) or, when `set_lines` is given, the campaign's `set` line (the override's).
-static YAML::Node base_tree(const Campaign& c, const BaseScene& b, const std::vector<int>* set_lines) {
-  const fs::path dir = c.file.parent_path();
-  YAML::Node tree = parse_base(b);
-  if (set_lines) scene_from_tree(tree, b.file);  // the base scene alone: its own errors first
-  for (std::size_t i = 0; i < c.set.size(); ++i) {
-    const auto& [key, v] = c.set[i];
-    try {
-      tree.reset(apply_override(tree, key, override_value(key, v, dir)));
-      if (set_lines) scene_from_tree(tree, b.file);
-    } catch (const InputError& e) {
-      if (!set_lines) throw;
-      rethrow_at(e, c.file.lexically_normal().string(), (*set_lines)[i], "set." + key);
-    }
-  }
-  return tree;
-}
-
-// Reads each base scene once (the loader's checks: a regular file, no control characters, one
-// document).
-static std::vector<BaseScene> base_scenes(const Campaign& c) {
-  std::vector<BaseScene> out;
-  for (const fs::path& p : c.scenes) {
-    load_scene_tree(p);
-    std::ifstream in(p, std::ios::binary);
-    std::ostringstream text;
-    text << in.rdbuf();
-    if (!in) throw InputError(p.lexically_normal().string(), 0, "", "cannot read file");
-    out.push_back({p, text.str()});
-  }
-  return out;
-}
 
 Campaign load_campaign(const fs::path& yaml) {
   const std::string display = yaml.lexically_normal().string();
@@ -351,87 +244,24 @@ Campaign load_campaign(const fs::path& yaml) {
 
   // Semantic checks against the scenes: every base scene with `set`, then every list value and
   // both end points of every space on the first base scene (unknown keys, out-of-range values).
-  const std::vector<BaseScene> bases = base_scenes(c);
-  for (const BaseScene& b : bases) base_tree(c, b, &set_lines);
-  const fs::path dir = c.file.parent_path();
-  const BaseScene& first = bases.front();
-  for (const Grid& g : c.grids)
-    for (const Axis& ax : g.axes) {
+  check_base_scenes(c, set_lines);
+  const CampaignScenes scenes(c);
+  for (std::size_t gi = 0; gi < c.grids.size(); ++gi)
+    for (const Axis& ax : c.grids[gi].axes) {
       std::vector<std::uint64_t> probe;
       if (ax.kind == Axis::Kind::list)
         for (std::uint64_t i = 0; i < ax.size(); ++i) probe.push_back(i);
       else
         probe = {0, ax.size() - 1};
       for (const std::uint64_t i : probe) {
-        const AxisValue v = ax.value(i);
         try {
-          scene_from_tree(apply_override(base_tree(c, first, nullptr), ax.key, override_value(ax.key, v, dir)), first.file);
+          scenes.scene(Point{0, gi, 0, {PointValue{&ax, ax.value(i)}}});
         } catch (const InputError& e) {
-          rethrow_at(e, display, ax.line, ax.key);
+          rethrow_at_campaign_line(e, display, ax.line, ax.key);
         }
       }
     }
   return c;
-}
-
-CampaignScenes::CampaignScenes(const Campaign& campaign) : impl_(std::make_unique<Impl>()) {
-  impl_->campaign = &campaign;
-  impl_->bases = base_scenes(campaign);
-}
-CampaignScenes::~CampaignScenes() = default;
-CampaignScenes::CampaignScenes(CampaignScenes&&) noexcept = default;
-
-Scene CampaignScenes::scene(const Point& point) const {
-  const BaseScene& b = impl_->bases.at(point.scene);
-  const fs::path dir = impl_->campaign->file.parent_path();
-  YAML::Node tree = base_tree(*impl_->campaign, b, nullptr);  // this point's own tree
-  for (const PointValue& pv : point.values)
-    tree.reset(apply_override(tree, pv.axis->key, override_value(pv.axis->key, pv.value, dir)));
-  return scene_from_tree(tree, b.file);
-}
-
-std::optional<Scene> CampaignScenes::unchecked_scene(const Point& point) const {
-  Impl& im = *impl_;
-  if (!im.typed_ready) {
-    for (const BaseScene& b : im.bases) {
-      std::optional<Scene> s;
-      try {
-        s = scene_from_tree(base_tree(*im.campaign, b, nullptr), b.file);
-        s->experiment.junctions = {};  // the hash names the data by its files' bytes
-        s->experiment.measured.reset();
-      } catch (const std::exception&) {
-        s.reset();  // scene() reports it, point by point
-      }
-      im.typed_bases.push_back(std::move(s));
-    }
-    im.typed_ready = true;
-  }
-  const std::optional<Scene>& base = im.typed_bases.at(point.scene);
-  if (!base) return std::nullopt;
-  Scene s = *base;
-  for (const PointValue& pv : point.values) {
-    if (!pv.value.is_number) return std::nullopt;
-    const NumberField* f = nullptr;
-    for (const NumberField& n : kNumberFields)
-      if (pv.axis->key == n.key) f = &n;
-    if (!f) return std::nullopt;
-    *f->field(s) = pv.value.number;
-  }
-  return s;
-}
-
-std::string CampaignScenes::value_text(const Scene& scene, const std::string& key) {
-  YAML::Node n = YAML::Load(scene_to_yaml(scene));
-  std::size_t start = 0;
-  while (true) {
-    const std::size_t dot = key.find('.', start);
-    const std::string part = key.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
-    if (!n.IsMap() || !n[part]) return "";
-    n = n[part];
-    if (dot == std::string::npos) break;
-    start = dot + 1;
-  }
-  return n.IsScalar() ? n.Scalar() : "";
 }
 
 }  // namespace asperity

@@ -31,41 +31,12 @@
 #include <string>
 
 #include "campaign/campaign.hpp"
+#include "campaign/campaign_scenes.hpp"
 #include "io/input_error.hpp"
 #include "scene/scene.hpp"
 
 namespace asperity {
 
 Campaign load_campaign(const std::filesystem::path& yaml);
-
-// Builds the scene of each point of a loaded campaign (base scene tree + set + the point's axis
-// values). Each point gets a tree of its own, parsed from the base scene's text (read once), so
-// its cost does not grow with the points built before it. Not thread-safe (unchecked_scene fills
-// a cache on first use): use from one thread at a time.
-class CampaignScenes {
- public:
-  explicit CampaignScenes(const Campaign& campaign);
-  ~CampaignScenes();
-  CampaignScenes(CampaignScenes&&) noexcept;
-
-  // Throws InputError when the point's combination of values is not a valid scene.
-  Scene scene(const Point& point) const;
-
-  // The point's scene for recognising stored points cheaply, or nothing: built on the typed
-  // fields of its base scene (loaded once) when every axis of the point is a plain number key
-  // (model.eta, experiment.mass, ...), without reading its experiment again and without the
-  // loader's checks, and without junctions and measured curve (their files are still named).
-  // Never run it: a point whose hash it matches was stored from a checked scene of that very
-  // text; any other point is built by scene().
-  std::optional<Scene> unchecked_scene(const Point& point) const;
-
-  // The text of a scalar scene value (`model.eta` → "100", exact) of a resolved scene; empty
-  // when `key` names a map (e.g. experiment) or nothing.
-  static std::string value_text(const Scene& scene, const std::string& key);
-
- private:
-  struct Impl;
-  std::unique_ptr<Impl> impl_;
-};
 
 }  // namespace asperity

@@ -40,23 +40,6 @@ std::string num(double x) {
   return scene_io::format_double(x);
 }
 
-// The observable columns of a row, in header order.
-struct Column {
-  const char* name;
-  std::string (*text)(const Observables&);
-};
-#define D(f) Column{#f, [](const Observables& o) { return num(o.f); }}
-#define I(f) Column{#f, [](const Observables& o) { return std::to_string(o.f); }}
-const Column kColumns[] = {
-    I(N), D(A0), D(K0), D(T0), D(dt), D(Q_s), D(A_s), D(t_peak),
-    Column{"peak_found", [](const Observables& o) { return std::string(o.peak_found ? "true" : "false"); }},
-    D(alpha), D(alpha_R2), I(alpha_points), D(shape_exponent), D(shape_prefactor), D(area_drop_fraction),
-    D(alpha_measured), D(alpha_measured_R2), D(shape_exponent_measured), I(ss_cycles), D(ss_drop),
-    D(ss_period), I(n_peaks), D(max_f_over_sigmaA), D(max_f_over_sigma_exp_A), D(t_end), I(steps),
-    I(rejected), I(force_evals), I(slips), I(repins)};
-#undef D
-#undef I
-
 struct Job {
   Point point;
   std::optional<Scene> scene;
@@ -193,7 +176,8 @@ std::string store_header(const Campaign& c) {
   std::string h = "index,hash,grid,experiment";
   for (const std::string& k : c.varied_keys()) h.append(",").append(csv_field(k));
   h += ",status,error";
-  for (const Column& col : kColumns) h += std::string(",") + col.name;
+  for (const ObservableField& f : observable_fields())
+    if (f.per_point) h += std::string(",") + f.name;
   return h + ",wall_s";
 }
 
@@ -343,7 +327,8 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
                       csv_field(job->scene ? job->scene->experiment.name : "");
     for (const std::string& v : job->varied) row.append(",").append(csv_field(v));
     row += job->failed ? ",failed," + csv_field(job->error) : ",ok,";
-    for (const Column& col : kColumns) row.append(",").append(r && !job->failed ? col.text(r->obs) : std::string());
+    for (const ObservableField& f : observable_fields())
+      if (f.per_point) row.append(",").append(r && !job->failed ? observable_text(f, r->obs, num) : std::string());
     row += "," + num(wall);
     job->row = std::move(row);
     job->scene.reset();  // free the junctions before the job waits for the writer

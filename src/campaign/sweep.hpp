@@ -6,8 +6,9 @@
 //   1. serial: next point of the shard → canonical hash of its scene; points already in the
 //      journal with the same hash are skipped. A stored point is first tried with the typed
 //      scene (CampaignScenes::unchecked_scene: no file read, no YAML), so a no-op resume costs
-//      microseconds per point; otherwise the checked scene is built (yaml-cpp, one tree per
-//      point) and the data files' bytes are hashed once per file per sweep;
+//      microseconds per point; otherwise the checked scene is built (typed fields set on a base
+//      scene loaded once, CampaignScenes::scene) and the data files' bytes are hashed once per
+//      file per sweep;
 //   2. parallel: simulate (one model instance per point; threads pick up the next point as soon
 //      as they are free, so uneven run times balance); OpenMP is set to 1 thread in here: the
 //      cores are already busy with points, and an OpenMP team per point would oversubscribe them

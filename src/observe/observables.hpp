@@ -4,6 +4,8 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <string>
+#include <vector>
 
 #include "observe/recorder.hpp"
 #include "scene/scene.hpp"
@@ -51,6 +53,31 @@ struct Observables {
   std::int64_t steps = 0, rejected = 0, force_evals = 0, slips = 0, repins = 0;
   double wall_s = nan;    // s, wall-clock time of the integration
 };
+
+// The fields of Observables in one table, in the order every writer lists them (summary.yaml,
+// a sweep store's points.csv, fitted.csv, the bench output). Each writer picks its number format.
+enum class ObservableKind {
+  real,   // a double (NaN when not found)
+  count,  // a whole number
+  flag,   // true / false
+  label,  // a name (peak_rule)
+};
+
+struct ObservableField {
+  const char* name;
+  const char* unit;  // SI unit; "" when dimensionless or not a number
+  ObservableKind kind;
+  double (*value)(const Observables&);        // real, count (exact below 2^53), flag (0/1)
+  const char* (*label)(const Observables&);  // label only
+  bool per_point;   // a column of a sweep store's points.csv (peak_rule and wall_s are not)
+};
+
+const std::vector<ObservableField>& observable_fields();
+const ObservableField& observable_field(const std::string& name);  // std::invalid_argument if none
+
+// The field's value as text: reals through `real`, counts as integers, flags as true/false,
+// labels as their name.
+std::string observable_text(const ObservableField& f, const Observables& o, std::string (*real)(double));
 
 // ss_cycles_max: how many stick-slip cycles to average (default 5).
 Observables summarize(const Scene& scene, const RunInfo& info, const Recorder& rec, double wall_s,

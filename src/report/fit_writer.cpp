@@ -301,6 +301,11 @@ std::string fit_yaml(const FitSpec& spec, const FitResult& result) {
 
 void check_fit_dir(const fs::path& dir) { check_replaceable(dir); }  // names the folder as given
 
+// The observables of fitted.csv: (column, observable_fields() name).
+const std::pair<const char*, const char*> kFittedObservables[] = {
+    {"alpha", "alpha"}, {"alpha_measured", "alpha_measured"}, {"Q_s_N", "Q_s"}, {"area_drop_fraction", "area_drop_fraction"},
+    {"shape_exponent", "shape_exponent"}, {"shape_exponent_measured", "shape_exponent_measured"}};
+
 void write_fit(const fs::path& dir, const FitSpec& spec, const FitResult& result) {
   write_dir_atomically(dir, check_replaceable, [&](const fs::path& tmp) {
     const bool plots = gnuplot_available();
@@ -310,7 +315,9 @@ void write_fit(const fs::path& dir, const FitSpec& spec, const FitResult& result
     std::ostringstream c;
     c << "fit,experiment,stand_in,mass_kg,P_N";
     for (const auto& p : spec.parameters) c << "," << csv_field(p.key) << "," << csv_field(p.key + "_min") << "," << csv_field(p.key + "_max");
-    c << ",objective,term,alpha,alpha_measured,Q_s_N,area_drop_fraction,shape_exponent,shape_exponent_measured,evaluations,wall_s,stop_reason,status\n";
+    c << ",objective,term";
+    for (const auto& [column, field] : kFittedObservables) c << "," << column;
+    c << ",evaluations,wall_s,stop_reason,status\n";
     std::vector<std::vector<double>> first;  // (P, value, low, high) of the first parameter, for fitted.png
     for (const auto& o : result.fits) {
       const std::vector<Range> ranges = error_bar_ranges(o);
@@ -328,9 +335,9 @@ void write_fit(const fs::path& dir, const FitSpec& spec, const FitResult& result
             first.push_back({r.mass_kg * kGravity, v.value, std::isnan(v.min) ? v.value : v.min,
                              std::isnan(v.max) ? v.value : v.max});
         }
-        c << "," << format_g17(o.objective) << "," << format_g17(r.residual) << "," << format_g17(r.obs.alpha) << ","
-          << format_g17(r.obs.alpha_measured) << "," << format_g17(r.obs.Q_s) << "," << format_g17(r.obs.area_drop_fraction) << ","
-          << format_g17(r.obs.shape_exponent) << "," << format_g17(r.obs.shape_exponent_measured) << "," << o.evaluations << ","
+        c << "," << format_g17(o.objective) << "," << format_g17(r.residual);
+        for (const auto& [column, field] : kFittedObservables) c << "," << format_g17(observable_field(field).value(r.obs));
+        c << "," << o.evaluations << ","
           << format_g17(o.wall_s) << "," << o.stop_reason << "," << (o.ok() ? "ok" : "failed") << "\n";
       }
     }

@@ -58,7 +58,6 @@ std::string yaml_double(double x) {
 std::string summary_yaml(const Scene& scene, const Observables& o, const std::vector<Peak>& peaks) {
   std::ostringstream y;
   auto d = [&](const char* key, double v) { y << key << ": " << yaml_double(v) << '\n'; };
-  auto i = [&](const char* key, long long v) { y << key << ": " << v << '\n'; };
   y << kSummaryHeader << '\n';
   y << "asperity_version: " << yaml_quoted(ASPERITY_VERSION) << '\n';
   y << "scene_file: " << yaml_quoted(scene.file.string()) << '\n';
@@ -66,38 +65,11 @@ std::string summary_yaml(const Scene& scene, const Observables& o, const std::ve
   y << "method: " << method_name(scene.solver.method) << '\n';
   d("Ct", scene.solver.Ct);
   d("tolerance", scene.solver.tolerance);
-  i("N", static_cast<long long>(o.N));
-  d("A0", o.A0);
-  d("K0", o.K0);
-  d("T0", o.T0);
-  d("dt", o.dt);
-  d("Q_s", o.Q_s);
-  d("A_s", o.A_s);
-  d("t_peak", o.t_peak);
-  y << "peak_found: " << (o.peak_found ? "true" : "false") << '\n';
-  y << "peak_rule: " << to_string(o.peak_rule) << "  # how the first peak was found (README: The static friction peak)\n";
-  d("alpha", o.alpha);
-  d("alpha_R2", o.alpha_R2);
-  i("alpha_points", static_cast<long long>(o.alpha_points));
-  d("shape_exponent", o.shape_exponent);
-  d("shape_prefactor", o.shape_prefactor);
-  d("area_drop_fraction", o.area_drop_fraction);
-  d("alpha_measured", o.alpha_measured);
-  d("alpha_measured_R2", o.alpha_measured_R2);
-  d("shape_exponent_measured", o.shape_exponent_measured);
-  i("ss_cycles", o.ss_cycles);
-  d("ss_drop", o.ss_drop);
-  d("ss_period", o.ss_period);
-  i("n_peaks", static_cast<long long>(o.n_peaks));
-  d("max_f_over_sigmaA", o.max_f_over_sigmaA);
-  d("max_f_over_sigma_exp_A", o.max_f_over_sigma_exp_A);
-  d("t_end", o.t_end);
-  i("steps", o.steps);
-  i("rejected", o.rejected);
-  i("force_evals", o.force_evals);
-  i("slips", o.slips);
-  i("repins", o.repins);
-  d("wall_s", o.wall_s);
+  for (const ObservableField& f : observable_fields()) {
+    y << f.name << ": " << observable_text(f, o, yaml_double);
+    if (f.kind == ObservableKind::label) y << "  # how the first peak was found (README: The static friction peak)";
+    y << '\n';
+  }
   // Confirmed peaks of Q and the trough after each (the stick-slip cycles).
   if (peaks.empty()) {
     y << "peaks: []\n";

@@ -3,11 +3,16 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <map>
 #include <optional>
+#include <stdexcept>
 #include <system_error>
 
 #include "io/numbers.hpp"
 #include "io/yaml_util.hpp"
+#include "scene/override.hpp"
+#include "scene/scene_keys.hpp"
+#include "scene/validate.hpp"
 
 namespace asperity {
 
@@ -38,24 +43,21 @@ std::string InputError::format(const std::string& file, int line, int column, co
 
 namespace {
 
-const std::vector<std::string> kSceneKeys{"experiment", "model", "solver", "stop", "output"};
-const std::vector<std::string> kExperimentKeys{"name", "description", "mass", "k_L", "v", "E",
-                                               "nu", "sigma_exp", "junctions", "measured"};
-const std::vector<std::string> kExperimentMapKeys{"file", "name", "description", "mass", "k_L",
-                                                  "v", "E", "nu", "sigma_exp"};
-const std::vector<std::string> kModelKeys{"eta", "epsilon", "c_min", "p", "alpha_b", "junction_shape", "area_law"};
-const std::vector<std::string> kSolverKeys{"method", "Ct", "tolerance"};
-const std::vector<std::string> kStopKeys{"time", "at_first_peak", "cycles", "wall_time", "max_slips"};
-const std::vector<std::string> kOutputKeys{"every", "series", "peak_min_drop"};
+// Keys a section may hold: the key table's (scene_keys.hpp), in its order.
+std::vector<std::string> leaves(const std::string& section) {
+  std::vector<std::string> out;
+  for (const SceneKey& k : scene_keys())
+    if (k.section() == section) out.push_back(k.leaf());
+  return out;
+}
 
-// Limits that keep every run finite in time and memory (see check_resources).
-constexpr double kMinTolerance = 1e-14;  // ≈ 45 machine epsilons
-constexpr double kMaxSamples = 1e6;      // samples of one run (1e6: 0.3 GB resident, 0.1 GB of series.csv)
-constexpr double kMaxEtaTime = 1e6;      // η · stop.time: ≤ ~3·10^5 steps forced by damping
-constexpr double kMaxPeriods = 1e6;     // slider oscillations in stop.time (≥ 2·10^7 event steps)
-constexpr double kMaxReferenceSteps = 1e9;  // steps of the reference solver
-constexpr double kMaxP = 10;             // model.p
-constexpr double kMinSlipAreaFraction = 1e-6;  // A_s/A0 at a junction's first slip
+const std::vector<std::string> kSceneKeys{"experiment", "model", "solver", "stop", "output"};
+const std::vector<std::string> kExperimentMapKeys = leaves("experiment");
+const std::vector<std::string> kExperimentKeys = [] {  // the experiment file's: its data, not the path
+  std::vector<std::string> k(kExperimentMapKeys.begin() + 1, kExperimentMapKeys.end());
+  k.insert(k.end(), {"junctions", "measured"});
+  return k;
+}();
 
 std::string display_path(const fs::path& p) { return p.lexically_normal().string(); }
 
@@ -65,10 +67,9 @@ fs::path resolved(const fs::path& p) {
   return ec ? fs::absolute(p).lexically_normal() : r;
 }
 
-// "must be RANGE, got X" (and " (WHY)" when given: the reason for a limit that is not obvious).
-void check(bool ok, const MapView& v, const YAML::Node& n, const std::string& k, const std::string& range, double x,
-           const std::string& why = "") {
-  if (!ok) v.fail_at(n, k, "must be " + range + ", got " + format_double(x) + (why.empty() ? "" : " (" + why + ")"));
+// "must be RANGE, got X (WHY)" when x is outside the key's range.
+void check(const SceneKey& key, double x, const MapView& v, const YAML::Node& n, const std::string& k) {
+  if (!key.allowed(x)) v.fail_at(n, k, out_of_range_message(key, x));
 }
 
 // A file named by `k` (value node n, read by view v), relative to base_dir; must be a regular
@@ -112,7 +113,8 @@ Experiment load_experiment_impl(const fs::path& path, const std::string& display
     return std::make_pair(p, p.view->number(p.node, k, unit));
   };
 
-  Experiment e;
+  Scene holder;  // the key table sets fields of a Scene
+  Experiment& e = holder.experiment;
   e.file = resolved(path);
   {
     const Pick p = required("name");
@@ -123,28 +125,13 @@ Experiment load_experiment_impl(const fs::path& path, const std::string& display
   }
   if (const Pick p = pick("description")) e.description = p.view->string(p.node, "description");
 
-  struct Positive {
-    const char* key;
-    const char* unit;
-    double Experiment::*field;
-  };
-  for (const Positive& q : {Positive{"mass", "kg", &Experiment::mass_kg}, Positive{"k_L", "N/m", &Experiment::k_L},
-                            Positive{"v", "m/s", &Experiment::v}, Positive{"E", "Pa", &Experiment::E}}) {
-    const auto [p, x] = number(q.key, q.unit);
-    check(x > 0, *p.view, p.node, q.key, "> 0", x);
-    e.*q.field = x;
+  for (const SceneKey& k : scene_keys()) {
+    if (k.kind != KeyKind::number || k.section() != "experiment") continue;
+    const std::string leaf = k.leaf();
+    const auto [p, x] = number(leaf, k.unit);
+    check(k, x, *p.view, p.node, leaf);
+    k.set(holder, x);
   }
-  {
-    const auto [p, x] = number("nu", nullptr);
-    check(x > -1 && x <= 0.5, *p.view, p.node, "nu", "in (-1, 0.5]", x);
-    e.nu = x;
-  }
-  {
-    const auto [p, x] = number("sigma_exp", "Pa");
-    check(x > 0, *p.view, p.node, "sigma_exp", "> 0", x);
-    e.sigma_exp = x;
-  }
-
   const fs::path base = path.parent_path();
   {
     const YAML::Node n = f.require("junctions");
@@ -157,93 +144,67 @@ Experiment load_experiment_impl(const fs::path& path, const std::string& display
     e.measured_file = resolved(csv);
     e.measured = scene_io::read_measured_csv(csv, display_path(csv));
   }
-  return e;
+  return std::move(e);
 }
 
-// Checks across keys, once every value is known: the work a scene asks for must be bounded.
-// Each error names the key the user set (the first of the pair that was given).
-void check_resources(const Scene& s, const MapView& model, const MapView& stop, const MapView& output,
-                     const MapView& solver) {
-  auto blame = [](const MapView& a, const char* ka, const MapView& b, const char* kb) {
-    if (auto n = a.find(ka)) return std::make_pair(&a, std::make_pair(std::string(ka), *n));
-    if (auto n = b.find(kb)) return std::make_pair(&b, std::make_pair(std::string(kb), *n));
-    return std::make_pair(&a, std::make_pair(std::string(ka), YAML::Node(YAML::NodeType::Null)));
-  };
-  // Samples are kept in memory (56 bytes each, twice while on the loading branch).
-  const double intervals = s.stop.time / s.output.every;
-  if (!(intervals <= kMaxSamples * (1 + 1e-12))) {
-    const auto [v, kn] = blame(output, "every", stop, "time");
-    v->fail_at(kn.second, kn.first,
-               "too many samples: stop.time / output.every = " + format_short(intervals) + ", more than the " +
-                   format_short(kMaxSamples) + " a run may record (output.every must be >= stop.time * 1e-6 = " +
-                   format_short(s.stop.time / kMaxSamples) + " s)");
+// Where the values of a tree's model, solver, stop and output keys come from (validate.hpp).
+class TreeOrigins final : public KeyOrigins {
+ public:
+  explicit TreeOrigins(const std::vector<MapView>& sections) : sections_(sections) {}
+  bool given(const std::string& dotted) const override { return node(dotted).has_value(); }
+  bool overridden(const std::string& dotted) const override {
+    const auto n = node(dotted);
+    return n && n->Mark().is_null();
   }
-  // Damping rate η forces explicit steps shorter than ~3/η on both solvers (the reference's
-  // is unstable beyond η dt = 2; the event solver's Dormand–Prince stability limit is 3.3/η).
-  const double eta_time = s.model.eta * s.stop.time;
-  if (!(eta_time <= kMaxEtaTime)) {
-    const auto [v, kn] = blame(model, "eta", stop, "time");
-    v->fail_at(kn.second, kn.first,
-               "too strong damping: eta * stop.time = " + format_short(eta_time) + " is more than " + format_short(kMaxEtaTime) +
-                   ": damping that strong needs explicit steps shorter than ~3/eta, i.e. over " +
-                   format_short(eta_time / 3.3) + " steps (the slider is overdamped long before: eta = " +
-                   format_double(s.model.eta) + " 1/s, stop.time = " + format_double(s.stop.time) + " s)");
+  [[noreturn]] void fail(const std::string& dotted, const std::string& message) const override {
+    const auto n = node(dotted);
+    view(dotted).fail_at(n ? *n : YAML::Node(YAML::NodeType::Null), leaf(dotted), message);
   }
-  // Time scales: the slider oscillates at ω = sqrt((k_L + K0)/M) with K0 = Σ k_i(A0) =
-  // E κ(1) Σ ℓ0_i (κ(1) = 1/((1+ν)(1−ν/2)) for both shapes); every solver needs several steps
-  // per period (the event solver ~20, the reference C_t per T0 = 2π/sqrt(K0/M)).
-  double sum_l0 = 0;
-  for (const double a : s.experiment.junctions.area_m2) sum_l0 += initial_diameter(a);
-  const double K0 = s.experiment.E * sum_l0 / ((1.0 + s.experiment.nu) * (1.0 - 0.5 * s.experiment.nu));
-  const double M = s.experiment.mass_kg;
-  const double periods = s.stop.time * std::sqrt((s.experiment.k_L + K0) / M) / (2.0 * M_PI);
-  if (!(periods <= kMaxPeriods)) {
-    const auto [v, kn] = blame(stop, "time", stop, "time");
-    v->fail_at(kn.second, kn.first,
-               "too many slider oscillations: " + format_short(periods) + " periods of 2 pi sqrt(M/(k_L + K0)) in " +
-                   format_double(s.stop.time) + " s, more than " + format_short(kMaxPeriods) + " (mass = " +
-                   format_double(M) + " kg, k_L = " + format_double(s.experiment.k_L) + " N/m, K0 = " + format_short(K0) +
-                   " N/m)");
+
+ private:
+  static std::string leaf(const std::string& dotted) { return dotted.substr(dotted.find('.') + 1); }
+  const MapView& view(const std::string& dotted) const {
+    for (const MapView& v : sections_)
+      if (dotted.compare(0, v.path().size() + 1, v.path() + ".") == 0) return v;
+    throw std::logic_error("no section for " + dotted);
   }
-  if (s.solver.method == SolverMethod::reference && K0 > 0) {
-    const double steps = s.stop.time * s.solver.Ct / (2.0 * M_PI * std::sqrt(M / K0));
-    if (!(steps <= kMaxReferenceSteps)) {
-      const auto [v, kn] = blame(solver, "Ct", stop, "time");
-      v->fail_at(kn.second, kn.first,
-                 "too many reference steps: stop.time * Ct / T0 = " + format_short(steps) + ", more than " +
-                     format_short(kMaxReferenceSteps) + " (dt = T0/Ct = " + format_short(2.0 * M_PI * std::sqrt(M / K0) / s.solver.Ct) +
-                     " s)");
+  std::optional<YAML::Node> node(const std::string& dotted) const { return view(dotted).find(leaf(dotted)); }
+  const std::vector<MapView>& sections_;
+};
+
+// A key of the table that is not a plain number, read from its node.
+void read_other(const MapView& m, const YAML::Node& n, const SceneKey& key, Scene& s) {
+  const std::string k = key.leaf();
+  const std::string name = key.name;
+  if (name == "model.junction_shape")
+    s.model.junction_shape =
+        m.enumeration<JunctionShape>(n, k, {{"elliptic", JunctionShape::elliptic}, {"circular", JunctionShape::circular}});
+  else if (name == "model.area_law")
+    s.model.area_law = m.enumeration<AreaLaw>(n, k, {{"until_first_slip", AreaLaw::until_first_slip}, {"always", AreaLaw::always}});
+  else if (name == "solver.method")
+    s.solver.method = m.enumeration<SolverMethod>(n, k, {{"reference", SolverMethod::reference}, {"event", SolverMethod::event}});
+  else if (name == "stop.at_first_peak")
+    s.stop.at_first_peak = m.boolean(n, k);
+  else if (name == "stop.cycles") {
+    s.stop.cycles = m.integer(n, k);
+    if (s.stop.cycles != -1 && s.stop.cycles < 1)
+      m.fail_at(n, k, "must be -1 (never) or >= 1, got " + std::to_string(s.stop.cycles));
+  } else if (name == "output.series") {
+    auto& series = s.output.series;
+    series = m.string_list(n, k);
+    const auto& all = all_series();
+    for (std::size_t i = 0; i < series.size(); ++i) {
+      const std::string& id = series[i];
+      const YAML::Node item = n[i];
+      const YAML::Node at = item.Mark().is_null() ? n : item;
+      if (std::find(all.begin(), all.end(), id) == all.end())
+        m.fail_at(at, k, "unknown series " + quote(id) + did_you_mean(id, all) + "; valid: " + join(all));
+      if (std::find(series.begin(), series.begin() + static_cast<std::ptrdiff_t>(i), id) !=
+          series.begin() + static_cast<std::ptrdiff_t>(i))
+        m.fail_at(at, k, "series " + quote(id) + " listed twice");
     }
-  }
-}
-
-// The area law A = A0 − α_b f²/A0^p is used between A0 and the area at the first slip,
-// A_s = A0 (1 − φ_s²). If a junction would lose all but a tiny part of its area before it
-// slips, the law is far outside any measured range, 1 − φ_s² is lost to rounding (and is 0 in
-// double beyond β ~ 1e15, where the solvers divide by zero), and its slip distance is tiny.
-void check_area_law_domain(const Scene& s, const MapView& model) {
-  if (s.model.alpha_b == 0 || s.experiment.junctions.size() == 0) return;
-  const ContactLaw law = make_contact_law(s.experiment, s.model);
-  const auto [lo, hi] = std::minmax_element(s.experiment.junctions.area_m2.begin(), s.experiment.junctions.area_m2.end());
-  for (const double A0 : {*lo, *hi}) {  // φ_s is monotonic in A0
-    const double phi = law.slip_phi(A0);
-    const double kept = 1.0 - phi * phi;
-    if (kept >= kMinSlipAreaFraction) continue;
-    // Blame a model key the user gave: one set by --set or a sweep (no file mark) first.
-    std::string key;
-    for (const char* k : {"p", "alpha_b", "epsilon"})
-      if (auto n = model.find(k); n && key.empty() && n->Mark().is_null()) key = k;
-    for (const char* k : {"p", "alpha_b", "epsilon"})
-      if (key.empty() && model.find(k)) key = k;
-    const auto n = key.empty() ? std::nullopt : model.find(key);
-    const std::string msg =
-        "junctions of " + format_short(A0) + " m^2 would keep only " + (kept > 0 ? format_short(kept) : "nothing") +
-        " of their area at their first slip (A = A0 - alpha_b f^2/A0^p with p = " + format_double(s.model.p) +
-        ", alpha_b = " + format_double(s.model.alpha_b) + ", sigma = sigma_exp/epsilon = " + format_short(law.sigma) +
-        " Pa; at least " + format_short(kMinSlipAreaFraction) + " is needed for the law to be meaningful)";
-    if (n) model.fail_at(*n, key, msg);
-    // Neither key set in the scene: the experiment (areas, sigma_exp) is what is out of range.
-    throw InputError(s.experiment.junctions_file.string(), 0, "area_m2", msg);
+  } else {
+    throw std::logic_error("scene key without a reader: " + name);
   }
 }
 
@@ -280,169 +241,26 @@ Scene scene_from_tree_impl(const YAML::Node& tree, const fs::path& origin, const
     s.experiment = load_experiment_impl(p, display_path(p), ov ? &*ov : nullptr);
   }
 
-  const MapView model_view(src, section(root, "model"), "model", kModelKeys);
-  {
-    const MapView& m = model_view;
-    auto& x = s.model;
-    if (auto n = m.find("eta")) {
-      x.eta = m.number(*n, "eta", "1/s");
-      check(x.eta >= 0, m, *n, "eta", ">= 0", x.eta);
-    }
-    if (auto n = m.find("epsilon")) {
-      x.epsilon = m.number(*n, "epsilon", nullptr);
-      check(x.epsilon > 0 && x.epsilon <= 1, m, *n, "epsilon", "in (0, 1]", x.epsilon);
-    }
-    if (auto n = m.find("c_min")) {
-      x.c_min = m.number(*n, "c_min", nullptr);
-      check(x.c_min > 0 && x.c_min < 1, m, *n, "c_min", "in (0, 1)", x.c_min);
-    }
-    if (auto n = m.find("p")) {
-      x.p = m.number(*n, "p", nullptr);
-      check(x.p >= 0 && x.p <= kMaxP, m, *n, "p", "in [0, 10]", x.p,
-            "A0^(p+1) must stay a normal double for areas in [1e-20, 1] m^2");
-    }
-    if (auto n = m.find("alpha_b")) {
-      x.alpha_b = m.number(*n, "alpha_b", "m^(2p+2)/N^2");
-      check(x.alpha_b >= 0, m, *n, "alpha_b", ">= 0", x.alpha_b);
-    }
-    if (auto n = m.find("junction_shape"))
-      x.junction_shape = m.enumeration<JunctionShape>(*n, "junction_shape",
-                                       {{"elliptic", JunctionShape::elliptic}, {"circular", JunctionShape::circular}});
-    if (auto n = m.find("area_law"))
-      x.area_law = m.enumeration<AreaLaw>(*n, "area_law", {{"until_first_slip", AreaLaw::until_first_slip}, {"always", AreaLaw::always}});
-  }
-  const MapView solver_view(src, section(root, "solver"), "solver", kSolverKeys);
-  {
-    const MapView& m = solver_view;
-    auto& x = s.solver;
-    if (auto n = m.find("method"))
-      x.method = m.enumeration<SolverMethod>(*n, "method", {{"reference", SolverMethod::reference}, {"event", SolverMethod::event}});
-    if (auto n = m.find("Ct")) {
-      x.Ct = m.number(*n, "Ct", nullptr);
-      check(x.Ct >= 1, m, *n, "Ct", ">= 1", x.Ct, "reference steps per T0; fewer is unstable for any scene");
-    }
-    if (auto n = m.find("tolerance")) {
-      x.tolerance = m.number(*n, "tolerance", nullptr);
-      check(x.tolerance >= kMinTolerance && x.tolerance <= 0.1, m, *n, "tolerance", "in [1e-14, 0.1]", x.tolerance,
-            "relative error per step; below ~50 machine epsilons the error control only chases rounding and "
-            "the steps shrink without bound");
-    }
-  }
-  const MapView stop_view(src, section(root, "stop"), "stop", kStopKeys);
-  {
-    const MapView& m = stop_view;
-    auto& x = s.stop;
-    if (auto n = m.find("time")) {
-      x.time = m.number(*n, "time", "s");
-      check(x.time > 0, m, *n, "time", "> 0", x.time);
-    }
-    if (auto n = m.find("at_first_peak")) x.at_first_peak = m.boolean(*n, "at_first_peak");
-    if (auto n = m.find("cycles")) {
-      x.cycles = m.integer(*n, "cycles");
-      if (x.cycles != -1 && x.cycles < 1)
-        m.fail_at(*n, "cycles", "must be -1 (never) or >= 1, got " + std::to_string(x.cycles));
-    }
-    if (auto n = m.find("wall_time")) {
-      x.wall_time = m.number(*n, "wall_time", "s");
-      check(x.wall_time > 0, m, *n, "wall_time", "> 0", x.wall_time, "seconds of wall-clock time for one run");
-    }
-    if (auto n = m.find("max_slips")) {
-      const double k = m.number(*n, "max_slips", nullptr);
-      check(k >= 1 && k <= 1e18 && k == std::floor(k), m, *n, "max_slips", "a whole number in [1, 1e18]", k);
-      x.max_slips = static_cast<std::int64_t>(k);
-    }
-  }
-  const MapView output_view(src, section(root, "output"), "output", kOutputKeys);
-  {
-    const MapView& m = output_view;
-    auto& x = s.output;
-    if (auto n = m.find("every")) {
-      x.every = m.number(*n, "every", "s");
-      check(x.every > 0, m, *n, "every", "> 0", x.every);
-    }
-    if (auto n = m.find("series")) {
-      x.series = m.string_list(*n, "series");
-      const auto& all = all_series();
-      for (std::size_t i = 0; i < x.series.size(); ++i) {
-        const std::string& name = x.series[i];
-        const YAML::Node item = (*n)[i];
-        const YAML::Node at = item.Mark().is_null() ? *n : item;
-        if (std::find(all.begin(), all.end(), name) == all.end())
-          m.fail_at(at, "series", "unknown series " + quote(name) + did_you_mean(name, all) + "; valid: " + join(all));
-        if (std::find(x.series.begin(), x.series.begin() + static_cast<std::ptrdiff_t>(i), name) !=
-            x.series.begin() + static_cast<std::ptrdiff_t>(i))
-          m.fail_at(at, "series", "series " + quote(name) + " listed twice");
+  // model, solver, stop, output: every key of the table, in its order (the first bad one is reported).
+  std::vector<MapView> views;
+  views.reserve(4);
+  for (const char* sec : {"model", "solver", "stop", "output"}) {
+    const MapView& m = views.emplace_back(src, section(root, sec), sec, leaves(sec));  // checks its keys first
+    for (const SceneKey& k : scene_keys()) {
+      if (k.section() != m.path()) continue;
+      const auto n = m.find(k.leaf());
+      if (!n) continue;
+      if (k.kind != KeyKind::number) {
+        read_other(m, *n, k, s);
+        continue;
       }
-    }
-    if (auto n = m.find("peak_min_drop")) {
-      x.peak_min_drop = m.number(*n, "peak_min_drop", nullptr);
-      check(x.peak_min_drop > 0 && x.peak_min_drop < 1, m, *n, "peak_min_drop", "in (0, 1)", x.peak_min_drop);
+      const double x = m.number(*n, k.leaf(), k.unit);
+      check(k, x, m, *n, k.leaf());
+      k.set(s, x);
     }
   }
-  check_resources(s, model_view, stop_view, output_view, solver_view);
-  check_area_law_domain(s, model_view);
+  validate_scene(s, TreeOrigins(views));
   return s;
-}
-
-std::vector<std::string> split_key(const std::string& dotted, const std::string& where) {
-  std::vector<std::string> parts;
-  std::size_t start = 0;
-  while (true) {
-    const std::size_t dot = dotted.find('.', start);
-    parts.push_back(dotted.substr(start, dot == std::string::npos ? std::string::npos : dot - start));
-    const std::string& p = parts.back();
-    const bool ok = !p.empty() && std::all_of(p.begin(), p.end(), [](char c) {
-      return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
-    });
-    if (!ok)
-      throw InputError(where, 0, dotted, "malformed key (expected names joined by dots, e.g. model.eta)");
-    if (dot == std::string::npos) break;
-    start = dot + 1;
-  }
-  return parts;
-}
-
-// Path copy: a new map for every level along `parts`, sharing all other nodes (and their Marks).
-YAML::Node set_path(const YAML::Node& node, const std::vector<std::string>& parts, std::size_t i,
-                    const YAML::Node& value, const std::string& where, const std::string& dotted) {
-  const std::string here = [&] {
-    std::string s;
-    for (std::size_t j = 0; j < i; ++j) s += (j ? "." : "") + parts[j];
-    return s;
-  }();
-  YAML::Node cur = node;
-  if (cur.IsDefined() && cur.IsScalar() && here == "experiment") {  // path → {file: path}
-    YAML::Node m(YAML::NodeType::Map);
-    m[YAML::Node("file")] = cur;
-    cur.reset(m);  // rebind: `cur = m` would turn the caller's (shared) node into the map
-  }
-  if (cur.IsDefined() && !cur.IsNull() && !cur.IsMap())
-    throw InputError(where, 0, dotted, "cannot set " + dotted + ": " + (here.empty() ? "the scene" : here) +
-                                           " is " + node_kind(cur) + ", not a map");
-  auto child_value = [&](const YAML::Node& old) {
-    return i + 1 == parts.size() ? value : set_path(old, parts, i + 1, value, where, dotted);
-  };
-  YAML::Node out(YAML::NodeType::Map);
-  bool replaced = false;
-  if (cur.IsDefined() && cur.IsMap()) {
-    for (auto it = cur.begin(); it != cur.end(); ++it) {
-      if (!replaced && it->first.IsScalar() && it->first.Scalar() == parts[i]) {
-        out[it->first] = child_value(it->second);  // keeps the original key node (and its line)
-        replaced = true;
-      } else {
-        out[it->first] = it->second;
-      }
-    }
-  }
-  if (!replaced) out[YAML::Node(parts[i])] = child_value(YAML::Node(YAML::NodeType::Null));
-  return out;
-}
-
-YAML::Node apply_override_impl(const YAML::Node& tree, const std::string& dotted, const YAML::Node& value,
-                               const std::string& where) {
-  const std::vector<std::string> parts = split_key(dotted, where);
-  if (!value.IsDefined()) throw InputError(where, 0, dotted, "undefined value");
-  return set_path(tree, parts, 0, strip_marks(value), where, dotted);
 }
 
 }  // namespace
@@ -456,12 +274,24 @@ Experiment load_experiment(const fs::path& yaml, const YAML::Node* overrides) {
 
 YAML::Node load_scene_tree(const fs::path& yaml) { return load_yaml_file(yaml, display_path(yaml)); }
 
-YAML::Node apply_override(YAML::Node scene_tree, const std::string& dotted_key, const YAML::Node& value) {
-  return apply_override_impl(scene_tree, dotted_key, value, "override " + dotted_key);
-}
-
 Scene scene_from_tree(const YAML::Node& tree, const fs::path& origin_file) {
   return scene_from_tree_impl(tree, origin_file, display_path(origin_file), nullptr);
+}
+
+TypedScene typed_scene_from_tree(const YAML::Node& tree, const fs::path& origin_file) {
+  Scene s = scene_from_tree(tree, origin_file);
+  // The line of each key's value (of its key when the value is empty), as MapView::fail_at names it.
+  auto line_of = [](const YAML::Node& n) { return n.IsDefined() && !n.Mark().is_null() ? n.Mark().line + 1 : 0; };
+  std::map<std::string, int> lines;
+  for (const char* sec : {"experiment", "model", "solver", "stop", "output"}) {
+    const YAML::Node n = tree[sec];
+    if (!n.IsDefined() || !n.IsMap()) continue;
+    for (auto it = n.begin(); it != n.end(); ++it)
+      if (it->first.IsScalar())
+        lines[std::string(sec) + "." + it->first.Scalar()] =
+            it->second.IsDefined() && !it->second.IsNull() ? line_of(it->second) : line_of(it->first);
+  }
+  return TypedScene(std::move(s), display_path(origin_file), std::move(lines));
 }
 
 Scene load_scene(const fs::path& yaml, const std::vector<std::string>& overrides) {
@@ -475,7 +305,7 @@ Scene load_scene(const fs::path& yaml, const std::vector<std::string>& overrides
     const std::string key(trim(std::string_view(o).substr(0, eq)));
     const YAML::Node value = load_yaml_text(o.substr(eq + 1), where, key);
     if (value.IsNull()) throw InputError(where, 0, key, "missing value after '=' (write \"\" for empty text)");
-    tree = apply_override_impl(tree, key, value, where);
+    tree = apply_override_at(tree, key, value, where);
     sets.push_back({key, where});
   }
   return scene_from_tree_impl(tree, yaml, display, &sets);

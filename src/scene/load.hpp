@@ -23,7 +23,8 @@
 // junctions (CSV path relative to the experiment file), optional measured (CSV), optional
 // description (free text). Numbers are plain SI numbers ("1.6e6", never "1.6 MPa").
 //
-// Bounds that keep every run finite (each refused with file:line: key): solver.tolerance ≥ 1e-14;
+// Keys, units and ranges: scene_keys.hpp (one table). Bounds that keep every run finite (each
+// refused with file:line: key; the cross-key ones in validate.hpp, also for typed variants): solver.tolerance ≥ 1e-14;
 // stop.time/output.every ≤ 1e6 samples; model.eta·stop.time ≤ 1e6; ≤ 1e6 slider periods
 // 2π sqrt(M/(k_L+K0)) in stop.time; ≤ 1e9 reference steps; solver.Ct ≥ 1; model.p ≤ 10; junction
 // areas in [1e-20, 1] m²; every junction keeps ≥ 1e-6 of its area at its first slip. Input files
@@ -37,6 +38,7 @@
 #include "scene/csv.hpp"
 #include "io/input_error.hpp"
 #include "scene/scene.hpp"
+#include "scene/typed_scene.hpp"
 
 namespace asperity {
 
@@ -64,6 +66,10 @@ YAML::Node apply_override(YAML::Node scene_tree, const std::string& dotted_key, 
 // Validates and converts a scene tree. Relative paths resolve against origin_file's folder;
 // errors name origin_file, the key, and the line when the node came from that file.
 Scene scene_from_tree(const YAML::Node& tree, const std::filesystem::path& origin_file);
+
+// scene_from_tree, kept with where each key came from, so that variants with numbers changed
+// are built and checked without the tree (typed_scene.hpp). The tree is not kept.
+TypedScene typed_scene_from_tree(const YAML::Node& tree, const std::filesystem::path& origin_file);
 
 // --- Writing --------------------------------------------------------------------------------
 // The fully resolved scene: experiment as a map {file: <absolute path>, name, description and

@@ -1,6 +1,7 @@
 #pragma once
-// A scene file kept as a parsed tree, from which variants with some numeric values changed are
-// built (fits, error-bar refits). Hides YAML from the code that builds variants.
+// A scene file loaded once, from which variants with some numeric values changed are built
+// (fits, error-bar refits): typed fields set on the loaded scene (typed_scene.hpp), no text and
+// no file read per variant. Hides YAML from the code that builds variants.
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -8,15 +9,9 @@
 #include <vector>
 
 #include "scene/scene.hpp"
+#include "scene/scene_keys.hpp"  // numeric_scene_keys, scene_value
 
 namespace asperity {
-
-// Dotted scene keys holding one number that a fit may vary (experiment.mass, model.alpha_b, ...).
-const std::vector<std::string>& numeric_scene_keys();
-
-// The value of a numeric scene key in `scene` (std::invalid_argument for a key not listed by
-// numeric_scene_keys()).
-double scene_value(const Scene& scene, const std::string& key);
 
 struct SceneSetting {  // one numeric value given to a scene key
   std::string key;
@@ -31,8 +26,9 @@ class SceneTemplate {
                             const std::vector<std::pair<std::string, std::string>>& fixed = {});
 
   // The validated scene with `settings` applied (InputError when a value is invalid for the
-  // scene, e.g. model.epsilon = 1.2). Safe to call from several threads: calls on one template
-  // are serialised (the tree is shared); different templates run in parallel.
+  // scene, e.g. model.epsilon = 1.2). Safe to call from several threads. When the scene with
+  // only the fixed settings is itself invalid (a setting may repair it) or a value is not
+  // finite, the variant is built from the parsed tree instead (calls then serialised).
   Scene build(const std::vector<SceneSetting>& settings = {}) const;
 
   const std::filesystem::path& file() const;

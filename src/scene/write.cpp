@@ -1,9 +1,13 @@
 // Scene and experiment files as text: fixed key order, shortest round-trip numbers,
 // double-quoted strings; deterministic bytes.
+#include <algorithm>
 #include <cmath>
+#include <initializer_list>
+#include <string_view>
 #include <stdexcept>
 
 #include "scene/load.hpp"
+#include "scene/scene_keys.hpp"
 #include "io/numbers.hpp"
 
 namespace asperity {
@@ -34,66 +38,37 @@ std::string yaml_quoted(const std::string& s) {
 
 namespace {
 
-
 std::string num(double x) {
   if (!std::isfinite(x)) throw std::invalid_argument("cannot write a non-finite number to a scene file");
   return scene_io::format_double(x);
 }
 
-const char* name_of(JunctionShape s) { return s == JunctionShape::circular ? "circular" : "elliptic"; }
-const char* name_of(AreaLaw a) { return a == AreaLaw::always ? "always" : "until_first_slip"; }
-const char* name_of(SolverMethod m) { return m == SolverMethod::reference ? "reference" : "event"; }
+// The rows of the key table whose section is one of `sections`, as "section:\n  leaf: value\n".
+std::string sections_yaml(const Scene& s, std::initializer_list<std::string_view> sections) {
+  std::string y, open;
+  for (const SceneKey& k : scene_keys()) {
+    const std::string sec = k.section();
+    if (std::find(sections.begin(), sections.end(), sec) == sections.end()) continue;
+    if (k.written && !k.written(s)) continue;
+    if (sec != open) y += sec + ":\n", open = sec;
+    const std::string text = k.text(s);
+    y += "  " + k.leaf() + ": " + (k.kind == KeyKind::text ? yaml_quoted(text) : text) + "\n";
+  }
+  return y;
+}
 
 }  // namespace
 
 std::string model_solver_yaml(const ModelSettings& m, const SolverSettings& solver) {
-  std::string y;
-  y += "model:\n";
-  y += "  eta: " + num(m.eta) + "\n";
-  y += "  epsilon: " + num(m.epsilon) + "\n";
-  y += "  c_min: " + num(m.c_min) + "\n";
-  y += "  p: " + num(m.p) + "\n";
-  y += "  alpha_b: " + num(m.alpha_b) + "\n";
-  y += std::string("  junction_shape: ") + name_of(m.junction_shape) + "\n";
-  y += std::string("  area_law: ") + name_of(m.area_law) + "\n";
-  y += "solver:\n";
-  y += std::string("  method: ") + name_of(solver.method) + "\n";
-  y += "  Ct: " + num(solver.Ct) + "\n";
-  y += "  tolerance: " + num(solver.tolerance) + "\n";
-  return y;
+  Scene s;
+  s.model = m;
+  s.solver = solver;
+  return sections_yaml(s, {"model", "solver"});
 }
 
 std::string scene_to_yaml(const Scene& s) {
-  const Experiment& e = s.experiment;
-  const std::string file = e.file.empty() ? std::string() : std::filesystem::absolute(e.file).lexically_normal().string();
-  std::string y;
-  y += "# asperity scene, fully resolved: every value explicit, numbers round-trip exactly\n";
-  y += "experiment:\n";
-  y += "  file: " + yaml_quoted(file) + "\n";
-  y += "  name: " + yaml_quoted(e.name) + "\n";
-  y += "  description: " + yaml_quoted(e.description) + "\n";
-  y += "  mass: " + num(e.mass_kg) + "\n";
-  y += "  k_L: " + num(e.k_L) + "\n";
-  y += "  v: " + num(e.v) + "\n";
-  y += "  E: " + num(e.E) + "\n";
-  y += "  nu: " + num(e.nu) + "\n";
-  y += "  sigma_exp: " + num(e.sigma_exp) + "\n";
-  y += model_solver_yaml(s.model, s.solver);
-  y += "stop:\n";
-  y += "  time: " + num(s.stop.time) + "\n";
-  y += std::string("  at_first_peak: ") + (s.stop.at_first_peak ? "true" : "false") + "\n";
-  y += "  cycles: " + std::to_string(s.stop.cycles) + "\n";
-  // Limits only when set: a default one leaves the text (and so the sweep store's scene hash)
-  // as it was before the keys existed.
-  if (s.stop.wall_time != StopSettings{}.wall_time) y += "  wall_time: " + num(s.stop.wall_time) + "\n";
-  if (s.stop.max_slips != 0) y += "  max_slips: " + std::to_string(s.stop.max_slips) + "\n";
-  y += "output:\n";
-  y += "  every: " + num(s.output.every) + "\n";
-  y += "  series: [";
-  for (std::size_t i = 0; i < s.output.series.size(); ++i) y += (i ? ", " : "") + s.output.series[i];
-  y += "]\n";
-  y += "  peak_min_drop: " + num(s.output.peak_min_drop) + "\n";
-  return y;
+  return "# asperity scene, fully resolved: every value explicit, numbers round-trip exactly\n" +
+         sections_yaml(s, {"experiment", "model", "solver", "stop", "output"});
 }
 
 std::string experiment_to_yaml(const Experiment& e, const std::string& junctions_rel, const std::string& measured_rel) {

@@ -1,0 +1,149 @@
+#include "scene/scene_keys.hpp"
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "io/numbers.hpp"
+#include "scene/load.hpp"
+
+namespace asperity {
+
+namespace {
+
+constexpr double kRequired = std::numeric_limits<double>::quiet_NaN();
+
+std::string num(double x) {
+  if (!std::isfinite(x)) throw std::invalid_argument("cannot write a non-finite number to a scene file");
+  return scene_io::format_double(x);
+}
+
+const char* name_of(JunctionShape s) { return s == JunctionShape::circular ? "circular" : "elliptic"; }
+const char* name_of(AreaLaw a) { return a == AreaLaw::always ? "always" : "until_first_slip"; }
+const char* name_of(SolverMethod m) { return m == SolverMethod::reference ? "reference" : "event"; }
+
+// A number row: FIELD is an lvalue expression of `s`.
+#define NUMBER(NAME, UNIT, RANGE, CHECK, WHY, DEFAULT, FIT, FIELD)                          \
+  SceneKey {                                                                                 \
+    NAME, KeyKind::number, UNIT, RANGE, [](double x) { return CHECK; }, WHY, DEFAULT, FIT,   \
+        [](const Scene& s) { return static_cast<double>(FIELD); },                           \
+        [](Scene& s, double x) { FIELD = x; }, [](const Scene& s) { return num(FIELD); }, nullptr \
+  }
+// Any other row: TEXT is a std::string expression of `s`.
+#define OTHER(NAME, KIND, TEXT)                                                          \
+  SceneKey {                                                                             \
+    NAME, KIND, nullptr, nullptr, nullptr, "", kRequired, false, nullptr, nullptr,       \
+        [](const Scene& s) { return std::string(TEXT); }, nullptr                        \
+  }
+
+std::vector<SceneKey> make_table() {
+  std::vector<SceneKey> t{
+      OTHER("experiment.file", KeyKind::text,
+            s.experiment.file.empty() ? std::string()
+                                      : std::filesystem::absolute(s.experiment.file).lexically_normal().string()),
+      OTHER("experiment.name", KeyKind::text, s.experiment.name),
+      OTHER("experiment.description", KeyKind::text, s.experiment.description),
+      NUMBER("experiment.mass", "kg", "> 0", x > 0, "", kRequired, true, s.experiment.mass_kg),
+      NUMBER("experiment.k_L", "N/m", "> 0", x > 0, "", kRequired, true, s.experiment.k_L),
+      NUMBER("experiment.v", "m/s", "> 0", x > 0, "", kRequired, true, s.experiment.v),
+      NUMBER("experiment.E", "Pa", "> 0", x > 0, "", kRequired, true, s.experiment.E),
+      NUMBER("experiment.nu", nullptr, "in (-1, 0.5]", x > -1 && x <= 0.5, "", kRequired, true, s.experiment.nu),
+      NUMBER("experiment.sigma_exp", "Pa", "> 0", x > 0, "", kRequired, true, s.experiment.sigma_exp),
+      NUMBER("model.eta", "1/s", ">= 0", x >= 0, "", 100.0, true, s.model.eta),
+      NUMBER("model.epsilon", nullptr, "in (0, 1]", x > 0 && x <= 1, "", 0.90, true, s.model.epsilon),
+      NUMBER("model.c_min", nullptr, "in (0, 1)", x > 0 && x < 1, "", 0.01, true, s.model.c_min),
+      NUMBER("model.p", nullptr, "in [0, 10]", x >= 0 && x <= 10,
+             "A0^(p+1) must stay a normal double for areas in [1e-20, 1] m^2", 1.5, true, s.model.p),
+      NUMBER("model.alpha_b", "m^(2p+2)/N^2", ">= 0", x >= 0, "", 0.725e-15, true, s.model.alpha_b),
+      OTHER("model.junction_shape", KeyKind::choice, name_of(s.model.junction_shape)),
+      OTHER("model.area_law", KeyKind::choice, name_of(s.model.area_law)),
+      OTHER("solver.method", KeyKind::choice, name_of(s.solver.method)),
+      NUMBER("solver.Ct", nullptr, ">= 1", x >= 1, "reference steps per T0; fewer is unstable for any scene", 1e4,
+             false, s.solver.Ct),
+      NUMBER("solver.tolerance", nullptr, "in [1e-14, 0.1]", x >= 1e-14 && x <= 0.1,
+             "relative error per step; below ~50 machine epsilons the error control only chases rounding and "
+             "the steps shrink without bound",
+             1e-9, false, s.solver.tolerance),
+      NUMBER("stop.time", "s", "> 0", x > 0, "", 1.0, false, s.stop.time),
+      OTHER("stop.at_first_peak", KeyKind::boolean, s.stop.at_first_peak ? "true" : "false"),
+      OTHER("stop.cycles", KeyKind::integer, std::to_string(s.stop.cycles)),
+      NUMBER("stop.wall_time", "s", "> 0", x > 0, "seconds of wall-clock time for one run", 3600.0, false,
+             s.stop.wall_time),
+      NUMBER("stop.max_slips", nullptr, "a whole number in [1, 1e18]", x >= 1 && x <= 1e18 && x == std::floor(x), "",
+             0.0, false, s.stop.max_slips),
+      NUMBER("output.every", "s", "> 0", x > 0, "", 1e-3, false, s.output.every),
+      OTHER("output.series", KeyKind::list, [&] {
+        std::string y = "[";
+        for (std::size_t i = 0; i < s.output.series.size(); ++i) y += (i ? ", " : "") + s.output.series[i];
+        return y + "]";
+      }()),
+      NUMBER("output.peak_min_drop", nullptr, "in (0, 1)", x > 0 && x < 1, "", 0.02, false, s.output.peak_min_drop),
+  };
+  for (SceneKey& k : t) {
+    const std::string n = k.name;
+    // Limits only when set: a default one leaves the text (and so the sweep store's scene hash)
+    // as it was before the keys existed.
+    if (n == "stop.wall_time") k.written = [](const Scene& s) { return s.stop.wall_time != StopSettings{}.wall_time; };
+    if (n == "stop.max_slips") {
+      k.set = [](Scene& s, double x) { s.stop.max_slips = static_cast<std::int64_t>(x); };
+      k.text = [](const Scene& s) { return std::to_string(s.stop.max_slips); };
+      k.written = [](const Scene& s) { return s.stop.max_slips != 0; };
+    }
+  }
+  return t;
+}
+
+#undef NUMBER
+#undef OTHER
+
+}  // namespace
+
+std::string SceneKey::leaf() const {
+  const std::string n = name;
+  return n.substr(n.find('.') + 1);
+}
+
+std::string SceneKey::section() const {
+  const std::string n = name;
+  return n.substr(0, n.find('.'));
+}
+
+const std::vector<SceneKey>& scene_keys() {
+  static const std::vector<SceneKey> table = make_table();
+  return table;
+}
+
+const SceneKey* find_scene_key(std::string_view dotted) {
+  for (const SceneKey& k : scene_keys())
+    if (dotted == k.name) return &k;
+  return nullptr;
+}
+
+const std::vector<std::string>& numeric_scene_keys() {
+  static const std::vector<std::string> keys = [] {
+    std::vector<std::string> out;
+    for (const SceneKey& k : scene_keys())
+      if (k.fittable) out.emplace_back(k.name);
+    return out;
+  }();
+  return keys;
+}
+
+double scene_value(const Scene& scene, const std::string& key) {
+  const SceneKey* k = find_scene_key(key);
+  if (!k || !k->fittable) throw std::invalid_argument("not a numeric scene key: " + key);
+  return k->get(scene);
+}
+
+std::string out_of_range_message(const SceneKey& key, double x) {
+  const std::string why = key.why ? key.why : "";
+  return "must be " + std::string(key.range) + ", got " + scene_io::format_double(x) + (why.empty() ? "" : " (" + why + ")");
+}
+
+std::string scene_value_text(const Scene& scene, const std::string& key) {
+  const SceneKey* k = find_scene_key(key);
+  if (!k || k->kind == KeyKind::list || (k->written && !k->written(scene))) return "";
+  return k->text(scene);
+}
+
+}  // namespace asperity
