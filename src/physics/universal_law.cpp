@@ -3,7 +3,11 @@
 #include <boost/math/interpolators/cardinal_cubic_b_spline.hpp>
 #include <boost/math/tools/roots.hpp>
 #include <cmath>
+#include <map>
+#include <memory>
+#include <mutex>
 #include <stdexcept>
+#include <tuple>
 #include <vector>
 
 namespace asperity {
@@ -69,6 +73,29 @@ UniversalForceLaw::UniversalForceLaw(double nu, JunctionShape shape, double psi_
       return;
     }
   }
+}
+
+double universal_table_range(double psi_max) {
+  if (!(psi_max > 0) || !std::isfinite(psi_max)) throw std::invalid_argument("universal_table_range: psi_max must be finite and > 0");
+  int e = 0;
+  const double m = std::frexp(psi_max, &e);  // psi_max = m 2^e, m ∈ [0.5, 1)
+  const double up = m == 0.5 ? psi_max : std::ldexp(1.0, e);
+  return std::max(up, std::ldexp(1.0, -10));
+}
+
+const UniversalForceLaw& universal_force_law(double nu, JunctionShape shape, double psi_max) {
+  const double range = universal_table_range(psi_max);
+  // The one piece of process-wide state: a memo of a pure function. Entries are built once,
+  // never modified, never removed (std::map keeps their addresses), and keyed by exactly what
+  // determines them, so a caller cannot observe whether a table was built now or before. Few
+  // keys occur (one per ν, shape and power of two). Built under the lock: concurrent first
+  // callers wait for one build instead of all building.
+  static std::mutex mutex;
+  static std::map<std::tuple<double, JunctionShape, double>, std::unique_ptr<const UniversalForceLaw>> tables;
+  const std::lock_guard<std::mutex> lock(mutex);
+  auto& slot = tables[{nu, shape, range}];
+  if (!slot) slot = std::make_unique<const UniversalForceLaw>(nu, shape, range);
+  return *slot;
 }
 
 }  // namespace asperity

@@ -13,13 +13,19 @@
 
 namespace asperity {
 
+// ψ(φ) = φ / κ(1 − φ²): the dimensionless displacement of a never-slipped junction carrying
+// the dimensionless force φ (explicit and increasing on [0, 1)).
+inline double universal_psi(double phi, double nu, JunctionShape shape) {
+  return phi / stiffness_factor(1.0 - phi * phi, nu, shape);
+}
+
 class UniversalForceLaw {
  public:
   // Tabulates g on ψ ∈ [0, psi_max], refining until the relative interpolation error,
   // checked against the exact inverse between the nodes, is below rel_tol.
   UniversalForceLaw(double nu, JunctionShape shape, double psi_max, double rel_tol = 1e-13);
 
-  double psi_of_phi(double phi) const { return phi / stiffness_factor(1.0 - phi * phi, nu_, shape_); }
+  double psi_of_phi(double phi) const { return universal_psi(phi, nu_, shape_); }
   double phi_of_psi_exact(double psi) const;  // root solve (Boost.Math TOMS 748)
   // g(ψ) = κ(A/A0): from the table inside its range, exactly beyond it.
   double g(double psi) const {
@@ -64,5 +70,17 @@ class UniversalForceLaw {
   // same piecewise cubic, evaluated in a few ns in the solver's innermost loop.
   std::vector<std::array<double, 4>> coef_;
 };
+
+// The process-wide table for (ν, shape) covering ψ ∈ [0, psi_max]: built on first use, then
+// shared, immutable, by every run of the process (a build costs milliseconds, a short run less).
+// Its range is psi_max rounded up to a power of two, at least 2^-10 (a table over a tiny range
+// comes out of the spline fit wrong by orders of magnitude, while g is as smooth on [0, 1e-3]),
+// so that runs whose ranges differ slightly share one table. The table a run uses depends only
+// on its own (ν, shape, psi_max), never on which runs came before, so results stay reproducible.
+// Thread-safe; the returned reference stays valid until the process ends.
+const UniversalForceLaw& universal_force_law(double nu, JunctionShape shape, double psi_max);
+
+// The range universal_force_law() tabulates for psi_max: the next power of two ≥ psi_max, ≥ 2^-10.
+double universal_table_range(double psi_max);
 
 }  // namespace asperity
