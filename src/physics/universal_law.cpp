@@ -3,11 +3,12 @@
 #include <boost/math/interpolators/cardinal_cubic_b_spline.hpp>
 #include <boost/math/tools/roots.hpp>
 #include <cmath>
-#include <map>
+#include <list>
 #include <memory>
 #include <mutex>
 #include <stdexcept>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 namespace asperity {
@@ -75,27 +76,27 @@ UniversalForceLaw::UniversalForceLaw(double nu, JunctionShape shape, double psi_
   }
 }
 
-double universal_table_range(double psi_max) {
-  if (!(psi_max > 0) || !std::isfinite(psi_max)) throw std::invalid_argument("universal_table_range: psi_max must be finite and > 0");
-  int e = 0;
-  const double m = std::frexp(psi_max, &e);  // psi_max = m 2^e, m ∈ [0.5, 1)
-  const double up = m == 0.5 ? psi_max : std::ldexp(1.0, e);
-  return std::max(up, std::ldexp(1.0, -10));
-}
-
-const UniversalForceLaw& universal_force_law(double nu, JunctionShape shape, double psi_max) {
-  const double range = universal_table_range(psi_max);
-  // The one piece of process-wide state: a memo of a pure function. Entries are built once,
-  // never modified, never removed (std::map keeps their addresses), and keyed by exactly what
-  // determines them, so a caller cannot observe whether a table was built now or before. Few
-  // keys occur (one per ν, shape and power of two). Built under the lock: concurrent first
-  // callers wait for one build instead of all building.
+std::shared_ptr<const UniversalForceLaw> universal_force_law(double nu, JunctionShape shape, double psi_max) {
+  using Key = std::tuple<double, JunctionShape, double>;
+  const Key key{nu, shape, std::max(psi_max, 1e-3)};
+  // The one piece of process-wide state: a memo of a pure function. Tables are never modified
+  // after construction and are keyed by exactly what determines them, so a caller cannot tell
+  // whether its table was built now or before. The most recently used kMax are kept: a sweep
+  // over ψ-changing keys (alpha_b, sigma_exp, epsilon, p, areas) builds one per point, as
+  // before, without growing memory. Built under the lock: concurrent first callers wait for
+  // one build instead of all building.
+  constexpr std::size_t kMax = 8;
   static std::mutex mutex;
-  static std::map<std::tuple<double, JunctionShape, double>, std::unique_ptr<const UniversalForceLaw>> tables;
+  static std::list<std::pair<Key, std::shared_ptr<const UniversalForceLaw>>> recent;  // most recent first
   const std::lock_guard<std::mutex> lock(mutex);
-  auto& slot = tables[{nu, shape, range}];
-  if (!slot) slot = std::make_unique<const UniversalForceLaw>(nu, shape, range);
-  return *slot;
+  for (auto it = recent.begin(); it != recent.end(); ++it)
+    if (it->first == key) {
+      recent.splice(recent.begin(), recent, it);
+      return recent.front().second;
+    }
+  recent.emplace_front(key, std::make_shared<const UniversalForceLaw>(nu, shape, std::get<2>(key)));
+  if (recent.size() > kMax) recent.pop_back();
+  return recent.front().second;
 }
 
 }  // namespace asperity

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <array>
 #include <cstddef>
+#include <memory>
 #include <vector>
 
 #include "physics/contact_law.hpp"
@@ -71,16 +72,15 @@ class UniversalForceLaw {
   std::vector<std::array<double, 4>> coef_;
 };
 
-// The process-wide table for (ν, shape) covering ψ ∈ [0, psi_max]: built on first use, then
-// shared, immutable, by every run of the process (a build costs milliseconds, a short run less).
-// Its range is psi_max rounded up to a power of two, at least 2^-10 (a table over a tiny range
-// comes out of the spline fit wrong by orders of magnitude, while g is as smooth on [0, 1e-3]),
-// so that runs whose ranges differ slightly share one table. The table a run uses depends only
-// on its own (ν, shape, psi_max), never on which runs came before, so results stay reproducible.
-// Thread-safe; the returned reference stays valid until the process ends.
-const UniversalForceLaw& universal_force_law(double nu, JunctionShape shape, double psi_max);
-
-// The range universal_force_law() tabulates for psi_max: the next power of two ≥ psi_max, ≥ 2^-10.
-double universal_table_range(double psi_max);
+// The process-wide table for (ν, shape) covering ψ ∈ [0, max(psi_max, 1e-3)]: built on first
+// use, then shared, immutable, by every run of the process that asks for the same range (a
+// build costs milliseconds, a short run about as much). The range is never rounded, so a run
+// gets the very table it built before this cache existed: its numbers do not change, and do
+// not depend on which runs came before. At least 1e-3: a table over a tiny range (slip
+// thresholds of ψ < 1e-6, e.g. sigma_exp = 1e-2 Pa) comes out of the spline fit wrong by
+// orders of magnitude (force 1e10 times too stiff: a run crawled at 1e-9 s steps), while g is as
+// smooth on [0, 1e-3]. Thread-safe; a table stays alive
+// while a caller holds it.
+std::shared_ptr<const UniversalForceLaw> universal_force_law(double nu, JunctionShape shape, double psi_max);
 
 }  // namespace asperity

@@ -35,10 +35,8 @@ EventJunctions::EventJunctions(const Problem& problem)
     }
   }
   if (nonlinear_) {
-    // At least ψ ≤ 1e-3: a table over a tiny range (slip thresholds of ψ < 1e-6, e.g.
-    // sigma_exp = 1e-2 Pa) comes out of the spline fit wrong by orders of magnitude (force
-    // 1e10 times too stiff: the run crawled at 1e-9 s steps), while g is as smooth on [0, 1e-3].
-    table_ = &universal_force_law(law_.nu, law_.shape, std::max(1.1 * psi_hi, 1e-3));
+    // Shipped scenes have ψ_s ~ 1; the table covers at least ψ ≤ 1e-3 (universal_law.hpp).
+    table_ = universal_force_law(law_.nu, law_.shape, 1.1 * psi_hi);
     if (!(table_->max_rel_error() <= 1e-11)) {
       char msg[200];
       std::snprintf(msg, sizeof msg,

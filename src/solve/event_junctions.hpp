@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <queue>
 #include <utility>
@@ -87,7 +88,7 @@ class EventJunctions {
   // Nonlinear (never-slipped, or pinned under area_law: always) junctions, packed.
   std::vector<std::uint32_t> nl_idx_;
   std::vector<double> nl_w_, nl_c_, nl_x_, nl_A0_;
-  const UniversalForceLaw* table_ = nullptr;  // process-wide (universal_force_law)
+  std::shared_ptr<const UniversalForceLaw> table_;  // process-wide (universal_force_law)
   std::optional<BinnedUniversalSum> binned_;  // large N under until_first_slip
   using Entry = std::pair<double, std::uint32_t>;
   std::priority_queue<Entry, std::vector<Entry>, std::greater<>> heap_;
