@@ -1,5 +1,10 @@
 #include <catch2/catch.hpp>
 
+#include <cmath>
+#include <memory>
+#include <thread>
+#include <vector>
+
 #include "physics/universal_law.hpp"
 
 using namespace asperity;
@@ -34,4 +39,43 @@ TEST_CASE("universal law: inverse of ψ(φ) and evenness", "[physics]") {
   CHECK_THAT(U.g(0.0), WithinRel(1.0 / (1.5 * 0.75), 1e-15));  // measured 0
   // Beyond the table the exact inverse takes over.
   CHECK_THAT(U.g(9.0), WithinRel(U.phi_of_psi_exact(9.0) / 9.0, 1e-15));
+}
+
+TEST_CASE("universal_force_law: one immutable table per (ν, shape, range), the same as a fresh build", "[physics]") {
+  const auto a = universal_force_law(0.5, JunctionShape::elliptic, 1.7);
+  const auto b = universal_force_law(0.5, JunctionShape::elliptic, 1.7);
+  CHECK(a.get() == b.get());  // built once
+  CHECK(universal_force_law(0.5, JunctionShape::circular, 1.7).get() != a.get());
+  CHECK(universal_force_law(0.5, JunctionShape::elliptic, 1.8).get() != a.get());
+  // Second method: a table built here, outside the cache, over the same range is the same
+  // piecewise cubic, so a run's numbers do not depend on the cache.
+  const UniversalForceLaw fresh(0.5, JunctionShape::elliptic, 1.7);
+  CHECK(a->nodes() == fresh.nodes());
+  for (double psi : {1e-6, 0.3, 1.1, 1.69}) CHECK(a->g(psi) == fresh.g(psi));
+  CHECK_THAT(a->g(1.1), WithinRel(a->g_exact(1.1), 1e-13));
+  // A tiny range is widened to 1e-3, where the spline fit is accurate.
+  const auto tiny = universal_force_law(0.5, JunctionShape::elliptic, 1e-9);
+  CHECK(tiny->psi_max() == 1e-3);
+  CHECK(tiny->max_rel_error() < 1e-13);
+}
+
+TEST_CASE("universal_force_law: concurrent first callers share one table", "[physics]") {
+  std::vector<std::shared_ptr<const UniversalForceLaw>> got(4);
+  std::vector<std::thread> threads;
+  for (std::size_t i = 0; i < got.size(); ++i)
+    threads.emplace_back([&got, i] { got[i] = universal_force_law(0.3, JunctionShape::elliptic, 0.77); });
+  for (auto& t : threads) t.join();
+  for (const auto& g : got) CHECK(g.get() == got[0].get());
+  // ν = 0.3 at ψ = 0: g = κ(1) = 1/((1+ν)(1−ν/2)), the circle limit.
+  CHECK_THAT(got[0]->g(0.0), WithinRel(1.0 / (1.3 * 0.85), 1e-15));
+}
+
+TEST_CASE("universal_psi is ψ = φ/κ(1 − φ²) and the table's ψ(φ)", "[physics]") {
+  const UniversalForceLaw U(0.5, JunctionShape::circular, 2.0);
+  for (double phi : {0.1, 0.5, 0.9}) {
+    // Circular junction: κ(r) = sqrt(r)/((1+ν)(1−ν/2)), closed form.
+    const double expected = phi * 1.5 * 0.75 / std::sqrt(1 - phi * phi);
+    CHECK_THAT(universal_psi(phi, 0.5, JunctionShape::circular), WithinRel(expected, 1e-15));
+    CHECK(U.psi_of_phi(phi) == universal_psi(phi, 0.5, JunctionShape::circular));
+  }
 }

@@ -14,7 +14,7 @@
 #include <limits>
 #include <vector>
 
-#include "observe/sample.hpp"
+#include "solve/observer.hpp"
 
 namespace asperity {
 

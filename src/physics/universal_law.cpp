@@ -3,7 +3,12 @@
 #include <boost/math/interpolators/cardinal_cubic_b_spline.hpp>
 #include <boost/math/tools/roots.hpp>
 #include <cmath>
+#include <list>
+#include <memory>
+#include <mutex>
 #include <stdexcept>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 namespace asperity {
@@ -69,6 +74,29 @@ UniversalForceLaw::UniversalForceLaw(double nu, JunctionShape shape, double psi_
       return;
     }
   }
+}
+
+std::shared_ptr<const UniversalForceLaw> universal_force_law(double nu, JunctionShape shape, double psi_max) {
+  using Key = std::tuple<double, JunctionShape, double>;
+  const Key key{nu, shape, std::max(psi_max, 1e-3)};
+  // The one piece of process-wide state: a memo of a pure function. Tables are never modified
+  // after construction and are keyed by exactly what determines them, so a caller cannot tell
+  // whether its table was built now or before. The most recently used kMax are kept: a sweep
+  // over ψ-changing keys (alpha_b, sigma_exp, epsilon, p, areas) builds one per point, as
+  // before, without growing memory. Built under the lock: concurrent first callers wait for
+  // one build instead of all building.
+  constexpr std::size_t kMax = 8;
+  static std::mutex mutex;
+  static std::list<std::pair<Key, std::shared_ptr<const UniversalForceLaw>>> recent;  // most recent first
+  const std::lock_guard<std::mutex> lock(mutex);
+  for (auto it = recent.begin(); it != recent.end(); ++it)
+    if (it->first == key) {
+      recent.splice(recent.begin(), recent, it);
+      return recent.front().second;
+    }
+  recent.emplace_front(key, std::make_shared<const UniversalForceLaw>(nu, shape, std::get<2>(key)));
+  if (recent.size() > kMax) recent.pop_back();
+  return recent.front().second;
 }
 
 }  // namespace asperity

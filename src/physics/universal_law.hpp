@@ -7,11 +7,18 @@
 #include <algorithm>
 #include <array>
 #include <cstddef>
+#include <memory>
 #include <vector>
 
 #include "physics/contact_law.hpp"
 
 namespace asperity {
+
+// ψ(φ) = φ / κ(1 − φ²): the dimensionless displacement of a never-slipped junction carrying
+// the dimensionless force φ (explicit and increasing on [0, 1)).
+inline double universal_psi(double phi, double nu, JunctionShape shape) {
+  return phi / stiffness_factor(1.0 - phi * phi, nu, shape);
+}
 
 class UniversalForceLaw {
  public:
@@ -19,7 +26,7 @@ class UniversalForceLaw {
   // checked against the exact inverse between the nodes, is below rel_tol.
   UniversalForceLaw(double nu, JunctionShape shape, double psi_max, double rel_tol = 1e-13);
 
-  double psi_of_phi(double phi) const { return phi / stiffness_factor(1.0 - phi * phi, nu_, shape_); }
+  double psi_of_phi(double phi) const { return universal_psi(phi, nu_, shape_); }
   double phi_of_psi_exact(double psi) const;  // root solve (Boost.Math TOMS 748)
   // g(ψ) = κ(A/A0): from the table inside its range, exactly beyond it.
   double g(double psi) const {
@@ -64,5 +71,16 @@ class UniversalForceLaw {
   // same piecewise cubic, evaluated in a few ns in the solver's innermost loop.
   std::vector<std::array<double, 4>> coef_;
 };
+
+// The process-wide table for (ν, shape) covering ψ ∈ [0, max(psi_max, 1e-3)]: built on first
+// use, then shared, immutable, by every run of the process that asks for the same range (a
+// build costs milliseconds, a short run about as much). The range is never rounded, so a run
+// gets the very table it built before this cache existed: its numbers do not change, and do
+// not depend on which runs came before. At least 1e-3: a table over a tiny range (slip
+// thresholds of ψ < 1e-6, e.g. sigma_exp = 1e-2 Pa) comes out of the spline fit wrong by
+// orders of magnitude (force 1e10 times too stiff: a run crawled at 1e-9 s steps), while g is as
+// smooth on [0, 1e-3]. Thread-safe; a table stays alive
+// while a caller holds it.
+std::shared_ptr<const UniversalForceLaw> universal_force_law(double nu, JunctionShape shape, double psi_max);
 
 }  // namespace asperity

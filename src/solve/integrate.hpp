@@ -1,59 +1,58 @@
 #pragma once
-// Free integrate function over a Scene: dispatches to the solver the scene names.
-#include <cstdint>
+// One run: a stepper advances a Problem and reports to an observer. integrate() is the loop
+// every method shares (resource limits, the observer's stop); the method is chosen in
+// make_stepper's one switch. Adding a method = one stepper file (the interface of
+// ReferenceStepper) plus one case there.
 #include <stdexcept>
-#include <string>
 
-#include "observe/recorder.hpp"
 #include "scene/scene.hpp"
+#include "solve/event_stepper.hpp"
+#include "solve/observer.hpp"
+#include "solve/problem.hpp"
+#include "solve/reference_stepper.hpp"
+#include "solve/run_info.hpp"
 #include "solve/run_limits.hpp"
 
 namespace asperity {
 
-// A run that cannot go on (unstable step, non-finite state): reported, never silent garbage.
-struct SolverError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
-
-struct SolverStats {
-  std::int64_t steps = 0;      // accepted steps
-  std::int64_t rejected = 0;   // rejected steps (adaptive solvers)
-  std::int64_t force_evals = 0;// evaluations of the total junction force
-  std::int64_t slips = 0;      // pinned → slipping transitions
-  std::int64_t repins = 0;     // repinning events (all slipping junctions at once)
-};
-
-struct RunInfo {
-  std::size_t N = 0;
-  double A0 = 0;       // m², Σ A0_i
-  double K0 = 0;       // N/m, Σ k_i(t = 0)
-  double T0 = 0;       // s, 2π / sqrt(K0 / M)
-  double dt = 0;       // s, T0 / C_t (the reference's step; reported for every method)
-  double t_end = 0;    // s, where the run stopped
-  LimitHit stopped_by = LimitHit::none;  // a resource limit ended the run before stop.time
-  double max_f_over_sigmaA = 0;     // max_i,t f_i / (σ A_i) after transitions (claim 7: ≤ 1)
-  double max_f_over_sigma_exp_A = 0;// the same against σ_exp (may exceed 1)
-  SolverStats stats;
-};
-
-// Initial quantities shared by all solvers.
-RunInfo initial_info(const Scene& scene);
-
-// `limits` (default: run_limits(scene)) are checked every step and event; a run that reaches
-// one returns early with stopped_by set (simulate() turns that into a SolverError).
-RunInfo integrate_reference(const Scene& scene, Recorder& rec, const RunLimits& limits);
-RunInfo integrate_event(const Scene& scene, Recorder& rec, const RunLimits& limits);
-RunInfo integrate(const Scene& scene, Recorder& rec, const RunLimits& limits);
-inline RunInfo integrate_reference(const Scene& scene, Recorder& rec) {
-  return integrate_reference(scene, rec, run_limits(scene));
+// Runs `stepper` from t = 0 until stop.time, the observer's done(), or a resource limit of the
+// problem (checked before every step; info.stopped_by says which, simulate() turns it into a
+// SolverError).
+template <class Stepper, Observer O>
+RunInfo integrate(Stepper& stepper, const Problem& problem, O& observer) {
+  ObserverAdapter<O> out(observer);
+  RunInfo info = initial_info(problem);
+  stepper.start(out);
+  LimitGuard guard(problem.limits);
+  while (!stepper.finished() && !observer.done()) {
+    if ((info.stopped_by = guard.check(stepper.slips())) != LimitHit::none) {
+      stepper.stop_early();
+      break;
+    }
+    stepper.advance(out);
+  }
+  stepper.finish(info);
+  return info;
 }
-inline RunInfo integrate_event(const Scene& scene, Recorder& rec) {
-  return integrate_event(scene, rec, run_limits(scene));
-}
-inline RunInfo integrate(const Scene& scene, Recorder& rec) { return integrate(scene, rec, run_limits(scene)); }
 
-// Spectral radius of the reference's one-step map for the linearised slider (stiffness
-// k_L + K0, damping η); > 1 means the explicit step is unstable.
-double reference_spectral_radius(double omega_dt, double eta_dt);
+// The method problem.solver.method names, run on `problem`.
+template <Observer O>
+RunInfo integrate(const Problem& problem, O& observer) {
+  switch (problem.solver.method) {
+    case SolverMethod::reference: { ReferenceStepper s(problem); return integrate(s, problem, observer); }
+    case SolverMethod::event: { EventStepper s(problem); return integrate(s, problem, observer); }
+  }
+  throw std::logic_error("integrate: unknown solver.method");
+}
+
+// The scene's run with `limits` (default: run_limits(scene)).
+template <Observer O>
+RunInfo integrate(const Scene& scene, O& observer, const RunLimits& limits) {
+  return integrate(make_problem(scene, limits), observer);
+}
+template <Observer O>
+RunInfo integrate(const Scene& scene, O& observer) {
+  return integrate(scene, observer, run_limits(scene));
+}
 
 }  // namespace asperity

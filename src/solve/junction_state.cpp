@@ -11,10 +11,7 @@ JunctionState::JunctionState(const std::vector<double>& areas, const ContactLaw&
       f_s(areas.size()),
       pinned(areas.size(), 1),
       intact(areas.size(), 1) {
-  for (std::size_t i = 0; i < areas.size(); ++i) {
-    k[i] = law.stiffness(A0[i], A0[i]);
-    f_s[i] = law.sigma * A0[i];
-  }
+  for (std::size_t i = 0; i < areas.size(); ++i) set_contact(i, contact_at_area(law, A0[i], A0[i]));
 }
 
 }  // namespace asperity

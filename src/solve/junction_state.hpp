@@ -1,9 +1,11 @@
 #pragma once
-// Per-junction state shared by the solvers (structure of arrays for vectorised loops).
+// Per-junction physical state, one layout for every method (structure of arrays for vectorised
+// loops). A method may keep acceleration structures beside it (the event method's threshold
+// heap and aggregate sums), but the physical state of junction i is here.
 #include <cstdint>
 #include <vector>
 
-#include "physics/contact_law.hpp"
+#include "physics/interface_law.hpp"
 
 namespace asperity {
 
@@ -20,6 +22,12 @@ struct JunctionState {
   // All junctions pinned at X = 0, unloaded, never slipped.
   JunctionState(const std::vector<double>& areas, const ContactLaw& law);
   std::size_t size() const { return A0.size(); }
+  // Sets area, k and f_s of junction i.
+  void set_contact(std::size_t i, const JunctionContact& c) {
+    area[i] = c.area_m2;
+    k[i] = c.k;
+    f_s[i] = c.f_s;
+  }
 };
 
 }  // namespace asperity

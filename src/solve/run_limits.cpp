@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "physics/contact_law.hpp"
+#include "physics/interface_law.hpp"
 
 namespace asperity {
 
@@ -35,9 +35,8 @@ std::pair<double, double> smallest_slip_distance(const Scene& scene) {
   const ContactLaw law = make_contact_law(scene.experiment, scene.model);
   double best = std::numeric_limits<double>::infinity(), area = 0;
   for (double A0 : scene.experiment.junctions.area_m2) {
-    const double phi = scene.model.alpha_b > 0 ? law.slip_phi(A0) : 0.0;
-    const double As = A0 * (1.0 - phi * phi);
-    const double d = (1.0 - law.epsilon) * law.sigma * As / law.stiffness(A0, As);
+    const JunctionContact c = contact_at_first_slip(law, A0);
+    const double d = (1.0 - law.epsilon) * law.sigma * c.area_m2 / c.k;
     if (d < best) best = d, area = A0;
   }
   return {best, area};
