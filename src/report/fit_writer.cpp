@@ -246,19 +246,10 @@ std::string fit_yaml(const FitSpec& spec, const FitResult& result) {
       y << "        stand_in: " << (r.stand_in ? "true" : "false") << "\n";
       y << "        mass: " << num(r.mass_kg) << "\n";
       y << "        term: " << num(r.residual) << "\n";
-      y << "        alpha: " << num(b.alpha) << "\n";
-      y << "        alpha_measured: " << num(b.alpha_measured) << "\n";
-      y << "        alpha_R2: " << num(b.alpha_R2) << "\n";
-      y << "        shape_exponent: " << num(b.shape_exponent) << "\n";
-      y << "        shape_exponent_measured: " << num(b.shape_exponent_measured) << "\n";
-      y << "        A0: " << num(b.A0) << "\n";
-      y << "        Q_s: " << num(b.Q_s) << "\n";
-      y << "        A_s: " << num(b.A_s) << "\n";
-      y << "        t_peak: " << num(b.t_peak) << "\n";
-      y << "        area_drop_fraction: " << num(b.area_drop_fraction) << "\n";
-      y << "        ss_cycles: " << b.ss_cycles << "\n";
-      y << "        ss_drop: " << num(b.ss_drop) << "\n";
-      y << "        ss_period: " << num(b.ss_period) << "\n";
+      for (const char* name : kFitYamlObservables) {
+        const ObservableField& f = observable_field(name);
+        y << "        " << f.name << ": " << observable_text(f, b, yaml_double) << "\n";
+      }
       y << "        run_wall_s: " << num(b.wall_s) << "\n";
     }
     if (!o.profile.empty()) {
@@ -300,6 +291,11 @@ std::string fit_yaml(const FitSpec& spec, const FitResult& result) {
 }
 
 void check_fit_dir(const fs::path& dir) { check_replaceable(dir); }  // names the folder as given
+
+// The observables of each best run in fit.yaml, in this order.
+const char* const kFitYamlObservables[] = {"alpha", "alpha_measured", "alpha_R2", "shape_exponent",
+                                           "shape_exponent_measured", "A0", "Q_s", "A_s", "t_peak",
+                                           "area_drop_fraction", "ss_cycles", "ss_drop", "ss_period"};
 
 // The observables of fitted.csv: (column, observable_fields() name).
 const std::pair<const char*, const char*> kFittedObservables[] = {
