@@ -47,6 +47,7 @@ struct CountingStepper {
   void stop_early() { stopped_early = true; }
   void finish(RunInfo& info) const { info.stats.steps = n; }
 };
+static_assert(Stepper<CountingStepper>);
 
 }  // namespace
 

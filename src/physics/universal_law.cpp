@@ -81,13 +81,15 @@ std::shared_ptr<const UniversalForceLaw> universal_force_law(double nu, Junction
   const Key key{nu, shape, std::max(psi_max, 1e-3)};
   // The one piece of process-wide state: a memo of a pure function. Tables are never modified
   // after construction and are keyed by exactly what determines them, so a caller cannot tell
-  // whether its table was built now or before. The most recently used kMax are kept: a sweep
-  // over ψ-changing keys (alpha_b, sigma_exp, epsilon, p, areas) builds one per point, as
-  // before, without growing memory. Built under the lock: concurrent first callers wait for
-  // one build instead of all building.
-  constexpr std::size_t kMax = 8;
+  // whether its table was built now or before. The most recently used ones are kept up to
+  // kBudget bytes (a table of the shipped scenes is 32 KiB, so a sweep cycling through a few
+  // hundred ψ ranges still finds them all). Built under the lock: concurrent first callers wait
+  // for one build instead of all building.
+  constexpr std::size_t kBudget = std::size_t{64} << 20;
+  auto bytes = [](const UniversalForceLaw& t) { return t.nodes() * sizeof(std::array<double, 4>); };
   static std::mutex mutex;
   static std::list<std::pair<Key, std::shared_ptr<const UniversalForceLaw>>> recent;  // most recent first
+  static std::size_t held = 0;
   const std::lock_guard<std::mutex> lock(mutex);
   for (auto it = recent.begin(); it != recent.end(); ++it)
     if (it->first == key) {
@@ -95,7 +97,11 @@ std::shared_ptr<const UniversalForceLaw> universal_force_law(double nu, Junction
       return recent.front().second;
     }
   recent.emplace_front(key, std::make_shared<const UniversalForceLaw>(nu, shape, std::get<2>(key)));
-  if (recent.size() > kMax) recent.pop_back();
+  held += bytes(*recent.front().second);
+  while (held > kBudget && recent.size() > 1) {
+    held -= bytes(*recent.back().second);
+    recent.pop_back();
+  }
   return recent.front().second;
 }
 

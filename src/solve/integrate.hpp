@@ -1,8 +1,10 @@
 #pragma once
 // One run: a stepper advances a Problem and reports to an observer. integrate() is the loop
-// every method shares (resource limits, the observer's stop); the method is chosen in
-// make_stepper's one switch. Adding a method = one stepper file (the interface of
-// ReferenceStepper) plus one case there.
+// every method shares (resource limits, the observer's stop); the method is chosen in the one
+// switch of integrate(problem, observer) below. Adding a method = one stepper file (a type
+// meeting the Stepper concept) plus one case there.
+#include <concepts>
+#include <cstdint>
 #include <stdexcept>
 
 #include "scene/scene.hpp"
@@ -15,11 +17,25 @@
 
 namespace asperity {
 
+// A method: constructed from a Problem, it reports the samples due at t = 0 (start), then
+// advances by one step (with every event inside it) until finished(); stop_early() when a
+// resource limit ends the run; finish() fills t_end, stats and the f/(σA) maxima.
+template <class S>
+concept Stepper = requires(S& s, const S& cs, RunObserver& out, RunInfo& info) {
+  s.start(out);
+  s.advance(out);
+  s.stop_early();
+  { cs.finished() } -> std::convertible_to<bool>;
+  { cs.slips() } -> std::convertible_to<std::int64_t>;
+  cs.finish(info);
+};
+static_assert(Stepper<ReferenceStepper> && Stepper<EventStepper>);
+
 // Runs `stepper` from t = 0 until stop.time, the observer's done(), or a resource limit of the
 // problem (checked before every step; info.stopped_by says which, simulate() turns it into a
 // SolverError).
-template <class Stepper, Observer O>
-RunInfo integrate(Stepper& stepper, const Problem& problem, O& observer) {
+template <Stepper S, Observer O>
+RunInfo integrate(S& stepper, const Problem& problem, O& observer) {
   ObserverAdapter<O> out(observer);
   RunInfo info = initial_info(problem);
   stepper.start(out);
