@@ -189,6 +189,11 @@ void check_replaceable(const fs::path& target) {
   check_ours(target, "fit", "--out", [](const fs::path& d) { return first_line_is(d / "fit.yaml", kFitHeader); });
 }
 
+// The observables of each best run in fit.yaml, in this order.
+const char* const kFitYamlObservables[] = {"alpha", "alpha_measured", "alpha_R2", "shape_exponent",
+                                           "shape_exponent_measured", "A0", "Q_s", "A_s", "t_peak",
+                                           "area_drop_fraction", "ss_cycles", "ss_drop", "ss_period"};
+
 }  // namespace
 
 std::string fit_yaml(const FitSpec& spec, const FitResult& result) {
@@ -291,11 +296,6 @@ std::string fit_yaml(const FitSpec& spec, const FitResult& result) {
 }
 
 void check_fit_dir(const fs::path& dir) { check_replaceable(dir); }  // names the folder as given
-
-// The observables of each best run in fit.yaml, in this order.
-const char* const kFitYamlObservables[] = {"alpha", "alpha_measured", "alpha_R2", "shape_exponent",
-                                           "shape_exponent_measured", "A0", "Q_s", "A_s", "t_peak",
-                                           "area_drop_fraction", "ss_cycles", "ss_drop", "ss_period"};
 
 // The observables of fitted.csv: (column, observable_fields() name).
 const std::pair<const char*, const char*> kFittedObservables[] = {
