@@ -1,15 +1,12 @@
 #!/usr/bin/env python3
 """Fails on an include that runs against the layers of src/.
 
-Usage: scripts/check_layers.py [SRC_DIR] [--rules FILE] [--allow FILE]
+Usage: scripts/check_layers.py [SRC_DIR] [--rules FILE]
   SRC_DIR  the source tree (default: src)
   --rules  the layers, one per line, lowest first; folders on one line share a layer; '#'
            starts a comment (default: SRC_DIR/layers.txt)
-  --allow  upward includes tolerated for now, one "FILE INCLUDED" per line, FILE relative to
-           SRC_DIR (default: SRC_DIR/layers_allowed.txt when it exists); an entry that matches
-           nothing is reported as no longer needed (not an error)
 A file in folder F may include "G/x.hpp" only when G's layer is not above F's; a folder that no
-layer names is an error too. Prints every offence as 'FILE:LINE: includes G/x.hpp (layer F -> G)',
+layer names is an error too. There are no exceptions. Prints every offence as 'FILE:LINE: includes G/x.hpp (layer F -> G)',
 then a count; exit status 1 when there is any, else 0.
 """
 import os
@@ -28,37 +25,25 @@ def words_per_line(path):
 
 
 def main(argv):
-    src, rules, allow = "src", None, None
+    src, rules = "src", None
     args = list(argv)
     while args:
         a = args.pop(0)
-        if a in ("--rules", "--allow") and args:
-            if a == "--rules":
-                rules = args.pop(0)
-            else:
-                allow = args.pop(0)
+        if a == "--rules" and args:
+            rules = args.pop(0)
         elif a.startswith("-"):
             print(__doc__, file=sys.stderr)
             return 2
         else:
             src = a
     rules = rules or os.path.join(src, "layers.txt")
-    if allow is None and os.path.exists(os.path.join(src, "layers_allowed.txt")):
-        allow = os.path.join(src, "layers_allowed.txt")
 
     rank = {}
     for r, names in enumerate(words_per_line(rules)):
         for name in names:
             rank[name] = r
-    allowed = set()
-    if allow:
-        for words in words_per_line(allow):
-            if len(words) != 2:
-                print(f"{allow}: expected 'FILE INCLUDED', got {' '.join(words)!r}")
-                return 2
-            allowed.add(tuple(words))
 
-    offences, tolerated, unplaced, used = [], [], set(), set()
+    offences, unplaced = [], set()
     for root, dirs, files in os.walk(src):
         dirs.sort()
         for name in sorted(files):
@@ -79,23 +64,12 @@ def main(argv):
                     to = target.split("/")[0] if "/" in target else folder
                     if to not in rank or rank[to] <= rank[folder]:
                         continue
-                    line = f"{os.path.join(src, rel)}:{ln}: includes {target} (layer {folder} -> {to})"
-                    key = (rel.replace(os.sep, "/"), target)
-                    if key in allowed:
-                        tolerated.append(line)
-                        used.add(key)
-                    else:
-                        offences.append(line)
+                    offences.append(f"{os.path.join(src, rel)}:{ln}: includes {target} (layer {folder} -> {to})")
     for line in offences:
         print(line)
-    for line in tolerated:
-        print(line + f" [tolerated by {allow}]")
-    for f, inc in sorted(allowed - used):  # stale: the include is gone, so is the need
-        print(f"{allow}: '{f} {inc}' is no longer needed; delete the line")
     for folder in sorted(unplaced):
         print(f"{src}/{folder}/: folder on no layer")
-    print(f"{len(offences)} upward include(s), {len(unplaced)} unplaced folder(s)"
-          + (f", {len(tolerated)} tolerated" if tolerated else ""))
+    print(f"{len(offences)} upward include(s), {len(unplaced)} unplaced folder(s)")
     return 1 if offences or unplaced else 0
 
 
