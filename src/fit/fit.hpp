@@ -23,7 +23,7 @@
 
 #include "fit/fit_spec.hpp"
 #include "observe/observables.hpp"
-#include "observe/sample.hpp"
+#include "solve/observer.hpp"
 
 namespace asperity {
 

@@ -9,7 +9,7 @@
 #include <span>
 #include <vector>
 
-#include "observe/sample.hpp"
+#include "solve/observer.hpp"
 
 namespace asperity {
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "observe/sample.hpp"
+#include "solve/observer.hpp"
 
 namespace asperity {
 

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "observe/observables.hpp"
-#include "observe/sample.hpp"
+#include "solve/observer.hpp"
 #include "scene/scene.hpp"
 
 namespace asperity {
