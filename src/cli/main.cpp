@@ -43,7 +43,16 @@ int run_cli(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    // --help and --version print as CLI11 does; a command-line error is a user error like any
+    // other bad input: one line, exit 2 (CLI11's own codes, 105, 106, ..., are undocumented).
+    if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) return app.exit(e);
+    std::string what = e.what();
+    if (app.get_subcommands().empty() && argc > 1 && argv[1][0] != '-') {  // CLI11 only says one is required
+      what = "unknown command '" + std::string(argv[1]) + "'; commands:";
+      for (const auto& c : commands) what += " " + c.sub->get_name();
+    }
+    print_line("asperity: ", what + " (asperity --help)");
+    return cli::exit_input;
   }
 
   // Dispatch.
