@@ -20,6 +20,7 @@ fs::path temp_dir() {
   static int counter = 0;
   const fs::path d = fs::temp_directory_path() /
                      ("asperity_campaign_in_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
+  fs::remove_all(d);  // a folder left by an earlier run whose process had the same pid
   fs::create_directories(d);
   return d;
 }
