@@ -2,12 +2,11 @@
 
 #include <yaml-cpp/yaml.h>
 
-#include <fstream>
 #include <map>
 #include <optional>
-#include <sstream>
 
 #include "io/numbers.hpp"
+#include "io/yaml_util.hpp"
 #include "scene/load.hpp"
 #include "scene/scene_keys.hpp"
 
@@ -82,11 +81,8 @@ std::vector<BaseScene> base_scenes(const Campaign& c) {
   std::vector<BaseScene> out;
   for (const fs::path& p : c.scenes) {
     load_scene_tree(p);
-    std::ifstream in(p, std::ios::binary);
-    std::ostringstream text;
-    text << in.rdbuf();
-    if (!in) throw InputError(p.lexically_normal().string(), 0, "", "cannot read file");
-    out.push_back({p, text.str()});
+    // Read again with the same bounded reader (a file swapped since is caught, never unbounded).
+    out.push_back({p, scene_io::read_input_file(p, p.lexically_normal().string(), scene_io::kMaxYamlBytes)});
   }
   return out;
 }
