@@ -202,7 +202,7 @@ Command add_bench_command(CLI::App& app) {
   CLI::App* s = sub->add_subcommand("savings", "Wall time saved by series=[], stop.at_first_peak, alpha_b=0");
   s->add_option("--scene", opt->scenes, "Scene(s) (default scenes/paper/P4.00N.yaml)");
 
-  return Command{sub, [opt, t, sp, a, s] {
+  return Command{sub, [opt, t, sp, a, s](const Invocation&) {
     if (t->parsed()) return tradeoff(*opt);
     if (sp->parsed()) return speed(*opt);
     if (a->parsed()) return accuracy(*opt);

@@ -8,6 +8,7 @@
 // InputError (→ exit 2, what() printed as is) or SolverError (→ exit 3), which main maps.
 #include <CLI/CLI.hpp>
 #include <functional>
+#include <string>
 
 namespace asperity::cli {
 
@@ -16,9 +17,14 @@ inline constexpr int exit_failure = 1;  // command ran but its check failed (e.g
 inline constexpr int exit_input = 2;    // bad scene / arguments (InputError)
 inline constexpr int exit_solver = 3;   // solver could not go on (SolverError)
 
+// What every command may record of how it was called (provenance of its results).
+struct Invocation {
+  std::string command_line;  // "asperity sweep c.yaml -j 2", arguments shell-quoted where needed
+};
+
 struct Command {
   CLI::App* sub = nullptr;        // the subcommand; main runs `run` when it was parsed
-  std::function<int()> run;
+  std::function<int(const Invocation&)> run;
 };
 
 // asperity run SCENE.yaml [--out DIR] [--set key=value]... [--quiet] [--plot]

@@ -74,7 +74,7 @@ Command add_fit_command(CLI::App& app) {
   sub->add_flag("--no-profile", opt->no_profile, "Skip the objective profile around the optimum");
   sub->add_flag("--no-error-bars", opt->no_error_bars, "Skip the error-bar refits");
   sub->add_flag("--quiet,-q", opt->quiet, "Print nothing on success");
-  return Command{sub, [opt] { return run(*opt); }};
+  return Command{sub, [opt](const Invocation&) { return run(*opt); }};
 }
 
 }  // namespace asperity::cli

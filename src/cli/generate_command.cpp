@@ -70,7 +70,7 @@ Command add_generate_command(CLI::App& app) {
   sub->add_option("--scenes", opt->scenes,
                   "Also write one paper scene per experiment into this folder (e.g. scenes/paper)");
   sub->add_flag("--quiet,-q", opt->quiet, "Print nothing on success");
-  return Command{sub, [opt] { return generate(*opt); }};
+  return Command{sub, [opt](const Invocation&) { return generate(*opt); }};
 }
 
 }  // namespace asperity::cli

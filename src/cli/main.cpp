@@ -1,5 +1,7 @@
 // asperity: onset of sliding of rough elastomer contacts (independent-asperity model).
 // Parses the command line and dispatches to one subcommand (see cli/commands.hpp).
+#include <cctype>
+#include <cstring>
 #include <exception>
 #include <new>
 #include <string>
@@ -18,6 +20,27 @@ void print_line(const std::string& prefix, const std::string& text) {
   for (char& c : s)
     if (c == '\n' || c == '\r') c = ' ';
   std::cerr << s << '\n';
+}
+
+// The command line as a user would type it again: "asperity" and the arguments, each quoted
+// for a POSIX shell when it holds anything but [A-Za-z0-9_./=:,+-].
+std::string command_line_text(int argc, char** argv) {
+  std::string line = "asperity";
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    bool plain = !a.empty();
+    for (const char c : a)
+      if (!(std::isalnum(static_cast<unsigned char>(c)) || std::strchr("_./=:,+-@%", c))) plain = false;
+    line += ' ';
+    if (plain) {
+      line += a;
+      continue;
+    }
+    line += '\'';
+    for (const char c : a) line += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    line += '\'';
+  }
+  return line;
 }
 
 int run_cli(int argc, char** argv) {
@@ -56,9 +79,10 @@ int run_cli(int argc, char** argv) {
   }
 
   // Dispatch.
+  const cli::Invocation invocation{command_line_text(argc, argv)};
   try {
     for (const auto& c : commands)
-      if (c.sub->parsed()) return c.run();
+      if (c.sub->parsed()) return c.run(invocation);
   } catch (const asperity::InputError& e) {
     print_line("", e.what());
     return cli::exit_input;

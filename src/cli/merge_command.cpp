@@ -22,7 +22,7 @@ Command add_merge_command(CLI::App& app) {
   sub->add_option("stores", a->in, "Store folders")->required();
   sub->add_option("--out,-o", a->out, "New store folder")->required();
   sub->add_flag("--quiet,-q", a->quiet, "Print nothing on success");
-  return Command{sub, [a] {
+  return Command{sub, [a](const Invocation&) {
                    const std::vector<std::filesystem::path> in(a->in.begin(), a->in.end());
                    // Only into a new or empty folder: the result is a store (no marker, so that
                    // sweep can resume it), and merge never adds to an existing one.

@@ -24,7 +24,7 @@ Command add_plot_command(CLI::App& app) {
       ->allow_extra_args(false);
   sub->add_option("--out,-o", a->out, "PNG file (default STORE/heatmap_<z>_over_<x>_<y>.png)");
   sub->add_flag("--quiet,-q", a->quiet, "Print nothing on success");
-  return Command{sub, [a] {
+  return Command{sub, [a](const Invocation&) {
                    a->h.out = a->out;
                    const HeatmapReport r = plot_heatmap(a->store, a->h);
                    if (!a->quiet)

@@ -91,7 +91,7 @@ Command add_regress_command(CLI::App& app) {
   sub->add_option("--reason", opt->reason, "Why the results changed (required with --update; kept in the history)");
   sub->add_option("--threads,-j", opt->threads, "Parallel runs (default: all cores)");
   sub->add_flag("--all", opt->all, "Print every compared value, not only the drifted ones");
-  return Command{sub, [opt] { return regress(*opt); }};
+  return Command{sub, [opt](const Invocation&) { return regress(*opt); }};
 }
 
 }  // namespace asperity::cli

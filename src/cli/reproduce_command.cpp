@@ -169,7 +169,7 @@ Command add_reproduce_command(CLI::App& app) {
   sub->add_flag("--quiet,-q", opt->quiet, "Print nothing on success");
   sub->add_flag("!--no-claims", opt->claims, "Skip the claim variants and REPORT.md");
   sub->add_option("--fit", opt->fit, "Per-load alpha_b calibration for claim 5 (e.g. fits/paper_alpha_b.yaml)");
-  return Command{sub, [opt] { return reproduce(*opt); }};
+  return Command{sub, [opt](const Invocation&) { return reproduce(*opt); }};
 }
 
 }  // namespace asperity::cli

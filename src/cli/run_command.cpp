@@ -74,7 +74,7 @@ Command add_run_command(CLI::App& app) {
       ->allow_extra_args(false);  // one value per --set: never swallows the scene path
   sub->add_flag("--quiet,-q", opt->quiet, "Print nothing on success");
   sub->add_flag("--plot", opt->plot, "Also write plot.png (Q(t), A(t), A(Q)) with gnuplot");
-  return Command{sub, [opt] { return run(*opt); }};
+  return Command{sub, [opt](const Invocation&) { return run(*opt); }};
 }
 
 }  // namespace asperity::cli

@@ -72,7 +72,7 @@ Command add_sweep_command(CLI::App& app) {
   sub->add_option("--out,-o", a->out, "Store folder (default results/<campaign name>/)");
   sub->add_flag("--quiet,-q", a->quiet, "No progress and no summary (failures are still reported)");
   sub->add_flag("--retry-failed", a->retry_failed, "Rerun the points the store holds as failed");
-  return Command{sub, [a] { return sweep(*a); }};
+  return Command{sub, [a](const Invocation&) { return sweep(*a); }};
 }
 
 }  // namespace asperity::cli

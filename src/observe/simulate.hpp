@@ -3,6 +3,7 @@
 // a Recorder configured from the scene, the solver the scene names, the observables.
 #include "observe/observables.hpp"
 #include "observe/recorder.hpp"
+#include "observe/run_monitor.hpp"
 #include "scene/scene.hpp"
 #include "solve/integrate.hpp"
 
@@ -21,7 +22,8 @@ struct RunResult {
 // Throws SolverError as integrate() does, and when the run reached stop.wall_time or
 // stop.max_slips (limit_message). wall_limit_s > 0 (a sweep's per-point limit), when below
 // stop.wall_time: the solver stops once that much wall time has passed, and
-// recorder.timed_out() says so instead of an exception.
-RunResult simulate(const Scene& scene, double wall_limit_s = 0);
+// recorder.timed_out() says so instead of an exception. `monitor` (optional) is polled during
+// the run (progress, interruption: RunInterrupted).
+RunResult simulate(const Scene& scene, double wall_limit_s = 0, const RunMonitor* monitor = nullptr);
 
 }  // namespace asperity
