@@ -28,6 +28,8 @@
 #include "campaign/campaign_load.hpp"
 #include "scene/load.hpp"
 #include "io/numbers.hpp"
+#include "io/provenance.hpp"
+#include "scene/input_files.hpp"
 
 namespace asperity {
 namespace fs = std::filesystem;
@@ -134,23 +136,32 @@ bool uses_stand_ins(const Campaign& c) {
   return false;
 }
 
-std::string provenance_yaml(const Campaign& c, const std::string& campaign_text, const SweepOptions& opt) {
+std::string store_provenance_yaml(const Campaign& c, const std::string& campaign_text, const SweepOptions& opt) {
   std::ostringstream y;
   y << "# asperity sweep store: written once, when the store was started\n";
   y << "campaign: " << yaml_quoted(c.name) << '\n';
-  // Relative to the working directory when inside it (a committed store names no machine path).
-  std::error_code ec;
-  const auto rel = std::filesystem::relative(c.file, ec);
-  const bool inside = !ec && !rel.empty() && rel.begin()->string() != "..";
-  y << "campaign_file: " << yaml_quoted(inside ? rel.string() : c.file.string()) << '\n';
+  y << "campaign_file: " << yaml_quoted(display_path(c.file)) << '\n';
   y << "campaign_fnv1a64: " << yaml_quoted(hex16(fnv1a64(campaign_text))) << '\n';
   y << "points: " << c.size() << '\n';
   y << "shard: " << yaml_quoted(std::to_string(opt.shard.index) + "/" + std::to_string(opt.shard.count)) << '\n';
-  y << "asperity_version: " << yaml_quoted(ASPERITY_VERSION) << '\n';
-  y << "build_type: " << yaml_quoted(ASPERITY_BUILD_TYPE) << '\n';
+  y << "asperity_version: " << yaml_quoted(build_info().version) << '\n';
+  y << "build_type: " << yaml_quoted(build_info().build_type) << '\n';
   y << "started_utc: " << yaml_quoted(utc_now()) << '\n';
   y << "stand_in_data: " << (uses_stand_ins(c) ? "true  # STAND-IN experiments, not measurements" : "false") << '\n';
   y << "hash: \"FNV-1a 64 of the resolved scene (scene_to_yaml, experiment file relative to the campaign folder) and of the bytes of its junctions and measured CSVs\"\n";
+  // The input files as they were when the store started (each point's hash covers its own data,
+  // so a resume after a CSV changed recomputes the points that use it and says so).
+  std::vector<DataFile> files{{"campaign", c.file}};
+  const CampaignScenes scenes(c);
+  const std::uint64_t per_scene = c.grids.front().size();
+  for (std::size_t s = 0; s < c.scenes.size(); ++s) {
+    try {
+      const std::vector<DataFile> f = input_files(scenes.scene(point_at(c, s * per_scene)));
+      files.insert(files.end(), f.begin(), f.end());
+    } catch (const std::exception&) {  // an invalid first point: its error is in the journal
+    }
+  }
+  y << provenance_yaml(opt.command_line, files);
   return y.str();
 }
 
@@ -167,7 +178,7 @@ void prepare_store(const fs::path& dir, const Campaign& c, const SweepOptions& o
     return;
   }
   write_file_durably(dir / "campaign.yaml", text);
-  write_file_durably(prov, provenance_yaml(c, text, opt));
+  write_file_durably(prov, store_provenance_yaml(c, text, opt));
 }
 
 }  // namespace

@@ -31,6 +31,7 @@ struct SweepOptions {
   std::filesystem::path out;         // empty: results/<campaign name>
   bool quiet = false;                // no progress, no summary
   bool retry_failed = false;         // rerun points the store holds as failed
+  std::string command_line;          // the command that started the store (provenance.yaml)
 };
 
 struct SweepReport {

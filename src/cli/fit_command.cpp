@@ -23,7 +23,7 @@ struct FitCliOptions {
   bool quiet = false;
 };
 
-int run(const FitCliOptions& opt) {
+int run(const FitCliOptions& opt, const Invocation& inv) {
   const FitSpec spec = load_fit(opt.fit_file);
   const std::filesystem::path out =
       opt.out.empty() ? std::filesystem::path("results") / "fits" / spec.name : std::filesystem::path(opt.out);
@@ -43,7 +43,7 @@ int run(const FitCliOptions& opt) {
     };
   }
   const FitResult result = run_fit(spec, fo);
-  write_fit(out, spec, result);
+  write_fit(out, spec, result, inv.command_line);
   int evaluations = 0;
   bool ok = true;
   for (const auto& o : result.fits) {
@@ -74,7 +74,7 @@ Command add_fit_command(CLI::App& app) {
   sub->add_flag("--no-profile", opt->no_profile, "Skip the objective profile around the optimum");
   sub->add_flag("--no-error-bars", opt->no_error_bars, "Skip the error-bar refits");
   sub->add_flag("--quiet,-q", opt->quiet, "Print nothing on success");
-  return Command{sub, [opt](const Invocation&) { return run(*opt); }};
+  return Command{sub, [opt](const Invocation& inv) { return run(*opt, inv); }};
 }
 
 }  // namespace asperity::cli

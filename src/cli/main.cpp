@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "cli/commands.hpp"
+#include "io/provenance.hpp"
 #include "scene/load.hpp"
 #include "solve/integrate.hpp"
 
@@ -47,8 +48,7 @@ int run_cli(int argc, char** argv) {
   namespace cli = asperity::cli;
   CLI::App app{"asperity: onset of sliding of elastomer multicontacts "
                "(independent-asperity model, Scheibert, Sahli & Peyrard 2020)"};
-  app.set_version_flag("--version", std::string("asperity ") + ASPERITY_VERSION + " (" +
-                                        ASPERITY_BUILD_TYPE + ")");
+  app.set_version_flag("--version", asperity::version_line());
   app.require_subcommand(1);
 
   // Registration: one line per subcommand.

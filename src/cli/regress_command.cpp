@@ -9,6 +9,7 @@
 #include <string>
 #include <thread>
 
+#include "io/provenance.hpp"
 #include "cli/commands.hpp"
 #include "regress/regress.hpp"
 #include "io/atomic_file.hpp"
@@ -53,7 +54,7 @@ int regress(const RegressOptions& opt) {
 
   if (opt.update) {
     auto history = golden.history;
-    history.push_back({today(), ASPERITY_VERSION, opt.reason});
+    history.push_back({today(), build_info().version, opt.reason});
     const Golden fresh = bless(results, history);
     fs::create_directories(fs::path(opt.golden).parent_path());
     scene_io::write_text_file(opt.golden, golden_to_yaml(fresh));

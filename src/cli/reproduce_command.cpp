@@ -38,7 +38,7 @@ struct ReproduceOptions {
   std::string fit;  // per-load α_b calibration for claim 5 (e.g. fits/paper_alpha_b.yaml)
 };
 
-int reproduce(const ReproduceOptions& opt) {
+int reproduce(const ReproduceOptions& opt, const Invocation& inv) {
   namespace fs = std::filesystem;
   const auto t0 = std::chrono::steady_clock::now();
   // Load everything first: a bad scene fails before any run.
@@ -73,7 +73,7 @@ int reproduce(const ReproduceOptions& opt) {
     tbb::parallel_for(std::size_t{0}, runs.size(), [&](std::size_t i) {
       try {
         RunResult r = simulate(runs[i].scene);
-        write_run(dirs[i], runs[i].scene, r.obs, r.recorder);
+        write_run(dirs[i], runs[i].scene, r.obs, r.recorder, RunWriteOptions{false, inv.command_line});
         runs[i].obs = r.obs;
         runs[i].series = r.recorder.series();
         runs[i].loading = r.recorder.loading_branch();
@@ -169,7 +169,7 @@ Command add_reproduce_command(CLI::App& app) {
   sub->add_flag("--quiet,-q", opt->quiet, "Print nothing on success");
   sub->add_flag("!--no-claims", opt->claims, "Skip the claim variants and REPORT.md");
   sub->add_option("--fit", opt->fit, "Per-load alpha_b calibration for claim 5 (e.g. fits/paper_alpha_b.yaml)");
-  return Command{sub, [opt](const Invocation&) { return reproduce(*opt); }};
+  return Command{sub, [opt](const Invocation& inv) { return reproduce(*opt, inv); }};
 }
 
 }  // namespace asperity::cli

@@ -48,7 +48,7 @@ void print_summary(const Scene& scene, const Observables& o, const std::filesyst
   std::printf("  -> %s\n", out.string().c_str());
 }
 
-int run(const RunOptions& opt) {
+int run(const RunOptions& opt, const Invocation& inv) {
   const Scene scene = load_scene(opt.scene, opt.overrides);
   const std::filesystem::path out =
       opt.out.empty() ? std::filesystem::path("results") / "runs" /
@@ -56,7 +56,7 @@ int run(const RunOptions& opt) {
                       : std::filesystem::path(opt.out);
   check_run_dir(out);  // fail before the run, not after it
   const RunResult r = simulate(scene);
-  write_run(out, scene, r.obs, r.recorder, RunWriteOptions{opt.plot});
+  write_run(out, scene, r.obs, r.recorder, RunWriteOptions{opt.plot, inv.command_line});
   if (!opt.quiet) print_summary(scene, r.obs, out);
   return exit_ok;
 }
@@ -74,7 +74,7 @@ Command add_run_command(CLI::App& app) {
       ->allow_extra_args(false);  // one value per --set: never swallows the scene path
   sub->add_flag("--quiet,-q", opt->quiet, "Print nothing on success");
   sub->add_flag("--plot", opt->plot, "Also write plot.png (Q(t), A(t), A(Q)) with gnuplot");
-  return Command{sub, [opt](const Invocation&) { return run(*opt); }};
+  return Command{sub, [opt](const Invocation& inv) { return run(*opt, inv); }};
 }
 
 }  // namespace asperity::cli

@@ -18,8 +18,9 @@ struct SweepArgs {
   bool quiet = false, retry_failed = false;
 };
 
-int sweep(const SweepArgs& a) {
+int sweep(const SweepArgs& a, const Invocation& inv) {
   SweepOptions opt;
+  opt.command_line = inv.command_line;
   try {
     opt.shard = parse_shard(a.shard);
   } catch (const std::invalid_argument& e) {
@@ -72,7 +73,7 @@ Command add_sweep_command(CLI::App& app) {
   sub->add_option("--out,-o", a->out, "Store folder (default results/<campaign name>/)");
   sub->add_flag("--quiet,-q", a->quiet, "No progress and no summary (failures are still reported)");
   sub->add_flag("--retry-failed", a->retry_failed, "Rerun the points the store holds as failed");
-  return Command{sub, [a](const Invocation&) { return sweep(*a); }};
+  return Command{sub, [a](const Invocation& inv) { return sweep(*a, inv); }};
 }
 
 }  // namespace asperity::cli

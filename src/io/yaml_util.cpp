@@ -339,3 +339,31 @@ std::vector<std::string> MapView::string_list(const YAML::Node& n, const std::st
 }
 
 }  // namespace asperity::scene_io
+
+namespace asperity {
+
+// A double-quoted YAML scalar with escapes (the one quoting used for every file we write).
+std::string yaml_quoted(const std::string& s) {
+  static const char* hex = "0123456789ABCDEF";
+  std::string out = "\"";
+  for (unsigned char c : s) {
+    switch (c) {
+      case '"': out += "\\\""; break;
+      case '\\': out += "\\\\"; break;
+      case '\n': out += "\\n"; break;
+      case '\t': out += "\\t"; break;
+      case '\r': out += "\\r"; break;
+      default:
+        if (c < 0x20 || c == 0x7F) {
+          out += "\\x";
+          out += hex[c >> 4];
+          out += hex[c & 0xF];
+        } else {
+          out += static_cast<char>(c);
+        }
+    }
+  }
+  return out + "\"";
+}
+
+}  // namespace asperity

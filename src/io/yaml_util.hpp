@@ -109,3 +109,9 @@ class MapView {
 };
 
 }  // namespace asperity::scene_io
+
+namespace asperity {
+// A double-quoted YAML scalar with escapes (the one quoting used for every file we write;
+// deterministic bytes).
+std::string yaml_quoted(const std::string& s);
+}  // namespace asperity

@@ -19,9 +19,10 @@
 
 namespace asperity {
 
-std::string fit_yaml(const FitSpec& spec, const FitResult& result);
+std::string fit_yaml(const FitSpec& spec, const FitResult& result, const std::string& command_line = "");
 
-void write_fit(const std::filesystem::path& dir, const FitSpec& spec, const FitResult& result);
+void write_fit(const std::filesystem::path& dir, const FitSpec& spec, const FitResult& result,
+               const std::string& command_line = "");
 
 // Throws the error write_fit would give for an existing `dir` that is not a fit directory.
 void check_fit_dir(const std::filesystem::path& dir);

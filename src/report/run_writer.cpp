@@ -9,9 +9,11 @@
 
 #include "io/csv.hpp"
 #include "io/numbers.hpp"
+#include "io/provenance.hpp"
 #include "observe/series_csv.hpp"
 #include "report/gnuplot.hpp"
 #include "report/output_dir.hpp"
+#include "scene/input_files.hpp"
 #include "scene/load.hpp"
 
 namespace asperity {
@@ -55,11 +57,12 @@ std::string yaml_double(double x) {
   return scene_io::format_g17(x);
 }
 
-std::string summary_yaml(const Scene& scene, const Observables& o, const std::vector<Peak>& peaks) {
+std::string summary_yaml(const Scene& scene, const Observables& o, const std::vector<Peak>& peaks,
+                         const std::string& command_line) {
   std::ostringstream y;
   auto d = [&](const char* key, double v) { y << key << ": " << yaml_double(v) << '\n'; };
   y << kSummaryHeader << '\n';
-  y << "asperity_version: " << yaml_quoted(ASPERITY_VERSION) << '\n';
+  y << "asperity_version: " << yaml_quoted(build_info().version) << '\n';
   y << "scene_file: " << yaml_quoted(scene.file.string()) << '\n';
   y << "experiment: " << yaml_quoted(scene.experiment.name) << '\n';
   y << "method: " << method_name(scene.solver.method) << '\n';
@@ -80,6 +83,7 @@ std::string summary_yaml(const Scene& scene, const Observables& o, const std::ve
         << ", A_max: " << yaml_double(p.max.A) << ", t_min: " << yaml_double(p.min.t)
         << ", Q_min: " << yaml_double(p.min.Q) << ", A_min: " << yaml_double(p.min.A) << "}\n";
   }
+  y << provenance_yaml(command_line, input_files(scene));
   return y.str();
 }
 
@@ -88,7 +92,7 @@ void write_run(const fs::path& dir, const Scene& scene, const Observables& obs, 
   write_dir_atomically(dir, check_replaceable_dir, [&](const fs::path& tmp) {
     // Text first: a failure (e.g. scene_to_yaml throwing) happens before anything is written.
     const std::string scene_text = scene_to_yaml(scene);
-    const std::string summary_text = summary_yaml(scene, obs, rec.peaks());
+    const std::string summary_text = summary_yaml(scene, obs, rec.peaks(), opt.command_line);
     if (!scene.output.series.empty()) {
       std::ostringstream csv;
       write_series_csv(csv, rec.series(), scene.output.series);

@@ -3,7 +3,7 @@
 //   series.csv    the sampled series the scene asks for (columns in all_series() order; absent
 //                 when scene.output.series is empty), values printed with %.17g;
 //   summary.yaml  every Observables field (%.17g, exact round trip), the solver settings and the
-//                 confirmed peaks;
+//                 confirmed peaks, and provenance (build, command line, input files' hashes);
 //   scene.yaml    the resolved scene (scene_to_yaml): `asperity run DIR/scene.yaml` repeats it;
 //   plot.png      optional: Q(t), A(t) and A(Q) via gnuplot.
 // The directory is built as a hidden temporary sibling and renamed into place, so an interrupted
@@ -21,11 +21,13 @@ namespace asperity {
 // %.17g (round-trips every double); YAML spellings .nan / .inf / -.inf for non-finite values.
 std::string yaml_double(double x);
 
-// The text of summary.yaml.
-std::string summary_yaml(const Scene& scene, const Observables& obs, const std::vector<Peak>& peaks);
+// The text of summary.yaml; its provenance block names `command_line`.
+std::string summary_yaml(const Scene& scene, const Observables& obs, const std::vector<Peak>& peaks,
+                         const std::string& command_line = "");
 
 struct RunWriteOptions {
-  bool plot = false;  // also write plot.png (skipped silently without gnuplot or series)
+  bool plot = false;         // also write plot.png (skipped silently without gnuplot or series)
+  std::string command_line;  // the command that ran it (provenance)
 };
 
 // Writes the run directory `dir` atomically, replacing an existing run directory. Throws

@@ -37,6 +37,7 @@
 
 #include "scene/csv.hpp"
 #include "io/input_error.hpp"
+#include "io/yaml_util.hpp"  // yaml_quoted
 #include "scene/scene.hpp"
 #include "scene/typed_scene.hpp"
 
@@ -86,8 +87,5 @@ std::string experiment_to_yaml(const Experiment& e, const std::string& junctions
 
 // The model: and solver: sections of a scene, exactly as scene_to_yaml writes them.
 std::string model_solver_yaml(const ModelSettings& m, const SolverSettings& solver);
-
-// A double-quoted, escaped YAML scalar (deterministic bytes).
-std::string yaml_quoted(const std::string& s);
 
 }  // namespace asperity

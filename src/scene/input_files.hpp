@@ -1,0 +1,17 @@
+#pragma once
+// The files a scene was read from, for provenance: the scene, its experiment, the junctions and
+// measured CSVs (those it has).
+#include <vector>
+
+#include "io/provenance.hpp"
+#include "scene/scene.hpp"
+
+namespace asperity {
+
+inline std::vector<DataFile> input_files(const Scene& scene) {
+  const Experiment& e = scene.experiment;
+  return {{"scene", scene.file}, {"experiment", e.file}, {"junctions", e.junctions_file},
+          {"measured", e.measured_file}};
+}
+
+}  // namespace asperity
