@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "fit_support.hpp"
+#include "io/hash.hpp"
 
 #include "support.hpp"
 
@@ -47,6 +48,10 @@ TEST_CASE("asperity fit writes the results directory", "[fit][cli]") {
   CHECK(y.find("error_bars:") != std::string::npos);
   CHECK(y.find("key: experiment.E, shift: -100000") != std::string::npos);
   CHECK(y.find("key: experiment.E, shift: 100000") != std::string::npos);
+  // Provenance: the command as typed, the fit file and the experiment's data by content.
+  CHECK(y.find("command_line: \"asperity fit f.yaml --quiet --threads 2\"") != std::string::npos);
+  CHECK(y.find("{role: \"fit\", path: \"f.yaml\", fnv1a64: \"" + asperity::hex16(asperity::fnv1a64(slurp(c.dir / "f.yaml"))) + "\"}") != std::string::npos);
+  CHECK(y.find("{role: \"measured\"") != std::string::npos);
   // One CSV row per evaluation, as counted in fit.yaml.
   const auto at = y.find("\n    evaluations: ");
   REQUIRE(at != std::string::npos);
