@@ -58,10 +58,10 @@ TEST_CASE("the disc-averaged compliance equals a direct integration over two uni
   struct Case { double dx, dy, a, b, tol; int n_theta = 48; };
   // Separated discs: both agree to ~1e-13 (measured ≤ 1.6e-13 at gap ≥ a, ≤ 8e-13 at gap 0.2a);
   // touching discs (gap 0) are nearly singular at the contact point, where the quadrature's
-  // 80 × 160 nodes per disc (80 × 48 elsewhere) leave ~1e-5 (measured 8.8e-6 and 1.9e-6).
+  // 80 × 160 nodes per disc (80 × 96 at gap ≤ 0.4a, 80 × 48 elsewhere) leave ~1e-5 (measured 8.8e-6 and 1.9e-6).
   const Case cases[] = {
       {3e-5, 0, 1e-5, 1e-5, 5e-13},   {0, 3e-5, 1e-5, 1e-5, 5e-13},     {2e-5, 2e-5, 1e-5, 5e-6, 5e-13},
-      {1.8e-5, 0.6e-5, 1e-5, 0.4e-5, 3e-12}, {2.4e-5, 0, 1e-5, 1e-5, 3e-12}, {0, 2.2e-5, 1e-5, 1e-5, 3e-12},
+      {1.8e-5, 0.6e-5, 1e-5, 0.4e-5, 3e-12, 96}, {2.4e-5, 0, 1e-5, 1e-5, 3e-12, 96}, {0, 2.2e-5, 1e-5, 1e-5, 3e-12, 96},
       {2e-5, 0, 1e-5, 1e-5, 3e-5, 160}, {0, 2e-5, 1e-5, 1e-5, 3e-5, 160},
   };
   for (const Case& k : cases) {
