@@ -1,5 +1,6 @@
 // src/campaign: lazy expansion of a campaign into points (mixed radix), spaces, shards.
 #include <catch2/catch.hpp>
+#include <map>
 #include <cmath>
 #include <cstdint>
 #include <set>
@@ -133,6 +134,27 @@ TEST_CASE("shard text I/N is parsed strictly", "[campaign]") {
   CHECK(parse_shard("3/4").index == 3);
   for (const char* bad : {"4/4", "1", "/4", "1/0", "-1/4", "1/4x", "a/b", ""})
     CHECK_THROWS_AS(parse_shard(bad), std::invalid_argument);
+}
+
+TEST_CASE("--shard auto reads the SLURM array task", "[campaign][slurm]") {
+  std::map<std::string, std::string> vars;
+  const auto env = [&](const char* n) -> const char* {
+    const auto it = vars.find(n);
+    return it == vars.end() ? nullptr : it->second.c_str();
+  };
+  CHECK_THROWS_WITH(parse_shard("auto", env), Catch::Contains("SLURM_ARRAY_TASK_ID is not set"));
+  // sbatch --array=1-4, the third task: shard 2/4.
+  vars = {{"SLURM_ARRAY_TASK_ID", "3"}, {"SLURM_ARRAY_TASK_MIN", "1"}, {"SLURM_ARRAY_TASK_MAX", "4"},
+          {"SLURM_ARRAY_TASK_COUNT", "4"}};
+  const Shard s = parse_shard("auto", env);
+  CHECK(s.index == 2);
+  CHECK(s.count == 4);
+  // --array=0-6:2 (not contiguous) would leave points of no task: refused.
+  vars = {{"SLURM_ARRAY_TASK_ID", "2"}, {"SLURM_ARRAY_TASK_MIN", "0"}, {"SLURM_ARRAY_TASK_MAX", "6"},
+          {"SLURM_ARRAY_TASK_COUNT", "4"}};
+  CHECK_THROWS_WITH(parse_shard("auto", env), Catch::Contains("must be contiguous"));
+  vars["SLURM_ARRAY_TASK_COUNT"] = "x7";
+  CHECK_THROWS_WITH(parse_shard("auto", env), Catch::Contains("'x7', not a whole number"));
 }
 
 TEST_CASE("FNV-1a 64 matches the published test vectors", "[campaign]") {

@@ -8,6 +8,8 @@
 //   points: product → the last axis varies fastest (like nested loops in file order);
 //   zip → the k-th value of every axis.
 #include <cstdint>
+#include <cstdlib>
+#include <functional>
 #include <filesystem>
 #include <string>
 #include <utility>
@@ -78,7 +80,10 @@ struct Point {
 Point point_at(const Campaign& campaign, std::uint64_t index);
 
 // Shard `I/N`: the points with index % N == I (round robin, so a slow corner of a grid is spread
-// over all shards). Parses "I/N" (0 <= I < N); std::invalid_argument with a message otherwise.
+// over all shards). Parses "I/N" (0 <= I < N), or "auto": the task of a SLURM job array
+// (I = SLURM_ARRAY_TASK_ID − SLURM_ARRAY_TASK_MIN, N = SLURM_ARRAY_TASK_COUNT; the array must be
+// contiguous, e.g. --array=0-15), read through `env` (default std::getenv);
+// std::invalid_argument with a message otherwise.
 struct Shard {
   std::uint64_t index = 0, count = 1;
   bool contains(std::uint64_t point) const { return point % count == index; }
@@ -86,6 +91,7 @@ struct Shard {
     return total / count + (index < total % count ? 1 : 0);
   }
 };
-Shard parse_shard(const std::string& text);
+Shard parse_shard(const std::string& text,
+                  const std::function<const char*(const char*)>& env = [](const char* n) { return std::getenv(n); });
 
 }  // namespace asperity

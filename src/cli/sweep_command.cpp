@@ -69,7 +69,7 @@ Command add_sweep_command(CLI::App& app) {
   CLI::App* sub = app.add_subcommand("sweep", "Run a campaign (sweeps/*.yaml) into a resumable result store");
   sub->add_option("campaign", a->campaign, "Campaign YAML file")->required();
   sub->add_option("--threads,-j", a->threads, "Points run in parallel (default 0: all cores)");
-  sub->add_option("--shard", a->shard, "Run only points with index % N == I, given as I/N (default 0/1)");
+  sub->add_option("--shard", a->shard, "Run only points with index % N == I, given as I/N (default 0/1), or auto: the task of a SLURM job array");
   sub->add_option("--out,-o", a->out, "Store folder (default results/<campaign name>/)");
   sub->add_flag("--quiet,-q", a->quiet, "No progress and no summary (failures are still reported)");
   sub->add_flag("--retry-failed", a->retry_failed, "Rerun the points the store holds as failed");
