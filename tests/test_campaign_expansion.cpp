@@ -136,7 +136,7 @@ TEST_CASE("shard text I/N is parsed strictly", "[campaign]") {
     CHECK_THROWS_AS(parse_shard(bad), std::invalid_argument);
 }
 
-TEST_CASE("--shard auto reads the SLURM array task", "[campaign][slurm]") {
+TEST_CASE("shard auto (--shard auto) reads the SLURM array task", "[campaign][slurm]") {
   std::map<std::string, std::string> vars;
   const auto env = [&](const char* n) -> const char* {
     const auto it = vars.find(n);

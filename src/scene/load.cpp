@@ -181,6 +181,8 @@ void read_other(const MapView& m, const YAML::Node& n, const SceneKey& key, Scen
         m.enumeration<JunctionShape>(n, k, {{"elliptic", JunctionShape::elliptic}, {"circular", JunctionShape::circular}});
   else if (name == "model.area_law")
     s.model.area_law = m.enumeration<AreaLaw>(n, k, {{"until_first_slip", AreaLaw::until_first_slip}, {"always", AreaLaw::always}});
+  else if (name == "model.interactions")
+    s.model.interactions = m.enumeration<Interactions>(n, k, {{"none", Interactions::none}, {"elastic", Interactions::elastic}});
   else if (name == "solver.method")
     s.solver.method = m.enumeration<SolverMethod>(n, k, {{"reference", SolverMethod::reference}, {"event", SolverMethod::event}});
   else if (name == "stop.at_first_peak")

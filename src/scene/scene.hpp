@@ -38,6 +38,8 @@ struct Experiment {
   std::string description;  // free text from the experiment file (e.g. "stand-in data"); may be empty
 };
 
+enum class Interactions { none, elastic };
+
 struct ModelSettings {
   double eta = 100.0;        // 1/s
   double epsilon = 0.90;
@@ -46,6 +48,10 @@ struct ModelSettings {
   double alpha_b = 0.725e-15;  // m^(2p+2)/N² (m⁵/N² for p = 1.5)
   JunctionShape junction_shape = JunctionShape::elliptic;
   AreaLaw area_law = AreaLaw::until_first_slip;
+  // Tangential elastic interactions between junctions (MODEL.md §8): none (the paper's
+  // independent junctions) or elastic (needs junction positions x_m, y_m).
+  Interactions interactions = Interactions::none;
+  double interaction_cutoff = 0;  // m; pairs farther apart are dropped; 0: every pair
 };
 
 enum class SolverMethod { reference, event };

@@ -20,6 +20,7 @@ std::string num(double x) {
 
 const char* name_of(JunctionShape s) { return s == JunctionShape::circular ? "circular" : "elliptic"; }
 const char* name_of(AreaLaw a) { return a == AreaLaw::always ? "always" : "until_first_slip"; }
+const char* name_of(Interactions i) { return i == Interactions::elastic ? "elastic" : "none"; }
 const char* name_of(SolverMethod m) { return m == SolverMethod::reference ? "reference" : "event"; }
 
 // A number row: FIELD is an lvalue expression of `s`.
@@ -57,6 +58,9 @@ std::vector<SceneKey> make_table() {
       NUMBER("model.alpha_b", "m^(2p+2)/N^2", ">= 0", x >= 0, "", 0.725e-15, true, s.model.alpha_b),
       OTHER("model.junction_shape", KeyKind::choice, name_of(s.model.junction_shape)),
       OTHER("model.area_law", KeyKind::choice, name_of(s.model.area_law)),
+      OTHER("model.interactions", KeyKind::choice, name_of(s.model.interactions)),
+      NUMBER("model.interaction_cutoff", "m", ">= 0", x >= 0, "0 keeps every pair", 0.0, false,
+             s.model.interaction_cutoff),
       OTHER("solver.method", KeyKind::choice, name_of(s.solver.method)),
       NUMBER("solver.Ct", nullptr, ">= 1", x >= 1, "reference steps per T0; fewer is unstable for any scene", 1e4,
              false, s.solver.Ct),
@@ -83,6 +87,10 @@ std::vector<SceneKey> make_table() {
     const std::string n = k.name;
     // Limits only when set: a default one leaves the text (and so the sweep store's scene hash)
     // as it was before the keys existed.
+    // The interaction keys only when interactions are on: a scene of independent junctions has
+    // the text (and store hash) it had before they existed.
+    if (n == "model.interactions" || n == "model.interaction_cutoff")
+      k.written = [](const Scene& s) { return s.model.interactions != Interactions::none; };
     if (n == "stop.wall_time") k.written = [](const Scene& s) { return s.stop.wall_time != StopSettings{}.wall_time; };
     if (n == "stop.max_slips") {
       k.set = [](Scene& s, double x) { s.stop.max_slips = static_cast<std::int64_t>(x); };

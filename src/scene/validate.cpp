@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <stdexcept>
+#include <unordered_map>
+#include <vector>
 
 #include "io/input_error.hpp"
 #include "io/numbers.hpp"
@@ -20,6 +23,7 @@ constexpr double kMaxEtaTime = 1e6;      // η · stop.time: ≤ ~3·10^5 steps 
 constexpr double kMaxPeriods = 1e6;     // slider oscillations in stop.time (≥ 2·10^7 event steps)
 constexpr double kMaxReferenceSteps = 1e9;  // steps of the reference solver
 constexpr double kMinSlipAreaFraction = 1e-6;  // A_s/A0 at a junction's first slip
+constexpr std::size_t kMaxInteractingJunctions = 10000;  // 0.8 GB of compliance matrix (N^2 doubles)
 
 // Each error names the key the user set (the first of the pair that was given).
 [[noreturn]] void blame(const KeyOrigins& o, const char* a, const char* b, const std::string& msg) {
@@ -96,11 +100,78 @@ void check_area_law_domain(const Scene& s, const KeyOrigins& o) {
   }
 }
 
+// Elastic interactions (MODEL.md §8): the junctions need finite, non-overlapping positions
+// (each a disc of its initial area), a solver that handles them, and a dense N × N compliance
+// that fits in memory.
+void check_interactions(const Scene& s, const KeyOrigins& o) {
+  if (s.model.interactions == Interactions::none) return;
+  const JunctionPopulation& J = s.experiment.junctions;
+  const std::string csv = s.experiment.junctions_file.string();
+  if (J.x_m.size() != J.size() || J.y_m.size() != J.size())
+    o.fail("model.interactions", "elastic interactions need the junction positions: " +
+                                     (csv.empty() ? std::string("the junctions") : csv) +
+                                     " has no x_m and y_m columns");
+  if (J.size() > kMaxInteractingJunctions)
+    o.fail("model.interactions", "elastic interactions keep an N x N compliance matrix: N = " +
+                                     std::to_string(J.size()) + " junctions, more than " +
+                                     std::to_string(kMaxInteractingJunctions));
+  if (s.solver.method != SolverMethod::reference)
+    o.fail("model.interactions",
+           "elastic interactions run with solver.method: reference (the event solver for interacting "
+           "junctions is not built yet)");
+  for (std::size_t i = 0; i < J.size(); ++i)
+    if (!std::isfinite(J.x_m[i]) || !std::isfinite(J.y_m[i]))
+      throw InputError(csv, 0, "x_m", "junction " + std::to_string(i + 1) + " has a non-finite position");
+  if (const auto pair = first_overlap(J))
+    throw InputError(csv, 0, "x_m",
+                     "junctions " + std::to_string(pair->first + 1) + " and " + std::to_string(pair->second + 1) +
+                         " overlap (centres " +
+                         format_short(std::hypot(J.x_m[pair->first] - J.x_m[pair->second],
+                                                 J.y_m[pair->first] - J.y_m[pair->second])) +
+                         " m apart, radii sqrt(A0/pi) = " + format_short(std::sqrt(J.area_m2[pair->first] / M_PI)) +
+                         " and " + format_short(std::sqrt(J.area_m2[pair->second] / M_PI)) +
+                         " m); elastic interactions need separate junctions");
+}
+
 }  // namespace
+
+std::optional<std::pair<std::size_t, std::size_t>> first_overlap(const JunctionPopulation& J) {
+  // Uniform grid of cells of the largest diameter: a pair that overlaps lies in neighbouring
+  // cells, so each junction is compared with the 3 x 3 cells around it (O(N) for even sizes).
+  const std::size_t n = J.size();
+  if (n < 2) return std::nullopt;
+  double r_max = 0;
+  for (const double A : J.area_m2) r_max = std::max(r_max, std::sqrt(A / M_PI));
+  const double cell = 2 * r_max;
+  std::unordered_map<std::uint64_t, std::vector<std::size_t>> cells;
+  const auto key = [](std::int64_t cx, std::int64_t cy) {
+    return (static_cast<std::uint64_t>(cx) << 32) ^ static_cast<std::uint32_t>(cy);
+  };
+  std::vector<std::int64_t> cx(n), cy(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    cx[i] = static_cast<std::int64_t>(std::floor(J.x_m[i] / cell));
+    cy[i] = static_cast<std::int64_t>(std::floor(J.y_m[i] / cell));
+    cells[key(cx[i], cy[i])].push_back(i);
+  }
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::int64_t dx = -1; dx <= 1; ++dx)
+      for (std::int64_t dy = -1; dy <= 1; ++dy) {
+        const auto it = cells.find(key(cx[i] + dx, cy[i] + dy));
+        if (it == cells.end()) continue;
+        for (const std::size_t j : it->second) {
+          if (j <= i) continue;
+          const double d = std::hypot(J.x_m[i] - J.x_m[j], J.y_m[i] - J.y_m[j]);
+          if (d < std::sqrt(J.area_m2[i] / M_PI) + std::sqrt(J.area_m2[j] / M_PI))
+            return std::pair{std::min(i, j), std::max(i, j)};
+        }
+      }
+  return std::nullopt;
+}
 
 void validate_scene(const Scene& s, const KeyOrigins& origins) {
   check_resources(s, origins);
   check_area_law_domain(s, origins);
+  check_interactions(s, origins);
 }
 
 }  // namespace asperity

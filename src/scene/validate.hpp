@@ -3,7 +3,10 @@
 // bounded, and the area law must stay meaningful (load.hpp lists the bounds). One function for
 // the loader and for scenes whose numbers a sweep or a fit set, so both report a bad
 // combination with the same message, naming the key the user set.
+#include <cstddef>
+#include <optional>
 #include <string>
+#include <utility>
 
 #include "scene/scene.hpp"
 
@@ -23,5 +26,9 @@ class KeyOrigins {
 
 // Throws InputError (through origins.fail, or naming the junctions file) on the first bound broken.
 void validate_scene(const Scene& s, const KeyOrigins& origins);
+
+// Two junctions whose discs (radius sqrt(A0/π) around (x_m, y_m)) overlap, lowest indices of
+// the first such pair found; nullopt when none do. Needs positions. O(N) for similar sizes.
+std::optional<std::pair<std::size_t, std::size_t>> first_overlap(const JunctionPopulation& junctions);
 
 }  // namespace asperity

@@ -20,6 +20,11 @@ Problem make_problem(const Scene& scene, const RunLimits& limits) {
     p.A0_sum += a;
     p.K0 += p.law.stiffness(a, a);
   }
+  if (m.interactions == Interactions::elastic) {
+    p.x = e.junctions.x_m;
+    p.y = e.junctions.y_m;
+    p.interaction_cutoff = m.interaction_cutoff;
+  }
   p.T0 = 2.0 * M_PI / std::sqrt(p.K0 / e.mass_kg);
   p.dt = p.T0 / scene.solver.Ct;
   return p;

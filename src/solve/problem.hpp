@@ -23,6 +23,11 @@ struct Problem {
   RunLimits limits;            // checked every step or event
   // Derived once: Σ A0 [m²], Σ k_i(t = 0) [N/m], T0 = 2π / sqrt(K0/M) [s], dt = T0/C_t [s].
   double A0_sum = 0, K0 = 0, T0 = 0, dt = 0;
+  // Elastic interactions (MODEL.md §8), when the scene asks for them: junction centres [m] and
+  // the distance beyond which pairs are dropped [m] (0: none dropped). Empty x: independent.
+  std::vector<double> x, y;
+  double interaction_cutoff = 0;
+  bool interacting() const { return !x.empty(); }
 
   std::size_t size() const { return A0.size(); }
   double repin_speed() const { return c_min * slider.v; }  // m/s

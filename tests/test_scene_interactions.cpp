@@ -1,0 +1,99 @@
+// Scene keys model.interactions / model.interaction_cutoff: loaded, written only when on,
+// and refused with one line when the junctions cannot interact (no positions, overlap) or the
+// solver cannot run them.
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <string>
+
+#include "io/input_error.hpp"
+#include "scene/load.hpp"
+#include "scene/validate.hpp"
+#include "support.hpp"
+
+namespace fs = std::filesystem;
+using namespace asperity;
+using namespace asperity::testing;
+using Catch::Contains;
+
+namespace {
+
+const fs::path kExp = fs::path(ASPERITY_SOURCE_DIR) / "tests" / "data" / "scene" / "exp_small";
+
+// An experiment folder with the fixture's values and the given junctions CSV text.
+fs::path experiment_with(const fs::path& dir, const std::string& junctions_csv) {
+  fs::create_directories(dir);
+  write_text(dir / "experiment.yaml", slurp(kExp / "experiment.yaml"));
+  write_text(dir / "measured.csv", slurp(kExp / "measured.csv"));
+  write_text(dir / "junctions.csv", junctions_csv);
+  return dir / "experiment.yaml";
+}
+
+std::string error_of(const fs::path& scene, const std::vector<std::string>& sets = {}) {
+  try {
+    load_scene(scene, sets);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST_CASE("interaction keys load, round-trip, and stay out of scenes that do not use them", "[scene][interacting]") {
+  const fs::path dir = temp_path("scene_interactions");
+  fs::remove_all(dir);
+  experiment_with(dir / "exp", "area_m2,x_m,y_m\n1e-8,0,0\n2e-8,3e-4,0\n1.5e-8,0,4e-4\n");
+  const fs::path scene = write_text(dir / "s.yaml",
+                                    "experiment: exp/experiment.yaml\n"
+                                    "model: {interactions: elastic, interaction_cutoff: 2e-4}\n"
+                                    "solver: {method: reference, Ct: 200}\n");
+  const Scene s = load_scene(scene);
+  CHECK(s.model.interactions == Interactions::elastic);
+  CHECK(s.model.interaction_cutoff == 2e-4);
+  const std::string text = scene_to_yaml(s);
+  CHECK_THAT(text, Contains("  interactions: elastic\n") && Contains("  interaction_cutoff: 2e-04\n"));
+  const fs::path again = write_text(dir / "again.yaml", text);
+  CHECK(scene_to_yaml(load_scene(again)) == text);
+  // Off (the default): not written, so the text and a store's point hashes are as before.
+  const Scene off = load_scene(scene, {"model.interactions=none"});
+  CHECK(scene_to_yaml(off).find("  interaction") == std::string::npos);
+  // A negative cut-off is out of range.
+  CHECK_THAT(error_of(scene, {"model.interaction_cutoff=-1"}), Contains("model.interaction_cutoff") && Contains(">= 0"));
+  fs::remove_all(dir);
+}
+
+TEST_CASE("interactions are refused with one line for overlapping or unplaced junctions and the event solver",
+          "[scene][interacting]") {
+  const fs::path dir = temp_path("scene_interactions_bad");
+  fs::remove_all(dir);
+  // The fixture's junctions 3 (at 0, 0, radius 69 µm) and 5 (at 100 µm, radius 40 µm) overlap.
+  fs::create_directories(dir);
+  const fs::path fixture = write_text(dir / "fixture.yaml", "experiment: " + (kExp / "experiment.yaml").string() +
+                                                               "\nmodel: {interactions: elastic}\nsolver: {method: reference}\n");
+  CHECK_THAT(error_of(fixture), Contains("junctions.csv") && Contains("junctions 3 and 5 overlap"));
+  // No positions.
+  experiment_with(dir / "bare", "area_m2\n1e-8\n2e-8\n");
+  const fs::path bare = write_text(dir / "bare.yaml", "experiment: bare/experiment.yaml\nmodel: {interactions: elastic}\nsolver: {method: reference}\n");
+  CHECK_THAT(error_of(bare), Contains("bare.yaml:2") && Contains("model.interactions") && Contains("no x_m and y_m"));
+  // The event solver does not run interacting junctions (yet): said, not ignored.
+  experiment_with(dir / "ok", "area_m2,x_m,y_m\n1e-8,0,0\n2e-8,3e-4,0\n");
+  const fs::path event = write_text(dir / "event.yaml", "experiment: ok/experiment.yaml\nmodel: {interactions: elastic}\n");
+  CHECK_THAT(error_of(event), Contains("model.interactions") && Contains("solver.method: reference"));
+  fs::remove_all(dir);
+}
+
+TEST_CASE("first_overlap finds the overlapping pair among many and none in a clean lattice", "[scene][interacting]") {
+  JunctionPopulation J;
+  for (int i = 0; i < 40; ++i)
+    for (int j = 0; j < 40; ++j) {
+      J.area_m2.push_back(M_PI * 0.49e-4 * 0.49e-4);  // radius 49 µm on a 100 µm lattice
+      J.x_m.push_back(i * 1e-4);
+      J.y_m.push_back(j * 1e-4);
+    }
+  CHECK_FALSE(first_overlap(J).has_value());
+  J.x_m[700] += 0.03e-4;  // now 97 µm from its neighbour at +x: radii sum 98 µm
+  const auto pair = first_overlap(J);
+  REQUIRE(pair.has_value());
+  CHECK(pair->first == 700);
+  CHECK(pair->second == 740);
+}
