@@ -2,6 +2,9 @@
 // committed data/standin/ and scenes/paper/ files.
 #include <catch2/catch.hpp>
 #include <cmath>
+
+#include "scene/validate.hpp"
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -162,6 +165,25 @@ TEST_CASE("changing the seed changes a stand-in, keeping it the same size", "[ge
   CHECK(a.experiment.junctions.area_m2 != b.experiment.junctions.area_m2);
   CHECK(a.experiment.measured->A_m2 != b.experiment.measured->A_m2);
   CHECK(a.experiment.name == b.experiment.name);
+}
+
+TEST_CASE("contact-disc positions leave areas and measured curve unchanged and pass the overlap check", "[generate][positions]") {
+  StandinRecipe r = load_recipe(kRecipe);
+  const StandinExperiment plain = build_standin(r, 4);  // P4.00N
+  r.contact_radius_m = 4.5e-3;
+  const StandinExperiment placed = build_standin(r, 4);
+  const JunctionPopulation& J = placed.experiment.junctions;
+  CHECK(J.area_m2 == plain.experiment.junctions.area_m2);
+  CHECK(placed.experiment.measured->A_m2 == plain.experiment.measured->A_m2);
+  REQUIRE(J.x_m.size() == J.size());
+  CHECK_FALSE(first_overlap(J).has_value());
+  // Inside the Hertz radius at 4.00 N: R = 4.5 mm · (P / 4 N)^(1/3).
+  const double R = 4.5e-3 * std::cbrt(placed.P / 4.0);
+  double r_max = 0;
+  for (std::size_t i = 0; i < J.size(); ++i) r_max = std::max(r_max, std::hypot(J.x_m[i], J.y_m[i]));
+  CHECK(r_max < R);
+  CHECK(r_max > 0.8 * R);  // the density reaches the edge
+  CHECK_THAT(placed.experiment.description, Catch::Contains("contact disc of radius"));
 }
 
 TEST_CASE("regenerating the stand-ins reproduces the committed files byte for byte", "[generate]") {

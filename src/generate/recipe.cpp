@@ -17,6 +17,8 @@ std::uint64_t noise_seed(std::uint64_t experiment_seed) {
   return splitmix64(experiment_seed ^ 0x6e6f697365ULL);  // "noise"
 }
 
+std::uint64_t positions_seed(std::uint64_t experiment_seed) { return splitmix64(experiment_seed ^ 0x706f736974696f6eull); }
+
 namespace {
 
 using scene_io::MapView;
@@ -181,8 +183,12 @@ StandinRecipe load_recipe(const std::filesystem::path& path) {
   r.distribution = read_distribution(src, top.require("distribution"), "distribution");
 
   if (auto pn = top.find("positions")) {
-    MapView p(src, *pn, "positions", {"square_side_m"});
-    r.square_side_m = positive(p, "square_side_m", "m");
+    MapView p(src, *pn, "positions", {"square_side_m", "contact_radius_m", "reference_load_N"});
+    if (p.find("square_side_m")) r.square_side_m = positive(p, "square_side_m", "m");
+    if (p.find("contact_radius_m")) r.contact_radius_m = positive(p, "contact_radius_m", "m");
+    if (p.find("reference_load_N")) r.contact_reference_load_N = positive(p, "reference_load_N", "N");
+    if ((r.square_side_m > 0) == (r.contact_radius_m > 0))
+      p.fail_at(*pn, "positions", "give either square_side_m or contact_radius_m (with optional reference_load_N)");
   }
 
   {

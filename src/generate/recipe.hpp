@@ -33,6 +33,11 @@ struct StandinRecipe {
   double junctions_per_newton = 300.0;
   Distribution distribution;
   double square_side_m = 0.0;        // > 0: also draw positions uniform in [0, L]² (L recorded)
+  // > 0: junction centres in an apparent contact disc (generate/positions.hpp) of radius
+  // contact_radius_m · (P / contact_reference_load_N)^(1/3) (Hertz: a ∝ P^(1/3)), from the
+  // positions seed; exclusive with square_side_m.
+  double contact_radius_m = 0.0;
+  double contact_reference_load_N = 4.0;
 
   // Stand-in measured curve A = A0 − α_exp Q² (+ noise) for Q ∈ [0, Q_s(model)].
   double alpha_b = 0.725e-15;        // m⁵/N², model run that gives Q_s
@@ -54,6 +59,8 @@ struct StandinRecipe {
 
 std::uint64_t experiment_seed(const StandinRecipe& r, std::size_t i);
 std::uint64_t noise_seed(std::uint64_t experiment_seed);
+// splitmix64(area seed XOR 0x706f736974696f6e ("position")): the stream of the junction centres.
+std::uint64_t positions_seed(std::uint64_t experiment_seed);
 
 // Reads and validates a recipe. Throws InputError.
 StandinRecipe load_recipe(const std::filesystem::path& path);

@@ -10,11 +10,17 @@
 #include "observe/simulate.hpp"
 #include "scene/load.hpp"
 #include "io/numbers.hpp"
+#include "generate/positions.hpp"
 #include "solve/integrate.hpp"
 
 namespace asperity {
 
 namespace {
+
+// Apparent contact radius at load P: Hertz, a ∝ P^(1/3).
+double contact_radius(const StandinRecipe& r, double P) {
+  return r.contact_radius_m * std::cbrt(P / r.contact_reference_load_N);
+}
 
 const auto fmt = scene_io::format_printf;
 
@@ -92,6 +98,11 @@ StandinExperiment build_standin(const StandinRecipe& r, std::size_t i) {
   e.nu = r.nu;
   e.sigma_exp = r.sigma_exp;
   e.junctions = draw_population(r.distribution, N, x.area_seed, r.square_side_m);
+  if (r.contact_radius_m > 0) {  // a stream of its own: areas and noise do not change
+    const Positions p = place_in_contact_disc(e.junctions.area_m2, contact_radius(r, x.P), positions_seed(x.area_seed));
+    e.junctions.x_m = p.x_m;
+    e.junctions.y_m = p.y_m;
+  }
 
   const Scene scene = generation_scene(r, e);
   {
@@ -114,6 +125,10 @@ StandinExperiment build_standin(const StandinRecipe& r, std::size_t i) {
       " (experiment " + std::to_string(i) + "). Junctions: " + std::to_string(N) + " areas drawn from " +
       r.distribution.describe() + " (area seed " + u64(x.area_seed) + ")" +
       (r.square_side_m > 0 ? ", positions uniform in a square of side L = " + g6(r.square_side_m) + " m" : "") +
+      (r.contact_radius_m > 0 ? ", centres without overlap in a contact disc of radius " + g6(contact_radius(r, x.P)) +
+                                    " m with Hertz density sqrt(1 - r^2/R^2) (positions seed " +
+                                    u64(positions_seed(x.area_seed)) + ")"
+                              : "") +
       ". Measured curve: A = A0 - alpha_exp Q^2 for Q from 0 to the model's Q_s = " + g6(Q_s) +
       " N (paper parameters, alpha_b = " + g6(r.alpha_b) + ", " + solver_text(r.solver) +
       (x.model.peak_found ? ", first peak" : ", highest Q, no confirmed peak") + "), alpha_exp = " +
@@ -163,6 +178,13 @@ std::string standin_readme(const StandinRecipe& r, const std::vector<StandinExpe
   if (r.square_side_m > 0)
     t += "   Positions x_m, y_m: uniform in a square of side L = " + g6(r.square_side_m) +
          " m, drawn from the same stream after all areas.\n";
+  if (r.contact_radius_m > 0)
+    t += "   Positions x_m, y_m: centres of non-overlapping discs (radius sqrt(A0/π)) in an apparent contact\n"
+         "   disc of radius R = " + g6(r.contact_radius_m) + " m · (P / " + g6(r.contact_reference_load_N) +
+         " N)^(1/3) (Hertz), with a density ∝ sqrt(1 − r²/R²) (the Hertz pressure: more asperities touch\n"
+         "   where it is higher); random sequential addition, largest first, from\n"
+         "   `std::mt19937_64(positions seed)`, positions seed = splitmix64(area seed XOR 0x706f736974696f6e).\n"
+         "   ASSUMED: the paper gives no apparent contact size; R is a recipe parameter (and a study axis).\n";
   t += "3. The model is run on the experiment at the paper's parameters (eta = 100 1/s, epsilon = 0.9,\n";
   t += "   c_min = 0.01, p = 1.5, elliptic junctions, Eq. 3 until first slip) with alpha_b = " + g6(r.alpha_b) +
        " m⁵/N²,\n";
