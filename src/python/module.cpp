@@ -1,0 +1,201 @@
+// The compiled part of the Python package `asperity` (src/python/asperity/__init__.py is the
+// public face): scenes, runs, sweeps and fits through the same library calls as the command
+// line. The GIL is released while the engine works; a single run polls Python's signal handlers
+// (RunMonitor), so Ctrl-C interrupts it as KeyboardInterrupt within a fraction of a second.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+#include <cctype>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "campaign/campaign_load.hpp"
+#include "campaign/sweep.hpp"
+#include "fit/fit_load.hpp"
+#include "io/input_error.hpp"
+#include "io/provenance.hpp"
+#include "observe/simulate.hpp"
+#include "report/fit_writer.hpp"
+#include "report/run_writer.hpp"
+#include "scene/load.hpp"
+
+namespace py = pybind11;
+using namespace asperity;
+
+namespace {
+
+// Observables as a dict, keyed and typed by the one table of fields.
+py::dict summary_dict(const Observables& o) {
+  py::dict d;
+  for (const ObservableField& f : observable_fields()) {
+    switch (f.kind) {
+      case ObservableKind::real: d[f.name] = f.value(o); break;
+      case ObservableKind::count: d[f.name] = static_cast<long long>(f.value(o)); break;
+      case ObservableKind::flag: d[f.name] = f.value(o) != 0; break;
+      case ObservableKind::label: d[f.name] = std::string(f.label(o)); break;
+    }
+  }
+  return d;
+}
+
+py::array_t<double> column(const std::vector<Sample>& s, double Sample::*field) {
+  py::array_t<double> a(static_cast<py::ssize_t>(s.size()));
+  auto m = a.mutable_unchecked<1>();
+  for (std::size_t i = 0; i < s.size(); ++i) m(static_cast<py::ssize_t>(i)) = s[i].*field;
+  return a;
+}
+
+py::array_t<long long> count_column(const std::vector<Sample>& s, std::int64_t Sample::*field) {
+  py::array_t<long long> a(static_cast<py::ssize_t>(s.size()));
+  auto m = a.mutable_unchecked<1>();
+  for (std::size_t i = 0; i < s.size(); ++i) m(static_cast<py::ssize_t>(i)) = s[i].*field;
+  return a;
+}
+
+// Runs the scene with the GIL released; every period the monitor takes the GIL and lets Python
+// run its signal handlers (a pending KeyboardInterrupt stops the run).
+py::dict run_scene(const Scene& scene) {
+  RunMonitor monitor;
+  monitor.period_s = 0.1;
+  monitor.poll = [](double, double) {
+    py::gil_scoped_acquire gil;
+    return PyErr_CheckSignals() == 0;
+  };
+  RunResult r = [&] {
+    py::gil_scoped_release release;
+    return simulate(scene, 0, &monitor);
+  }();
+  const std::vector<Sample>& s = r.recorder.series();
+  py::dict series;
+  series["t"] = column(s, &Sample::t);
+  series["X"] = column(s, &Sample::X);
+  series["V"] = column(s, &Sample::V);
+  series["Q"] = column(s, &Sample::Q);
+  series["A"] = column(s, &Sample::A);
+  series["n_slipping"] = count_column(s, &Sample::n_slipping);
+  series["n_intact"] = count_column(s, &Sample::n_intact);
+  py::list peaks;
+  for (const Peak& p : r.recorder.peaks()) {
+    py::dict d;
+    d["t_max"] = p.max.t, d["Q_max"] = p.max.Q, d["A_max"] = p.max.A;
+    d["t_min"] = p.min.t, d["Q_min"] = p.min.Q, d["A_min"] = p.min.A;
+    peaks.append(d);
+  }
+  py::dict out;
+  out["summary"] = summary_dict(r.obs);
+  out["series"] = series;
+  out["peaks"] = peaks;
+  out["summary_yaml"] = summary_yaml(scene, r.obs, r.recorder.peaks(), "python: asperity.run");
+  return out;
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_asperity, m) {
+  m.doc() = "asperity engine (compiled part; use the `asperity` package)";
+  // One-line messages `file:line: key: message`, as the command line prints them.
+  static py::exception<InputError> input_error(m, "InputError", PyExc_ValueError);
+  static py::exception<SolverError> solver_error(m, "SolverError", PyExc_RuntimeError);
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const InputError& e) {
+      PyErr_SetString(input_error.ptr(), e.what());
+    } catch (const SolverError& e) {
+      PyErr_SetString(solver_error.ptr(), e.what());
+    } catch (const RunInterrupted&) {
+      // Python's own handler raised (KeyboardInterrupt); if it did not, say what happened.
+      if (!PyErr_Occurred()) PyErr_SetString(PyExc_KeyboardInterrupt, "run interrupted");
+    }
+  });
+
+  py::class_<Scene>(m, "Scene", "A fully resolved scene (asperity.load_scene)")
+      .def_property_readonly("file", [](const Scene& s) { return s.file.string(); })
+      .def_property_readonly("experiment", [](const Scene& s) { return s.experiment.name; })
+      .def_property_readonly("junctions", [](const Scene& s) { return s.experiment.junctions.size(); })
+      .def_property_readonly("stand_in", [](const Scene& s) {
+        std::string d = s.experiment.description;
+        for (char& c : d) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+        return d.find("stand-in") != std::string::npos;
+      })
+      .def("to_yaml", [](const Scene& s) { return scene_to_yaml(s); }, "The scene as `asperity run` writes scene.yaml")
+      .def("__repr__", [](const Scene& s) {
+        return "<asperity.Scene " + s.experiment.name + ", " + std::to_string(s.experiment.junctions.size()) +
+               " junctions, from " + s.file.string() + ">";
+      });
+
+  m.def("load_scene", [](const std::string& path, const std::vector<std::string>& overrides) {
+    return load_scene(path, overrides);
+  }, py::arg("path"), py::arg("overrides") = std::vector<std::string>{});
+  m.def("run", &run_scene, py::arg("scene"));
+  m.def("measured", [](const Scene& s) -> py::object {
+    if (!s.experiment.measured) return py::none();
+    py::dict d;
+    d["Q"] = py::array_t<double>(static_cast<py::ssize_t>(s.experiment.measured->Q_N.size()), s.experiment.measured->Q_N.data());
+    d["A"] = py::array_t<double>(static_cast<py::ssize_t>(s.experiment.measured->A_m2.size()), s.experiment.measured->A_m2.data());
+    return d;
+  }, py::arg("scene"));
+
+  m.def("sweep", [](const std::string& campaign, const std::string& out, int threads, const std::string& shard) {
+    const Campaign c = load_campaign(campaign);
+    SweepOptions o;
+    o.out = out;
+    o.threads = threads;
+    o.shard = parse_shard(shard);
+    o.quiet = true;
+    o.command_line = "python: asperity.sweep(" + campaign + ")";
+    SweepReport r;
+    {
+      py::gil_scoped_release release;
+      r = run_sweep(c, o);
+    }
+    py::dict d;
+    d["store"] = r.store.string();
+    d["points"] = r.points, d["skipped"] = r.skipped, d["changed"] = r.changed, d["ran"] = r.ran;
+    d["ok"] = r.ok, d["failed"] = r.failed, d["wall_s"] = r.wall_s;
+    return d;
+  }, py::arg("campaign"), py::arg("out") = "", py::arg("threads") = 0, py::arg("shard") = "0/1");
+
+  m.def("fit", [](const std::string& fit_file, const std::string& out, int threads, bool profile, bool error_bars) {
+    const FitSpec spec = load_fit(fit_file);
+    if (!out.empty()) check_fit_dir(out);
+    FitOptions fo;
+    fo.threads = threads;
+    fo.profile = profile;
+    fo.error_bars = error_bars;
+    FitResult result;
+    {
+      py::gil_scoped_release release;
+      result = run_fit(spec, fo);
+      if (!out.empty()) write_fit(out, spec, result, "python: asperity.fit(" + fit_file + ")");
+    }
+    py::list fits;
+    for (const Optimization& o : result.fits) {
+      py::dict d, best;
+      for (std::size_t k = 0; k < o.variables.size(); ++k)
+        best[py::str(o.variables[k].label)] = k < o.best.size() ? o.best[k] : std::nan("");
+      d["label"] = o.label;
+      d["best"] = best;
+      d["objective"] = o.objective;
+      d["evaluations"] = o.evaluations;
+      d["stop_reason"] = o.stop_reason;
+      d["failure"] = o.failure;
+      py::dict runs;
+      for (const ExperimentRun& r : o.best_runs) runs[py::str(spec.experiments[r.experiment].name)] = summary_dict(r.obs);
+      d["runs"] = runs;
+      fits.append(d);
+    }
+    py::dict d;
+    d["name"] = spec.name;
+    d["fits"] = fits;
+    d["wall_s"] = result.wall_s;
+    d["fit_yaml"] = fit_yaml(spec, result, "python: asperity.fit(" + fit_file + ")");
+    return d;
+  }, py::arg("fit_file"), py::arg("out") = "", py::arg("threads") = 2, py::arg("profile") = true,
+     py::arg("error_bars") = true);
+
+  m.def("version", [] { return version_line(); });
+}

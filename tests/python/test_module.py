@@ -1,0 +1,114 @@
+"""The Python module against the command line (same engine, same numbers), closed forms, errors,
+stores, fits and Ctrl-C."""
+import _thread
+import math
+import subprocess
+import threading
+import time
+
+import numpy as np
+import pytest
+import yaml
+
+import asperity
+
+
+def cli(binary, *args, cwd=None):
+    return subprocess.run([binary, *args], cwd=cwd, capture_output=True, text=True)
+
+
+def test_run_summary_equals_the_command_line(source, binary, tmp_path):
+    scene_file = source / "scenes" / "paper" / "P1.52N.yaml"
+    sets = {"stop.time": 2.0, "model.eta": 80}
+    r = asperity.run(asperity.load_scene(scene_file, sets))
+    out = cli(binary, "run", str(scene_file), "--out", str(tmp_path / "run"), "--quiet",
+              "--set", "stop.time=2.0", "--set", "model.eta=80")
+    assert out.returncode == 0, out.stderr
+    written = yaml.safe_load((tmp_path / "run" / "summary.yaml").read_text())
+    compared = 0
+    for key, value in r.summary.items():
+        if key == "wall_s":
+            continue
+        expected = written[key]
+        if isinstance(value, float) and math.isnan(value):
+            assert math.isnan(expected), key
+        else:
+            assert value == expected, key  # %.17g round-trips: exactly equal
+        compared += 1
+    assert compared > 30
+    assert math.isfinite(r.summary["Q_s"])
+
+
+def test_series_Q_is_the_spring_force(source):
+    scene = asperity.load_scene(source / "scenes" / "paper" / "P0.98N.yaml", {"stop.time": 1.0})
+    r = asperity.run(scene)
+    s = r.series
+    experiment = yaml.safe_load((source / "data" / "standin" / "P0.98N" / "experiment.yaml").read_text())
+    k_L, v = float(experiment["k_L"]), float(experiment["v"])  # PyYAML reads 1.0e-4 as text
+    expected = k_L * (v * s["t"] - s["X"])
+    assert len(s["t"]) == 1001
+    np.testing.assert_allclose(s["Q"], expected, rtol=1e-12, atol=1e-12 * np.max(np.abs(expected)))
+    assert np.all(np.diff(s["t"]) > 0)
+    assert s["n_intact"][0] == r.summary["N"]
+
+
+def test_bad_input_raises_the_command_lines_line(source, binary, tmp_path):
+    scene_file = source / "scenes" / "paper" / "P4.00N.yaml"
+    with pytest.raises(asperity.InputError) as e:
+        asperity.load_scene(scene_file, {"model.epsilon": 1.5})
+    assert isinstance(e.value, ValueError)
+    out = cli(binary, "run", str(scene_file), "--out", str(tmp_path / "x"), "--set", "model.epsilon=1.5")
+    assert out.returncode == 2
+    assert out.stderr.strip() == str(e.value)
+    with pytest.raises(asperity.InputError, match="no-such.yaml"):
+        asperity.load_scene(tmp_path / "no-such.yaml")
+
+
+def test_sweep_and_read_store(source, tmp_path):
+    store = tmp_path / "store"
+    report = asperity.sweep(source / "tests" / "data" / "campaign" / "tiny.yaml", out=store, threads=1)
+    assert report["points"] == 11 and report["ok"] == 11 and report["ran"] == 11
+    df = asperity.read_store(store)
+    assert len(df) == 11
+    assert list(df["index"]) == list(range(11))
+    assert df.attrs["provenance"]["campaign"] == "tiny"
+    assert df.attrs["provenance"]["provenance"]["command_line"].startswith("python: asperity.sweep(")
+    # The values are the store's bytes, parsed: compare one column with the CSV text.
+    rows = (store / "points.csv").read_text().splitlines()
+    col = rows[0].split(",").index("Q_s")
+    assert [float(r.split(",")[col]) for r in rows[1:]] == list(df["Q_s"])
+    # A resume runs nothing.
+    assert asperity.sweep(source / "tests" / "data" / "campaign" / "tiny.yaml", out=store, threads=1)["ran"] == 0
+
+
+def test_fit_equals_the_command_line(source, binary, tmp_path):
+    fit_file = tmp_path / "f.yaml"
+    fit_file.write_text(
+        "name: small\nobjective: area_curve\nexperiments: [" + str(source / "tests" / "data" / "scene" / "small_scene.yaml") + "]\n"
+        "parameters: {model.alpha_b: {lo: 1e-16, hi: 5e-15, start: 1e-15, scale: log}}\n")
+    result = asperity.fit(fit_file, threads=1)
+    out = cli(binary, "fit", str(fit_file), "--out", str(tmp_path / "fit"), "--threads", "1", "--quiet",
+              "--no-profile", "--no-error-bars")
+    assert out.returncode in (0, 1), out.stderr
+    written = yaml.safe_load((tmp_path / "fit" / "fit.yaml").read_text())["fits"][0]
+    (ours,) = result["fits"]
+    # The same optimization, evaluation for evaluation: identical numbers.
+    assert ours["evaluations"] == written["evaluations"] > 3
+    assert ours["objective"] == written["objective"]
+    assert ours["best"]["model.alpha_b"] == written["parameters"]["model.alpha_b"]["value"]
+    assert 1e-16 <= ours["best"]["model.alpha_b"] <= 5e-15
+    assert ours["runs"]["small"]["Q_s"] == written["runs"]["small"]["Q_s"]
+
+
+def test_ctrl_c_interrupts_a_long_run(source):
+    # About 10 s uninterrupted (reference solver, C_t = 1e4, 0.3 s simulated on 1,201 junctions).
+    scene = asperity.load_scene(source / "scenes" / "paper" / "P4.00N.yaml",
+                                {"solver.method": "reference", "stop.time": 0.3})
+    timer = threading.Timer(0.5, _thread.interrupt_main)
+    start = time.monotonic()
+    timer.start()
+    with pytest.raises(KeyboardInterrupt):
+        asperity.run(scene)
+    elapsed = time.monotonic() - start
+    timer.cancel()
+    assert elapsed < 2.0, elapsed
