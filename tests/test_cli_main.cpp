@@ -40,7 +40,7 @@ TEST_CASE("command-line errors exit 2 with one line naming the problem", "[cli_m
   }
 }
 
-TEST_CASE("--help and --version exit 0 and print on stdout", "[cli_main]") {
+TEST_CASE("help and version (--help, --version) exit 0 and print on stdout", "[cli_main]") {
   const std::filesystem::path work = std::filesystem::temp_directory_path();
   const CliResult v = run_argv(work, {"--version"});
   CHECK(v.status == 0);

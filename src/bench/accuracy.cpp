@@ -42,6 +42,11 @@ AccuracyRow accuracy_row(const std::string& experiment, double tolerance, const 
 
 std::vector<AccuracyRow> run_accuracy(const AccuracyOptions& opt) {
   std::vector<AccuracyRow> rows;
+  const std::size_t total = opt.scenes.size() * (1 + std::max<std::size_t>(1, opt.tolerances.size()));
+  std::size_t done = 0;
+  const auto ran = [&] {
+    if (opt.on_run) opt.on_run(++done, total);
+  };
   for (const fs::path& path : opt.scenes) {
     std::vector<std::string> o = opt.overrides;
     o.push_back("output.series=[]");
@@ -50,12 +55,14 @@ std::vector<AccuracyRow> run_accuracy(const AccuracyOptions& opt) {
     auto oc = o;
     oc.push_back(set_number("solver.tolerance", opt.converged_tolerance));
     const RunResult conv = simulate(bench_scene(path, oc));
+    ran();
     std::vector<double> tols = opt.tolerances;
     if (tols.empty()) tols.push_back(scene.solver.tolerance);
     for (double tol : tols) {
       auto ot = o;
       ot.push_back(set_number("solver.tolerance", tol));
       const RunResult run = simulate(bench_scene(path, ot));
+      ran();
       rows.push_back(accuracy_row(scene.experiment.name, tol, run.obs, conv.obs));
       if (opt.log) {
         const auto& r = rows.back();

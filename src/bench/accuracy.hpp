@@ -5,6 +5,7 @@
 // mean stick-slip drop and period (target < 1e-2).
 #include <array>
 #include <filesystem>
+#include <functional>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -21,6 +22,8 @@ struct AccuracyOptions {
   double converged_tolerance = 1e-12;
   std::vector<double> tolerances;  // tested tolerances; empty: each scene's own (the default)
   std::ostream* log = nullptr;
+  // After each run (converged or tested): runs done and their total; may be empty.
+  std::function<void(std::size_t done, std::size_t total)> on_run;
 };
 
 struct AccuracyRow {

@@ -76,6 +76,7 @@ TradeoffResult run_tradeoff(const TradeoffOptions& opt) {
     for (std::size_t i = 0; i < n_robust; ++i) line += " " + robust_names()[i] + " " + g(r.error[i], 2);
     log(line + "\n");
     res.rows.push_back(r);
+    if (opt.on_setting) opt.on_setting(res.rows.size(), 2 + opt.tolerances.size() + opt.Ct.size());
   };
   add("event", opt.converged_tolerance, conv);
   log("check: event, tolerance " + g(opt.check_tolerance) + "\n");

@@ -10,6 +10,7 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -28,6 +29,8 @@ struct TradeoffOptions {
   int cycles = 5;
   int repeats = 5;                 // runs faster than 1 s: median of this many
   std::ostream* log = nullptr;     // progress lines
+  // After each setting: settings done and their total (for a progress line); may be empty.
+  std::function<void(std::size_t done, std::size_t total)> on_setting;
 };
 
 struct WorkPrecisionRow {

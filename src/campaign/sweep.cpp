@@ -28,6 +28,7 @@
 #include "campaign/campaign_load.hpp"
 #include "scene/load.hpp"
 #include "io/numbers.hpp"
+#include "io/progress.hpp"
 #include "io/provenance.hpp"
 #include "scene/input_files.hpp"
 
@@ -58,16 +59,6 @@ std::string utc_now() {
   gmtime_r(&t, &tm);
   char buf[32];
   std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
-  return buf;
-}
-
-std::string duration_text(double s) {
-  if (!std::isfinite(s)) return "?";
-  char buf[32];
-  const long t = std::lround(s);
-  if (t >= 3600) std::snprintf(buf, sizeof buf, "%ldh%02ldm", t / 3600, (t / 60) % 60);
-  else if (t >= 60) std::snprintf(buf, sizeof buf, "%ldm%02lds", t / 60, t % 60);
-  else std::snprintf(buf, sizeof buf, "%lds", t);
   return buf;
 }
 

@@ -18,6 +18,8 @@
 #include "bench/speed_ratio.hpp"
 #include "bench/tradeoff.hpp"
 #include "cli/commands.hpp"
+#include "cli/options.hpp"
+#include "io/progress.hpp"
 #include "report/output_dir.hpp"
 
 namespace asperity::cli {
@@ -28,6 +30,7 @@ struct BenchOptions {
   bool quick = false;
   int repeats = 5;
   int threads = 1;
+  bool quiet = false;
   // tradeoff
   std::string scene = "bench/scenes/P0.20N.yaml";
   std::vector<double> Ct;
@@ -86,6 +89,11 @@ int tradeoff(const BenchOptions& b) {
     o.repeats = 1;
   }
   machine_line(b);
+  ProgressLine progress("bench tradeoff", "settings", 0, b.quiet);
+  o.on_setting = [&](std::size_t done, std::size_t total) {
+    progress.set_total(static_cast<double>(total));
+    progress.update(static_cast<double>(done));
+  };
   const TradeoffResult r = run_tradeoff(o);
   write_tradeoff(b.out, r);
   write_marker(b.out, "bench");
@@ -132,6 +140,11 @@ int accuracy(const BenchOptions& b) {
   if (b.quick && b.scenes.empty()) o.scenes.resize(std::min<std::size_t>(2, o.scenes.size()));
   o.tolerances = b.tolerances;
   o.log = &std::cout;
+  ProgressLine progress("bench accuracy", "runs", 0, b.quiet);
+  o.on_run = [&](std::size_t done, std::size_t total) {
+    progress.set_total(static_cast<double>(total));
+    progress.update(static_cast<double>(done));
+  };
   const auto rows = run_accuracy(o);
   write_accuracy(b.out, rows);
   write_marker(b.out, "bench");
@@ -174,11 +187,10 @@ Command add_bench_command(CLI::App& app) {
   sub->add_option("--repeats", opt->repeats, "Runs faster than 1 s: median wall time of this many")
       ->capture_default_str()
       ->check(CLI::Range(1, 100));
-  sub->add_option("--threads", opt->threads,
-                  "OpenMP threads of the reference solver (the event solver uses one below 65536 "
-                  "never-slipped junctions; on a shared 2-core machine 2 threads made the reference slower)")
-      ->capture_default_str()
-      ->check(CLI::Range(1, 256));
+  // Default 1, not all: a benchmark times one thread unless asked (on a shared 2-core machine 2
+  // threads made the reference slower).
+  add_threads_option(sub, opt->threads, "OpenMP threads of the reference solver (the event solver uses one below 65536 never-slipped junctions)");
+  add_quiet_flag(sub, opt->quiet);
 
   CLI::App* t = sub->add_subcommand("tradeoff", "Work-precision study (reference C_t vs event tolerance)");
   t->add_option("--scene", opt->scene, "Work-precision experiment (the reference must finish it)")
@@ -203,6 +215,8 @@ Command add_bench_command(CLI::App& app) {
   s->add_option("--scene", opt->scenes, "Scene(s) (default scenes/paper/P4.00N.yaml)");
 
   return Command{sub, [opt, t, sp, a, s](const Invocation&) {
+    // --quiet: the benchmarks report on stdout as they go; their results are the files.
+    if (opt->quiet && !std::freopen("/dev/null", "w", stdout)) return exit_failure;
     if (t->parsed()) return tradeoff(*opt);
     if (sp->parsed()) return speed(*opt);
     if (a->parsed()) return accuracy(*opt);

@@ -16,6 +16,7 @@ inline constexpr int exit_ok = 0;
 inline constexpr int exit_failure = 1;  // command ran but its check failed (e.g. regress)
 inline constexpr int exit_input = 2;    // bad scene / arguments (InputError)
 inline constexpr int exit_solver = 3;   // solver could not go on (SolverError)
+inline constexpr int exit_interrupted = 130;  // Ctrl-C (128 + SIGINT, as shells report it)
 
 // What every command may record of how it was called (provenance of its results).
 struct Invocation {

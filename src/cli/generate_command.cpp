@@ -7,6 +7,7 @@
 #include <string>
 
 #include "cli/commands.hpp"
+#include "cli/options.hpp"
 #include "generate/recipe.hpp"
 #include "generate/standin.hpp"
 #include "report/output_dir.hpp"
@@ -69,7 +70,7 @@ Command add_generate_command(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--scenes", opt->scenes,
                   "Also write one paper scene per experiment into this folder (e.g. scenes/paper)");
-  sub->add_flag("--quiet,-q", opt->quiet, "Print nothing on success");
+  add_quiet_flag(sub, opt->quiet);
   return Command{sub, [opt](const Invocation&) { return generate(*opt); }};
 }
 

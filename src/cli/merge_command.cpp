@@ -7,6 +7,7 @@
 
 #include "campaign/merge.hpp"
 #include "cli/commands.hpp"
+#include "cli/options.hpp"
 #include "report/output_dir.hpp"
 
 namespace asperity::cli {
@@ -21,7 +22,7 @@ Command add_merge_command(CLI::App& app) {
   CLI::App* sub = app.add_subcommand("merge", "Merge sweep stores of one campaign (e.g. its shards) into one store");
   sub->add_option("stores", a->in, "Store folders")->required();
   sub->add_option("--out,-o", a->out, "New store folder")->required();
-  sub->add_flag("--quiet,-q", a->quiet, "Print nothing on success");
+  add_quiet_flag(sub, a->quiet);
   return Command{sub, [a](const Invocation&) {
                    const std::vector<std::filesystem::path> in(a->in.begin(), a->in.end());
                    // Only into a new or empty folder: the result is a store (no marker, so that

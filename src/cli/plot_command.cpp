@@ -4,6 +4,7 @@
 #include <string>
 
 #include "cli/commands.hpp"
+#include "cli/options.hpp"
 #include "report/heatmap.hpp"
 
 namespace asperity::cli {
@@ -23,7 +24,7 @@ Command add_plot_command(CLI::App& app) {
   sub->add_option("--where,-w", a->h.where, "Keep points with COLUMN=VALUE (repeatable), e.g. experiment=P4.00N")
       ->allow_extra_args(false);
   sub->add_option("--out,-o", a->out, "PNG file (default STORE/heatmap_<z>_over_<x>_<y>.png)");
-  sub->add_flag("--quiet,-q", a->quiet, "Print nothing on success");
+  add_quiet_flag(sub, a->quiet);
   return Command{sub, [a](const Invocation&) {
                    a->h.out = a->out;
                    const HeatmapReport r = plot_heatmap(a->store, a->h);

@@ -11,6 +11,7 @@
 
 #include "io/provenance.hpp"
 #include "cli/commands.hpp"
+#include "cli/options.hpp"
 #include "regress/regress.hpp"
 #include "io/atomic_file.hpp"
 #include "io/input_error.hpp"
@@ -25,6 +26,7 @@ struct RegressOptions {
   std::string reason;
   int threads = 0;
   bool all = false;
+  bool quiet = false;
 };
 
 std::string today() {
@@ -47,7 +49,7 @@ int regress(const RegressOptions& opt) {
   } else if (fs::exists(opt.golden)) {
     golden = load_golden(opt.golden);  // keep the history
   }
-  const int threads = opt.threads > 0 ? opt.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const int threads = threads_or_all(opt.threads);
   const auto t0 = std::chrono::steady_clock::now();
   const auto results = run_regress_suite(suite, opt.update, threads);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -58,7 +60,7 @@ int regress(const RegressOptions& opt) {
     const Golden fresh = bless(results, history);
     fs::create_directories(fs::path(opt.golden).parent_path());
     scene_io::write_text_file(opt.golden, golden_to_yaml(fresh));
-    std::printf("blessed %zu entries in %.1f s wall (%d threads) -> %s\n", results.size(), wall, threads,
+    if (!opt.quiet) std::printf("blessed %zu entries in %.1f s wall (%d threads) -> %s\n", results.size(), wall, threads,
                 opt.golden.c_str());
     return exit_ok;
   }
@@ -75,7 +77,7 @@ int regress(const RegressOptions& opt) {
                   r.note.empty() ? "" : ": ", r.note.c_str());
     }
   }
-  std::printf("regress: %zu entries, %zu values compared, %zu drifted; %.1f s wall on %d threads\n",
+  if (!opt.quiet || bad) std::printf("regress: %zu entries, %zu values compared, %zu drifted; %.1f s wall on %d threads\n",
               results.size(), rows.size(), bad, wall, threads);
   return bad ? exit_failure : exit_ok;
 }
@@ -90,7 +92,8 @@ Command add_regress_command(CLI::App& app) {
   sub->add_option("--golden", opt->golden, "Golden results (default results/regression/golden.yaml)");
   sub->add_flag("--update", opt->update, "Re-bless: run with tightened twins, write new golden values and tolerances");
   sub->add_option("--reason", opt->reason, "Why the results changed (required with --update; kept in the history)");
-  sub->add_option("--threads,-j", opt->threads, "Parallel runs (default: all cores)");
+  add_threads_option(sub, opt->threads, "Runs in parallel");
+  add_quiet_flag(sub, opt->quiet);  // no --set: a changed scene would drift by design
   sub->add_flag("--all", opt->all, "Print every compared value, not only the drifted ones");
   return Command{sub, [opt](const Invocation&) { return regress(*opt); }};
 }

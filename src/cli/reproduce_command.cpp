@@ -5,6 +5,7 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -15,6 +16,8 @@
 #include <vector>
 
 #include "cli/commands.hpp"
+#include "cli/options.hpp"
+#include "io/progress.hpp"
 #include "observe/simulate.hpp"
 #include "fit/fit.hpp"
 #include "report/claims.hpp"
@@ -66,8 +69,10 @@ int reproduce(const ReproduceOptions& opt, const Invocation& inv) {
   }
   fs::create_directories(out);
   write_marker(out, "reproduce");
-  const int threads = opt.threads > 0 ? opt.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const int threads = threads_or_all(opt.threads);
   std::vector<std::string> errors(runs.size());
+  ProgressLine progress("reproduce", "runs", static_cast<double>(runs.size()), opt.quiet);
+  std::atomic<std::size_t> finished{0};
   tbb::task_arena arena(threads);
   arena.execute([&] {
     tbb::parallel_for(std::size_t{0}, runs.size(), [&](std::size_t i) {
@@ -80,6 +85,7 @@ int reproduce(const ReproduceOptions& opt, const Invocation& inv) {
       } catch (const std::exception& e) {
         errors[i] = e.what();
       }
+      progress.update(static_cast<double>(++finished));
     });
   });
   for (std::size_t i = 0; i < runs.size(); ++i)
@@ -104,7 +110,11 @@ int reproduce(const ReproduceOptions& opt, const Invocation& inv) {
     const auto t1 = std::chrono::steady_clock::now();
     std::vector<Scene> base;
     for (const auto& r : runs) base.push_back(r.scene);
-    const auto variants = run_variants(base, paper_claim_variants(), threads);
+    ProgressLine vp("reproduce", "claim-variant runs", 0, opt.quiet);
+    const auto variants = run_variants(base, paper_claim_variants(), threads, [&](std::size_t done, std::size_t total) {
+      vp.set_total(static_cast<double>(total));
+      vp.update(static_cast<double>(done));
+    });
     n_variant_runs = variants.size();
     Calibration calibration;
     if (!opt.fit.empty()) {
@@ -113,6 +123,9 @@ int reproduce(const ReproduceOptions& opt, const Invocation& inv) {
       fo.threads = threads;
       fo.profile = false;
       fo.error_bars = false;
+      ProgressLine fp("reproduce", "calibration evaluations (at most)", static_cast<double>(spec_of_fit.max_evaluations) * static_cast<double>(spec_of_fit.experiments.size()), opt.quiet);
+      std::atomic<int> evaluations{0};
+      fo.on_evaluation = [&](double) { fp.update(++evaluations); };
       const FitResult fr = run_fit(spec_of_fit, fo);
       for (const Optimization& f : fr.fits) {
         // A failed calibration stays in the report as failed: claim 5 then has no evidence at that load.
@@ -163,10 +176,9 @@ Command add_reproduce_command(CLI::App& app) {
                                                   "directories, Figures 3 and 4 and table.csv");
   sub->add_option("scenes", opt->scenes, "Scene YAML files (e.g. scenes/paper/*.yaml)")->required();
   sub->add_option("--out,-o", opt->out, "Output directory (default results/paper)");
-  sub->add_option("--set,-s", opt->overrides, "Override a value in every scene (repeatable)")
-      ->allow_extra_args(false);
-  sub->add_option("--threads,-j", opt->threads, "Parallel runs (default: all cores)");
-  sub->add_flag("--quiet,-q", opt->quiet, "Print nothing on success");
+  add_set_option(sub, opt->overrides, "in every scene");
+  add_threads_option(sub, opt->threads, "Runs in parallel");
+  add_quiet_flag(sub, opt->quiet);
   sub->add_flag("!--no-claims", opt->claims, "Skip the claim variants and REPORT.md");
   sub->add_option("--fit", opt->fit, "Per-load alpha_b calibration for claim 5 (e.g. fits/paper_alpha_b.yaml)");
   return Command{sub, [opt](const Invocation& inv) { return reproduce(*opt, inv); }};

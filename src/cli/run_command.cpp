@@ -1,12 +1,17 @@
 // asperity run SCENE.yaml [--out DIR] [--set key=value]... [--quiet] [--plot]
+#include <omp.h>
+#include <csignal>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "cli/commands.hpp"
+#include "cli/options.hpp"
+#include "io/progress.hpp"
 #include "observe/simulate.hpp"
 #include "report/run_writer.hpp"
 #include "scene/load.hpp"
@@ -19,6 +24,7 @@ struct RunOptions {
   std::string out;
   std::vector<std::string> overrides;
   bool quiet = false;
+  int threads = 0;
   bool plot = false;
 };
 
@@ -48,14 +54,41 @@ void print_summary(const Scene& scene, const Observables& o, const std::filesyst
   std::printf("  -> %s\n", out.string().c_str());
 }
 
+// Ctrl-C during a run: the handler only raises a flag (async-signal-safe); the run's monitor
+// sees it within 0.1 s and the run stops without writing anything. The one piece of
+// process-wide state here, as a signal handler needs.
+volatile std::sig_atomic_t g_interrupted = 0;
+extern "C" void on_sigint(int) { g_interrupted = 1; }
+
 int run(const RunOptions& opt, const Invocation& inv) {
   const Scene scene = load_scene(opt.scene, opt.overrides);
+  if (opt.threads > 0) omp_set_num_threads(opt.threads);
   const std::filesystem::path out =
       opt.out.empty() ? std::filesystem::path("results") / "runs" /
                             std::filesystem::path(opt.scene).stem()
                       : std::filesystem::path(opt.out);
   check_run_dir(out);  // fail before the run, not after it
-  const RunResult r = simulate(scene);
+  struct sigaction sa {}, previous {};
+  sa.sa_handler = on_sigint;
+  sigemptyset(&sa.sa_mask);
+  ::sigaction(SIGINT, &sa, &previous);
+  ProgressLine progress("run", "s simulated", scene.stop.time, opt.quiet);
+  RunMonitor monitor;
+  monitor.period_s = 0.1;
+  monitor.poll = [&](double t, double) {
+    progress.update(t);
+    return g_interrupted == 0;
+  };
+  std::optional<RunResult> result;
+  try {
+    result.emplace(simulate(scene, 0, &monitor));
+  } catch (const RunInterrupted& e) {
+    ::sigaction(SIGINT, &previous, nullptr);
+    std::fprintf(stderr, "%s: %s; nothing written\n", opt.scene.c_str(), e.what());
+    return exit_interrupted;
+  }
+  ::sigaction(SIGINT, &previous, nullptr);
+  const RunResult& r = *result;
   write_run(out, scene, r.obs, r.recorder, RunWriteOptions{opt.plot, inv.command_line});
   if (!opt.quiet) print_summary(scene, r.obs, out);
   return exit_ok;
@@ -69,10 +102,9 @@ Command add_run_command(CLI::App& app) {
                                             "(series.csv, summary.yaml, scene.yaml)");
   sub->add_option("scene", opt->scene, "Scene YAML file")->required();
   sub->add_option("--out,-o", opt->out, "Run directory (default: results/runs/<scene stem>/)");
-  sub->add_option("--set,-s", opt->overrides,
-                  "Override a scene value, e.g. --set model.eta=50 (repeatable)")
-      ->allow_extra_args(false);  // one value per --set: never swallows the scene path
-  sub->add_flag("--quiet,-q", opt->quiet, "Print nothing on success");
+  add_set_option(sub, opt->overrides, "in the scene");
+  add_threads_option(sub, opt->threads, "OpenMP threads of the reference solver (junctions in parallel from 256 on)");
+  add_quiet_flag(sub, opt->quiet);
   sub->add_flag("--plot", opt->plot, "Also write plot.png (Q(t), A(t), A(Q)) with gnuplot");
   return Command{sub, [opt](const Invocation& inv) { return run(*opt, inv); }};
 }

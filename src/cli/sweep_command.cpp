@@ -6,6 +6,8 @@
 
 #include "campaign/sweep.hpp"
 #include "cli/commands.hpp"
+#include "cli/options.hpp"
+#include "scene/load.hpp"
 #include "report/output_dir.hpp"
 #include "campaign/campaign_load.hpp"
 
@@ -16,6 +18,7 @@ struct SweepArgs {
   std::string campaign, out, shard = "0/1";
   int threads = 0;
   bool quiet = false, retry_failed = false;
+  std::vector<std::string> overrides;
 };
 
 int sweep(const SweepArgs& a, const Invocation& inv) {
@@ -26,8 +29,16 @@ int sweep(const SweepArgs& a, const Invocation& inv) {
   } catch (const std::invalid_argument& e) {
     throw InputError("", 0, "--shard", e.what());
   }
-  if (a.threads < 0) throw InputError("", 0, "--threads", "must be >= 0 (0: all cores)");
-  const Campaign c = load_campaign(a.campaign);
+  Campaign c = load_campaign(a.campaign);
+  // --set: checked on every base scene (one-line errors as `run --set`), then applied to every
+  // point like the campaign's own `set:` (after it; the grids' axes still win).
+  if (!a.overrides.empty()) {
+    for (const auto& scene : c.scenes) (void)load_scene(scene, a.overrides);
+    for (const std::string& o : a.overrides) {
+      const std::size_t eq = o.find('=');
+      c.set.emplace_back(o.substr(0, eq), AxisValue{false, true, 0, eq == std::string::npos ? "" : o.substr(eq + 1)});
+    }
+  }
   // Only into a new or empty folder or a store (its provenance.yaml, or what a sweep killed at its
   // very start leaves): never among a user's files.
   const std::filesystem::path store = a.out.empty() ? std::filesystem::path("results") / c.name : std::filesystem::path(a.out);
@@ -68,10 +79,11 @@ Command add_sweep_command(CLI::App& app) {
   auto a = std::make_shared<SweepArgs>();
   CLI::App* sub = app.add_subcommand("sweep", "Run a campaign (sweeps/*.yaml) into a resumable result store");
   sub->add_option("campaign", a->campaign, "Campaign YAML file")->required();
-  sub->add_option("--threads,-j", a->threads, "Points run in parallel (default 0: all cores)");
+  add_threads_option(sub, a->threads, "Points run in parallel");
+  add_set_option(sub, a->overrides, "in every point's scene (the campaign's axes win)");
   sub->add_option("--shard", a->shard, "Run only points with index % N == I, given as I/N (default 0/1), or auto: the task of a SLURM job array");
   sub->add_option("--out,-o", a->out, "Store folder (default results/<campaign name>/)");
-  sub->add_flag("--quiet,-q", a->quiet, "No progress and no summary (failures are still reported)");
+  sub->add_flag("-q,--quiet", a->quiet, "No progress and no summary (failures are still reported)");
   sub->add_flag("--retry-failed", a->retry_failed, "Rerun the points the store holds as failed");
   return Command{sub, [a](const Invocation& inv) { return sweep(*a, inv); }};
 }

@@ -85,6 +85,7 @@ struct Problem {
   std::vector<Evaluation> log;
   std::string failure;
   Clock::time_point t0;
+  const std::function<void(double)>* on_evaluation = nullptr;  // FitOptions::on_evaluation
 };
 
 std::vector<SceneSetting> settings_for(const Problem& pb, std::size_t k, const std::vector<double>& x) {
@@ -140,6 +141,7 @@ double nlopt_objective(unsigned n, const double* u, double* /*grad: derivative-f
   Evaluation ev = evaluate(pb, x);
   ev.index = static_cast<int>(pb.log.size()) + 1;
   pb.log.push_back(ev);
+  if (pb.on_evaluation && *pb.on_evaluation) (*pb.on_evaluation)(ev.objective);
   if (ev.status != "ok") {
     pb.failure = "evaluation " + std::to_string(ev.index) + " (" + values_text(pb, x) + "): " + ev.status;
     throw nlopt::forced_stop();  // caught by NLopt's C++ wrapper, rethrown by optimize()
@@ -207,6 +209,7 @@ void run_task(const FitSpec& spec, const FitOptions& options, Optimization& o, s
   pb.exps = o.experiments;
   pb.vars = o.variables;
   pb.extra.assign(o.experiments.size(), {});
+  pb.on_evaluation = &options.on_evaluation;
   OptimizeResult r = optimize(pb, o.start, spec.initial_step);
   o.best = r.best;
   o.objective = r.objective;

@@ -33,6 +33,9 @@ struct FitOptions {
   bool error_bars = true;   // and spec.error_bars non-empty
   // Called (serialised) with one line after each finished optimization; may be empty.
   std::function<void(const std::string&)> progress;
+  // Called after every evaluation of the optimizations (from worker threads: must be
+  // thread-safe), with its objective; may be empty. For progress lines.
+  std::function<void(double objective)> on_evaluation;
 };
 
 // One coordinate of an optimization: a parameter, shared or for one experiment.

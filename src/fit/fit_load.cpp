@@ -1,4 +1,5 @@
 #include "fit/fit_load.hpp"
+#include "scene/load.hpp"
 
 #include <nlopt.hpp>
 #include <yaml-cpp/yaml.h>
@@ -66,7 +67,7 @@ struct ParamNodes {  // where each parameter's values were written (for errors f
 }  // namespace
 
 
-FitSpec load_fit(const fs::path& path) {
+FitSpec load_fit(const fs::path& path, const std::vector<std::string>& overrides) {
   const std::string display = display_path(path);
   const YAML::Node root_node = load_yaml_file(path, display);
   const Source src{display, nullptr};
@@ -187,6 +188,13 @@ FitSpec load_fit(const fs::path& path) {
       }
       if (spec.objective == FitObjective::stick_slip && !has_target)
         sv.fail_at(item, ev ? "target" : ikey, "the stick_slip objective needs target: {drop: N, period: s} for every experiment");
+      if (!overrides.empty()) {  // before the objective's forced settings, which win
+        (void)load_scene(scene_path, overrides);  // each --set checked on this scene, with its message
+        for (const std::string& o : overrides) {
+          const std::size_t eq = o.find('=');
+          fixed.emplace_back(o.substr(0, eq), eq == std::string::npos ? "" : o.substr(eq + 1));
+        }
+      }
       for (const auto& f : forced_settings(spec.objective)) fixed.push_back(f);
 
       Scene base_scene;

@@ -41,7 +41,9 @@
 
 namespace asperity {
 
-FitSpec load_fit(const std::filesystem::path& fit_yaml);
+// `overrides` ("KEY=VALUE", as --set) apply to every experiment's scene after the fit file's own
+// `set`; each is checked on each scene first (InputError "--set KEY=VALUE: ...").
+FitSpec load_fit(const std::filesystem::path& fit_yaml, const std::vector<std::string>& overrides = {});
 
 // NLopt's name of an algorithm is accepted by load_fit (derivative-free, needs no subsidiary
 // optimizer); "" when it is, else the reason.

@@ -4,6 +4,7 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cstdio>
 
 #include "observe/simulate.hpp"
@@ -49,7 +50,8 @@ std::vector<ClaimVariant> paper_claim_variants() {
 }
 
 std::vector<VariantRun> run_variants(const std::vector<Scene>& base, const std::vector<ClaimVariant>& variants,
-                                     int threads) {
+                                     int threads, const std::function<void(std::size_t, std::size_t)>& done) {
+  std::atomic<std::size_t> finished{0};
   struct Job { std::size_t scene, variant; };
   std::vector<Job> jobs;
   for (std::size_t v = 0; v < variants.size(); ++v)
@@ -74,6 +76,7 @@ std::vector<VariantRun> run_variants(const std::vector<Scene>& base, const std::
       } catch (const std::exception& e) {
         out[j].error = e.what();
       }
+      if (done) done(++finished, jobs.size());
     }, tbb::simple_partitioner());
   });
   return out;

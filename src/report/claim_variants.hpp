@@ -27,8 +27,10 @@ struct VariantRun {
 std::vector<ClaimVariant> paper_claim_variants();
 
 // Runs every variant on the base scenes (TBB, `threads` workers). Failures are recorded.
+// `done` (optional, thread-safe) is called after each run with the number finished and the total.
 std::vector<VariantRun> run_variants(const std::vector<Scene>& base, const std::vector<ClaimVariant>& variants,
-                                     int threads);
+                                     int threads,
+                                     const std::function<void(std::size_t done, std::size_t total)>& done = {});
 
 // Claim 3's η scan beside the base runs' η = 100 (1/s). 160 and 220 sit at the edges of the
 // claim's range [162, 220] (ClaimRules): every bracket is then inside or outside it, never

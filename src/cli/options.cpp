@@ -1,0 +1,24 @@
+#include "cli/options.hpp"
+
+#include <algorithm>
+#include <thread>
+
+namespace asperity::cli {
+
+int hardware_threads() { return static_cast<int>(std::max(1u, std::thread::hardware_concurrency())); }
+
+int threads_or_all(int threads) { return threads > 0 ? threads : hardware_threads(); }
+
+void add_threads_option(CLI::App* sub, int& threads, const std::string& what) {
+  const std::string fallback = threads > 0 ? std::to_string(threads) : "all " + std::to_string(hardware_threads());
+  sub->add_option("-j,--threads", threads, what + " (default: " + fallback + ")")->check(CLI::Range(1, 1024));
+}
+
+void add_set_option(CLI::App* sub, std::vector<std::string>& sets, const std::string& what) {
+  sub->add_option("-s,--set", sets, "Set a scene value KEY=VALUE " + what + ", e.g. --set model.eta=50 (repeatable)")
+      ->allow_extra_args(false);  // one value per --set: never swallows a positional argument
+}
+
+void add_quiet_flag(CLI::App* sub, bool& quiet) { sub->add_flag("-q,--quiet", quiet, "Print nothing on success"); }
+
+}  // namespace asperity::cli

@@ -1,0 +1,66 @@
+#include "io/progress.hpp"
+
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+
+namespace asperity {
+
+std::string duration_text(double s) {
+  if (!std::isfinite(s)) return "?";
+  char buf[32];
+  const long t = std::lround(s);
+  if (t >= 3600) std::snprintf(buf, sizeof buf, "%ldh%02ldm", t / 3600, (t / 60) % 60);
+  else if (t >= 60) std::snprintf(buf, sizeof buf, "%ldm%02lds", t / 60, t % 60);
+  else std::snprintf(buf, sizeof buf, "%lds", t);
+  return buf;
+}
+
+double eta_seconds(double elapsed_s, double done, double total) {
+  if (!(done > 0) || !(elapsed_s >= 0)) return NAN;
+  return elapsed_s * std::max(0.0, total - done) / done;
+}
+
+ProgressLine::ProgressLine(std::string what, std::string unit, double total, bool quiet, double delay_s,
+                           double log_period_s)
+    : what_(std::move(what)), unit_(std::move(unit)), total_(total), quiet_(quiet), tty_(::isatty(2) == 1),
+      delay_s_(delay_s), log_period_s_(log_period_s), start_(Clock::now()), last_(start_) {}
+
+ProgressLine::~ProgressLine() {
+  if (drawn_ && tty_) std::fputc('\n', stderr);
+}
+
+void ProgressLine::set_total(double total) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  total_ = total;
+}
+
+std::string ProgressLine::text(double done, double elapsed_s, const std::string& extra) const {
+  char buf[256];
+  const auto num = [](double x) { return x == std::floor(x) && std::abs(x) < 1e15 ? "%.0f" : "%.3g"; };
+  std::string fmt = std::string("%s: ") + num(done) + "/" + num(total_) + " %s, %s elapsed, ETA %s";
+  std::snprintf(buf, sizeof buf, fmt.c_str(), what_.c_str(), done, total_, unit_.c_str(),
+                duration_text(elapsed_s).c_str(), duration_text(eta_seconds(elapsed_s, done, total_)).c_str());
+  std::string line = buf;
+  if (!extra.empty()) line += ", " + extra;
+  return line;
+}
+
+void ProgressLine::update(double done, const std::string& extra) {
+  if (quiet_) return;
+  const std::lock_guard<std::mutex> lock(mutex_);
+  const auto now = Clock::now();
+  const double elapsed = std::chrono::duration<double>(now - start_).count();
+  if (elapsed < delay_s_) return;
+  const double since = std::chrono::duration<double>(now - last_).count();
+  if (drawn_ && since < (tty_ ? 0.2 : log_period_s_)) return;
+  last_ = now;
+  drawn_ = true;
+  const std::string line = text(done, elapsed, extra);
+  if (tty_) std::fprintf(stderr, "\r%s\033[K", line.c_str());
+  else std::fprintf(stderr, "%s\n", line.c_str());
+  std::fflush(stderr);
+}
+
+}  // namespace asperity

@@ -1,0 +1,44 @@
+#pragma once
+// A progress line on stderr for commands that can run longer than a few seconds (fit
+// evaluations, reproduce runs, bench settings, a long single run). On a terminal: one line
+// redrawn in place at most 5 times a second. Otherwise (a log file, a cluster job): one plain
+// line every `log_period_s`, so a log shows life without filling up. Nothing when quiet, and
+// nothing before `delay_s` has passed, so short commands stay silent. Thread-safe.
+#include <chrono>
+#include <mutex>
+#include <string>
+
+namespace asperity {
+
+// "45s", "3m07s", "2h05m"; "?" when not finite.
+std::string duration_text(double seconds);
+
+// Remaining time by the rate so far: elapsed × (total − done) / done; NaN before any progress.
+double eta_seconds(double elapsed_s, double done, double total);
+
+class ProgressLine {
+ public:
+  // `what` names the command ("fit"), `unit` what is counted ("evaluations").
+  ProgressLine(std::string what, std::string unit, double total, bool quiet, double delay_s = 2.0,
+               double log_period_s = 30.0);
+  ~ProgressLine();
+  ProgressLine(const ProgressLine&) = delete;
+  ProgressLine& operator=(const ProgressLine&) = delete;
+
+  void update(double done, const std::string& extra = "");
+  void set_total(double total);
+  // The line as it would print now (for tests and for logs).
+  std::string text(double done, double elapsed_s, const std::string& extra) const;
+
+ private:
+  using Clock = std::chrono::steady_clock;
+  std::mutex mutex_;
+  std::string what_, unit_;
+  double total_;
+  bool quiet_, tty_;
+  double delay_s_, log_period_s_;
+  Clock::time_point start_, last_;
+  bool drawn_ = false;
+};
+
+}  // namespace asperity
