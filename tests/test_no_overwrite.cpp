@@ -139,11 +139,11 @@ TEST_CASE("merge --out and sweep --out only into a new or empty folder or a stor
   fs::remove_all(w);
 }
 
-TEST_CASE("plot --out writes only .png files and replaces only PNGs it drew", "[cli][overwrite][campaign]") {
+TEST_CASE("plot --out writes only figure files (.png, .svg, .pdf) and replaces only those it drew", "[cli][overwrite][campaign]") {
   const fs::path w = make_case("plot");
   REQUIRE(run_argv(w, {"sweep", "camp.yaml", "--quiet", "-j", "1"}).status == 0);
-  check_refused(w, plot_args("user/thesis.tex"), "user/thesis.tex: --out: must name a .png file");
-  check_refused(w, plot_args("new.tex"), "new.tex: --out: must name a .png file");
+  check_refused(w, plot_args("user/thesis.tex"), "user/thesis.tex: --out: must name a .png, .svg or .pdf file");
+  check_refused(w, plot_args("new.tex"), "new.tex: --out: must name a .png, .svg or .pdf file");
   if (!asperity::gnuplot_available()) {
     WARN("gnuplot not installed: the PNG cases are not checked");
     fs::remove_all(w);

@@ -129,7 +129,7 @@ void write_savings(const fs::path& dir, const std::vector<SavingRow>& rows) {
      << "set bmargin 5\nset boxwidth 0.9\nset ylabel 'CPU time [ms]'\nset grid ytics\nset yrange [0:*]\nset key top right\n"
      << "plot $d using 2:xticlabels(1) title 'baseline' lc rgb '#4477aa', "
         "'' using 3 title 'variant (saving)' lc rgb '#ee6677'\n";
-  render_png(dir / "savings.png", gp.str(), 1000, 600);
+  render_plot(dir / "savings.png", gp.str(), 1000, 600);
 }
 
 }  // namespace asperity

@@ -180,7 +180,7 @@ void write_tradeoff(const fs::path& dir, const TradeoffResult& r) {
   fs::create_directories(dir);
   scene_io::write_text_file(dir / "work_precision.csv", work_precision_csv(r.rows));
   scene_io::write_text_file(dir / "reference_order.csv", order_csv(r.orders));
-  render_png(dir / "work_precision.png", plot_script(r), 1500, 900);
+  render_plot(dir / "work_precision.png", plot_script(r), 1500, 900);
 }
 
 }  // namespace asperity

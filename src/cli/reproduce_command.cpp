@@ -100,8 +100,11 @@ int reproduce(const ReproduceOptions& opt, const Invocation& inv) {
   fs::remove(out / "REPORT.md");  // a previous one would describe other runs
   scene_io::write_text_file(out / "table.csv", paper_table_csv(runs));
   if (!runs.empty()) {
-    write_figure3(out, runs.front(), runs.back(), label);
-    write_figure4(out, runs, label);
+    // A figure gnuplot could not draw is said, not skipped silently; its script is kept.
+    for (const auto& [name, error] : {std::pair<const char*, std::string>{"fig3_Q_A_t.png", write_figure3(out, runs.front(), runs.back(), label)},
+                                      {"fig4_A_Q.png", write_figure4(out, runs, label)}})
+      if (!error.empty())
+        std::fprintf(stderr, "reproduce: %s not drawn: %s (its script, data inline, is kept beside it)\n", name, error.c_str());
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   double wall_claims = 0;

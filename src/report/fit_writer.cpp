@@ -20,6 +20,7 @@
 #include "io/provenance.hpp"
 #include "io/numbers.hpp"
 #include "report/run_writer.hpp"
+#include "report/units.hpp"
 #include "scene/input_files.hpp"
 #include "scene/load.hpp"
 
@@ -51,7 +52,10 @@ std::string file_stem(const std::string& name) {
 
 
 
-void plot_quietly(const fs::path& dir, const std::string& script) {
+// Draws the fit's figures from the CSVs beside them; the script is kept as `gp_name` in the
+// folder (`gnuplot NAME.gp` there redraws them).
+void plot_quietly(const fs::path& dir, const std::string& script, const std::string& gp_name) {
+  keep_plot_script(dir / gp_name, "# asperity plot script: `gnuplot " + gp_name + "` redraws this fit's figures\n" + script);
   try {
     run_gnuplot(dir, script);
   } catch (const std::exception&) {  // a failed plot is not a failed fit
@@ -157,7 +161,7 @@ void write_optimization(const fs::path& d, const FitSpec& spec, const Optimizati
     const std::string& key = spec.parameters[o.profile_parameter].key;
     gp << "set output 'profile.png'\n"
        << "set title " << gnuplot_quote(o.label + ": objective around the optimum, " + key + " varied (others fixed)")
-       << "\nset xlabel " << gnuplot_quote(key + " [SI]") << "\nset ylabel 'objective'\nset key off\n"
+       << "\nset xlabel " << gnuplot_quote(axis_label(key)) << "\nset ylabel 'objective'\nset key off\n"
        << "plot 'profile.csv' skip 1 using 2:($3 == $3 ? $3 : 1/0) with linespoints pt 7 lw 1.5\n";
   }
   for (const auto& r : o.best_runs) {
@@ -172,7 +176,7 @@ void write_optimization(const fs::path& d, const FitSpec& spec, const Optimizati
          << (r.stand_in ? "stand-in measurement" : "measurement") << "'";
     gp << "\n";
   }
-  plot_quietly(d, gp.str());
+  plot_quietly(d, gp.str(), "plots.gp");
 }
 
 constexpr const char* kFitHeader = "# asperity fit results (SI units: m, m², N, s; alpha_b in m^(2p+2)/N²)";
@@ -346,9 +350,9 @@ void write_fit(const fs::path& dir, const FitSpec& spec, const FitResult& result
       gp << gnuplot_block("fitted", first) << "set terminal pngcairo size 800,560 noenhanced\nset grid\n"
          << "set output 'fitted.png'\nset key top left\n"
          << "set title " << gnuplot_quote(spec.name + ": fitted " + spec.parameters[0].key + " per experiment")
-         << "\nset xlabel 'P = M g [N]'\nset ylabel " << gnuplot_quote(spec.parameters[0].key) << "\n"
+         << "\nset xlabel 'P = M g [N]'\nset ylabel " << gnuplot_quote(axis_label(spec.parameters[0].key)) << "\n"
          << "plot $fitted using 1:2:3:4 with yerrorbars pt 7 title 'fit (bars: error-bar range)'\n";
-      plot_quietly(tmp, gp.str());
+      plot_quietly(tmp, gp.str(), "fitted.gp");
     }
     scene_io::write_text_file(tmp / "fit.yaml", fit_yaml(spec, result, command_line));
     write_marker(tmp, "fit");

@@ -107,18 +107,55 @@ std::string gnuplot_block(const std::string& name, const std::vector<std::vector
   return s + "EOD\n";
 }
 
-bool render_png(const fs::path& png, const std::string& script, int width, int height, std::string* error) {
+namespace {
+const std::string kScriptHeader = "# asperity plot script";
+
+// The terminal line for a figure file, by its extension.
+std::string terminal_for(const fs::path& figure, int width, int height) {
+  const std::string ext = figure.extension().string();
+  if (ext == ".svg") return "set terminal svg size " + std::to_string(width) + "," + std::to_string(height) + " noenhanced";
+  if (ext == ".pdf") {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "set terminal pdfcairo size %.2fin,%.2fin noenhanced", width / 100.0, height / 100.0);
+    return buf;
+  }
+  return "set terminal pngcairo size " + std::to_string(width) + "," + std::to_string(height) + " noenhanced";
+}
+}  // namespace
+
+fs::path plot_script_path(const fs::path& figure) {
+  fs::path gp = figure;
+  return gp.replace_extension(".gp");
+}
+
+bool keep_plot_script(const fs::path& gp, const std::string& script) {
+  std::error_code ec;
+  if (fs::exists(fs::symlink_status(gp, ec)) && read_all(gp, kScriptHeader.size()) != kScriptHeader) return false;
+  try {
+    write_file_atomically(gp, script, Durability::unsynced);
+  } catch (const std::runtime_error&) {
+    return false;
+  }
+  return true;
+}
+
+bool render_plot(const fs::path& figure, const std::string& script, int width, int height, std::string* error) {
+  const std::string terminal = terminal_for(figure, width, height);
+  // The kept script draws the figure by its own name, from its own folder.
+  keep_plot_script(plot_script_path(figure),
+                   kScriptHeader + ": `gnuplot " + plot_script_path(figure).filename().string() + "` redraws " +
+                       figure.filename().string() + " (data inline; restyle freely)\n" + terminal + "\nset output " +
+                       gnuplot_quote(figure.filename().string()) + "\n" + script + "\nunset output\n");
   if (!gnuplot_available()) {
-    if (error) *error = "gnuplot not found";
+    if (error) *error = "gnuplot not found on the PATH";
     return false;
   }
   // gnuplot writes to a name of our own making (no user text in `set output`), in the target's
   // folder so that the rename is atomic.
-  const fs::path dir = png.parent_path().empty() ? fs::path(".") : png.parent_path();
+  const fs::path dir = figure.parent_path().empty() ? fs::path(".") : figure.parent_path();
   const std::string tmp_name = ".plot.tmp-" + unique_tmp_suffix();  // the ".NAME.tmp-*" pattern of output_dir
   const fs::path tmp = dir / tmp_name;
-  const std::string text = "set terminal pngcairo size " + std::to_string(width) + "," + std::to_string(height) +
-                           " noenhanced\nset output " + gnuplot_quote(tmp_name) + "\n" + script + "\nunset output\n";
+  const std::string text = terminal + "\nset output " + gnuplot_quote(tmp_name) + "\n" + script + "\nunset output\n";
   std::error_code ec;
   try {
     run_gnuplot(dir, text);
@@ -127,14 +164,15 @@ bool render_png(const fs::path& png, const std::string& script, int width, int h
     fs::remove(tmp, ec);
     return false;
   }
-  if (!fs::exists(tmp) || !tag_png(tmp)) {
-    if (error) *error = "gnuplot wrote no PNG";
+  const bool png = figure.extension() == ".png";
+  if (!fs::exists(tmp) || (png && !tag_png(tmp))) {
+    if (error) *error = "gnuplot wrote no figure";
     fs::remove(tmp, ec);
     return false;
   }
-  fs::rename(tmp, png, ec);
+  fs::rename(tmp, figure, ec);
   if (ec) {
-    if (error) *error = "cannot move the plot to " + png.string() + ": " + ec.message();
+    if (error) *error = "cannot move the plot to " + figure.string() + ": " + ec.message();
     fs::remove(tmp, ec);
     return false;
   }
@@ -144,6 +182,10 @@ bool render_png(const fs::path& png, const std::string& script, int width, int h
 bool png_is_ours(const fs::path& png) {
   std::error_code ec;
   if (!fs::is_regular_file(fs::symlink_status(png, ec))) return false;
+  if (png.extension() != ".png") {  // SVG, PDF: our kept script names it
+    const std::string head = read_all(plot_script_path(png), 512);
+    return head.rfind(kScriptHeader, 0) == 0 && head.find("redraws " + png.filename().string() + " (") != std::string::npos;
+  }
   const std::string s = read_all(png, 1 << 16);
   if (s.size() < 8 || std::memcmp(s.data(), kPngSignature, 8) != 0) return false;
   for (std::size_t at = 8; at + 12 <= s.size();) {  // chunks: length, type, data, CRC

@@ -24,16 +24,27 @@ std::string gnuplot_quote(const std::string& text);
 // are written as blank lines, which gnuplot draws as gaps).
 std::string gnuplot_block(const std::string& name, const std::vector<std::vector<double>>& rows);
 
-// Renders `png` from `script` (which must not set the terminal or output): the script is
-// prefixed with `set terminal pngcairo size W,H noenhanced` and an output to a hidden temporary
-// file of a fixed-pattern name in the same folder, which is tagged as ours (see png_is_ours) and
-// renamed into place, so a failed plot never leaves a half-written PNG. Returns false (writing
-// nothing) when gnuplot is missing or fails, with gnuplot's first error line in `*error`.
-bool render_png(const std::filesystem::path& png, const std::string& script, int width = 1200,
-                int height = 800, std::string* error = nullptr);
+// Renders `figure` (.png, .svg or .pdf: pngcairo, svg or pdfcairo; W × H pixels, 100 per inch
+// for PDF) from `script` (which must not set the terminal or output): gnuplot writes a hidden
+// temporary file of a fixed-pattern name in the same folder, which is tagged as ours (PNG) and
+// renamed into place, so a failed plot never leaves a half-written figure. The whole script,
+// data included, is kept next to the figure as FIGURE-STEM.gp (`gnuplot FIGURE-STEM.gp` redraws
+// it: restyle it there), unless a file of that name exists that asperity did not write.
+// Returns false when gnuplot is missing or fails (the script is still kept), with the reason in
+// `*error` ("gnuplot not found on the PATH" or gnuplot's first error line).
+bool render_plot(const std::filesystem::path& figure, const std::string& script, int width = 1200,
+                 int height = 800, std::string* error = nullptr);
 
-// True when `png` is a PNG file written by render_png (it carries a tEXt chunk
-// "Software" = "asperity"): the only existing files a plot may replace.
-bool png_is_ours(const std::filesystem::path& png);
+// Keeps `script` (full: terminal and output included) as `gp`, unless a file exists there that
+// asperity did not write (its first line is not our header). Returns whether it was written.
+bool keep_plot_script(const std::filesystem::path& gp, const std::string& script);
+
+// The script render_plot keeps for `figure`: FIGURE-STEM.gp beside it.
+std::filesystem::path plot_script_path(const std::filesystem::path& figure);
+
+// True when `figure` was written by asperity: a PNG tagged by render_plot (tEXt chunk
+// "Software" = "asperity"), or an SVG/PDF whose kept script (ours) names it. The only existing
+// files a plot may replace.
+bool png_is_ours(const std::filesystem::path& figure);
 
 }  // namespace asperity

@@ -47,13 +47,13 @@ const char* kColors[] = {"#1b9e77", "#d95f02", "#7570b3", "#e7298a", "#66a61e", 
 
 }  // namespace
 
-void write_figure3(const fs::path& out_dir, const PaperRun& small, const PaperRun& large,
+std::string write_figure3(const fs::path& out_dir, const PaperRun& small, const PaperRun& large,
                    const std::string& label) {
   std::ostringstream gp;
   gp << gnuplot_block("ms", series_rows(small.series)) << gnuplot_block("me", measured_rows(small))
      << gnuplot_block("ls", series_rows(large.series)) << gnuplot_block("le", measured_rows(large));
-  gp << "set terminal pngcairo size 1200,900 noenhanced font ',10'\n"
-     << "set output 'fig3_Q_A_t.png'\nset grid\nset key top left opaque box\n"
+  gp << "set termoption font ',10'\n"
+     << "set grid\nset key top left opaque box\n"
      << "set multiplot layout 2,2 title "
      << gnuplot_quote(label + ": Figure 3 analogue. Measured A(Q) has no time axis: its samples sit at the model time "
                               "of equal Q (loading branch).")
@@ -71,10 +71,12 @@ void write_figure3(const fs::path& out_dir, const PaperRun& small, const PaperRu
   panel(small, "ms", "me", true);
   panel(large, "ls", "le", true);
   gp << "unset multiplot\n";
-  run_gnuplot(out_dir, gp.str());
+  std::string error;
+  if (!render_plot(out_dir / "fig3_Q_A_t.png", gp.str(), 1200, 900, &error)) return error;
+  return "";
 }
 
-void write_figure4(const fs::path& out_dir, const std::vector<PaperRun>& runs, const std::string& label) {
+std::string write_figure4(const fs::path& out_dir, const std::vector<PaperRun>& runs, const std::string& label) {
   std::ostringstream gp;
   for (std::size_t k = 0; k < runs.size(); ++k) {
     const PaperRun& r = runs[k];
@@ -89,8 +91,8 @@ void write_figure4(const fs::path& out_dir, const std::vector<PaperRun>& runs, c
     const std::string id = std::to_string(k);
     gp << gnuplot_block(std::string("m").append(id), model) << gnuplot_block(std::string("e").append(id), meas);
   }
-  gp << "set terminal pngcairo size 1300,600 noenhanced font ',10'\n"
-     << "set output 'fig4_A_Q.png'\nset grid\nset key outside right\n"
+  gp << "set termoption font ',10'\n"
+     << "set grid\nset key outside right\n"
      << "set multiplot layout 1,2 title "
      << gnuplot_quote(label + ": Figure 4 analogue. Lines: model loading branch; points: measured (stand-in).") << "\n";
   for (int panel = 0; panel < 2; ++panel) {
@@ -111,7 +113,9 @@ void write_figure4(const fs::path& out_dir, const std::vector<PaperRun>& runs, c
     gp << "\n";
   }
   gp << "unset multiplot\n";
-  run_gnuplot(out_dir, gp.str());
+  std::string error;
+  if (!render_plot(out_dir / "fig4_A_Q.png", gp.str(), 1300, 600, &error)) return error;
+  return "";
 }
 
 std::string paper_table_csv(const std::vector<PaperRun>& runs) {

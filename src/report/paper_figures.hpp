@@ -27,10 +27,11 @@ struct PaperRun {
 // Time at which the loading branch first reaches Q (linear interpolation); NaN beyond it.
 double loading_time_at(const std::vector<Sample>& loading, double Q);
 
-// `label` marks the data's origin on every figure (e.g. "STAND-IN data").
-void write_figure3(const std::filesystem::path& out_dir, const PaperRun& smallest,
+// `label` marks the data's origin on every figure (e.g. "STAND-IN data"). Each returns "" when
+// drawn, else why not (gnuplot missing or failing); the script is kept beside the PNG either way.
+std::string write_figure3(const std::filesystem::path& out_dir, const PaperRun& smallest,
                    const PaperRun& largest, const std::string& label);
-void write_figure4(const std::filesystem::path& out_dir, const std::vector<PaperRun>& runs,
+std::string write_figure4(const std::filesystem::path& out_dir, const std::vector<PaperRun>& runs,
                    const std::string& label);
 // table.csv: a header line (kPaperTableHeader), then one row per run (names CSV-quoted).
 std::string paper_table_csv(const std::vector<PaperRun>& runs);

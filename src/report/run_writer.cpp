@@ -101,11 +101,16 @@ void write_run(const fs::path& dir, const Scene& scene, const Observables& obs, 
     scene_io::write_text_file(tmp / "summary.yaml", summary_text);
     scene_io::write_text_file(tmp / "scene.yaml", scene_text);
     write_marker(tmp, "run");
-    if (opt.plot) write_run_plot(tmp);
+    if (opt.plot) {
+      std::string error;
+      if (!write_run_plot(tmp, &error))
+        std::fprintf(stderr, "%s: plot.png not drawn: %s (plot.gp is kept: `gnuplot plot.gp` in the run folder)\n",
+                     dir.string().c_str(), error.c_str());
+    }
   });
 }
 
-bool write_run_plot(const fs::path& dir) {
+bool write_run_plot(const fs::path& dir, std::string* error) {
   const fs::path csv = dir / "series.csv";
   std::ifstream in(csv);
   std::string header;
@@ -121,14 +126,13 @@ bool write_run_plot(const fs::path& dir) {
     return it == cols.end() ? -1 : static_cast<int>(it - cols.begin()) + 1;  // gnuplot: 1-based
   };
   const int ct = col("t"), cq = col("Q"), ca = col("A");
-  if (ct < 0 || cq < 0 || ca < 0) return false;
-  if (!gnuplot_available()) return false;
-
+  if (ct < 0 || cq < 0 || ca < 0) {
+    if (error) *error = "the series has no t, Q and A columns (output.series)";
+    return false;
+  }
   const std::string t = std::to_string(ct), q = std::to_string(cq), a = std::to_string(ca);
   std::ostringstream gp;
-  gp << "set terminal pngcairo size 900,1000 noenhanced\n"
-     << "set output 'plot.png'\n"
-     << "set datafile separator ','\n"
+  gp << "set datafile separator ','\n"
      << "set key off\n"
      << "set grid\n"
      << "set multiplot layout 3,1\n"
@@ -139,14 +143,7 @@ bool write_run_plot(const fs::path& dir) {
      << "set xlabel 'Q [N]'\nset ylabel 'A [mm^2]'\n"
      << "plot 'series.csv' skip 1 using " << q << ":($" << a << "*1e6) with lines lw 1.5\n"
      << "unset multiplot\n";
-  try {
-    run_gnuplot(dir, gp.str());
-  } catch (const std::exception&) {
-    std::error_code ec;
-    fs::remove(dir / "plot.png", ec);
-    return false;
-  }
-  return fs::exists(dir / "plot.png");
+  return render_plot(dir / "plot.png", gp.str(), 900, 1000, error);
 }
 
 }  // namespace asperity

@@ -5,7 +5,7 @@
 //   summary.yaml  every Observables field (%.17g, exact round trip), the solver settings and the
 //                 confirmed peaks, and provenance (build, command line, input files' hashes);
 //   scene.yaml    the resolved scene (scene_to_yaml): `asperity run DIR/scene.yaml` repeats it;
-//   plot.png      optional: Q(t), A(t) and A(Q) via gnuplot.
+//   plot.png      optional: Q(t), A(t) and A(Q) via gnuplot; plot.gp, its script, beside it.
 // The directory is built as a hidden temporary sibling and renamed into place, so an interrupted
 // run never leaves a half-written DIR (at worst a stale `.NAME.tmp-*` sibling).
 #include <filesystem>
@@ -40,8 +40,9 @@ void write_run(const std::filesystem::path& dir, const Scene& scene, const Obser
 // it before a long run so it fails early.
 void check_run_dir(const std::filesystem::path& dir);
 
-// Renders DIR/plot.png from DIR/series.csv (needs columns t, Q, A). Returns false, silently,
-// when gnuplot is missing, the series lacks a column, or gnuplot fails.
-bool write_run_plot(const std::filesystem::path& dir);
+// Renders DIR/plot.png from DIR/series.csv (needs columns t, Q, A) and keeps its script as
+// DIR/plot.gp. Returns false when the series lacks a column, gnuplot is missing or fails (why in
+// *error); write_run says so on stderr.
+bool write_run_plot(const std::filesystem::path& dir, std::string* error = nullptr);
 
 }  // namespace asperity

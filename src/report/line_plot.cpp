@@ -1,0 +1,105 @@
+#include "report/line_plot.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+#include "io/atomic_file.hpp"
+#include "io/input_error.hpp"
+#include "io/numbers.hpp"
+#include "report/gnuplot.hpp"
+#include "report/plot_axes.hpp"
+#include "report/units.hpp"
+
+namespace asperity {
+namespace fs = std::filesystem;
+using namespace plot_detail;
+
+LinePlotReport plot_lines(const fs::path& store, const LinePlotOptions& opt) {
+  const fs::path figure =
+      opt.out.empty() ? store / ("line_" + file_part(opt.y) + "_over_" + file_part(opt.x) + ".png") : opt.out;
+  check_png_target(figure, store, !opt.out.empty());
+  const StoreTable t(store, opt.where);
+  const std::size_t cx = t.column(opt.x, "--x"), cy = t.column(opt.y, "--y");
+  const std::size_t cstatus = t.column("status", "status"), cgrid = t.column("grid", "grid"),
+                    cexp = t.column("experiment", "experiment");
+  std::vector<std::vector<std::string>> rows = t.rows_with_numbers({cx});
+  if (rows.empty()) throw InputError("asperity plot", 0, "--where", "no point of the store matches (or x is not a number)");
+
+  LinePlotReport rep;
+  {  // Prefer the grids in which x varies (the others would pile up at their base value).
+    std::map<std::string, std::set<std::string>> seen;
+    for (const auto& r : rows) seen[r[cgrid]].insert(r[cx]);
+    std::set<std::string> varying;
+    for (const auto& [g, xs] : seen)
+      if (xs.size() > 1) varying.insert(g);
+    if (!varying.empty() && varying.size() < seen.size()) {
+      std::erase_if(rows, [&](const auto& r) { return !varying.count(r[cgrid]); });
+      for (const auto& g : varying) rep.used_grid += (rep.used_grid.empty() ? "" : ",") + g;
+    }
+  }
+  // One line per experiment, points sorted by x; one point per (experiment, x).
+  std::map<std::string, std::map<double, const std::vector<std::string>*>> lines;
+  for (const auto& r : rows) {
+    double x = 0;
+    number_of(r[cx], x);
+    const auto [it, fresh] = lines[r[cexp]].emplace(x, &r);
+    if (fresh) continue;
+    for (std::size_t c = 2; c < cstatus; ++c)
+      if (c != cx && c != cexp && !same_value((*it->second)[c], r[c]))
+        throw InputError("asperity plot", 0, "--where",
+                         "several points of " + r[cexp] + " fall on " + opt.x + " = " + r[cx] + "; they differ in " +
+                             t.cols[c] + ": pick one, e.g. --where " + t.cols[c] + "=" + r[c]);
+  }
+  std::vector<std::string> xtexts = distinct_sorted(rows, cx);
+  std::vector<double> xv(xtexts.size());
+  for (std::size_t i = 0; i < xtexts.size(); ++i) number_of(xtexts[i], xv[i]);
+  const bool xlog = log_axis(xv);
+
+  const bool stand_in = read_file_text(store / "provenance.yaml").find("stand_in_data: true") != std::string::npos;
+  std::ostringstream gp;
+  std::string title = opt.y + " over " + opt.x;
+  for (const std::string& w : opt.where) title += ", " + w;
+  gp << "set title " << gnuplot_quote(title);
+  if (stand_in) gp << " . \"\\n\" . " << gnuplot_quote("STAND-IN experiments, not measurements");
+  gp << "\nset grid\nset key outside right\n";
+  gp << axis_settings("x", opt.x, xtexts, {}, xlog);
+  gp << "set ylabel " << gnuplot_quote(axis_label(opt.y)) << "\n";
+  if (xtexts.size() > 8) gp << "set xtics rotate by 60 right\n";
+  if (xlog && xv.size() > 1) gp << "set xrange [" << scene_io::format_double(xv.front() / std::pow(xv.back() / xv.front(), 0.03))
+                                 << ":" << scene_io::format_double(xv.back() * std::pow(xv.back() / xv.front(), 0.03)) << "]\n";
+  std::size_t k = 0;
+  std::string plot = "plot ";
+  for (const auto& [experiment, points] : lines) {
+    gp << "$line" << k << " << EOD\n";
+    for (const auto& [x, r] : points) {
+      double y = NAN;
+      if ((*r)[cstatus] == "ok") number_of((*r)[cy], y);
+      ++rep.points;
+      if (!std::isfinite(y)) {
+        ++rep.blank;
+        gp << "\n";  // a gap in the line
+        continue;
+      }
+      gp << scene_io::format_double(x) << ' ' << scene_io::format_double(y) << '\n';
+    }
+    gp << "EOD\n";
+    plot += std::string(k ? ", " : "") + "$line" + std::to_string(k) + " using 1:2 with linespoints pt 7 ps 0.8 lw 1.5 title " +
+            gnuplot_quote(experiment);
+    ++k;
+  }
+  rep.lines = k;
+  gp << (rep.blank < rep.points ? plot : std::string("set label 1 'no finite value' at graph 0.5,0.5 center\nplot NaN notitle"))
+     << "\n";
+  std::string error;
+  if (!render_plot(figure, gp.str(), 1000, 650, &error))
+    throw std::runtime_error("cannot draw " + figure.string() + ": " + error + " (its script is kept: " +
+                             plot_script_path(figure).string() + ")");
+  rep.figure = figure;
+  return rep;
+}
+
+}  // namespace asperity

@@ -1,0 +1,15 @@
+#pragma once
+// Units of the columns a result holds (scene keys from the key table, observables from the
+// field table), for axis labels and for the units reference: one place per fact.
+#include <string>
+
+namespace asperity {
+
+// SI unit of a scene key or observable column: "1/s", "N", ...; "1" when dimensionless; ""
+// when the column is not a number we know (e.g. experiment, grid, status).
+std::string column_unit(const std::string& column);
+
+// "model.eta [1/s]", "model.epsilon [1]", or the column as is when its unit is unknown.
+std::string axis_label(const std::string& column);
+
+}  // namespace asperity
