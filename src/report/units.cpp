@@ -23,4 +23,30 @@ std::string axis_label(const std::string& column) {
   return unit.empty() ? column : column + " [" + unit + "]";
 }
 
+std::string units_reference_markdown() {
+  std::string md =
+      "# Units of every column\n\n"
+      "Generated from the key and observable tables (`src/report/units.cpp`; `tests/test_report_units.cpp`\n"
+      "keeps this file equal to them). All values are SI. `1`: dimensionless. Columns of a store's\n"
+      "`points.csv`, of `summary.yaml`, `fitted.csv` and the bench CSVs are named as below; `table.csv`\n"
+      "of `asperity reproduce` carries its units in its header names (`Q_s_N`, `A0_m2`, ...).\n\n"
+      "## Scene keys (varied columns of a store, `--set`, fit parameters)\n\n| key | unit |\n|---|---|\n";
+  for (const SceneKey& k : scene_keys()) {
+    const std::string u = column_unit(k.name);
+    if (!u.empty()) md += std::string("| `") + k.name + "` | " + u + " |\n";
+  }
+  md += "\n## Observables (summary.yaml, points.csv, fitted.csv)\n\n| column | unit |\n|---|---|\n";
+  for (const ObservableField& f : observable_fields()) {
+    const std::string u = column_unit(f.name);
+    md += std::string("| `") + f.name + "` | " + (u.empty() ? std::string("(text or true/false)") : u) + " |\n";
+  }
+  md += "\n## Series (series.csv, a store's series)\n\n| column | unit |\n|---|---|\n";
+  const char* series_units[][2] = {{"t", "s"}, {"X", "m"}, {"V", "m/s"}, {"Q", "N"}, {"A", "m^2"},
+                                   {"n_slipping", "1"}, {"n_intact", "1"}};
+  for (const std::string& c : all_series())
+    for (const auto& [name, unit] : series_units)
+      if (c == name) md += "| `" + c + "` | " + unit + " |\n";
+  return md;
+}
+
 }  // namespace asperity

@@ -12,4 +12,8 @@ std::string column_unit(const std::string& column);
 // "model.eta [1/s]", "model.epsilon [1]", or the column as is when its unit is unknown.
 std::string axis_label(const std::string& column);
 
+// docs/units.md: the unit of every column a result holds (scene keys, observables, series
+// columns), from the same tables; a test keeps the committed file equal to it.
+std::string units_reference_markdown();
+
 }  // namespace asperity
