@@ -215,13 +215,14 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
   rep.store = opt.out.empty() ? fs::path("results") / c.name : opt.out;
   // `--out .` or a typo must not write store files among unrelated ones (points.csv would be
   // replaced): an existing folder may hold only what a store holds (a run killed at its start
-  // may have left some of it), including our temporary files (".NAME.tmp-*") and PNGs.
+  // may have left some of it), including our temporary files (".NAME.tmp-*") and figures.
   if (fs::is_directory(rep.store))
     for (const auto& e : fs::directory_iterator(rep.store)) {
       static const char* const known[] = {".lock", "campaign.yaml", "provenance.yaml", "journal.csv", "points.csv", "series"};
       const std::string n = e.path().filename().string();
       if (std::find(std::begin(known), std::end(known), n) == std::end(known) && n.find(".tmp-") == std::string::npos &&
-          e.path().extension() != ".png")  // heat maps drawn from the store
+          e.path().extension() != ".png" && e.path().extension() != ".svg" && e.path().extension() != ".pdf" &&
+          e.path().extension() != ".gp")  // figures drawn from the store and their kept scripts
         throw std::runtime_error("refusing to use " + rep.store.string() + " as a sweep store: it holds '" + n +
                                  "', which no store holds");
     }
