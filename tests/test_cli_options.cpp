@@ -36,9 +36,9 @@ std::string values_of(const fs::path& store) {
 
 TEST_CASE("threads (-j, --threads) mean the same in every command and are checked the same", "[cli][options]") {
   const fs::path w = fs::temp_directory_path();
-  for (const std::vector<std::string> cmd :
-       {std::vector<std::string>{"run", "x.yaml"}, {"sweep", "x.yaml"}, {"fit", "x.yaml"}, {"reproduce", "x.yaml"},
-        {"regress"}, {"bench", "savings"}}) {
+  const std::vector<std::vector<std::string>> commands{{"run", "x.yaml"}, {"sweep", "x.yaml"}, {"fit", "x.yaml"},
+                                                        {"reproduce", "x.yaml"}, {"regress"}, {"bench", "savings"}};
+  for (const auto& cmd : commands) {
     for (const char* opt : {"-j", "--threads"}) {
       std::vector<std::string> args = cmd;
       args.insert(args.begin() + 1, {opt, "0"});
@@ -92,9 +92,10 @@ TEST_CASE("quiet (-q) prints nothing on success", "[cli][options]") {
   const fs::path w = temp_path("cli_quiet");
   fs::remove_all(w);
   fs::create_directories(w);
-  for (const std::vector<std::string> args :
-       {std::vector<std::string>{"run", (kSource / "tests" / "data" / "scene" / "small_scene.yaml").string(), "--out", "r", "-q"},
-        {"sweep", (kSource / "tests" / "data" / "campaign" / "tiny.yaml").string(), "--out", "s", "-q", "-j", "1"}}) {
+  const std::vector<std::vector<std::string>> commands{
+      {"run", (kSource / "tests" / "data" / "scene" / "small_scene.yaml").string(), "--out", "r", "-q"},
+      {"sweep", (kSource / "tests" / "data" / "campaign" / "tiny.yaml").string(), "--out", "s", "-q", "-j", "1"}};
+  for (const auto& args : commands) {
     const CliResult r = run_argv(w, args);
     CHECK(r.status == 0);
     CHECK(r.out.empty());

@@ -57,7 +57,7 @@ TEST_CASE("integrate: the shared loop stops at the end, on the observer's done()
   Problem p = make_problem(s);
   {
     CountingStepper st{p};
-    FirstSamples obs{p.dt, 100};
+    FirstSamples obs{p.dt, 100, {}};
     const RunInfo info = integrate(st, p, obs);
     CHECK(info.stats.steps == 10);
     CHECK(info.stopped_by == LimitHit::none);
@@ -67,13 +67,13 @@ TEST_CASE("integrate: the shared loop stops at the end, on the observer's done()
   }
   {
     CountingStepper st{p};
-    FirstSamples obs{p.dt, 4};  // done after the samples at 0, dt, 2 dt, 3 dt
+    FirstSamples obs{p.dt, 4, {}};  // done after the samples at 0, dt, 2 dt, 3 dt
     CHECK(integrate(st, p, obs).stats.steps == 3);
   }
   {
     p.limits.max_slips = 5;
     CountingStepper st{p};
-    FirstSamples obs{p.dt, 100};
+    FirstSamples obs{p.dt, 100, {}};
     const RunInfo info = integrate(st, p, obs);
     CHECK(info.stopped_by == LimitHit::max_slips);
     CHECK(st.stopped_early);
@@ -90,7 +90,7 @@ TEST_CASE("integrate: both methods feed any observer and agree before the first 
   int i = 0;
   for (auto method : {SolverMethod::reference, SolverMethod::event}) {
     s.solver.method = method;
-    FirstSamples obs{2e-3, 4};
+    FirstSamples obs{2e-3, 4, {}};
     integrate(s, obs);
     REQUIRE(obs.samples.size() == 4);
     got[i++] = obs.samples;

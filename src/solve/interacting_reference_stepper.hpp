@@ -17,6 +17,7 @@
 #include "solve/junction_state.hpp"
 #include "solve/observer.hpp"
 #include "solve/problem.hpp"
+#include "solve/reference_scheme.hpp"
 #include "solve/run_info.hpp"
 
 namespace asperity {
@@ -26,28 +27,22 @@ class InteractingReferenceStepper {
   // Throws SolverError when the step is unstable for the linearised slider (as ReferenceStepper).
   explicit InteractingReferenceStepper(const Problem& problem);
 
-  void start(RunObserver& out);
-  bool finished() const { return n_ >= n_end_; }
-  std::int64_t slips() const { return stats_.slips; }
+  void start(RunObserver& out) { scheme_.emit_samples(out); }
+  bool finished() const { return scheme_.finished(); }
+  std::int64_t slips() const { return scheme_.slips(); }
   void advance(RunObserver& out);
   void stop_early() {}
-  void finish(RunInfo& info) const;
+  void finish(RunInfo& info) const { scheme_.finish(info, max_ratio_); }
 
   const JunctionState& junctions() const { return J_; }
 
  private:
-  void emit_samples(RunObserver& out) const;
-
   const Problem& p_;
+  ReferenceScheme scheme_;  // K0 (independent junctions) bounds the interacting stiffness: same check
   InteractionMatrix C_;
   CoupledForces forces_;
   JunctionState J_;
-  std::int64_t n_ = 0, n_end_ = 0;
-  double X_ = 0, V_ = 0, gamma_ = 0, A_sum_ = 0;
-  std::int64_t n_slipping_ = 0, n_intact_ = 0;
-  double prevQ_ = 0, prevA_ = 0, prevV_ = 0, prevt_ = 0;
   double max_ratio_ = 0;
-  SolverStats stats_;
 };
 
 }  // namespace asperity
