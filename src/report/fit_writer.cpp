@@ -150,7 +150,7 @@ void write_optimization(const fs::path& d, const FitSpec& spec, const Optimizati
      << "set title " << gnuplot_quote(spec.name + " / " + o.label + ": objective (" + objective_name(spec.objective) +
                                       "), " + spec.algorithm + ", stop " + o.stop_reason)
      << "\n"
-     << "set xlabel 'evaluation'\nset ylabel 'objective'\nset logscale y\nset key top right\n"
+     << "set xlabel 'evaluation number'\nset ylabel 'objective [1] (dimensionless)'\nset logscale y\nset key top right\n"
      << "best = 1e300\n"
      << "plot 'evaluations.csv' skip 1 using 1:($" << (o.variables.size() + 2)
      << " > 0 ? $" << (o.variables.size() + 2) << " : 1/0) with linespoints pt 7 ps 0.6 title 'objective', "
@@ -161,7 +161,7 @@ void write_optimization(const fs::path& d, const FitSpec& spec, const Optimizati
     const std::string& key = spec.parameters[o.profile_parameter].key;
     gp << "set output 'profile.png'\n"
        << "set title " << gnuplot_quote(o.label + ": objective around the optimum, " + key + " varied (others fixed)")
-       << "\nset xlabel " << gnuplot_quote(axis_label(key)) << "\nset ylabel 'objective'\nset key off\n"
+       << "\nset xlabel " << gnuplot_quote(axis_label(key)) << "\nset ylabel 'objective [1] (dimensionless)'\nset key off\n"
        << "plot 'profile.csv' skip 1 using 2:($3 == $3 ? $3 : 1/0) with linespoints pt 7 lw 1.5\n";
   }
   for (const auto& r : o.best_runs) {
