@@ -5,7 +5,7 @@
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=$(realpath "$1")
-w=$(mktemp -d /tmp/asperity-install.XXXXXX)
+w=$(mktemp -d -t asperity-install.XXXXXX)
 trap 'rm -rf "$w"' EXIT
 cmake --install "$build" --prefix "$w/prefix" > "$w/install.log"
 "$w/prefix/bin/asperity" --version

@@ -6,7 +6,7 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 asperity=$(realpath "${ASPERITY:-$root/build/asperity}")
 campaign=$root/tests/data/campaign/kill.yaml
-w=$(mktemp -d /tmp/asperity-lock.XXXXXX)
+w=$(mktemp -d -t asperity-lock.XXXXXX)
 trap 'kill "$first" 2>/dev/null || true; wait 2>/dev/null || true; rm -rf "$w"' EXIT
 "$asperity" sweep "$campaign" --out "$w/store" --threads 1 --quiet &
 first=$!

@@ -27,7 +27,7 @@ if [ "$(id -u)" != 0 ]; then
 fi
 PATH=$PATH:/usr/sbin
 
-w=$(mktemp -d /tmp/asperity-slurm.XXXXXX)
+w=$(mktemp -d -t asperity-slurm.XXXXXX)
 chmod 755 "$w"
 mkdir -p "$w/munge" "$w/state" "$w/spool" "$w/log" "$w/out"
 stop_daemons() {
