@@ -58,7 +58,8 @@ int sweep(const SweepArgs& a, const Invocation& inv) {
   const SweepReport r = run_sweep(c, opt);
   if (!a.quiet || r.failed > 0) {
     std::fprintf(stderr, "%s: %llu points in shard %s; %llu already stored, %llu run now (%llu failed) in %.1f s",
-                 c.name.c_str(), static_cast<unsigned long long>(r.points), a.shard.c_str(),
+                 c.name.c_str(), static_cast<unsigned long long>(r.points),
+                 (std::to_string(opt.shard.index) + "/" + std::to_string(opt.shard.count) + (a.shard == "auto" ? " (auto)" : "")).c_str(),
                  static_cast<unsigned long long>(r.skipped), static_cast<unsigned long long>(r.ran),
                  static_cast<unsigned long long>(r.failed_now), r.wall_s);
     if (r.ran > 0) std::fprintf(stderr, " (%.2f points/s)", static_cast<double>(r.ran) / r.wall_s);
