@@ -5,6 +5,7 @@
 // slipping ones through one (Σ f); only never-slipped junctions (or, with area_law: always,
 // every pinned one) need their own nonlinear force, given by the universal law instead of a
 // bisection, packed for the inner loop (or binned for large N, binned_sum.hpp).
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -50,6 +51,9 @@ class EventJunctions {
 
   bool has_threshold() const { return !heap_.empty(); }
   double next_threshold() const { return heap_.top().first; }  // m, the next slip position
+  // Independent junctions slip only as X grows (their force is k·(X − x) or its Eq. (3) form).
+  bool has_threshold_below() const { return false; }
+  double next_threshold_below() const { return -HUGE_VAL; }
   std::int64_t n_slipping() const { return static_cast<std::int64_t>(slipping_.size()); }
   std::int64_t n_intact() const { return n_intact_; }
   std::int64_t force_evals() const { return force_evals_; }
