@@ -101,7 +101,7 @@ void check_area_law_domain(const Scene& s, const KeyOrigins& o) {
 }
 
 // Elastic interactions (MODEL.md §8): the junctions need finite, non-overlapping positions
-// (each a disc of its initial area), a solver that handles them, and a dense N × N compliance
+// (each a disc of its initial area) and a dense N × N compliance
 // that fits in memory.
 void check_interactions(const Scene& s, const KeyOrigins& o) {
   if (s.model.interactions == Interactions::none) return;
@@ -115,10 +115,6 @@ void check_interactions(const Scene& s, const KeyOrigins& o) {
     o.fail("model.interactions", "elastic interactions keep an N x N compliance matrix: N = " +
                                      std::to_string(J.size()) + " junctions, more than " +
                                      std::to_string(kMaxInteractingJunctions));
-  if (s.solver.method != SolverMethod::reference)
-    o.fail("model.interactions",
-           "elastic interactions run with solver.method: reference (the event solver for interacting "
-           "junctions is not built yet)");
   for (std::size_t i = 0; i < J.size(); ++i)
     if (!std::isfinite(J.x_m[i]) || !std::isfinite(J.y_m[i]))
       throw InputError(csv, 0, "x_m", "junction " + std::to_string(i + 1) + " has a non-finite position");

@@ -9,6 +9,7 @@
 
 #include "scene/scene.hpp"
 #include "solve/event_stepper.hpp"
+#include "solve/interacting_event_stepper.hpp"
 #include "solve/interacting_reference_stepper.hpp"
 #include "solve/observer.hpp"
 #include "solve/problem.hpp"
@@ -30,7 +31,8 @@ concept Stepper = requires(S& s, const S& cs, RunObserver& out, RunInfo& info) {
   { cs.slips() } -> std::convertible_to<std::int64_t>;
   cs.finish(info);
 };
-static_assert(Stepper<ReferenceStepper> && Stepper<EventStepper> && Stepper<InteractingReferenceStepper>);
+static_assert(Stepper<ReferenceStepper> && Stepper<EventStepper> && Stepper<InteractingReferenceStepper> &&
+              Stepper<InteractingEventStepper>);
 
 // Runs `stepper` from t = 0 until stop.time, the observer's done(), or a resource limit of the
 // problem (checked before every step; info.stopped_by says which, simulate() turns it into a
@@ -55,10 +57,12 @@ RunInfo integrate(S& stepper, const Problem& problem, O& observer) {
 // The method problem.solver.method names, run on `problem`.
 template <Observer O>
 RunInfo integrate(const Problem& problem, O& observer) {
-  if (problem.interacting()) {  // the scene's validation allows only the reference method
-    if (problem.solver.method != SolverMethod::reference)
-      throw std::logic_error("integrate: interacting junctions need solver.method reference");
-    InteractingReferenceStepper s(problem);
+  if (problem.interacting()) {
+    if (problem.solver.method == SolverMethod::reference) {
+      InteractingReferenceStepper s(problem);
+      return integrate(s, problem, observer);
+    }
+    InteractingEventStepper s(problem);
     return integrate(s, problem, observer);
   }
   switch (problem.solver.method) {
