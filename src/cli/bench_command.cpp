@@ -14,6 +14,7 @@
 
 #include "bench/accuracy.hpp"
 #include "bench/bench_scene.hpp"
+#include "bench/interacting.hpp"
 #include "bench/savings.hpp"
 #include "bench/speed_ratio.hpp"
 #include "bench/tradeoff.hpp"
@@ -42,6 +43,8 @@ struct BenchOptions {
   std::string scenes_dir = "scenes/paper";
   std::vector<std::string> scenes;
   std::vector<double> tolerances;
+  // interacting
+  std::vector<std::size_t> interacting_sizes;
 };
 
 // The machine's load when the figures were taken: timings on a shared machine depend on it.
@@ -54,7 +57,7 @@ std::string load_average() {
 // The files the benchmarks write: a folder holding only these (before markers existed) is ours.
 bool bench_folder(const std::filesystem::path& d) {
   static const char* const ours[] = {"accuracy.csv", "reference_order.csv", "savings.csv", "savings.png",
-                                     "speed_ratio.csv", "speed_runs.csv", "work_precision.csv", "work_precision.png"};
+                                     "speed_ratio.csv", "speed_runs.csv", "interacting.csv", "work_precision.csv", "work_precision.png"};
   bool any = false;
   for (const auto& e : std::filesystem::directory_iterator(d)) {
     const std::string n = e.path().filename().string();
@@ -155,6 +158,22 @@ int accuracy(const BenchOptions& b) {
   return exit_ok;
 }
 
+int interacting(const BenchOptions& b) {
+  InteractingBenchOptions o;
+  if (!b.interacting_sizes.empty()) o.sizes = b.interacting_sizes;
+  if (b.quick) o.sizes = {300, 600}, o.whole_run = false;
+  o.log = &std::cout;
+  machine_line(b);
+  std::printf("interacting event solver (STAND-IN P4.00N areas; OpenMP threads: %d)\n", omp_get_max_threads());
+  const auto rows = run_interacting_bench(o);
+  write_interacting_bench(b.out, rows);
+  write_marker(b.out, "bench");
+  std::printf("  time to the first peak ~ N^%.3g (least squares over N = %zu..%zu)\n", fitted_exponent(rows),
+              o.sizes.front(), o.sizes.back());
+  std::printf("-> %s/interacting.csv\n", b.out.c_str());
+  return exit_ok;
+}
+
 int savings(const BenchOptions& b) {
   SavingsOptions o;
   if (!b.scenes.empty()) o.scenes = {b.scenes.begin(), b.scenes.end()};
@@ -213,14 +232,19 @@ Command add_bench_command(CLI::App& app) {
       ->check(CLI::PositiveNumber);
   CLI::App* s = sub->add_subcommand("savings", "Wall time saved by series=[], stop.at_first_peak, alpha_b=0");
   s->add_option("--scene", opt->scenes, "Scene(s) (default scenes/paper/P4.00N.yaml)");
+  CLI::App* in = sub->add_subcommand("interacting", "Interacting event solver: time to the first peak vs N "
+                                                    "(fitted exponent), peak memory vs 2N^2 doubles, P4.00N whole run");
+  in->add_option("--sizes", opt->interacting_sizes, "Junction counts (default 300 600 1200 2400 5000)")
+      ->check(CLI::Range(2, 10000));
 
-  return Command{sub, [opt, t, sp, a, s](const Invocation&) {
+  return Command{sub, [opt, t, sp, a, s, in](const Invocation&) {
     // --quiet: the benchmarks report on stdout as they go; their results are the files.
     if (opt->quiet && !std::freopen("/dev/null", "w", stdout)) return exit_failure;
     if (t->parsed()) return tradeoff(*opt);
     if (sp->parsed()) return speed(*opt);
     if (a->parsed()) return accuracy(*opt);
     if (s->parsed()) return savings(*opt);
+    if (in->parsed()) return interacting(*opt);
     return exit_input;
   }};
 }

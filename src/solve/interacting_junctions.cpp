@@ -212,7 +212,7 @@ InteractingJunctions::Node InteractingJunctions::solve(double X) const {
         node.f[q] = f;
         node.a[q] = a0_[q] - y2[q];
       }
-      if (change <= 1e-14) break;
+      if (change <= 1e-13) break;
       // Slow contraction: the reference compliances drifted from the junctions' own. Take them
       // at the current forces and rebuild G (a Newton step's Jacobian): the solution is the
       // same, the iteration fast again.
@@ -314,8 +314,11 @@ std::size_t InteractingJunctions::covering_segment(double X) const {
       target = X + std::max(w, X - hi);
       if (std::isfinite(x_up_) && X <= x_up_) target = std::min(target, x_up_);
     }
-    // Past a slip position (an integrator stage beyond the event): only as far as asked.
-    if (X > x_up_ || X < x_down_) target = X;
+    // Past a slip position (an integrator stage beyond the event): twice as far as asked, so
+    // a step's stages there need few nodes, and never deep into the range beyond (where the
+    // set would have changed and Eq. (3) junctions approach their force limit).
+    if (X > x_up_) target = X + 2 * (X - hi);
+    if (X < x_down_) target = X - 2 * (lo - X);
     node_at(target);
     refine_all();
   }
@@ -403,7 +406,7 @@ void InteractingJunctions::find_thresholds(double X) {
         const double thr = threshold(qk);
         const double r = m.f[qk] - thr;
         if (r < 0) lo = Xt; else hi = Xt;
-        if (std::abs(r) <= 1e-14 * thr) break;
+        if (std::abs(r) <= 1e-12 * thr) break;
         double next = Xt - r / m.a[qk];
         const bool inside = dir > 0 ? (next > lo && next < hi) : (next < lo && next > hi);
         if (!inside && std::isfinite(hi)) next = 0.5 * (lo + hi);

@@ -1,0 +1,129 @@
+#include "bench/interacting.hpp"
+
+#include <sys/resource.h>
+
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+#include "generate/positions.hpp"
+#include "io/atomic_file.hpp"
+#include "io/csv.hpp"
+#include "observe/recorder.hpp"
+#include "observe/simulate.hpp"
+#include "scene/load.hpp"
+#include "solve/integrate.hpp"
+
+namespace asperity {
+namespace fs = std::filesystem;
+
+namespace {
+
+long max_rss_kB() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return u.ru_maxrss;
+}
+
+// The scene with its junctions placed in a contact disc (seeded like the stand-ins' recipe).
+Scene with_positions(Scene s, double radius_m) {
+  const Positions p = place_in_contact_disc(s.experiment.junctions.area_m2, radius_m, 20200318);
+  s.experiment.junctions.x_m = p.x_m;
+  s.experiment.junctions.y_m = p.y_m;
+  s.model.interactions = Interactions::elastic;
+  s.solver.method = SolverMethod::event;
+  return s;
+}
+
+InteractingBenchRow timed(const std::string& what, const Scene& scene) {
+  InteractingBenchRow row;
+  row.what = what;
+  row.N = scene.experiment.junctions.size();
+  const Problem problem = make_problem(scene);
+  Recorder rec(scene.output.every, false, scene.output.peak_min_drop, scene.stop.at_first_peak, scene.stop.cycles);
+  const auto t0 = std::chrono::steady_clock::now();
+  InteractingEventStepper stepper(problem);
+  const RunInfo info = integrate(stepper, problem, rec);
+  row.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const auto& w = stepper.junctions().work();
+  row.t_end = info.t_end;
+  row.steps = info.stats.steps;
+  row.slips = info.stats.slips;
+  row.repins = info.stats.repins;
+  row.solves = w.solves;
+  row.iterations = w.iterations;
+  row.rank_one = w.rank_one;
+  row.rebuilds = w.rebuilds;
+  const FirstPeak fp = rec.first_peak();
+  row.Q_s = fp.max.Q;
+  row.t_peak = fp.max.t;
+  row.max_rss_kB = max_rss_kB();
+  row.bound_kB = 2.0 * static_cast<double>(row.N) * static_cast<double>(row.N) * 8.0 / 1024.0;
+  return row;
+}
+
+}  // namespace
+
+std::vector<InteractingBenchRow> run_interacting_bench(const InteractingBenchOptions& opt) {
+  const Scene base = load_scene(opt.scene);
+  const std::vector<double>& areas = base.experiment.junctions.area_m2;
+  const std::size_t N0 = areas.size();
+  std::vector<InteractingBenchRow> rows;
+  for (std::size_t N : opt.sizes) {
+    Scene s = base;
+    s.experiment.junctions.area_m2.resize(N);
+    for (std::size_t i = 0; i < N; ++i) s.experiment.junctions.area_m2[i] = areas[i % N0];
+    s.experiment.mass_kg = base.experiment.mass_kg * static_cast<double>(N) / static_cast<double>(N0);
+    s.stop.at_first_peak = true;
+    s.stop.time = 60.0;
+    s.stop.wall_time = 7200.0;
+    s.output.series.clear();
+    const double R = opt.contact_radius_m * std::sqrt(static_cast<double>(N) / static_cast<double>(N0));
+    rows.push_back(timed("first_peak", with_positions(s, R)));
+    const auto& r = rows.back();
+    if (opt.log)
+      *opt.log << "  N " << r.N << ": first peak at t = " << r.t_peak << " s in " << r.wall_s << " s wall ("
+               << r.slips << " slips, " << r.solves << " solves, " << r.iterations << " chord iterations, "
+               << r.rank_one << " rank-one updates, " << r.rebuilds << " rebuilds), peak RSS " << r.max_rss_kB / 1024
+               << " MB vs 2N^2 doubles " << r.bound_kB / 1024 << " MB" << std::endl;
+  }
+  if (opt.whole_run) {
+    Scene s = base;
+    s.stop.cycles = 5;
+    s.stop.time = 10.0;
+    s.output.series.clear();
+    rows.push_back(timed("whole_run", with_positions(s, opt.contact_radius_m)));
+    const auto& r = rows.back();
+    if (opt.log)
+      *opt.log << "  " << opt.scene.filename().string() << " (N " << r.N << "), peak + 5 cycles or stop.time: t_end "
+               << r.t_end << " s in " << r.wall_s << " s wall (" << r.slips << " slips, " << r.repins
+               << " repins), peak RSS " << r.max_rss_kB / 1024 << " MB" << std::endl;
+  }
+  return rows;
+}
+
+double fitted_exponent(const std::vector<InteractingBenchRow>& rows) {
+  double sx = 0, sy = 0, sxx = 0, sxy = 0, n = 0;
+  for (const auto& r : rows) {
+    if (r.what != "first_peak" || !(r.wall_s > 0)) continue;
+    const double x = std::log(static_cast<double>(r.N)), y = std::log(r.wall_s);
+    sx += x, sy += y, sxx += x * x, sxy += x * y, n += 1;
+  }
+  if (n < 2) return NAN;
+  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
+}
+
+void write_interacting_bench(const fs::path& dir, const std::vector<InteractingBenchRow>& rows) {
+  std::ostringstream o;
+  o << "what,N,wall_s,t_end_s,Q_s_N,t_peak_s,steps,slips,repins,solves,chord_iterations,rank_one_updates,"
+       "rebuilds,max_rss_kB,two_N2_doubles_kB\n";
+  for (const auto& r : rows)
+    o << r.what << ',' << r.N << ',' << csv_number(r.wall_s) << ',' << csv_number(r.t_end) << ','
+      << csv_number(r.Q_s) << ',' << csv_number(r.t_peak) << ',' << r.steps << ',' << r.slips << ',' << r.repins
+      << ',' << r.solves << ',' << r.iterations << ',' << r.rank_one << ',' << r.rebuilds << ',' << r.max_rss_kB
+      << ',' << csv_number(r.bound_kB) << '\n';
+  fs::create_directories(dir);
+  scene_io::write_text_file(dir / "interacting.csv", o.str());
+}
+
+}  // namespace asperity

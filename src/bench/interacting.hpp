@@ -1,0 +1,43 @@
+#pragma once
+// `asperity bench interacting` (issue 12, item 3): the fast interacting solver's cost and memory.
+//  - scaling: synthetic populations of N = 300 … 5000 junctions with the stand-in P4.00N's
+//    area distribution (its areas repeated), the slider mass ∝ N (same mean load per junction)
+//    and centres placed as the stand-ins' (Hertz density in a contact disc of radius
+//    4.5 mm · sqrt(N / 1201), same area fraction), each run through its first peak; the fitted
+//    exponent of time ∝ N^b; peak resident memory against the 2 N² doubles of C and G.
+//  - whole run: the stand-in P4.00N itself with the same positions, through the first peak and
+//    five stick-slip cycles (or stop.time when it glides).
+// STAND-IN data: the figures time the solver, not a property of the experiments.
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace asperity {
+
+struct InteractingBenchOptions {
+  std::filesystem::path scene = "scenes/paper/P4.00N.yaml";  // apparatus, model, area distribution
+  std::vector<std::size_t> sizes{300, 600, 1200, 2400, 5000};
+  double contact_radius_m = 4.5e-3;  // at the scene's own N
+  bool whole_run = true;             // also the scene itself, peak + 5 cycles
+  std::ostream* log = nullptr;
+};
+
+struct InteractingBenchRow {
+  std::string what;  // "first_peak" (scaling) or "whole_run"
+  std::size_t N = 0;
+  double wall_s = 0, t_end = 0, Q_s = 0, t_peak = 0;
+  std::int64_t steps = 0, slips = 0, repins = 0, solves = 0, iterations = 0, rank_one = 0, rebuilds = 0;
+  long max_rss_kB = 0;   // of the whole process after this run (sizes run in increasing order)
+  double bound_kB = 0;   // 2 N² doubles
+};
+
+std::vector<InteractingBenchRow> run_interacting_bench(const InteractingBenchOptions& opt);
+// Least-squares exponent b of wall_s ∝ N^b over the scaling rows.
+double fitted_exponent(const std::vector<InteractingBenchRow>& rows);
+// DIR/interacting.csv.
+void write_interacting_bench(const std::filesystem::path& dir, const std::vector<InteractingBenchRow>& rows);
+
+}  // namespace asperity
