@@ -51,8 +51,9 @@ void Journal::add_entry(const std::string& row, std::uint64_t offset) {
   entries_[index] = JournalEntry{hash, f[status_col_] == "ok", offset, static_cast<std::uint32_t>(row.size())};
 }
 
-Journal::Journal(const fs::path& dir, const std::string& header)
-    : header_(header), status_col_(status_column(header)) {
+Journal::Journal(const fs::path& dir, const std::string& header, JournalSync sync)
+    : header_(header), status_col_(status_column(header)), policy_(sync), last_sync_(std::chrono::steady_clock::now()) {
+  if (policy_.every == 0) policy_.every = 1;
   const fs::path path = dir / "journal.csv";
   std::string good = header_ + ",check\n";
   if (!fs::exists(path) && fs::exists(dir / "points.csv")) {
@@ -117,15 +118,29 @@ Journal::Journal(const fs::path& dir, const std::string& header)
 }
 
 Journal::~Journal() {
-  if (fd_ >= 0) ::close(fd_);
+  if (fd_ < 0) return;
+  if (unsynced_ > 0) ::fdatasync(fd_);  // no throwing here: a failure leaves rows to rerun
+  ::close(fd_);
 }
 
 void Journal::append(const std::string& row) {
   const std::string line = row + "," + hex16(fnv1a64(row)) + "\n";
   if (!write_fully(fd_, line)) sys_fail("cannot write", "journal.csv");
-  if (::fdatasync(fd_) != 0) sys_fail("cannot sync", "journal.csv");
   add_entry(row, size_);
   size_ += line.size();
+  ++unsynced_;
+  if (unsynced_ >= policy_.every ||
+      (policy_.seconds > 0 &&
+       std::chrono::duration<double>(std::chrono::steady_clock::now() - last_sync_).count() >= policy_.seconds))
+    sync();
+}
+
+void Journal::sync() {
+  if (unsynced_ == 0) return;
+  if (::fdatasync(fd_) != 0) sys_fail("cannot sync", "journal.csv");
+  unsynced_ = 0;
+  ++syncs_;
+  last_sync_ = std::chrono::steady_clock::now();
 }
 
 std::string Journal::row(const JournalEntry& e) const {

@@ -2,15 +2,19 @@
 // The result store of a campaign, a folder (results/<campaign>/ by default):
 //   journal.csv     append-only, the truth: a header, then one line per finished point, each
 //                   line = the points.csv row + "," + FNV-1a 64 of that row (16 hex digits).
-//                   Appended with write() + fdatasync() by one thread, so after kill -9 at any
+//                   Appended with one write() per point by one thread, so after kill -9 at any
 //                   instant the file is good lines followed by at most one torn last line,
 //                   which the checksum detects and the next run drops (and recomputes).
+//                   fdatasync() runs once per group of points (JournalSync): a power cut or
+//                   kernel crash may lose the lines written since the last one (those points
+//                   rerun), or leave garbage in their place, which the checksum drops.
 //   points.csv      the rows of the journal sorted by point index, one per point (latest wins),
 //                   written atomically (temp + rename) at the end of every run and by merge.
 //   provenance.yaml campaign file and its hash, project version, build type, date: written once.
 //   campaign.yaml   a copy of the campaign file as it was when the store was started.
 //   series/HASH.csv optional per-point series (campaign `series: true`).
 //   .lock           flock: one sweep per store at a time.
+#include <chrono>
 #include <cstdint>
 #include <filesystem>
 #include <map>
@@ -32,13 +36,23 @@ struct JournalEntry {
   std::uint32_t length = 0;     // row length (without checksum and newline)
 };
 
+// When the journal is made durable (fdatasync): after `every` points appended since the last
+// sync, or at the first append `seconds` or more after the last sync, and by sync() (the sweep
+// calls it at its end) and the destructor. Lines are written at once either way (kill -9 loses
+// none); only a power cut or a kernel crash can lose the unsynced ones: at most every − 1
+// points, all journaled within `seconds` of the last append before the cut.
+struct JournalSync {
+  std::uint32_t every = 1;  // 1: fdatasync per point
+  double seconds = 0;       // 0: no time bound (only `every`)
+};
+
 // Opens (creating when absent) DIR/journal.csv for appending, after recovering it: lines with a
 // bad checksum and a torn last line are dropped (the file is rewritten atomically without them).
 // A store holding points.csv but no journal (a committed store) is seeded from points.csv.
 // A header different from `header` (another campaign or version) → std::runtime_error.
 class Journal {
  public:
-  Journal(const std::filesystem::path& dir, const std::string& header);
+  Journal(const std::filesystem::path& dir, const std::string& header, JournalSync sync = {});
   ~Journal();
   Journal(const Journal&) = delete;
   Journal& operator=(const Journal&) = delete;
@@ -47,9 +61,13 @@ class Journal {
   const std::map<std::uint64_t, JournalEntry>& entries() const { return entries_; }  // by index
 
   // Appends one row (no newline; first field the index, second the hash in hex, a `status`
-  // column as in the header) durably (write + fdatasync). Not thread-safe: one writer, and
-  // entries() must not be read concurrently.
+  // column as in the header): write(), then fdatasync() when the JournalSync says so. Not
+  // thread-safe: one writer, and entries() must not be read concurrently.
   void append(const std::string& row);
+
+  // fdatasync() of the rows appended since the last one (none: nothing to do).
+  void sync();
+  std::uint64_t syncs() const { return syncs_; }  // fdatasync calls so far
 
   // The row text of an entry.
   std::string row(const JournalEntry& e) const;
@@ -68,6 +86,10 @@ class Journal {
   int fd_ = -1;
   std::uint64_t size_ = 0;
   std::size_t dropped_ = 0;
+  JournalSync policy_;
+  std::uint32_t unsynced_ = 0;  // rows appended since the last fdatasync
+  std::uint64_t syncs_ = 0;
+  std::chrono::steady_clock::time_point last_sync_;
   std::map<std::uint64_t, JournalEntry> entries_;
 };
 

@@ -230,7 +230,7 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
   StoreLock lock(rep.store);
   prepare_store(rep.store, c, opt);
   const std::string header = store_header(c);
-  Journal journal(rep.store, header);
+  Journal journal(rep.store, header, opt.sync);
   rep.dropped_lines = journal.dropped_lines();
   if (c.series) fs::create_directories(rep.store / "series");
 
@@ -353,6 +353,8 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
                                tbb::make_filter<std::shared_ptr<Job>, void>(tbb::filter_mode::serial_out_of_order, store));
   });
   progress.finish();
+  journal.sync();
+  rep.syncs = journal.syncs();
 
   auto mine = [&](std::uint64_t index) { return index < total && shard.contains(index); };
   journal.write_points(rep.store, mine);
