@@ -19,7 +19,10 @@
 #include <cstdint>
 #include <filesystem>
 #include <map>
+#include <mutex>
+#include <set>
 #include <string>
+#include <vector>
 
 #include "campaign/campaign.hpp"
 #include "campaign/store.hpp"
@@ -38,6 +41,14 @@ struct SweepOptions {
   // first, and at the end. A power cut loses (and the next run recomputes) at most the points
   // journaled in the last second, never more than 99; kill -9 loses none. {1, 0}: per point.
   JournalSync sync{100, 1.0};
+  // The code that computes point hashes. A finished run records, in DIR/inputs.txt, this id,
+  // the campaign's `set` (with --set) and the FNV-1a 64 of every file its points' hashes depend
+  // on; the next run trusts the journal's index → hash when all of them are unchanged (no point is
+  // rebuilt or re-hashed) and checks every stored point (in parallel) otherwise. Empty: never
+  // trust (the default for a build whose git commit is unknown or dirty: its code may differ from
+  // the commit's).
+  std::string build_id = default_build_id();
+  static std::string default_build_id();
 };
 
 struct SweepReport {
@@ -49,6 +60,8 @@ struct SweepReport {
   std::uint64_t failed_now = 0;      // of those, failed
   std::uint64_t ok = 0, failed = 0;  // rows of this shard in the store at the end
   std::size_t dropped_lines = 0;     // torn/corrupt journal lines found at start
+  bool trusted = false;              // stored hashes trusted (inputs.txt unchanged): none re-hashed
+  std::uint64_t rehashed = 0;        // stored points whose scene was rebuilt and hashed
   std::uint64_t syncs = 0;           // fdatasync calls of the journal (group commits)
   double wall_s = 0;
 };
@@ -60,12 +73,20 @@ SweepReport run_sweep(const Campaign& campaign, const SweepOptions& options);
 std::string store_header(const Campaign& campaign);
 
 // FNV-1a 64 of the bytes of data files, each read once per instance (one per sweep): a path's
-// size and mtime do not prove its contents unchanged, its bytes do.
+// size and mtime do not prove its contents unchanged, its bytes do. Also notes the scene and
+// experiment files the hashed scenes were read from (inputs(): every file a point's hash depends
+// on). Thread-safe.
 class FileHashes {
  public:
   std::uint64_t of(const std::filesystem::path& file);  // std::runtime_error when unreadable
+  void note(const std::filesystem::path& file);         // a file read into the scene text
+  // Every file given to of() or note(), absolute and normalised, sorted.
+  std::vector<std::filesystem::path> inputs() const;
+
  private:
+  mutable std::mutex mutex_;
   std::map<std::string, std::uint64_t> by_path_;
+  std::set<std::string> noted_;
 };
 
 // The text the point hash is taken of: scene_to_yaml with the experiment file written relative

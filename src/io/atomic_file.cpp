@@ -74,6 +74,14 @@ void write_file_atomically(const fs::path& path, const std::string& text, Durabi
   if (synced) fsync_dir(path.parent_path().empty() ? fs::path(".") : path.parent_path());
 }
 
+void remove_file_durably(const fs::path& path) {
+  if (::unlink(path.c_str()) != 0) {
+    if (errno == ENOENT) return;
+    sys_fail("cannot remove", path, errno);
+  }
+  fsync_dir(path.parent_path().empty() ? fs::path(".") : path.parent_path());
+}
+
 std::string read_file_text(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error("cannot open " + path.string());

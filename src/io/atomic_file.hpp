@@ -25,6 +25,10 @@ inline void write_file_durably(const std::filesystem::path& path, const std::str
   write_file_atomically(path, text, Durability::synced);
 }
 
+// Removes `path` (absent: nothing to do) and fsyncs its folder, so the removal survives a power
+// cut (std::runtime_error naming the path otherwise).
+void remove_file_durably(const std::filesystem::path& path);
+
 // Writes all of `bytes` to the open descriptor `fd` (retrying short writes and EINTR); false with
 // errno set on failure. For the store's append-only journal.
 bool write_fully(int fd, std::string_view bytes);
