@@ -44,12 +44,12 @@ SweepReport sweep(const fs::path& campaign, const fs::path& out) {
 
 // Column `name` of every row of DIR/points.csv, by point index.
 std::vector<std::string> column(const fs::path& store, const std::string& name) {
-  const StoreRows s = read_store(store);
-  const auto header = csv_split(s.header);
+  const StoreReader s(store);
+  const auto header = csv_split(s.header());
   const auto at = static_cast<std::size_t>(std::find(header.begin(), header.end(), name) - header.begin());
   REQUIRE(at < header.size());
   std::vector<std::string> out;
-  for (const auto& [index, row] : s.rows) out.push_back(csv_split(row).at(at));
+  for (const auto& [index, span] : s.rows()) out.push_back(csv_split(s.row(span)).at(at));
   return out;
 }
 
@@ -82,7 +82,7 @@ TEST_CASE("a resume recomputes the points whose junction or measured CSV changed
   CHECK(second.ok == 2);
   for (const std::string& a0 : column(dir / "store", "A0")) CHECK(std::stod(a0) == Approx(9e-8).epsilon(1e-12));
   // points.csv holds one row per point (the stale rows superseded), and a rerun has nothing to do.
-  CHECK(read_store(dir / "store").rows.size() == 2);
+  CHECK(StoreReader(dir / "store").rows().size() == 2);
   const SweepReport third = sweep(campaign, dir / "store");
   CHECK(third.ran == 0);
   CHECK(third.changed == 0);
@@ -123,7 +123,7 @@ TEST_CASE("merge refuses stores whose rows disagree for one point", "[campaign][
   CHECK(ok.duplicates == 2);
   // Same hash, different value (a store from another build, here forged): refused, naming the column.
   const std::string q = column(dir / "fresh2", "t_end").at(1);
-  fs::remove(dir / "fresh2" / "journal.csv");  // read_store then reads points.csv
+  fs::remove(dir / "fresh2" / "journal.csv");  // the store is then read from points.csv
   edit(dir / "fresh2" / "points.csv", "," + q + ",", ",1" + q + ",");
   CHECK_THROWS_WITH(merge_stores({dir / "fresh", dir / "fresh2"}, dir / "merged2"),
                     Contains("(grid grid_0, experiment small), hash ") && Contains("t_end = " + q));

@@ -304,7 +304,7 @@ TEST_CASE("a store with points.csv but no journal is plotted merged and resumed 
   sweep(c, d / "s", 2);
   const auto before = values_of(d / "s");
   fs::remove(d / "s" / "journal.csv");  // as in a clone: only points.csv is committed
-  CHECK(read_store(d / "s").rows.size() == c.size());
+  CHECK(StoreReader(d / "s").rows().size() == c.size());
   const SweepReport r = sweep(c, d / "s", 1);
   CHECK(r.ran == 0);
   CHECK(r.ok == c.size());

@@ -16,6 +16,7 @@
 //   .lock           flock: one sweep per store at a time.
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <filesystem>
 #include <map>
 #include <string>
@@ -72,15 +73,15 @@ class Journal {
   // The row text of an entry.
   std::string row(const JournalEntry& e) const;
 
-  // Writes DIR/points.csv atomically: header + rows of the entries whose index `keep(index)`.
-  template <class Keep>
-  void write_points(const std::filesystem::path& dir, Keep keep) const;
+  // Writes DIR/points.csv atomically, streamed (each row read back from the journal in index
+  // order; memory does not grow with the rows): header + rows of the entries whose index `keep(index)`.
+  void write_points(const std::filesystem::path& dir, const std::function<bool(std::uint64_t)>& keep) const;
 
   static std::size_t status_column(const std::string& header);
 
  private:
-  void add_entry(const std::string& row, std::uint64_t offset);
-  void write_points_impl(const std::filesystem::path& dir, const std::vector<const JournalEntry*>& rows) const;
+  bool scan(const std::filesystem::path& path);
+  void add_entry(std::string_view row, std::uint64_t offset);
   std::string header_;
   std::size_t status_col_;
   int fd_ = -1;
@@ -93,21 +94,35 @@ class Journal {
   std::map<std::uint64_t, JournalEntry> entries_;
 };
 
-template <class Keep>
-void Journal::write_points(const std::filesystem::path& dir, Keep keep) const {
-  std::vector<const JournalEntry*> rows;
-  for (const auto& [index, e] : entries_)
-    if (keep(index)) rows.push_back(&e);
-  write_points_impl(dir, rows);
-}
-
-// The journal's valid rows of DIR (read-only: for merge and plot of unfinished stores); the
-// rows of points.csv when the store has no journal.
-struct StoreRows {
-  std::string header;                     // points.csv header
-  std::map<std::uint64_t, std::string> rows;  // index → row text
+// Where a row is in a store file.
+struct RowSpan {
+  std::uint64_t offset = 0;
+  std::uint32_t length = 0;
 };
-StoreRows read_store(const std::filesystem::path& dir);
+
+// The rows of a store, read-only (merge, plot, tests): the journal's valid rows (torn and corrupt
+// lines skipped, the latest row of an index wins), or the rows of points.csv when the store has
+// no journal (e.g. a committed one). Only the index (index → offset, length) is held; each row's
+// text is read when asked for, so memory does not grow with the rows' text.
+class StoreReader {
+ public:
+  explicit StoreReader(const std::filesystem::path& dir);  // std::runtime_error: not a store
+  ~StoreReader();
+  StoreReader(StoreReader&& o) noexcept;
+  StoreReader(const StoreReader&) = delete;
+  StoreReader& operator=(const StoreReader&) = delete;
+  StoreReader& operator=(StoreReader&&) = delete;
+
+  const std::string& header() const { return header_; }  // the points.csv header
+  const std::map<std::uint64_t, RowSpan>& rows() const { return rows_; }  // by index
+  std::string row(const RowSpan& r) const;
+
+ private:
+  std::filesystem::path file_;
+  std::string header_;
+  std::map<std::uint64_t, RowSpan> rows_;
+  int fd_ = -1;
+};
 
 // An exclusive lock on DIR/.lock held for the object's lifetime (std::runtime_error when another
 // process holds it).
