@@ -44,12 +44,12 @@ SweepReport sweep(const fs::path& campaign, const fs::path& out) {
 
 // Column `name` of every row of DIR/points.csv, by point index.
 std::vector<std::string> column(const fs::path& store, const std::string& name) {
-  const StoreRows s = read_store(store);
-  const auto header = csv_split(s.header);
+  const StoreReader s(store);
+  const auto header = csv_split(s.header());
   const auto at = static_cast<std::size_t>(std::find(header.begin(), header.end(), name) - header.begin());
   REQUIRE(at < header.size());
   std::vector<std::string> out;
-  for (const auto& [index, row] : s.rows) out.push_back(csv_split(row).at(at));
+  for (const auto& [index, span] : s.rows()) out.push_back(csv_split(s.row(span)).at(at));
   return out;
 }
 
@@ -82,7 +82,7 @@ TEST_CASE("a resume recomputes the points whose junction or measured CSV changed
   CHECK(second.ok == 2);
   for (const std::string& a0 : column(dir / "store", "A0")) CHECK(std::stod(a0) == Approx(9e-8).epsilon(1e-12));
   // points.csv holds one row per point (the stale rows superseded), and a rerun has nothing to do.
-  CHECK(read_store(dir / "store").rows.size() == 2);
+  CHECK(StoreReader(dir / "store").rows().size() == 2);
   const SweepReport third = sweep(campaign, dir / "store");
   CHECK(third.ran == 0);
   CHECK(third.changed == 0);
@@ -123,10 +123,81 @@ TEST_CASE("merge refuses stores whose rows disagree for one point", "[campaign][
   CHECK(ok.duplicates == 2);
   // Same hash, different value (a store from another build, here forged): refused, naming the column.
   const std::string q = column(dir / "fresh2", "t_end").at(1);
-  fs::remove(dir / "fresh2" / "journal.csv");  // read_store then reads points.csv
+  fs::remove(dir / "fresh2" / "journal.csv");  // the store is then read from points.csv
   edit(dir / "fresh2" / "points.csv", "," + q + ",", ",1" + q + ",");
   CHECK_THROWS_WITH(merge_stores({dir / "fresh", dir / "fresh2"}, dir / "merged2"),
                     Contains("(grid grid_0, experiment small), hash ") && Contains("t_end = " + q));
   CHECK_FALSE(fs::exists(dir / "merged2"));
+  fs::remove_all(dir);
+}
+
+TEST_CASE("a resume trusts stored hashes while every input is unchanged and re-hashes them otherwise", "[campaign][identity][store]") {
+  const fs::path dir = asperity::testing::temp_path("asperity_identity_trust");
+  const fs::path campaign = make_campaign(dir);
+  SweepOptions o;
+  o.out = dir / "store";
+  o.threads = 2;
+  o.quiet = true;
+  o.build_id = "test build 1";
+  const auto run = [&](Campaign c) { return run_sweep(c, o); };
+  const Campaign c = load_campaign(campaign);
+  const SweepReport first = run(c);
+  CHECK(first.ran == 2);
+  CHECK_FALSE(first.trusted);
+  // inputs.txt names every file the points' hashes depend on, with the FNV-1a 64 of its bytes.
+  const std::string inputs = slurp(dir / "store" / "inputs.txt");
+  for (const char* f : {"campaign.yaml", "scene.yaml", "exp/experiment.yaml", "exp/junctions.csv", "exp/measured.csv"})
+    CHECK_THAT(inputs, Contains("file " + hex16(fnv1a64(slurp(dir / f))) + " " + f + "\n"));
+  CHECK_THAT(inputs, Contains("build test build 1\nshard 0/1\n"));
+  const std::string points = slurp(dir / "store" / "points.csv");
+
+  // Unchanged: trusted, nothing rebuilt, re-hashed or run; points.csv the same bytes.
+  SweepReport r = run(c);
+  CHECK(r.trusted);
+  CHECK(r.rehashed == 0);
+  CHECK(r.skipped == 2);
+  CHECK(r.ran == 0);
+  CHECK(slurp(dir / "store" / "points.csv") == points);
+
+  // Another build, or no inputs.txt (a killed run leaves none): every stored point is re-hashed
+  // again, found current, and nothing runs.
+  o.build_id = "test build 2";
+  r = run(c);
+  CHECK_FALSE(r.trusted);
+  CHECK(r.rehashed == 2);
+  CHECK(r.ran == 0);
+  fs::remove(dir / "store" / "inputs.txt");
+  r = run(c);
+  CHECK_FALSE(r.trusted);
+  CHECK(r.rehashed == 2);
+  CHECK(r.ran == 0);
+  CHECK(run(c).trusted);
+  CHECK(slurp(dir / "store" / "points.csv") == points);
+
+  // A --set entry (not in the campaign text) changes the points: not trusted, both recomputed.
+  Campaign with_set = c;
+  with_set.set.emplace_back("model.c_min", AxisValue{true, false, 0.02, "0.02"});
+  r = run(with_set);
+  CHECK_FALSE(r.trusted);
+  CHECK(r.changed == 2);
+  CHECK(r.ran == 2);
+  r = run(c);  // and back
+  CHECK_FALSE(r.trusted);
+  CHECK(r.changed == 2);
+
+  // A data file edited in place: not trusted, recomputed with the new area (Σ A0 = 9e-8 m²).
+  CHECK(run(c).trusted);
+  edit(dir / "exp" / "junctions.csv", "0.0005,3e-8,", "0.0005,4e-8,");
+  r = run(c);
+  CHECK_FALSE(r.trusted);
+  CHECK(r.changed == 2);
+  CHECK(r.ran == 2);
+  for (const std::string& a0 : column(dir / "store", "A0")) CHECK(std::stod(a0) == Approx(9e-8).epsilon(1e-12));
+  // No build id (a dirty or unknown build): never trusted, and no inputs.txt is written.
+  o.build_id.clear();
+  r = run(c);
+  CHECK_FALSE(r.trusted);
+  CHECK(r.rehashed == 2);
+  CHECK_FALSE(fs::exists(dir / "store" / "inputs.txt"));
   fs::remove_all(dir);
 }

@@ -304,7 +304,7 @@ TEST_CASE("a store with points.csv but no journal is plotted merged and resumed 
   sweep(c, d / "s", 2);
   const auto before = values_of(d / "s");
   fs::remove(d / "s" / "journal.csv");  // as in a clone: only points.csv is committed
-  CHECK(read_store(d / "s").rows.size() == c.size());
+  CHECK(StoreReader(d / "s").rows().size() == c.size());
   const SweepReport r = sweep(c, d / "s", 1);
   CHECK(r.ran == 0);
   CHECK(r.ok == c.size());
@@ -328,4 +328,43 @@ TEST_CASE("the typed scene used to recognise stored points hashes like the check
                                  << "axes: {model.junction_shape: [elliptic, circular]}\n";
   const Campaign e = load_campaign(d / "enum.yaml");
   CHECK_FALSE(CampaignScenes(e).unchecked_scene(point_at(e, 0)));
+}
+
+TEST_CASE("store journal group commit: one fdatasync per group of points, every row kept", "[campaign][store]") {
+  const fs::path d = temp_dir();
+  {
+    Journal j(d, kHeader, JournalSync{4, 0});
+    for (int i = 0; i < 10; ++i) j.append(std::to_string(i) + ",00000000000000aa,g,ok," + std::to_string(i));
+    CHECK(j.syncs() == 2);  // after rows 4 and 8; rows 9 and 10 wait for the next group
+    j.sync();
+    CHECK(j.syncs() == 3);
+    j.sync();  // nothing appended since: no call
+    CHECK(j.syncs() == 3);
+  }
+  {
+    Journal j(d, kHeader, JournalSync{1, 0});
+    CHECK(j.dropped_lines() == 0);
+    REQUIRE(j.entries().size() == 10);
+    CHECK(j.row(j.entries().at(9)) == "9,00000000000000aa,g,ok,9");
+    j.append("10,00000000000000aa,g,ok,10");
+    CHECK(j.syncs() == 1);  // per point
+  }
+
+  // A sweep of 11 points synced every 7: after the 7th and at the end, 2 calls instead of 11,
+  // and the same store as with one fdatasync per point.
+  const Campaign c = load_campaign(kData / "tiny.yaml");
+  SweepOptions o;
+  o.quiet = true;
+  o.threads = 2;
+  o.out = d / "per_point";
+  o.sync = {1, 0};
+  const SweepReport per_point = run_sweep(c, o);
+  CHECK(per_point.syncs == c.size());
+  o.out = d / "grouped";
+  o.sync = {7, 0};
+  const SweepReport grouped = run_sweep(c, o);
+  CHECK(grouped.ran == 11);
+  CHECK(grouped.syncs == 2);
+  CHECK(values_of(d / "grouped") == values_of(d / "per_point"));
+  CHECK(run_sweep(c, o).syncs == 0);  // a resume with nothing to run appends nothing
 }

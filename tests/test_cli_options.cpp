@@ -9,6 +9,7 @@
 #include <cmath>
 #include <filesystem>
 #include <thread>
+#include <tuple>
 
 #include "cli_spawn.hpp"
 #include "io/progress.hpp"
@@ -141,4 +142,16 @@ TEST_CASE("the progress line's ETA is elapsed x remaining / done", "[io][progres
   CHECK(p.text(15, 30, "best 1.2e-3") == "fit: 15/60 evaluations, 30s elapsed, ETA 1m30s, best 1.2e-3");
   const ProgressLine q("run", "s simulated", 10, true);
   CHECK(q.text(2.5, 4, "") == "run: 2.5/10 s simulated, 4s elapsed, ETA 12s");
+}
+
+TEST_CASE("sweep --sync-every and --sync-seconds are checked in one line", "[cli][options]") {
+  const fs::path w = fs::temp_directory_path();
+  for (const auto& [opt, value, range] : {std::tuple<const char*, const char*, const char*>{"--sync-every", "0", "1 to 1000000000"},
+                                          {"--sync-seconds", "-1", "0 to 86400"}}) {
+    const CliResult r = run_argv(w, {"sweep", "x.yaml", opt, value});
+    INFO(opt);
+    CHECK(r.status == 2);
+    CHECK_THAT(r.err, Contains(opt) && Contains(std::string("not in range ") + range));
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+  }
 }

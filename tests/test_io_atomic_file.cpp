@@ -81,3 +81,32 @@ TEST_CASE("write_fully appends all bytes to a descriptor", "[io][file]") {
   CHECK(unique_tmp_suffix() != unique_tmp_suffix());
   fs::remove_all(d);
 }
+
+TEST_CASE("store AtomicFileWriter streams pieces across its buffer and publishes only on commit", "[io][file][store]") {
+  const fs::path d = fresh("writer");
+  const fs::path p = d / "points.csv";
+  write_file_durably(p, "old\n");
+  // 3 MiB in pieces of 1 B to 1.5 MiB: small ones are buffered, large ones written straight through.
+  std::string expected;
+  {
+    AtomicFileWriter w(p, Durability::synced);
+    for (std::size_t n : {std::size_t{1}, std::size_t{1000}, std::size_t{1} << 20, std::size_t{3} << 19, std::size_t{524287}}) {
+      const std::string piece(n, static_cast<char>('a' + expected.size() % 26));
+      w.write(piece);
+      expected += piece;
+    }
+    CHECK(asperity::testing::slurp(p) == "old\n");  // not yet published
+    CHECK(entries(d) == 2);                          // the file and the temporary
+    w.commit();
+  }
+  CHECK(expected.size() == 3146728);  // 1 + 1000 + 1048576 + 1572864 + 524287
+  CHECK(asperity::testing::slurp(p) == expected);
+  CHECK(entries(d) == 1);
+  {
+    AtomicFileWriter w(p, Durability::unsynced);
+    w.write("never published\n");
+  }  // destroyed uncommitted: the old file stays, the temporary is gone
+  CHECK(asperity::testing::slurp(p) == expected);
+  CHECK(entries(d) == 1);
+  fs::remove_all(d);
+}

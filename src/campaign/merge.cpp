@@ -3,6 +3,7 @@
 #include <map>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "campaign/store.hpp"
 #include "scene/load.hpp"
@@ -49,39 +50,49 @@ MergeReport merge_stores(const std::vector<fs::path>& inputs, const fs::path& ou
     throw std::runtime_error("merge: " + out.string() + " already holds a store; choose a new --out");
   MergeReport rep;
   std::string header, campaign_hash, provenance;
-  std::map<std::uint64_t, std::string> rows;
-  std::map<std::uint64_t, fs::path> from;  // the input each kept row comes from (for messages)
-  for (const fs::path& in : inputs) {
-    const StoreRows s = read_store(in);
+  // Only the index of each input is held (index → input, offset, length), never the rows' text:
+  // memory does not grow with the rows.
+  std::vector<StoreReader> stores;
+  stores.reserve(inputs.size());
+  struct Kept {
+    std::size_t input;
+    RowSpan span;
+  };
+  std::map<std::uint64_t, Kept> rows;
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    const fs::path& in = inputs[i];
+    const StoreReader& s = stores.emplace_back(in);
     const std::string prov = read_file_text(in / "provenance.yaml");
     const std::string h = provenance_line(prov, "campaign_fnv1a64");
     if (header.empty()) {
-      header = s.header, campaign_hash = h, provenance = prov;
+      header = s.header(), campaign_hash = h, provenance = prov;
     } else {
-      if (s.header != header) throw std::runtime_error("merge: " + in.string() + " has other columns than " + inputs[0].string());
+      if (s.header() != header) throw std::runtime_error("merge: " + in.string() + " has other columns than " + inputs[0].string());
       if (h != campaign_hash)
         throw std::runtime_error("merge: " + in.string() + " comes from another campaign text than " + inputs[0].string() +
                                  " (" + h + " vs " + campaign_hash + ")");
     }
-    for (const auto& [index, row] : s.rows) {
-      const auto [it, fresh] = rows.emplace(index, row);
-      if (!fresh) {
-        ++rep.duplicates;
-        check_same_point(index, it->second, row, from.at(index), in, header);
-        // Both agree (or one failed): keep a row that ran to the end.
-        if (csv_split(it->second).at(Journal::status_column(header)) != "ok") it->second = row, from[index] = in;
-      } else {
-        from.emplace(index, in);
-      }
+    const std::size_t status_col = Journal::status_column(header);
+    for (const auto& [index, span] : s.rows()) {
+      const auto [it, fresh] = rows.emplace(index, Kept{i, span});
+      if (fresh) continue;
+      ++rep.duplicates;
+      const std::string kept = stores[it->second.input].row(it->second.span), row = s.row(span);
+      check_same_point(index, kept, row, inputs[it->second.input], in, header);
+      // Both agree (or one failed): keep a row that ran to the end.
+      if (csv_split(kept).at(status_col) != "ok") it->second = Kept{i, span};
     }
   }
   fs::create_directories(out);
   StoreLock lock(out);
   const std::size_t status_col = Journal::status_column(header);
-  std::string journal = header + ",check\n", points = header + "\n";
-  for (const auto& [index, row] : rows) {
-    journal += row + "," + hex16(fnv1a64(row)) + "\n";
-    points += row + "\n";
+  AtomicFileWriter journal(out / "journal.csv", Durability::synced), points(out / "points.csv", Durability::synced);
+  journal.write(header + ",check\n");
+  points.write(header + "\n");
+  for (const auto& [index, k] : rows) {
+    const std::string row = stores[k.input].row(k.span);
+    journal.write(row + "," + hex16(fnv1a64(row)) + "\n");
+    points.write(row + "\n");
     ++rep.rows;
     if (csv_split(row).at(status_col) != "ok") ++rep.failed;
   }
@@ -107,8 +118,8 @@ MergeReport merge_stores(const std::vector<fs::path>& inputs, const fs::path& ou
         if (e.path().extension() == ".csv")
           fs::copy_file(e.path(), out / "series" / e.path().filename(), fs::copy_options::skip_existing);
     }
-  write_file_durably(out / "journal.csv", journal);
-  write_file_durably(out / "points.csv", points);
+  journal.commit();
+  points.commit();
   return rep;
 }
 

@@ -2,16 +2,21 @@
 // The result store of a campaign, a folder (results/<campaign>/ by default):
 //   journal.csv     append-only, the truth: a header, then one line per finished point, each
 //                   line = the points.csv row + "," + FNV-1a 64 of that row (16 hex digits).
-//                   Appended with write() + fdatasync() by one thread, so after kill -9 at any
+//                   Appended with one write() per point by one thread, so after kill -9 at any
 //                   instant the file is good lines followed by at most one torn last line,
 //                   which the checksum detects and the next run drops (and recomputes).
+//                   fdatasync() runs once per group of points (JournalSync): a power cut or
+//                   kernel crash may lose the lines written since the last one (those points
+//                   rerun), or leave garbage in their place, which the checksum drops.
 //   points.csv      the rows of the journal sorted by point index, one per point (latest wins),
 //                   written atomically (temp + rename) at the end of every run and by merge.
 //   provenance.yaml campaign file and its hash, project version, build type, date: written once.
 //   campaign.yaml   a copy of the campaign file as it was when the store was started.
 //   series/HASH.csv optional per-point series (campaign `series: true`).
 //   .lock           flock: one sweep per store at a time.
+#include <chrono>
 #include <cstdint>
+#include <functional>
 #include <filesystem>
 #include <map>
 #include <string>
@@ -32,13 +37,23 @@ struct JournalEntry {
   std::uint32_t length = 0;     // row length (without checksum and newline)
 };
 
+// When the journal is made durable (fdatasync): after `every` points appended since the last
+// sync, or at the first append `seconds` or more after the last sync, and by sync() (the sweep
+// calls it at its end) and the destructor. Lines are written at once either way (kill -9 loses
+// none); only a power cut or a kernel crash can lose the unsynced ones: at most every − 1
+// points, all journaled within `seconds` of the last append before the cut.
+struct JournalSync {
+  std::uint32_t every = 1;  // 1: fdatasync per point
+  double seconds = 0;       // 0: no time bound (only `every`)
+};
+
 // Opens (creating when absent) DIR/journal.csv for appending, after recovering it: lines with a
 // bad checksum and a torn last line are dropped (the file is rewritten atomically without them).
 // A store holding points.csv but no journal (a committed store) is seeded from points.csv.
 // A header different from `header` (another campaign or version) → std::runtime_error.
 class Journal {
  public:
-  Journal(const std::filesystem::path& dir, const std::string& header);
+  Journal(const std::filesystem::path& dir, const std::string& header, JournalSync sync = {});
   ~Journal();
   Journal(const Journal&) = delete;
   Journal& operator=(const Journal&) = delete;
@@ -47,45 +62,67 @@ class Journal {
   const std::map<std::uint64_t, JournalEntry>& entries() const { return entries_; }  // by index
 
   // Appends one row (no newline; first field the index, second the hash in hex, a `status`
-  // column as in the header) durably (write + fdatasync). Not thread-safe: one writer, and
-  // entries() must not be read concurrently.
+  // column as in the header): write(), then fdatasync() when the JournalSync says so. Not
+  // thread-safe: one writer, and entries() must not be read concurrently.
   void append(const std::string& row);
+
+  // fdatasync() of the rows appended since the last one (none: nothing to do).
+  void sync();
+  std::uint64_t syncs() const { return syncs_; }  // fdatasync calls so far
 
   // The row text of an entry.
   std::string row(const JournalEntry& e) const;
 
-  // Writes DIR/points.csv atomically: header + rows of the entries whose index `keep(index)`.
-  template <class Keep>
-  void write_points(const std::filesystem::path& dir, Keep keep) const;
+  // Writes DIR/points.csv atomically, streamed (each row read back from the journal in index
+  // order; memory does not grow with the rows): header + rows of the entries whose index `keep(index)`.
+  void write_points(const std::filesystem::path& dir, const std::function<bool(std::uint64_t)>& keep) const;
 
   static std::size_t status_column(const std::string& header);
 
  private:
-  void add_entry(const std::string& row, std::uint64_t offset);
-  void write_points_impl(const std::filesystem::path& dir, const std::vector<const JournalEntry*>& rows) const;
+  bool scan(const std::filesystem::path& path);
+  void add_entry(std::string_view row, std::uint64_t offset);
   std::string header_;
   std::size_t status_col_;
   int fd_ = -1;
   std::uint64_t size_ = 0;
   std::size_t dropped_ = 0;
+  JournalSync policy_;
+  std::uint32_t unsynced_ = 0;  // rows appended since the last fdatasync
+  std::uint64_t syncs_ = 0;
+  std::chrono::steady_clock::time_point last_sync_;
   std::map<std::uint64_t, JournalEntry> entries_;
 };
 
-template <class Keep>
-void Journal::write_points(const std::filesystem::path& dir, Keep keep) const {
-  std::vector<const JournalEntry*> rows;
-  for (const auto& [index, e] : entries_)
-    if (keep(index)) rows.push_back(&e);
-  write_points_impl(dir, rows);
-}
-
-// The journal's valid rows of DIR (read-only: for merge and plot of unfinished stores); the
-// rows of points.csv when the store has no journal.
-struct StoreRows {
-  std::string header;                     // points.csv header
-  std::map<std::uint64_t, std::string> rows;  // index → row text
+// Where a row is in a store file.
+struct RowSpan {
+  std::uint64_t offset = 0;
+  std::uint32_t length = 0;
 };
-StoreRows read_store(const std::filesystem::path& dir);
+
+// The rows of a store, read-only (merge, plot, tests): the journal's valid rows (torn and corrupt
+// lines skipped, the latest row of an index wins), or the rows of points.csv when the store has
+// no journal (e.g. a committed one). Only the index (index → offset, length) is held; each row's
+// text is read when asked for, so memory does not grow with the rows' text.
+class StoreReader {
+ public:
+  explicit StoreReader(const std::filesystem::path& dir);  // std::runtime_error: not a store
+  ~StoreReader();
+  StoreReader(StoreReader&& o) noexcept;
+  StoreReader(const StoreReader&) = delete;
+  StoreReader& operator=(const StoreReader&) = delete;
+  StoreReader& operator=(StoreReader&&) = delete;
+
+  const std::string& header() const { return header_; }  // the points.csv header
+  const std::map<std::uint64_t, RowSpan>& rows() const { return rows_; }  // by index
+  std::string row(const RowSpan& r) const;
+
+ private:
+  std::filesystem::path file_;
+  std::string header_;
+  std::map<std::uint64_t, RowSpan> rows_;
+  int fd_ = -1;
+};
 
 // An exclusive lock on DIR/.lock held for the object's lifetime (std::runtime_error when another
 // process holds it).

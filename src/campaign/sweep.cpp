@@ -18,7 +18,10 @@
 #include <sstream>
 #include <stdexcept>
 
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/info.h>
+#include <tbb/parallel_for.h>
 #include <tbb/parallel_pipeline.h>
 #include <tbb/task_arena.h>
 
@@ -172,7 +175,59 @@ void prepare_store(const fs::path& dir, const Campaign& c, const SweepOptions& o
   write_file_durably(prov, store_provenance_yaml(c, text, opt));
 }
 
+// DIR/inputs.txt: what the stored points' hashes were last all checked against (see
+// SweepOptions::build_id). The next run recomputes this text from the files it lists and trusts
+// the stored hashes when it comes out the same.
+const char* const kInputsFile = "inputs.txt";
+const std::string kInputsFirstLine =
+    "# asperity sweep: the inputs every stored point's hash was checked against at the end of the last "
+    "complete run (the next run trusts the stored hashes while this text is unchanged)";
+
+std::string inputs_text(const Campaign& c, const std::string& build_id, const Shard& shard,
+                        const std::vector<fs::path>& files, FileHashes& hashes) {
+  std::string t = kInputsFirstLine + "\nbuild " + build_id + "\nshard " + std::to_string(shard.index) + "/" +
+                  std::to_string(shard.count) + "\n";
+  // The effective `set` (the campaign's, then --set): --set changes points without changing the campaign text.
+  for (const auto& [key, v] : c.set)
+    t += "set " + hex16(fnv1a64(key + "\n" + std::to_string(v.is_number) + std::to_string(v.is_yaml) + "\n" +
+                                scene_io::format_double(v.number) + "\n" + v.text)) + "\n";
+  const fs::path base = fs::absolute(c.file.parent_path()).lexically_normal();
+  for (const fs::path& f : files) {
+    std::string sum(16, '-');  // missing or unreadable
+    try {
+      sum = hex16(hashes.of(f));
+    } catch (const std::exception&) {
+    }
+    t += "file " + sum + " " + f.lexically_relative(base).generic_string() + "\n";
+  }
+  return t;
+}
+
+// The files listed by DIR/inputs.txt (absolute), or nothing when it is absent or not ours.
+std::vector<fs::path> listed_inputs(const std::string& text, const Campaign& c) {
+  std::vector<fs::path> files;
+  if (text.rfind(kInputsFirstLine + "\n", 0) != 0) return files;
+  const fs::path base = fs::absolute(c.file.parent_path()).lexically_normal();
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind("file ", 0) == 0 && line.size() > 22) files.push_back((base / line.substr(22)).lexically_normal());
+  return files;
+}
+
+// A point of this shard that the journal holds, ascending by index.
+struct Stored {
+  std::uint64_t index = 0, hash = 0;
+  bool ok = false;
+  bool current = false;  // its hash is the one its scene and data give now
+};
+
 }  // namespace
+
+std::string SweepOptions::default_build_id() {
+  const BuildInfo b = build_info();
+  if (b.git_commit.empty() || b.git_commit == "unknown" || b.git_commit.find("dirty") != std::string::npos) return "";
+  return "asperity " + b.version + " commit " + b.git_commit + " " + b.build_type + " " + b.compiler;
+}
 
 std::string store_header(const Campaign& c) {
   std::string h = "index,hash,grid,experiment";
@@ -185,8 +240,23 @@ std::string store_header(const Campaign& c) {
 
 std::uint64_t FileHashes::of(const fs::path& file) {
   const std::string key = fs::absolute(file).lexically_normal().string();
+  const std::lock_guard<std::mutex> lock(mutex_);
   if (const auto it = by_path_.find(key); it != by_path_.end()) return it->second;
   return by_path_[key] = fnv1a64(read_file_text(file));
+}
+
+void FileHashes::note(const fs::path& file) {
+  if (file.empty()) return;
+  std::string key = fs::absolute(file).lexically_normal().string();
+  const std::lock_guard<std::mutex> lock(mutex_);
+  noted_.insert(std::move(key));
+}
+
+std::vector<fs::path> FileHashes::inputs() const {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  std::set<std::string> all = noted_;
+  for (const auto& [path, hash] : by_path_) all.insert(path);
+  return {all.begin(), all.end()};
 }
 
 std::string canonical_scene_text(const Scene& scene, const fs::path& base_dir, FileHashes& data) {
@@ -203,6 +273,8 @@ std::string canonical_scene_text(const Scene& scene, const fs::path& base_dir, F
     if (at != std::string::npos) text.replace(at, line.size(), "  file: " + yaml_quoted(rel) + "\n");
   }
   // The data by content, not by name (an edited CSV keeps its name).
+  data.note(scene.file);  // read into the text above
+  data.note(f);
   text += "data:\n";
   text += "  junctions_fnv1a64: " + yaml_quoted(e.junctions_file.empty() ? "" : hex16(data.of(e.junctions_file))) + "\n";
   text += "  measured_fnv1a64: " + yaml_quoted(e.measured_file.empty() ? "" : hex16(data.of(e.measured_file))) + "\n";
@@ -218,7 +290,7 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
   // may have left some of it), including our temporary files (".NAME.tmp-*") and figures.
   if (fs::is_directory(rep.store))
     for (const auto& e : fs::directory_iterator(rep.store)) {
-      static const char* const known[] = {".lock", "campaign.yaml", "provenance.yaml", "journal.csv", "points.csv", "series"};
+      static const char* const known[] = {".lock", "campaign.yaml", "provenance.yaml", "journal.csv", "points.csv", "series", kInputsFile};
       const std::string n = e.path().filename().string();
       if (std::find(std::begin(known), std::end(known), n) == std::end(known) && n.find(".tmp-") == std::string::npos &&
           e.path().extension() != ".png" && e.path().extension() != ".svg" && e.path().extension() != ".pdf" &&
@@ -230,7 +302,7 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
   StoreLock lock(rep.store);
   prepare_store(rep.store, c, opt);
   const std::string header = store_header(c);
-  Journal journal(rep.store, header);
+  Journal journal(rep.store, header, opt.sync);
   rep.dropped_lines = journal.dropped_lines();
   if (c.series) fs::create_directories(rep.store / "series");
 
@@ -240,29 +312,83 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
   const std::vector<std::string> varied_keys = c.varied_keys();
   const fs::path base_dir = c.file.parent_path();
 
-  // What the journal holds at the start: the build stage reads this copy, never the journal's
-  // own index, which the writer stage updates concurrently.
-  const std::map<std::uint64_t, JournalEntry> done = journal.entries();
+  // What the journal holds at the start (the build stage reads this, never the journal's own
+  // index, which the writer stage updates concurrently).
+  std::vector<Stored> stored;
+  for (const auto& [index, e] : journal.entries())
+    if (index < total && shard.contains(index)) stored.push_back({index, e.hash, e.ok});
+
+  FileHashes data_hashes;  // thread-safe: the check of stored points below hashes in parallel
+  data_hashes.note(c.file);
+  const int threads = opt.threads > 0 ? opt.threads : tbb::info::default_concurrency();
+  tbb::task_arena arena(threads);
+
+  // Are the stored hashes still the ones the points' scenes and data give? Trusted when the
+  // inputs the last complete run checked them against are unchanged; otherwise every stored point
+  // is rebuilt and hashed, in parallel (one scene builder per thread). inputs.txt is removed
+  // before anything is appended: a run killed after running points with other files leaves none,
+  // and the next run checks everything.
+  const fs::path inputs_path = rep.store / kInputsFile;
+  if (fs::exists(inputs_path)) {
+    const std::string old = read_file_text(inputs_path);
+    rep.trusted = !opt.build_id.empty() &&
+                  inputs_text(c, opt.build_id, shard, listed_inputs(old, c), data_hashes) == old;
+    remove_file_durably(inputs_path);
+  }
+  if (rep.trusted) {
+    for (Stored& s : stored) s.current = true;
+  } else {
+    tbb::enumerable_thread_specific<std::optional<CampaignScenes>> builders;
+    std::atomic<std::uint64_t> rehashed{0};
+    arena.execute([&] {
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, stored.size(), 256), [&](const tbb::blocked_range<std::size_t>& r) {
+        std::optional<CampaignScenes>& scenes = builders.local();
+        if (!scenes) scenes.emplace(c);
+        for (std::size_t i = r.begin(); i != r.end(); ++i) {
+          Stored& s = stored[i];
+          if (!s.ok && opt.retry_failed) continue;  // rerun anyway
+          ++rehashed;
+          const Point p = point_at(c, s.index);
+          try {
+            // The typed scene first (no file read, no YAML), the checked one when it differs or has none.
+            if (const auto quick = scenes->unchecked_scene(p))
+              s.current = fnv1a64(canonical_scene_text(*quick, base_dir, data_hashes)) == s.hash;
+            if (!s.current) {
+              std::uint64_t h = 0;
+              try {
+                h = fnv1a64(canonical_scene_text(scenes->scene(p), base_dir, data_hashes));
+              } catch (const std::exception& e) {  // an invalid point is stored with the hash of its error
+                h = fnv1a64("invalid point: " + std::string(e.what()));
+              }
+              s.current = h == s.hash;
+            }
+          } catch (const std::exception&) {
+            s.current = false;  // the build stage below reports it
+          }
+        }
+      });
+    });
+    rep.rehashed = rehashed;
+  }
 
   CampaignScenes scenes(c);
-  FileHashes data_hashes;  // used by the build stage only (serial)
   Progress progress(rep.points, opt.quiet);
-  const int threads = opt.threads > 0 ? opt.threads : tbb::info::default_concurrency();
   std::uint64_t next = shard.index;
+  std::size_t cursor = 0;  // into `stored`, which is ascending like the points built
 
   auto build = [&](tbb::flow_control& fc) -> std::shared_ptr<Job> {
     while (next < total) {
-      auto job = std::make_shared<Job>();
-      job->point = point_at(c, next);
+      const std::uint64_t index = next;
       next += shard.count;
-      // Stored points are recognised without reading their data again when they can be.
-      if (const auto it = done.find(job->point.index); it != done.end() && (it->second.ok || !opt.retry_failed))
-        if (const auto quick = scenes.unchecked_scene(job->point);
-            quick && fnv1a64(canonical_scene_text(*quick, base_dir, data_hashes)) == it->second.hash) {
-          ++rep.skipped;
-          progress.skipped_one();
-          continue;
-        }
+      while (cursor < stored.size() && stored[cursor].index < index) ++cursor;
+      const Stored* st = cursor < stored.size() && stored[cursor].index == index ? &stored[cursor] : nullptr;
+      if (st && st->current && (st->ok || !opt.retry_failed)) {
+        ++rep.skipped;
+        progress.skipped_one();
+        continue;
+      }
+      auto job = std::make_shared<Job>();
+      job->point = point_at(c, index);
       try {
         job->scene = scenes.scene(job->point);
         job->hash = fnv1a64(canonical_scene_text(*job->scene, base_dir, data_hashes));
@@ -271,14 +397,14 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
         job->error = e.what();
         job->hash = fnv1a64("invalid point: " + job->error);
       }
-      if (const auto it = done.find(job->point.index); it != done.end()) {
-        if (it->second.hash == job->hash && (it->second.ok || !opt.retry_failed)) {
+      if (st) {
+        if (st->hash == job->hash && (st->ok || !opt.retry_failed)) {
           ++rep.skipped;
           progress.skipped_one();
           continue;
         }
         // Stored from another scene or other data: rerun; the new row supersedes the stale one.
-        if (it->second.hash != job->hash) ++rep.changed;
+        if (st->hash != job->hash) ++rep.changed;
       }
       const Point& p = job->point;
       for (const std::string& k : varied_keys) {
@@ -345,7 +471,6 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
     progress.point_done(job->failed);
   };
 
-  tbb::task_arena arena(threads);
   arena.execute([&] {
     tbb::parallel_pipeline(static_cast<std::size_t>(2 * threads),
                            tbb::make_filter<void, std::shared_ptr<Job>>(tbb::filter_mode::serial_in_order, build) &
@@ -353,6 +478,11 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
                                tbb::make_filter<std::shared_ptr<Job>, void>(tbb::filter_mode::serial_out_of_order, store));
   });
   progress.finish();
+  journal.sync();
+  rep.syncs = journal.syncs();
+  // Every stored point of the shard is now checked against (or computed from) these inputs.
+  if (!opt.build_id.empty())
+    write_file_durably(inputs_path, inputs_text(c, opt.build_id, shard, data_hashes.inputs(), data_hashes));
 
   auto mine = [&](std::uint64_t index) { return index < total && shard.contains(index); };
   journal.write_points(rep.store, mine);

@@ -13,14 +13,19 @@
 //      as they are free, so uneven run times balance); OpenMP is set to 1 thread in here: the
 //      cores are already busy with points, and an OpenMP team per point would oversubscribe them
 //      (and an OpenMP reduction's order would depend on the team size);
-//   3. serial, out of order: append the row to the journal (write + fdatasync), progress.
+//   3. serial, out of order: append the row to the journal (write, and fdatasync once per group
+//      of points: SweepOptions::sync), progress.
 // At most 2·threads points are in flight: memory does not grow with the campaign.
 #include <cstdint>
 #include <filesystem>
 #include <map>
+#include <mutex>
+#include <set>
 #include <string>
+#include <vector>
 
 #include "campaign/campaign.hpp"
+#include "campaign/store.hpp"
 #include "scene/scene.hpp"
 
 namespace asperity {
@@ -32,6 +37,18 @@ struct SweepOptions {
   bool quiet = false;                // no progress, no summary
   bool retry_failed = false;         // rerun points the store holds as failed
   std::string command_line;          // the command that started the store (provenance.yaml)
+  // Group commit of the journal (store.hpp): fdatasync after 100 points or 1 s, whichever comes
+  // first, and at the end. A power cut loses (and the next run recomputes) at most the points
+  // journaled in the last second, never more than 99; kill -9 loses none. {1, 0}: per point.
+  JournalSync sync{100, 1.0};
+  // The code that computes point hashes. A finished run records, in DIR/inputs.txt, this id,
+  // the campaign's `set` (with --set) and the FNV-1a 64 of every file its points' hashes depend
+  // on; the next run trusts the journal's index → hash when all of them are unchanged (no point is
+  // rebuilt or re-hashed) and checks every stored point (in parallel) otherwise. Empty: never
+  // trust (the default for a build whose git commit is unknown or dirty: its code may differ from
+  // the commit's).
+  std::string build_id = default_build_id();
+  static std::string default_build_id();
 };
 
 struct SweepReport {
@@ -43,6 +60,9 @@ struct SweepReport {
   std::uint64_t failed_now = 0;      // of those, failed
   std::uint64_t ok = 0, failed = 0;  // rows of this shard in the store at the end
   std::size_t dropped_lines = 0;     // torn/corrupt journal lines found at start
+  bool trusted = false;              // stored hashes trusted (inputs.txt unchanged): none re-hashed
+  std::uint64_t rehashed = 0;        // stored points whose scene was rebuilt and hashed
+  std::uint64_t syncs = 0;           // fdatasync calls of the journal (group commits)
   double wall_s = 0;
 };
 
@@ -53,12 +73,20 @@ SweepReport run_sweep(const Campaign& campaign, const SweepOptions& options);
 std::string store_header(const Campaign& campaign);
 
 // FNV-1a 64 of the bytes of data files, each read once per instance (one per sweep): a path's
-// size and mtime do not prove its contents unchanged, its bytes do.
+// size and mtime do not prove its contents unchanged, its bytes do. Also notes the scene and
+// experiment files the hashed scenes were read from (inputs(): every file a point's hash depends
+// on). Thread-safe.
 class FileHashes {
  public:
   std::uint64_t of(const std::filesystem::path& file);  // std::runtime_error when unreadable
+  void note(const std::filesystem::path& file);         // a file read into the scene text
+  // Every file given to of() or note(), absolute and normalised, sorted.
+  std::vector<std::filesystem::path> inputs() const;
+
  private:
+  mutable std::mutex mutex_;
   std::map<std::string, std::uint64_t> by_path_;
+  std::set<std::string> noted_;
 };
 
 // The text the point hash is taken of: scene_to_yaml with the experiment file written relative

@@ -1,4 +1,5 @@
 // asperity sweep CAMPAIGN.yaml [--threads N] [--shard I/N] [--out DIR] [--quiet] [--retry-failed]
+//                [--sync-every N] [--sync-seconds S]
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -7,6 +8,7 @@
 #include "campaign/sweep.hpp"
 #include "cli/commands.hpp"
 #include "cli/options.hpp"
+#include "io/numbers.hpp"
 #include "scene/load.hpp"
 #include "report/output_dir.hpp"
 #include "campaign/campaign_load.hpp"
@@ -18,6 +20,7 @@ struct SweepArgs {
   std::string campaign, out, shard = "0/1";
   int threads = 0;
   bool quiet = false, retry_failed = false;
+  JournalSync sync = SweepOptions{}.sync;
   std::vector<std::string> overrides;
 };
 
@@ -55,6 +58,7 @@ int sweep(const SweepArgs& a, const Invocation& inv) {
   opt.out = a.out;
   opt.quiet = a.quiet;
   opt.retry_failed = a.retry_failed;
+  opt.sync = a.sync;
   const SweepReport r = run_sweep(c, opt);
   if (!a.quiet || r.failed > 0) {
     std::fprintf(stderr, "%s: %llu points in shard %s; %llu already stored, %llu run now (%llu failed) in %.1f s",
@@ -86,6 +90,19 @@ Command add_sweep_command(CLI::App& app) {
   sub->add_option("--out,-o", a->out, "Store folder (default results/<campaign name>/)");
   sub->add_flag("-q,--quiet", a->quiet, "No progress and no summary (failures are still reported)");
   sub->add_flag("--retry-failed", a->retry_failed, "Rerun the points the store holds as failed");
+  sub->add_option("--sync-every", a->sync.every,
+                  "fdatasync the journal once per N points (default " + std::to_string(a->sync.every) +
+                      "; 1: per point). A power cut may lose up to N-1 journaled points, which the next run recomputes")
+      ->check(CLI::Range(1u, 1000000000u));
+  sub->add_option("--sync-seconds", a->sync.seconds,
+                  "... or sooner, at the first point journaled S seconds after the last fdatasync (default " +
+                      scene_io::format_short(a->sync.seconds) + "; 0: no time bound)")
+      ->check(CLI::Validator(
+          [](std::string& v) -> std::string {
+            double x = -1;
+            return scene_io::parse_double(v, x) == scene_io::NumberParse::ok && x >= 0 && x <= 86400 ? "" : "Value " + v + " not in range 0 to 86400";
+          },
+          "SECONDS"));
   return Command{sub, [a](const Invocation& inv) { return sweep(*a, inv); }};
 }
 

@@ -50,28 +50,78 @@ std::string unique_tmp_suffix() {
   return std::to_string(::getpid()) + "-" + std::to_string(counter++);
 }
 
-void write_file_atomically(const fs::path& path, const std::string& text, Durability durability) {
+AtomicFileWriter::AtomicFileWriter(const fs::path& path, Durability durability) : path_(path), durability_(durability) {
   std::string name = ".";  // (built by append: GCC 12 warns falsely on "." + std::string)
   name.append(path.filename().string()).append(".tmp-").append(unique_tmp_suffix());
-  const fs::path tmp = path.parent_path() / name;
-  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) sys_fail("cannot create", tmp, errno);
-  const bool synced = durability == Durability::synced;
-  bool ok = write_fully(fd, text) && (!synced || ::fsync(fd) == 0);
+  tmp_ = path.parent_path() / name;
+  fd_ = ::open(tmp_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd_ < 0) sys_fail("cannot create", tmp_, errno);
+}
+
+AtomicFileWriter::~AtomicFileWriter() {
+  if (fd_ < 0) return;
+  ::close(fd_);
+  std::error_code ec;
+  fs::remove(tmp_, ec);
+}
+
+void AtomicFileWriter::flush() { put(buffer_), buffer_.clear(); }
+
+void AtomicFileWriter::put(std::string_view bytes) {
+  if (write_fully(fd_, bytes)) return;
+  const int err = errno;
+  ::close(fd_);
+  fd_ = -1;
+  std::error_code ec;
+  fs::remove(tmp_, ec);
+  sys_fail("cannot write", tmp_, err);
+}
+
+void AtomicFileWriter::write(std::string_view bytes) {
+  constexpr std::size_t kBuffer = 1u << 20;
+  if (fd_ < 0) throw std::logic_error("AtomicFileWriter: write after commit");
+  if (buffer_.size() + bytes.size() < kBuffer) {
+    buffer_.append(bytes);
+    return;
+  }
+  flush();
+  if (bytes.size() >= kBuffer) put(bytes);  // large pieces go straight to the file, uncopied
+  else buffer_.append(bytes);
+}
+
+void AtomicFileWriter::commit() {
+  flush();
+  const bool synced = durability_ == Durability::synced;
+  bool ok = !synced || ::fsync(fd_) == 0;
   int err = errno;
-  if (::close(fd) != 0 && ok) ok = false, err = errno;
+  if (::close(fd_) != 0 && ok) ok = false, err = errno;
+  fd_ = -1;
   if (!ok) {
     std::error_code ec;
-    fs::remove(tmp, ec);
-    sys_fail("cannot write", tmp, err);
+    fs::remove(tmp_, ec);
+    sys_fail("cannot write", tmp_, err);
   }
-  if (::rename(tmp.c_str(), path.c_str()) != 0) {
+  if (::rename(tmp_.c_str(), path_.c_str()) != 0) {
     err = errno;
     std::error_code ec;
-    fs::remove(tmp, ec);
-    sys_fail("cannot rename into", path, err);
+    fs::remove(tmp_, ec);
+    sys_fail("cannot rename into", path_, err);
   }
-  if (synced) fsync_dir(path.parent_path().empty() ? fs::path(".") : path.parent_path());
+  if (synced) fsync_dir(path_.parent_path().empty() ? fs::path(".") : path_.parent_path());
+}
+
+void write_file_atomically(const fs::path& path, const std::string& text, Durability durability) {
+  AtomicFileWriter w(path, durability);
+  w.write(text);
+  w.commit();
+}
+
+void remove_file_durably(const fs::path& path) {
+  if (::unlink(path.c_str()) != 0) {
+    if (errno == ENOENT) return;
+    sys_fail("cannot remove", path, errno);
+  }
+  fsync_dir(path.parent_path().empty() ? fs::path(".") : path.parent_path());
 }
 
 std::string read_file_text(const fs::path& path) {

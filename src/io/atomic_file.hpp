@@ -20,10 +20,35 @@ std::string unique_tmp_suffix();
 // Throws std::runtime_error naming the path and the system's reason; the temporary is removed.
 void write_file_atomically(const std::filesystem::path& path, const std::string& text, Durability durability);
 
+// The same for a file too large to hold in memory: written piece by piece (buffered) into the
+// temporary sibling, published by commit(); destroyed uncommitted, the temporary is removed and
+// `path` is left as it was.
+class AtomicFileWriter {
+ public:
+  AtomicFileWriter(const std::filesystem::path& path, Durability durability);
+  ~AtomicFileWriter();
+  AtomicFileWriter(const AtomicFileWriter&) = delete;
+  AtomicFileWriter& operator=(const AtomicFileWriter&) = delete;
+  void write(std::string_view bytes);
+  void commit();
+
+ private:
+  void flush();
+  void put(std::string_view bytes);
+  std::filesystem::path path_, tmp_;
+  Durability durability_;
+  int fd_ = -1;
+  std::string buffer_;
+};
+
 // Temp sibling, fsync, rename, fsync of the folder (the campaign store's files).
 inline void write_file_durably(const std::filesystem::path& path, const std::string& text) {
   write_file_atomically(path, text, Durability::synced);
 }
+
+// Removes `path` (absent: nothing to do) and fsyncs its folder, so the removal survives a power
+// cut (std::runtime_error naming the path otherwise).
+void remove_file_durably(const std::filesystem::path& path);
 
 // Writes all of `bytes` to the open descriptor `fd` (retrying short writes and EINTR); false with
 // errno set on failure. For the store's append-only journal.

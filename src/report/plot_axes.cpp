@@ -129,17 +129,17 @@ std::string axis_settings(const char* axis, const std::string& column, const std
 
 
 StoreTable::StoreTable(const fs::path& dir, const std::vector<std::string>& where) : store(dir) {
-  const StoreRows s = read_store(dir);
-  header = s.header;
-  cols = csv_split(s.header);
+  const StoreReader s(dir);
+  header = s.header();
+  cols = csv_split(header);
   std::vector<std::pair<std::size_t, std::string>> filters;
   for (const std::string& w : where) {
     const std::size_t eq = w.find('=');
     if (eq == std::string::npos) throw InputError("asperity plot", 0, "--where", "expected column=value, got '" + w + "'");
     filters.emplace_back(column(w.substr(0, eq), "--where"), w.substr(eq + 1));
   }
-  for (const auto& [index, text] : s.rows) {
-    auto r = csv_split(text);
+  for (const auto& [index, span] : s.rows()) {
+    auto r = csv_split(s.row(span));
     if (r.size() != cols.size()) continue;
     bool keep = true;
     for (const auto& [c, v] : filters) keep = keep && same_value(r[c], v);
