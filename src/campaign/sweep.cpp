@@ -248,8 +248,16 @@ std::uint64_t FileHashes::of(const fs::path& file) {
 void FileHashes::note(const fs::path& file) {
   if (file.empty()) return;
   std::string key = fs::absolute(file).lexically_normal().string();
-  const std::lock_guard<std::mutex> lock(mutex_);
-  noted_.insert(std::move(key));
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (!noted_.insert(key).second) return;
+  }
+  // Hashed when first used, not at the end of the run: a file edited during a run must not be
+  // recorded in inputs.txt with content no point was computed from.
+  try {
+    of(file);
+  } catch (const std::exception&) {  // missing or unreadable: inputs_text records it as such
+  }
 }
 
 std::vector<fs::path> FileHashes::inputs() const {
