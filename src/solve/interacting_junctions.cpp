@@ -394,6 +394,15 @@ void InteractingJunctions::find_thresholds(double X) {
       if (dir * d >= 0 && std::abs(d) < best) best = std::abs(d), k = q;
     }
     if (k == npos) continue;
+    if (dir < 0) {
+      // A junction whose force grows as X decreases (shielded by its neighbours) is rare and its
+      // crossing usually far behind: the first-order prediction is the event, and reaching it
+      // slips the junction only if it is over its threshold there (slip_crossed re-checks and
+      // predicts again), so no solve is spent deep behind X where the slider never goes.
+      x_down_ = X - best;
+      k_down_ = idx_[k];
+      continue;
+    }
     double lo = X, hi = dir * HUGE_VAL;  // bracket: below threshold at lo, over at hi
     double Xt = X + dir * best;
     for (int round = 0;; ++round) {
@@ -448,7 +457,10 @@ void InteractingJunctions::after_change(double X) {
 }
 
 std::int64_t InteractingJunctions::slip_crossed(double X) {
-  return settle(X, X >= x_up_ ? k_up_ : (X <= x_down_ ? k_down_ : npos));
+  // The slip position above X is exact (Newton): its junction slips. The one below X is a
+  // prediction: whoever is at or over the threshold at X slips (possibly nobody; then the
+  // prediction is renewed from X).
+  return settle(X, X >= x_up_ ? k_up_ : npos);
 }
 
 std::int64_t InteractingJunctions::settle(double X, std::size_t k) {
