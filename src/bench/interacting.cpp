@@ -6,6 +6,9 @@
 #include <cmath>
 #include <sstream>
 
+#include "bench/bench_scene.hpp"
+#include "bench/robust_error.hpp"
+#include "bench/timed_run.hpp"
 #include "generate/positions.hpp"
 #include "io/atomic_file.hpp"
 #include "io/csv.hpp"
@@ -124,6 +127,58 @@ void write_interacting_bench(const fs::path& dir, const std::vector<InteractingB
       << ',' << csv_number(r.bound_kB) << '\n';
   fs::create_directories(dir);
   scene_io::write_text_file(dir / "interacting.csv", o.str());
+}
+
+}  // namespace asperity
+
+namespace asperity {
+
+std::vector<InteractingTradeoffRow> run_interacting_tradeoff(const InteractingTradeoffOptions& opt) {
+  auto scene_at = [&](double tol, double cutoff) {
+    std::vector<std::string> o = opt.overrides;
+    o.push_back(set_number("solver.tolerance", tol));
+    if (cutoff > 0) o.push_back(set_number("model.interaction_cutoff", cutoff));
+    return load_scene(opt.scene, o);
+  };
+  std::vector<InteractingTradeoffRow> rows;
+  auto add = [&](const std::string& knob, double tol, double cutoff, const Observables* conv) -> const Observables {
+    const TimedRun r = timed_run(scene_at(tol, cutoff), opt.repeats);
+    InteractingTradeoffRow row{knob, tol, cutoff, r.wall_s, r.cpu_s, {}, {}};
+    const auto v = robust_values(r.obs);
+    row.value.assign(v.begin(), v.end());
+    const auto e = conv ? relative_errors(r.obs, *conv) : std::array<double, n_robust>{};
+    row.error.assign(e.begin(), e.end());
+    rows.push_back(row);
+    if (opt.log) {
+      *opt.log << "  interacting " << knob << " tol " << tol << " cutoff " << (cutoff > 0 ? std::to_string(cutoff * 1e3) + " mm" : "none")
+               << ": " << r.wall_s << " s wall";
+      for (std::size_t i = 0; i < n_robust && conv; ++i)
+        if (std::isfinite(row.error[i])) *opt.log << ", " << robust_names()[i] << " err " << row.error[i];
+      *opt.log << std::endl;
+    }
+    return r.obs;
+  };
+  const Observables conv = add("converged", opt.converged_tolerance, 0, nullptr);
+  for (double tol : opt.tolerances) add("tolerance", tol, 0, &conv);
+  const double tol0 = load_scene(opt.scene).solver.tolerance;
+  for (double c : opt.cutoffs_m) add("cutoff", tol0, c, &conv);
+  return rows;
+}
+
+void write_interacting_tradeoff(const fs::path& dir, const std::vector<InteractingTradeoffRow>& rows) {
+  std::ostringstream o;
+  o << "knob,tolerance,cutoff_m,wall_s,cpu_s";
+  for (const auto& n : robust_names()) o << ',' << n << ',' << n << "_rel_error";
+  o << '\n';
+  for (const auto& r : rows) {
+    o << r.knob << ',' << csv_number(r.tolerance) << ',' << csv_number(r.cutoff_m) << ',' << csv_number(r.wall_s) << ','
+      << csv_number(r.cpu_s);
+    for (std::size_t i = 0; i < r.value.size(); ++i)
+      o << ',' << csv_number(r.value[i]) << ',' << (r.knob == "converged" ? std::string() : csv_number(r.error[i]));
+    o << '\n';
+  }
+  fs::create_directories(dir);
+  scene_io::write_text_file(dir / "interacting_tradeoff.csv", o.str());
 }
 
 }  // namespace asperity

@@ -41,3 +41,32 @@ double fitted_exponent(const std::vector<InteractingBenchRow>& rows);
 void write_interacting_bench(const std::filesystem::path& dir, const std::vector<InteractingBenchRow>& rows);
 
 }  // namespace asperity
+
+namespace asperity {
+
+// The interacting solver's knobs for `bench tradeoff`: solver.tolerance (with the full kernel)
+// and model.interaction_cutoff (at the default tolerance), each run's wall time and the relative
+// error of the robust observables against the full kernel at tolerance 1e-12. The cut-off's
+// error is a model error (pairs dropped), the tolerance's a solver error.
+struct InteractingTradeoffOptions {
+  std::filesystem::path scene = "scenes/paper/P0.98N.yaml";
+  std::vector<std::string> overrides{"model.interactions=elastic", "stop.time=4"};
+  std::vector<double> tolerances{1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10};
+  std::vector<double> cutoffs_m{2.5e-4, 5e-4, 1e-3, 2e-3, 4e-3};
+  double converged_tolerance = 1e-12;
+  int repeats = 5;
+  std::ostream* log = nullptr;
+};
+
+struct InteractingTradeoffRow {
+  std::string knob;  // "converged", "tolerance", "cutoff"
+  double tolerance = 0, cutoff_m = 0;  // cutoff 0: full kernel
+  double wall_s = 0, cpu_s = 0;
+  std::vector<double> value, error;  // robust observables (robust_names())
+};
+
+std::vector<InteractingTradeoffRow> run_interacting_tradeoff(const InteractingTradeoffOptions& opt);
+// DIR/interacting_tradeoff.csv.
+void write_interacting_tradeoff(const std::filesystem::path& dir, const std::vector<InteractingTradeoffRow>& rows);
+
+}  // namespace asperity

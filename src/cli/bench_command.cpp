@@ -57,7 +57,7 @@ std::string load_average() {
 // The files the benchmarks write: a folder holding only these (before markers existed) is ours.
 bool bench_folder(const std::filesystem::path& d) {
   static const char* const ours[] = {"accuracy.csv", "reference_order.csv", "savings.csv", "savings.png",
-                                     "speed_ratio.csv", "speed_runs.csv", "interacting.csv", "work_precision.csv", "work_precision.png"};
+                                     "speed_ratio.csv", "speed_runs.csv", "interacting.csv", "interacting_tradeoff.csv", "work_precision.csv", "work_precision.png"};
   bool any = false;
   for (const auto& e : std::filesystem::directory_iterator(d)) {
     const std::string n = e.path().filename().string();
@@ -99,11 +99,19 @@ int tradeoff(const BenchOptions& b) {
   };
   const TradeoffResult r = run_tradeoff(o);
   write_tradeoff(b.out, r);
+  // The interacting solver's knobs (tolerance, cut-off) on a stand-in with junction positions.
+  InteractingTradeoffOptions io;
+  io.repeats = o.repeats;
+  io.log = &std::cout;
+  if (b.quick) io.tolerances = {1e-6, 1e-9}, io.cutoffs_m = {5e-4, 2e-3};
+  std::printf("interacting event solver on %s (STAND-IN), errors vs the full kernel at tolerance %g:\n",
+              io.scene.string().c_str(), io.converged_tolerance);
+  write_interacting_tradeoff(b.out, run_interacting_tradeoff(io));
   write_marker(b.out, "bench");
   std::printf("reference order of convergence (log error ratio / log C_t ratio):\n");
   for (const auto& x : r.orders)
     std::printf("  %-9s C_t %g -> %g: %.3g\n", x.observable.c_str(), x.Ct_lo, x.Ct_hi, x.order);
-  std::printf("-> %s/{work_precision.csv,work_precision.png,reference_order.csv}\n", b.out.c_str());
+  std::printf("-> %s/{work_precision.csv,work_precision.png,reference_order.csv,interacting_tradeoff.csv}\n", b.out.c_str());
   return exit_ok;
 }
 
