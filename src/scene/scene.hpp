@@ -52,6 +52,9 @@ struct ModelSettings {
   // independent junctions) or elastic (needs junction positions x_m, y_m).
   Interactions interactions = Interactions::none;
   double interaction_cutoff = 0;  // m; pairs farther apart are dropped; 0: every pair
+  // Multiplies every junction centre (about the origin): the same arrangement in an apparent
+  // contact s times as wide, s² times less crowded (the interaction study's axis).
+  double position_scale = 1.0;
 };
 
 enum class SolverMethod { reference, event };

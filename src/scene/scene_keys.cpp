@@ -61,6 +61,9 @@ std::vector<SceneKey> make_table() {
       OTHER("model.interactions", KeyKind::choice, name_of(s.model.interactions)),
       NUMBER("model.interaction_cutoff", "m", ">= 0", x >= 0, "0 keeps every pair", 0.0, false,
              s.model.interaction_cutoff),
+      NUMBER("model.position_scale", nullptr, "in (0, 1e6]", x > 0 && x <= 1e6,
+             "multiplies every junction centre: an apparent contact s times as wide", 1.0, false,
+             s.model.position_scale),
       OTHER("solver.method", KeyKind::choice, name_of(s.solver.method)),
       NUMBER("solver.Ct", nullptr, ">= 1", x >= 1, "reference steps per T0; fewer is unstable for any scene", 1e4,
              false, s.solver.Ct),
@@ -89,7 +92,7 @@ std::vector<SceneKey> make_table() {
     // as it was before the keys existed.
     // The interaction keys only when interactions are on: a scene of independent junctions has
     // the text (and store hash) it had before they existed.
-    if (n == "model.interactions" || n == "model.interaction_cutoff")
+    if (n == "model.interactions" || n == "model.interaction_cutoff" || n == "model.position_scale")
       k.written = [](const Scene& s) { return s.model.interactions != Interactions::none; };
     if (n == "stop.wall_time") k.written = [](const Scene& s) { return s.stop.wall_time != StopSettings{}.wall_time; };
     if (n == "stop.max_slips") {

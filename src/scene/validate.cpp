@@ -118,6 +118,15 @@ void check_interactions(const Scene& s, const KeyOrigins& o) {
   for (std::size_t i = 0; i < J.size(); ++i)
     if (!std::isfinite(J.x_m[i]) || !std::isfinite(J.y_m[i]))
       throw InputError(csv, 0, "x_m", "junction " + std::to_string(i + 1) + " has a non-finite position");
+  if (s.model.position_scale != 1.0) {  // the positions the run uses: a scale below 1 may overlap
+    JunctionPopulation scaled = J;
+    for (double& v : scaled.x_m) v *= s.model.position_scale;
+    for (double& v : scaled.y_m) v *= s.model.position_scale;
+    if (const auto pair = first_overlap(scaled))
+      o.fail("model.position_scale", "junctions " + std::to_string(pair->first + 1) + " and " +
+                                         std::to_string(pair->second + 1) + " of " + csv + " overlap at scale " +
+                                         format_short(s.model.position_scale));
+  }
   if (const auto pair = first_overlap(J))
     throw InputError(csv, 0, "x_m",
                      "junctions " + std::to_string(pair->first + 1) + " and " + std::to_string(pair->second + 1) +

@@ -23,6 +23,8 @@ Problem make_problem(const Scene& scene, const RunLimits& limits) {
   if (m.interactions == Interactions::elastic) {
     p.x = e.junctions.x_m;
     p.y = e.junctions.y_m;
+    for (double& v : p.x) v *= m.position_scale;
+    for (double& v : p.y) v *= m.position_scale;
     p.interaction_cutoff = m.interaction_cutoff;
   }
   p.T0 = 2.0 * M_PI / std::sqrt(p.K0 / e.mass_kg);
