@@ -56,5 +56,8 @@ Command add_merge_command(CLI::App& app);  // merge_command.cpp
 // asperity plot STORE --x KEY --y KEY --z COLUMN [--where COL=VALUE]... [--out FILE.png]
 Command add_plot_command(CLI::App& app);  // plot_command.cpp
 
+// asperity study interactions [SCENE...] [--out results/interactions] [--fit-independent F] ...
+Command add_study_command(CLI::App& app);  // study_command.cpp
+
 
 }  // namespace asperity::cli

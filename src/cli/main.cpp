@@ -62,6 +62,7 @@ int run_cli(int argc, char** argv) {
   commands.push_back(cli::add_reproduce_command(app));
   commands.push_back(cli::add_bench_command(app));
   commands.push_back(cli::add_regress_command(app));
+  commands.push_back(cli::add_study_command(app));
 
   try {
     app.parse(argc, argv);

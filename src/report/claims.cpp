@@ -38,6 +38,16 @@ std::optional<Observables> variant_obs(const std::vector<VariantRun>& v, const s
   return r->obs;
 }
 
+const CalibratedRun* find_calibration(const Calibration& cal, const std::string& exp) {
+  for (const auto& c : cal.runs)
+    if (c.experiment == exp) return &c;
+  return nullptr;
+}
+
+std::string eta_text(double eta) { return fmt("%g", eta); }
+
+}  // namespace
+
 // Least-squares slope dA/dQ [m²/N] over Q ∈ [0, frac·Q_max] (incipient loading).
 double initial_slope(std::span<const double> Q, std::span<const double> A, double frac) {
   double qmax = 0;
@@ -68,15 +78,6 @@ AreaComparison compare_areas(const Scene& scene, double alpha_b, const Observabl
   return c;
 }
 
-const CalibratedRun* find_calibration(const Calibration& cal, const std::string& exp) {
-  for (const auto& c : cal.runs)
-    if (c.experiment == exp) return &c;
-  return nullptr;
-}
-
-std::string eta_text(double eta) { return fmt("%g", eta); }
-
-}  // namespace
 
 ClaimObservables claim_observables(const std::vector<PaperRun>& base, const std::vector<VariantRun>& variants,
                                    const Calibration& calibration) {

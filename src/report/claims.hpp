@@ -4,6 +4,7 @@
 // claim by claim, what was measured and whether it reproduces.
 #include <filesystem>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,12 @@ struct Calibration {
 };
 
 // The observables the verdicts read (report/claim_verdicts.hpp), from the runs of this reproduction.
+// Least-squares slope dA/dQ [m²/N] over Q ∈ [0, frac·Q_max] (incipient loading).
+double initial_slope(std::span<const double> Q, std::span<const double> A, double frac);
+// Area decay, incipient slope (Q ≤ 0.3 Q_max) and shape exponent of a run's loading branch next
+// to the scene's measured curve.
+AreaComparison compare_areas(const Scene& scene, double alpha_b, const Observables& o, const std::vector<Sample>& loading);
+
 ClaimObservables claim_observables(const std::vector<PaperRun>& base, const std::vector<VariantRun>& variants,
                                    const Calibration& calibration);
 

@@ -61,6 +61,9 @@ class InteractingJunctions {
   // the force-spread study.
   std::vector<double> forces(double X) const;
   const JunctionState& state() const { return J_; }  // areas, thresholds, pinned, intact
+  // f_i / (σ A_i) at X, A_i the current area (Eq. 3 at f_i for a junction whose area follows its
+  // force): 1 at the slip threshold, ε for a slipping junction under area_law until_first_slip.
+  std::vector<double> load_ratios(double X) const;
 
   // Work done, for benchmarks: exact solves, their chord iterations, rank-one updates, rebuilds.
   struct Work {

@@ -1,0 +1,47 @@
+// asperity study interactions [SCENE.yaml...] [--out results/interactions] [--fit-independent F]
+//                             [--fit-interacting F] [--sweep STORE] [--spread EXPERIMENT] [--quiet]
+#include <cstdio>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "bench/bench_scene.hpp"
+#include "cli/commands.hpp"
+#include "cli/options.hpp"
+#include "report/interaction_study.hpp"
+#include "report/output_dir.hpp"
+
+namespace asperity::cli {
+
+Command add_study_command(CLI::App& app) {
+  CLI::App* sub = app.add_subcommand("study", "Studies that compare model variants on the stand-ins");
+  sub->require_subcommand(1);
+  auto opt = std::make_shared<InteractionStudyOptions>();
+  auto scenes = std::make_shared<std::vector<std::string>>();
+  auto out = std::make_shared<std::string>("results/interactions");
+  auto quiet = std::make_shared<bool>(false);
+  CLI::App* in = sub->add_subcommand(
+      "interactions", "Elastic interactions vs independent junctions, each at its calibrated alpha_b: shape exponent, "
+                      "area decay, incipient slope, stick-slip, force spread at the peak, the crowding/cut-off sweep");
+  in->add_option("scenes", *scenes, "Scenes (default scenes/paper/P*.yaml)")->check(CLI::ExistingFile);
+  in->add_option("-o,--out", *out, "Output folder (default results/interactions)");
+  in->add_option("--fit-independent", opt->fit_independent, "fit.yaml of the independent calibration");
+  in->add_option("--fit-interacting", opt->fit_interacting, "fit.yaml of the interacting calibration");
+  in->add_option("--sweep", opt->sweep_store, "Store of sweeps/interactions.yaml");
+  in->add_option("--spread", opt->spread_experiment, "Experiment of the force-spread histogram (default P4.00N)");
+  in->add_flag("-q,--quiet", *quiet, "Print nothing on success");
+  return Command{sub, [opt, scenes, out, quiet](const Invocation&) {
+    InteractionStudyOptions o = *opt;
+    o.out = *out;
+    check_ours(o.out, "study interactions", "--out");
+    if (scenes->empty()) o.scenes = paper_scenes("scenes/paper");
+    else o.scenes.assign(scenes->begin(), scenes->end());
+    o.log = *quiet ? nullptr : &std::cout;
+    const std::string verdict = run_interaction_study(o);
+    write_marker(o.out, "study interactions");
+    if (!*quiet) std::printf("%s\n-> %s/REPORT.md\n", verdict.c_str(), o.out.string().c_str());
+    return exit_ok;
+  }};
+}
+
+}  // namespace asperity::cli

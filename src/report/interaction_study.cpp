@@ -1,0 +1,378 @@
+#include "report/interaction_study.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <numeric>
+#include <optional>
+#include <sstream>
+
+#include "io/atomic_file.hpp"
+#include "io/csv.hpp"
+#include "observe/simulate.hpp"
+#include "report/claims.hpp"
+#include "report/gnuplot.hpp"
+#include "scene/load.hpp"
+#include "solve/integrate.hpp"
+#include "solve/interaction_matrix.hpp"
+
+namespace asperity {
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string fmt(const char* f, double x) {
+  if (!std::isfinite(x)) return "–";
+  char b[64];
+  std::snprintf(b, sizeof b, f, x);
+  return b;
+}
+
+// label → best α_b of a fit.yaml written by `asperity fit` (separate fits); empty when absent.
+std::map<std::string, double> calibrated_alpha_b(const fs::path& fit_yaml) {
+  std::map<std::string, double> out;
+  if (!fs::exists(fit_yaml)) return out;
+  const YAML::Node root = YAML::LoadFile(fit_yaml.string());
+  for (const auto& f : root["fits"]) {
+    if (f["status"].as<std::string>("") != "ok") continue;
+    const YAML::Node p = f["parameters"]["model.alpha_b"];
+    if (p && p["value"]) out[f["label"].as<std::string>()] = p["value"].as<double>();
+  }
+  return out;
+}
+
+struct Side {  // one model on one experiment
+  bool ran = false;
+  double alpha_b = NAN;
+  Observables obs;
+  AreaComparison areas;
+  double wall_s = 0;
+};
+
+Side run_side(const fs::path& scene_file, std::vector<std::string> set, std::optional<double> alpha_b) {
+  Side s;
+  if (!alpha_b) return s;
+  set.push_back("model.alpha_b=" + csv_number(*alpha_b));
+  set.push_back("stop.cycles=5");
+  set.push_back("stop.time=12");
+  const Scene scene = load_scene(scene_file, set);
+  const RunResult r = simulate(scene);
+  s.ran = true;
+  s.alpha_b = *alpha_b;
+  s.obs = r.obs;
+  s.areas = compare_areas(scene, *alpha_b, r.obs, r.recorder.loading_branch());
+  s.wall_s = r.obs.wall_s;
+  return s;
+}
+
+struct Spread {
+  bool ran = false;
+  std::string experiment;
+  double area_lo = 0, area_hi = 0, crowding_median = 0;
+  std::vector<double> A0, x, y, crowding, ratio_inter, ratio_indep;  // at the peak
+  std::vector<double> half_inter, half_indep;                           // at half its time
+  std::vector<std::uint8_t> equal;  // in the equal-area set
+};
+
+// f_i/(σA_i) of every junction at `fraction` of the first peak's time of `scene` (interacting).
+std::vector<double> ratios_at(const Scene& base, double fraction) {
+  Scene s = base;
+  s.stop.at_first_peak = true;
+  s.output.series.clear();
+  const RunResult first = simulate(s);
+  if (!first.obs.peak_found) return {};
+  // Again to that time (the first run stops when the peak is confirmed, after it).
+  s.stop.at_first_peak = false;
+  s.stop.time = fraction * first.obs.t_peak;
+  const Problem p = make_problem(s);
+  Recorder rec(s.output.every, false, s.output.peak_min_drop, false, -1);
+  InteractingEventStepper stepper(p);
+  integrate(stepper, p, rec);
+  return stepper.junctions().load_ratios(stepper.X());
+}
+
+Spread force_spread(const fs::path& scene_file, double alpha_b, const std::string& name) {
+  Spread sp;
+  sp.experiment = name;
+  const Scene scene = load_scene(scene_file, {"model.interactions=elastic", "model.alpha_b=" + csv_number(alpha_b)});
+  const auto& J = scene.experiment.junctions;
+  const std::size_t n = J.size();
+  sp.A0 = J.area_m2;
+  sp.x = J.x_m;
+  sp.y = J.y_m;
+  // Crowding: the compliance the neighbours add at a junction, relative to its own, k_i Σ_j C_ij.
+  const Problem p = make_problem(scene);
+  const InteractionMatrix C = interaction_matrix(p);
+  sp.crowding.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    double s = 0;
+    for (std::size_t j = 0; j < n; ++j) s += C(i, j);
+    sp.crowding[i] = s * p.law.stiffness(J.area_m2[i], J.area_m2[i]);
+  }
+  sp.ratio_inter = ratios_at(scene, 1.0);
+  sp.half_inter = ratios_at(scene, 0.5);
+  // The independent model through the same code: the arrangement 10⁶ times wider (coupling
+  // ~1e-6 of a junction's own compliance).
+  Scene far = scene;
+  far.model.position_scale = 1e6;
+  sp.ratio_indep = ratios_at(far, 1.0);
+  sp.half_indep = ratios_at(far, 0.5);
+  for (const auto* v : {&sp.ratio_inter, &sp.ratio_indep, &sp.half_inter, &sp.half_indep})
+    if (v->size() != n) return sp;
+  // Equal areas: the stand-ins' cluster of large junctions (a lognormal of 2 % width).
+  std::vector<double> sorted = J.area_m2;
+  std::sort(sorted.begin(), sorted.end());
+  const double top = sorted[sorted.size() - 1 - sorted.size() / 50];  // inside the top 4 %
+  sp.area_lo = 0.95 * top;
+  sp.area_hi = 1.05 * top;
+  sp.equal.assign(n, 0);
+  std::vector<double> cr;
+  for (std::size_t i = 0; i < n; ++i)
+    if (J.area_m2[i] >= sp.area_lo && J.area_m2[i] <= sp.area_hi) sp.equal[i] = 1, cr.push_back(sp.crowding[i]);
+  std::sort(cr.begin(), cr.end());
+  sp.crowding_median = cr.empty() ? NAN : cr[cr.size() / 2];
+  sp.ran = cr.size() >= 6;
+  return sp;
+}
+
+struct Stats {
+  std::size_t n = 0;
+  double mean = NAN, sd = NAN, lo = NAN, hi = NAN;
+};
+Stats stats(const std::vector<double>& v) {
+  Stats s;
+  s.n = v.size();
+  if (v.empty()) return s;
+  s.mean = std::accumulate(v.begin(), v.end(), 0.0) / static_cast<double>(v.size());
+  double q = 0;
+  for (double x : v) q += (x - s.mean) * (x - s.mean);
+  s.sd = v.size() > 1 ? std::sqrt(q / static_cast<double>(v.size() - 1)) : 0.0;
+  s.lo = *std::min_element(v.begin(), v.end());
+  s.hi = *std::max_element(v.begin(), v.end());
+  return s;
+}
+
+// The sweep store's rows (points.csv), by column name; empty when absent.
+std::vector<std::map<std::string, std::string>> sweep_rows(const fs::path& store) {
+  std::vector<std::map<std::string, std::string>> rows;
+  std::ifstream in(store / "points.csv");
+  std::string line;
+  if (!std::getline(in, line)) return rows;
+  const auto header = csv_split(line);
+  while (std::getline(in, line)) {
+    const auto f = csv_split(line);
+    std::map<std::string, std::string> r;
+    for (std::size_t i = 0; i < header.size() && i < f.size(); ++i) r[header[i]] = f[i];
+    rows.push_back(std::move(r));
+  }
+  return rows;
+}
+
+double num(const std::map<std::string, std::string>& r, const std::string& k) {
+  const auto it = r.find(k);
+  if (it == r.end() || it->second.empty()) return NAN;
+  try {
+    return std::stod(it->second);
+  } catch (...) {
+    return NAN;
+  }
+}
+
+}  // namespace
+
+std::string run_interaction_study(const InteractionStudyOptions& opt) {
+  const auto alpha_indep = calibrated_alpha_b(opt.fit_independent);
+  const auto alpha_inter = calibrated_alpha_b(opt.fit_interacting);
+  struct Row {
+    std::string name;
+    Side indep, inter;
+  };
+  std::vector<Row> rows;
+  fs::path spread_scene;
+  for (const fs::path& f : opt.scenes) {
+    const std::string name = load_scene(f).experiment.name;
+    Row r{name, {}, {}};
+    auto find = [&](const std::map<std::string, double>& m) -> std::optional<double> {
+      const auto it = m.find(name);
+      return it == m.end() ? std::nullopt : std::optional<double>(it->second);
+    };
+    r.indep = run_side(f, {}, find(alpha_indep));
+    r.inter = run_side(f, {"model.interactions=elastic"}, find(alpha_inter));
+    if (opt.log)
+      *opt.log << "  " << name << ": n independent " << fmt("%.3f", r.indep.obs.shape_exponent) << ", interacting "
+               << fmt("%.3f", r.inter.obs.shape_exponent) << ", measured " << fmt("%.3f", r.inter.areas.n_measured)
+               << " (" << fmt("%.1f", r.inter.wall_s) << " s)" << std::endl;
+    if (name == opt.spread_experiment) spread_scene = f;
+    rows.push_back(std::move(r));
+  }
+  Spread sp;
+  if (!spread_scene.empty() && alpha_inter.count(opt.spread_experiment))
+    sp = force_spread(spread_scene, alpha_inter.at(opt.spread_experiment), opt.spread_experiment);
+
+  fs::create_directories(opt.out);
+  // table.csv
+  {
+    std::ostringstream t;
+    t << "experiment,model,alpha_b,Q_s_N,t_peak_s,shape_exponent,shape_exponent_measured,area_decay,area_decay_measured,"
+         "incipient_slope_m2_per_N,incipient_slope_measured_m2_per_N,ss_cycles,ss_drop,wall_s\n";
+    for (const auto& r : rows)
+      for (const auto* s : {&r.indep, &r.inter}) {
+        if (!s->ran) continue;
+        t << r.name << ',' << (s == &r.indep ? "independent" : "interacting") << ',' << csv_number(s->alpha_b) << ','
+          << csv_number(s->obs.Q_s) << ',' << csv_number(s->obs.t_peak) << ',' << csv_number(s->obs.shape_exponent) << ','
+          << csv_number(s->areas.n_measured) << ',' << csv_number(s->areas.decay_model) << ','
+          << csv_number(s->areas.decay_measured) << ',' << csv_number(s->areas.slope_model) << ','
+          << csv_number(s->areas.slope_measured) << ',' << s->obs.ss_cycles << ',' << csv_number(s->obs.ss_drop) << ','
+          << csv_number(s->wall_s) << '\n';
+      }
+    scene_io::write_text_file(opt.out / "table.csv", t.str());
+  }
+  // forces_at_peak.csv and the spread figure.
+  std::string fig_note;
+  if (sp.ran) {
+    std::ostringstream t;
+    t << "junction,A0_m2,x_m,y_m,crowding,equal_area_set,f_over_sigmaA_interacting,f_over_sigmaA_independent,"
+         "f_over_sigmaA_interacting_half,f_over_sigmaA_independent_half\n";
+    for (std::size_t i = 0; i < sp.A0.size(); ++i)
+      t << i + 1 << ',' << csv_number(sp.A0[i]) << ',' << csv_number(sp.x[i]) << ',' << csv_number(sp.y[i]) << ','
+        << csv_number(sp.crowding[i]) << ',' << int(sp.equal[i]) << ',' << csv_number(sp.ratio_inter[i]) << ','
+        << csv_number(sp.ratio_indep[i]) << ',' << csv_number(sp.half_inter[i]) << ','
+        << csv_number(sp.half_indep[i]) << '\n';
+    scene_io::write_text_file(opt.out / "forces_at_peak.csv", t.str());
+    std::vector<std::vector<double>> crowded, sparse, indep;
+    for (std::size_t i = 0; i < sp.A0.size(); ++i) {
+      if (!sp.equal[i]) continue;
+      (sp.crowding[i] >= sp.crowding_median ? crowded : sparse).push_back({sp.half_inter[i]});
+      indep.push_back({sp.half_indep[i]});
+    }
+    std::ostringstream gp;
+    gp << gnuplot_block("crowded", crowded) << gnuplot_block("sparse", sparse) << gnuplot_block("indep", indep)
+       << "set title " << gnuplot_quote("STAND-IN " + sp.experiment + ": f/(σA) at half the time of the first peak, junctions of equal area (" +
+                                        fmt("%.3g", sp.area_lo) + "–" + fmt("%.3g", sp.area_hi) + " m²)")
+       << "\nset xlabel " << gnuplot_quote("f_i / (σ A_i) [1]") << "\nset ylabel " << gnuplot_quote("junctions [1]")
+       << "\nbin(x) = 0.02*floor(x/0.02) + 0.01\nset style fill transparent solid 0.5\nset boxwidth 0.02\nset key top left\n"
+       << "plot $crowded using (bin($1)):(1) smooth frequency with boxes title "
+       << gnuplot_quote("interacting, crowded (k_iΣC_ij ≥ median)") << ", $sparse using (bin($1)):(1) smooth frequency "
+       << "with boxes title " << gnuplot_quote("interacting, sparse") << ", $indep using (bin($1)):(1) smooth frequency "
+       << "with impulses lw 4 title " << gnuplot_quote("independent model (same junctions)") << "\n";
+    std::string error;
+    if (!render_plot(opt.out / "force_spread.png", gp.str(), 1000, 650, &error)) fig_note = "force_spread.png not drawn: " + error;
+  }
+  // A(Q) of the spread experiment: measured, independent, interacting (calibrated).
+  // (Kept to the table: the loading branches are in the runs' observables only.)
+
+  // The verdict: quadratic means n within 0.25 of 2 at every load the interacting model ran.
+  int ran = 0, quadratic = 0;
+  double dn_sum = 0;
+  int dn_count = 0;
+  for (const auto& r : rows) {
+    if (!r.inter.ran || !std::isfinite(r.inter.obs.shape_exponent)) continue;
+    ++ran;
+    if (std::abs(r.inter.obs.shape_exponent - 2.0) <= 0.25) ++quadratic;
+    if (r.indep.ran && std::isfinite(r.indep.obs.shape_exponent))
+      dn_sum += r.inter.obs.shape_exponent - r.indep.obs.shape_exponent, ++dn_count;
+  }
+  std::string verdict;
+  if (ran == 0) verdict = "No evidence (no calibrated interacting run)";
+  else if (quadratic == ran) verdict = "Quadratic at every load (" + std::to_string(ran) + " of " + std::to_string(ran) + ")";
+  else verdict = "Not quadratic: n within 0.25 of 2 at " + std::to_string(quadratic) + " of " + std::to_string(ran) + " loads";
+
+  std::ostringstream md;
+  md << "# Elastic interactions between junctions: does A(Q) turn quadratic?\n\n"
+     << "**STAND-IN DATA.** Every number here comes from the stand-in experiments of `data/standin/` (areas, "
+        "positions and \"measured\" curves generated, not measured): it tests the model on made-up data of the right "
+        "size, not the real experiments.\n\n"
+     << "Written by `asperity study interactions` from the runs of that command (calibrations read from `"
+     << opt.fit_independent.generic_string() << "` and `" << opt.fit_interacting.generic_string()
+     << "`, the sweep from `" << opt.sweep_store.generic_string() << "/points.csv`).\n\n"
+     << "## Verdict\n\n**" << verdict << ".** ";
+  if (dn_count > 0)
+    md << "Interactions change the shape exponent by " << fmt("%+.3f", dn_sum / dn_count)
+       << " on average (interacting − independent, each at its own calibrated α_b); the stand-in \"measured\" "
+          "curves have n ≈ 2 by construction.";
+  md << "\n\nRule: A(Q) is called quadratic when the best n of A0 − A ∝ Qⁿ on the loading branch is within 0.25 of 2 "
+        "(the independent model gives ≈ 1.3, a parabola 2).\n\n";
+  md << "## Per load, each model at its own calibrated α_b (the paper's method: α of A = A0 − αQ² matches the "
+        "measured one)\n\n"
+     << "| experiment | model | α_b [1e-15] | n | n measured | area decay | decay measured | incipient slope "
+        "[mm²/N] | slope measured | Q_s [N] | t_peak [s] | stick-slip cycles | wall [s] |\n"
+     << "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const auto& r : rows)
+    for (const auto* s : {&r.indep, &r.inter}) {
+      const char* model = s == &r.indep ? "independent" : "interacting";
+      if (!s->ran) {
+        md << "| " << r.name << " | " << model << " | no calibration: no evidence | | | | | | | | | | |\n";
+        continue;
+      }
+      md << "| " << r.name << " | " << model << " | " << fmt("%.4f", s->alpha_b * 1e15) << " | "
+         << fmt("%.3f", s->obs.shape_exponent) << " | " << fmt("%.3f", s->areas.n_measured) << " | "
+         << fmt("%.3f", s->areas.decay_model) << " | " << fmt("%.3f", s->areas.decay_measured) << " | "
+         << fmt("%.3f", s->areas.slope_model * 1e6) << " | " << fmt("%.3f", s->areas.slope_measured * 1e6) << " | "
+         << fmt("%.4f", s->obs.Q_s) << " | " << fmt("%.3f", s->obs.t_peak) << " | " << s->obs.ss_cycles << " | "
+         << fmt("%.1f", s->wall_s) << " |\n";
+    }
+  md << "\n(n: exponent of A0 − A = c Qⁿ on the loading branch; area decay 1 − A_s/A0; incipient slope: least-squares "
+        "dA/dQ over Q ≤ 0.3 Q_max; runs to five stick-slip cycles or 12 s.)\n\n";
+  md << "## Force spread at the first peak (" << opt.spread_experiment << ")\n\n";
+  if (!sp.ran) {
+    md << "No evidence: the interacting calibration of " << opt.spread_experiment << " or its runs are missing.\n\n";
+  } else {
+    auto split = [&](const std::vector<double>& inter, const std::vector<double>& indep) {
+      std::vector<double> c, s, ind;
+      for (std::size_t i = 0; i < sp.A0.size(); ++i) {
+        if (!sp.equal[i]) continue;
+        (sp.crowding[i] >= sp.crowding_median ? c : s).push_back(inter[i]);
+        ind.push_back(indep[i]);
+      }
+      return std::array<Stats, 3>{stats(c), stats(s), stats(ind)};
+    };
+    md << "The paper's Figure 2 argument: two junctions of similar area carry very different forces, presumably "
+          "because crowded neighbourhoods evolve differently. Junctions of equal area ("
+       << fmt("%.3g", sp.area_lo) << "–" << fmt("%.3g", sp.area_hi) << " m², the stand-ins' cluster) at the first peak, "
+       << "split at the median of their crowding k_i Σ_j C_ij (" << fmt("%.3f", sp.crowding_median)
+       << ", the compliance the neighbours add relative to the junction's own), at half the time of the first peak "
+          "and at the peak:\n\n"
+       << "| when | set | junctions | mean f/(σA) | sd | min | max |\n|---|---|---|---|---|---|---|\n";
+    for (int w = 0; w < 2; ++w) {
+      const auto st = w == 0 ? split(sp.half_inter, sp.half_indep) : split(sp.ratio_inter, sp.ratio_indep);
+      const char* names[3] = {"interacting, crowded", "interacting, sparse", "independent (same junctions)"};
+      for (int k = 0; k < 3; ++k)
+        md << "| " << (w == 0 ? "half t_peak" : "t_peak") << " | " << names[k] << " | " << st[k].n << " | "
+           << fmt("%.4f", st[k].mean) << " | " << fmt("%.4f", st[k].sd) << " | " << fmt("%.4f", st[k].lo) << " | "
+           << fmt("%.4f", st[k].hi) << " |\n";
+    }
+    md << "\n"
+       << "![force spread](force_spread.png)\n\n"
+       << (fig_note.empty() ? "" : fig_note + "\n\n")
+       << "Every junction's ratio, crowding and position: `forces_at_peak.csv` (1 = at its threshold; ε = 0.9: "
+          "slipping).\n\n";
+  }
+  // The sweep.
+  const auto sw = sweep_rows(opt.sweep_store);
+  md << "## Crowding and cut-off (`sweeps/interactions.yaml`, α_b = 0.725e-15, not recalibrated)\n\n";
+  if (sw.empty()) {
+    md << "No evidence: `" << opt.sweep_store.generic_string() << "/points.csv` is missing (run `asperity sweep "
+          "sweeps/interactions.yaml`).\n\n";
+  } else {
+    md << "| experiment | grid | position scale | cut-off [mm] | n | area decay | Q_s [N] | t_peak [s] | stick-slip cycles "
+          "| status |\n|---|---|---|---|---|---|---|---|---|---|\n";
+    for (const auto& r : sw) {
+      auto g = [&](const std::string& k) { const auto it = r.find(k); return it == r.end() ? std::string() : it->second; };
+      md << "| " << g("experiment") << " | " << g("grid") << " | " << g("model.position_scale") << " | "
+         << fmt("%.2f", num(r, "model.interaction_cutoff") * 1e3) << " | " << fmt("%.3f", num(r, "shape_exponent"))
+         << " | " << fmt("%.3f", num(r, "area_drop_fraction")) << " | " << fmt("%.4f", num(r, "Q_s")) << " | "
+         << fmt("%.3f", num(r, "t_peak")) << " | " << g("ss_cycles") << " | " << g("status") << " |\n";
+    }
+    md << "\n(Position scale s: the same arrangement in an apparent contact s times as wide, 1/s² as crowded; 1000: "
+          "practically independent. A cut-off drops the pairs farther apart; – : every pair.)\n\n";
+  }
+  scene_io::write_text_file(opt.out / "REPORT.md", md.str());
+  return verdict;
+}
+
+}  // namespace asperity

@@ -1,0 +1,32 @@
+#pragma once
+// `asperity study interactions`: does elastic coupling between junctions (MODEL.md §8) make A(Q)
+// quadratic? (issue 12, the study). For each experiment, the independent model at its own
+// calibrated α_b and the interacting model at its recalibrated α_b (the paper's method, per
+// load), side by side: shape exponent n of A0 − A ∝ Qⁿ, area decay, incipient slope, stick-slip;
+// the spread of f_i/(σA_i) at the first peak among junctions of equal area in crowded vs sparse
+// neighbourhoods (the paper's Figure 2 argument); the crowding and cut-off sweep's table. Every
+// verdict is computed from the runs of the same command; missing inputs read "no evidence".
+// STAND-IN data: the report says so.
+#include <filesystem>
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace asperity {
+
+struct InteractionStudyOptions {
+  std::vector<std::filesystem::path> scenes;            // the experiments (scenes/paper/P*.yaml)
+  std::filesystem::path fit_independent = "results/fits/paper_alpha_b/fit.yaml";
+  std::filesystem::path fit_interacting = "results/fits/interactions_alpha_b/fit.yaml";
+  std::filesystem::path sweep_store = "results/interactions_sweep";  // sweeps/interactions.yaml
+  std::filesystem::path out = "results/interactions";
+  std::string spread_experiment = "P4.00N";
+  int threads = 2;
+  std::ostream* log = nullptr;
+};
+
+// Runs the study and writes OUT/REPORT.md, table.csv, forces_at_peak.csv and figures. Returns
+// the verdict line ("quadratic: no", ...).
+std::string run_interaction_study(const InteractionStudyOptions& opt);
+
+}  // namespace asperity
