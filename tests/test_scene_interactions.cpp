@@ -8,6 +8,7 @@
 #include "io/input_error.hpp"
 #include "scene/load.hpp"
 #include "scene/validate.hpp"
+#include "solve/problem.hpp"
 #include "support.hpp"
 
 namespace fs = std::filesystem;
@@ -96,4 +97,29 @@ TEST_CASE("first_overlap finds the overlapping pair among many and none in a cle
   REQUIRE(pair.has_value());
   CHECK(pair->first == 700);
   CHECK(pair->second == 740);
+}
+
+TEST_CASE("model.position_scale multiplies the centres the run uses and is checked for overlap there",
+          "[scene][interacting]") {
+  const fs::path dir = temp_path("scene_position_scale");
+  fs::remove_all(dir);
+  // Two junctions of radius 56 µm and 80 µm, centres 300 µm apart: they touch at scale 0.453.
+  experiment_with(dir / "ok", "area_m2,x_m,y_m\n1e-8,1e-4,0\n2e-8,4e-4,0\n");
+  const fs::path scene = write_text(dir / "s.yaml", "experiment: ok/experiment.yaml\nmodel: {interactions: elastic}\n");
+  const Scene s = load_scene(scene, {"model.position_scale=2.5"});
+  const Problem p = make_problem(s);
+  REQUIRE(p.x.size() == 2);
+  CHECK(p.x[0] == 2.5e-4);
+  CHECK(p.x[1] == 1e-3);
+  CHECK(s.experiment.junctions.x_m[1] == 4e-4);  // the population itself is untouched
+  // Written when interactions are on (the default scale is not written without them).
+  CHECK(scene_to_yaml(s).find("position_scale: 2.5") != std::string::npos);
+  CHECK(scene_to_yaml(load_scene(scene, {"model.interactions=none"})).find("position_scale") ==
+        std::string::npos);
+  // 0.5 keeps them apart (150 µm > 56 + 80 µm); 0.4 makes them overlap: one line naming the key.
+  CHECK(error_of(scene, {"model.position_scale=0.5"}).empty());
+  CHECK_THAT(error_of(scene, {"model.position_scale=0.4"}),
+             Contains("model.position_scale") && Contains("junctions 1 and 2") && Contains("overlap at scale 0.4"));
+  CHECK_THAT(error_of(scene, {"model.position_scale=0"}), Contains("model.position_scale") && Contains("(0, 1e6]"));
+  fs::remove_all(dir);
 }
