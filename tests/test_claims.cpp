@@ -234,7 +234,7 @@ TEST_CASE("Claim 4: c_min = 1e-5 against 0.01", "[claims]") {
   }
 }
 
-TEST_CASE("Claim 5: decay and slope need the calibration; shape contrast", "[claims]") {
+TEST_CASE("Claim 5: decay and slope need the calibration and the shape contrasts", "[claims]") {
   ClaimObservables c = good_claims();
   Claim5Verdicts v = claim5_calibrated(c);
   CHECK(v.decay == V::reproduced);

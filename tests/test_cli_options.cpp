@@ -52,7 +52,7 @@ TEST_CASE("threads (-j, --threads) mean the same in every command and are checke
   }
 }
 
-TEST_CASE("sweep --set equals the value in the campaign; fit --set equals it in the fit file", "[cli][options]") {
+TEST_CASE("sweep --set equals the value in the campaign and fit --set equals it in the fit file", "[cli][options]") {
   const fs::path w = temp_path("cli_options");
   fs::remove_all(w);
   fs::create_directories(w);

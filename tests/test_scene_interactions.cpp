@@ -114,7 +114,7 @@ TEST_CASE("model.position_scale multiplies the centres the run uses and is check
   CHECK(s.experiment.junctions.x_m[1] == 4e-4);  // the population itself is untouched
   // Written when interactions are on (the default scale is not written without them).
   CHECK(scene_to_yaml(s).find("position_scale: 2.5") != std::string::npos);
-  CHECK(scene_to_yaml(load_scene(scene, {"model.interactions=none"})).find("position_scale") ==
+  CHECK(scene_to_yaml(load_scene(scene, {"model.interactions=none"})).find("  position_scale:") ==
         std::string::npos);
   // 0.5 keeps them apart (150 µm > 56 + 80 µm); 0.4 makes them overlap: one line naming the key.
   CHECK(error_of(scene, {"model.position_scale=0.5"}).empty());

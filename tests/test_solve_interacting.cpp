@@ -103,7 +103,7 @@ TEST_CASE("junctions far apart reproduce the independent model on every observab
   CHECK(worst < 1e-9);
 }
 
-TEST_CASE("a cut-off beyond every distance keeps the full kernel; a short one drops pairs", "[solve][interacting]") {
+TEST_CASE("a cut-off beyond every distance keeps the full kernel and a short one drops pairs", "[solve][interacting]") {
   Scene s = interacting_scene({1e-9, 2e-9, 3e-9}, {0, 1e-4, 3e-4}, {0, 0, 1e-4});
   const InteractionMatrix full = interaction_matrix(make_problem(s));
   s.model.interaction_cutoff = 1.0;
