@@ -85,10 +85,11 @@ TEST_CASE("journal rows survive a reopen and a torn last line is dropped", "[cam
     Journal j(d, kHeader);
     CHECK(j.dropped_lines() == 1);
     REQUIRE(j.entries().size() == 2);
-    CHECK(j.entries().at(0).hash == 0xaa);
-    CHECK(j.entries().at(0).ok);
-    CHECK_FALSE(j.entries().at(1).ok);
-    CHECK(j.row(j.entries().at(1)) == "1,00000000000000bb,g,failed,\"a, b\"");
+    REQUIRE(j.find(0));
+    CHECK(j.row(*j.find(0)) == "0,00000000000000aa,g,ok,1.5");
+    CHECK(j.find(0)->ok());
+    CHECK_FALSE(j.find(1)->ok());
+    CHECK(j.row(*j.find(1)) == "1,00000000000000bb,g,failed,\"a, b\"");
     CHECK(slurp(d / "journal.csv") == full.substr(0, third));  // the torn bytes are gone
   }
   // Appending after recovery gives well-formed lines again.
@@ -114,8 +115,9 @@ TEST_CASE("journal lines with a bad checksum are dropped and the header is check
     Journal j(d, kHeader);
     CHECK(j.dropped_lines() == 1);
     CHECK(j.entries().size() == 2);
-    CHECK(j.entries().count(1) == 0);
-    CHECK(j.row(j.entries().at(2)) == "2,00000000000000cc,g,ok,3.5");
+    CHECK(j.find(1) == nullptr);
+    REQUIRE(j.find(2));
+    CHECK(j.row(*j.find(2)) == "2,00000000000000cc,g,ok,3.5");
   }
   CHECK_THROWS_WITH(Journal(d, "index,hash,grid,status,y"), Contains("another campaign"));
 }
@@ -345,7 +347,8 @@ TEST_CASE("store journal group commit: one fdatasync per group of points, every 
     Journal j(d, kHeader, JournalSync{1, 0});
     CHECK(j.dropped_lines() == 0);
     REQUIRE(j.entries().size() == 10);
-    CHECK(j.row(j.entries().at(9)) == "9,00000000000000aa,g,ok,9");
+    REQUIRE(j.find(9));
+    CHECK(j.row(*j.find(9)) == "9,00000000000000aa,g,ok,9");
     j.append("10,00000000000000aa,g,ok,10");
     CHECK(j.syncs() == 1);  // per point
   }
@@ -367,4 +370,30 @@ TEST_CASE("store journal group commit: one fdatasync per group of points, every 
   CHECK(grouped.syncs == 2);
   CHECK(values_of(d / "grouped") == values_of(d / "per_point"));
   CHECK(run_sweep(c, o).syncs == 0);  // a resume with nothing to run appends nothing
+}
+
+TEST_CASE("the row index holds 16 bytes a row and keeps the last row written of each index", "[campaign][store]") {
+  STATIC_REQUIRE(sizeof(StoredRow) == 16);
+  RowIndex idx;
+  // Indices out of order (the sweep journals out of order), index 5 written three times.
+  const std::uint64_t rows[][3] = {{5, 0, 1}, {2, 10, 1}, {9, 20, 0}, {5, 30, 0}, {0, 40, 1}, {5, 50, 1}, {2, 60, 0}};
+  for (const auto& r : rows) idx.add(r[0], r[1], r[2] == 1);
+  CHECK(idx.rows().empty());  // nothing settled yet
+  idx.settle();
+  REQUIRE(idx.rows().size() == 4);
+  std::vector<std::uint64_t> order;
+  for (const StoredRow& r : idx.rows()) order.push_back(r.index);
+  CHECK(order == std::vector<std::uint64_t>{0, 2, 5, 9});
+  CHECK(idx.find(5)->offset() == 50);
+  CHECK(idx.find(5)->ok());
+  CHECK(idx.find(2)->offset() == 60);
+  CHECK_FALSE(idx.find(2)->ok());
+  CHECK(idx.find(3) == nullptr);
+  // Added later: settled in with the rest, still the last written wins.
+  idx.add(0, 70, false);
+  idx.add(7, 80, true);
+  idx.settle();
+  REQUIRE(idx.rows().size() == 5);
+  CHECK(idx.find(0)->offset() == 70);
+  CHECK(idx.find(7)->ok());
 }

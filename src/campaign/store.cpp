@@ -8,6 +8,7 @@
 #include <cerrno>
 #include <charconv>
 #include <cstring>
+#include <algorithm>
 #include <fstream>
 #include <stdexcept>
 
@@ -61,18 +62,52 @@ class LineReader {
   bool torn_ = false;
 };
 
-std::string read_span(int fd, std::uint64_t offset, std::uint32_t length, const std::string& file) {
-  std::string s(length, '\0');
-  std::size_t got = 0;
-  while (got < s.size()) {
-    const ssize_t r = ::pread(fd, s.data() + got, s.size() - got, static_cast<off_t>(offset + got));
-    if (r <= 0) {
-      if (r < 0 && errno == EINTR) continue;
-      throw std::runtime_error("cannot read " + file);
-    }
-    got += static_cast<std::size_t>(r);
+// The line starting at `offset` of a file, without its newline (read in pieces up to it).
+std::string read_line(int fd, std::uint64_t offset, const std::string& file) {
+  std::string s;
+  char buf[1024];
+  for (;;) {
+    const ssize_t r = ::pread(fd, buf, sizeof buf, static_cast<off_t>(offset + s.size()));
+    if (r < 0 && errno == EINTR) continue;
+    if (r <= 0) throw std::runtime_error("cannot read " + file + " (a row ends without its newline)");
+    const char* nl = static_cast<const char*>(std::memchr(buf, '\n', static_cast<std::size_t>(r)));
+    s.append(buf, nl ? static_cast<std::size_t>(nl - buf) : static_cast<std::size_t>(r));
+    if (nl) return s;
   }
-  return s;
+}
+
+// Field `col` of a CSV row (RFC 4180 quoting, returned as written, quotes included), without
+// splitting the whole row; false when the row has fewer fields.
+bool csv_field_at(std::string_view row, std::size_t col, std::string_view& out) {
+  std::size_t start = 0;
+  for (std::size_t f = 0;; ++f) {
+    std::size_t i = start;
+    if (i < row.size() && row[i] == '"') {
+      for (++i; i < row.size(); ++i)
+        if (row[i] == '"') {
+          if (i + 1 < row.size() && row[i + 1] == '"') ++i;
+          else break;
+        }
+    }
+    const std::size_t comma = row.find(',', i);
+    const std::size_t end = comma == std::string_view::npos ? row.size() : comma;
+    if (f == col) {
+      out = row.substr(start, end - start);
+      return true;
+    }
+    if (comma == std::string_view::npos) return false;
+    start = comma + 1;
+  }
+}
+
+// An upper bound on the number of rows of a store file: every line holds at least one byte per
+// column (the commas and newline), 16 for the hash and, in the journal, 17 for the checksum.
+std::size_t max_rows(const fs::path& file, const std::string& header, bool journal) {
+  std::error_code ec;
+  const auto size = fs::file_size(file, ec);
+  if (ec) return 0;
+  const std::size_t cols = static_cast<std::size_t>(std::count(header.begin(), header.end(), ',')) + 1;
+  return static_cast<std::size_t>(size / (cols + 16 + (journal ? 17 : 0)));
 }
 
 }  // namespace
@@ -84,18 +119,41 @@ std::size_t Journal::status_column(const std::string& header) {
   throw std::runtime_error("store header has no status column");
 }
 
+void RowIndex::settle() {
+  if (settled_ == v_.size()) return;
+  // In place (no second copy): by index, then by offset, so the last row written of an index is
+  // the last of its run; keep that one.
+  std::sort(v_.begin(), v_.end(), [](const StoredRow& a, const StoredRow& b) {
+    return a.index != b.index ? a.index < b.index : a.at < b.at;
+  });
+  std::size_t out = 0;
+  for (std::size_t i = 0; i < v_.size(); ++i) {
+    if (out > 0 && v_[out - 1].index == v_[i].index) --out;
+    v_[out++] = v_[i];
+  }
+  v_.resize(out);
+  settled_ = out;
+}
+
+const StoredRow* RowIndex::find(std::uint64_t index) const {
+  const auto r = rows();
+  const auto it = std::lower_bound(r.begin(), r.end(), index, [](const StoredRow& e, std::uint64_t i) { return e.index < i; });
+  return it != r.end() && it->index == index ? &*it : nullptr;
+}
+
 void Journal::add_entry(std::string_view row, std::uint64_t offset) {
-  const auto f = csv_split(std::string(row));
-  std::uint64_t index = 0, hash = 0;
-  if (f.size() <= status_col_ || !parse_u64(f[0], index) || !parse_u64(f[1], hash, 16))
+  const std::size_t comma = row.find(',');
+  std::uint64_t index = 0;
+  std::string_view status;
+  if (comma == std::string_view::npos || !parse_u64(row.substr(0, comma), index) || !csv_field_at(row, status_col_, status))
     throw std::runtime_error("malformed journal row (checksum good): " + std::string(row.substr(0, 60)));
-  entries_[index] = JournalEntry{hash, f[status_col_] == "ok", offset, static_cast<std::uint32_t>(row.size())};
+  index_.add(index, offset, status == "ok");
 }
 
 // Indexes the rows of journal.csv, streamed; false when it holds lines to drop (a torn last line,
 // bad checksums, no header), which are counted in dropped_.
 bool Journal::scan(const fs::path& path) {
-  entries_.clear();
+  index_.clear();
   LineReader in(path);
   std::string line;
   std::uint64_t offset = 0;
@@ -114,13 +172,18 @@ bool Journal::scan(const fs::path& path) {
   }
   if (in.torn()) ++dropped_, clean = false;
   size_ = in.offset();
+  index_.settle();
   return clean;
 }
 
-Journal::Journal(const fs::path& dir, const std::string& header, JournalSync sync)
+Journal::Journal(const fs::path& dir, const std::string& header, JournalSync sync, std::uint64_t room)
     : header_(header), status_col_(status_column(header)), policy_(sync), last_sync_(std::chrono::steady_clock::now()) {
   if (policy_.every == 0) policy_.every = 1;
   const fs::path path = dir / "journal.csv";
+  // Room for every row the file can hold and for the rows to append: virtual memory, touched as
+  // rows are added, and the index never moves while this object appends at most `room` rows.
+  const fs::path sized = fs::exists(path) || !fs::exists(dir / "points.csv") ? path : dir / "points.csv";
+  index_.reserve(max_rows(sized, header_, sized == path) + static_cast<std::size_t>(room));
   const std::string head = header_ + ",check\n";
   std::string line;
   std::uint64_t offset = 0;
@@ -186,13 +249,18 @@ void Journal::sync() {
   last_sync_ = std::chrono::steady_clock::now();
 }
 
-std::string Journal::row(const JournalEntry& e) const { return read_span(fd_, e.offset, e.length, "journal.csv"); }
+std::string Journal::row(const StoredRow& e) const {
+  std::string line = read_line(fd_, e.offset(), "journal.csv");
+  line.resize(line.size() - 17);  // ",checksum"
+  return line;
+}
 
-void Journal::write_points(const fs::path& dir, const std::function<bool(std::uint64_t)>& keep) const {
+void Journal::write_points(const fs::path& dir, const std::function<bool(std::uint64_t)>& keep) {
+  settle();
   AtomicFileWriter out(dir / "points.csv", Durability::synced);
   out.write(header_ + "\n");
-  for (const auto& [index, e] : entries_)
-    if (keep(index)) out.write(row(e) + "\n");
+  for (const StoredRow& e : entries())
+    if (keep(e.index)) out.write(row(e) + "\n");
   out.commit();
 }
 
@@ -214,14 +282,16 @@ StoreReader::StoreReader(const fs::path& dir) {
       throw std::runtime_error("malformed journal header: " + file_.string());
     header_.resize(header_.size() - suffix.size());
   }
+  journal_ = journal;
+  rows_.reserve(max_rows(file_, header_, journal));
   while (in.next(line, offset)) {
     std::string_view row = line;
     if (journal && !checked_row(line, row)) continue;
     const std::size_t comma = row.find(',');
     std::uint64_t index = 0;
-    if (comma != std::string_view::npos && parse_u64(row.substr(0, comma), index))
-      rows_[index] = RowSpan{offset, static_cast<std::uint32_t>(row.size())};
+    if (comma != std::string_view::npos && parse_u64(row.substr(0, comma), index)) rows_.add(index, offset, false);
   }
+  rows_.settle();
   fd_ = ::open(file_.c_str(), O_RDONLY | O_CLOEXEC);
   if (fd_ < 0) sys_fail("cannot open", file_);
 }
@@ -231,11 +301,15 @@ StoreReader::~StoreReader() {
 }
 
 StoreReader::StoreReader(StoreReader&& o) noexcept
-    : file_(std::move(o.file_)), header_(std::move(o.header_)), rows_(std::move(o.rows_)), fd_(o.fd_) {
+    : file_(std::move(o.file_)), header_(std::move(o.header_)), rows_(std::move(o.rows_)), journal_(o.journal_), fd_(o.fd_) {
   o.fd_ = -1;
 }
 
-std::string StoreReader::row(const RowSpan& r) const { return read_span(fd_, r.offset, r.length, file_.string()); }
+std::string StoreReader::row(const StoredRow& r) const {
+  std::string line = read_line(fd_, r.offset(), file_.string());
+  if (journal_) line.resize(line.size() - 17);  // ",checksum"
+  return line;
+}
 
 StoreLock::StoreLock(const fs::path& dir) {
   const fs::path p = dir / ".lock";

@@ -3,6 +3,7 @@
 #include <omp.h>
 #include <unistd.h>
 
+#include <charconv>
 #include <chrono>
 #include <algorithm>
 #include <atomic>
@@ -214,12 +215,13 @@ std::vector<fs::path> listed_inputs(const std::string& text, const Campaign& c) 
   return files;
 }
 
-// A point of this shard that the journal holds, ascending by index.
-struct Stored {
-  std::uint64_t index = 0, hash = 0;
-  bool ok = false;
-  bool current = false;  // its hash is the one its scene and data give now
-};
+// The scene hash of a stored row (its second field).
+std::uint64_t row_hash(const std::string& row) {
+  const std::size_t a = row.find(',') + 1, b = row.find(',', a);
+  std::uint64_t h = 0;
+  std::from_chars(row.data() + a, row.data() + (b == std::string::npos ? row.size() : b), h, 16);
+  return h;
+}
 
 }  // namespace
 
@@ -310,21 +312,23 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
   StoreLock lock(rep.store);
   prepare_store(rep.store, c, opt);
   const std::string header = store_header(c);
-  Journal journal(rep.store, header, opt.sync);
-  rep.dropped_lines = journal.dropped_lines();
-  if (c.series) fs::create_directories(rep.store / "series");
-
   const std::uint64_t total = c.size();
   const Shard shard = opt.shard;
   rep.points = shard.size(total);
+  // Room for one row per point of the shard: the index the build stage reads (`stored`) does not
+  // move while the writer stage appends (each point is appended at most once per run).
+  Journal journal(rep.store, header, opt.sync, rep.points);
+  rep.dropped_lines = journal.dropped_lines();
+  if (c.series) fs::create_directories(rep.store / "series");
+
   const std::vector<std::string> varied_keys = c.varied_keys();
   const fs::path base_dir = c.file.parent_path();
 
-  // What the journal holds at the start (the build stage reads this, never the journal's own
-  // index, which the writer stage updates concurrently).
-  std::vector<Stored> stored;
-  for (const auto& [index, e] : journal.entries())
-    if (index < total && shard.contains(index)) stored.push_back({index, e.hash, e.ok});
+  // What the journal holds at the start, ascending by index (16 bytes a row; rows of other
+  // shards are skipped by the build stage), and whether each stored hash is the one its point's
+  // scene and data give now (1 byte a row).
+  const std::span<const StoredRow> stored = journal.entries();
+  std::vector<std::uint8_t> current(stored.size(), 0);
 
   FileHashes data_hashes;  // thread-safe: the check of stored points below hashes in parallel
   data_hashes.note(c.file);
@@ -344,7 +348,7 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
     remove_file_durably(inputs_path);
   }
   if (rep.trusted) {
-    for (Stored& s : stored) s.current = true;
+    std::fill(current.begin(), current.end(), 1);
   } else {
     tbb::enumerable_thread_specific<std::optional<CampaignScenes>> builders;
     std::atomic<std::uint64_t> rehashed{0};
@@ -353,25 +357,27 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
         std::optional<CampaignScenes>& scenes = builders.local();
         if (!scenes) scenes.emplace(c);
         for (std::size_t i = r.begin(); i != r.end(); ++i) {
-          Stored& s = stored[i];
-          if (!s.ok && opt.retry_failed) continue;  // rerun anyway
+          const StoredRow& s = stored[i];
+          if (s.index >= total || !shard.contains(s.index)) continue;
+          if (!s.ok() && opt.retry_failed) continue;  // rerun anyway
           ++rehashed;
           const Point p = point_at(c, s.index);
+          const std::uint64_t stored_hash = row_hash(journal.row(s));  // pread: thread-safe
           try {
             // The typed scene first (no file read, no YAML), the checked one when it differs or has none.
             if (const auto quick = scenes->unchecked_scene(p))
-              s.current = fnv1a64(canonical_scene_text(*quick, base_dir, data_hashes)) == s.hash;
-            if (!s.current) {
+              current[i] = fnv1a64(canonical_scene_text(*quick, base_dir, data_hashes)) == stored_hash;
+            if (!current[i]) {
               std::uint64_t h = 0;
               try {
                 h = fnv1a64(canonical_scene_text(scenes->scene(p), base_dir, data_hashes));
               } catch (const std::exception& e) {  // an invalid point is stored with the hash of its error
                 h = fnv1a64("invalid point: " + std::string(e.what()));
               }
-              s.current = h == s.hash;
+              current[i] = h == stored_hash;
             }
           } catch (const std::exception&) {
-            s.current = false;  // the build stage below reports it
+            current[i] = 0;  // the build stage below reports it
           }
         }
       });
@@ -389,8 +395,8 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
       const std::uint64_t index = next;
       next += shard.count;
       while (cursor < stored.size() && stored[cursor].index < index) ++cursor;
-      const Stored* st = cursor < stored.size() && stored[cursor].index == index ? &stored[cursor] : nullptr;
-      if (st && st->current && (st->ok || !opt.retry_failed)) {
+      const StoredRow* st = cursor < stored.size() && stored[cursor].index == index ? &stored[cursor] : nullptr;
+      if (st && current[cursor] && (st->ok() || !opt.retry_failed)) {
         ++rep.skipped;
         progress.skipped_one();
         continue;
@@ -406,13 +412,14 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
         job->hash = fnv1a64("invalid point: " + job->error);
       }
       if (st) {
-        if (st->hash == job->hash && (st->ok || !opt.retry_failed)) {
+        const bool same = row_hash(journal.row(*st)) == job->hash;  // pread of an old row: safe while the writer appends
+        if (same && (st->ok() || !opt.retry_failed)) {
           ++rep.skipped;
           progress.skipped_one();
           continue;
         }
         // Stored from another scene or other data: rerun; the new row supersedes the stale one.
-        if (st->hash != job->hash) ++rep.changed;
+        if (!same) ++rep.changed;
       }
       const Point& p = job->point;
       for (const std::string& k : varied_keys) {
@@ -488,14 +495,19 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
   progress.finish();
   journal.sync();
   rep.syncs = journal.syncs();
+
+  auto mine = [&](std::uint64_t index) { return index < total && shard.contains(index); };
+  // points.csv is rewritten unless it is known to be the journal's already: nothing appended or
+  // dropped now, and inputs.txt was there (written only after points.csv at the end of a run,
+  // removed before a run appends anything) and unchanged.
+  const bool points_current = rep.trusted && rep.ran == 0 && rep.dropped_lines == 0 && fs::exists(rep.store / "points.csv");
+  journal.settle();
+  if (!points_current) journal.write_points(rep.store, mine);
   // Every stored point of the shard is now checked against (or computed from) these inputs.
   if (!opt.build_id.empty())
     write_file_durably(inputs_path, inputs_text(c, opt.build_id, shard, data_hashes.inputs(), data_hashes));
-
-  auto mine = [&](std::uint64_t index) { return index < total && shard.contains(index); };
-  journal.write_points(rep.store, mine);
-  for (const auto& [index, e] : journal.entries())
-    if (mine(index)) (e.ok ? rep.ok : rep.failed) += 1;
+  for (const StoredRow& e : journal.entries())
+    if (mine(e.index)) (e.ok() ? rep.ok : rep.failed) += 1;
   rep.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return rep;
 }
