@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <functional>
 #include <map>
+#include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -72,6 +74,19 @@ MergeReport merge_stores(const std::vector<fs::path>& inputs, const fs::path& ou
     }
   }
   const std::size_t status_col = Journal::status_column(header);
+  // Series files (series.csv) of the inputs that have one: one set of columns for all.
+  std::vector<std::unique_ptr<SeriesFile>> series(inputs.size());
+  std::string series_header;
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    if (!fs::exists(inputs[i] / "series.csv")) continue;
+    series[i] = std::make_unique<SeriesFile>(inputs[i], false);
+    std::string h = "index";
+    for (const std::string& col : series[i]->columns()) h += "," + col;
+    if (series_header.empty()) series_header = h;
+    else if (h != series_header)
+      throw std::runtime_error("merge: " + (inputs[i] / "series.csv").string() + " has other series columns (" + h +
+                               ") than the first input's (" + series_header + ")");
+  }
   // Visits every point index once, ascending, with the inputs holding it (in input order).
   auto for_each_point = [&](const std::function<void(std::uint64_t, const std::vector<std::size_t>&)>& visit) {
     std::vector<std::size_t> pos(stores.size(), 0), holders;
@@ -115,12 +130,23 @@ MergeReport merge_stores(const std::vector<fs::path>& inputs, const fs::path& ou
   AtomicFileWriter journal(out / "journal.csv", Durability::synced), points(out / "points.csv", Durability::synced);
   journal.write(header + ",check\n");
   points.write(header + "\n");
+  std::optional<AtomicFileWriter> series_out;
+  if (!series_header.empty()) {
+    series_out.emplace(out / "series.csv", Durability::synced);
+    series_out->write(series_header + "\n");
+  }
   for_each_point([&](std::uint64_t index, const std::vector<std::size_t>& holders) {
     const auto it = holders.size() > 1 ? chosen.find(index) : chosen.end();
     const std::size_t input = it != chosen.end() ? it->second : holders[0];
     const std::string row = row_of(input, index);
     journal.write(row + "," + hex16(fnv1a64(row)) + "\n");
     points.write(row + "\n");
+    // The point's series block from the input whose row is kept, when it has the row's hash.
+    if (series_out && series[input]) {
+      const auto f = csv_split(row);
+      const SeriesBlock* b = series[input]->find(index);
+      if (b && hex16(b->hash) == f.at(1)) series_out->write(series_block(index, b->hash, series[input]->rows(*b)));
+    }
     ++rep.rows;
     if (csv_split(row).at(status_col) != "ok") ++rep.failed;
   });
@@ -146,6 +172,7 @@ MergeReport merge_stores(const std::vector<fs::path>& inputs, const fs::path& ou
         if (e.path().extension() == ".csv")
           fs::copy_file(e.path(), out / "series" / e.path().filename(), fs::copy_options::skip_existing);
     }
+  if (series_out) series_out->commit();
   journal.commit();
   points.commit();
   return rep;

@@ -12,12 +12,14 @@
 //                   written atomically (temp + rename) at the end of every run and by merge.
 //   provenance.yaml campaign file and its hash, project version, build type, date: written once.
 //   campaign.yaml   a copy of the campaign file as it was when the store was started.
-//   series/HASH.csv optional per-point series (campaign `series: true`).
+//   series.csv      optional series of every point, one block per point (campaign `series: true`;
+//                   SeriesFile below). Stores written before it hold series/HASH.csv per point.
 //   .lock           flock: one sweep per store at a time.
 #include <chrono>
 #include <cstdint>
 #include <functional>
 #include <filesystem>
+#include <map>
 #include <span>
 #include <string>
 #include <string_view>
@@ -98,8 +100,10 @@ class Journal {
   // thread-safe: one writer, and entries() must not be read concurrently.
   void append(const std::string& row);
 
-  // fdatasync() of the rows appended since the last one (none: nothing to do).
+  // fdatasync() of the rows appended since the last one (none: nothing to do), after calling the
+  // hook set here (the sweep syncs series.csv first: a synced row implies its synced series).
   void sync();
+  void before_sync(std::function<void()> hook) { before_sync_ = std::move(hook); }
   std::uint64_t syncs() const { return syncs_; }  // fdatasync calls so far
 
   // The row text of an entry (thread-safe: pread).
@@ -125,6 +129,7 @@ class Journal {
   std::uint64_t syncs_ = 0;
   std::chrono::steady_clock::time_point last_sync_;
   RowIndex index_;
+  std::function<void()> before_sync_;
 };
 
 // The rows of a store, read-only (merge, plot, tests): the journal's valid rows (torn and corrupt
@@ -152,6 +157,71 @@ class StoreReader {
   bool journal_ = false;  // lines end with ",checksum"
   int fd_ = -1;
 };
+
+// DIR/series.csv (campaign `series: true`): the sampled series of every point of the store in
+// one append-only file, a block per point, appended by the sweep's writer stage:
+//   index,t,Q,A                     header: "index", then the series columns (those of the first
+//                                   point of the store's shard, output.series; every block has them)
+//   7,0,0,0                         the block's rows: the point's index, then one sample
+//   7,0.001,0.52,1.1e-06
+//   #end,7,HASH,2,CHECKSUM          trailer: index, scene hash, rows, FNV-1a 64 of the rows' bytes
+// A block counts only whole (trailer present, checksum matching): after kill -9 during a write
+// the file is good blocks plus at most one torn one, which the next sweep cuts off (the point
+// reruns: its block is written, and synced, before its journal row). The last block of an index
+// wins; at the end of a run the file is rewritten without superseded blocks when it holds any, so
+// a finished store's series.csv reads as one CSV: pandas.read_csv(".../series.csv", comment="#").
+struct SeriesBlock {
+  std::uint64_t index = 0, hash = 0;
+  std::uint64_t offset = 0, end = 0;  // the rows' bytes [offset, end) (the trailer starts at end)
+};
+
+// A block as series.csv holds it: `rows` (whole lines) and their trailer.
+std::string series_block(std::uint64_t index, std::uint64_t hash, const std::string& rows);
+
+class SeriesFile {
+ public:
+  // Opens DIR/series.csv for reading (append = false) or, creating it with `columns` when absent
+  // and cutting off a torn or corrupt tail, for appending. A header other than "index" + columns
+  // (when columns are given) → std::runtime_error.
+  SeriesFile(const std::filesystem::path& dir, bool append, const std::vector<std::string>& columns = {});
+  ~SeriesFile();
+  SeriesFile(const SeriesFile&) = delete;
+  SeriesFile& operator=(const SeriesFile&) = delete;
+
+  const std::vector<std::string>& columns() const { return columns_; }  // without "index"
+  std::size_t dropped_bytes() const { return dropped_; }               // cut off at open
+  // The last whole block of `index` as of the open (nullptr: none).
+  const SeriesBlock* find(std::uint64_t index) const;
+  bool superseded() const { return superseded_; }  // an index with more than one block (as opened or appended)
+  const std::vector<SeriesBlock>& blocks() const { return blocks_; }  // the last of each index, as opened
+  // The rows of a block ("index,value,...\n" lines) (thread-safe: pread).
+  std::string rows(const SeriesBlock& b) const;
+
+  // Appends one block: `rows` are whole lines, each starting with the index. Not thread-safe.
+  void append(std::uint64_t index, std::uint64_t hash, const std::string& rows);
+  void sync();  // fdatasync when anything was appended since the last one
+  // Rewrites the file atomically with only the last block of each index for which
+  // keep(index, hash) holds (streamed: the blocks are copied by offset).
+  void compact(const std::function<bool(std::uint64_t, std::uint64_t)>& keep);
+
+ private:
+  std::filesystem::path path_;
+  std::string header_;
+  std::vector<std::string> columns_;
+  std::vector<SeriesBlock> blocks_;  // sorted by index (last block of each), as opened
+  std::vector<std::uint64_t> appended_;  // indices appended since the open
+  int fd_ = -1;
+  std::uint64_t size_ = 0;
+  std::size_t dropped_ = 0;
+  bool superseded_ = false, unsynced_ = false;
+};
+
+// The series of stored points as CSV text (a header of the series columns, then one row per
+// sample, without the index column), by point index: from DIR/series.csv, the block whose scene
+// hash is that of the point's row, or, in a store written before series.csv, series/HASH.csv.
+// Points without series (not stored, failed, a campaign without `series: true`) are absent.
+std::map<std::uint64_t, std::string> read_point_series(const std::filesystem::path& dir,
+                                                       const std::vector<std::uint64_t>& indices);
 
 // An exclusive lock on DIR/.lock held for the object's lifetime (std::runtime_error when another
 // process holds it).

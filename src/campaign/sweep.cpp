@@ -55,6 +55,8 @@ struct Job {
   std::string error;                // non-empty: failed
   std::string row;
   bool failed = false;
+  bool has_series = false;   // series_rows is this point's block for series.csv
+  std::string series_rows;   // "index,sample...\n" lines
 };
 
 std::string utc_now() {
@@ -300,7 +302,7 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
   // may have left some of it), including our temporary files (".NAME.tmp-*") and figures.
   if (fs::is_directory(rep.store))
     for (const auto& e : fs::directory_iterator(rep.store)) {
-      static const char* const known[] = {".lock", "campaign.yaml", "provenance.yaml", "journal.csv", "points.csv", "series", kInputsFile};
+      static const char* const known[] = {".lock", "campaign.yaml", "provenance.yaml", "journal.csv", "points.csv", "series", "series.csv", kInputsFile};
       const std::string n = e.path().filename().string();
       if (std::find(std::begin(known), std::end(known), n) == std::end(known) && n.find(".tmp-") == std::string::npos &&
           e.path().extension() != ".png" && e.path().extension() != ".svg" && e.path().extension() != ".pdf" &&
@@ -319,7 +321,30 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
   // move while the writer stage appends (each point is appended at most once per run).
   Journal journal(rep.store, header, opt.sync, rep.points);
   rep.dropped_lines = journal.dropped_lines();
-  if (c.series) fs::create_directories(rep.store / "series");
+  // Series: one append-only file (store.hpp, SeriesFile), its columns those of the shard's first
+  // point (every point's block has them), synced before the journal so that a synced row
+  // implies its synced series.
+  std::optional<SeriesFile> series;
+  if (c.series) {
+    std::vector<std::string> columns;
+    if (!fs::exists(rep.store / "series.csv")) {
+      try {
+        columns = CampaignScenes(c).scene(point_at(c, shard.index)).output.series;
+      } catch (const std::exception&) {  // no first point or an invalid one: every column
+      }
+      if (columns.empty()) columns = all_series();
+    }
+    series.emplace(rep.store, true, columns);
+    journal.before_sync([&series] { series->sync(); });
+  }
+  const std::vector<std::string> series_columns = series ? series->columns() : std::vector<std::string>{};
+  // A stored ok point of a series campaign counts only with its series block (same scene hash):
+  // a power cut may keep a journal row whose block was lost.
+  auto has_series = [&](const StoredRow& st) {
+    if (!series || !st.ok()) return true;
+    const SeriesBlock* b = series->find(st.index);
+    return b && b->hash == row_hash(journal.row(st));
+  };
 
   const std::vector<std::string> varied_keys = c.varied_keys();
   const fs::path base_dir = c.file.parent_path();
@@ -396,7 +421,7 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
       next += shard.count;
       while (cursor < stored.size() && stored[cursor].index < index) ++cursor;
       const StoredRow* st = cursor < stored.size() && stored[cursor].index == index ? &stored[cursor] : nullptr;
-      if (st && current[cursor] && (st->ok() || !opt.retry_failed)) {
+      if (st && current[cursor] && (st->ok() || !opt.retry_failed) && has_series(*st)) {
         ++rep.skipped;
         progress.skipped_one();
         continue;
@@ -413,7 +438,7 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
       }
       if (st) {
         const bool same = row_hash(journal.row(*st)) == job->hash;  // pread of an old row: safe while the writer appends
-        if (same && (st->ok() || !opt.retry_failed)) {
+        if (same && (st->ok() || !opt.retry_failed) && has_series(*st)) {
           ++rep.skipped;
           progress.skipped_one();
           continue;
@@ -453,10 +478,18 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
                                       {"A_s", peak ? r->obs.A_s : 0.0}, {"t_peak", peak ? r->obs.t_peak : 0.0},
                                       {"t_end", r->obs.t_end}})
           if (job->error.empty() && !std::isfinite(x)) job->error = std::string("non-finite observable ") + name;
-        if (c.series && job->error.empty()) {
+        if (series && job->error.empty()) {  // the block's rows, formatted here in parallel
           std::ostringstream csv;
-          write_series_csv(csv, r->recorder.series(), job->scene->output.series);
-          write_file_durably(rep.store / "series" / (hex16(job->hash) + ".csv"), csv.str());
+          write_series_csv(csv, r->recorder.series(), series_columns);
+          const std::string text = csv.str();
+          const std::string prefix = std::to_string(job->point.index) + ",";
+          job->series_rows.reserve(text.size() + r->recorder.series().size() * prefix.size());
+          for (std::size_t at = text.find('\n') + 1; at < text.size();) {  // past the header
+            const std::size_t nl = text.find('\n', at);
+            job->series_rows.append(prefix).append(text, at, nl + 1 - at);
+            at = nl + 1;
+          }
+          job->has_series = true;
         }
       } catch (const SolverError& e) {
         job->error = std::string("solver error: ") + e.what();
@@ -480,6 +513,7 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
   };
 
   auto store = [&](std::shared_ptr<Job> job) {
+    if (job->has_series) series->append(job->point.index, job->hash, job->series_rows);  // before its row
     journal.append(job->row);
     ++rep.ran;
     rep.failed_now += job->failed ? 1 : 0;
@@ -503,6 +537,20 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
   const bool points_current = rep.trusted && rep.ran == 0 && rep.dropped_lines == 0 && fs::exists(rep.store / "points.csv");
   journal.settle();
   if (!points_current) journal.write_points(rep.store, mine);
+  // series.csv without superseded blocks or blocks of points no longer ok (streamed rewrite;
+  // only when it holds any).
+  if (series) {
+    bool stale = series->superseded();
+    for (const SeriesBlock& b : series->blocks()) {
+      const StoredRow* e = journal.find(b.index);
+      stale = stale || !e || !e->ok();
+    }
+    if (stale)
+      series->compact([&](std::uint64_t index, std::uint64_t hash) {
+        const StoredRow* e = journal.find(index);
+        return e && e->ok() && row_hash(journal.row(*e)) == hash;
+      });
+  }
   // Every stored point of the shard is now checked against (or computed from) these inputs.
   if (!opt.build_id.empty())
     write_file_durably(inputs_path, inputs_text(c, opt.build_id, shard, data_hashes.inputs(), data_hashes));
