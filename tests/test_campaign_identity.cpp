@@ -49,7 +49,7 @@ std::vector<std::string> column(const fs::path& store, const std::string& name) 
   const auto at = static_cast<std::size_t>(std::find(header.begin(), header.end(), name) - header.begin());
   REQUIRE(at < header.size());
   std::vector<std::string> out;
-  for (const auto& [index, span] : s.rows()) out.push_back(csv_split(s.row(span)).at(at));
+  for (const StoredRow& r : s.rows()) out.push_back(csv_split(s.row(r)).at(at));
   return out;
 }
 

@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -16,6 +17,9 @@
 #include "campaign/sweep.hpp"
 #include "report/heatmap.hpp"
 #include "campaign/campaign_load.hpp"
+#include "campaign/campaign_scenes.hpp"
+#include "observe/series_csv.hpp"
+#include "observe/simulate.hpp"
 
 namespace fs = std::filesystem;
 using namespace asperity;
@@ -85,10 +89,11 @@ TEST_CASE("journal rows survive a reopen and a torn last line is dropped", "[cam
     Journal j(d, kHeader);
     CHECK(j.dropped_lines() == 1);
     REQUIRE(j.entries().size() == 2);
-    CHECK(j.entries().at(0).hash == 0xaa);
-    CHECK(j.entries().at(0).ok);
-    CHECK_FALSE(j.entries().at(1).ok);
-    CHECK(j.row(j.entries().at(1)) == "1,00000000000000bb,g,failed,\"a, b\"");
+    REQUIRE(j.find(0));
+    CHECK(j.row(*j.find(0)) == "0,00000000000000aa,g,ok,1.5");
+    CHECK(j.find(0)->ok());
+    CHECK_FALSE(j.find(1)->ok());
+    CHECK(j.row(*j.find(1)) == "1,00000000000000bb,g,failed,\"a, b\"");
     CHECK(slurp(d / "journal.csv") == full.substr(0, third));  // the torn bytes are gone
   }
   // Appending after recovery gives well-formed lines again.
@@ -114,8 +119,9 @@ TEST_CASE("journal lines with a bad checksum are dropped and the header is check
     Journal j(d, kHeader);
     CHECK(j.dropped_lines() == 1);
     CHECK(j.entries().size() == 2);
-    CHECK(j.entries().count(1) == 0);
-    CHECK(j.row(j.entries().at(2)) == "2,00000000000000cc,g,ok,3.5");
+    CHECK(j.find(1) == nullptr);
+    REQUIRE(j.find(2));
+    CHECK(j.row(*j.find(2)) == "2,00000000000000cc,g,ok,3.5");
   }
   CHECK_THROWS_WITH(Journal(d, "index,hash,grid,status,y"), Contains("another campaign"));
 }
@@ -275,7 +281,7 @@ TEST_CASE("a point's scene does not depend on the points built before it", "[cam
   CHECK(scenes.scene(point_at(c, 10)).model.eta == 100);
 }
 
-TEST_CASE("a per-point time limit fails the point and series are stored by hash", "[campaign]") {
+TEST_CASE("a per-point time limit fails the point and series are read back per point", "[campaign]") {
   const fs::path d = temp_dir();
   std::ofstream(d / "limit.yaml") << "name: limit\nscenes: [" << (kData / "tiny_scene.yaml").string() << "]\n"
                                   << "time_limit: 1e-9\naxes: {model.eta: [50, 100]}\n";
@@ -287,15 +293,87 @@ TEST_CASE("a per-point time limit fails the point and series are stored by hash"
                                    << "series: true\naxes: {model.eta: [50, 100]}\n";
   const Campaign c = load_campaign(d / "series.yaml");
   CHECK(sweep(c, d / "series", 2).ok == 2);
-  const auto rows = lines_of(slurp(d / "series" / "points.csv"));
-  REQUIRE(rows.size() == 3);
-  for (std::size_t i = 1; i < rows.size(); ++i) {
-    const fs::path csv = d / "series" / "series" / (csv_split(rows[i])[1] + ".csv");
-    REQUIRE(fs::exists(csv));
-    const auto series = lines_of(slurp(csv));
+  const auto texts = read_point_series(d / "series", {0, 1});
+  REQUIRE(texts.size() == 2);
+  for (const auto& [index, text] : texts) {
+    const auto series = lines_of(text);
     CHECK(series.at(0) == "t,Q,A");  // the columns tiny_scene.yaml asks for
-    CHECK(series.size() > 100);      // 0.3 s sampled every 1 ms
+    CHECK(series.size() == 302);     // 0.3 s sampled every 1 ms: t = 0, 0.001, ..., 0.3
   }
+}
+
+namespace {
+
+// Each point of `c` simulated alone, its series written as `asperity run` writes series.csv.
+std::map<std::uint64_t, std::string> series_truth(const Campaign& c) {
+  std::map<std::uint64_t, std::string> truth;
+  const CampaignScenes scenes(c);
+  for (std::uint64_t i = 0; i < c.size(); ++i) {
+    const Scene sc = scenes.scene(point_at(c, i));
+    std::ostringstream t;
+    write_series_csv(t, simulate(sc).recorder.series(), sc.output.series);
+    truth[i] = t.str();
+  }
+  return truth;
+}
+
+}  // namespace
+
+TEST_CASE("series: one append-only file per store, read back per point, torn tail cut off, merged", "[campaign][series]") {
+  const fs::path d = temp_dir();
+  std::ofstream(d / "series.yaml") << "name: series\nscenes: [" << (kData / "tiny_scene.yaml").string() << "]\n"
+                                   << "series: true\naxes: {model.eta: [50, 100, 150]}\n";
+  const Campaign c = load_campaign(d / "series.yaml");
+  const auto truth = series_truth(c);
+  const fs::path s = d / "s";
+  REQUIRE(sweep(c, s, 1).ok == 3);
+  CHECK_FALSE(fs::exists(s / "series"));  // no file per point
+  CHECK(read_point_series(s, {0, 1, 2, 7}) == truth);  // 7: no such point
+  // One CSV: a header, every sample of every point, a trailer (a comment to pandas) per point.
+  const std::string full = slurp(s / "series.csv");
+  const std::string journal = slurp(s / "journal.csv");
+  const auto lines = lines_of(full);
+  CHECK(lines.front() == "index,t,Q,A");
+  std::size_t samples = 0, trailers = 0;
+  for (const auto& [i, t] : truth) samples += lines_of(t).size() - 1;
+  for (const auto& l : lines) trailers += l.rfind("#end,", 0) == 0 ? 1 : 0;
+  CHECK(trailers == 3);
+  CHECK(lines.size() == 1 + samples + 3);
+
+  // kill -9 while the last block was written: its journal row is not there yet (the block goes
+  // first). At any cut, the resume cuts the torn block off and reruns that point only.
+  const std::size_t last = full.rfind("#end,", full.rfind("#end,") - 1);
+  const std::size_t start = full.find('\n', last) + 1;  // the last block's first byte
+  const std::string journal_cut = journal.substr(0, journal.rfind('\n', journal.size() - 2) + 1);
+  for (const std::size_t cut : {start + 1, start + (full.size() - start) / 3, full.size() - 30, full.size() - 1}) {
+    INFO("series.csv cut at " << cut << " of " << full.size());
+    std::ofstream(s / "series.csv", std::ios::binary | std::ios::trunc) << full.substr(0, cut);
+    std::ofstream(s / "journal.csv", std::ios::binary | std::ios::trunc) << journal_cut;
+    const SweepReport r = sweep(c, s, 1);
+    CHECK(r.ran == 1);
+    CHECK(slurp(s / "series.csv") == full);
+  }
+  // A power cut that kept a journal row but not its block: that point reruns.
+  std::ofstream(s / "series.csv", std::ios::binary | std::ios::trunc) << full.substr(0, start);
+  CHECK(sweep(c, s, 1).ran == 1);
+  CHECK(slurp(s / "series.csv") == full);
+  // A block superseded by a later one of another hash (as a rerun with changed data appends):
+  // the point whose last block does not match its row reruns, and the end of the run leaves one
+  // block per point.
+  {
+    SeriesFile f(s, true);
+    f.append(0, 0x1234, "0,1,2,3\n");
+  }
+  CHECK(sweep(c, s, 1).ran == 1);
+  CHECK(slurp(s / "series.csv") == full);
+
+  // Merged shards hold every point's block.
+  sweep(c, d / "a", 1, Shard{0, 2});
+  sweep(c, d / "b", 1, Shard{1, 2});
+  CHECK(read_point_series(d / "a", {0, 1, 2}).size() == 2);
+  merge_stores({d / "b", d / "a"}, d / "m");
+  CHECK(read_point_series(d / "m", {0, 1, 2}) == truth);
+  CHECK(slurp(d / "m" / "series.csv") == full);  // blocks in index order, as the 1-thread run wrote them
 }
 
 TEST_CASE("a store with points.csv but no journal is plotted merged and resumed from points.csv", "[campaign]") {
@@ -345,7 +423,8 @@ TEST_CASE("store journal group commit: one fdatasync per group of points, every 
     Journal j(d, kHeader, JournalSync{1, 0});
     CHECK(j.dropped_lines() == 0);
     REQUIRE(j.entries().size() == 10);
-    CHECK(j.row(j.entries().at(9)) == "9,00000000000000aa,g,ok,9");
+    REQUIRE(j.find(9));
+    CHECK(j.row(*j.find(9)) == "9,00000000000000aa,g,ok,9");
     j.append("10,00000000000000aa,g,ok,10");
     CHECK(j.syncs() == 1);  // per point
   }
@@ -367,4 +446,30 @@ TEST_CASE("store journal group commit: one fdatasync per group of points, every 
   CHECK(grouped.syncs == 2);
   CHECK(values_of(d / "grouped") == values_of(d / "per_point"));
   CHECK(run_sweep(c, o).syncs == 0);  // a resume with nothing to run appends nothing
+}
+
+TEST_CASE("the row index holds 16 bytes a row and keeps the last row written of each index", "[campaign][store]") {
+  STATIC_REQUIRE(sizeof(StoredRow) == 16);
+  RowIndex idx;
+  // Indices out of order (the sweep journals out of order), index 5 written three times.
+  const std::uint64_t rows[][3] = {{5, 0, 1}, {2, 10, 1}, {9, 20, 0}, {5, 30, 0}, {0, 40, 1}, {5, 50, 1}, {2, 60, 0}};
+  for (const auto& r : rows) idx.add(r[0], r[1], r[2] == 1);
+  CHECK(idx.rows().empty());  // nothing settled yet
+  idx.settle();
+  REQUIRE(idx.rows().size() == 4);
+  std::vector<std::uint64_t> order;
+  for (const StoredRow& r : idx.rows()) order.push_back(r.index);
+  CHECK(order == std::vector<std::uint64_t>{0, 2, 5, 9});
+  CHECK(idx.find(5)->offset() == 50);
+  CHECK(idx.find(5)->ok());
+  CHECK(idx.find(2)->offset() == 60);
+  CHECK_FALSE(idx.find(2)->ok());
+  CHECK(idx.find(3) == nullptr);
+  // Added later: settled in with the rest, still the last written wins.
+  idx.add(0, 70, false);
+  idx.add(7, 80, true);
+  idx.settle();
+  REQUIRE(idx.rows().size() == 5);
+  CHECK(idx.find(0)->offset() == 70);
+  CHECK(idx.find(7)->ok());
 }

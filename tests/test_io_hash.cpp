@@ -25,3 +25,11 @@ TEST_CASE("hex16 writes 16 lowercase hex digits, leading zeros kept", "[io][hash
   CHECK(hex16(~0ull) == "ffffffffffffffff");
   CHECK(std::stoull(hex16(0x85944171f73967e8ull), nullptr, 16) == 0x85944171f73967e8ull);
 }
+
+TEST_CASE("fnv1a64 of text given in pieces equals that of the whole", "[io][hash]") {
+  // FNV-1a 64 of "a" (published test vector: af63dc4c8601ec8c).
+  CHECK(fnv1a64_extend(fnv1a64(""), "a") == 0xaf63dc4c8601ec8cull);
+  const std::string text = "0,0.001,0.52\n0,0.002,0.53\n";
+  for (std::size_t cut = 0; cut <= text.size(); ++cut)
+    CHECK(fnv1a64_extend(fnv1a64(text.substr(0, cut)), std::string_view(text).substr(cut)) == fnv1a64(text));
+}

@@ -1,6 +1,10 @@
 #include "campaign/merge.hpp"
 
+#include <algorithm>
+#include <functional>
 #include <map>
+#include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -50,15 +54,11 @@ MergeReport merge_stores(const std::vector<fs::path>& inputs, const fs::path& ou
     throw std::runtime_error("merge: " + out.string() + " already holds a store; choose a new --out");
   MergeReport rep;
   std::string header, campaign_hash, provenance;
-  // Only the index of each input is held (index → input, offset, length), never the rows' text:
-  // memory does not grow with the rows.
+  // Only the index of each input is held (16 bytes a row), never the rows' text, and the inputs
+  // are merged by walking their sorted indexes side by side: memory does not grow with the rows'
+  // text, and holds no index of the output.
   std::vector<StoreReader> stores;
   stores.reserve(inputs.size());
-  struct Kept {
-    std::size_t input;
-    RowSpan span;
-  };
-  std::map<std::uint64_t, Kept> rows;
   for (std::size_t i = 0; i < inputs.size(); ++i) {
     const fs::path& in = inputs[i];
     const StoreReader& s = stores.emplace_back(in);
@@ -72,30 +72,84 @@ MergeReport merge_stores(const std::vector<fs::path>& inputs, const fs::path& ou
         throw std::runtime_error("merge: " + in.string() + " comes from another campaign text than " + inputs[0].string() +
                                  " (" + h + " vs " + campaign_hash + ")");
     }
-    const std::size_t status_col = Journal::status_column(header);
-    for (const auto& [index, span] : s.rows()) {
-      const auto [it, fresh] = rows.emplace(index, Kept{i, span});
-      if (fresh) continue;
-      ++rep.duplicates;
-      const std::string kept = stores[it->second.input].row(it->second.span), row = s.row(span);
-      check_same_point(index, kept, row, inputs[it->second.input], in, header);
-      // Both agree (or one failed): keep a row that ran to the end.
-      if (csv_split(kept).at(status_col) != "ok") it->second = Kept{i, span};
-    }
   }
+  const std::size_t status_col = Journal::status_column(header);
+  // Series files (series.csv) of the inputs that have one: one set of columns for all.
+  std::vector<std::unique_ptr<SeriesFile>> series(inputs.size());
+  std::string series_header;
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    if (!fs::exists(inputs[i] / "series.csv")) continue;
+    series[i] = std::make_unique<SeriesFile>(inputs[i], false);
+    std::string h = "index";
+    for (const std::string& col : series[i]->columns()) h += "," + col;
+    if (series_header.empty()) series_header = h;
+    else if (h != series_header)
+      throw std::runtime_error("merge: " + (inputs[i] / "series.csv").string() + " has other series columns (" + h +
+                               ") than the first input's (" + series_header + ")");
+  }
+  // Visits every point index once, ascending, with the inputs holding it (in input order).
+  auto for_each_point = [&](const std::function<void(std::uint64_t, const std::vector<std::size_t>&)>& visit) {
+    std::vector<std::size_t> pos(stores.size(), 0), holders;
+    for (;;) {
+      std::uint64_t next = 0;
+      bool any = false;
+      for (std::size_t i = 0; i < stores.size(); ++i)
+        if (pos[i] < stores[i].rows().size() && (!any || stores[i].rows()[pos[i]].index < next))
+          next = stores[i].rows()[pos[i]].index, any = true;
+      if (!any) return;
+      holders.clear();
+      for (std::size_t i = 0; i < stores.size(); ++i)
+        if (pos[i] < stores[i].rows().size() && stores[i].rows()[pos[i]].index == next) holders.push_back(i);
+      visit(next, holders);
+      for (const std::size_t i : holders) ++pos[i];
+    }
+  };
+  auto row_of = [&](std::size_t input, std::uint64_t index) {
+    const auto r = stores[input].rows();
+    const auto it = std::lower_bound(r.begin(), r.end(), index, [](const StoredRow& e, std::uint64_t i) { return e.index < i; });
+    return stores[input].row(*it);
+  };
+  // First pass, before anything is written: points held by more than one input must agree; the
+  // one kept is the first that ran to the end (only these choices are held).
+  std::map<std::uint64_t, std::size_t> chosen;
+  for_each_point([&](std::uint64_t index, const std::vector<std::size_t>& holders) {
+    if (holders.size() < 2) return;
+    std::size_t kept = holders[0];
+    std::string kept_row = row_of(kept, index);
+    for (std::size_t k = 1; k < holders.size(); ++k) {
+      ++rep.duplicates;
+      const std::string row = row_of(holders[k], index);
+      check_same_point(index, kept_row, row, inputs[kept], inputs[holders[k]], header);
+      // Both agree (or one failed): keep a row that ran to the end.
+      if (csv_split(kept_row).at(status_col) != "ok") kept = holders[k], kept_row = row;
+    }
+    chosen[index] = kept;
+  });
   fs::create_directories(out);
   StoreLock lock(out);
-  const std::size_t status_col = Journal::status_column(header);
   AtomicFileWriter journal(out / "journal.csv", Durability::synced), points(out / "points.csv", Durability::synced);
   journal.write(header + ",check\n");
   points.write(header + "\n");
-  for (const auto& [index, k] : rows) {
-    const std::string row = stores[k.input].row(k.span);
+  std::optional<AtomicFileWriter> series_out;
+  if (!series_header.empty()) {
+    series_out.emplace(out / "series.csv", Durability::synced);
+    series_out->write(series_header + "\n");
+  }
+  for_each_point([&](std::uint64_t index, const std::vector<std::size_t>& holders) {
+    const auto it = holders.size() > 1 ? chosen.find(index) : chosen.end();
+    const std::size_t input = it != chosen.end() ? it->second : holders[0];
+    const std::string row = row_of(input, index);
     journal.write(row + "," + hex16(fnv1a64(row)) + "\n");
     points.write(row + "\n");
+    // The point's series block from the input whose row is kept, when it has the row's hash.
+    if (series_out && series[input]) {
+      const auto f = csv_split(row);
+      const SeriesBlock* b = series[input]->find(index);
+      if (b && hex16(b->hash) == f.at(1)) series_out->write(series_block(index, b->hash, series[input]->rows(*b)));
+    }
     ++rep.rows;
     if (csv_split(row).at(status_col) != "ok") ++rep.failed;
-  }
+  });
   // Provenance of the first input, with its shard replaced by the list of merged stores.
   std::string prov;
   for (std::size_t pos = 0; pos < provenance.size();) {
@@ -118,6 +172,7 @@ MergeReport merge_stores(const std::vector<fs::path>& inputs, const fs::path& ou
         if (e.path().extension() == ".csv")
           fs::copy_file(e.path(), out / "series" / e.path().filename(), fs::copy_options::skip_existing);
     }
+  if (series_out) series_out->commit();
   journal.commit();
   points.commit();
   return rep;

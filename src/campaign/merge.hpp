@@ -13,7 +13,8 @@ struct MergeReport {
 
 // Reads the journals of `inputs` (torn lines ignored), checks they come from the same campaign
 // text and store format, and writes `out` (journal.csv, points.csv, provenance.yaml with the
-// list of inputs, campaign.yaml, series/). Throws std::runtime_error, before writing anything, on
+// list of inputs, campaign.yaml, series.csv with the block of each point whose row is kept,
+// and the per-point files series/HASH.csv of stores written before series.csv). Throws std::runtime_error, before writing anything, on
 // a mismatch, on one point stored with two different scene hashes (the hash covers the bytes of
 // the junctions and measured CSVs: one store is stale) or with two different values, or when
 // `out` already holds a store. A point that failed in one input and ran in another keeps the

@@ -3,6 +3,7 @@
 #include <omp.h>
 #include <unistd.h>
 
+#include <charconv>
 #include <chrono>
 #include <algorithm>
 #include <atomic>
@@ -54,6 +55,8 @@ struct Job {
   std::string error;                // non-empty: failed
   std::string row;
   bool failed = false;
+  bool has_series = false;   // series_rows is this point's block for series.csv
+  std::string series_rows;   // "index,sample...\n" lines
 };
 
 std::string utc_now() {
@@ -214,12 +217,13 @@ std::vector<fs::path> listed_inputs(const std::string& text, const Campaign& c) 
   return files;
 }
 
-// A point of this shard that the journal holds, ascending by index.
-struct Stored {
-  std::uint64_t index = 0, hash = 0;
-  bool ok = false;
-  bool current = false;  // its hash is the one its scene and data give now
-};
+// The scene hash of a stored row (its second field).
+std::uint64_t row_hash(const std::string& row) {
+  const std::size_t a = row.find(',') + 1, b = row.find(',', a);
+  std::uint64_t h = 0;
+  std::from_chars(row.data() + a, row.data() + (b == std::string::npos ? row.size() : b), h, 16);
+  return h;
+}
 
 }  // namespace
 
@@ -298,7 +302,7 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
   // may have left some of it), including our temporary files (".NAME.tmp-*") and figures.
   if (fs::is_directory(rep.store))
     for (const auto& e : fs::directory_iterator(rep.store)) {
-      static const char* const known[] = {".lock", "campaign.yaml", "provenance.yaml", "journal.csv", "points.csv", "series", kInputsFile};
+      static const char* const known[] = {".lock", "campaign.yaml", "provenance.yaml", "journal.csv", "points.csv", "series", "series.csv", kInputsFile};
       const std::string n = e.path().filename().string();
       if (std::find(std::begin(known), std::end(known), n) == std::end(known) && n.find(".tmp-") == std::string::npos &&
           e.path().extension() != ".png" && e.path().extension() != ".svg" && e.path().extension() != ".pdf" &&
@@ -310,21 +314,46 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
   StoreLock lock(rep.store);
   prepare_store(rep.store, c, opt);
   const std::string header = store_header(c);
-  Journal journal(rep.store, header, opt.sync);
-  rep.dropped_lines = journal.dropped_lines();
-  if (c.series) fs::create_directories(rep.store / "series");
-
   const std::uint64_t total = c.size();
   const Shard shard = opt.shard;
   rep.points = shard.size(total);
+  // Room for one row per point of the shard: the index the build stage reads (`stored`) does not
+  // move while the writer stage appends (each point is appended at most once per run).
+  Journal journal(rep.store, header, opt.sync, rep.points);
+  rep.dropped_lines = journal.dropped_lines();
+  // Series: one append-only file (store.hpp, SeriesFile), its columns those of the shard's first
+  // point (every point's block has them), synced before the journal so that a synced row
+  // implies its synced series.
+  std::optional<SeriesFile> series;
+  if (c.series) {
+    std::vector<std::string> columns;
+    if (!fs::exists(rep.store / "series.csv")) {
+      try {
+        columns = CampaignScenes(c).scene(point_at(c, shard.index)).output.series;
+      } catch (const std::exception&) {  // no first point or an invalid one: every column
+      }
+      if (columns.empty()) columns = all_series();
+    }
+    series.emplace(rep.store, true, columns);
+    journal.before_sync([&series] { series->sync(); });
+  }
+  const std::vector<std::string> series_columns = series ? series->columns() : std::vector<std::string>{};
+  // A stored ok point of a series campaign counts only with its series block (same scene hash):
+  // a power cut may keep a journal row whose block was lost.
+  auto has_series = [&](const StoredRow& st) {
+    if (!series || !st.ok()) return true;
+    const SeriesBlock* b = series->find(st.index);
+    return b && b->hash == row_hash(journal.row(st));
+  };
+
   const std::vector<std::string> varied_keys = c.varied_keys();
   const fs::path base_dir = c.file.parent_path();
 
-  // What the journal holds at the start (the build stage reads this, never the journal's own
-  // index, which the writer stage updates concurrently).
-  std::vector<Stored> stored;
-  for (const auto& [index, e] : journal.entries())
-    if (index < total && shard.contains(index)) stored.push_back({index, e.hash, e.ok});
+  // What the journal holds at the start, ascending by index (16 bytes a row; rows of other
+  // shards are skipped by the build stage), and whether each stored hash is the one its point's
+  // scene and data give now (1 byte a row).
+  const std::span<const StoredRow> stored = journal.entries();
+  std::vector<std::uint8_t> current(stored.size(), 0);
 
   FileHashes data_hashes;  // thread-safe: the check of stored points below hashes in parallel
   data_hashes.note(c.file);
@@ -344,7 +373,7 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
     remove_file_durably(inputs_path);
   }
   if (rep.trusted) {
-    for (Stored& s : stored) s.current = true;
+    std::fill(current.begin(), current.end(), 1);
   } else {
     tbb::enumerable_thread_specific<std::optional<CampaignScenes>> builders;
     std::atomic<std::uint64_t> rehashed{0};
@@ -353,25 +382,27 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
         std::optional<CampaignScenes>& scenes = builders.local();
         if (!scenes) scenes.emplace(c);
         for (std::size_t i = r.begin(); i != r.end(); ++i) {
-          Stored& s = stored[i];
-          if (!s.ok && opt.retry_failed) continue;  // rerun anyway
+          const StoredRow& s = stored[i];
+          if (s.index >= total || !shard.contains(s.index)) continue;
+          if (!s.ok() && opt.retry_failed) continue;  // rerun anyway
           ++rehashed;
           const Point p = point_at(c, s.index);
+          const std::uint64_t stored_hash = row_hash(journal.row(s));  // pread: thread-safe
           try {
             // The typed scene first (no file read, no YAML), the checked one when it differs or has none.
             if (const auto quick = scenes->unchecked_scene(p))
-              s.current = fnv1a64(canonical_scene_text(*quick, base_dir, data_hashes)) == s.hash;
-            if (!s.current) {
+              current[i] = fnv1a64(canonical_scene_text(*quick, base_dir, data_hashes)) == stored_hash;
+            if (!current[i]) {
               std::uint64_t h = 0;
               try {
                 h = fnv1a64(canonical_scene_text(scenes->scene(p), base_dir, data_hashes));
               } catch (const std::exception& e) {  // an invalid point is stored with the hash of its error
                 h = fnv1a64("invalid point: " + std::string(e.what()));
               }
-              s.current = h == s.hash;
+              current[i] = h == stored_hash;
             }
           } catch (const std::exception&) {
-            s.current = false;  // the build stage below reports it
+            current[i] = 0;  // the build stage below reports it
           }
         }
       });
@@ -389,8 +420,8 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
       const std::uint64_t index = next;
       next += shard.count;
       while (cursor < stored.size() && stored[cursor].index < index) ++cursor;
-      const Stored* st = cursor < stored.size() && stored[cursor].index == index ? &stored[cursor] : nullptr;
-      if (st && st->current && (st->ok || !opt.retry_failed)) {
+      const StoredRow* st = cursor < stored.size() && stored[cursor].index == index ? &stored[cursor] : nullptr;
+      if (st && current[cursor] && (st->ok() || !opt.retry_failed) && has_series(*st)) {
         ++rep.skipped;
         progress.skipped_one();
         continue;
@@ -406,13 +437,14 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
         job->hash = fnv1a64("invalid point: " + job->error);
       }
       if (st) {
-        if (st->hash == job->hash && (st->ok || !opt.retry_failed)) {
+        const bool same = row_hash(journal.row(*st)) == job->hash;  // pread of an old row: safe while the writer appends
+        if (same && (st->ok() || !opt.retry_failed) && has_series(*st)) {
           ++rep.skipped;
           progress.skipped_one();
           continue;
         }
         // Stored from another scene or other data: rerun; the new row supersedes the stale one.
-        if (st->hash != job->hash) ++rep.changed;
+        if (!same) ++rep.changed;
       }
       const Point& p = job->point;
       for (const std::string& k : varied_keys) {
@@ -446,10 +478,18 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
                                       {"A_s", peak ? r->obs.A_s : 0.0}, {"t_peak", peak ? r->obs.t_peak : 0.0},
                                       {"t_end", r->obs.t_end}})
           if (job->error.empty() && !std::isfinite(x)) job->error = std::string("non-finite observable ") + name;
-        if (c.series && job->error.empty()) {
+        if (series && job->error.empty()) {  // the block's rows, formatted here in parallel
           std::ostringstream csv;
-          write_series_csv(csv, r->recorder.series(), job->scene->output.series);
-          write_file_durably(rep.store / "series" / (hex16(job->hash) + ".csv"), csv.str());
+          write_series_csv(csv, r->recorder.series(), series_columns);
+          const std::string text = csv.str();
+          const std::string prefix = std::to_string(job->point.index) + ",";
+          job->series_rows.reserve(text.size() + r->recorder.series().size() * prefix.size());
+          for (std::size_t at = text.find('\n') + 1; at < text.size();) {  // past the header
+            const std::size_t nl = text.find('\n', at);
+            job->series_rows.append(prefix).append(text, at, nl + 1 - at);
+            at = nl + 1;
+          }
+          job->has_series = true;
         }
       } catch (const SolverError& e) {
         job->error = std::string("solver error: ") + e.what();
@@ -473,6 +513,7 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
   };
 
   auto store = [&](std::shared_ptr<Job> job) {
+    if (job->has_series) series->append(job->point.index, job->hash, job->series_rows);  // before its row
     journal.append(job->row);
     ++rep.ran;
     rep.failed_now += job->failed ? 1 : 0;
@@ -488,14 +529,33 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
   progress.finish();
   journal.sync();
   rep.syncs = journal.syncs();
+
+  auto mine = [&](std::uint64_t index) { return index < total && shard.contains(index); };
+  // points.csv is rewritten unless it is known to be the journal's already: nothing appended or
+  // dropped now, and inputs.txt was there (written only after points.csv at the end of a run,
+  // removed before a run appends anything) and unchanged.
+  const bool points_current = rep.trusted && rep.ran == 0 && rep.dropped_lines == 0 && fs::exists(rep.store / "points.csv");
+  journal.settle();
+  if (!points_current) journal.write_points(rep.store, mine);
+  // series.csv without superseded blocks or blocks of points no longer ok (streamed rewrite;
+  // only when it holds any).
+  if (series) {
+    bool stale = series->superseded();
+    for (const SeriesBlock& b : series->blocks()) {
+      const StoredRow* e = journal.find(b.index);
+      stale = stale || !e || !e->ok();
+    }
+    if (stale)
+      series->compact([&](std::uint64_t index, std::uint64_t hash) {
+        const StoredRow* e = journal.find(index);
+        return e && e->ok() && row_hash(journal.row(*e)) == hash;
+      });
+  }
   // Every stored point of the shard is now checked against (or computed from) these inputs.
   if (!opt.build_id.empty())
     write_file_durably(inputs_path, inputs_text(c, opt.build_id, shard, data_hashes.inputs(), data_hashes));
-
-  auto mine = [&](std::uint64_t index) { return index < total && shard.contains(index); };
-  journal.write_points(rep.store, mine);
-  for (const auto& [index, e] : journal.entries())
-    if (mine(index)) (e.ok ? rep.ok : rep.failed) += 1;
+  for (const StoredRow& e : journal.entries())
+    if (mine(e.index)) (e.ok() ? rep.ok : rep.failed) += 1;
   rep.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return rep;
 }

@@ -53,6 +53,9 @@ Command add_sweep_command(CLI::App& app);  // sweep_command.cpp
 // asperity merge DIR1 DIR2 ... --out DIR
 Command add_merge_command(CLI::App& app);  // merge_command.cpp
 
+// asperity export STORE --sqlite FILE
+Command add_export_command(CLI::App& app);  // export_command.cpp
+
 // asperity plot STORE --x KEY --y KEY --z COLUMN [--where COL=VALUE]... [--out FILE.png]
 Command add_plot_command(CLI::App& app);  // plot_command.cpp
 

@@ -56,6 +56,7 @@ int run_cli(int argc, char** argv) {
   commands.push_back(cli::add_run_command(app));
   commands.push_back(cli::add_sweep_command(app));
   commands.push_back(cli::add_merge_command(app));
+  commands.push_back(cli::add_export_command(app));
   commands.push_back(cli::add_plot_command(app));
   commands.push_back(cli::add_fit_command(app));
   commands.push_back(cli::add_generate_command(app));

@@ -67,9 +67,11 @@ int sweep(const SweepArgs& a, const Invocation& inv) {
                  static_cast<unsigned long long>(r.skipped), static_cast<unsigned long long>(r.ran),
                  static_cast<unsigned long long>(r.failed_now), r.wall_s);
     if (r.ran > 0) std::fprintf(stderr, " (%.2f points/s)", static_cast<double>(r.ran) / r.wall_s);
-    std::fprintf(stderr, "\n  store %s: %llu ok, %llu failed%s\n", (r.store / "points.csv").string().c_str(),
+    std::fprintf(stderr, "\n  store %s: %llu ok, %llu failed%s; %s\n", (r.store / "points.csv").string().c_str(),
                  static_cast<unsigned long long>(r.ok), static_cast<unsigned long long>(r.failed),
-                 r.dropped_lines ? (", " + std::to_string(r.dropped_lines) + " torn/corrupt journal line(s) dropped and rerun").c_str() : "");
+                 r.dropped_lines ? (", " + std::to_string(r.dropped_lines) + " torn/corrupt journal line(s) dropped and rerun").c_str() : "",
+                 r.trusted ? "stored hashes trusted (inputs.txt unchanged)"
+                           : (std::to_string(r.rehashed) + " stored point(s) re-hashed").c_str());
   }
   // Said even with --quiet: stored values were replaced.
   if (r.changed > 0)

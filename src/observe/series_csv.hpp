@@ -1,6 +1,6 @@
 #pragma once
-// series.csv, the sampled series of one run (a run folder's series.csv, a campaign store's
-// series/HASH.csv): a header of the chosen columns in all_series() order (t, X, V, Q, A,
+// series.csv, the sampled series of one run (a run folder's series.csv; the rows of a point's block
+// in a campaign store's series.csv): a header of the chosen columns in all_series() order (t, X, V, Q, A,
 // n_slipping, n_intact), then one row per sample, reals as %.17g (exact round trip), counts as
 // integers.
 #include <ostream>

@@ -9,10 +9,12 @@
 
 #include <cctype>
 #include <cmath>
+#include <map>
 #include <string>
 #include <vector>
 
 #include "campaign/campaign_load.hpp"
+#include "campaign/store.hpp"
 #include "campaign/sweep.hpp"
 #include "fit/fit_load.hpp"
 #include "io/input_error.hpp"
@@ -196,6 +198,15 @@ PYBIND11_MODULE(_asperity, m) {
     return d;
   }, py::arg("fit_file"), py::arg("out") = "", py::arg("threads") = 2, py::arg("profile") = true,
      py::arg("error_bars") = true);
+
+  m.def("store_series", [](const std::string& store, const std::vector<std::uint64_t>& indices) {
+    std::map<std::uint64_t, std::string> texts;
+    {
+      py::gil_scoped_release release;
+      texts = read_point_series(store, indices);
+    }
+    return texts;
+  }, py::arg("store"), py::arg("indices"));
 
   m.def("version", [] { return version_line(); });
 }

@@ -138,8 +138,8 @@ StoreTable::StoreTable(const fs::path& dir, const std::vector<std::string>& wher
     if (eq == std::string::npos) throw InputError("asperity plot", 0, "--where", "expected column=value, got '" + w + "'");
     filters.emplace_back(column(w.substr(0, eq), "--where"), w.substr(eq + 1));
   }
-  for (const auto& [index, span] : s.rows()) {
-    auto r = csv_split(s.row(span));
+  for (const StoredRow& stored : s.rows()) {
+    auto r = csv_split(s.row(stored));
     if (r.size() != cols.size()) continue;
     bool keep = true;
     for (const auto& [c, v] : filters) keep = keep && same_value(r[c], v);

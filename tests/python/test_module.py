@@ -81,6 +81,31 @@ def test_sweep_and_read_store(source, tmp_path):
     assert asperity.sweep(source / "tests" / "data" / "campaign" / "tiny.yaml", out=store, threads=1)["ran"] == 0
 
 
+def test_read_series_of_a_store_point(source, tmp_path):
+    # A series campaign: every point's samples in the store's series.csv, read back per point.
+    (tmp_path / "c.yaml").write_text(
+        "name: s\nscenes: [" + str(source / "tests" / "data" / "campaign" / "tiny_scene.yaml") + "]\n"
+        "series: true\naxes: {model.eta: [50, 100]}\n")
+    store = tmp_path / "store"
+    assert asperity.sweep(tmp_path / "c.yaml", out=store, threads=1)["ok"] == 2
+    df = asperity.read_store(store)
+    for index in (0, 1):
+        s = asperity.read_series(store, index)
+        assert list(s.columns) == ["t", "Q", "A"]
+        assert len(s) == 301  # 0.3 s sampled every 1 ms
+        assert s["t"].iloc[-1] == df["t_end"][index]
+        # The same point run alone gives the same samples, to the last bit.
+        run = asperity.run(source / "tests" / "data" / "campaign" / "tiny_scene.yaml",
+                           {"model.eta": [50, 100][index]})
+        assert list(s["Q"]) == list(run.series["Q"])
+    # The whole file is one CSV to pandas (block trailers are comments).
+    import pandas as pd
+    whole = pd.read_csv(store / "series.csv", comment="#")
+    assert list(whole.groupby("index").size()) == [301, 301]
+    with pytest.raises(KeyError):
+        asperity.read_series(store, 5)
+
+
 def test_fit_equals_the_command_line(source, binary, tmp_path):
     fit_file = tmp_path / "f.yaml"
     fit_file.write_text(

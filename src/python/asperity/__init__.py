@@ -112,6 +112,20 @@ def read_store(path: Union[str, os.PathLike]):
     return df
 
 
+def read_series(path: Union[str, os.PathLike], index: int):
+    """The sampled series of one point of a sweep store (campaign `series: true`) as a pandas
+    DataFrame, one row per sample; KeyError when the store holds none for that point (not stored,
+    failed, or no series). Read from the store's series.csv by the point's scene hash, as
+    `asperity` writes and merges it (or from series/HASH.csv in a store written before it)."""
+    import io
+    import pandas as pd  # only needed here
+
+    texts = _asperity.store_series(os.fspath(path), [int(index)])
+    if int(index) not in texts:
+        raise KeyError(f"no series of point {index} in {os.fspath(path)}")
+    return pd.read_csv(io.StringIO(texts[int(index)]), float_precision="round_trip")
+
+
 def version() -> str:
     """The build: version, git commit, build type, compiler."""
     return _asperity.version()
