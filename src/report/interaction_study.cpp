@@ -364,12 +364,13 @@ std::string run_interaction_study(const InteractionStudyOptions& opt) {
     for (const auto& r : sw) {
       auto g = [&](const std::string& k) { const auto it = r.find(k); return it == r.end() ? std::string() : it->second; };
       md << "| " << g("experiment") << " | " << g("grid") << " | " << g("model.position_scale") << " | "
-         << fmt("%.2f", num(r, "model.interaction_cutoff") * 1e3) << " | " << fmt("%.3f", num(r, "shape_exponent"))
+         << (num(r, "model.interaction_cutoff") > 0 ? fmt("%.2f", num(r, "model.interaction_cutoff") * 1e3) : "every pair")
+         << " | " << fmt("%.3f", num(r, "shape_exponent"))
          << " | " << fmt("%.3f", num(r, "area_drop_fraction")) << " | " << fmt("%.4f", num(r, "Q_s")) << " | "
          << fmt("%.3f", num(r, "t_peak")) << " | " << g("ss_cycles") << " | " << g("status") << " |\n";
     }
     md << "\n(Position scale s: the same arrangement in an apparent contact s times as wide, 1/s² as crowded; 1000: "
-          "practically independent. A cut-off drops the pairs farther apart; – : every pair.)\n\n";
+          "practically independent. A cut-off drops the pairs farther apart.)\n\n";
   }
   scene_io::write_text_file(opt.out / "REPORT.md", md.str());
   return verdict;
