@@ -153,3 +153,42 @@ TEST_CASE("event solver: a repin carries every force over without a jump", "[sol
   for (std::size_t i = 0; i < before.size(); ++i) CHECK_THAT(after[i], WithinRel(before[i], 1e-12));
   CHECK_THAT(J.force(X), WithinRel(F, 1e-12));
 }
+
+TEST_CASE("event solver: a chain of three equal junctions slips in the closed-form order and avalanches",
+          "[solve][interacting][event]") {
+  // Three equal linear junctions in a row across the shear (along y), spacing d, the cut-off
+  // keeping nearest neighbours only: compliance a = 1/k on the diagonal, c between neighbours.
+  // Loaded from rest, f = X M⁻¹1: the ends carry (a − c)/(a² − 2c²) X, more than the middle, and
+  // slip first at X_e = f_s (a² − 2c²)/(a − c) (one of them: by symmetry either). With that end at
+  // ε f_s the other end reaches f_s at X_B = f_s ((a² − c²) − εc²)/(a − c); once both ends slip
+  // the middle carries f_m = (X − 2cεf_s)/a, so it goes with the second end (an avalanche at
+  // fixed X) iff f_m(X_B) ≥ f_s, else alone at X_m = f_s (a + 2cε).
+  const double A = 2e-9, d = 2.5 * 2 * std::sqrt(A / M_PI);
+  for (const double eps : {0.9, 0.3}) {
+    Scene s = interacting_event_scene({A, A, A}, {0, 0, 0}, {0, d, 2 * d});
+    s.model.alpha_b = 0;
+    s.model.epsilon = eps;
+    s.model.interaction_cutoff = 1.5 * d;
+    const Problem p = make_problem(s);
+    InteractingJunctions J(p);
+    const double a = 1 / J.state().k[0], c = interaction_matrix(p)(0, 1), f_s = J.state().f_s[0];
+    REQUIRE(interaction_matrix(p)(0, 2) == 0.0);
+    const double X_e = f_s * (a * a - 2 * c * c) / (a - c);
+    const double X_B = f_s * ((a * a - c * c) - eps * c * c) / (a - c);
+    const double f_m = (X_B - 2 * c * eps * f_s) / a;
+    INFO("epsilon " << eps << ", c/a " << c / a << ", f_m(X_B)/f_s " << f_m / f_s);
+    REQUIRE((f_m >= f_s) == (eps < 0.5));  // measured 0.922 at ε = 0.9, 1.032 at ε = 0.3 (c/a = 0.0875)
+    CHECK_THAT(J.next_threshold(), WithinRel(X_e, 1e-12));
+    CHECK(J.slip_crossed(J.next_threshold()) == 1);  // one end; the other end is unloaded by it
+    CHECK_THAT(J.next_threshold(), WithinRel(X_B, 1e-12));
+    const std::int64_t second = J.slip_crossed(J.next_threshold());
+    if (f_m >= f_s) {
+      CHECK(second == 2);  // the middle goes with the second end: an avalanche
+      CHECK(J.n_slipping() == 3);
+    } else {
+      CHECK(second == 1);
+      CHECK_THAT(J.next_threshold(), WithinRel(f_s * (a + 2 * c * eps), 1e-12));  // the middle alone
+      CHECK(J.slip_crossed(J.next_threshold()) == 1);
+    }
+  }
+}
