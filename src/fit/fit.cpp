@@ -14,6 +14,7 @@
 #include <stdexcept>
 
 #include "fit/objective.hpp"
+#include "io/provenance.hpp"
 #include "observe/simulate.hpp"
 
 namespace asperity {
@@ -59,7 +60,7 @@ ExperimentEval run_experiment(const FitSpec& spec, std::size_t e, const std::vec
     } else if (!r.obs.peak_found) {
       // Without a confirmed peak, Q_s, the loading branch and every objective built on them
       // come from wherever the run stopped: a number, but not the one the fit is about.
-      out.error = fe.name + " (" + scene.experiment.file.lexically_normal().string() +
+      out.error = fe.name + " (" + display_path(scene.experiment.file) +
                   "): no confirmed static friction peak before stop.time = " + g6(scene.stop.time) +
                   " s (highest Q " + g6(r.obs.Q_s) + " N at t = " + g6(r.obs.t_peak) +
                   " s); the objective would use an unfinished loading branch: raise stop.time";

@@ -28,9 +28,6 @@ namespace {
 
 // Work below which a loop over G stays on one thread (thread start-up costs more).
 constexpr std::size_t kParallelWork = 200000;
-// A nonlinear junction's reference compliance is updated once its own compliance u' has
-// drifted this far from it (relative): it sets the chord iteration's contraction rate.
-constexpr double kDriftTrigger = 0.02;
 
 [[noreturn]] void fail(const std::string& what, double X) {
   char msg[300];
@@ -257,7 +254,6 @@ InteractingJunctions::Node InteractingJunctions::solve(double X) const {
     last_a_[idx_[q]] = node.a[q];
   }
   ++work_.solves;
-  ++work_.nodes;
   return node;
 }
 
@@ -575,29 +571,6 @@ void InteractingJunctions::remove_pinned(std::size_t q, double f_sl) {
   ++work_.rank_one;
   // Rank-one updates accumulate rounding: start afresh after about N of them.
   if (++updates_since_rebuild_ > static_cast<std::int64_t>(std::max<std::size_t>(N_, 64)) && nP_ > 0) rebuild();
-}
-
-void InteractingJunctions::update_reference(std::size_t q, double D) {
-  const std::size_t n = nP_, N = N_;
-  const double delta = D - D_[q];
-  std::vector<double> g(G_.begin() + static_cast<std::ptrdiff_t>(q * N),
-                        G_.begin() + static_cast<std::ptrdiff_t>(q * N + n));
-  const double denom = 1.0 + delta * g[q];
-  double* G = G_.data();
-#pragma omp parallel for schedule(static) if (n * n > kParallelWork)
-  for (std::size_t r = 0; r < n; ++r) {
-    const double w = delta * g[r] / denom;
-    double* row = G + r * N;
-    for (std::size_t s = 0; s < n; ++s) row[s] -= w * g[s];
-  }
-  const double a0q = a0_[q], b0q = b0_[q];
-  for (std::size_t r = 0; r < n; ++r) {
-    a0_[r] -= delta * g[r] * a0q / denom;
-    b0_[r] -= delta * g[r] * b0q / denom;
-  }
-  D_[q] = D;
-  ++work_.rank_one;
-  ++updates_since_rebuild_;
 }
 
 void InteractingJunctions::rebuild() const {

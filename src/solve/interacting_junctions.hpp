@@ -9,10 +9,11 @@
 // a diagonal reference compliance (u_i' at some force; exact for linear junctions),
 //   f = X a0 + b0 − G Δ(f),   G = M⁻¹, a0 = G 1, b0 = −G h,  Δ_i(f) = u_i(f_i) − D_i f_i,
 // exact for linear junctions (Δ = 0, no iteration) and a contraction for the nonlinear ones
-// (a chord iteration whose rate is the drift of u_i' from D_i). G is kept explicitly and updated
-// when one junction changes state: a slip removes its row and column (rank-one, O(N²)), a
-// drifting D_i is a rank-one Sherman–Morrison update, a repin of many junctions rebuilds G
-// (LAPACK Cholesky inverse in place). Memory: C and G, 2 N² doubles, plus O(N) vectors.
+// (a chord iteration whose rate is the drift of u_i' from D_i; when it slows, D is reset to the
+// current u' and G rebuilt: a Newton step). G is kept explicitly and updated when one junction
+// changes state: a slip removes its row and column (rank-one, O(N²)); a repin, and every N
+// rank-one updates (rounding), rebuild G (LAPACK Cholesky inverse in place). Memory: C and G,
+// 2 N² doubles, plus O(N) vectors.
 //
 // Between events the total force F(X) and area A(X) are smooth functions of X alone: while
 // nonlinear junctions remain, they are piecewise cubic Hermite interpolants on nodes where the
@@ -67,7 +68,7 @@ class InteractingJunctions {
 
   // Work done, for benchmarks: exact solves, their chord iterations, rank-one updates, rebuilds.
   struct Work {
-    std::int64_t solves = 0, iterations = 0, rank_one = 0, rebuilds = 0, nodes = 0;
+    std::int64_t solves = 0, iterations = 0, rank_one = 0, rebuilds = 0;
   };
   const Work& work() const { return work_; }
 
@@ -92,7 +93,6 @@ class InteractingJunctions {
   void find_thresholds(double X);
   void remove_pinned(std::size_t q, double f_slip);  // rank-one removal of position q from P
   void rebuild() const;  // G, a0, b0 from scratch for the current P and D (a cache: const)
-  void update_reference(std::size_t q, double D);  // Sherman–Morrison: D_q → D
   void refresh_vectors();             // a0 = G 1, b0 = −G h, sums
   void start_slip(std::size_t i);
 
