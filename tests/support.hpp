@@ -24,6 +24,17 @@ inline Scene paper_scene(std::vector<double> areas, double mass = 0.408) {
   return s;
 }
 
+// paper_scene with junction centres [m] and elastic interactions, run by `method`.
+inline Scene interacting_scene(std::vector<double> areas, std::vector<double> x, std::vector<double> y,
+                               SolverMethod method) {
+  Scene s = paper_scene(std::move(areas));
+  s.experiment.junctions.x_m = std::move(x);
+  s.experiment.junctions.y_m = std::move(y);
+  s.model.interactions = Interactions::elastic;
+  s.solver.method = method;
+  return s;
+}
+
 // Deterministic spread of areas on [lo, hi] (log-uniform, no RNG).
 inline std::vector<double> spread_areas(std::size_t n, double lo, double hi) {
   std::vector<double> a(n);

@@ -17,12 +17,9 @@ using Catch::Matchers::WithinRel;
 
 namespace {
 
+// The step-by-step interacting reference at C_t = 200.
 Scene interacting_scene(std::vector<double> areas, std::vector<double> x, std::vector<double> y) {
-  Scene s = paper_scene(std::move(areas));
-  s.experiment.junctions.x_m = std::move(x);
-  s.experiment.junctions.y_m = std::move(y);
-  s.model.interactions = Interactions::elastic;
-  s.solver.method = SolverMethod::reference;
+  Scene s = testing::interacting_scene(std::move(areas), std::move(x), std::move(y), SolverMethod::reference);
   s.solver.Ct = 200;
   return s;
 }

@@ -22,12 +22,7 @@ using Catch::Matchers::WithinRel;
 namespace {
 
 Scene interacting_event_scene(std::vector<double> areas, std::vector<double> x, std::vector<double> y) {
-  Scene s = paper_scene(std::move(areas));
-  s.experiment.junctions.x_m = std::move(x);
-  s.experiment.junctions.y_m = std::move(y);
-  s.model.interactions = Interactions::elastic;
-  s.solver.method = SolverMethod::event;
-  return s;
+  return interacting_scene(std::move(areas), std::move(x), std::move(y), SolverMethod::event);
 }
 
 // A compact cluster: n junctions on a square lattice of pitch `pitch_m`.

@@ -43,7 +43,7 @@ InteractingBenchRow timed(const std::string& what, const Scene& scene) {
   row.what = what;
   row.N = scene.experiment.junctions.size();
   const Problem problem = make_problem(scene);
-  Recorder rec(scene.output.every, false, scene.output.peak_min_drop, scene.stop.at_first_peak, scene.stop.cycles);
+  Recorder rec = make_recorder(scene);
   const auto t0 = std::chrono::steady_clock::now();
   InteractingEventStepper stepper(problem);
   const RunInfo info = integrate(stepper, problem, rec);

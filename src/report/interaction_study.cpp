@@ -6,14 +6,15 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <map>
 #include <numeric>
 #include <optional>
 #include <sstream>
 
+#include "campaign/store.hpp"
 #include "io/atomic_file.hpp"
 #include "io/csv.hpp"
+#include "io/input_error.hpp"
 #include "observe/simulate.hpp"
 #include "report/claims.hpp"
 #include "report/gnuplot.hpp"
@@ -37,11 +38,15 @@ std::string fmt(const char* f, double x) {
 std::map<std::string, double> calibrated_alpha_b(const fs::path& fit_yaml) {
   std::map<std::string, double> out;
   if (!fs::exists(fit_yaml)) return out;
-  const YAML::Node root = YAML::LoadFile(fit_yaml.string());
-  for (const auto& f : root["fits"]) {
-    if (f["status"].as<std::string>("") != "ok") continue;
-    const YAML::Node p = f["parameters"]["model.alpha_b"];
-    if (p && p["value"]) out[f["label"].as<std::string>()] = p["value"].as<double>();
+  try {
+    const YAML::Node root = YAML::LoadFile(fit_yaml.string());
+    for (const auto& f : root["fits"]) {
+      if (f["status"].as<std::string>("") != "ok") continue;
+      const YAML::Node p = f["parameters"]["model.alpha_b"];
+      if (p && p["value"]) out[f["label"].as<std::string>()] = p["value"].as<double>();
+    }
+  } catch (const YAML::Exception& e) {  // not a fit.yaml of `asperity fit`
+    throw InputError(fit_yaml.string(), e.mark.is_null() ? 0 : e.mark.line + 1, "fits", e.msg);
   }
   return out;
 }
@@ -79,21 +84,28 @@ struct Spread {
   std::vector<std::uint8_t> equal;  // in the equal-area set
 };
 
-// f_i/(σA_i) of every junction at `fraction` of the first peak's time of `scene` (interacting).
-std::vector<double> ratios_at(const Scene& base, double fraction) {
+// f_i/(σA_i) of every junction at half the first peak's time of `scene` (interacting) and at
+// the peak; both empty when the run has no peak.
+struct Ratios {
+  std::vector<double> half, peak;
+};
+Ratios ratios_at_half_and_peak(const Scene& base) {
   Scene s = base;
   s.stop.at_first_peak = true;
   s.output.series.clear();
   const RunResult first = simulate(s);
   if (!first.obs.peak_found) return {};
-  // Again to that time (the first run stops when the peak is confirmed, after it).
+  // Runs again to each time (the first run stops when the peak is confirmed, after it).
   s.stop.at_first_peak = false;
-  s.stop.time = fraction * first.obs.t_peak;
-  const Problem p = make_problem(s);
-  Recorder rec(s.output.every, false, s.output.peak_min_drop, false, -1);
-  InteractingEventStepper stepper(p);
-  integrate(stepper, p, rec);
-  return stepper.junctions().load_ratios(stepper.X());
+  auto at = [&](double t) {
+    s.stop.time = t;
+    const Problem p = make_problem(s);
+    Recorder rec = make_recorder(s);
+    InteractingEventStepper stepper(p);
+    integrate(stepper, p, rec);
+    return stepper.junctions().load_ratios(stepper.X());
+  };
+  return {at(0.5 * first.obs.t_peak), at(first.obs.t_peak)};
 }
 
 Spread force_spread(const fs::path& scene_file, double alpha_b, const std::string& name) {
@@ -114,14 +126,16 @@ Spread force_spread(const fs::path& scene_file, double alpha_b, const std::strin
     for (std::size_t j = 0; j < n; ++j) s += C(i, j);
     sp.crowding[i] = s * p.law.stiffness(J.area_m2[i], J.area_m2[i]);
   }
-  sp.ratio_inter = ratios_at(scene, 1.0);
-  sp.half_inter = ratios_at(scene, 0.5);
+  Ratios inter = ratios_at_half_and_peak(scene);
+  sp.ratio_inter = std::move(inter.peak);
+  sp.half_inter = std::move(inter.half);
   // The independent model through the same code: the arrangement 10⁶ times wider (coupling
   // ~1e-6 of a junction's own compliance).
   Scene far = scene;
   far.model.position_scale = 1e6;
-  sp.ratio_indep = ratios_at(far, 1.0);
-  sp.half_indep = ratios_at(far, 0.5);
+  Ratios indep = ratios_at_half_and_peak(far);
+  sp.ratio_indep = std::move(indep.peak);
+  sp.half_indep = std::move(indep.half);
   for (const auto* v : {&sp.ratio_inter, &sp.ratio_indep, &sp.half_inter, &sp.half_indep})
     if (v->size() != n) return sp;
   // Equal areas: the stand-ins' cluster of large junctions (a lognormal of 2 % width).
@@ -157,15 +171,15 @@ Stats stats(const std::vector<double>& v) {
   return s;
 }
 
-// The sweep store's rows (points.csv), by column name; empty when absent.
+// The sweep store's rows, by column name (StoreReader: the journal of an unfinished store too);
+// empty when there is no store.
 std::vector<std::map<std::string, std::string>> sweep_rows(const fs::path& store) {
   std::vector<std::map<std::string, std::string>> rows;
-  std::ifstream in(store / "points.csv");
-  std::string line;
-  if (!std::getline(in, line)) return rows;
-  const auto header = csv_split(line);
-  while (std::getline(in, line)) {
-    const auto f = csv_split(line);
+  if (!fs::exists(store / "points.csv") && !fs::exists(store / "journal.csv")) return rows;
+  const StoreReader reader(store);
+  const auto header = csv_split(reader.header());
+  for (const StoredRow& sr : reader.rows()) {
+    const auto f = csv_split(reader.row(sr));
     std::map<std::string, std::string> r;
     for (std::size_t i = 0; i < header.size() && i < f.size(); ++i) r[header[i]] = f[i];
     rows.push_back(std::move(r));

@@ -17,8 +17,8 @@
 //
 // Between events the total force F(X) and area A(X) are smooth functions of X alone: while
 // nonlinear junctions remain, they are piecewise cubic Hermite interpolants on nodes where the
-// system is solved exactly (with dF/dX from the differentiated system), refined until the cubic
-// term of each piece is below the tolerance; linear-only populations have F = X Σa0 + Σb0 + F_slip
+// system is solved exactly (with dF/dX from the differentiated system), refined until each
+// piece's estimated error is below the tolerance; linear-only populations have F = X Σa0 + Σb0 + F_slip
 // exactly. The slip positions are found by Newton in X on the exact solutions.
 #include <cstddef>
 #include <cstdint>
@@ -84,7 +84,7 @@ class InteractingJunctions {
   const Node& node_at(double X) const;  // the cache's node at X, solved and inserted if needed
   std::size_t covering_segment(double X) const;  // extends and refines the cache to cover X
   bool segment_ok(std::size_t s) const;
-  void refine_all() const;  // splits every piece whose cubic term is over the tolerance
+  void refine_all() const;  // splits every piece whose estimated error is over the tolerance
   double threshold(std::size_t q) const;  // N, the slip force of position q
   void after_change(double X);  // new event point: node, thresholds
   // Junction k (npos: none) slips at X, then every pinned one at or over its threshold, one at a
