@@ -156,6 +156,7 @@ MergeReport merge_stores(const std::vector<fs::path>& inputs, const fs::path& ou
     const std::size_t nl = provenance.find('\n', pos);
     const std::string line = provenance.substr(pos, nl == std::string::npos ? std::string::npos : nl - pos + 1);
     pos = nl == std::string::npos ? provenance.size() : nl + 1;
+    if (line.rfind("shard_balance:", 0) == 0) continue;  // one store: nothing dealt
     if (line.rfind("shard:", 0) == 0) {
       prov += "shard: \"0/1\"  # merged\nmerged_from:\n";
       for (const fs::path& in : inputs) prov += "  - " + yaml_quoted(in.string()) + "\n";

@@ -31,6 +31,7 @@
 #include "observe/series_csv.hpp"
 #include "campaign/campaign_load.hpp"
 #include "scene/load.hpp"
+#include "io/input_error.hpp"
 #include "io/numbers.hpp"
 #include "io/progress.hpp"
 #include "io/provenance.hpp"
@@ -133,7 +134,8 @@ bool uses_stand_ins(const Campaign& c) {
   return false;
 }
 
-std::string store_provenance_yaml(const Campaign& c, const std::string& campaign_text, const SweepOptions& opt) {
+std::string store_provenance_yaml(const Campaign& c, const std::string& campaign_text, const SweepOptions& opt,
+                                  ShardBalance balance) {
   std::ostringstream y;
   y << "# asperity sweep store: written once, when the store was started\n";
   y << "campaign: " << yaml_quoted(c.name) << '\n';
@@ -141,6 +143,7 @@ std::string store_provenance_yaml(const Campaign& c, const std::string& campaign
   y << "campaign_fnv1a64: " << yaml_quoted(hex16(fnv1a64(campaign_text))) << '\n';
   y << "points: " << c.size() << '\n';
   y << "shard: " << yaml_quoted(std::to_string(opt.shard.index) + "/" + std::to_string(opt.shard.count)) << '\n';
+  y << "shard_balance: " << yaml_quoted(shard_balance_name(balance)) << "  # how points are dealt to shards\n";
   y << "asperity_version: " << yaml_quoted(build_info().version) << '\n';
   y << "build_type: " << yaml_quoted(build_info().build_type) << '\n';
   y << "started_utc: " << yaml_quoted(utc_now()) << '\n';
@@ -162,8 +165,19 @@ std::string store_provenance_yaml(const Campaign& c, const std::string& campaign
   return y.str();
 }
 
-// Checks a resumed store was started from the same campaign text; starts a new one otherwise.
-void prepare_store(const fs::path& dir, const Campaign& c, const SweepOptions& opt) {
+// How a store's points are dealt to shards: its provenance.yaml's shard_balance (absent in
+// stores written before it was recorded, which all dealt round robin).
+ShardBalance recorded_balance(const std::string& provenance) {
+  const std::string tag = "\nshard_balance: \"";
+  const std::size_t at = provenance.find(tag);
+  if (at == std::string::npos) return ShardBalance::index;
+  const std::size_t from = at + tag.size();
+  return parse_shard_balance(provenance.substr(from, provenance.find('"', from) - from));
+}
+
+// Checks a resumed store was started from the same campaign text and deals its points as asked;
+// starts a new one otherwise. Returns the store's balance.
+ShardBalance prepare_store(const fs::path& dir, const Campaign& c, const SweepOptions& opt) {
   const std::string text = read_file_text(c.file);
   const fs::path prov = dir / "provenance.yaml";
   if (fs::exists(prov)) {
@@ -172,10 +186,22 @@ void prepare_store(const fs::path& dir, const Campaign& c, const SweepOptions& o
     if (old.find(want) == std::string::npos)
       throw std::runtime_error("the campaign file changed since " + dir.string() +
                                " was started (see its provenance.yaml); use another --out or remove the store");
-    return;
+    const ShardBalance had = recorded_balance(old);
+    // Another plan would give this shard other points: the ones stored would be orphaned and
+    // other shards' points run twice.
+    if (opt.balance && *opt.balance != had && opt.shard.count > 1)
+      throw InputError("", 0, "--balance",
+                       shard_balance_name(*opt.balance) + ": " + dir.string() + " deals its points by " +
+                           shard_balance_name(had) +
+                           " (its provenance.yaml); every shard of a campaign must use the same --balance");
+    return had;
   }
+  // Cost by default; a campaign too large for a cost plan deals round robin unless asked (then refused).
+  const ShardBalance balance =
+      opt.balance.value_or(c.size() > kMaxCostBalancedPoints ? ShardBalance::index : ShardBalance::cost);
   write_file_durably(dir / "campaign.yaml", text);
-  write_file_durably(prov, store_provenance_yaml(c, text, opt));
+  write_file_durably(prov, store_provenance_yaml(c, text, opt, balance));
+  return balance;
 }
 
 // DIR/inputs.txt: what the stored points' hashes were last all checked against (see
@@ -186,10 +212,12 @@ const std::string kInputsFirstLine =
     "# asperity sweep: the inputs every stored point's hash was checked against at the end of the last "
     "complete run (the next run trusts the stored hashes while this text is unchanged)";
 
-std::string inputs_text(const Campaign& c, const std::string& build_id, const Shard& shard,
+std::string inputs_text(const Campaign& c, const std::string& build_id, const ShardPlan& plan,
                         const std::vector<fs::path>& files, FileHashes& hashes) {
+  const Shard& shard = plan.shard();
   std::string t = kInputsFirstLine + "\nbuild " + build_id + "\nshard " + std::to_string(shard.index) + "/" +
-                  std::to_string(shard.count) + "\n";
+                  std::to_string(shard.count) +
+                  (plan.balance() == ShardBalance::index || shard.count == 1 ? std::string() : " " + shard_balance_name(plan.balance())) + "\n";
   // The effective `set` (the campaign's, then --set): --set changes points without changing the campaign text.
   for (const auto& [key, v] : c.set)
     t += "set " + hex16(fnv1a64(key + "\n" + std::to_string(v.is_number) + std::to_string(v.is_yaml) + "\n" +
@@ -312,11 +340,23 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
     }
   fs::create_directories(rep.store);
   StoreLock lock(rep.store);
-  prepare_store(rep.store, c, opt);
+  rep.balance = prepare_store(rep.store, c, opt);
   const std::string header = store_header(c);
   const std::uint64_t total = c.size();
-  const Shard shard = opt.shard;
-  rep.points = shard.size(total);
+  const ShardPlan shard = [&] {
+    try {
+      return plan_shard(c, opt.shard, rep.balance);
+    } catch (const std::invalid_argument& e) {
+      throw std::runtime_error(e.what());
+    }
+  }();
+  rep.points = shard.size();
+  if (!shard.expected_s().empty()) {
+    const auto& e = shard.expected_s();
+    rep.expected_s = e[opt.shard.index];
+    rep.expected_max_s = *std::max_element(e.begin(), e.end());
+    rep.expected_min_s = *std::min_element(e.begin(), e.end());
+  }
   // Room for one row per point of the shard: the index the build stage reads (`stored`) does not
   // move while the writer stage appends (each point is appended at most once per run).
   Journal journal(rep.store, header, opt.sync, rep.points);
@@ -329,7 +369,7 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
     std::vector<std::string> columns;
     if (!fs::exists(rep.store / "series.csv")) {
       try {
-        columns = CampaignScenes(c).scene(point_at(c, shard.index)).output.series;
+        columns = CampaignScenes(c).scene(point_at(c, shard.next(0))).output.series;
       } catch (const std::exception&) {  // no first point or an invalid one: every column
       }
       if (columns.empty()) columns = all_series();
@@ -412,13 +452,13 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
 
   CampaignScenes scenes(c);
   Progress progress(rep.points, opt.quiet);
-  std::uint64_t next = shard.index;
+  std::uint64_t next = shard.next(0);
   std::size_t cursor = 0;  // into `stored`, which is ascending like the points built
 
   auto build = [&](tbb::flow_control& fc) -> std::shared_ptr<Job> {
     while (next < total) {
       const std::uint64_t index = next;
-      next += shard.count;
+      next = shard.next(index + 1);
       while (cursor < stored.size() && stored[cursor].index < index) ++cursor;
       const StoredRow* st = cursor < stored.size() && stored[cursor].index == index ? &stored[cursor] : nullptr;
       if (st && current[cursor] && (st->ok() || !opt.retry_failed) && has_series(*st)) {

@@ -18,6 +18,8 @@
 // At most 2·threads points are in flight: memory does not grow with the campaign.
 #include <cstdint>
 #include <filesystem>
+#include <limits>
+#include <optional>
 #include <map>
 #include <mutex>
 #include <set>
@@ -25,6 +27,7 @@
 #include <vector>
 
 #include "campaign/campaign.hpp"
+#include "campaign/shard_plan.hpp"
 #include "campaign/store.hpp"
 #include "scene/scene.hpp"
 
@@ -33,6 +36,9 @@ namespace asperity {
 struct SweepOptions {
   int threads = 0;                   // 0: all hardware threads
   Shard shard;                       // default 0/1: every point
+  // How the points are dealt to shards (shard_plan.hpp). Empty: the store's own (provenance.yaml
+  // shard_balance; a store written before it was recorded: index), cost for a new store.
+  std::optional<ShardBalance> balance;
   std::filesystem::path out;         // empty: results/<campaign name>
   bool quiet = false;                // no progress, no summary
   bool retry_failed = false;         // rerun points the store holds as failed
@@ -54,6 +60,11 @@ struct SweepOptions {
 struct SweepReport {
   std::filesystem::path store;
   std::uint64_t points = 0;          // points of this shard
+  ShardBalance balance = ShardBalance::index;
+  // Expected seconds on one core (solve/run_cost.hpp) of this shard and of the costliest and
+  // cheapest shard; NaN unless the plan was balanced by cost over unequal costs.
+  double expected_s = std::numeric_limits<double>::quiet_NaN();
+  double expected_max_s = std::numeric_limits<double>::quiet_NaN(), expected_min_s = expected_max_s;
   std::uint64_t skipped = 0;         // already in the store (same scene hash)
   std::uint64_t changed = 0;         // in the store with another hash (scene or data changed): rerun
   std::uint64_t ran = 0;             // run now

@@ -1,5 +1,6 @@
-// asperity sweep CAMPAIGN.yaml [--threads N] [--shard I/N] [--out DIR] [--quiet] [--retry-failed]
+// asperity sweep CAMPAIGN.yaml [--threads N] [--shard I/N] [--balance cost|index] [--out DIR] [--quiet] [--retry-failed]
 //                [--sync-every N] [--sync-seconds S]
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -17,7 +18,7 @@ namespace asperity::cli {
 namespace {
 
 struct SweepArgs {
-  std::string campaign, out, shard = "0/1";
+  std::string campaign, out, shard = "0/1", balance;
   int threads = 0;
   bool quiet = false, retry_failed = false;
   JournalSync sync = SweepOptions{}.sync;
@@ -31,6 +32,11 @@ int sweep(const SweepArgs& a, const Invocation& inv) {
     opt.shard = parse_shard(a.shard);
   } catch (const std::invalid_argument& e) {
     throw InputError("", 0, "--shard", e.what());
+  }
+  try {
+    if (!a.balance.empty()) opt.balance = parse_shard_balance(a.balance);
+  } catch (const std::invalid_argument& e) {
+    throw InputError("", 0, "--balance", e.what());
   }
   Campaign c = load_campaign(a.campaign);
   // --set: checked on every base scene (one-line errors as `run --set`), then applied to every
@@ -67,6 +73,10 @@ int sweep(const SweepArgs& a, const Invocation& inv) {
                  static_cast<unsigned long long>(r.skipped), static_cast<unsigned long long>(r.ran),
                  static_cast<unsigned long long>(r.failed_now), r.wall_s);
     if (r.ran > 0) std::fprintf(stderr, " (%.2f points/s)", static_cast<double>(r.ran) / r.wall_s);
+    if (std::isfinite(r.expected_s))
+      std::fprintf(stderr, "\n  balanced by expected cost: this shard %s s on one core, shards %s to %s s",
+                   scene_io::format_short(r.expected_s).c_str(), scene_io::format_short(r.expected_min_s).c_str(),
+                   scene_io::format_short(r.expected_max_s).c_str());
     std::fprintf(stderr, "\n  store %s: %llu ok, %llu failed%s; %s\n", (r.store / "points.csv").string().c_str(),
                  static_cast<unsigned long long>(r.ok), static_cast<unsigned long long>(r.failed),
                  r.dropped_lines ? (", " + std::to_string(r.dropped_lines) + " torn/corrupt journal line(s) dropped and rerun").c_str() : "",
@@ -88,7 +98,11 @@ Command add_sweep_command(CLI::App& app) {
   sub->add_option("campaign", a->campaign, "Campaign YAML file")->required();
   add_threads_option(sub, a->threads, "Points run in parallel");
   add_set_option(sub, a->overrides, "in every point's scene (the campaign's axes win)");
-  sub->add_option("--shard", a->shard, "Run only points with index % N == I, given as I/N (default 0/1), or auto: the task of a SLURM job array");
+  sub->add_option("--shard", a->shard, "Run only shard I of N, given as I/N (default 0/1), or auto: the task of a SLURM job array");
+  sub->add_option("--balance", a->balance,
+                  "How points are dealt to shards: cost (a new store's default: by expected run time, each point to the "
+                  "shard with the least so far; equal costs give round robin) or index (round robin, index % N == I). "
+                  "Default: what the store recorded (stores from before it was recorded: index)");
   sub->add_option("--out,-o", a->out, "Store folder (default results/<campaign name>/)");
   sub->add_flag("-q,--quiet", a->quiet, "No progress and no summary (failures are still reported)");
   sub->add_flag("--retry-failed", a->retry_failed, "Rerun the points the store holds as failed");
