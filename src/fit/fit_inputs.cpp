@@ -73,29 +73,46 @@ void check_fit_inputs(const fs::path& file, const std::string& expected) {
   const std::vector<std::string> was = lines_of(old), now = lines_of(expected);
   if (was.empty() || was[0] != kFirstLine)
     throw InputError(name, 1, "", "not an asperity fit inputs file; this folder's journal cannot be resumed");
-  for (std::size_t i = 1; i < std::max(was.size(), now.size()); ++i) {
-    const int line = static_cast<int>(std::min(i, was.size() - 1)) + 1;
-    if (i >= was.size())
-      throw InputError(name, line, key_of(now[i]), "the fit now reads an input its journal was not computed from ('" +
-                                                       now[i] + "'); use another --out or remove the folder");
-    if (i >= now.size() || key_of(was[i]) != key_of(now[i]))
-      throw InputError(name, line, key_of(was[i]), "the journal was computed from '" + was[i] +
-                                                       "', which this fit does not match; use another --out or remove the folder");
-    if (was[i] == now[i]) continue;
-    const std::string key = key_of(was[i]);
-    std::string why;
-    if (key == "build")
-      why = "the journal was computed by '" + was[i].substr(6) + "', this is '" + now[i].substr(6) +
-            "' (a journal resumes only with the code that wrote it)";
-    else if (key == "task")
-      why = "the journal is array task " + was[i].substr(5) + ", this run is " + now[i].substr(5);
-    else if (key == "set")
-      why = "the --set overrides differ from those the journal was computed with";
-    else
-      why = "the file changed since the journal was computed (fnv1a64 " + was[i].substr(5, 16) + " then, " +
-            now[i].substr(5, 16) + " now)";
-    throw InputError(name, line, key, why + "; use another --out or remove the folder");
+  const std::string fix = "; use another --out or remove the folder";
+  // Compared key by key (build, task, the --set list, each file by path), so the message names
+  // what differs rather than the first line that moved.
+  const auto line_of = [&](const std::vector<std::string>& v, const std::string& key) -> std::ptrdiff_t {
+    for (std::size_t i = 1; i < v.size(); ++i)
+      if (key_of(v[i]) == key) return static_cast<std::ptrdiff_t>(i);
+    return -1;
+  };
+  for (const char* key : {"build", "task"}) {
+    const std::ptrdiff_t i = line_of(was, key), j = line_of(now, key);
+    const std::string a = i < 0 ? "" : was[i].substr(std::string(key).size() + 1);
+    const std::string b = j < 0 ? "" : now[j].substr(std::string(key).size() + 1);
+    if (a == b) continue;
+    const int line = i < 0 ? 1 : static_cast<int>(i) + 1;
+    if (std::string(key) == "build")
+      throw InputError(name, line, key, "the journal was computed by '" + a + "', this is '" + b +
+                                            "' (a journal resumes only with the code that wrote it)" + fix);
+    throw InputError(name, line, key, "the journal is array task " + a + ", this run is " + b + fix);
   }
+  std::vector<std::string> set_was, set_now;
+  for (const auto& l : was) if (key_of(l) == "set") set_was.push_back(l);
+  for (const auto& l : now) if (key_of(l) == "set") set_now.push_back(l);
+  if (set_was != set_now)
+    throw InputError(name, static_cast<int>(line_of(was, "set") < 0 ? 1 : line_of(was, "set") + 1), "set",
+                     "the journal was computed with " + std::to_string(set_was.size()) + " --set override(s), this run has " +
+                         std::to_string(set_now.size()) + (set_was.size() == set_now.size() ? " other ones" : "") + fix);
+  for (std::size_t i = 1; i < was.size(); ++i) {
+    const std::string key = key_of(was[i]);
+    if (key.rfind("file ", 0) != 0) continue;
+    const std::ptrdiff_t j = line_of(now, key);
+    if (j < 0) throw InputError(name, static_cast<int>(i) + 1, key, "the journal was computed from it, this fit does not read it" + fix);
+    if (was[i] != now[j])
+      throw InputError(name, static_cast<int>(i) + 1, key, "the file changed since the journal was computed (fnv1a64 " +
+                                                               was[i].substr(5, 16) + " then, " + now[j].substr(5, 16) + " now)" + fix);
+  }
+  for (const auto& l : now)
+    if (key_of(l).rfind("file ", 0) == 0 && line_of(was, key_of(l)) < 0)
+      throw InputError(name, 0, key_of(l), "this fit reads it, the journal was not computed from it" + fix);
+  throw InputError(name, 0, "", "differs from what this fit would write (" + std::to_string(was.size()) + " lines, " +
+                                    std::to_string(now.size()) + " expected)" + fix);
 }
 
 }  // namespace asperity
