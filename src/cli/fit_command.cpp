@@ -223,9 +223,10 @@ int run(const FitCliOptions& opt, const Invocation& inv) {
 Command add_fit_command(CLI::App& app) {
   auto opt = std::make_shared<FitCliOptions>();
   CLI::App* sub = app.add_subcommand("fit", "Calibrate model parameters against measurements with NLopt "
-                                            "(writes results/fits/<name>/)");
+                                            "(writes results/fits/<name>/). Every evaluation is journaled as it "
+                                            "finishes (DIR/journal.csv): rerun the same command to resume a killed fit");
   sub->add_option("fit", opt->fit_file, "Fit YAML file (see fits/)")->required();
-  sub->add_option("--out,-o", opt->out, "Results directory (default: results/fits/<name>/)");
+  sub->add_option("--out,-o", opt->out, "Results directory (default: results/fits/<name>/); one this fit made is resumed");
   add_threads_option(sub, opt->threads, "Worker threads (experiments or per-experiment fits in parallel)");
   add_set_option(sub, opt->overrides, "in every experiment's scene (the fit's parameters and the objective's own settings win)");
   sub->add_flag("--no-profile", opt->no_profile, "Skip the objective profile around the optimum");

@@ -145,8 +145,9 @@ std::string values_text(const Problem& pb, const std::vector<double>& x) {
 }
 
 // evaluate() through the journal: an evaluation of this (part, optimization) journaled at exactly
-// x is returned as it was (no model run); a new one is appended as soon as it finishes. Without
-// the journal entry in replay_only mode: nullopt (the caller stops).
+// x is returned as it was (no model run; also a point NLopt asks for twice in one run, which the
+// deterministic model would give again anyway); a new one is appended as soon as it finishes.
+// Without the journal entry in replay_only mode: nullopt (the caller stops).
 std::optional<Evaluation> evaluate_journaled(const Problem& pb, int index, const std::vector<double>& x) {
   if (pb.journal) {
     if (std::optional<Evaluation> ev = pb.journal->find(pb.part, pb.label, x)) {

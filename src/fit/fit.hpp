@@ -14,6 +14,11 @@
 // the peak's) inside an evaluation ends that optimization with NLopt's forced stop; the reason
 // is kept in Optimization::failure (status "failed", `asperity fit` exits 1) and the best
 // evaluation so far is reported.
+//
+// Journal (FitOptions::journal, fit_journal.hpp): every evaluation is looked up first and
+// journaled when computed, so a killed fit rerun with the same journal replays what it had done
+// (NLopt's derivative-free algorithms ask for the same points in the same order) and ends with
+// the uninterrupted result; array tasks run FitOptions::only, collect runs replay_only.
 #include <cstddef>
 #include <functional>
 #include <limits>
