@@ -4,14 +4,17 @@
 
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <algorithm>
 #include <cstring>
 #include <filesystem>
 #include <limits>
 
 #include "fit/fit.hpp"
+#include "fit/fit_inputs.hpp"
 #include "fit/fit_journal.hpp"
 #include "fit/fit_load.hpp"
 #include "fit/fit_tasks.hpp"
+#include "io/hash.hpp"
 #include "io/input_error.hpp"
 #include "io/journal_line.hpp"
 #include "support.hpp"
@@ -177,4 +180,28 @@ TEST_CASE("array tasks of a separate fit: experiments dealt longest first to the
   CHECK_THROWS_AS(task_optimizations(joint, {0, 2}), std::invalid_argument);
   // --task names its option in parse errors (the sweep's parser, shared).
   CHECK_THROWS_WITH(parse_shard("3/3", {}, "--task"), Catch::StartsWith("--task 3/3: expected I/N"));
+}
+
+TEST_CASE("fit inputs.txt: a resume with another build, task, --set or file content is refused naming the key", "[fit][journal]") {
+  const FitSpec spec = load_fit(kFixture);
+  const fs::path d = fresh_dir("inputs");
+  const fs::path file = d / "inputs.txt";
+  const std::string mine = fit_inputs_text(spec, {}, "asperity 0.1.0 commit aaaaaaaaaaaa Release GCC 12.2.0", {0, 1});
+  write_text(file, mine);
+  CHECK_NOTHROW(check_fit_inputs(file, mine));
+  // Every input file is listed by content, relative to the fit file: 1 fit file + 3 × 4 files.
+  CHECK(std::count(mine.begin(), mine.end(), '\n') == 1 + 2 + 13);
+  CHECK(mine.find("\nfile " + hex16(fnv1a64(slurp(kFixture))) + " fit fit.yaml\n") != std::string::npos);
+  CHECK(mine.find(" measured m025/measured.csv\n") != std::string::npos);
+  CHECK_THROWS_WITH(check_fit_inputs(file, fit_inputs_text(spec, {}, "asperity 0.1.0 commit bbbbbbbbbbbb Release GCC 12.2.0", {0, 1})),
+                    Catch::StartsWith(file.string() + ":2: build: the journal was computed by 'asperity 0.1.0 commit aaaaaaaaaaaa"));
+  CHECK_THROWS_WITH(check_fit_inputs(file, fit_inputs_text(spec, {}, "asperity 0.1.0 commit aaaaaaaaaaaa Release GCC 12.2.0", {1, 2})),
+                    Catch::StartsWith(file.string() + ":3: task: the journal is array task 0/1, this run is 1/2"));
+  CHECK_THROWS_WITH(check_fit_inputs(file, fit_inputs_text(spec, {"model.eta=50"}, "asperity 0.1.0 commit aaaaaaaaaaaa Release GCC 12.2.0", {0, 1})),
+                    Catch::Contains("set: the journal was computed with 0 --set override(s), this run has 1"));
+  // A binary whose code cannot be named resumes nothing, even its own journal.
+  const std::string anonymous = fit_inputs_text(spec, {}, "", {0, 1});
+  write_text(file, anonymous);
+  CHECK_THROWS_WITH(check_fit_inputs(file, anonymous), Catch::StartsWith(file.string() + ":2: build: this binary's code cannot be identified"));
+  fs::remove_all(d);
 }
