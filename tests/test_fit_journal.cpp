@@ -1,7 +1,5 @@
 // The fit journal (fit/fit_journal.hpp): exact round trip of the evaluated values, torn and
 // damaged lines, replay through run_fit, and the split of a separate fit into array tasks.
-#include <unistd.h>
-
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <algorithm>
@@ -27,7 +25,7 @@ using asperity::testing::write_text;
 namespace {
 
 fs::path fresh_dir(const std::string& tag) {
-  const fs::path d = fs::temp_directory_path() / ("asperity-fitjournal-" + tag + "-" + std::to_string(::getpid()));
+  const fs::path d = asperity::testing::temp_path("asperity-fitjournal-" + tag);
   fs::remove_all(d);
   fs::create_directories(d);
   return d;

@@ -6,10 +6,10 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cassert>
 #include <chrono>
 #include <cmath>
-#include <atomic>
 #include <cstdio>
 #include <mutex>
 #include <stdexcept>
@@ -201,9 +201,8 @@ struct OptimizeResult {
   double wall_s = 0;
 };
 
-// Run the optimization's problem (Problem::part set) from `start`. NotJournaled when replay_only
+// Runs the optimization's problem (Problem::part set) from `start`. NotJournaled when replay_only
 // and an evaluation was not journaled.
-
 OptimizeResult optimize(Problem pb, const std::vector<double>& start, double initial_step) {
   const FitSpec& spec = *pb.spec;
   const auto n = static_cast<unsigned>(pb.vars.size());
