@@ -1,6 +1,6 @@
 #!/bin/bash
-# Runs a campaign on a real one-node SLURM cluster started here, and checks the merged store
-# equals an unsharded run. Needs root and Debian's slurm-wlm and munge (scripts/setup.sh);
+# Runs a campaign and a separate fit on a real one-node SLURM cluster started here, and checks
+# the merged store and the collected fit equal unsharded runs. Needs root and Debian's slurm-wlm and munge (scripts/setup.sh);
 # exits 77 (ctest: skipped) without them.
 #   ASPERITY=build/asperity scripts/slurm/test_slurm.sh [CAMPAIGN.yaml] [TASKS]
 # It writes slurm.conf (proctrack/linuxproc, task/none, select/cons_tres with CR_CPU, this
@@ -144,4 +144,29 @@ if ! diff <(strip "$w/out/shard1_before.csv") <(strip "$shard/points.csv") >/dev
   echo "FAIL: the requeued task's store differs from its first run"; exit 1
 fi
 
-echo "OK: $tasks array tasks (job $array) + merge (job $merge) on SLURM $(sinfo -V | cut -d' ' -f2): $rows points, $shard_rows in the shards, identical to the unsharded run; a requeued task resumed its store"
+# A separate fit (tests/data/fit/fit.yaml, three experiments) as a 2-task array plus the collect
+# job (scripts/slurm/fit_submit.sh): its fit.yaml must equal an unsharded fit's (wall times and
+# the command line aside), and collect must have computed no evaluation.
+fit=$root/tests/data/fit/fit.yaml
+ids=$("$here/fit_submit.sh" "$fit" "$w/out/fit" 2 --output="$w/out/fit-%A_%a.log")
+fit_array=$(echo "$ids" | sed -n 's/^array //p')
+fit_collect=$(echo "$ids" | sed -n 's/^collect //p')
+for i in $(seq 600); do
+  [ -z "$(squeue -h -j "$fit_array,$fit_collect" 2>/dev/null)" ] && break
+  if [ "$i" = 600 ]; then echo "FAIL: fit jobs still queued after 5 min"; squeue; exit 1; fi
+  sleep 0.5
+done
+if [ ! -f "$w/out/fit/fit.yaml" ]; then
+  echo "FAIL: the collect job wrote no fit.yaml"; tail -n 5 "$w"/out/fit-*.log; exit 1
+fi
+"$asperity" fit "$fit" --out "$w/out/fit_single" --threads 1 --quiet
+same() { grep -vE 'wall_s|command_line' "$1"; }
+if ! diff <(same "$w/out/fit_single/fit.yaml") <(same "$w/out/fit/fit.yaml") >/dev/null; then
+  echo "FAIL: the collected fit differs from the unsharded fit"
+  diff <(same "$w/out/fit_single/fit.yaml") <(same "$w/out/fit/fit.yaml") | head -5
+  exit 1
+fi
+fit_evals=$(($(wc -l < "$w/out/fit/tasks/0-of-2/journal.csv") + $(wc -l < "$w/out/fit/tasks/1-of-2/journal.csv") - 2))
+
+echo "OK: $tasks array tasks (job $array) + merge (job $merge) on SLURM $(sinfo -V | cut -d' ' -f2): $rows points, $shard_rows in the shards, identical to the unsharded run; a requeued task resumed its store;" \
+     "a fit as 2 array tasks (job $fit_array, $fit_evals evaluations journaled) + collect (job $fit_collect) equals the unsharded fit"

@@ -15,6 +15,8 @@
 #include <utility>
 #include <vector>
 
+#include "io/shard.hpp"  // Shard, parse_shard: a campaign's --shard I/N (round robin over point indices)
+
 namespace asperity {
 
 // One value an axis gives its key: a number (exact double) or text (a path, an enum name, a
@@ -79,19 +81,5 @@ struct Point {
 // index in [0, campaign.size()) → its point (std::out_of_range otherwise). O(axes + grids).
 Point point_at(const Campaign& campaign, std::uint64_t index);
 
-// Shard `I/N`: the points with index % N == I (round robin, so a slow corner of a grid is spread
-// over all shards). Parses "I/N" (0 <= I < N), or "auto": the task of a SLURM job array
-// (I = SLURM_ARRAY_TASK_ID − SLURM_ARRAY_TASK_MIN, N = SLURM_ARRAY_TASK_COUNT; the array must be
-// contiguous, e.g. --array=0-15), read through `env` (default std::getenv);
-// std::invalid_argument with a message otherwise.
-struct Shard {
-  std::uint64_t index = 0, count = 1;
-  bool contains(std::uint64_t point) const { return point % count == index; }
-  std::uint64_t size(std::uint64_t total) const {  // points of this shard among `total`
-    return total / count + (index < total % count ? 1 : 0);
-  }
-};
-Shard parse_shard(const std::string& text,
-                  const std::function<const char*(const char*)>& env = [](const char* n) { return std::getenv(n); });
 
 }  // namespace asperity

@@ -13,6 +13,8 @@
 #include <memory>
 #include <stdexcept>
 
+#include "io/journal_line.hpp"
+
 namespace asperity {
 namespace fs = std::filesystem;
 
@@ -28,14 +30,7 @@ bool parse_u64(std::string_view s, std::uint64_t& out, int base = 10) {
 }
 
 // A journal line "row,checksum" → row when the checksum matches.
-bool checked_row(std::string_view line, std::string_view& row) {
-  const std::size_t comma = line.rfind(',');
-  if (comma == std::string_view::npos || line.size() - comma - 1 != 16) return false;
-  std::uint64_t sum = 0;
-  if (!parse_u64(line.substr(comma + 1), sum, 16)) return false;
-  row = line.substr(0, comma);
-  return fnv1a64(row) == sum;
-}
+bool checked_row(std::string_view line, std::string_view& row) { return checked_journal_row(line, row); }
 
 // Reads a file line by line (buffered), with each line's byte offset; a last line without its
 // newline is not returned (torn() says it was there).
@@ -198,7 +193,7 @@ Journal::Journal(const fs::path& dir, const std::string& header, JournalSync syn
                                "(header differs); use another --out or remove the store");
     AtomicFileWriter out(path, Durability::synced);
     out.write(head);
-    while (in.next(line, offset)) out.write(line + "," + hex16(fnv1a64(line)) + "\n");
+    while (in.next(line, offset)) out.write(journal_line(line));
     out.commit();
   } else if (!fs::exists(path)) {
     write_file_durably(path, head);
@@ -231,7 +226,7 @@ Journal::~Journal() {
 }
 
 void Journal::append(const std::string& row) {
-  const std::string line = row + "," + hex16(fnv1a64(row)) + "\n";
+  const std::string line = journal_line(row);
   if (!write_fully(fd_, line)) sys_fail("cannot write", "journal.csv");
   add_entry(row, size_);
   size_ += line.size();
@@ -493,21 +488,6 @@ std::map<std::uint64_t, std::string> read_point_series(const fs::path& dir, cons
     }
   }
   return out;
-}
-
-StoreLock::StoreLock(const fs::path& dir) {
-  const fs::path p = dir / ".lock";
-  fd_ = ::open(p.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-  if (fd_ < 0) sys_fail("cannot open", p);
-  if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
-    ::close(fd_);
-    fd_ = -1;
-    throw std::runtime_error("another sweep is writing " + dir.string() + " (" + p.string() + " is locked)");
-  }
-}
-
-StoreLock::~StoreLock() {
-  if (fd_ >= 0) ::close(fd_);
 }
 
 }  // namespace asperity

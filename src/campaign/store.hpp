@@ -28,6 +28,7 @@
 // The store is written with these (its users call them through this header too).
 #include "io/atomic_file.hpp"
 #include "io/csv.hpp"
+#include "io/dir_lock.hpp"
 #include "io/hash.hpp"
 
 namespace asperity {
@@ -223,17 +224,11 @@ class SeriesFile {
 std::map<std::uint64_t, std::string> read_point_series(const std::filesystem::path& dir,
                                                        const std::vector<std::uint64_t>& indices);
 
-// An exclusive lock on DIR/.lock held for the object's lifetime (std::runtime_error when another
-// process holds it).
-class StoreLock {
+// An exclusive lock on DIR/.lock held for the object's lifetime (std::runtime_error "another sweep
+// is writing DIR ..." when another process holds it).
+class StoreLock : public DirLock {
  public:
-  explicit StoreLock(const std::filesystem::path& dir);
-  ~StoreLock();
-  StoreLock(const StoreLock&) = delete;
-  StoreLock& operator=(const StoreLock&) = delete;
-
- private:
-  int fd_ = -1;
+  explicit StoreLock(const std::filesystem::path& dir) : DirLock(dir, "sweep") {}
 };
 
 }  // namespace asperity

@@ -255,11 +255,7 @@ std::uint64_t row_hash(const std::string& row) {
 
 }  // namespace
 
-std::string SweepOptions::default_build_id() {
-  const BuildInfo b = build_info();
-  if (b.git_commit.empty() || b.git_commit == "unknown" || b.git_commit.find("dirty") != std::string::npos) return "";
-  return "asperity " + b.version + " commit " + b.git_commit + " " + b.build_type + " " + b.compiler;
-}
+std::string SweepOptions::default_build_id() { return clean_build_id(); }
 
 std::string store_header(const Campaign& c) {
   std::string h = "index,hash,grid,experiment";

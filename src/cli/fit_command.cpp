@@ -1,4 +1,8 @@
 // asperity fit FIT.yaml [--out DIR] [--threads N] [--no-profile] [--no-error-bars] [--quiet]
+//                       [--task I/N|auto | --collect]
+// Every evaluation is journaled as it finishes (fit/fit_journal.hpp); rerunning into the same
+// folder replays them. --task runs one array task's share of a separate fit into
+// DIR/tasks/I-of-N/; --collect writes the results folder from the tasks' journals.
 #include <atomic>
 #include <cmath>
 #include <cstdio>
@@ -10,10 +14,18 @@
 
 #include "cli/commands.hpp"
 #include "cli/options.hpp"
-#include "io/progress.hpp"
 #include "fit/fit.hpp"
-#include "report/fit_writer.hpp"
+#include "fit/fit_inputs.hpp"
+#include "fit/fit_journal.hpp"
 #include "fit/fit_load.hpp"
+#include "fit/fit_tasks.hpp"
+#include "io/atomic_file.hpp"
+#include "io/dir_lock.hpp"
+#include "io/input_error.hpp"
+#include "io/progress.hpp"
+#include "io/provenance.hpp"
+#include "report/fit_writer.hpp"
+#include "report/output_dir.hpp"
 
 namespace asperity::cli {
 namespace {
@@ -26,14 +38,125 @@ struct FitCliOptions {
   bool no_profile = false;
   bool no_error_bars = false;
   bool quiet = false;
+  std::string task;  // "I/N" or "auto": one array task of a separate fit
+  bool collect = false;
 };
+
+namespace fs = std::filesystem;
+
+// The journal folder of one writer: DIR itself, or DIR/tasks/I-of-N for an array task.
+fs::path task_dir(const fs::path& out, const Shard& t) {
+  return out / "tasks" / (std::to_string(t.index) + "-of-" + std::to_string(t.count));
+}
+
+// One writer per journal folder; a second process gets one line and exit 2.
+std::unique_ptr<DirLock> lock_dir(const fs::path& dir) {
+  try {
+    return std::make_unique<DirLock>(dir, "asperity fit");
+  } catch (const std::runtime_error& e) {
+    throw InputError(dir.string(), 0, "--out", e.what());
+  }
+}
+
+// Opens DIR's journal for appending after checking it was computed from these inputs (a new
+// journal: inputs.txt is written first, durably, so a journal never exists without it).
+void open_journal(FitJournal& journal, const fs::path& dir, const std::string& inputs) {
+  const fs::path file = dir / "journal.csv", in = dir / "inputs.txt";
+  if (fs::exists(file)) {
+    if (!fs::exists(in))
+      throw InputError(file.string(), 0, "", "no inputs.txt beside it, so what its evaluations were computed from is "
+                                             "unknown; use another --out or remove the folder");
+    check_fit_inputs(in, inputs);
+  } else {
+    write_file_durably(in, inputs);
+  }
+  journal.open(file, true);
+}
+
+// --collect: the tasks' journals (read-only), each checked against its task's inputs; every task
+// I of one N must be there, none running.
+std::vector<std::unique_ptr<DirLock>> open_task_journals(FitJournal& journal, const fs::path& out, const FitSpec& spec,
+                                                         const std::vector<std::string>& overrides, const std::string& build) {
+  const fs::path tasks = out / "tasks";
+  std::uint64_t count = 0;
+  std::vector<std::uint64_t> seen;
+  std::error_code ec;
+  if (fs::is_directory(tasks, ec))
+    for (const auto& e : fs::directory_iterator(tasks)) {
+      const std::string n = e.path().filename().string();
+      if (n.rfind(".", 0) == 0) continue;  // temporaries
+      Shard t;
+      try {
+        const std::size_t of = n.find("-of-");
+        if (of == std::string::npos) throw std::invalid_argument(n);
+        t = parse_shard(n.substr(0, of) + "/" + n.substr(of + 4), {}, "--collect");
+      } catch (const std::invalid_argument&) {
+        throw InputError(e.path().string(), 0, "--collect", "not a task folder (expected I-of-N)");
+      }
+      if (count != 0 && t.count != count)
+        throw InputError(e.path().string(), 0, "--collect", "tasks of two splits (" + std::to_string(count) + " and " +
+                                                                std::to_string(t.count) + " tasks); remove the stale ones");
+      count = t.count;
+      seen.push_back(t.index);
+    }
+  if (count == 0) throw InputError(tasks.string(), 0, "--collect", "no array task has run into " + out.string() + " (asperity fit FIT --task I/N)");
+  std::vector<std::unique_ptr<DirLock>> locks;
+  for (std::uint64_t i = 0; i < count; ++i) {
+    const Shard t{i, count};
+    const fs::path d = task_dir(out, t);
+    if (std::find(seen.begin(), seen.end(), i) == seen.end() || !fs::exists(d / "journal.csv"))
+      throw InputError(d.string(), 0, "--collect", "task " + std::to_string(i) + "/" + std::to_string(count) +
+                                                       " has not run (no journal); run it first");
+    locks.push_back(lock_dir(d));  // a task still writing is refused here
+    check_fit_inputs(d / "inputs.txt", fit_inputs_text(spec, overrides, build, t));
+    journal.open(d / "journal.csv", false);
+  }
+  return locks;
+}
 
 int run(const FitCliOptions& opt, const Invocation& inv) {
   const FitSpec spec = load_fit(opt.fit_file, opt.overrides);
   const std::filesystem::path out =
       opt.out.empty() ? std::filesystem::path("results") / "fits" / spec.name : std::filesystem::path(opt.out);
-  check_fit_dir(out);  // fail before the fit, not after it
+  const bool sharded = !opt.task.empty();
+  Shard task;
+  if (sharded) {
+    try {
+      task = parse_shard(opt.task, [](const char* n) { return std::getenv(n); }, "--task");
+    } catch (const std::invalid_argument& e) {
+      throw InputError("", 0, "--task", e.what());
+    }
+  }
+  if ((sharded || opt.collect) && !spec.separate)
+    throw InputError(opt.fit_file, 0, sharded ? "--task" : "--collect",
+                     "a joint fit (separate: false) is one optimization and cannot be split into array tasks; run it without " +
+                         std::string(sharded ? "--task" : "--collect"));
+  // The folder is claimed (made, with the marker) before the fit, so its journal can live there;
+  // only a folder asperity fit made, or a new or empty one, is used.
+  claim_fit_dir(out);
+  const std::string build = code_build_id();
+  FitJournal journal;
+  std::unique_ptr<DirLock> lock;
+  std::vector<std::unique_ptr<DirLock>> task_locks;
+  if (opt.collect) {
+    lock = lock_dir(out);
+    task_locks = open_task_journals(journal, out, spec, opt.overrides, build);
+  } else {
+    const fs::path dir = sharded ? task_dir(out, task) : out;
+    fs::create_directories(dir);
+    lock = lock_dir(dir);
+    open_journal(journal, dir, fit_inputs_text(spec, opt.overrides, build, task));
+  }
   FitOptions fo;
+  fo.journal = &journal;
+  fo.replay_only = opt.collect;
+  if (sharded) {
+    fo.only = task_optimizations(spec, task);
+    if (fo.only.empty()) {  // more tasks than experiments: this one's (empty) journal says it ran
+      if (!opt.quiet) std::printf("task %s: no experiment falls to this task (%zu experiments)\n", opt.task.c_str(), spec.experiments.size());
+      return exit_ok;
+    }
+  }
   fo.threads = threads_or_all(opt.threads);
   fo.profile = !opt.no_profile;
   fo.error_bars = !opt.no_error_bars;
@@ -48,7 +171,7 @@ int run(const FitCliOptions& opt, const Invocation& inv) {
     };
   }
   // Evaluations against the budget (an optimization may stop earlier: the ETA is an upper bound).
-  const std::size_t optimizations = spec.separate ? spec.experiments.size() : 1;
+  const std::size_t optimizations = sharded ? fo.only.size() : spec.separate ? spec.experiments.size() : 1;
   ProgressLine progress("fit", "evaluations (budget)", static_cast<double>(spec.max_evaluations) * static_cast<double>(optimizations), opt.quiet);
   std::atomic<int> evaluated{0};
   std::mutex best_mutex;
@@ -64,8 +187,19 @@ int run(const FitCliOptions& opt, const Invocation& inv) {
     std::snprintf(text, sizeof text, "best objective %.4g", b);
     progress.update(++evaluated, text);
   };
-  const FitResult result = run_fit(spec, fo);
-  write_fit(out, spec, result, inv.command_line);
+  FitResult result;
+  try {
+    result = run_fit(spec, fo);
+  } catch (const NotJournaled& e) {
+    throw InputError((out / "tasks").string(), 0, "--collect",
+                     std::string(e.what()) + ": a task has not finished (run it again: it resumes) or ran with other "
+                                             "--no-profile/--no-error-bars/--set options than this collect");
+  }
+  if (!opt.quiet) {
+    std::printf("  evaluations: %d replayed from the journal, %d computed\n", result.replayed, result.computed);
+    std::fflush(stdout);
+  }
+  if (!sharded) write_fit(out, spec, result, inv.command_line);
   int evaluations = 0;
   bool ok = true;
   for (const auto& o : result.fits) {
@@ -74,7 +208,8 @@ int run(const FitCliOptions& opt, const Invocation& inv) {
   }
   if (!opt.quiet)
     std::printf("  %d evaluations in %zu fit(s); optimizations %.3f s (sum), total wall %.3f s (incl. profile, error-bar refits)\n  -> %s\n",
-                evaluations, result.fits.size(), result.fit_wall_s, result.wall_s, out.string().c_str());
+                evaluations, result.fits.size(), result.fit_wall_s, result.wall_s,
+                (sharded ? task_dir(out, task) / "journal.csv" : out).string().c_str());
   if (!ok) {
     for (const auto& o : result.fits)
       if (!o.ok()) std::cerr << "fit " << o.label << " failed: " << o.failure << '\n';
@@ -88,14 +223,22 @@ int run(const FitCliOptions& opt, const Invocation& inv) {
 Command add_fit_command(CLI::App& app) {
   auto opt = std::make_shared<FitCliOptions>();
   CLI::App* sub = app.add_subcommand("fit", "Calibrate model parameters against measurements with NLopt "
-                                            "(writes results/fits/<name>/)");
+                                            "(writes results/fits/<name>/). Every evaluation is journaled as it "
+                                            "finishes (DIR/journal.csv): rerun the same command to resume a killed fit");
   sub->add_option("fit", opt->fit_file, "Fit YAML file (see fits/)")->required();
-  sub->add_option("--out,-o", opt->out, "Results directory (default: results/fits/<name>/)");
+  sub->add_option("--out,-o", opt->out, "Results directory (default: results/fits/<name>/); one this fit made is resumed");
   add_threads_option(sub, opt->threads, "Worker threads (experiments or per-experiment fits in parallel)");
   add_set_option(sub, opt->overrides, "in every experiment's scene (the fit's parameters and the objective's own settings win)");
   sub->add_flag("--no-profile", opt->no_profile, "Skip the objective profile around the optimum");
   sub->add_flag("--no-error-bars", opt->no_error_bars, "Skip the error-bar refits");
   add_quiet_flag(sub, opt->quiet);
+  auto* task = sub->add_option("--task", opt->task,
+                               "Run only array task I of N of a separate fit (I/N, or auto: the SLURM array task), "
+                               "journaled into DIR/tasks/I-of-N/; then --collect");
+  sub->add_flag("--collect", opt->collect,
+                "Write the results folder from the journals of all --task runs (no optimization is re-run; "
+                "each experiment's best run is, for its curves)")
+      ->excludes(task);
   return Command{sub, [opt](const Invocation& inv) { return run(*opt, inv); }};
 }
 

@@ -6,6 +6,7 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cassert>
 #include <chrono>
 #include <cmath>
@@ -13,6 +14,7 @@
 #include <mutex>
 #include <stdexcept>
 
+#include "fit/fit_journal.hpp"
 #include "fit/objective.hpp"
 #include "io/provenance.hpp"
 #include "observe/simulate.hpp"
@@ -78,8 +80,15 @@ ExperimentEval run_experiment(const FitSpec& spec, std::size_t e, const std::vec
   return out;
 }
 
+// Evaluations answered from the journal and computed, over the whole fit.
+struct Counts {
+  std::atomic<int> replayed{0}, computed{0};
+};
+
 struct Problem {
   const FitSpec* spec = nullptr;
+  std::string label;  // the optimization's label (journal key with `part`)
+  std::string part;   // "fit", "profile" or "refit KEY SIGN" (fit_journal.hpp)
   std::vector<std::size_t> exps;
   std::vector<FreeVariable> vars;
   std::vector<std::vector<SceneSetting>> extra;  // per exps[k]: fixed shifts (error bars)
@@ -87,6 +96,10 @@ struct Problem {
   std::string failure;
   Clock::time_point t0;
   const std::function<void(double)>* on_evaluation = nullptr;  // FitOptions::on_evaluation
+  FitJournal* journal = nullptr;                               // FitOptions::journal
+  bool replay_only = false;                                    // FitOptions::replay_only
+  Counts* counts = nullptr;
+  std::string not_journaled;  // replay_only: the evaluation the journal lacked
 };
 
 std::vector<SceneSetting> settings_for(const Problem& pb, std::size_t k, const std::vector<double>& x) {
@@ -131,6 +144,31 @@ std::string values_text(const Problem& pb, const std::vector<double>& x) {
   return s;
 }
 
+// evaluate() through the journal: an evaluation of this (part, optimization) journaled at exactly
+// x is returned as it was (no model run; also a point NLopt asks for twice in one run, which the
+// deterministic model would give again anyway); a new one is appended as soon as it finishes.
+// Without the journal entry in replay_only mode: nullopt (the caller stops).
+std::optional<Evaluation> evaluate_journaled(const Problem& pb, int index, const std::vector<double>& x) {
+  if (pb.journal) {
+    if (std::optional<Evaluation> ev = pb.journal->find(pb.part, pb.label, x)) {
+      ev->index = index;
+      if (pb.counts) ++pb.counts->replayed;
+      return ev;
+    }
+    if (pb.replay_only) return std::nullopt;
+  }
+  Evaluation ev = evaluate(pb, x);
+  ev.index = index;
+  if (pb.journal) pb.journal->append(pb.part, pb.label, ev);
+  if (pb.counts) ++pb.counts->computed;
+  return ev;
+}
+
+std::string not_journaled_text(const Problem& pb, int index, const std::vector<double>& x) {
+  return "evaluation " + std::to_string(index) + " of " + pb.part + " " + pb.label + " (" + values_text(pb, x) +
+         ") is in no journal";
+}
+
 double nlopt_objective(unsigned n, const double* u, double* /*grad: derivative-free*/, void* data) {
   Problem& pb = *static_cast<Problem*>(data);
   std::vector<double> x(n);
@@ -139,8 +177,13 @@ double nlopt_objective(unsigned n, const double* u, double* /*grad: derivative-f
     x[i] = parameter_value(p, u[i]);
     assert(x[i] >= p.lo && x[i] <= p.hi);
   }
-  Evaluation ev = evaluate(pb, x);
-  ev.index = static_cast<int>(pb.log.size()) + 1;
+  const int index = static_cast<int>(pb.log.size()) + 1;
+  std::optional<Evaluation> journaled = evaluate_journaled(pb, index, x);
+  if (!journaled) {
+    pb.not_journaled = not_journaled_text(pb, index, x);
+    throw nlopt::forced_stop();
+  }
+  const Evaluation& ev = *journaled;
   pb.log.push_back(ev);
   if (pb.on_evaluation && *pb.on_evaluation) (*pb.on_evaluation)(ev.objective);
   if (ev.status != "ok") {
@@ -158,6 +201,8 @@ struct OptimizeResult {
   double wall_s = 0;
 };
 
+// Runs the optimization's problem (Problem::part set) from `start`. NotJournaled when replay_only
+// and an evaluation was not journaled.
 OptimizeResult optimize(Problem pb, const std::vector<double>& start, double initial_step) {
   const FitSpec& spec = *pb.spec;
   const auto n = static_cast<unsigned>(pb.vars.size());
@@ -194,6 +239,7 @@ OptimizeResult optimize(Problem pb, const std::vector<double>& start, double ini
     out.failure = std::string("NLopt: ") + e.what();
   }
   out.wall_s = seconds_since(t0);
+  if (!pb.not_journaled.empty()) throw NotJournaled(pb.not_journaled);
   for (const auto& ev : pb.log)
     if (ev.status == "ok" && !(ev.objective >= out.objective)) {
       out.objective = ev.objective;
@@ -204,9 +250,14 @@ OptimizeResult optimize(Problem pb, const std::vector<double>& start, double ini
   return out;
 }
 
-void run_task(const FitSpec& spec, const FitOptions& options, Optimization& o, std::mutex& progress_mutex) {
+void run_task(const FitSpec& spec, const FitOptions& options, Optimization& o, std::mutex& progress_mutex, Counts& counts) {
   Problem pb;
   pb.spec = &spec;
+  pb.label = o.label;
+  pb.part = "fit";
+  pb.journal = options.journal;
+  pb.replay_only = options.replay_only;
+  pb.counts = &counts;
   pb.exps = o.experiments;
   pb.vars = o.variables;
   pb.extra.assign(o.experiments.size(), {});
@@ -259,9 +310,12 @@ void run_task(const FitSpec& spec, const FitOptions& options, Optimization& o, s
         pt.status = "outside the bounds";
         return;
       }
-      const Evaluation ev = evaluate(pb, x);
-      pt.objective = ev.objective;
-      pt.status = ev.status;
+      Problem q = pb;
+      q.part = "profile";
+      const std::optional<Evaluation> ev = evaluate_journaled(q, static_cast<int>(i) + 1, x);
+      if (!ev) throw NotJournaled(not_journaled_text(q, static_cast<int>(i) + 1, x));
+      pt.objective = ev->objective;
+      pt.status = ev->status;
     });
     o.profile = std::move(pts);
     o.profile_wall_s = seconds_since(t0);
@@ -276,6 +330,11 @@ void run_task(const FitSpec& spec, const FitOptions& options, Optimization& o, s
       ErrorBarRefit& rf = refits[i];
       Problem q;
       q.spec = &spec;
+      q.label = o.label;
+      q.part = "refit " + rf.key + " " + (rf.sign < 0 ? "-1" : "+1");
+      q.journal = options.journal;
+      q.replay_only = options.replay_only;
+      q.counts = &counts;
       q.exps = o.experiments;
       q.vars = o.variables;
       for (const std::size_t e : o.experiments) {
@@ -359,12 +418,24 @@ FitResult run_fit(const FitSpec& spec, const FitOptions& options) {
     result.fits.push_back(make(all, all.size() == 1 ? spec.experiments[0].name : std::string("joint")));
   }
 
+  if (!options.only.empty()) {
+    std::vector<Optimization> chosen;
+    for (const std::size_t i : options.only) {
+      if (i >= result.fits.size()) throw std::invalid_argument("run_fit: FitOptions::only names optimization " + std::to_string(i));
+      chosen.push_back(std::move(result.fits[i]));
+    }
+    result.fits = std::move(chosen);
+  }
+
   std::mutex progress_mutex;
+  Counts counts;
   tbb::task_arena arena(result.threads);
   arena.execute([&] {
     tbb::parallel_for(std::size_t{0}, result.fits.size(),
-                      [&](std::size_t i) { run_task(spec, options, result.fits[i], progress_mutex); });
+                      [&](std::size_t i) { run_task(spec, options, result.fits[i], progress_mutex, counts); });
   });
+  result.replayed = counts.replayed;
+  result.computed = counts.computed;
   result.wall_s = seconds_since(t0);
   for (const auto& o : result.fits) result.fit_wall_s += o.wall_s;
   return result;

@@ -14,10 +14,16 @@
 // the peak's) inside an evaluation ends that optimization with NLopt's forced stop; the reason
 // is kept in Optimization::failure (status "failed", `asperity fit` exits 1) and the best
 // evaluation so far is reported.
+//
+// Journal (FitOptions::journal, fit_journal.hpp): every evaluation is looked up first and
+// journaled when computed, so a killed fit rerun with the same journal replays what it had done
+// (NLopt's derivative-free algorithms ask for the same points in the same order) and ends with
+// the uninterrupted result; array tasks run FitOptions::only, collect runs replay_only.
 #include <cstddef>
 #include <functional>
 #include <limits>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -26,6 +32,8 @@
 #include "solve/observer.hpp"
 
 namespace asperity {
+
+class FitJournal;  // fit/fit_journal.hpp
 
 struct FitOptions {
   int threads = 2;          // TBB workers
@@ -36,6 +44,22 @@ struct FitOptions {
   // Called after every evaluation of the optimizations (from worker threads: must be
   // thread-safe), with its objective; may be empty. For progress lines.
   std::function<void(double objective)> on_evaluation;
+  // Every evaluation (optimizations, profile points, error-bar refits) goes through it: one
+  // journaled at exactly the same values is replayed (no model run), a new one is appended as
+  // soon as it finishes. May be null.
+  FitJournal* journal = nullptr;
+  // Collect (array tasks): every evaluation must come from the journal; the first that does not
+  // ends run_fit with NotJournaled. The best runs are still re-run (for their curves).
+  bool replay_only = false;
+  // The optimizations to run, as indices into the list run_fit builds (one per experiment with
+  // `separate`, in file order; else the one joint fit); empty: all. FitResult::fits then holds
+  // only these.
+  std::vector<std::size_t> only;
+};
+
+// run_fit with FitOptions::replay_only met an evaluation the journal does not hold.
+struct NotJournaled : std::runtime_error {
+  using std::runtime_error::runtime_error;
 };
 
 // One coordinate of an optimization: a parameter, shared or for one experiment.
@@ -108,6 +132,8 @@ struct FitResult {
   double wall_s = 0;               // everything
   double fit_wall_s = 0;           // sum of the optimizations' wall times (no profile, refits)
   int threads = 1;
+  int replayed = 0;                // evaluations answered from FitOptions::journal
+  int computed = 0;                // evaluations that ran the model (profiles and refits included)
 };
 
 // NLopt's name of a result code (e.g. "XTOL_REACHED").

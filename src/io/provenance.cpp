@@ -35,6 +35,23 @@ BuildInfo build_info() {
                    ASPERITY_LIBRARIES};
 }
 
+std::string clean_build_id() {
+  const BuildInfo b = build_info();
+  if (b.git_commit.empty() || b.git_commit == "unknown" || b.git_commit.find("dirty") != std::string::npos) return "";
+  return "asperity " + b.version + " commit " + b.git_commit + " " + b.build_type + " " + b.compiler;
+}
+
+std::string code_build_id() {
+  if (std::string id = clean_build_id(); !id.empty()) return id;
+  const BuildInfo b = build_info();
+  try {
+    return "asperity " + b.version + " commit " + b.git_commit + " " + b.build_type + " " + b.compiler + " executable " +
+           hex16(fnv1a64(read_file_text("/proc/self/exe")));
+  } catch (const std::exception&) {  // no /proc: nothing names this code
+    return "";
+  }
+}
+
 std::string version_line() {
   const BuildInfo b = build_info();
   return "asperity " + b.version + " (commit " + b.git_commit + ", " + b.build_type + ", " + b.compiler + ")";

@@ -20,6 +20,17 @@ struct BuildInfo {
 // The build this binary is (constants fixed at compile time).
 BuildInfo build_info();
 
+// The build a resumed result may trust to have computed what it stored: "asperity VERSION commit
+// COMMIT BUILD_TYPE COMPILER", or "" when the commit is unknown or "-dirty" (such a binary's code
+// may differ from its commit's, so it names no code).
+std::string clean_build_id();
+
+// The code of this executable for a fit journal, which must never mix evaluations of two codes:
+// clean_build_id(), or for an unknown or "-dirty" commit the same text plus the FNV-1a 64 of the
+// executable's bytes (/proc/self/exe; "" when unreadable): a developer's rebuilt binary is
+// another code, the same binary resumes its own journal.
+std::string code_build_id();
+
 // "asperity 0.1.0 (commit 612a57f3c2ab, Release, GCC 12.2.0)": what --version prints.
 std::string version_line();
 

@@ -302,6 +302,10 @@ std::string fit_yaml(const FitSpec& spec, const FitResult& result, const std::st
 
 void check_fit_dir(const fs::path& dir) { check_replaceable(dir); }  // names the folder as given
 
+void claim_fit_dir(const fs::path& dir) {
+  claim_dir(dir, "fit", "--out", [](const fs::path& d) { return first_line_is(d / "fit.yaml", kFitHeader); });
+}
+
 // The observables of fitted.csv: (column, observable_fields() name).
 const std::pair<const char*, const char*> kFittedObservables[] = {
     {"alpha", "alpha"}, {"alpha_measured", "alpha_measured"}, {"Q_s_N", "Q_s"}, {"area_drop_fraction", "area_drop_fraction"},
@@ -309,6 +313,18 @@ const std::pair<const char*, const char*> kFittedObservables[] = {
 
 void write_fit(const fs::path& dir, const FitSpec& spec, const FitResult& result, const std::string& command_line) {
   write_dir_atomically(dir, check_replaceable, [&](const fs::path& tmp) {
+    // The fit's journals come along (hard links: no copy, already durable; a copy where the file
+    // system has none), so the new folder still resumes and collects.
+    for (const char* name : {"journal.csv", "inputs.txt", "tasks"}) {
+      std::error_code ec;
+      if (!fs::exists(fs::symlink_status(dir / name, ec))) continue;
+      fs::copy(dir / name, tmp / name, fs::copy_options::recursive | fs::copy_options::create_hard_links, ec);
+      if (ec) {
+        fs::remove_all(tmp / name, ec);
+        fs::copy(dir / name, tmp / name, fs::copy_options::recursive, ec);
+      }
+      if (ec) throw std::runtime_error("cannot carry " + (dir / name).string() + " over: " + ec.message());
+    }
     const bool plots = gnuplot_available();
     for (const auto& o : result.fits) write_optimization(tmp / fit_subdir(spec, o), spec, o, plots);
 

@@ -10,7 +10,9 @@
 //   AQ_<exp>_model.csv, AQ_<exp>_measured.csv  the plotted data.
 // A joint fit writes these in DIR; separate fits write evaluations..AQ into DIR/<experiment>/.
 // DIR is built as a temporary sibling and renamed into place; an existing DIR is replaced only
-// when it holds a fit.yaml (never unrelated files). PNGs are skipped without gnuplot.
+// when it holds a fit.yaml (never unrelated files). PNGs are skipped without gnuplot. The fit's
+// journals (journal.csv, inputs.txt, tasks/: fit/fit_journal.hpp) are carried over into the new
+// folder.
 #include <filesystem>
 #include <string>
 
@@ -26,5 +28,9 @@ void write_fit(const std::filesystem::path& dir, const FitSpec& spec, const FitR
 
 // Throws the error write_fit would give for an existing `dir` that is not a fit directory.
 void check_fit_dir(const std::filesystem::path& dir);
+
+// check_fit_dir, then makes `dir` (with the fit's marker) when absent: the journal lives there
+// while the fit runs (report/output_dir.hpp, claim_dir).
+void claim_fit_dir(const std::filesystem::path& dir);
 
 }  // namespace asperity

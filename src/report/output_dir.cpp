@@ -47,6 +47,29 @@ void check_ours(const fs::path& dir, const std::string& command, const std::stri
   throw InputError(dir.string(), 0, option, "refusing to write there: " + why + "; choose a new or empty folder");
 }
 
+void claim_dir(const fs::path& dir, const std::string& command, const std::string& option,
+               const std::function<bool(const fs::path&)>& legacy_ours) {
+  check_ours(dir, command, option, legacy_ours);
+  const fs::path target = normal_dir(dir);
+  std::error_code ec;
+  if (fs::exists(fs::symlink_status(target, ec))) {
+    if (!has_marker(target, command)) write_marker(target, command);  // empty, or written before markers
+    return;
+  }
+  fs::create_directories(target.parent_path(), ec);
+  const std::string name = target.filename().string();
+  const fs::path tmp = target.parent_path() / ("." + name + ".tmp-" + unique_tmp_suffix());
+  if (!fs::create_directory(tmp, ec) || ec) throw std::runtime_error("cannot create " + tmp.string() + ": " + ec.message());
+  write_marker(tmp, command);
+  fs::rename(tmp, target, ec);
+  if (ec) {  // another process made it first: it must be ours too
+    std::error_code e2;
+    fs::remove_all(tmp, e2);
+    check_ours(dir, command, option, legacy_ours);
+    if (!has_marker(target, command)) write_marker(target, command);
+  }
+}
+
 void write_dir_atomically(const fs::path& dir, const std::function<void(const fs::path&)>& check_replaceable,
                           const std::function<void(const fs::path&)>& fill) {
   const fs::path target = normal_dir(dir);

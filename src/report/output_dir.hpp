@@ -31,6 +31,12 @@ bool has_marker(const std::filesystem::path& dir, const std::string& command);
 void check_ours(const std::filesystem::path& dir, const std::string& command, const std::string& option,
                 const std::function<bool(const std::filesystem::path&)>& legacy_ours = {});
 
+// check_ours(dir, ...), then makes sure `dir` exists and carries the marker of `command`: an absent
+// folder is made as a hidden sibling holding the marker and renamed into place, so processes
+// starting together (array tasks sharing one output folder) never see a folder without it.
+void claim_dir(const std::filesystem::path& dir, const std::string& command, const std::string& option,
+               const std::function<bool(const std::filesystem::path&)>& legacy_ours = {});
+
 // True when the first line of `file` is `line` (recognises files we wrote before markers).
 bool first_line_is(const std::filesystem::path& file, const std::string& line);
 

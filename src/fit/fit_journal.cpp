@@ -1,0 +1,168 @@
+#include "fit/fit_journal.hpp"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <charconv>
+#include <cstring>
+#include <fstream>
+#include <stdexcept>
+
+#include "io/atomic_file.hpp"
+#include "io/csv.hpp"
+#include "io/input_error.hpp"
+#include "io/journal_line.hpp"
+#include "io/numbers.hpp"
+
+namespace asperity {
+namespace fs = std::filesystem;
+
+namespace {
+
+const char* const kHeader = "part,optimization,evaluation,x,objective,terms,status,wall_s,check";
+const char* const kColumns[] = {"part", "optimization", "evaluation", "x", "objective", "terms", "status", "wall_s"};
+
+std::string key_of(const std::string& part, const std::string& optimization, const std::string& x) {
+  return part + '\n' + optimization + '\n' + x;
+}
+
+// A number as the journal writes it (csv_number; "nan" for a failed evaluation's objective).
+bool parse_number(std::string_view s, double& out) {
+  const auto r = std::from_chars(s.data(), s.data() + s.size(), out);
+  return !s.empty() && r.ec == std::errc() && r.ptr == s.data() + s.size();
+}
+
+bool parse_list(std::string_view s, std::vector<double>& out) {
+  out.clear();
+  if (s.empty()) return true;
+  for (std::size_t start = 0;;) {
+    const std::size_t semi = s.find(';', start);
+    double v = 0;
+    if (!parse_number(s.substr(start, semi == std::string_view::npos ? std::string_view::npos : semi - start), v)) return false;
+    out.push_back(v);
+    if (semi == std::string_view::npos) return true;
+    start = semi + 1;
+  }
+}
+
+}  // namespace
+
+std::string journal_values(const std::vector<double>& x) {
+  std::string s;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    if (i) s += ';';
+    s += csv_number(x[i]);
+  }
+  return s;
+}
+
+FitJournal::~FitJournal() {
+  if (fd_ >= 0) ::close(fd_);
+}
+
+void FitJournal::open(const fs::path& file, bool append) { read(file, append && fd_ < 0); }
+
+void FitJournal::read(const fs::path& file, bool append) {
+  const std::string name = file.string();
+  std::uint64_t good_end = 0;  // bytes up to the end of the last good line
+  if (fs::exists(file)) {
+    std::ifstream in(file, std::ios::binary);
+    if (!in) throw std::runtime_error("cannot open " + name);
+    std::string line;
+    std::uint64_t offset = 0;
+    int lineno = 0;
+    int first_bad = 0;  // a damaged line: fatal if a good one follows, a dropped tail otherwise
+    std::map<std::string, Evaluation> found;
+    while (std::getline(in, line)) {
+      ++lineno;
+      const bool whole = !in.eof();  // a last line without its newline is torn
+      const std::uint64_t end = offset + line.size() + (whole ? 1 : 0);
+      offset = end;
+      if (lineno == 1) {
+        if (!whole) break;  // torn header: as good as an empty journal
+        if (line != kHeader)
+          throw InputError(name, 1, "header", "not an asperity fit journal (expected '" + std::string(kHeader) + "')");
+        good_end = end;
+        continue;
+      }
+      std::string_view row;
+      if (!whole || !checked_journal_row(line, row)) {
+        if (first_bad == 0) first_bad = lineno;
+        continue;
+      }
+      if (first_bad != 0)
+        throw InputError(name, first_bad, "check",
+                         "damaged line (its checksum does not match) followed by good ones: the journal was edited or "
+                         "corrupted; remove that line or the folder");
+      std::vector<std::string> f;
+      try {
+        f = csv_split(row);
+      } catch (const std::exception& e) {
+        throw InputError(name, lineno, "part", e.what());
+      }
+      if (f.size() != 8)
+        throw InputError(name, lineno, f.size() < 8 ? kColumns[f.size()] : "check",
+                         "expected 8 fields and a checksum, got " + std::to_string(f.size()) + " fields");
+      Evaluation ev;
+      std::vector<double> wall;
+      if (!scene_io::parse_int(f[2], ev.index) || ev.index < 1)
+        throw InputError(name, lineno, "evaluation", "not a positive whole number: " + scene_io::quote(f[2]));
+      if (!parse_list(f[3], ev.values) || ev.values.empty())
+        throw InputError(name, lineno, "x", "not a ';'-separated list of numbers: " + scene_io::quote(f[3]));
+      if (!parse_number(f[4], ev.objective))
+        throw InputError(name, lineno, "objective", "not a number: " + scene_io::quote(f[4]));
+      if (!parse_list(f[5], ev.residuals))
+        throw InputError(name, lineno, "terms", "not a ';'-separated list of numbers: " + scene_io::quote(f[5]));
+      if (f[6].empty()) throw InputError(name, lineno, "status", "empty");
+      ev.status = f[6];
+      if (!parse_number(f[7], ev.wall_s)) throw InputError(name, lineno, "wall_s", "not a number: " + scene_io::quote(f[7]));
+      good_end = end;
+      found[key_of(f[0], f[1], f[3])] = std::move(ev);
+    }
+    if (first_bad != 0) dropped_ += static_cast<std::size_t>(lineno - first_bad + 1);
+    const std::lock_guard<std::mutex> lock(mutex_);
+    for (auto& [k, ev] : found) index_.emplace(k, std::move(ev));  // the first file read wins
+  }
+  files_.push_back(file);
+  if (!append) return;
+  if (good_end == 0) {
+    write_file_durably(file, std::string(kHeader) + "\n");
+  } else if (good_end < fs::file_size(file)) {
+    // Only a torn or damaged tail is cut (what follows the last good line), so nothing computed
+    // is lost; the file is then flushed so the cut survives a power cut too.
+    if (::truncate(file.c_str(), static_cast<off_t>(good_end)) != 0)
+      throw std::runtime_error("cannot cut the torn tail of " + name + ": " + std::strerror(errno));
+  }
+  fd_ = ::open(file.c_str(), O_WRONLY | O_APPEND | O_CLOEXEC);
+  if (fd_ < 0) throw std::runtime_error("cannot open " + name + ": " + std::strerror(errno));
+  if (::fdatasync(fd_) != 0) throw std::runtime_error("cannot sync " + name + ": " + std::strerror(errno));
+  appending_ = file;
+}
+
+std::optional<Evaluation> FitJournal::find(const std::string& part, const std::string& optimization,
+                                           const std::vector<double>& x) const {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  const auto it = index_.find(key_of(part, optimization, journal_values(x)));
+  if (it == index_.end()) return std::nullopt;
+  return it->second;
+}
+
+void FitJournal::append(const std::string& part, const std::string& optimization, const Evaluation& ev) {
+  const std::string x = journal_values(ev.values);
+  const std::string row = csv_field(part) + "," + csv_field(optimization) + "," + std::to_string(ev.index) + "," + x + "," +
+                          csv_number(ev.objective) + "," + journal_values(ev.residuals) + "," + csv_field(ev.status) + "," +
+                          csv_number(ev.wall_s);
+  const std::lock_guard<std::mutex> lock(mutex_);
+  if (fd_ < 0) throw std::logic_error("FitJournal::append: no journal opened for appending");
+  if (!write_fully(fd_, journal_line(row)) || ::fdatasync(fd_) != 0)
+    throw std::runtime_error("cannot write " + appending_.string() + ": " + std::strerror(errno));
+  index_.emplace(key_of(part, optimization, x), ev);
+}
+
+std::size_t FitJournal::size() const {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  return index_.size();
+}
+
+}  // namespace asperity
