@@ -2,8 +2,6 @@
 // round robin when costs are equal, keep the greedy bound max − min ≤ the costliest point, and
 // deal a costly axis value evenly where round robin puts it on one shard; a sharded sweep under
 // the cost plan merges to the unsharded store, and a store keeps the plan it was started with.
-#include <unistd.h>
-
 #include <catch2/catch.hpp>
 #include <algorithm>
 #include <filesystem>
@@ -21,10 +19,12 @@
 #include "campaign/sweep.hpp"
 #include "solve/problem.hpp"
 #include "solve/run_cost.hpp"
+#include "support.hpp"
 
 namespace fs = std::filesystem;
 using namespace asperity;
 using Catch::Matchers::Contains;
+using asperity::testing::slurp;
 
 namespace {
 
@@ -32,21 +32,6 @@ std::vector<std::uint64_t> points_of(const ShardPlan& p, std::uint64_t total) {
   std::vector<std::uint64_t> out;
   for (std::uint64_t i = p.next(0); i < total; i = p.next(i + 1)) out.push_back(i);
   return out;
-}
-
-fs::path temp_dir() {
-  static int counter = 0;
-  const fs::path d = fs::temp_directory_path() / ("asperity_shard_plan_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
 }
 
 // points.csv without wall_s (the one value allowed to differ between runs).
@@ -109,7 +94,9 @@ TEST_CASE("a cost plan partitions the points and keeps the greedy bound", "[camp
 }
 
 TEST_CASE("a sweep deals reference points over both shards, merges to the unsharded store, and keeps its plan", "[campaign][shard]") {
-  const fs::path d = temp_dir();
+  const fs::path d = asperity::testing::temp_path("asperity_shard_plan");
+  fs::remove_all(d);
+  fs::create_directories(d);
   const fs::path scene = fs::path(ASPERITY_SOURCE_DIR) / "tests" / "data" / "campaign" / "tiny_scene.yaml";
   {
     std::ofstream f(d / "methods.yaml");
