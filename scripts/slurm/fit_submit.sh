@@ -12,27 +12,6 @@
 # ASPERITY FIT OUT`.
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
-if [ $# -lt 3 ]; then
-  echo "usage: $0 FIT.yaml OUT TASKS [sbatch options...]" >&2
-  exit 2
-fi
-fit=$1 out=$2 tasks=$3
-shift 3
-if ! [[ $tasks =~ ^[1-9][0-9]{0,4}$ ]]; then
-  echo "$0: TASKS: expected a whole number in [1, 99999], got '$tasks'" >&2
-  exit 2
-fi
-if [ ! -f "$fit" ]; then
-  echo "$0: FIT: no such file: $fit" >&2
-  exit 2
-fi
-asperity=${ASPERITY:-$here/../../build/asperity}
-asperity=$(realpath "$asperity")
-fit=$(realpath "$fit")
-out=$(realpath -m "$out")
-array=$(sbatch --parsable --requeue --array="0-$((tasks - 1))" "$@" "$here/fit_task.sh" "$asperity" "$fit" "$out")
-array=${array%%;*}
-collect=$(sbatch --parsable --dependency="afterok:$array" "$@" "$here/fit_collect.sh" "$asperity" "$fit" "$out")
-collect=${collect%%;*}
-echo "array $array"
-echo "collect $collect"
+source "$here/submit_common.sh"
+check_submit_args FIT "$@"
+submit_array_then "$here/fit_task.sh" collect "$here/fit_collect.sh" "$asperity" "$input" "$out"

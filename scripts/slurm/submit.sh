@@ -11,27 +11,6 @@
 # one-task array, shard 0/1: not the same shard.)
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
-if [ $# -lt 3 ]; then
-  echo "usage: $0 CAMPAIGN.yaml OUT TASKS [sbatch options...]" >&2
-  exit 2
-fi
-campaign=$1 out=$2 tasks=$3
-shift 3
-if ! [[ $tasks =~ ^[1-9][0-9]{0,4}$ ]]; then
-  echo "$0: TASKS: expected a whole number in [1, 99999], got '$tasks'" >&2
-  exit 2
-fi
-if [ ! -f "$campaign" ]; then
-  echo "$0: CAMPAIGN: no such file: $campaign" >&2
-  exit 2
-fi
-asperity=${ASPERITY:-$here/../../build/asperity}
-asperity=$(realpath "$asperity")
-campaign=$(realpath "$campaign")
-out=$(realpath -m "$out")
-array=$(sbatch --parsable --requeue --array="0-$((tasks - 1))" "$@" "$here/sweep_task.sh" "$asperity" "$campaign" "$out")
-array=${array%%;*}
-merge=$(sbatch --parsable --dependency="afterok:$array" "$@" "$here/merge_task.sh" "$asperity" "$out" "$tasks")
-merge=${merge%%;*}
-echo "array $array"
-echo "merge $merge"
+source "$here/submit_common.sh"
+check_submit_args CAMPAIGN "$@"
+submit_array_then "$here/sweep_task.sh" merge "$here/merge_task.sh" "$asperity" "$out" "$tasks"

@@ -4,14 +4,17 @@
 #include <numeric>
 #include <stdexcept>
 
+#include "solve/problem.hpp"
+#include "solve/run_cost.hpp"
+
 namespace asperity {
 
 std::vector<std::size_t> task_optimizations(const FitSpec& spec, const Shard& task) {
   if (!spec.separate) throw std::invalid_argument("a joint fit is one optimization and cannot be split into tasks");
   const std::size_t n = spec.experiments.size();
   std::vector<double> cost(n);
-  for (std::size_t e = 0; e < n; ++e)
-    cost[e] = static_cast<double>(std::max<std::size_t>(1, spec.experiments[e].scene.build().experiment.junctions.area_m2.size()));
+  for (std::size_t e = 0; e < n; ++e)  // the sweep's cost model: N·t, or N³·t with interactions
+    cost[e] = expected_run_seconds(make_problem(spec.experiments[e].scene.build()));
   std::vector<std::size_t> order(n);
   std::iota(order.begin(), order.end(), std::size_t{0});
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return cost[a] > cost[b]; });
