@@ -87,4 +87,12 @@ inline std::filesystem::path temp_path(const std::string& stem, const std::strin
   name += ext;
   return std::filesystem::temp_directory_path() / name;
 }
+
+// An empty folder temp_path(stem) (removed first if a crashed run left it).
+inline std::filesystem::path fresh_dir(const std::string& stem) {
+  const std::filesystem::path d = temp_path(stem);
+  std::filesystem::remove_all(d);
+  std::filesystem::create_directories(d);
+  return d;
+}
 }  // namespace asperity::testing

@@ -94,9 +94,7 @@ TEST_CASE("a cost plan partitions the points and keeps the greedy bound", "[camp
 }
 
 TEST_CASE("a sweep deals reference points over both shards, merges to the unsharded store, and keeps its plan", "[campaign][shard]") {
-  const fs::path d = asperity::testing::temp_path("asperity_shard_plan");
-  fs::remove_all(d);
-  fs::create_directories(d);
+  const fs::path d = asperity::testing::fresh_dir("asperity_shard_plan");
   const fs::path scene = fs::path(ASPERITY_SOURCE_DIR) / "tests" / "data" / "campaign" / "tiny_scene.yaml";
   {
     std::ofstream f(d / "methods.yaml");

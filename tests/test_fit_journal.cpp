@@ -24,12 +24,7 @@ using asperity::testing::write_text;
 
 namespace {
 
-fs::path fresh_dir(const std::string& tag) {
-  const fs::path d = asperity::testing::temp_path("asperity-fitjournal-" + tag);
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
+fs::path fresh_dir(const std::string& tag) { return asperity::testing::fresh_dir("asperity-fitjournal-" + tag); }
 
 bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 

@@ -14,12 +14,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-fs::path fresh(const std::string& name) {
-  const fs::path d = asperity::testing::temp_path("asperity-io-atomic-" + name);
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
+fs::path fresh(const std::string& name) { return asperity::testing::fresh_dir("asperity-io-atomic-" + name); }
 
 std::size_t entries(const fs::path& d) {
   std::size_t n = 0;
