@@ -8,6 +8,9 @@
 #             (every stored point rebuilt and re-hashed),
 #   shards    run again as 16 shards (--shard I/16, one after the other, one thread each),
 #   merge     `asperity merge` of the 16 shards (checked equal to the unsharded store, wall_s aside),
+#   copy      beside it, disk speed: `cat` of the 16 journals through `tee` into two files and a
+#             `sync` of both (the least I/O a merge does: read each row once, write the journal and
+#             points.csv, flushed),
 #   plot      a 100 x 100 heat map slice (--where model.eta=0) of the merged store,
 # each under /usr/bin/time -v (wall seconds, maximum resident set). With two sizes or more, each
 # figure is extrapolated to 10^7 points along the line through the two largest sizes (a figure
@@ -70,6 +73,12 @@ YAML
     measure "$n" "shard$i" "$exe" sweep "$d/scale.yaml" -j1 --quiet --shard "$i/16" --out "$d/shard$i"
   done
   measure "$n" merge16 "$exe" merge "$d"/shard{0..15} --out "$d/merged"
+  # Disk speed, side by side: the bytes merge must move at least (read the 16 journals once, write
+  # a journal and a points.csv of their size, flushed to disk as merge flushes its files).
+  mkdir -p "$d/copy"
+  measure "$n" copy16 sh -c 'cat "$@" | tee "$0/journal.csv" > "$0/points.csv" && sync "$0/journal.csv" "$0/points.csv"' \
+    "$d/copy" "$d"/shard{0..15}/journal.csv
+  rm -rf "$d/copy"
   strip() { sed 's/,[^,]*$//' "$1/points.csv"; }
   cmp -s <(strip "$d/full") <(strip "$d/merged") || { echo "store_scale: merged store differs from the unsharded one" >&2; exit 1; }
   measure "$n" plot "$exe" plot "$d/merged" --x model.epsilon --y model.c_min --z force_evals --where model.eta=0 \
@@ -88,14 +97,14 @@ awk -v now="$(date -u +%Y-%m-%dT%H:%MZ)" -v load="$(cut -d' ' -f1-3 /proc/loadav
     if (!(size in seen)) { seen[size] = 1; sizes[++ns] = size }
   }
   END {
-    split("sweep resume_trusted resume_rehash shards16 merge16 plot", steps, " ")
+    split("sweep resume_trusted resume_rehash shards16 merge16 copy16 plot", steps, " ")
     printf "store scale benchmark, %s, load %s (one thread per sweep; resume_rehash re-hashes every stored point)\n", now, load
     hdr = sprintf("%-16s", "step"); for (k = 1; k <= ns; ++k) hdr = hdr sprintf(" | %9s pts: wall s, RSS MB", sizes[k])
     if (ns >= 2) hdr = hdr " | 1e7 extrapolated: wall s, RSS MB"
     print hdr
     if (csv != "") print "step,points,wall_s,rss_mb,extrapolated" > csv
     a = sizes[ns - 1]; b = sizes[ns]
-    for (s = 1; s <= 6; ++s) {
+    for (s = 1; s <= 7; ++s) {
       st = steps[s]; line = sprintf("%-16s", st)
       for (k = 1; k <= ns; ++k) {
         line = line sprintf(" | %22.2f %8.1f", w[sizes[k], st], r[sizes[k], st])
@@ -113,6 +122,10 @@ awk -v now="$(date -u +%Y-%m-%dT%H:%MZ)" -v load="$(cut -d' ' -f1-3 /proc/loadav
       }
       print line
     }
-    for (k = 1; k <= ns; ++k)
+    for (k = 1; k <= ns; ++k) {
       printf "sweep at %s points: %.0f points/s per thread; journal.csv %s MB\n", sizes[k], sizes[k] / w[sizes[k], "sweep"], jm[sizes[k]]
+      if (w[sizes[k], "copy16"] > 0)
+        printf "merge at %s points: %.0f MB/s of journal vs %.0f MB/s for cat | tee + sync of the same bytes (merge takes %.2fx the copy)\n",
+               sizes[k], jm[sizes[k]] / w[sizes[k], "merge16"], jm[sizes[k]] / w[sizes[k], "copy16"], w[sizes[k], "merge16"] / w[sizes[k], "copy16"]
+    }
   }' "$results"
