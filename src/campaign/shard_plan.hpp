@@ -49,7 +49,7 @@ class ShardPlan {
   std::vector<double> expected_s_;
 };
 
-// More points than this are not cost-balanced (the plan is a pass over every point, ~0.1 µs
+// More points than this are not cost-balanced (the plan is a pass over every point, ~0.3 µs
 // each when costs repeat, and a bit per point): `cost` refuses, the default falls back to index.
 inline constexpr std::uint64_t kMaxCostBalancedPoints = 100'000'000;
 
