@@ -342,8 +342,8 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
   const ShardPlan shard = [&] {
     try {
       return plan_shard(c, opt.shard, rep.balance);
-    } catch (const std::invalid_argument& e) {
-      throw std::runtime_error(e.what());
+    } catch (const std::invalid_argument& e) {  // --balance cost on too large a campaign: bad input
+      throw InputError("", 0, "--balance", e.what());
     }
   }();
   rep.points = shard.size();
