@@ -134,12 +134,30 @@ void EventIntegrator<Junctions>::advance(RunObserver& out) {
       double ga = value(k, probe_y[0]);
       for (int j = 1; j <= kProbe; ++j) {
         if (first && probe_t[j - 1] >= first->t) break;
-        const double gb = value(k, probe_y[j]);
+        double gb = value(k, probe_y[j]);
+        double t_b = probe_t[j];
+        // A slip position X crosses and re-crosses inside one probe interval when X turns back
+        // there (the slider's velocity changes sign: undamped stick-slip, η = 0). X − X_s is
+        // monotone between zeros of V, so its extremum is at the root of V: a threshold reached
+        // there fires in [t_{j-1}, that root].
+        const bool x_max = k == kThreshold && probe_y[j - 1][1] > 0 && probe_y[j][1] < 0;
+        const bool x_min = k == kThresholdBelow && probe_y[j - 1][1] < 0 && probe_y[j][1] > 0;
+        if (!fires(k, ga, gb) && (x_max || x_min)) {
+          boost::math::tools::eps_tolerance<double> etol(50);
+          std::uintmax_t it = 100;
+          auto velocity = [&](double tt) { stepper.calc_state(tt, ys); return ys[1]; };
+          const auto r = boost::math::tools::toms748_solve(velocity, probe_t[j - 1], probe_t[j], probe_y[j - 1][1],
+                                                           probe_y[j][1], etol, it);
+          for (const double t_turn : {r.first, r.second}) {  // either side of the turning point
+            const double g_turn = eval(k, t_turn);
+            if (fires(k, ga, g_turn)) { gb = g_turn; t_b = t_turn; break; }
+          }
+        }
         if (fires(k, ga, gb)) {
           boost::math::tools::eps_tolerance<double> etol(50);
           std::uintmax_t it = 100;
           auto fn = [&](double tt) { return eval(k, tt); };
-          const auto r = boost::math::tools::toms748_solve(fn, probe_t[j - 1], probe_t[j], ga, gb, etol, it);
+          const auto r = boost::math::tools::toms748_solve(fn, probe_t[j - 1], t_b, ga, gb, etol, it);
           // Take the side of the bracket where the event has happened.
           const double te = fires(k, ga, fn(r.first)) ? r.first : r.second;
           if (!first || te < first->t) first = Found{te, k};
