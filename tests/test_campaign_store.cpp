@@ -20,6 +20,8 @@
 #include "campaign/campaign_scenes.hpp"
 #include "observe/series_csv.hpp"
 #include "observe/simulate.hpp"
+#include "io/digest.hpp"
+#include "io/hash.hpp"
 
 namespace fs = std::filesystem;
 using namespace asperity;
@@ -472,4 +474,65 @@ TEST_CASE("the row index holds 16 bytes a row and keeps the last row written of 
   REQUIRE(idx.rows().size() == 5);
   CHECK(idx.find(0)->offset() == 70);
   CHECK(idx.find(7)->ok());
+}
+
+TEST_CASE("store journal: SHA-256 lines; a legacy FNV-1a journal is read and rewritten; an FNV line in a SHA-256 "
+          "journal is damage",
+          "[campaign][store]") {
+  const fs::path d = temp_dir();
+  {
+    Journal j(d, kHeader);
+    j.append("0,00000000000000aa,g,ok,1.5");
+    j.append("1,00000000000000bb,g,ok,2.5");
+  }
+  const std::string sha_text = slurp(d / "journal.csv");
+  const auto lines = lines_of(sha_text);
+  REQUIRE(lines.size() == 3);
+  CHECK(lines[0] == kHeader + ",sha256");
+  // Independent: the line's digest is the FIPS SHA-256 of its row (as checked in test_io_digest).
+  CHECK(lines[1] == "0,00000000000000aa,g,ok,1.5," + sha256_hex("0,00000000000000aa,g,ok,1.5"));
+  // A legacy journal (header ",check", FNV-1a 64 per line), as written before SHA-256.
+  const auto fnv_line = [](const std::string& row) { return row + "," + hex16(fnv1a64(row)) + "\n"; };
+  std::ofstream(d / "journal.csv", std::ios::binary | std::ios::trunc)
+      << kHeader + ",check\n" + fnv_line("0,00000000000000aa,g,ok,1.5") + fnv_line("1,00000000000000bb,g,ok,2.5");
+  {
+    Journal j(d, kHeader);
+    CHECK(j.dropped_lines() == 0);
+    CHECK(j.entries().size() == 2);
+    REQUIRE(j.find(1));
+    CHECK(j.row(*j.find(1)) == "1,00000000000000bb,g,ok,2.5");
+  }
+  CHECK(slurp(d / "journal.csv") == sha_text);  // migrated: the same rows with SHA-256
+  // A row edited and given a fresh FNV-1a checksum (what a forger did before) is a bad line now.
+  std::ofstream(d / "journal.csv", std::ios::binary | std::ios::app) << fnv_line("2,00000000000000cc,g,ok,0");
+  {
+    Journal j(d, kHeader);
+    CHECK(j.dropped_lines() == 1);
+    CHECK(j.find(2) == nullptr);
+  }
+}
+
+TEST_CASE("a truncated or edited points.csv is rebuilt from the journal by the next run", "[campaign][store]") {
+  const Campaign c = load_campaign(kData / "tiny.yaml");
+  const fs::path a = temp_dir() / "a";
+  SweepOptions o;
+  o.out = a;
+  o.threads = 2;
+  o.quiet = true;
+  o.build_id = "test-build";  // a known build: the next run trusts the stored hashes
+  REQUIRE(run_sweep(c, o).ran == c.size());
+  const std::string good = slurp(a / "points.csv");
+  const SweepReport again = run_sweep(c, o);
+  CHECK(again.trusted);
+  CHECK(again.ran == 0);
+  CHECK(slurp(a / "points.csv") == good);
+  // Truncated (a disk full, a careless edit), then edited in place at the same size.
+  std::ofstream(a / "points.csv", std::ios::binary | std::ios::trunc) << good.substr(0, good.size() / 2);
+  CHECK(run_sweep(c, o).trusted);
+  CHECK(slurp(a / "points.csv") == good);
+  std::string edited = good;
+  edited[edited.find(",ok,") + 1] = 'O';
+  std::ofstream(a / "points.csv", std::ios::binary | std::ios::trunc) << edited;
+  CHECK(run_sweep(c, o).ran == 0);
+  CHECK(slurp(a / "points.csv") == good);
 }

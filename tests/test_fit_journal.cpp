@@ -12,6 +12,7 @@
 #include "fit/fit_journal.hpp"
 #include "fit/fit_load.hpp"
 #include "fit/fit_tasks.hpp"
+#include "io/csv.hpp"
 #include "io/hash.hpp"
 #include "io/input_error.hpp"
 #include "io/journal_line.hpp"
@@ -196,5 +197,93 @@ TEST_CASE("fit inputs.txt: a resume with another build, task, --set or file cont
   const std::string anonymous = fit_inputs_text(spec, {}, "", {0, 1});
   write_text(file, anonymous);
   CHECK_THROWS_WITH(check_fit_inputs(file, anonymous), Catch::StartsWith(file.string() + ":2: build: this binary's code cannot be identified"));
+  fs::remove_all(d);
+}
+
+TEST_CASE("fit journal: a best line forged with a valid digest is refused against its re-run; a legacy FNV journal is "
+          "read and rewritten with SHA-256",
+          "[fit][journal]") {
+  const FitSpec spec = load_fit(kFixture);
+  const fs::path d = fresh_dir("forged");
+  FitOptions o;
+  o.threads = 2;
+  o.profile = false;
+  o.error_bars = false;
+  o.only = {0};
+  FitResult first;
+  {
+    FitJournal j;
+    j.open(d / "journal.csv", true);
+    o.journal = &j;
+    first = run_fit(spec, o);
+  }
+  const Optimization& f = first.fits[0];
+  // The line of the best evaluation, its objective set to 0 and its digest recomputed: the
+  // journal's own check passes, the re-run at the optimum does not.
+  const std::string text = slurp(d / "journal.csv");
+  std::vector<std::string> lines;
+  for (std::size_t at = 0, nl; (nl = text.find('\n', at)) != std::string::npos; at = nl + 1) lines.push_back(text.substr(at, nl - at));
+  const std::string best_x = journal_values(f.best);
+  int best_line = 0;
+  std::string forged = lines[0] + "\n";
+  for (std::size_t i = 1; i < lines.size(); ++i) {
+    std::vector<std::string> fld = csv_split(std::string(journal_row(lines[i])));
+    if (fld[3] == best_x && best_line == 0) {
+      best_line = static_cast<int>(i) + 1;
+      fld[4] = "0";
+      fld[5] = "0";
+      std::string row = fld[0];
+      for (std::size_t k = 1; k < fld.size(); ++k) row += "," + fld[k];
+      forged += journal_line(row);
+    } else {
+      forged += lines[i] + "\n";
+    }
+  }
+  REQUIRE(best_line > 1);
+  write_text(d / "journal.csv", forged);
+  {
+    FitJournal j;
+    j.open(d / "journal.csv", true);
+    o.journal = &j;
+    try {
+      run_fit(spec, o);
+      FAIL("a forged best evaluation was taken as computed");
+    } catch (const InputError& e) {
+      CHECK(e.file == (d / "journal.csv").string());
+      CHECK(e.line == best_line);
+      CHECK(e.key == "objective");
+      CHECK(std::string(e.what()).find("re-run") != std::string::npos);
+    }
+  }
+  // The same forgery with an FNV-1a checksum (the format before SHA-256) in a SHA-256 journal is
+  // a damaged line: refused where good lines follow it, never taken as computed.
+  std::string fnv_forged = lines[0] + "\n";
+  for (std::size_t i = 1; i < lines.size(); ++i) {
+    const std::string row(journal_row(lines[i]));
+    fnv_forged += static_cast<int>(i) + 1 == best_line ? row + "," + hex16(fnv1a64(row)) + "\n" : lines[i] + "\n";
+  }
+  write_text(d / "journal.csv", fnv_forged);
+  if (best_line < static_cast<int>(lines.size())) {
+    FitJournal j;
+    CHECK_THROWS_AS(j.open(d / "journal.csv", true), InputError);
+  }
+  // A whole journal from before SHA-256 (header "...,check", FNV-1a lines): replayed as it is, then
+  // rewritten with SHA-256 lines holding the same rows.
+  std::string legacy = lines[0].substr(0, lines[0].rfind(',')) + ",check\n";
+  for (std::size_t i = 1; i < lines.size(); ++i) {
+    const std::string row(journal_row(lines[i]));
+    legacy += row + "," + hex16(fnv1a64(row)) + "\n";
+  }
+  write_text(d / "journal.csv", legacy);
+  {
+    FitJournal j;
+    j.open(d / "journal.csv", true);
+    o.journal = &j;
+    const FitResult again = run_fit(spec, o);
+    CHECK(again.computed == 0);
+    CHECK(again.replayed == f.evaluations);
+    CHECK(same_bits(again.fits[0].objective, f.objective));
+  }
+  CHECK(slurp(d / "journal.csv") == text);  // the same lines, each with its SHA-256
   fs::remove_all(d);
 }

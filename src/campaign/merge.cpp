@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "campaign/store.hpp"
+#include "io/journal_line.hpp"
 #include "scene/load.hpp"
 
 namespace asperity {
@@ -128,7 +129,7 @@ MergeReport merge_stores(const std::vector<fs::path>& inputs, const fs::path& ou
   fs::create_directories(out);
   StoreLock lock(out);
   AtomicFileWriter journal(out / "journal.csv", Durability::synced), points(out / "points.csv", Durability::synced);
-  journal.write(header + ",check\n");
+  journal.write(journal_header(header) + "\n");
   points.write(header + "\n");
   std::optional<AtomicFileWriter> series_out;
   if (!series_header.empty()) {
@@ -139,7 +140,7 @@ MergeReport merge_stores(const std::vector<fs::path>& inputs, const fs::path& ou
     const auto it = holders.size() > 1 ? chosen.find(index) : chosen.end();
     const std::size_t input = it != chosen.end() ? it->second : holders[0];
     const std::string row = row_of(input, index);
-    journal.write(row + "," + hex16(fnv1a64(row)) + "\n");
+    journal.write(journal_line(row));
     points.write(row + "\n");
     // The point's series block from the input whose row is kept, when it has the row's hash.
     if (series_out && series[input]) {

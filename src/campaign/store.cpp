@@ -13,6 +13,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "io/digest.hpp"
 #include "io/journal_line.hpp"
 
 namespace asperity {
@@ -29,8 +30,6 @@ bool parse_u64(std::string_view s, std::uint64_t& out, int base = 10) {
   return r.ec == std::errc() && r.ptr == s.data() + s.size() && !s.empty();
 }
 
-// A journal line "row,checksum" → row when the checksum matches.
-bool checked_row(std::string_view line, std::string_view& row) { return checked_journal_row(line, row); }
 
 // Reads a file line by line (buffered), with each line's byte offset; a last line without its
 // newline is not returned (torn() says it was there).
@@ -157,13 +156,15 @@ bool Journal::scan(const fs::path& path) {
     dropped_ += in.torn() ? 1 : 0;
     return false;
   }
-  if (line != header_ + ",check")
+  const std::optional<JournalDigest> digest = journal_digest_of(line, header_);
+  if (!digest)
     throw std::runtime_error(path.string() + " was written for another campaign or version (header differs); "
                              "use another --out or remove the store");
-  bool clean = true;
+  digest_ = *digest;
+  bool clean = digest_ == JournalDigest::sha256;  // a legacy journal is rewritten with SHA-256
   while (in.next(line, offset)) {
     std::string_view row;
-    if (checked_row(line, row)) add_entry(row, offset);
+    if (checked_journal_row(line, row, digest_)) add_entry(row, offset);
     else ++dropped_, clean = false;
   }
   if (in.torn()) ++dropped_, clean = false;
@@ -180,7 +181,7 @@ Journal::Journal(const fs::path& dir, const std::string& header, JournalSync syn
   // rows are added, and the index never moves while this object appends at most `room` rows.
   const fs::path sized = fs::exists(path) || !fs::exists(dir / "points.csv") ? path : dir / "points.csv";
   index_.reserve(max_rows(sized, header_, sized == path) + static_cast<std::size_t>(room));
-  const std::string head = header_ + ",check\n";
+  const std::string head = journal_header(header_) + "\n";
   std::string line;
   std::uint64_t offset = 0;
   bool indexed = false;
@@ -200,15 +201,17 @@ Journal::Journal(const fs::path& dir, const std::string& header, JournalSync syn
   } else if (scan(path)) {
     indexed = true;  // intact: appended to as it is
   } else {
-    // Recovered: rewritten atomically without the torn or corrupt lines (streamed).
+    // Recovered: rewritten atomically without the torn or corrupt lines (streamed), every line
+    // with SHA-256 (a legacy journal's FNV-1a lines are checked as such, then re-digested).
     AtomicFileWriter out(path, Durability::synced);
     out.write(head);
     LineReader in(path);
     for (bool first = true; in.next(line, offset); first = false) {
       std::string_view row;
-      if (!first && checked_row(line, row)) out.write(line + "\n");
+      if (!first && checked_journal_row(line, row, digest_)) out.write(journal_line(row));
     }
     out.commit();
+    digest_ = JournalDigest::sha256;
   }
   fd_ = ::open(path.c_str(), O_RDWR | O_APPEND | O_CLOEXEC);
   if (fd_ < 0) sys_fail("cannot open", path);
@@ -248,17 +251,23 @@ void Journal::sync() {
 
 std::string Journal::row(const StoredRow& e) const {
   std::string line = read_line(fd_, e.offset(), "journal.csv");
-  line.resize(line.size() - 17);  // ",checksum"
+  line.resize(journal_row(line).size());  // without ",digest"
   return line;
 }
 
-void Journal::write_points(const fs::path& dir, const std::function<bool(std::uint64_t)>& keep) {
+std::string Journal::write_points(const fs::path& dir, const std::function<bool(std::uint64_t)>& keep) {
   settle();
   AtomicFileWriter out(dir / "points.csv", Durability::synced);
-  out.write(header_ + "\n");
+  Sha256 digest;
+  const auto put = [&](const std::string& text) {
+    out.write(text);
+    digest.update(text);
+  };
+  put(header_ + "\n");
   for (const StoredRow& e : entries())
-    if (keep(e.index)) out.write(row(e) + "\n");
+    if (keep(e.index)) put(row(e) + "\n");
   out.commit();
+  return digest.hex();
 }
 
 StoreReader::StoreReader(const fs::path& dir) {
@@ -273,17 +282,18 @@ StoreReader::StoreReader(const fs::path& dir) {
   std::uint64_t offset = 0;
   if (!in.next(line, offset)) throw std::runtime_error("empty " + file_.string());
   header_ = line;
-  const std::string suffix = ",check";
+  JournalDigest digest = JournalDigest::sha256;
   if (journal) {
-    if (header_.size() < suffix.size() || header_.compare(header_.size() - suffix.size(), suffix.size(), suffix) != 0)
-      throw std::runtime_error("malformed journal header: " + file_.string());
-    header_.resize(header_.size() - suffix.size());
+    header_.resize(journal_row(line).size());
+    const std::optional<JournalDigest> d = journal_digest_of(line, header_);
+    if (!d) throw std::runtime_error("malformed journal header: " + file_.string());
+    digest = *d;
   }
   journal_ = journal;
   rows_.reserve(max_rows(file_, header_, journal));
   while (in.next(line, offset)) {
     std::string_view row = line;
-    if (journal && !checked_row(line, row)) continue;
+    if (journal && !checked_journal_row(line, row, digest)) continue;
     const std::size_t comma = row.find(',');
     std::uint64_t index = 0;
     if (comma != std::string_view::npos && parse_u64(row.substr(0, comma), index)) rows_.add(index, offset, false);
@@ -304,7 +314,7 @@ StoreReader::StoreReader(StoreReader&& o) noexcept
 
 std::string StoreReader::row(const StoredRow& r) const {
   std::string line = read_line(fd_, r.offset(), file_.string());
-  if (journal_) line.resize(line.size() - 17);  // ",checksum"
+  if (journal_) line.resize(journal_row(line).size());  // without ",digest"
   return line;
 }
 

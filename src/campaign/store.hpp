@@ -1,7 +1,8 @@
 #pragma once
 // The result store of a campaign, a folder (results/<campaign>/ by default):
 //   journal.csv     append-only, the truth: a header, then one line per finished point, each
-//                   line = the points.csv row + "," + FNV-1a 64 of that row (16 hex digits).
+//                   line = the points.csv row + "," + SHA-256 of that row (io/journal_line.hpp;
+//                   journals from before it carry FNV-1a 64 and are rewritten when appended to).
 //                   Appended with one write() per point by one thread, so after kill -9 at any
 //                   instant the file is good lines followed by at most one torn last line,
 //                   which the checksum detects and the next run drops (and recomputes).
@@ -30,6 +31,7 @@
 #include "io/csv.hpp"
 #include "io/dir_lock.hpp"
 #include "io/hash.hpp"
+#include "io/journal_line.hpp"
 
 namespace asperity {
 
@@ -112,8 +114,8 @@ class Journal {
 
   // settle(), then writes DIR/points.csv atomically, streamed (each row read back from the
   // journal in index order; memory does not grow with the rows): header + rows of the entries
-  // whose index `keep(index)`.
-  void write_points(const std::filesystem::path& dir, const std::function<bool(std::uint64_t)>& keep);
+  // whose index `keep(index)`. Returns the SHA-256 of the bytes written.
+  std::string write_points(const std::filesystem::path& dir, const std::function<bool(std::uint64_t)>& keep);
 
   static std::size_t status_column(const std::string& header);
 
@@ -121,6 +123,7 @@ class Journal {
   bool scan(const std::filesystem::path& path);
   void add_entry(std::string_view row, std::uint64_t offset);
   std::string header_;
+  JournalDigest digest_ = JournalDigest::sha256;  // of the journal as read (legacy: rewritten at open)
   std::size_t status_col_;
   int fd_ = -1;
   std::uint64_t size_ = 0;

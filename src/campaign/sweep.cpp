@@ -31,6 +31,7 @@
 #include "observe/series_csv.hpp"
 #include "campaign/campaign_load.hpp"
 #include "scene/load.hpp"
+#include "io/digest.hpp"
 #include "io/input_error.hpp"
 #include "io/numbers.hpp"
 #include "io/progress.hpp"
@@ -234,6 +235,19 @@ std::string inputs_text(const Campaign& c, const std::string& build_id, const Sh
   return t;
 }
 
+// inputs.txt ends with the SHA-256 of points.csv as written with it: "points.csv sha256 HEX".
+const std::string kPointsDigestTag = "points.csv sha256 ";
+
+// Cuts that last line off `text` (what inputs_text recomputes is compared without it) and returns
+// its digest; empty when there is none.
+std::string take_points_digest(std::string& text) {
+  const std::size_t at = text.rfind("\n" + kPointsDigestTag);
+  if (at == std::string::npos || text.size() != at + 1 + kPointsDigestTag.size() + 64 + 1 || text.back() != '\n') return {};
+  std::string digest = text.substr(at + 1 + kPointsDigestTag.size(), 64);
+  text.resize(at + 1);
+  return digest;
+}
+
 // The files listed by DIR/inputs.txt (absolute), or nothing when it is absent or not ours.
 std::vector<fs::path> listed_inputs(const std::string& text, const Campaign& c) {
   std::vector<fs::path> files;
@@ -402,8 +416,10 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
   // before anything is appended: a run killed after running points with other files leaves none,
   // and the next run checks everything.
   const fs::path inputs_path = rep.store / kInputsFile;
+  std::string points_digest;  // SHA-256 of points.csv as the last complete run wrote it
   if (fs::exists(inputs_path)) {
-    const std::string old = read_file_text(inputs_path);
+    std::string old = read_file_text(inputs_path);
+    points_digest = take_points_digest(old);
     rep.trusted = !opt.build_id.empty() &&
                   inputs_text(c, opt.build_id, shard, listed_inputs(old, c), data_hashes) == old;
     remove_file_durably(inputs_path);
@@ -568,11 +584,21 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
 
   auto mine = [&](std::uint64_t index) { return index < total && shard.contains(index); };
   // points.csv is rewritten unless it is known to be the journal's already: nothing appended or
-  // dropped now, and inputs.txt was there (written only after points.csv at the end of a run,
-  // removed before a run appends anything) and unchanged.
-  const bool points_current = rep.trusted && rep.ran == 0 && rep.dropped_lines == 0 && fs::exists(rep.store / "points.csv");
+  // dropped now, inputs.txt was there (written only after points.csv at the end of a run,
+  // removed before a run appends anything) and unchanged, and points.csv still has the SHA-256
+  // it was written with (a truncated or edited copy is rebuilt from the journal).
+  const fs::path points_path = rep.store / "points.csv";
+  bool points_current = rep.trusted && rep.ran == 0 && rep.dropped_lines == 0 && !points_digest.empty() &&
+                        fs::is_regular_file(fs::symlink_status(points_path));
+  if (points_current) {
+    try {
+      points_current = sha256_file_hex(points_path) == points_digest;
+    } catch (const std::exception&) {
+      points_current = false;
+    }
+  }
   journal.settle();
-  if (!points_current) journal.write_points(rep.store, mine);
+  if (!points_current) points_digest = journal.write_points(rep.store, mine);
   // series.csv without superseded blocks or blocks of points no longer ok (streamed rewrite;
   // only when it holds any).
   if (series) {
@@ -589,7 +615,8 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
   }
   // Every stored point of the shard is now checked against (or computed from) these inputs.
   if (!opt.build_id.empty())
-    write_file_durably(inputs_path, inputs_text(c, opt.build_id, shard, data_hashes.inputs(), data_hashes));
+    write_file_durably(inputs_path, inputs_text(c, opt.build_id, shard, data_hashes.inputs(), data_hashes) +
+                                        kPointsDigestTag + points_digest + "\n");
   for (const StoredRow& e : journal.entries())
     if (mine(e.index)) (e.ok() ? rep.ok : rep.failed) += 1;
   rep.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

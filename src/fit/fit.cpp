@@ -16,6 +16,7 @@
 
 #include "fit/fit_journal.hpp"
 #include "fit/objective.hpp"
+#include "io/input_error.hpp"
 #include "io/provenance.hpp"
 #include "observe/simulate.hpp"
 
@@ -287,6 +288,23 @@ void run_task(const FitSpec& spec, const FitOptions& options, Optimization& o, s
       o.best_runs.push_back(std::move(er));
     }
     if (ev.status != "ok" && o.failure.empty()) o.failure = "re-run at the optimum failed: " + ev.status;
+    // A best taken from a journal line is only as good as that line: runs are deterministic, so
+    // its re-run must give its objective (to rounding of the same binary on another core: bit
+    // for bit in practice; 1e-9 leaves room for another libm). A line whose digest was recomputed
+    // after an edit passes the journal's check but not this one.
+    if (pb.journal && ev.status == "ok") {
+      const double tol = 1e-9 * std::max(std::abs(ev.objective), std::abs(o.objective)) + 1e-300;
+      if (!(std::abs(ev.objective - o.objective) <= tol)) {
+        if (const auto at = pb.journal->where(pb.part, pb.label, o.best)) {
+          char msg[300];
+          std::snprintf(msg, sizeof msg,
+                        "the journaled best evaluation of %s has objective %.10g but its re-run gives %.10g: the "
+                        "line was edited or forged; remove it (or the folder) and rerun",
+                        o.label.c_str(), o.objective, ev.objective);
+          throw InputError(at->first, at->second, "objective", msg);
+        }
+      }
+    }
   }
 
   if (have_best && o.ok() && options.profile && spec.profile) {

@@ -20,7 +20,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const char* const kHeader = "part,optimization,evaluation,x,objective,terms,status,wall_s,check";
+const char* const kColumnsLine = "part,optimization,evaluation,x,objective,terms,status,wall_s";
 const char* const kColumns[] = {"part", "optimization", "evaluation", "x", "objective", "terms", "status", "wall_s"};
 
 std::string key_of(const std::string& part, const std::string& optimization, const std::string& x) {
@@ -66,6 +66,8 @@ void FitJournal::open(const fs::path& file, bool append) { read(file, append && 
 void FitJournal::read(const fs::path& file, bool append) {
   const std::string name = file.string();
   std::uint64_t good_end = 0;  // bytes up to the end of the last good line
+  const std::string header = journal_header(kColumnsLine);
+  JournalDigest digest = JournalDigest::sha256;
   if (fs::exists(file)) {
     std::ifstream in(file, std::ios::binary);
     if (!in) throw std::runtime_error("cannot open " + name);
@@ -73,7 +75,7 @@ void FitJournal::read(const fs::path& file, bool append) {
     std::uint64_t offset = 0;
     int lineno = 0;
     int first_bad = 0;  // a damaged line: fatal if a good one follows, a dropped tail otherwise
-    std::map<std::string, Evaluation> found;
+    std::map<std::string, std::pair<Evaluation, int>> found;  // → evaluation, line
     while (std::getline(in, line)) {
       ++lineno;
       const bool whole = !in.eof();  // a last line without its newline is torn
@@ -81,13 +83,14 @@ void FitJournal::read(const fs::path& file, bool append) {
       offset = end;
       if (lineno == 1) {
         if (!whole) break;  // torn header: as good as an empty journal
-        if (line != kHeader)
-          throw InputError(name, 1, "header", "not an asperity fit journal (expected '" + std::string(kHeader) + "')");
+        const std::optional<JournalDigest> d = journal_digest_of(line, kColumnsLine);
+        if (!d) throw InputError(name, 1, "header", "not an asperity fit journal (expected '" + header + "')");
+        digest = *d;
         good_end = end;
         continue;
       }
       std::string_view row;
-      if (!whole || !checked_journal_row(line, row)) {
+      if (!whole || !checked_journal_row(line, row, digest)) {
         if (first_bad == 0) first_bad = lineno;
         continue;
       }
@@ -118,16 +121,30 @@ void FitJournal::read(const fs::path& file, bool append) {
       ev.status = f[6];
       if (!parse_number(f[7], ev.wall_s)) throw InputError(name, lineno, "wall_s", "not a number: " + scene_io::quote(f[7]));
       good_end = end;
-      found[key_of(f[0], f[1], f[3])] = std::move(ev);
+      found[key_of(f[0], f[1], f[3])] = {std::move(ev), lineno};
     }
     if (first_bad != 0) dropped_ += static_cast<std::size_t>(lineno - first_bad + 1);
     const std::lock_guard<std::mutex> lock(mutex_);
-    for (auto& [k, ev] : found) index_.emplace(k, std::move(ev));  // the first file read wins
+    for (auto& [k, ev] : found)  // the first file read wins
+      if (index_.emplace(k, std::move(ev.first)).second) where_.emplace(k, std::make_pair(name, ev.second));
   }
   files_.push_back(file);
   if (!append) return;
   if (good_end == 0) {
-    write_file_durably(file, std::string(kHeader) + "\n");
+    write_file_durably(file, header + "\n");
+  } else if (digest == JournalDigest::fnv1a64_legacy) {
+    // A journal from before SHA-256: its good lines (checked with FNV-1a above) re-digested and
+    // written atomically in its place; a torn or damaged tail goes with it.
+    std::ifstream in(file, std::ios::binary);
+    std::string text(good_end, '\0');
+    in.read(text.data(), static_cast<std::streamsize>(good_end));
+    std::string out = header + "\n";
+    std::size_t at = text.find('\n') + 1;
+    for (std::size_t nl; at < text.size() && (nl = text.find('\n', at)) != std::string::npos; at = nl + 1) {
+      std::string_view row;
+      if (checked_journal_row(std::string_view(text).substr(at, nl - at), row, digest)) out += journal_line(row);
+    }
+    write_file_durably(file, out);
   } else if (good_end < fs::file_size(file)) {
     // Only a torn or damaged tail is cut (what follows the last good line), so nothing computed
     // is lost; the file is then flushed so the cut survives a power cut too.
@@ -158,6 +175,14 @@ void FitJournal::append(const std::string& part, const std::string& optimization
   if (!write_fully(fd_, journal_line(row)) || ::fdatasync(fd_) != 0)
     throw std::runtime_error("cannot write " + appending_.string() + ": " + std::strerror(errno));
   index_.emplace(key_of(part, optimization, x), ev);
+}
+
+std::optional<std::pair<std::string, int>> FitJournal::where(const std::string& part, const std::string& optimization,
+                                                             const std::vector<double>& x) const {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  const auto it = where_.find(key_of(part, optimization, journal_values(x)));
+  if (it == where_.end()) return std::nullopt;
+  return it->second;
 }
 
 std::size_t FitJournal::size() const {

@@ -1,10 +1,10 @@
 #pragma once
 // The evaluation journal of a fit (DIR/journal.csv, or DIR/tasks/I-of-N/journal.csv for one array
 // task): every objective evaluation, appended as it finishes, so that a killed fit resumes without
-// repeating one. Lines (io/journal_line.hpp: each ends with the FNV-1a 64 of the row, appended
+// repeating one. Lines (io/journal_line.hpp: each ends with the SHA-256 of the row, appended
 // with one write() and fdatasync'd at once: an evaluation costs a model run, tens of ms at least,
 // so a flush per evaluation is cheap and a kill or a power cut loses only evaluations in flight):
-//   part,optimization,evaluation,x,objective,terms,status,wall_s,check
+//   part,optimization,evaluation,x,objective,terms,status,wall_s,sha256
 //   fit,P0.98N,1,5.2e-16,0.0123,0.0123,ok,0.41,1f0c…          one evaluation of an optimization
 //   profile,P0.98N,3,…                                         a profile point (evaluation = point)
 //   refit experiment.E -1,P0.98N,2,…                           an error-bar refit's evaluation
@@ -25,6 +25,7 @@
 #include <mutex>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "fit/fit.hpp"
@@ -45,6 +46,10 @@ class FitJournal {
   // The journaled evaluation of (part, optimization) at exactly `x` (thread-safe).
   std::optional<Evaluation> find(const std::string& part, const std::string& optimization,
                                  const std::vector<double>& x) const;
+  // The file and line that hold that evaluation; nothing when it was not read from a file
+  // (computed by this process, or absent).
+  std::optional<std::pair<std::string, int>> where(const std::string& part, const std::string& optimization,
+                                                   const std::vector<double>& x) const;
   // Appends one evaluation and makes it durable (thread-safe; std::runtime_error on I/O failure).
   void append(const std::string& part, const std::string& optimization, const Evaluation& ev);
 
@@ -56,6 +61,7 @@ class FitJournal {
   void read(const std::filesystem::path& file, bool append);
   mutable std::mutex mutex_;
   std::map<std::string, Evaluation> index_;  // part '\n' optimization '\n' x text → evaluation
+  std::map<std::string, std::pair<std::string, int>> where_;  // the same key → file, line it was read from
   std::vector<std::filesystem::path> files_;
   std::filesystem::path appending_;
   int fd_ = -1;
