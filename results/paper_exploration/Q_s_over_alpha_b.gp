@@ -1,7 +1,7 @@
 # asperity plot script: `gnuplot Q_s_over_alpha_b.gp` redraws Q_s_over_alpha_b.png (data inline; restyle freely)
 set terminal pngcairo size 1000,650 noenhanced
 set output 'Q_s_over_alpha_b.png'
-set title 'Q_s over model.alpha_b' . "\n" . 'STAND-IN experiments, not measurements'
+set title 'Q_s over model.alpha_b, grid=alpha_b' . "\n" . 'STAND-IN experiments, not measurements'
 set grid
 set key outside right
 set xlabel 'model.alpha_b [m^(2p+2)/N^2]'

@@ -1,7 +1,7 @@
 # asperity plot script: `gnuplot ss_drop_c_min_eta_P4.00N.gp` redraws ss_drop_c_min_eta_P4.00N.png (data inline; restyle freely)
 set terminal pngcairo size 900,700 noenhanced
 set output 'ss_drop_c_min_eta_P4.00N.png'
-set title 'ss_drop over model.c_min x model.eta, experiment=P4.00N' . "\n" . 'STAND-IN experiments, not measurements' . "\n" . '(blank: no value: NaN, e.g. no stick-slip cycle, or failed/missing point)'
+set title 'ss_drop over model.c_min x model.eta, experiment=P4.00N, grid=c_min_eta' . "\n" . 'STAND-IN experiments, not measurements' . "\n" . '(blank: no value: NaN, e.g. no stick-slip cycle, or failed/missing point)'
 set cblabel 'ss_drop [N]'
 set palette defined (0 '#440154', 1 '#3b528b', 2 '#21908d', 3 '#5dc963', 4 '#fde725')
 set xlabel 'model.c_min [1]'
@@ -12,11 +12,11 @@ set ylabel 'model.eta [1/s]'
 set ytics ('0' 0, '50' 50, '100' 100, '150' 150, '180' 180, '200' 200, '250' 250)
 set yrange [-25:275]
 $cells << EOD
-1e-05 0 3.162277660168379e-07 0.00031622776601683794 -25 25 0.37146097982306125
+1e-05 0 3.162277660168379e-07 0.00031622776601683794 -25 25 0.3714675104413341
 1e-05 50 3.162277660168379e-07 0.00031622776601683794 25 75 0.24997200228957794
 1e-05 100 3.162277660168379e-07 0.00031622776601683794 75 125 0.20878356189329655
 1e-05 150 3.162277660168379e-07 0.00031622776601683794 125 165 0.18220312517597853
-0.01 0 0.00031622776601683794 0.31622776601683794 -25 25 0.4093291936658831
+0.01 0 0.00031622776601683794 0.31622776601683794 -25 25 0.40933541142388963
 0.01 50 0.00031622776601683794 0.31622776601683794 25 75 0.24997200230657796
 0.01 100 0.00031622776601683794 0.31622776601683794 75 125 0.20878356189324557
 0.01 150 0.00031622776601683794 0.31622776601683794 125 165 0.18220312517597942

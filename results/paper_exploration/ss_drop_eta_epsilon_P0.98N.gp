@@ -1,7 +1,7 @@
 # asperity plot script: `gnuplot ss_drop_eta_epsilon_P0.98N.gp` redraws ss_drop_eta_epsilon_P0.98N.png (data inline; restyle freely)
 set terminal pngcairo size 900,700 noenhanced
 set output 'ss_drop_eta_epsilon_P0.98N.png'
-set title 'ss_drop over model.eta x model.epsilon, experiment=P0.98N' . "\n" . 'STAND-IN experiments, not measurements' . "\n" . '(blank: no value: NaN, e.g. no stick-slip cycle, or failed/missing point)'
+set title 'ss_drop over model.eta x model.epsilon, experiment=P0.98N, grid=eta_epsilon' . "\n" . 'STAND-IN experiments, not measurements' . "\n" . '(blank: no value: NaN, e.g. no stick-slip cycle, or failed/missing point)'
 set cblabel 'ss_drop [N]'
 set palette defined (0 '#440154', 1 '#3b528b', 2 '#21908d', 3 '#5dc963', 4 '#fde725')
 set xlabel 'model.eta [1/s]'

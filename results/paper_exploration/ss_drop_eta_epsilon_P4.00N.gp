@@ -1,7 +1,7 @@
 # asperity plot script: `gnuplot ss_drop_eta_epsilon_P4.00N.gp` redraws ss_drop_eta_epsilon_P4.00N.png (data inline; restyle freely)
 set terminal pngcairo size 900,700 noenhanced
 set output 'ss_drop_eta_epsilon_P4.00N.png'
-set title 'ss_drop over model.eta x model.epsilon, experiment=P4.00N' . "\n" . 'STAND-IN experiments, not measurements' . "\n" . '(blank: no value: NaN, e.g. no stick-slip cycle, or failed/missing point)'
+set title 'ss_drop over model.eta x model.epsilon, experiment=P4.00N, grid=eta_epsilon' . "\n" . 'STAND-IN experiments, not measurements' . "\n" . '(blank: no value: NaN, e.g. no stick-slip cycle, or failed/missing point)'
 set cblabel 'ss_drop [N]'
 set palette defined (0 '#440154', 1 '#3b528b', 2 '#21908d', 3 '#5dc963', 4 '#fde725')
 set xlabel 'model.eta [1/s]'
@@ -15,7 +15,7 @@ $cells << EOD
 0 0.6 -25 25 0.55 0.6499999999999999 0.3842576374081532
 0 0.7 -25 25 0.6499999999999999 0.75 0.3782850078578332
 0 0.8 -25 25 0.75 0.8500000000000001 0.8912975164705166
-0 0.9 -25 25 0.8500000000000001 0.925 0.4093291936658831
+0 0.9 -25 25 0.8500000000000001 0.925 0.40933541142388963
 0 0.95 -25 25 0.925 0.97 0.20209809869179898
 50 0.5 25 75 0.45 0.55 0.5640614776838554
 50 0.6 25 75 0.55 0.6499999999999999 0.986284405256885

@@ -1,7 +1,7 @@
 # asperity plot script: `gnuplot ss_drop_eta_epsilon_P6.40N.gp` redraws ss_drop_eta_epsilon_P6.40N.png (data inline; restyle freely)
 set terminal pngcairo size 900,700 noenhanced
 set output 'ss_drop_eta_epsilon_P6.40N.png'
-set title 'ss_drop over model.eta x model.epsilon, experiment=P6.40N' . "\n" . 'STAND-IN experiments, not measurements' . "\n" . '(blank: no value: NaN, e.g. no stick-slip cycle, or failed/missing point)'
+set title 'ss_drop over model.eta x model.epsilon, experiment=P6.40N, grid=eta_epsilon' . "\n" . 'STAND-IN experiments, not measurements' . "\n" . '(blank: no value: NaN, e.g. no stick-slip cycle, or failed/missing point)'
 set cblabel 'ss_drop [N]'
 set palette defined (0 '#440154', 1 '#3b528b', 2 '#21908d', 3 '#5dc963', 4 '#fde725')
 set xlabel 'model.eta [1/s]'
@@ -13,8 +13,8 @@ set yrange [0.45:1.01]
 $cells << EOD
 0 0.5 -25 25 0.45 0.55 0.8868706610843227
 0 0.6 -25 25 0.55 0.6499999999999999 0.6138875661177394
-0 0.7 -25 25 0.6499999999999999 0.75 1.8348057645584395
-0 0.8 -25 25 0.75 0.8500000000000001 1.2612350645231905
+0 0.7 -25 25 0.6499999999999999 0.75 1.8349034439989447
+0 0.8 -25 25 0.75 0.8500000000000001 1.26122630085872
 0 0.9 -25 25 0.8500000000000001 0.925 0.5852139771185401
 0 0.95 -25 25 0.925 0.97 0.29139485293420364
 50 0.5 25 75 0.45 0.55 3.178417274526035
