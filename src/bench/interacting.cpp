@@ -2,8 +2,10 @@
 
 #include <sys/resource.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 
 #include "bench/bench_scene.hpp"
@@ -112,8 +114,23 @@ double fitted_exponent(const std::vector<InteractingBenchRow>& rows) {
     const double x = std::log(static_cast<double>(r.N)), y = std::log(r.wall_s);
     sx += x, sy += y, sxx += x * x, sxy += x * y, n += 1;
   }
-  if (n < 2) return NAN;
-  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
+  const double d = n * sxx - sx * sx;  // 0 when every N is the same
+  if (n < 2 || !(d > 1e-12 * n * sxx)) return NAN;
+  return (n * sxy - sx * sy) / d;
+}
+
+std::string fitted_exponent_text(const std::vector<InteractingBenchRow>& rows) {
+  std::size_t lo = 0, hi = 0;
+  for (const auto& r : rows)
+    if (r.what == "first_peak" && r.wall_s > 0) lo = lo == 0 ? r.N : std::min(lo, r.N), hi = std::max(hi, r.N);
+  const double b = fitted_exponent(rows);
+  char text[160];
+  if (std::isfinite(b))
+    std::snprintf(text, sizeof text, "time to the first peak ~ N^%.3g (least squares over N = %zu..%zu)", b, lo, hi);
+  else
+    std::snprintf(text, sizeof text, "time to the first peak: no exponent from one size (N = %zu); give two sizes or more",
+                  lo);
+  return text;
 }
 
 void write_interacting_bench(const fs::path& dir, const std::vector<InteractingBenchRow>& rows) {

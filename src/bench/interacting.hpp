@@ -35,8 +35,11 @@ struct InteractingBenchRow {
 };
 
 std::vector<InteractingBenchRow> run_interacting_bench(const InteractingBenchOptions& opt);
-// Least-squares exponent b of wall_s ∝ N^b over the scaling rows.
+// Least-squares exponent b of wall_s ∝ N^b over the scaling rows; NaN unless they hold two
+// distinct N or more.
 double fitted_exponent(const std::vector<InteractingBenchRow>& rows);
+// The line the bench prints about it: the exponent and its range of N, or why there is none.
+std::string fitted_exponent_text(const std::vector<InteractingBenchRow>& rows);
 // DIR/interacting.csv.
 void write_interacting_bench(const std::filesystem::path& dir, const std::vector<InteractingBenchRow>& rows);
 

@@ -1,5 +1,5 @@
 #pragma once
-// A sweep campaign as plain data (src/scene/campaign_load.hpp reads it from YAML), and its lazy
+// A sweep campaign as plain data (campaign/campaign_load.hpp reads it from YAML), and its lazy
 // expansion into points: point index → (grid, base scene, one value per axis) by mixed radix, so
 // a campaign of 10⁹ points needs memory for its axes only, never for its points.
 //

@@ -176,8 +176,7 @@ int interacting(const BenchOptions& b) {
   const auto rows = run_interacting_bench(o);
   write_interacting_bench(b.out, rows);
   write_marker(b.out, "bench");
-  std::printf("  time to the first peak ~ N^%.3g (least squares over N = %zu..%zu)\n", fitted_exponent(rows),
-              o.sizes.front(), o.sizes.back());
+  std::printf("  %s\n", fitted_exponent_text(rows).c_str());
   std::printf("-> %s/interacting.csv\n", b.out.c_str());
   return exit_ok;
 }

@@ -1,5 +1,5 @@
 #pragma once
-// What to calibrate, against what, and how (plain data; src/scene/fit_load.cpp reads it from a
+// What to calibrate, against what, and how (plain data; src/fit/fit_load.cpp reads it from a
 // fit YAML file, tests may build it in code).
 #include <cstddef>
 #include <filesystem>
