@@ -110,15 +110,23 @@ TEST_CASE("fit journal: values read back bit for bit; a torn or damaged tail is 
   fs::remove_all(d);
 }
 
-TEST_CASE("run_fit through a journal: a rerun replays every evaluation and gives the same fit; replay_only refuses a gap",
-          "[fit][journal]") {
-  const FitSpec spec = load_fit(kFixture);
-  const fs::path d = fresh_dir("replay");
+namespace {
+// Experiment m010 only, no profile or error bars: about 17 evaluations, well under a second.
+FitOptions m010_only() {
   FitOptions o;
   o.threads = 2;
   o.profile = false;
   o.error_bars = false;
-  o.only = {0};  // experiment m010 only: about 17 evaluations, well under a second
+  o.only = {0};
+  return o;
+}
+}  // namespace
+
+TEST_CASE("run_fit through a journal: a rerun replays every evaluation and gives the same fit; replay_only refuses a gap",
+          "[fit][journal]") {
+  const FitSpec spec = load_fit(kFixture);
+  const fs::path d = fresh_dir("replay");
+  FitOptions o = m010_only();
   FitResult first, again;
   {
     FitJournal j;
@@ -205,11 +213,7 @@ TEST_CASE("fit journal: a best line forged with a valid digest is refused agains
           "[fit][journal]") {
   const FitSpec spec = load_fit(kFixture);
   const fs::path d = fresh_dir("forged");
-  FitOptions o;
-  o.threads = 2;
-  o.profile = false;
-  o.error_bars = false;
-  o.only = {0};
+  FitOptions o = m010_only();
   FitResult first;
   {
     FitJournal j;
