@@ -97,8 +97,8 @@ TEST_CASE("no command writes into a folder it did not create, and each replaces 
     CHECK(run_argv(w, {"fit", "fit.yaml", "--out", "f", "--quiet", "--no-profile", "--no-error-bars"}).status != 2);
     CHECK(run_argv(w, {"reproduce", "s1.yaml", "--out", "p", "--quiet", "--no-claims"}).status == 0);
   }
-  CHECK(slurp(w / "r" / ".asperity") == "created by asperity run\n");
-  CHECK(slurp(w / "f" / ".asperity") == "created by asperity fit\n");
+  CHECK(slurp(w / "r" / ".asperity").rfind("created by asperity run\nfiles v2\n", 0) == 0);
+  CHECK(slurp(w / "f" / ".asperity").rfind("created by asperity fit\nfiles v2\n", 0) == 0);
   CHECK(slurp(w / "p" / ".asperity") == "created by asperity reproduce\n");
   check_refused(w, {"fit", "fit.yaml", "--out", "r", "--quiet"}, "r: --out: refusing to write there");
   check_refused(w, {"run", "s1.yaml", "--out", "p", "--quiet"}, "p: --out: refusing to write there");
@@ -106,6 +106,38 @@ TEST_CASE("no command writes into a folder it did not create, and each replaces 
   fs::create_directories(w / "empty");
   CHECK(run_argv(w, {"run", "s1.yaml", "--out", "empty", "--quiet"}).status == 0);
   CHECK(fs::exists(w / "empty" / "summary.yaml"));
+  fs::remove_all(w);
+}
+
+TEST_CASE("a rerun of run or fit keeps the user's files; a folder that only looks like theirs is refused", "[cli][overwrite]") {
+  const fs::path w = make_case("rerun");
+  const std::vector<std::string> fit = {"fit", "fit.yaml", "--out", "f", "--quiet", "--no-profile", "--no-error-bars"};
+  REQUIRE(run_argv(w, {"run", "s1.yaml", "--out", "r", "--quiet"}).status == 0);
+  REQUIRE(run_argv(w, fit).status != 2);
+  write_text(w / "r" / "notes.txt", "my notes on this run\n");
+  write_text(w / "f" / "notes.txt", "my notes on this fit\n");
+  fs::create_directories(w / "f" / "drafts");
+  write_text(w / "f" / "drafts" / "paper.tex", "draft\n");
+  // Rerun both: the user's files stay, byte for byte; the results are there again.
+  REQUIRE(run_argv(w, {"run", "s1.yaml", "--out", "r", "--quiet", "--set", "model.eta=50"}).status == 0);
+  REQUIRE(run_argv(w, fit).status != 2);
+  CHECK(slurp(w / "r" / "notes.txt") == "my notes on this run\n");
+  CHECK(slurp(w / "f" / "notes.txt") == "my notes on this fit\n");
+  CHECK(slurp(w / "f" / "drafts" / "paper.tex") == "draft\n");
+  CHECK(slurp(w / "r" / "scene.yaml").find("eta: 50") != std::string::npos);
+  CHECK(fs::exists(w / "f" / "fit.yaml"));
+  CHECK(fs::exists(w / "f" / "journal.csv"));  // the journal stays where it was
+  // An output the user edited is not replaced: refused, naming it, nothing changed.
+  write_text(w / "r" / "scene.yaml", slurp(w / "r" / "scene.yaml") + "# my edit\n");
+  check_refused(w, {"run", "s1.yaml", "--out", "r", "--quiet"}, (w / "r" / "scene.yaml").string() + ": --out: refusing to replace it");
+  // A project folder holding a copied fit.yaml, or a copied marker without a file list: refused.
+  fs::create_directories(w / "project");
+  fs::copy_file(w / "f" / "fit.yaml", w / "project" / "fit.yaml");
+  write_text(w / "project" / "analysis.py", "print('mine')\n");
+  check_refused(w, {"fit", "fit.yaml", "--out", "project", "--quiet"}, "project: --out: refusing to write there");
+  write_text(w / "project" / ".asperity", "created by asperity fit\n");
+  check_refused(w, {"fit", "fit.yaml", "--out", "project", "--quiet"}, "project: --out: refusing to write there");
+  check_refused(w, {"run", "s1.yaml", "--out", "project", "--quiet"}, "project: --out: refusing to write there");
   fs::remove_all(w);
 }
 

@@ -126,12 +126,15 @@ TEST_CASE("run writer: files, header, summary round trip with identical doubles"
   fs::remove_all(dir);
 }
 
-TEST_CASE("run writer replaces a run atomically and omits an empty series", "[report][observe]") {
+TEST_CASE("run writer replaces the files of its last run, keeps the user's and omits an empty series", "[report][observe]") {
   const fs::path dir = fresh_dir("run2");
-  fs::create_directories(dir);
-  std::ofstream(dir / "series.csv") << "old\n";
-  std::ofstream(dir / "plot.png") << "old\n";
-  std::ofstream(dir / ".asperity") << "created by asperity run\n";  // the marker: a run wrote it
+  {
+    Recorder rec(0.01, true, 1e-3, false, -1);
+    rec.sample({0, 0, 0, 0, 6e-8, 0, 3});
+    write_run(dir, small_scene(), Observables{}, rec);
+  }
+  REQUIRE(fs::exists(dir / "series.csv"));
+  std::ofstream(dir / "notes.txt") << "mine\n";  // a file the user adds to the run folder
 
   Scene scene = small_scene();
   scene.output.series.clear();
@@ -141,8 +144,8 @@ TEST_CASE("run writer replaces a run atomically and omits an empty series", "[re
 
   CHECK(fs::exists(dir / "summary.yaml"));
   CHECK(fs::exists(dir / "scene.yaml"));
-  CHECK_FALSE(fs::exists(dir / "series.csv"));
-  CHECK_FALSE(fs::exists(dir / "plot.png"));
+  CHECK_FALSE(fs::exists(dir / "series.csv"));  // the last run's, not made now: removed
+  CHECK(slurp(dir / "notes.txt") == "mine\n");  // the user's: kept
   // No temporary or old siblings are left behind.
   for (const auto& e : fs::directory_iterator(dir.parent_path()))
     CHECK(e.path().filename().string().find(".run2.") == std::string::npos);
@@ -150,6 +153,26 @@ TEST_CASE("run writer replaces a run atomically and omits an empty series", "[re
   CHECK(std::isnan(y["Q_s"].as<double>()));
   CHECK(y["peaks"].size() == 0);
   fs::remove_all(dir.parent_path());
+}
+
+TEST_CASE("run writer refuses a folder whose marker was copied or lists no files, touching nothing", "[report][observe]") {
+  const fs::path dir = fresh_dir("copied");
+  fs::create_directories(dir);
+  std::ofstream(dir / "series.csv") << "my own series\n";
+  std::ofstream(dir / ".asperity") << "created by asperity run\n";  // a marker without a file list
+  Recorder rec(0.01, true, 1e-3, false, -1);
+  CHECK_THROWS_WITH(write_run(dir, small_scene(), Observables{}, rec), Catch::Contains("does not list the files"));
+  CHECK(slurp(dir / "series.csv") == "my own series\n");
+  CHECK_FALSE(fs::exists(dir / "summary.yaml"));
+  // A real run's marker copied beside a file of the user's with a name the run writes: refused,
+  // naming that file, because its content is not what the run wrote.
+  const fs::path real = fresh_dir("realrun");
+  write_run(real, small_scene(), Observables{}, rec);
+  fs::copy_file(real / ".asperity", dir / ".asperity", fs::copy_options::overwrite_existing);
+  CHECK_THROWS_WITH(write_run(dir, small_scene(), Observables{}, rec), Catch::Contains("series.csv: --out: refusing to replace it"));
+  CHECK(slurp(dir / "series.csv") == "my own series\n");
+  fs::remove_all(dir.parent_path());
+  fs::remove_all(real.parent_path());
 }
 
 TEST_CASE("run writer refuses to replace a directory that is not a run", "[report][observe]") {

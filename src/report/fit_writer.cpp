@@ -181,11 +181,6 @@ void write_optimization(const fs::path& d, const FitSpec& spec, const Optimizati
 
 constexpr const char* kFitHeader = "# asperity fit results (SI units: m, m², N, s; alpha_b in m^(2p+2)/N²)";
 
-// A fit directory is replaced only when asperity fit wrote it (a folder from before the marker
-// existed is recognised by the first line of its fit.yaml).
-void check_replaceable(const fs::path& target) {
-  check_ours(target, "fit", "--out", [](const fs::path& d) { return first_line_is(d / "fit.yaml", kFitHeader); });
-}
 
 // The observables of each best run in fit.yaml, in this order.
 const char* const kFitYamlObservables[] = {"alpha", "alpha_measured", "alpha_R2", "shape_exponent",
@@ -300,10 +295,11 @@ std::string fit_yaml(const FitSpec& spec, const FitResult& result, const std::st
   return y.str();
 }
 
-void check_fit_dir(const fs::path& dir) { check_replaceable(dir); }  // names the folder as given
+void check_fit_dir(const fs::path& dir) { check_publishable(dir, "fit", "--out"); }  // names the folder as given
 
 void claim_fit_dir(const fs::path& dir) {
-  claim_dir(dir, "fit", "--out", [](const fs::path& d) { return first_line_is(d / "fit.yaml", kFitHeader); });
+  check_fit_dir(dir);
+  claim_dir(dir, "fit", "--out", {}, true);  // a marker listing the results publish_dir will write
 }
 
 // The observables of fitted.csv: (column, observable_fields() name).
@@ -312,19 +308,9 @@ const std::pair<const char*, const char*> kFittedObservables[] = {
     {"shape_exponent", "shape_exponent"}, {"shape_exponent_measured", "shape_exponent_measured"}};
 
 void write_fit(const fs::path& dir, const FitSpec& spec, const FitResult& result, const std::string& command_line) {
-  write_dir_atomically(dir, check_replaceable, [&](const fs::path& tmp) {
-    // The fit's journals come along (hard links: no copy, already durable; a copy where the file
-    // system has none), so the new folder still resumes and collects.
-    for (const char* name : {"journal.csv", "inputs.txt", "tasks"}) {
-      std::error_code ec;
-      if (!fs::exists(fs::symlink_status(dir / name, ec))) continue;
-      fs::copy(dir / name, tmp / name, fs::copy_options::recursive | fs::copy_options::create_hard_links, ec);
-      if (ec) {
-        fs::remove_all(tmp / name, ec);
-        fs::copy(dir / name, tmp / name, fs::copy_options::recursive, ec);
-      }
-      if (ec) throw std::runtime_error("cannot carry " + (dir / name).string() + " over: " + ec.message());
-    }
+  // The results go in beside the fit's journals (journal.csv, inputs.txt, tasks/), which stay
+  // where they are: publish_dir replaces only the result files the last write listed.
+  publish_dir(dir, "fit", "--out", [&](const fs::path& tmp) {
     const bool plots = gnuplot_available();
     for (const auto& o : result.fits) write_optimization(tmp / fit_subdir(spec, o), spec, o, plots);
 
@@ -371,7 +357,6 @@ void write_fit(const fs::path& dir, const FitSpec& spec, const FitResult& result
       plot_quietly(tmp, gp.str(), "fitted.gp");
     }
     scene_io::write_text_file(tmp / "fit.yaml", fit_yaml(spec, result, command_line));
-    write_marker(tmp, "fit");
   });
 }
 

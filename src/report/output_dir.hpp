@@ -20,8 +20,9 @@ std::filesystem::path normal_dir(const std::filesystem::path& dir);
 // folder or file it did not create.
 inline constexpr const char* kMarkerFile = ".asperity";
 
-// Writes the marker of `command` into `dir`.
-void write_marker(const std::filesystem::path& dir, const std::string& command);
+// Writes the marker of `command` into `dir`; with `file_list`, as publish_dir keeps it (a list of
+// the files written there, empty for now).
+void write_marker(const std::filesystem::path& dir, const std::string& command, bool file_list = false);
 
 // True when `dir` exists, is a real directory (not a symlink) and carries the marker of `command`.
 bool has_marker(const std::filesystem::path& dir, const std::string& command);
@@ -35,10 +36,28 @@ void check_ours(const std::filesystem::path& dir, const std::string& command, co
 // folder is made as a hidden sibling holding the marker and renamed into place, so processes
 // starting together (array tasks sharing one output folder) never see a folder without it.
 void claim_dir(const std::filesystem::path& dir, const std::string& command, const std::string& option,
-               const std::function<bool(const std::filesystem::path&)>& legacy_ours = {});
+               const std::function<bool(const std::filesystem::path&)>& legacy_ours = {}, bool file_list = false);
 
 // True when the first line of `file` is `line` (recognises files we wrote before markers).
 bool first_line_is(const std::filesystem::path& file, const std::string& line);
+
+// Writes the files `fill(tmp)` makes in a temporary folder into `dir`, replacing only what the
+// same command wrote there before: the folder's marker lists every file it wrote with its SHA-256
+// ("created by asperity COMMAND", "files v2", then "SHA256 RELATIVE/PATH" lines). Before anything
+// moves, each file to be written must be absent or listed with its current content (a file the
+// user added, edited or copied in is foreign: InputError naming it, key `option`, nothing
+// changed); `dir` must be absent, empty, or carry such a list (a marker without one, or a folder
+// that merely looks like a run or fit folder, is refused). Files are then renamed into place one
+// by one under a marker listing old and new contents (so an interruption never makes our files
+// look foreign), files of the last write that this one did not make are removed when unchanged,
+// and the marker is rewritten with the new list. Foreign files and folders stay untouched; no
+// path under `dir` is followed through a symbolic link.
+void publish_dir(const std::filesystem::path& dir, const std::string& command, const std::string& option,
+                 const std::function<void(const std::filesystem::path&)>& fill);
+
+// check_ours for publish_dir's rule: `dir` absent, an empty directory, or a real directory whose
+// marker of `command` lists its files (InputError naming `dir` and `option` otherwise).
+void check_publishable(const std::filesystem::path& dir, const std::string& command, const std::string& option);
 
 // Replaces `dir` by a new directory filled by `fill(tmp)`. When `dir` exists,
 // `check_replaceable(dir)` runs first and must throw if the directory is not ours to replace;

@@ -32,24 +32,12 @@ const char* method_name(SolverMethod m) {
 
 constexpr const char* kSummaryHeader = "# asperity run summary (SI units: m, m², N, s)";
 
-// A run directory written before the marker existed: our summary, and nothing but run files.
-bool legacy_run_dir(const fs::path& target) {
-  static const char* const known[] = {"series.csv", "summary.yaml", "scene.yaml", "plot.png"};
-  if (!first_line_is(target / "summary.yaml", kSummaryHeader)) return false;
-  for (const auto& e : fs::directory_iterator(target)) {
-    const std::string n = e.path().filename().string();
-    if (std::find(std::begin(known), std::end(known), n) == std::end(known) || !e.is_regular_file()) return false;
-  }
-  return true;
-}
-
-// An existing DIR is replaced only when asperity run wrote it: `--out .` or a typo must never
-// delete unrelated files.
-void check_replaceable_dir(const fs::path& target) { check_ours(target, "run", "--out", legacy_run_dir); }
-
+// A run folder is written by publish_dir: only the files a previous run wrote there (listed in
+// its marker with their content) are replaced; anything else in it stays, and a folder without
+// such a list is refused.
 }  // namespace
 
-void check_run_dir(const fs::path& dir) { check_replaceable_dir(dir); }  // names the folder as given
+void check_run_dir(const fs::path& dir) { check_publishable(dir, "run", "--out"); }  // names the folder as given
 
 std::string yaml_double(double x) {
   if (std::isnan(x)) return ".nan";
@@ -89,7 +77,7 @@ std::string summary_yaml(const Scene& scene, const Observables& o, const std::ve
 
 void write_run(const fs::path& dir, const Scene& scene, const Observables& obs, const Recorder& rec,
                const RunWriteOptions& opt) {
-  write_dir_atomically(dir, check_replaceable_dir, [&](const fs::path& tmp) {
+  publish_dir(dir, "run", "--out", [&](const fs::path& tmp) {
     // Text first: a failure (e.g. scene_to_yaml throwing) happens before anything is written.
     const std::string scene_text = scene_to_yaml(scene);
     const std::string summary_text = summary_yaml(scene, obs, rec.peaks(), opt.command_line);
@@ -100,7 +88,6 @@ void write_run(const fs::path& dir, const Scene& scene, const Observables& obs, 
     }
     scene_io::write_text_file(tmp / "summary.yaml", summary_text);
     scene_io::write_text_file(tmp / "scene.yaml", scene_text);
-    write_marker(tmp, "run");
     if (opt.plot) {
       std::string error;
       if (!write_run_plot(tmp, &error))
