@@ -5,7 +5,10 @@
 // outputs of experiments named "x y" and "x_y" do not collide.
 #include <yaml-cpp/yaml.h>
 
+#include <sys/stat.h>
+
 #include <algorithm>
+#include <chrono>
 #include <catch2/catch.hpp>
 #include <cstdlib>
 #include <filesystem>
@@ -269,5 +272,66 @@ TEST_CASE("generate and bench write only into folders they created", "[cli][over
   fs::remove(old / "data" / ".asperity");
   fs::remove(old / "scenes" / ".asperity");
   CHECK(run_argv(w, {"generate", "--recipe", recipe, "--out", "old/data", "--scenes", "old/scenes", "--quiet"}).status == 0);
+  fs::remove_all(w);
+}
+
+TEST_CASE("links and FIFOs planted inside a store or fit folder are refused; nothing outside changes", "[cli][overwrite]") {
+  const fs::path w = make_case("links");
+  const std::vector<std::string> sweep = {"sweep", "camp.yaml", "--out", "s", "--quiet", "-j1"};
+  const std::vector<std::string> fit = {"fit", "fit.yaml", "--out", "f", "--quiet", "--no-profile", "--no-error-bars"};
+  REQUIRE(run_argv(w, sweep).status == 0);
+  REQUIRE(run_argv(w, fit).status != 2);
+  write_text(w / "outside" / "victim.csv", "not asperity's\n");
+  fs::create_directories(w / "outside" / "dir");
+  const auto outside = snapshot(w / "outside");
+  const auto refused = [&](const std::vector<std::string>& args, const fs::path& planted) {
+    const CliResult r = run_argv(w, args);
+    INFO(args.front() << " with " << planted << ": " << r.err);
+    CHECK(r.status == 2);
+    CHECK(r.err.find(planted.filename().string()) != std::string::npos);
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+    CHECK(snapshot(w / "outside") == outside);
+  };
+  // points.csv, which a sweep only ever replaces (rename): the link itself is replaced by the
+  // rebuilt file, never written through.
+  fs::remove(w / "s" / "points.csv");
+  fs::create_symlink(w / "outside" / "victim.csv", w / "s" / "points.csv");
+  CHECK(run_argv(w, sweep).status == 0);
+  CHECK(fs::is_regular_file(fs::symlink_status(w / "s" / "points.csv")));
+  CHECK(snapshot(w / "outside") == outside);
+  // journal.csv (store, fit) and the lock replaced by links to a file outside: refused.
+  for (const fs::path& f : {w / "s" / "journal.csv", w / "s" / ".lock", w / "f" / "journal.csv", w / "f" / ".lock"}) {
+    const fs::path keep = w / ("keep-" + f.parent_path().filename().string() + f.filename().string());
+    fs::rename(f, keep);
+    fs::create_symlink(w / "outside" / "victim.csv", f);
+    refused(f.parent_path().filename() == "s" ? sweep : fit, f);
+    fs::remove(f);
+    fs::rename(keep, f);
+  }
+  // A FIFO as the journal: refused at once (it used to block the sweep forever).
+  fs::rename(w / "s" / "journal.csv", w / "journal.keep");
+  REQUIRE(::mkfifo((w / "s" / "journal.csv").c_str(), 0644) == 0);
+  const auto t0 = std::chrono::steady_clock::now();
+  refused(sweep, w / "s" / "journal.csv");
+  CHECK(std::chrono::steady_clock::now() - t0 < std::chrono::seconds(10));
+  fs::remove(w / "s" / "journal.csv");
+  fs::rename(w / "journal.keep", w / "s" / "journal.csv");
+  // An array task's folder reached through a link (tasks -> outside/dir).
+  fs::create_directory_symlink(w / "outside" / "dir", w / "f" / "tasks");
+  std::vector<std::string> task = fit;
+  task.insert(task.end(), {"--task", "0/2"});
+  refused(task, w / "f" / "tasks");
+  fs::remove(w / "f" / "tasks");
+  // A foreign header in the store's journal is bad input too (exit 2, naming line 1).
+  const std::string journal = slurp(w / "s" / "journal.csv");
+  write_text(w / "s" / "journal.csv", "index,something,else,sha256\n");
+  const CliResult r = run_argv(w, sweep);
+  CHECK(r.status == 2);
+  CHECK(r.err.find("journal.csv:1: header:") != std::string::npos);
+  write_text(w / "s" / "journal.csv", journal);
+  // With everything put back, both resume to what they had.
+  CHECK(run_argv(w, sweep).status == 0);
+  CHECK(run_argv(w, fit).status != 2);
+  CHECK(snapshot(w / "outside") == outside);
   fs::remove_all(w);
 }

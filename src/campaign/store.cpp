@@ -14,7 +14,9 @@
 #include <stdexcept>
 
 #include "io/digest.hpp"
+#include "io/input_error.hpp"
 #include "io/journal_line.hpp"
+#include "io/safe_open.hpp"
 
 namespace asperity {
 namespace fs = std::filesystem;
@@ -35,24 +37,48 @@ bool parse_u64(std::string_view s, std::uint64_t& out, int base = 10) {
 // newline is not returned (torn() says it was there).
 class LineReader {
  public:
-  explicit LineReader(const fs::path& path) : in_(path, std::ios::binary) {
-    if (!in_) throw std::runtime_error("cannot open " + path.string());
+  // Opened without following a link, a regular file only (io/safe_open.hpp).
+  explicit LineReader(const fs::path& path) : fd_(open_regular(path, O_RDONLY, path.filename().string())) {
+    if (fd_ < 0) throw std::runtime_error("cannot open " + path.string() + ": " + std::strerror(errno));
   }
+  ~LineReader() { ::close(fd_); }
+  LineReader(const LineReader&) = delete;
+  LineReader& operator=(const LineReader&) = delete;
   bool next(std::string& line, std::uint64_t& offset) {
     offset = pos_;
-    if (!std::getline(in_, line)) return false;
-    if (in_.eof()) {  // no newline after it
-      torn_ = true;
-      return false;
+    line.clear();
+    for (;;) {
+      if (at_ == end_ && !fill()) {  // end of file: what was read has no newline after it
+        if (!line.empty()) torn_ = true;
+        return false;
+      }
+      const char* nl = static_cast<const char*>(std::memchr(buf_ + at_, '\n', end_ - at_));
+      const std::size_t take = nl ? static_cast<std::size_t>(nl - (buf_ + at_)) : end_ - at_;
+      line.append(buf_ + at_, take);
+      at_ += take;
+      if (nl) {
+        ++at_;
+        pos_ += line.size() + 1;
+        return true;
+      }
     }
-    pos_ += line.size() + 1;
-    return true;
   }
   bool torn() const { return torn_; }
   std::uint64_t offset() const { return pos_; }  // bytes of the complete lines read
 
  private:
-  std::ifstream in_;
+  bool fill() {
+    for (;;) {
+      const ssize_t n = ::read(fd_, buf_, sizeof buf_);
+      if (n < 0 && errno == EINTR) continue;
+      if (n < 0) throw std::runtime_error(std::string("cannot read a store file: ") + std::strerror(errno));
+      at_ = 0, end_ = static_cast<std::size_t>(n);
+      return n > 0;
+    }
+  }
+  int fd_;
+  char buf_[1 << 16];
+  std::size_t at_ = 0, end_ = 0;
   std::uint64_t pos_ = 0;
   bool torn_ = false;
 };
@@ -158,8 +184,8 @@ bool Journal::scan(const fs::path& path) {
   }
   const std::optional<JournalDigest> digest = journal_digest_of(line, header_);
   if (!digest)
-    throw std::runtime_error(path.string() + " was written for another campaign or version (header differs); "
-                             "use another --out or remove the store");
+    throw InputError(path.string(), 1, "header",
+                     "written for another campaign or version (its header differs); use another --out or remove the store");
   digest_ = *digest;
   bool clean = digest_ == JournalDigest::sha256;  // a legacy journal is rewritten with SHA-256
   while (in.next(line, offset)) {
@@ -213,7 +239,7 @@ Journal::Journal(const fs::path& dir, const std::string& header, JournalSync syn
     out.commit();
     digest_ = JournalDigest::sha256;
   }
-  fd_ = ::open(path.c_str(), O_RDWR | O_APPEND | O_CLOEXEC);
+  fd_ = open_regular(path, O_RDWR | O_APPEND, "journal.csv");
   if (fd_ < 0) sys_fail("cannot open", path);
   if (!indexed) {  // the offsets into the file as it is now
     const std::size_t dropped = dropped_;
@@ -299,7 +325,7 @@ StoreReader::StoreReader(const fs::path& dir) {
     if (comma != std::string_view::npos && parse_u64(row.substr(0, comma), index)) rows_.add(index, offset, false);
   }
   rows_.settle();
-  fd_ = ::open(file_.c_str(), O_RDONLY | O_CLOEXEC);
+  fd_ = open_regular(file_, O_RDONLY, file_.filename().string());
   if (fd_ < 0) sys_fail("cannot open", file_);
 }
 
@@ -402,7 +428,7 @@ SeriesFile::SeriesFile(const fs::path& dir, bool append, const std::vector<std::
       blocks_.push_back(all[i]);
     }
   }
-  fd_ = ::open(path_.c_str(), (append ? O_RDWR | O_APPEND : O_RDONLY) | O_CLOEXEC);
+  fd_ = open_regular(path_, append ? O_RDWR | O_APPEND : O_RDONLY, "series.csv");
   if (fd_ < 0) sys_fail("cannot open", path_);
   if (append && dropped_ > 0) {  // cut off the torn tail, durably, before appending after it
     if (::ftruncate(fd_, static_cast<off_t>(good_end)) != 0 || ::fdatasync(fd_) != 0) sys_fail("cannot truncate", path_);
@@ -462,7 +488,7 @@ void SeriesFile::compact(const std::function<bool(std::uint64_t, std::uint64_t)>
   out.commit();
   // This object's descriptor still names the old file: reopen for appending.
   ::close(fd_);
-  fd_ = ::open(path_.c_str(), O_RDWR | O_APPEND | O_CLOEXEC);
+  fd_ = open_regular(path_, O_RDWR | O_APPEND, "series.csv");
   if (fd_ < 0) sys_fail("cannot open", path_);
   size_ = fs::file_size(path_);
   superseded_ = false;

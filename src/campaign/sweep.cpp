@@ -32,6 +32,7 @@
 #include "campaign/campaign_load.hpp"
 #include "scene/load.hpp"
 #include "io/digest.hpp"
+#include "io/safe_open.hpp"
 #include "io/input_error.hpp"
 #include "io/numbers.hpp"
 #include "io/progress.hpp"
@@ -345,8 +346,8 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
       if (std::find(std::begin(known), std::end(known), n) == std::end(known) && n.find(".tmp-") == std::string::npos &&
           e.path().extension() != ".png" && e.path().extension() != ".svg" && e.path().extension() != ".pdf" &&
           e.path().extension() != ".gp")  // figures drawn from the store and their kept scripts
-        throw std::runtime_error("refusing to use " + rep.store.string() + " as a sweep store: it holds '" + n +
-                                 "', which no store holds");
+        throw InputError(rep.store.string(), 0, "--out",
+                         "refusing to use it as a sweep store: it holds '" + n + "', which no store holds");
     }
   fs::create_directories(rep.store);
   StoreLock lock(rep.store);
@@ -417,8 +418,7 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
   // and the next run checks everything.
   const fs::path inputs_path = rep.store / kInputsFile;
   std::string points_digest;  // SHA-256 of points.csv as the last complete run wrote it
-  if (fs::exists(inputs_path)) {
-    std::string old = read_file_text(inputs_path);
+  if (std::string old; read_regular(inputs_path, old, kInputsFile)) {
     points_digest = take_points_digest(old);
     rep.trusted = !opt.build_id.empty() &&
                   inputs_text(c, opt.build_id, shard, listed_inputs(old, c), data_hashes) == old;

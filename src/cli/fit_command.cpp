@@ -23,6 +23,7 @@
 #include "io/dir_lock.hpp"
 #include "io/input_error.hpp"
 #include "io/progress.hpp"
+#include "io/safe_open.hpp"
 #include "io/provenance.hpp"
 #include "report/fit_writer.hpp"
 #include "report/output_dir.hpp"
@@ -143,6 +144,9 @@ int run(const FitCliOptions& opt, const Invocation& inv) {
     task_locks = open_task_journals(journal, out, spec, opt.overrides, build);
   } else {
     const fs::path dir = sharded ? task_dir(out, task) : out;
+    // tasks/ and tasks/I-of-N/ must be real folders inside --out: a link there would put the
+    // journal elsewhere.
+    check_real_folders(out, dir.lexically_relative(out), "--out");
     fs::create_directories(dir);
     lock = lock_dir(dir);
     open_journal(journal, dir, fit_inputs_text(spec, opt.overrides, build, task));

@@ -6,6 +6,7 @@
 #include "io/atomic_file.hpp"
 #include "io/hash.hpp"
 #include "io/input_error.hpp"
+#include "io/safe_open.hpp"
 #include "scene/input_files.hpp"
 
 namespace asperity {
@@ -65,7 +66,8 @@ std::string fit_inputs_text(const FitSpec& spec, const std::vector<std::string>&
 
 void check_fit_inputs(const fs::path& file, const std::string& expected) {
   const std::string name = file.string();
-  const std::string old = read_file_text(file);
+  std::string old;
+  if (!read_regular(file, old, "inputs.txt")) throw std::runtime_error("cannot read " + name);
   if (expected.find("\nbuild \n") != std::string::npos)
     throw InputError(name, 2, "build", "this binary's code cannot be identified (unknown commit and no /proc/self/exe), so it "
                                        "resumes no journal; use another --out or remove the folder");

@@ -14,6 +14,7 @@
 #include "io/input_error.hpp"
 #include "io/journal_line.hpp"
 #include "io/numbers.hpp"
+#include "io/safe_open.hpp"
 
 namespace asperity {
 namespace fs = std::filesystem;
@@ -68,17 +69,20 @@ void FitJournal::read(const fs::path& file, bool append) {
   std::uint64_t good_end = 0;  // bytes up to the end of the last good line
   const std::string header = journal_header(kColumnsLine);
   JournalDigest digest = JournalDigest::sha256;
-  if (fs::exists(file)) {
-    std::ifstream in(file, std::ios::binary);
-    if (!in) throw std::runtime_error("cannot open " + name);
+  // Read without following a link, a regular file only (a FIFO would block): io/safe_open.hpp.
+  std::string text;
+  if (read_regular(file, text, "journal")) {
     std::string line;
     std::uint64_t offset = 0;
     int lineno = 0;
     int first_bad = 0;  // a damaged line: fatal if a good one follows, a dropped tail otherwise
     std::map<std::string, std::pair<Evaluation, int>> found;  // → evaluation, line
-    while (std::getline(in, line)) {
+    for (std::size_t at = 0; at < text.size();) {
+      const std::size_t nl = text.find('\n', at);
+      line.assign(text, at, nl == std::string::npos ? std::string::npos : nl - at);
+      at = nl == std::string::npos ? text.size() : nl + 1;
       ++lineno;
-      const bool whole = !in.eof();  // a last line without its newline is torn
+      const bool whole = nl != std::string::npos;  // a last line without its newline is torn
       const std::uint64_t end = offset + line.size() + (whole ? 1 : 0);
       offset = end;
       if (lineno == 1) {
@@ -135,9 +139,7 @@ void FitJournal::read(const fs::path& file, bool append) {
   } else if (digest == JournalDigest::fnv1a64_legacy) {
     // A journal from before SHA-256: its good lines (checked with FNV-1a above) re-digested and
     // written atomically in its place; a torn or damaged tail goes with it.
-    std::ifstream in(file, std::ios::binary);
-    std::string text(good_end, '\0');
-    in.read(text.data(), static_cast<std::streamsize>(good_end));
+    text.resize(good_end);
     std::string out = header + "\n";
     std::size_t at = text.find('\n') + 1;
     for (std::size_t nl; at < text.size() && (nl = text.find('\n', at)) != std::string::npos; at = nl + 1) {
@@ -145,14 +147,13 @@ void FitJournal::read(const fs::path& file, bool append) {
       if (checked_journal_row(std::string_view(text).substr(at, nl - at), row, digest)) out += journal_line(row);
     }
     write_file_durably(file, out);
-  } else if (good_end < fs::file_size(file)) {
-    // Only a torn or damaged tail is cut (what follows the last good line), so nothing computed
-    // is lost; the file is then flushed so the cut survives a power cut too.
-    if (::truncate(file.c_str(), static_cast<off_t>(good_end)) != 0)
-      throw std::runtime_error("cannot cut the torn tail of " + name + ": " + std::strerror(errno));
   }
-  fd_ = ::open(file.c_str(), O_WRONLY | O_APPEND | O_CLOEXEC);
+  fd_ = open_regular(file, O_WRONLY | O_APPEND, "journal");
   if (fd_ < 0) throw std::runtime_error("cannot open " + name + ": " + std::strerror(errno));
+  if (good_end < text.size() && ::ftruncate(fd_, static_cast<off_t>(good_end)) != 0)
+    // Only a torn or damaged tail is cut (what follows the last good line), so nothing computed
+    // is lost; the sync below makes the cut survive a power cut too.
+    throw std::runtime_error("cannot cut the torn tail of " + name + ": " + std::strerror(errno));
   if (::fdatasync(fd_) != 0) throw std::runtime_error("cannot sync " + name + ": " + std::strerror(errno));
   appending_ = file;
 }

@@ -8,11 +8,13 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "io/safe_open.hpp"
+
 namespace asperity {
 
 DirLock::DirLock(const std::filesystem::path& dir, const std::string& who) {
   const std::filesystem::path p = dir / ".lock";
-  fd_ = ::open(p.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  fd_ = open_regular(p, O_RDWR | O_CREAT, "lock");  // never through a link, never a FIFO
   if (fd_ < 0) throw std::runtime_error("cannot open " + p.string() + ": " + std::strerror(errno));
   if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
     ::close(fd_);
