@@ -14,6 +14,7 @@
 
 #include "campaign/store.hpp"
 #include "io/numbers.hpp"
+#include "io/temp_files.hpp"
 #include "observe/observables.hpp"
 
 namespace asperity {
@@ -152,6 +153,7 @@ SqliteExportReport export_sqlite(const fs::path& store, const fs::path& file) {
   tmp_name += unique_tmp_suffix();
   const fs::path tmp = file.parent_path() / tmp_name;
   TempFile guard{tmp};
+  const TempGuard on_signal(tmp);
   SqliteExportReport rep;
   rep.columns = cols.size();
   {

@@ -351,6 +351,7 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
     }
   fs::create_directories(rep.store);
   StoreLock lock(rep.store);
+  remove_stale_temporaries(rep.store);  // of a sweep or merge that died while writing (kill -9, a lost node)
   rep.balance = prepare_store(rep.store, c, opt);
   const std::string header = store_header(c);
   const std::uint64_t total = c.size();

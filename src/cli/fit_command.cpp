@@ -149,6 +149,7 @@ int run(const FitCliOptions& opt, const Invocation& inv) {
     check_real_folders(out, dir.lexically_relative(out), "--out");
     fs::create_directories(dir);
     lock = lock_dir(dir);
+    remove_stale_temporaries(dir);  // of a fit that died while writing (kill -9, a lost node)
     open_journal(journal, dir, fit_inputs_text(spec, opt.overrides, build, task));
   }
   FitOptions fo;

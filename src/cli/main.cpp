@@ -10,6 +10,7 @@
 
 #include "cli/commands.hpp"
 #include "io/provenance.hpp"
+#include "io/temp_files.hpp"
 #include "scene/load.hpp"
 #include "solve/integrate.hpp"
 
@@ -101,6 +102,7 @@ int run_cli(int argc, char** argv) {
 // Everything that escapes a command (a library's exception, memory exhausted) becomes one line
 // and a non-zero exit, never std::terminate's "terminate called after...".
 int main(int argc, char** argv) {
+  asperity::install_signal_cleanup();  // SIGINT/SIGTERM/SIGHUP remove our temporaries; SIGXFSZ -> EFBIG
   try {
     return run_cli(argc, argv);
   } catch (const std::bad_alloc&) {

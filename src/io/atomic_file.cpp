@@ -45,10 +45,6 @@ bool write_fully(int fd, std::string_view bytes) {
   return true;
 }
 
-std::string unique_tmp_suffix() {
-  static std::atomic<unsigned> counter{0};  // several threads may write files of one folder
-  return std::to_string(::getpid()) + "-" + std::to_string(counter++);
-}
 
 AtomicFileWriter::AtomicFileWriter(const fs::path& path, Durability durability) : path_(path), durability_(durability) {
   std::string name = ".";  // (built by append: GCC 12 warns falsely on "." + std::string)
@@ -57,6 +53,7 @@ AtomicFileWriter::AtomicFileWriter(const fs::path& path, Durability durability) 
   // O_EXCL | O_NOFOLLOW: a name planted in advance (a link to elsewhere) is never written through.
   fd_ = ::open(tmp_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
   if (fd_ < 0) sys_fail("cannot create", tmp_, errno);
+  guard_.emplace(tmp_);
 }
 
 AtomicFileWriter::~AtomicFileWriter() {
@@ -108,6 +105,7 @@ void AtomicFileWriter::commit() {
     fs::remove(tmp_, ec);
     sys_fail("cannot rename into", path_, err);
   }
+  guard_.reset();
   if (synced) fsync_dir(path_.parent_path().empty() ? fs::path(".") : path_.parent_path());
 }
 

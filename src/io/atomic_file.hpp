@@ -6,16 +6,16 @@
 // new file survives a power cut (the campaign store needs that; a run folder or a CSV a command
 // writes once does not, and skips the cost).
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
+
+#include "io/temp_files.hpp"  // unique_tmp_suffix, TempGuard: the temporaries' names and cleanup
 
 namespace asperity {
 
 enum class Durability { unsynced, synced };
 
-// "PID-N", unique within the machine while the process lives: the tail of every temporary name
-// (".NAME.tmp-PID-N" files here, the output folders' and plots' temporaries in report/).
-std::string unique_tmp_suffix();
 
 // Throws std::runtime_error naming the path and the system's reason; the temporary is removed.
 void write_file_atomically(const std::filesystem::path& path, const std::string& text, Durability durability);
@@ -36,6 +36,7 @@ class AtomicFileWriter {
   void flush();
   void put(std::string_view bytes);
   std::filesystem::path path_, tmp_;
+  std::optional<TempGuard> guard_;  // removes tmp_ if a signal stops the process
   Durability durability_;
   int fd_ = -1;
   std::string buffer_;

@@ -155,6 +155,7 @@ bool render_plot(const fs::path& figure, const std::string& script, int width, i
   const fs::path dir = figure.parent_path().empty() ? fs::path(".") : figure.parent_path();
   const std::string tmp_name = ".plot.tmp-" + unique_tmp_suffix();  // the ".NAME.tmp-*" pattern of output_dir
   const fs::path tmp = dir / tmp_name;
+  const TempGuard on_signal(tmp);
   const std::string text = terminal + "\nset output " + gnuplot_quote(tmp_name) + "\n" + script + "\nunset output\n";
   std::error_code ec;
   try {

@@ -114,7 +114,9 @@ void claim_dir(const fs::path& dir, const std::string& command, const std::strin
   fs::create_directories(target.parent_path(), ec);
   const std::string name = target.filename().string();
   const fs::path tmp = target.parent_path() / ("." + name + ".tmp-" + unique_tmp_suffix());
+  remove_stale_temporaries(target.parent_path(), "." + name + ".");
   if (!fs::create_directory(tmp, ec) || ec) throw std::runtime_error("cannot create " + tmp.string() + ": " + ec.message());
+  const TempGuard on_signal(tmp);
   write_marker(tmp, command, file_list);
   fs::rename(tmp, target, ec);
   if (ec) {  // another process made it first: it must be ours too
@@ -149,10 +151,16 @@ void publish_dir(const fs::path& dir, const std::string& command, const std::str
   std::error_code ec;
   fs::create_directories(parent, ec);
   if (ec) throw std::runtime_error("cannot create " + parent.string() + ": " + ec.message());
-  std::string tmp_name = ".";  // (built in steps: GCC 12 warns falsely on "." + string)
-  tmp_name.append(target.filename().string()).append(".tmp-").append(unique_tmp_suffix());
+  std::string own = ".";  // ".NAME." starts our temporaries (built in steps: GCC 12 warns falsely on "." + string)
+  own.append(target.filename().string()).append(".");
+  const std::string tmp_name = own + "tmp-" + unique_tmp_suffix();
   const fs::path tmp = parent / tmp_name;
+  // Temporaries of earlier writes whose process died (kill -9, a lost node): beside the folder
+  // and inside it (it is ours: checked above).
+  remove_stale_temporaries(parent, own);
+  if (kind_of(target) == Kind::dir) remove_stale_temporaries(target);
   if (!fs::create_directory(tmp, ec) || ec) throw std::runtime_error("cannot create " + tmp.string() + ": " + ec.message());
+  const TempGuard on_signal(tmp);
   struct Cleanup {  // the temporary folder goes whatever happens (renamed into place: nothing to do)
     fs::path p;
     ~Cleanup() {
@@ -226,47 +234,5 @@ void publish_dir(const fs::path& dir, const std::string& command, const std::str
   write_marker_files(target, command, made);
 }
 
-void write_dir_atomically(const fs::path& dir, const std::function<void(const fs::path&)>& check_replaceable,
-                          const std::function<void(const fs::path&)>& fill) {
-  const fs::path target = normal_dir(dir);
-  const fs::path parent = target.parent_path();
-  const std::string name = target.filename().string();
-  std::error_code ec;
-  fs::create_directories(parent, ec);
-  if (ec) throw std::runtime_error("cannot create " + parent.string() + ": " + ec.message());
-  if (fs::exists(fs::symlink_status(target))) check_replaceable(target);  // before any work
-
-  const fs::path tmp = parent / ("." + name + ".tmp-" + unique_tmp_suffix());
-  fs::remove_all(tmp, ec);
-  if (!fs::create_directory(tmp, ec) || ec)
-    throw std::runtime_error("cannot create " + tmp.string() + ": " + ec.message());
-  struct Cleanup {  // removes the temporary directory unless it was renamed into place
-    fs::path p;
-    bool armed = true;
-    ~Cleanup() {
-      std::error_code e;
-      if (armed) fs::remove_all(p, e);
-    }
-  } cleanup{tmp};
-
-  fill(tmp);
-
-  // Replace: move an existing DIR aside, move the new one in, then delete the old one.
-  fs::path old;
-  if (fs::exists(fs::symlink_status(target))) {
-    check_replaceable(target);
-    old = parent / ("." + name + ".old-" + unique_tmp_suffix());
-    fs::rename(target, old, ec);
-    if (ec) throw std::runtime_error("cannot replace " + target.string() + ": " + ec.message());
-  }
-  fs::rename(tmp, target, ec);
-  if (ec) {
-    std::error_code e2;
-    if (!old.empty()) fs::rename(old, target, e2);  // put the previous one back
-    throw std::runtime_error("cannot move " + tmp.string() + " to " + target.string() + ": " + ec.message());
-  }
-  cleanup.armed = false;
-  if (!old.empty()) fs::remove_all(old, ec);
-}
 
 }  // namespace asperity

@@ -59,12 +59,4 @@ void publish_dir(const std::filesystem::path& dir, const std::string& command, c
 // marker of `command` lists its files (InputError naming `dir` and `option` otherwise).
 void check_publishable(const std::filesystem::path& dir, const std::string& command, const std::string& option);
 
-// Replaces `dir` by a new directory filled by `fill(tmp)`. When `dir` exists,
-// `check_replaceable(dir)` runs first and must throw if the directory is not ours to replace;
-// the old directory is moved aside, put back if the new one cannot be moved in, and deleted
-// after. Anything `fill` throws propagates, leaving `dir` untouched.
-void write_dir_atomically(const std::filesystem::path& dir,
-                          const std::function<void(const std::filesystem::path&)>& check_replaceable,
-                          const std::function<void(const std::filesystem::path&)>& fill);
-
 }  // namespace asperity
