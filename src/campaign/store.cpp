@@ -38,7 +38,7 @@ bool parse_u64(std::string_view s, std::uint64_t& out, int base = 10) {
 class LineReader {
  public:
   // Opened without following a link, a regular file only (io/safe_open.hpp).
-  explicit LineReader(const fs::path& path) : fd_(open_regular(path, O_RDONLY, path.filename().string())) {
+  explicit LineReader(const fs::path& path) : fd_(open_regular(path, O_RDONLY, "--out")) {
     if (fd_ < 0) throw std::runtime_error("cannot open " + path.string() + ": " + std::strerror(errno));
   }
   ~LineReader() { ::close(fd_); }
@@ -239,7 +239,7 @@ Journal::Journal(const fs::path& dir, const std::string& header, JournalSync syn
     out.commit();
     digest_ = JournalDigest::sha256;
   }
-  fd_ = open_regular(path, O_RDWR | O_APPEND, "journal.csv");
+  fd_ = open_regular(path, O_RDWR | O_APPEND, "--out");
   if (fd_ < 0) sys_fail("cannot open", path);
   if (!indexed) {  // the offsets into the file as it is now
     const std::size_t dropped = dropped_;
@@ -325,7 +325,7 @@ StoreReader::StoreReader(const fs::path& dir) {
     if (comma != std::string_view::npos && parse_u64(row.substr(0, comma), index)) rows_.add(index, offset, false);
   }
   rows_.settle();
-  fd_ = open_regular(file_, O_RDONLY, file_.filename().string());
+  fd_ = open_regular(file_, O_RDONLY, "--out");
   if (fd_ < 0) sys_fail("cannot open", file_);
 }
 
@@ -428,7 +428,7 @@ SeriesFile::SeriesFile(const fs::path& dir, bool append, const std::vector<std::
       blocks_.push_back(all[i]);
     }
   }
-  fd_ = open_regular(path_, append ? O_RDWR | O_APPEND : O_RDONLY, "series.csv");
+  fd_ = open_regular(path_, append ? O_RDWR | O_APPEND : O_RDONLY, "--out");
   if (fd_ < 0) sys_fail("cannot open", path_);
   if (append && dropped_ > 0) {  // cut off the torn tail, durably, before appending after it
     if (::ftruncate(fd_, static_cast<off_t>(good_end)) != 0 || ::fdatasync(fd_) != 0) sys_fail("cannot truncate", path_);
@@ -488,7 +488,7 @@ void SeriesFile::compact(const std::function<bool(std::uint64_t, std::uint64_t)>
   out.commit();
   // This object's descriptor still names the old file: reopen for appending.
   ::close(fd_);
-  fd_ = open_regular(path_, O_RDWR | O_APPEND, "series.csv");
+  fd_ = open_regular(path_, O_RDWR | O_APPEND, "--out");
   if (fd_ < 0) sys_fail("cannot open", path_);
   size_ = fs::file_size(path_);
   superseded_ = false;

@@ -419,7 +419,7 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
   // and the next run checks everything.
   const fs::path inputs_path = rep.store / kInputsFile;
   std::string points_digest;  // SHA-256 of points.csv as the last complete run wrote it
-  if (std::string old; read_regular(inputs_path, old, kInputsFile)) {
+  if (std::string old; read_regular(inputs_path, old, "--out")) {
     points_digest = take_points_digest(old);
     rep.trusted = !opt.build_id.empty() &&
                   inputs_text(c, opt.build_id, shard, listed_inputs(old, c), data_hashes) == old;

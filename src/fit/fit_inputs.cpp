@@ -67,7 +67,7 @@ std::string fit_inputs_text(const FitSpec& spec, const std::vector<std::string>&
 void check_fit_inputs(const fs::path& file, const std::string& expected) {
   const std::string name = file.string();
   std::string old;
-  if (!read_regular(file, old, "inputs.txt")) throw std::runtime_error("cannot read " + name);
+  if (!read_regular(file, old, "--out")) throw std::runtime_error("cannot read " + name);
   if (expected.find("\nbuild \n") != std::string::npos)
     throw InputError(name, 2, "build", "this binary's code cannot be identified (unknown commit and no /proc/self/exe), so it "
                                        "resumes no journal; use another --out or remove the folder");

@@ -71,7 +71,7 @@ void FitJournal::read(const fs::path& file, bool append) {
   JournalDigest digest = JournalDigest::sha256;
   // Read without following a link, a regular file only (a FIFO would block): io/safe_open.hpp.
   std::string text;
-  if (read_regular(file, text, "journal")) {
+  if (read_regular(file, text, "--out")) {
     std::string line;
     std::uint64_t offset = 0;
     int lineno = 0;
@@ -148,7 +148,7 @@ void FitJournal::read(const fs::path& file, bool append) {
     }
     write_file_durably(file, out);
   }
-  fd_ = open_regular(file, O_WRONLY | O_APPEND, "journal");
+  fd_ = open_regular(file, O_WRONLY | O_APPEND, "--out");
   if (fd_ < 0) throw std::runtime_error("cannot open " + name + ": " + std::strerror(errno));
   if (good_end < text.size() && ::ftruncate(fd_, static_cast<off_t>(good_end)) != 0)
     // Only a torn or damaged tail is cut (what follows the last good line), so nothing computed

@@ -14,7 +14,7 @@ namespace asperity {
 
 DirLock::DirLock(const std::filesystem::path& dir, const std::string& who) {
   const std::filesystem::path p = dir / ".lock";
-  fd_ = open_regular(p, O_RDWR | O_CREAT, "lock");  // never through a link, never a FIFO
+  fd_ = open_regular(p, O_RDWR | O_CREAT, "--out");  // never through a link, never a FIFO
   if (fd_ < 0) throw std::runtime_error("cannot open " + p.string() + ": " + std::strerror(errno));
   if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
     ::close(fd_);
