@@ -10,7 +10,7 @@ pkgs=(cmake g++ ninja-build libboost-dev libeigen3-dev libtbb-dev libnlopt-cxx-d
       libyaml-cpp-dev catch2 libcli11-dev gnuplot-nox python3
       python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pandas python3-matplotlib
       python3-pytest slurm-wlm munge libopenblas-openmp-dev
-      libsqlite3-dev libssl-dev
+      libsqlite3-dev libssl-dev libfftw3-dev pkg-config
 )
 missing=()
 for p in "${pkgs[@]}"; do dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p"); done
