@@ -1,76 +1,47 @@
 #include "surface/normal_contact.hpp"
 
-#include <fftw3.h>
-
 #include <algorithm>
 #include <cmath>
-#include <cstring>
-#include <mutex>
 #include <numbers>
 #include <stdexcept>
+#include <utility>
+
+#include "surface/fft_planner.hpp"
 
 namespace asperity {
 namespace {
-
-// FFTW's planner is not thread-safe (its execution is): plans are made under this lock. The one
-// process-wide piece of state here, FFTW's own requirement.
-std::mutex& planner_mutex() {
-  static std::mutex m;
-  return m;
-}
 
 // Linear (non-periodic) convolution of an n × n field with a fixed kernel, by FFT on 2n × 2n.
 class Convolution {
  public:
   Convolution(std::size_t n, const std::vector<double>& kernel_2n)  // kernel on 2n × 2n, wrapped offsets
-      : n_(n), N_(2 * n), nc_(N_ / 2 + 1) {
-    real_ = fftw_alloc_real(N_ * N_);
-    spec_ = fftw_alloc_complex(N_ * nc_);
-    kernel_ = fftw_alloc_complex(N_ * nc_);
-    if (!real_ || !spec_ || !kernel_) throw std::bad_alloc();
-    {
-      const std::lock_guard<std::mutex> lock(planner_mutex());
-      // FFTW_ESTIMATE: the same algorithm every run (FFTW_MEASURE would time candidates and could
-      // pick another one, changing the last bits of the results from run to run).
-      const int N = static_cast<int>(N_);
-      forward_ = fftw_plan_dft_r2c_2d(N, N, real_, spec_, FFTW_ESTIMATE);
-      inverse_ = fftw_plan_dft_c2r_2d(N, N, spec_, real_, FFTW_ESTIMATE);
-    }
-    std::copy(kernel_2n.begin(), kernel_2n.end(), real_);
-    fftw_execute(forward_);
-    std::memcpy(kernel_, spec_, sizeof(fftw_complex) * N_ * nc_);
+      : n_(n), N_(2 * n), nc_(N_ / 2 + 1), fft_(N_), kernel_(N_ * nc_) {
+    std::copy(kernel_2n.begin(), kernel_2n.end(), fft_.real());
+    fft_.forward();
+    for (std::size_t k = 0; k < N_ * nc_; ++k) kernel_[k] = {fft_.spectrum()[k][0], fft_.spectrum()[k][1]};
   }
-  ~Convolution() {
-    {
-      const std::lock_guard<std::mutex> lock(planner_mutex());
-      fftw_destroy_plan(forward_);
-      fftw_destroy_plan(inverse_);
-    }
-    fftw_free(real_), fftw_free(spec_), fftw_free(kernel_);
-  }
-  Convolution(const Convolution&) = delete;
-  Convolution& operator=(const Convolution&) = delete;
 
   // out = kernel ∗ in (both n × n).
   void apply(const std::vector<double>& in, std::vector<double>& out) {
-    std::fill(real_, real_ + N_ * N_, 0.0);
-    for (std::size_t i = 0; i < n_; ++i) std::copy(&in[i * n_], &in[i * n_] + n_, real_ + i * N_);
-    fftw_execute(forward_);
+    double* real = fft_.real();
+    std::fill(real, real + N_ * N_, 0.0);
+    for (std::size_t i = 0; i < n_; ++i) std::copy(&in[i * n_], &in[i * n_] + n_, real + i * N_);
+    fft_.forward();
     const double scale = 1.0 / static_cast<double>(N_ * N_);
+    fftw_complex* spec = fft_.spectrum();
     for (std::size_t k = 0; k < N_ * nc_; ++k) {
-      const double a = spec_[k][0], b = spec_[k][1], c = kernel_[k][0], d = kernel_[k][1];
-      spec_[k][0] = (a * c - b * d) * scale;
-      spec_[k][1] = (a * d + b * c) * scale;
+      const double a = spec[k][0], b = spec[k][1], c = kernel_[k].first, d = kernel_[k].second;
+      spec[k][0] = (a * c - b * d) * scale;
+      spec[k][1] = (a * d + b * c) * scale;
     }
-    fftw_execute(inverse_);
-    for (std::size_t i = 0; i < n_; ++i) std::copy(real_ + i * N_, real_ + i * N_ + n_, &out[i * n_]);
+    fft_.inverse();
+    for (std::size_t i = 0; i < n_; ++i) std::copy(real + i * N_, real + i * N_ + n_, &out[i * n_]);
   }
 
  private:
   std::size_t n_, N_, nc_;
-  double* real_ = nullptr;
-  fftw_complex *spec_ = nullptr, *kernel_ = nullptr;
-  fftw_plan forward_ = nullptr, inverse_ = nullptr;
+  FftBuffers fft_;
+  std::vector<std::pair<double, double>> kernel_;  // its spectrum
 };
 
 }  // namespace
