@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <stdexcept>
 #include <utility>
 
@@ -11,14 +12,25 @@
 namespace asperity {
 namespace {
 
-// Linear (non-periodic) convolution of an n × n field with a fixed kernel, by FFT on 2n × 2n.
+// Convolution of an n × n field with a fixed kernel by FFT on an N × N grid: N = 2n with zero
+// padding (linear, an isolated contact) or N = n (periodic).
 class Convolution {
  public:
-  Convolution(std::size_t n, const std::vector<double>& kernel_2n)  // kernel on 2n × 2n, wrapped offsets
-      : n_(n), N_(2 * n), nc_(N_ / 2 + 1), fft_(N_), kernel_(N_ * nc_) {
-    std::copy(kernel_2n.begin(), kernel_2n.end(), fft_.real());
+  // A kernel given in real space on N × N (wrapped offsets).
+  Convolution(std::size_t n, std::size_t N, const std::vector<double>& kernel)
+      : n_(n), N_(N), nc_(N_ / 2 + 1), fft_(N_), kernel_(N_ * nc_) {
+    std::copy(kernel.begin(), kernel.end(), fft_.real());
     fft_.forward();
     for (std::size_t k = 0; k < N_ * nc_; ++k) kernel_[k] = {fft_.spectrum()[k][0], fft_.spectrum()[k][1]};
+  }
+  // A kernel given by its spectrum: value at the wavevector indices (ky, kx), kx ≥ 0.
+  template <class F>
+  Convolution(std::size_t n, F spectrum) : n_(n), N_(n), nc_(n / 2 + 1), fft_(n), kernel_(N_ * nc_) {
+    for (std::size_t i = 0; i < N_; ++i)
+      for (std::size_t j = 0; j < nc_; ++j) {
+        const long ky = i <= N_ / 2 ? static_cast<long>(i) : static_cast<long>(i) - static_cast<long>(N_);
+        kernel_[i * nc_ + j] = {spectrum(ky, static_cast<long>(j)), 0.0};
+      }
   }
 
   // out = kernel ∗ in (both n × n).
@@ -68,15 +80,26 @@ NormalContact solve_normal_contact(const HeightMap& map, const NormalContactSett
   const double A = map.pixel_m * map.pixel_m, half = 0.5 * map.pixel_m;
   const std::size_t N = 2 * n;
 
-  // Influence of a unit pressure on one pixel, at every offset (wrapped on the 2n grid).
-  std::vector<double> kernel(N * N, 0.0);
-  for (std::size_t i = 0; i < N; ++i)
-    for (std::size_t j = 0; j < N; ++j) {
-      const double di = static_cast<double>(i) - (i < n ? 0.0 : static_cast<double>(N));  // offsets −n..n−1
-      const double dj = static_cast<double>(j) - (j < n ? 0.0 : static_cast<double>(N));
-      kernel[i * N + j] = love_rectangle(dj * map.pixel_m, di * map.pixel_m, half, half) / s.E_star_Pa;
-    }
-  Convolution K(n, kernel);
+  std::optional<Convolution> convolution;
+  if (s.periodic) {
+    // u(q) = 2 p(q) / (E* |q|); the mean (q = 0) displacement is the free approach.
+    const double qL = 2 * std::numbers::pi / map.length_m();
+    convolution.emplace(n, [&](long ky, long kx) {
+      const double q = qL * std::hypot(static_cast<double>(ky), static_cast<double>(kx));
+      return q > 0 ? 2.0 / (s.E_star_Pa * q) : 0.0;
+    });
+  } else {
+    // Influence of a unit pressure on one pixel, at every offset (wrapped on the 2n grid).
+    std::vector<double> kernel(N * N, 0.0);
+    for (std::size_t i = 0; i < N; ++i)
+      for (std::size_t j = 0; j < N; ++j) {
+        const double di = static_cast<double>(i) - (i < n ? 0.0 : static_cast<double>(N));  // offsets −n..n−1
+        const double dj = static_cast<double>(j) - (j < n ? 0.0 : static_cast<double>(N));
+        kernel[i * N + j] = love_rectangle(dj * map.pixel_m, di * map.pixel_m, half, half) / s.E_star_Pa;
+      }
+    convolution.emplace(n, N, kernel);
+  }
+  Convolution& K = *convolution;
 
   // Separation from the flat touching the highest summit.
   const double top = *std::max_element(map.h_m.begin(), map.h_m.end());

@@ -1,6 +1,6 @@
 #pragma once
 // Frictionless elastic normal contact of a rough surface (HeightMap) with a rigid flat under a
-// normal load: the boundary-element method on an FFT. Surface displacements are the Boussinesq
+// normal load: the boundary-element method on an FFT, isolated or periodic. Surface displacements are the Boussinesq
 // response to pressures uniform over each pixel (Love's closed form for a rectangle, Johnson,
 // Contact Mechanics, eq. 3.25), convolved by FFT (FFTW) on a grid padded to 2n × 2n, so the
 // contact is not periodic (a sphere on a flat). The pressures come from the constrained conjugate
@@ -14,6 +14,10 @@ namespace asperity {
 
 struct NormalContactSettings {
   double E_star_Pa = 0;          // contact modulus E / (1 − ν²) of the elastic body (the flat is rigid)
+  // false: an isolated contact (a sphere), the grid zero-padded to 2n × 2n, pixel kernel of Love;
+  // true: the map repeats periodically (a nominally flat rough surface), the spectral kernel
+  // u(q) = 2 p(q) / (E* |q|) with the mean displacement left free (Stanley & Kato 1997).
+  bool periodic = false;
   double load_N = 0;             // total normal load
   double tolerance = 1e-10;      // on Σ|Δp|A / P between two iterations
   int max_iterations = 5000;
