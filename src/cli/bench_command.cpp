@@ -14,6 +14,7 @@
 
 #include "bench/accuracy.hpp"
 #include "bench/bench_scene.hpp"
+#include "bench/contact.hpp"
 #include "bench/interacting.hpp"
 #include "bench/savings.hpp"
 #include "bench/speed_ratio.hpp"
@@ -45,6 +46,8 @@ struct BenchOptions {
   std::vector<double> tolerances;
   // interacting
   std::vector<std::size_t> interacting_sizes;
+  // contact
+  std::vector<std::size_t> contact_sizes;
 };
 
 // The machine's load when the figures were taken: timings on a shared machine depend on it.
@@ -57,7 +60,7 @@ std::string load_average() {
 // The files the benchmarks write: a folder holding only these (before markers existed) is ours.
 bool bench_folder(const std::filesystem::path& d) {
   static const char* const ours[] = {"accuracy.csv", "reference_order.csv", "savings.csv", "savings.png",
-                                     "speed_ratio.csv", "speed_runs.csv", "interacting.csv", "interacting_tradeoff.csv", "work_precision.csv", "work_precision.png"};
+                                     "speed_ratio.csv", "speed_runs.csv", "interacting.csv", "interacting_tradeoff.csv", "contact.csv", "work_precision.csv", "work_precision.png"};
   bool any = false;
   for (const auto& e : std::filesystem::directory_iterator(d)) {
     const std::string n = e.path().filename().string();
@@ -181,6 +184,20 @@ int interacting(const BenchOptions& b) {
   return exit_ok;
 }
 
+int contact(const BenchOptions& b) {
+  ContactBenchOptions o;
+  if (!b.contact_sizes.empty()) o.sizes = b.contact_sizes;
+  if (b.quick) o.sizes = {128, 256};
+  o.log = &std::cout;
+  machine_line(b);
+  std::printf("normal contact, FFT boundary elements (a sphere with a self-affine surface, 4 N; one thread)\n");
+  const auto rows = run_contact_bench(o);
+  write_contact_bench(b.out, rows);
+  write_marker(b.out, "bench");
+  std::printf("-> %s/contact.csv\n", b.out.c_str());
+  return exit_ok;
+}
+
 int savings(const BenchOptions& b) {
   SavingsOptions o;
   if (!b.scenes.empty()) o.scenes = {b.scenes.begin(), b.scenes.end()};
@@ -244,7 +261,11 @@ Command add_bench_command(CLI::App& app) {
   in->add_option("--sizes", opt->interacting_sizes, "Junction counts (default 300 600 1200 2400 5000)")
       ->check(CLI::Range(2, 10000));
 
-  return Command{sub, [opt, t, sp, a, s, in](const Invocation&) {
+  CLI::App* ct = sub->add_subcommand("contact", "Rough-surface normal contact (FFT boundary elements): time and CG "
+                                                "iterations vs grid size, time per iteration vs two FFT pairs, peak memory");
+  ct->add_option("--sizes", opt->contact_sizes, "Pixels per side (default 256 512 1024)")->check(CLI::Range(8, 4096));
+
+  return Command{sub, [opt, t, sp, a, s, in, ct](const Invocation&) {
     // --quiet: the benchmarks report on stdout as they go; their results are the files.
     if (opt->quiet && !std::freopen("/dev/null", "w", stdout)) return exit_failure;
     if (t->parsed()) return tradeoff(*opt);
@@ -252,6 +273,7 @@ Command add_bench_command(CLI::App& app) {
     if (a->parsed()) return accuracy(*opt);
     if (s->parsed()) return savings(*opt);
     if (in->parsed()) return interacting(*opt);
+    if (ct->parsed()) return contact(*opt);
     return exit_input;
   }};
 }
