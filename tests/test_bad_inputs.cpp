@@ -214,5 +214,30 @@ TEST_CASE("inputs that are not regular files, or too large, are refused before r
                       ":8: junctions: junctions CSV is 268 MB, more than the 256 MiB an input file of this kind may have");
     fs::remove(csv);
   }
+  // A --set value whose aliases nest (a "billion laughs" of a few hundred bytes): refused at
+  // load, before anything would re-emit it expanded.
+  {
+    std::string bomb = "output.series=[&a [Q,Q,Q,Q,Q,Q,Q,Q,Q,Q]";
+    for (char c = 'b'; c <= 'i'; ++c) {
+      bomb += std::string(", &") + c + " [";
+      for (int k = 0; k < 10; ++k) bomb += std::string(k ? "," : "") + "*" + static_cast<char>(c - 1);
+      bomb += "]";
+    }
+    bomb += "]";
+    const fs::path scene = src / "scenes/paper/P0.98N.yaml";
+    check_refused(work, {work}, "run --set '" + bomb + "'", scene,
+                  "--set " + bomb + ": output.series: aliases (*name) expand this YAML to more than 1000000 nodes");
+  }
+  // A shard of 2e10 points: refused before the store is made (no per-point allocation), naming
+  // --shard and how many shards would do.
+  {
+    write(work / "huge.yaml", "scene: " + q(src / "scenes/paper/P0.98N.yaml") +
+                                  "\naxes:\n  model.eta: {linspace: [0, 100, 200000]}\n"
+                                  "  model.epsilon: {linspace: [0.5, 0.9, 100000]}\n");
+    check_refused(work, {work}, "sweep --shard 3/7", work / "huge.yaml",
+                  "--shard: this shard has 2857142857 of the campaign's 20000000000 points, more than the 100000000");
+    CHECK_FALSE(fs::exists(work / "out"));
+    fs::remove(work / "huge.yaml");
+  }
   fs::remove_all(work);
 }

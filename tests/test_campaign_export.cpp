@@ -127,6 +127,16 @@ TEST_CASE("export --sqlite: typed columns, SQL aggregates equal those of points.
   CHECK(cli.status == 2);
   CHECK(cli.err == "mine.sqlite: --sqlite: exists; export writes a new file only (choose another name)\n");
   CHECK(asperity::testing::slurp(d / "mine.sqlite") == "not yours\n");
+  // A file in a folder that does not exist: bad input (exit 2, one line), no folder made.
+  const auto missing = asperity::testing::run_argv(d, {"export", "store", "--sqlite", "missing_dir/x.db"});
+  CHECK(missing.status == 2);
+  CHECK(missing.err ==
+        "missing_dir/x.db: --sqlite: its folder missing_dir does not exist (export writes a file, it makes no folders)\n");
+  CHECK_FALSE(fs::exists(d / "missing_dir"));
+  // A store folder that is not a store: bad input.
+  fs::create_directories(d / "not_a_store");
+  asperity::testing::write_text(d / "not_a_store" / "points.csv", "a,b,c\n1,2,3\n");
+  CHECK(asperity::testing::run_argv(d, {"export", "not_a_store", "--sqlite", "n.sqlite"}).status == 2);
   const auto fresh = asperity::testing::run_argv(d, {"export", "store", "--sqlite", "new.sqlite"});
   CHECK(fresh.status == 0);
   CHECK_THAT(fresh.out, Contains("exported 11 points"));

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "campaign/store.hpp"
+#include "io/input_error.hpp"
 #include "io/numbers.hpp"
 #include "io/temp_files.hpp"
 #include "observe/observables.hpp"
@@ -109,13 +110,18 @@ struct TempFile {
 
 SqliteExportReport export_sqlite(const fs::path& store, const fs::path& file) {
   if (fs::exists(fs::symlink_status(file)))
-    throw std::runtime_error(file.string() + " exists; export writes a new file only (choose another name)");
+    throw InputError(file.string(), 0, "--sqlite", "exists; export writes a new file only (choose another name)");
+  const fs::path folder = file.parent_path().empty() ? fs::path(".") : file.parent_path();
+  if (!fs::is_directory(folder))
+    throw InputError(file.string(), 0, "--sqlite",
+                     "its folder " + folder.string() + " does not exist (export writes a file, it makes no folders)");
   const StoreReader s(store);
   const std::vector<std::string> names = csv_split(s.header());
-  const std::size_t status = Journal::status_column(s.header());
   const std::string where = fs::exists(store / "journal.csv") ? (store / "journal.csv").string() : (store / "points.csv").string();
+  const bool has_status = std::find(names.begin(), names.end(), "status") != names.end();
+  const std::size_t status = has_status ? Journal::status_column(s.header()) : 0;
   if (status < 4 || names.size() < 4 || names[0] != "index" || names[1] != "hash")
-    throw std::runtime_error(where + ": not a sweep store header: " + s.header().substr(0, 80));
+    throw InputError(where, 1, "", "not a sweep store header: " + s.header().substr(0, 80));
 
   // Column types: the fixed columns and observables by what they are; a varied key REAL when
   // every value of it is a number (first pass over the rows), TEXT otherwise.

@@ -301,18 +301,18 @@ StoreReader::StoreReader(const fs::path& dir) {
   const bool journal = fs::exists(file_);
   if (!journal) {  // a store without its journal (e.g. committed): its points.csv
     file_ = dir / "points.csv";
-    if (!fs::exists(file_)) throw std::runtime_error("not a sweep store (no journal.csv or points.csv): " + dir.string());
+    if (!fs::exists(file_)) throw InputError(dir.string(), 0, "", "not a sweep store (no journal.csv or points.csv)");
   }
   LineReader in(file_);
   std::string line;
   std::uint64_t offset = 0;
-  if (!in.next(line, offset)) throw std::runtime_error("empty " + file_.string());
+  if (!in.next(line, offset)) throw InputError(file_.string(), 0, "", "empty file, not a sweep store");
   header_ = line;
   JournalDigest digest = JournalDigest::sha256;
   if (journal) {
     header_.resize(journal_row(line).size());
     const std::optional<JournalDigest> d = journal_digest_of(line, header_);
-    if (!d) throw std::runtime_error("malformed journal header: " + file_.string());
+    if (!d) throw InputError(file_.string(), 1, "", "malformed journal header");
     digest = *d;
   }
   journal_ = journal;

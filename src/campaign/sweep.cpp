@@ -349,6 +349,14 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
         throw InputError(rep.store.string(), 0, "--out",
                          "refusing to use it as a sweep store: it holds '" + n + "', which no store holds");
     }
+  // One process holds an index entry per point of its shard (16 bytes, reserved up front): a
+  // shard larger than this is refused before anything is created, whatever the campaign's size.
+  if (const std::uint64_t mine = opt.shard.size(c.size()); mine > kMaxShardPoints)
+    throw InputError("", 0, "--shard",
+                     "this shard has " + std::to_string(mine) + " of the campaign's " + std::to_string(c.size()) +
+                         " points, more than the " + std::to_string(kMaxShardPoints) +
+                         " one process may hold; run it as at least " +
+                         std::to_string((c.size() + kMaxShardPoints - 1) / kMaxShardPoints) + " shards");
   fs::create_directories(rep.store);
   StoreLock lock(rep.store);
   remove_stale_temporaries(rep.store);  // of a sweep or merge that died while writing (kill -9, a lost node)

@@ -33,6 +33,10 @@
 
 namespace asperity {
 
+// Most points one sweep process may hold (its shard of the campaign): the journal's index keeps
+// 16 bytes a point, reserved up front (1.6 GB at this size); larger campaigns run as shards.
+inline constexpr std::uint64_t kMaxShardPoints = 100'000'000;
+
 struct SweepOptions {
   int threads = 0;                   // 0: all hardware threads
   Shard shard;                       // default 0/1: every point

@@ -23,8 +23,6 @@ Command add_export_command(CLI::App& app) {
   add_quiet_flag(sub, a->quiet);
   return Command{sub, [a](const Invocation&) {
                    namespace fs = std::filesystem;
-                   if (fs::exists(fs::symlink_status(a->sqlite)))
-                     throw InputError(a->sqlite, 0, "--sqlite", "exists; export writes a new file only (choose another name)");
                    if (!fs::is_directory(a->store))
                      throw InputError(a->store, 0, "store", "no such store folder");
                    const SqliteExportReport r = export_sqlite(a->store, a->sqlite);

@@ -11,8 +11,11 @@
 #include <cctype>
 #include <cerrno>
 #include <cstdio>
+#include <cstdint>
 #include <cstring>
+#include <map>
 #include <sstream>
+#include <vector>
 
 #include "io/numbers.hpp"
 
@@ -171,24 +174,92 @@ static void check_yaml_text(const std::string& text, const std::string& display,
   }
 }
 
+// YAML text is Unicode (YAML 1.2 §5.2); bytes that are not UTF-8 would be carried into names and
+// written back into outputs that other YAML readers (PyYAML) then refuse, so they are refused here.
+static void check_utf8(const std::string& text, const std::string& display, const std::string& key) {
+  int line = 1, col = 0;
+  for (std::size_t i = 0; i < text.size();) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    ++col;
+    if (c == '\n') { ++line; col = 0; ++i; continue; }
+    if (c < 0x80) { ++i; continue; }
+    // Lead byte → sequence length and the smallest code point it may encode (no overlongs).
+    const std::size_t len = c >= 0xC2 && c <= 0xDF ? 2 : c >= 0xE0 && c <= 0xEF ? 3 : c >= 0xF0 && c <= 0xF4 ? 4 : 0;
+    bool ok = len != 0 && i + len <= text.size();
+    std::uint32_t cp = ok ? c & (0x7F >> len) : 0;
+    for (std::size_t k = 1; ok && k < len; ++k) {
+      const auto b = static_cast<unsigned char>(text[i + k]);
+      ok = (b & 0xC0) == 0x80;
+      cp = (cp << 6) | (b & 0x3F);
+    }
+    ok = ok && !(len == 3 && cp < 0x800) && !(len == 4 && (cp < 0x10000 || cp > 0x10FFFF)) &&
+         !(cp >= 0xD800 && cp <= 0xDFFF);
+    if (!ok)
+      throw InputError(display, key.empty() ? line : 0, key, "bytes that are not UTF-8 (YAML text must be UTF-8)",
+                       key.empty() ? col : 0);
+    i += len;
+  }
+}
+
 namespace {
 // Counts documents without building them. YAML::LoadAll loops forever on some malformed input
 // (e.g. a lone ',': every call "finds" another empty document; found by fuzz/fuzz_scene.cpp),
 // so documents are counted with a cap instead.
+//
+// It also measures the document as it would be with every alias expanded (nodes plus scalar
+// bytes): yaml-cpp shares an aliased node, but writing a scene or a campaign point back out
+// expands it, and nested aliases grow geometrically (a "billion laughs" of 600 bytes re-emits as
+// gigabytes). An anchor's size is known when it closes, so the sum is exact and costs O(events).
 struct DocumentCounter : YAML::EventHandler {
+  struct TooLarge { int line; };    // thrown out of the parser at the first alias over the limit
   int documents = 0;
   int second_line = 0;  // 1-based line where a second document starts
+  std::uint64_t limit = 0;          // largest expanded size accepted
+  std::uint64_t total = 0;          // expanded size of everything read so far
+  std::map<YAML::anchor_t, std::uint64_t> anchor_size;
+  struct Open { YAML::anchor_t anchor; std::uint64_t size; };
+  std::vector<Open> open;           // collections being read, innermost last
+
+  // A node of expanded size n (≤ limit, so no sum here can overflow) read at mark m.
+  void count(std::uint64_t n, const YAML::Mark& m) {
+    total += n;
+    if (total > limit) throw TooLarge{m.line + 1};
+  }
+  void leaf(std::uint64_t n, YAML::anchor_t anchor, const YAML::Mark& m) {
+    count(n, m);
+    if (anchor != YAML::NullAnchor) anchor_size[anchor] = n;
+    if (!open.empty()) open.back().size += n;
+  }
   void OnDocumentStart(const YAML::Mark& m) override {
     if (++documents == 2) second_line = m.line + 1;
   }
   void OnDocumentEnd() override {}
-  void OnNull(const YAML::Mark&, YAML::anchor_t) override {}
-  void OnAlias(const YAML::Mark&, YAML::anchor_t) override {}
-  void OnScalar(const YAML::Mark&, const std::string&, YAML::anchor_t, const std::string&) override {}
-  void OnSequenceStart(const YAML::Mark&, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {}
-  void OnSequenceEnd() override {}
-  void OnMapStart(const YAML::Mark&, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {}
-  void OnMapEnd() override {}
+  void OnNull(const YAML::Mark& m, YAML::anchor_t a) override { leaf(1, a, m); }
+  void OnAlias(const YAML::Mark& m, YAML::anchor_t a) override {
+    const auto it = anchor_size.find(a);
+    leaf(it == anchor_size.end() ? 1 : it->second, YAML::NullAnchor, m);
+  }
+  void OnScalar(const YAML::Mark& m, const std::string&, YAML::anchor_t a, const std::string& v) override {
+    leaf(1 + v.size(), a, m);
+  }
+  void OnSequenceStart(const YAML::Mark& m, const std::string&, YAML::anchor_t a, YAML::EmitterStyle::value) override {
+    count(1, m);
+    open.push_back({a, 1});
+  }
+  void OnSequenceEnd() override { close(); }
+  void OnMapStart(const YAML::Mark& m, const std::string&, YAML::anchor_t a, YAML::EmitterStyle::value) override {
+    count(1, m);
+    open.push_back({a, 1});
+  }
+  void OnMapEnd() override { close(); }
+  // A closed collection's size is already in `total` (its own node and its items); it only
+  // moves into its parent's size and, when anchored, becomes what an alias to it costs.
+  void close() {
+    const Open o = open.back();
+    open.pop_back();
+    if (o.anchor != YAML::NullAnchor) anchor_size[o.anchor] = o.size;
+    if (!open.empty()) open.back().size += o.size;
+  }
 };
 
 // The one document of `text` (Null when empty); parse errors and extra documents → InputError.
@@ -198,7 +269,14 @@ YAML::Node load_one_document(const std::string& text, const std::string& display
     std::istringstream in(text);
     YAML::Parser parser(in);
     DocumentCounter counter;
-    while (counter.documents < 2 && parser.HandleNextDocument(counter)) {}
+    counter.limit = std::max<std::uint64_t>(kMaxYamlExpansion, 4 * text.size());
+    try {
+      while (counter.documents < 2 && parser.HandleNextDocument(counter)) {}
+    } catch (const DocumentCounter::TooLarge& big) {
+      throw InputError(display, line_of * big.line, key,
+                       "aliases (*name) expand this YAML to more than " + std::to_string(counter.limit) +
+                           " nodes and characters; write the values out instead of nesting aliases");
+    }
     if (counter.documents > 1) {
       const bool marker = text.find("---") != std::string::npos || text.find("...") != std::string::npos;
       throw InputError(display, line_of * counter.second_line, key,
@@ -216,12 +294,16 @@ YAML::Node load_one_document(const std::string& text, const std::string& display
 YAML::Node load_yaml_file(const std::filesystem::path& path, const std::string& display) {
   const std::string text = read_input_file(path, display, kMaxYamlBytes);
   check_yaml_text(text, display, "");
-  return load_one_document(text, display, "");
+  YAML::Node doc = load_one_document(text, display, "");  // malformed YAML is named first
+  check_utf8(text, display, "");
+  return doc;
 }
 
 YAML::Node load_yaml_text(const std::string& text, const std::string& where, const std::string& key) {
   check_yaml_text(text, where, key);
-  return strip_marks(load_one_document(text, where, key));
+  YAML::Node doc = load_one_document(text, where, key);
+  check_utf8(text, where, key);
+  return strip_marks(doc);
 }
 
 YAML::Node strip_marks(const YAML::Node& n) {

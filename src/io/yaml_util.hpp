@@ -47,6 +47,10 @@ std::string join(const std::vector<std::string>& v, const char* sep = ", ");
 // (~10^7 junctions) still loads in ~2 GB and runs in ~2 GB more.
 inline constexpr std::uintmax_t kMaxYamlBytes = std::uintmax_t{16} << 20;
 inline constexpr std::uintmax_t kMaxCsvBytes = std::uintmax_t{256} << 20;
+// A YAML text with its aliases expanded may hold at most this many nodes plus scalar characters
+// (or 4 × its own size, if larger): enough for any scene or campaign written out by hand, far
+// below the gigabytes of nested aliases (a "billion laughs").
+inline constexpr std::uint64_t kMaxYamlExpansion = 1'000'000;
 
 // Why `path` cannot be an input file: "" when it is a regular file (after symlinks) of at most
 // max_bytes, else e.g. "file not found", "is a directory, not a file", "is a character device, not a

@@ -1,5 +1,6 @@
 #include "scene/csv.hpp"
 
+#include <cmath>
 #include <stdexcept>
 
 #include "io/atomic_file.hpp"
@@ -30,6 +31,14 @@ JunctionPopulation read_junctions_csv(const std::filesystem::path& csv, const st
       throw InputError(display, t.lines[i], "area_m2", "junction area must be in [1e-20, 1] m^2, got " + format_double(a), ca + 1);
     p.area_m2.push_back(a);
     if (cx >= 0) {
+      for (const int c : {cx, cy}) {
+        const double v = t.rows[i][static_cast<std::size_t>(c)];
+        if (!(std::abs(v) <= kMaxJunctionCoordinate_m))
+          throw InputError(display, t.lines[i], t.columns[static_cast<std::size_t>(c)],
+                           "junction centre must be within +-" + format_double(kMaxJunctionCoordinate_m) +
+                               " m, got " + format_double(v),
+                           c + 1);
+      }
       p.x_m.push_back(t.rows[i][static_cast<std::size_t>(cx)]);
       p.y_m.push_back(t.rows[i][static_cast<std::size_t>(cy)]);
     }

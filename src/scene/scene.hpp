@@ -10,6 +10,11 @@
 
 namespace asperity {
 
+// Junction centres lie within ±this many metres (as read and as scaled by model.position_scale):
+// distances squared stay finite in the interaction kernel, and no contact is kilometres wide
+// (the far-apart limit in the tests puts junctions 1e7 m apart).
+inline constexpr double kMaxJunctionCoordinate_m = 1e9;
+
 // Junctions of one interface, as segmented from an image (or drawn by the generator).
 struct JunctionPopulation {
   std::vector<double> area_m2;  // initial areas A0_i > 0

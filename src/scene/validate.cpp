@@ -115,9 +115,19 @@ void check_interactions(const Scene& s, const KeyOrigins& o) {
     o.fail("model.interactions", "elastic interactions keep an N x N compliance matrix: N = " +
                                      std::to_string(J.size()) + " junctions, more than " +
                                      std::to_string(kMaxInteractingJunctions));
-  for (std::size_t i = 0; i < J.size(); ++i)
+  for (std::size_t i = 0; i < J.size(); ++i) {
     if (!std::isfinite(J.x_m[i]) || !std::isfinite(J.y_m[i]))
       throw InputError(csv, 0, "x_m", "junction " + std::to_string(i + 1) + " has a non-finite position");
+    // The positions the run uses stay within the CSV reader's bound (finite squared distances).
+    const double reach = std::max(std::abs(J.x_m[i]), std::abs(J.y_m[i]));
+    if (reach > kMaxJunctionCoordinate_m)
+      throw InputError(csv, 0, "x_m", "junction " + std::to_string(i + 1) + " is centred " + format_short(reach) +
+                                          " m away; centres must be within +-" + format_short(kMaxJunctionCoordinate_m) + " m");
+    if (reach * s.model.position_scale > kMaxJunctionCoordinate_m)
+      o.fail("model.position_scale", "junction " + std::to_string(i + 1) + " of " + csv + " would be centred " +
+                                         format_short(reach * s.model.position_scale) + " m away; centres must be within +-" +
+                                         format_short(kMaxJunctionCoordinate_m) + " m");
+  }
   if (s.model.position_scale != 1.0) {  // the positions the run uses: a scale below 1 may overlap
     JunctionPopulation scaled = J;
     for (double& v : scaled.x_m) v *= s.model.position_scale;
@@ -147,7 +157,11 @@ std::optional<std::pair<std::size_t, std::size_t>> first_overlap(const JunctionP
   if (n < 2) return std::nullopt;
   double r_max = 0;
   for (const double A : J.area_m2) r_max = std::max(r_max, std::sqrt(A / M_PI));
-  const double cell = 2 * r_max;
+  // Cells no smaller than 1e-12 of the extent keep every cell index far inside int64 (a larger
+  // cell only adds candidates, it never misses a pair).
+  double extent = 0;
+  for (std::size_t i = 0; i < n; ++i) extent = std::max({extent, std::abs(J.x_m[i]), std::abs(J.y_m[i])});
+  const double cell = std::max(2 * r_max, extent * 1e-12);
   std::unordered_map<std::uint64_t, std::vector<std::size_t>> cells;
   const auto key = [](std::int64_t cx, std::int64_t cy) {
     return (static_cast<std::uint64_t>(cx) << 32) ^ static_cast<std::uint32_t>(cy);
