@@ -22,3 +22,28 @@ TEST_CASE("bench interacting: the time exponent of N from two sizes or more, non
     CHECK_THAT(asperity::fitted_exponent_text(one), !Catch::Matchers::Contains("nan"));
   }
 }
+
+TEST_CASE("bench interacting: recording the output series costs no exact solve and changes nothing", "[bench]") {
+  // Samples are taken on the cached F(X), A(X) pieces between events (issue 26 item 2): the run
+  // with the scene's output series must do exactly the solves, chord iterations and steps of the
+  // run without, and reach the same first peak to the bit.
+  asperity::InteractingBenchOptions o;
+  o.scene = std::string(ASPERITY_SOURCE_DIR) + "/scenes/paper/P0.98N.yaml";
+  o.sizes = {120};
+  o.contact_radius_m = 2.8e-3;
+  o.whole_run = false;
+  const auto rows = asperity::run_interacting_bench(o);
+  REQUIRE(rows.size() == 2);
+  const auto& w = rows[0];
+  const auto& r = rows[1];
+  REQUIRE(w.what == "first_peak_series");
+  REQUIRE(r.what == "first_peak");
+  CHECK(w.samples > 1000);  // a sample every output.every (1 ms) to t_peak (> 1 s)
+  CHECK(r.samples <= 1);
+  CHECK(w.slips == r.slips);
+  CHECK(w.solves == r.solves);
+  CHECK(w.iterations == r.iterations);
+  CHECK(w.steps == r.steps);
+  CHECK(w.Q_s == r.Q_s);
+  CHECK(w.t_peak == r.t_peak);
+}

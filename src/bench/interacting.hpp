@@ -22,14 +22,18 @@ struct InteractingBenchOptions {
   std::vector<std::size_t> sizes{300, 600, 1200, 2400, 5000};
   double contact_radius_m = 4.5e-3;  // at the scene's own N
   bool whole_run = true;             // also the scene itself, peak + 5 cycles
+  bool recorded = true;              // each size also with the scene's output series, side by side
   std::ostream* log = nullptr;
 };
 
 struct InteractingBenchRow {
-  std::string what;  // "first_peak" (scaling) or "whole_run"
+  // "first_peak" (scaling, no output series), "first_peak_series" (the same run recording the
+  // scene's output series: the cost of recording) or "whole_run"
+  std::string what;
   std::size_t N = 0;
   double wall_s = 0, t_end = 0, Q_s = 0, t_peak = 0;
   std::int64_t steps = 0, slips = 0, repins = 0, solves = 0, iterations = 0, rank_one = 0, rebuilds = 0;
+  std::int64_t samples = 0;  // of the output series
   long max_rss_kB = 0;   // of the whole process after this run (sizes run in increasing order)
   double bound_kB = 0;   // 2 N² doubles
 };
