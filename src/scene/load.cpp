@@ -183,6 +183,9 @@ void read_other(const MapView& m, const YAML::Node& n, const SceneKey& key, Scen
     s.model.area_law = m.enumeration<AreaLaw>(n, k, {{"until_first_slip", AreaLaw::until_first_slip}, {"always", AreaLaw::always}});
   else if (name == "model.interactions")
     s.model.interactions = m.enumeration<Interactions>(n, k, {{"none", Interactions::none}, {"elastic", Interactions::elastic}});
+  else if (name == "model.interaction_weighting")
+    s.model.interaction_weighting =
+        m.enumeration<TractionWeighting>(n, k, {{"uniform", TractionWeighting::uniform}, {"rigid", TractionWeighting::rigid}});
   else if (name == "solver.method")
     s.solver.method = m.enumeration<SolverMethod>(n, k, {{"reference", SolverMethod::reference}, {"event", SolverMethod::event}});
   else if (name == "stop.at_first_peak")

@@ -13,7 +13,9 @@
 //   # or: experiment: {file: ../x/experiment.yaml, mass: 0.2, k_L: 9400, E: 1.7e6, ...}
 //   #     (overridable: name, description, mass, k_L, v, E, nu, sigma_exp)
 //   model:  {eta: 100, epsilon: 0.9, c_min: 0.01, p: 1.5, alpha_b: 0.725e-15,
-//            junction_shape: elliptic|circular, area_law: until_first_slip|always}
+//            junction_shape: elliptic|circular, area_law: until_first_slip|always,
+//            interactions: none|elastic, interaction_cutoff: 0, interaction_weighting: uniform|rigid,
+//            position_scale: 1}
 //   solver: {method: event|reference, Ct: 1e4, tolerance: 1e-9}
 //   stop:   {time: 1.0, at_first_peak: false, cycles: -1,
 //            wall_time: 3600, max_slips: 0}   # limits per run; max_slips 0: 10^6 + 10^4 N max(1, time/s)

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "physics/contact_law.hpp"
+#include "physics/elastic_interaction.hpp"
 
 namespace asperity {
 
@@ -57,6 +58,9 @@ struct ModelSettings {
   // independent junctions) or elastic (needs junction positions x_m, y_m).
   Interactions interactions = Interactions::none;
   double interaction_cutoff = 0;  // m; pairs farther apart are dropped; 0: every pair
+  // How a junction's traction is spread over its disc in the coupling (physics/
+  // elastic_interaction.hpp): uniform, or the rigid punch's (consistent with Mindlin's diagonal).
+  TractionWeighting interaction_weighting = TractionWeighting::uniform;
   // Multiplies every junction centre (about the origin): the same arrangement in an apparent
   // contact s times as wide, s² times less crowded (the interaction study's axis).
   double position_scale = 1.0;

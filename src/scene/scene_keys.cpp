@@ -21,6 +21,7 @@ std::string num(double x) {
 const char* name_of(JunctionShape s) { return s == JunctionShape::circular ? "circular" : "elliptic"; }
 const char* name_of(AreaLaw a) { return a == AreaLaw::always ? "always" : "until_first_slip"; }
 const char* name_of(Interactions i) { return i == Interactions::elastic ? "elastic" : "none"; }
+const char* name_of(TractionWeighting w) { return w == TractionWeighting::rigid ? "rigid" : "uniform"; }
 const char* name_of(SolverMethod m) { return m == SolverMethod::reference ? "reference" : "event"; }
 
 // A number row: FIELD is an lvalue expression of `s`.
@@ -61,6 +62,7 @@ std::vector<SceneKey> make_table() {
       OTHER("model.interactions", KeyKind::choice, name_of(s.model.interactions)),
       NUMBER("model.interaction_cutoff", "m", ">= 0", x >= 0, "0 keeps every pair", 0.0, false,
              s.model.interaction_cutoff),
+      OTHER("model.interaction_weighting", KeyKind::choice, name_of(s.model.interaction_weighting)),
       NUMBER("model.position_scale", nullptr, "in (0, 1e6]", x > 0 && x <= 1e6,
              "multiplies every junction centre: an apparent contact s times as wide", 1.0, false,
              s.model.position_scale),
@@ -94,6 +96,11 @@ std::vector<SceneKey> make_table() {
     // the text (and store hash) it had before they existed.
     if (n == "model.interactions" || n == "model.interaction_cutoff" || n == "model.position_scale")
       k.written = [](const Scene& s) { return s.model.interactions != Interactions::none; };
+    // Written only when rigid: interacting scenes of before keep their text and store hash.
+    if (n == "model.interaction_weighting")
+      k.written = [](const Scene& s) {
+        return s.model.interactions != Interactions::none && s.model.interaction_weighting != TractionWeighting::uniform;
+      };
     if (n == "stop.wall_time") k.written = [](const Scene& s) { return s.stop.wall_time != StopSettings{}.wall_time; };
     if (n == "stop.max_slips") {
       k.set = [](Scene& s, double x) { s.stop.max_slips = static_cast<std::int64_t>(x); };

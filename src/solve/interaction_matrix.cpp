@@ -18,7 +18,7 @@ InteractionMatrix interaction_matrix(const Problem& p) {
     for (std::size_t j = i + 1; j < n; ++j) {
       const double dx = p.x[i] - p.x[j], dy = p.y[i] - p.y[j];
       if (cutoff > 0 && std::hypot(dx, dy) > cutoff) continue;
-      const double c = disc_compliance(dx, dy, radius[i], radius[j], p.law.E, p.law.nu);
+      const double c = disc_compliance(dx, dy, radius[i], radius[j], p.law.E, p.law.nu, p.interaction_weighting);
       m.c[i * n + j] = m.c[j * n + i] = c;
     }
   return m;

@@ -26,6 +26,7 @@ Problem make_problem(const Scene& scene, const RunLimits& limits) {
     for (double& v : p.x) v *= m.position_scale;
     for (double& v : p.y) v *= m.position_scale;
     p.interaction_cutoff = m.interaction_cutoff;
+    p.interaction_weighting = m.interaction_weighting;
   }
   p.T0 = 2.0 * M_PI / std::sqrt(p.K0 / e.mass_kg);
   p.dt = p.T0 / scene.solver.Ct;

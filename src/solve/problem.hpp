@@ -27,6 +27,7 @@ struct Problem {
   // the distance beyond which pairs are dropped [m] (0: none dropped). Empty x: independent.
   std::vector<double> x, y;
   double interaction_cutoff = 0;
+  TractionWeighting interaction_weighting = TractionWeighting::uniform;
   bool interacting() const { return !x.empty(); }
 
   std::size_t size() const { return A0.size(); }
