@@ -1,6 +1,7 @@
 // The options commands share (cli/options.hpp) and the progress line (io/progress.hpp): the same
 // -j/--threads everywhere, --set on sweep and fit equal to the same value in the files, --quiet
-// silent, Ctrl-C in `run` exits 130 with nothing written.
+// silent, Ctrl-C in `run` exits 130 with nothing written; the thread range and NUL check of
+// io/arguments.hpp that --threads and the Python module share.
 #include <signal.h>
 #include <sys/wait.h>
 
@@ -12,6 +13,8 @@
 #include <tuple>
 
 #include "cli_spawn.hpp"
+#include "io/arguments.hpp"
+#include "io/input_error.hpp"
 #include "io/progress.hpp"
 
 namespace fs = std::filesystem;
@@ -50,6 +53,20 @@ TEST_CASE("threads (-j, --threads) mean the same in every command and are checke
       CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
     }
   }
+}
+
+TEST_CASE("the library's thread range and NUL check, shared by --threads and the Python module", "[io][options]") {
+  CHECK(threads_problem("1").empty());
+  CHECK(threads_problem("1024").empty());
+  CHECK(checked_threads("16", "threads") == 16);
+  for (const char* bad : {"0", "-1", "1025", "1000000000", "99999999999999999999", "", "4x", "abc"})
+    CHECK(threads_problem(bad) == "Value " + std::string(bad) + " not in range 1 to 1024");
+  CHECK_THROWS_WITH(checked_threads("-1", "threads"), "threads: Value -1 not in range 1 to 1024");
+  CHECK_NOTHROW(check_no_nul("a/b.yaml", "campaign"));
+  using namespace std::string_literals;
+  CHECK_THROWS_WITH(check_no_nul("a.yaml\0x"s, "campaign"),
+                    "a.yaml\\0x: campaign: holds a NUL byte (character 7), which would end the text there");
+  CHECK_THROWS_AS(check_no_nul("\0"s, "out"), InputError);
 }
 
 TEST_CASE("sweep --set equals the value in the campaign and fit --set equals it in the fit file", "[cli][options]") {

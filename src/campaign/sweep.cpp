@@ -58,6 +58,7 @@ struct Job {
   std::string error;                // non-empty: failed
   std::string row;
   bool failed = false;
+  bool interrupted = false;  // stopped by SweepOptions::stop: no row (it reruns next time)
   bool has_series = false;   // series_rows is this point's block for series.csv
   std::string series_rows;   // "index,sample...\n" lines
 };
@@ -476,8 +477,22 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
   std::uint64_t next = shard.next(0);
   std::size_t cursor = 0;  // into `stored`, which is ascending like the points built
 
+  // Set when SweepOptions::stop left points of the shard unrun.
+  std::atomic<bool> cut_short{false};
+  auto stopping = [&] { return opt.stop && opt.stop->load(std::memory_order_relaxed); };
+  // Points in flight poll the stop this often: a Ctrl-C ends the sweep well within a second.
+  RunMonitor monitor;
+  if (opt.stop) {
+    monitor.period_s = 0.05;
+    monitor.poll = [&](double, double) { return !stopping(); };
+  }
+
   auto build = [&](tbb::flow_control& fc) -> std::shared_ptr<Job> {
     while (next < total) {
+      if (stopping()) {
+        cut_short = true;
+        break;
+      }
       const std::uint64_t index = next;
       next = shard.next(index + 1);
       while (cursor < stored.size() && stored[cursor].index < index) ++cursor;
@@ -529,7 +544,7 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
     if (job->scene) {
       const auto t = std::chrono::steady_clock::now();
       try {
-        r = simulate(*job->scene, c.time_limit_s);
+        r = simulate(*job->scene, c.time_limit_s, opt.stop ? &monitor : nullptr);
         if (r->recorder.timed_out())
           job->error = "per-point time limit of " + num(c.time_limit_s) + " s exceeded at simulated t = " +
                        num(r->recorder.last().t) + " s";
@@ -552,6 +567,10 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
           }
           job->has_series = true;
         }
+      } catch (const RunInterrupted&) {
+        job->interrupted = true;
+        cut_short = true;
+        return job;
       } catch (const SolverError& e) {
         job->error = std::string("solver error: ") + e.what();
       } catch (const std::exception& e) {
@@ -574,6 +593,7 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
   };
 
   auto store = [&](std::shared_ptr<Job> job) {
+    if (job->interrupted) return;
     if (job->has_series) series->append(job->point.index, job->hash, job->series_rows);  // before its row
     journal.append(job->row);
     ++rep.ran;
@@ -590,6 +610,11 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
   progress.finish();
   journal.sync();
   rep.syncs = journal.syncs();
+  // Stopped: the journal (synced above) keeps what ran; points.csv and inputs.txt are written by
+  // the run that completes the shard (inputs.txt is absent now, so it checks every stored point).
+  if (cut_short)
+    throw RunInterrupted("sweep interrupted: " + std::to_string(rep.ran) + " point(s) run now, kept in " +
+                         (rep.store / "journal.csv").string() + "; run it again to resume");
 
   auto mine = [&](std::uint64_t index) { return index < total && shard.contains(index); };
   // points.csv is rewritten unless it is known to be the journal's already: nothing appended or

@@ -16,6 +16,10 @@
 //   3. serial, out of order: append the row to the journal (write, and fdatasync once per group
 //      of points: SweepOptions::sync), progress.
 // At most 2·threads points are in flight: memory does not grow with the campaign.
+//
+// Cancel (SweepOptions::stop): the build stage starts no point once it is set, and every point
+// in flight polls it (RunMonitor) and stops within ~0.05 s without a row, so it reruns next time.
+#include <atomic>
 #include <cstdint>
 #include <filesystem>
 #include <limits>
@@ -59,6 +63,10 @@ struct SweepOptions {
   // the commit's).
   std::string build_id = default_build_id();
   static std::string default_build_id();
+  // Cooperative cancel (the Python module's Ctrl-C; the command line is ended by the signal
+  // itself): once *stop is true, run_sweep syncs the journal, which keeps every point finished
+  // so far, and throws RunInterrupted (observe/run_monitor.hpp); a rerun resumes. May be null.
+  const std::atomic<bool>* stop = nullptr;
 };
 
 struct SweepReport {
@@ -81,6 +89,7 @@ struct SweepReport {
   double wall_s = 0;
 };
 
+// Throws RunInterrupted when SweepOptions::stop cut the sweep short.
 SweepReport run_sweep(const Campaign& campaign, const SweepOptions& options);
 
 // The points.csv header of a campaign: index, hash, experiment, every varied key, status, error,

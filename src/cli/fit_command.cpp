@@ -50,30 +50,6 @@ fs::path task_dir(const fs::path& out, const Shard& t) {
   return out / "tasks" / (std::to_string(t.index) + "-of-" + std::to_string(t.count));
 }
 
-// One writer per journal folder; a second process gets one line and exit 2.
-std::unique_ptr<DirLock> lock_dir(const fs::path& dir) {
-  try {
-    return std::make_unique<DirLock>(dir, "asperity fit");
-  } catch (const std::runtime_error& e) {
-    throw InputError(dir.string(), 0, "--out", e.what());
-  }
-}
-
-// Opens DIR's journal for appending after checking it was computed from these inputs (a new
-// journal: inputs.txt is written first, durably, so a journal never exists without it).
-void open_journal(FitJournal& journal, const fs::path& dir, const std::string& inputs) {
-  const fs::path file = dir / "journal.csv", in = dir / "inputs.txt";
-  if (fs::exists(file)) {
-    if (!fs::exists(in))
-      throw InputError(file.string(), 0, "", "no inputs.txt beside it, so what its evaluations were computed from is "
-                                             "unknown; use another --out or remove the folder");
-    check_fit_inputs(in, inputs);
-  } else {
-    write_file_durably(in, inputs);
-  }
-  journal.open(file, true);
-}
-
 // --collect: the tasks' journals (read-only), each checked against its task's inputs; every task
 // I of one N must be there, none running.
 std::vector<std::unique_ptr<DirLock>> open_task_journals(FitJournal& journal, const fs::path& out, const FitSpec& spec,
@@ -108,7 +84,7 @@ std::vector<std::unique_ptr<DirLock>> open_task_journals(FitJournal& journal, co
     if (std::find(seen.begin(), seen.end(), i) == seen.end() || !fs::exists(d / "journal.csv"))
       throw InputError(d.string(), 0, "--collect", "task " + std::to_string(i) + "/" + std::to_string(count) +
                                                        " has not run (no journal); run it first");
-    locks.push_back(lock_dir(d));  // a task still writing is refused here
+    locks.push_back(lock_fit_journal_dir(d, "--out"));  // a task still writing is refused here
     check_fit_inputs(d / "inputs.txt", fit_inputs_text(spec, overrides, build, t));
     journal.open(d / "journal.csv", false);
   }
@@ -140,7 +116,7 @@ int run(const FitCliOptions& opt, const Invocation& inv) {
   std::unique_ptr<DirLock> lock;
   std::vector<std::unique_ptr<DirLock>> task_locks;
   if (opt.collect) {
-    lock = lock_dir(out);
+    lock = lock_fit_journal_dir(out, "--out");
     task_locks = open_task_journals(journal, out, spec, opt.overrides, build);
   } else {
     const fs::path dir = sharded ? task_dir(out, task) : out;
@@ -148,9 +124,9 @@ int run(const FitCliOptions& opt, const Invocation& inv) {
     // journal elsewhere.
     check_real_folders(out, dir.lexically_relative(out), "--out");
     fs::create_directories(dir);
-    lock = lock_dir(dir);
+    lock = lock_fit_journal_dir(dir, "--out");
     remove_stale_temporaries(dir);  // of a fit that died while writing (kill -9, a lost node)
-    open_journal(journal, dir, fit_inputs_text(spec, opt.overrides, build, task));
+    open_fit_journal(journal, dir, fit_inputs_text(spec, opt.overrides, build, task));
   }
   FitOptions fo;
   fo.journal = &journal;

@@ -1,16 +1,15 @@
 #pragma once
 // The options several commands share, spelled and checked the same way everywhere:
-//   -j/--threads N   worker threads (1–1024; default: every hardware thread, except bench: 1)
+//   -j/--threads N   worker threads (1–1024, io/arguments.hpp; default: every hardware thread, except bench: 1)
 //   -s/--set K=V     a scene value for every scene the command runs (repeatable)
 //   -q/--quiet       nothing on stdout or stderr on success
 #include <CLI/CLI.hpp>
 #include <string>
 #include <vector>
 
-namespace asperity::cli {
+#include "io/arguments.hpp"  // hardware_threads(), the thread count's range
 
-// Hardware threads of this machine (at least 1).
-int hardware_threads();
+namespace asperity::cli {
 
 // -j/--threads into `threads`; `what` says what runs in parallel. 0 in `threads` (the default
 // left untouched) means every hardware thread: resolve it with threads_or_all().

@@ -47,14 +47,28 @@ struct ExperimentEval {
   std::string error;  // empty: ran
 };
 
+// The monitor of every run while FitOptions::stop is set (null: none).
+struct StopMonitor {
+  RunMonitor monitor;
+  const std::atomic<bool>* flag = nullptr;
+  explicit StopMonitor(const std::atomic<bool>* stop) : flag(stop) {
+    if (!stop) return;
+    monitor.period_s = 0.05;  // a Ctrl-C stops the fit well within a second
+    monitor.poll = [stop](double, double) { return !stop->load(std::memory_order_relaxed); };
+  }
+  const RunMonitor* get() const { return monitor.poll ? &monitor : nullptr; }
+  bool stopped() const { return flag && flag->load(std::memory_order_relaxed); }
+};
+
+// RunInterrupted (the stop's) passes through: the evaluation is abandoned, not failed.
 ExperimentEval run_experiment(const FitSpec& spec, std::size_t e, const std::vector<SceneSetting>& settings,
-                              bool keep) {
+                              bool keep, const RunMonitor* monitor) {
   omp_set_num_threads(1);  // this task is one of `threads` workers: no nested OpenMP team
   ExperimentEval out;
   try {
     const FitExperiment& fe = spec.experiments[e];
     const Scene scene = fe.scene.build(settings);
-    RunResult r = simulate(scene);
+    RunResult r = simulate(scene, 0, monitor);
     out.residual = experiment_residual(spec.objective, scene, r.obs, r.recorder.loading_branch(), fe.target);
     if (std::isnan(out.residual)) {
       out.error = "objective term of " + fe.name + " is NaN (model alpha = " + g6(r.obs.alpha) +
@@ -75,6 +89,8 @@ ExperimentEval run_experiment(const FitSpec& spec, std::size_t e, const std::vec
       out.stand_in = scene.experiment.description.find("STAND-IN") != std::string::npos;
       out.measured = scene.experiment.measured;
     }
+  } catch (const RunInterrupted&) {
+    throw;
   } catch (const std::exception& ex) {
     out.error = spec.experiments[e].name + ": " + ex.what();
   }
@@ -101,6 +117,8 @@ struct Problem {
   bool replay_only = false;                                    // FitOptions::replay_only
   Counts* counts = nullptr;
   std::string not_journaled;  // replay_only: the evaluation the journal lacked
+  const StopMonitor* stop = nullptr;  // FitOptions::stop, polled by every run
+  bool interrupted = false;           // the stop ended the optimization
 };
 
 std::vector<SceneSetting> settings_for(const Problem& pb, std::size_t k, const std::vector<double>& x) {
@@ -121,7 +139,7 @@ Evaluation evaluate(const Problem& pb, const std::vector<double>& x, std::vector
   // each nlopt::opt stays on its own thread, with no nested optimize on one stack).
   tbb::this_task_arena::isolate([&] {
     tbb::parallel_for(std::size_t{0}, pb.exps.size(), [&](std::size_t k) {
-      r[k] = run_experiment(*pb.spec, pb.exps[k], settings_for(pb, k, x), runs != nullptr);
+      r[k] = run_experiment(*pb.spec, pb.exps[k], settings_for(pb, k, x), runs != nullptr, pb.stop ? pb.stop->get() : nullptr);
     });
   });
   Evaluation ev;
@@ -179,7 +197,16 @@ double nlopt_objective(unsigned n, const double* u, double* /*grad: derivative-f
     assert(x[i] >= p.lo && x[i] <= p.hi);
   }
   const int index = static_cast<int>(pb.log.size()) + 1;
-  std::optional<Evaluation> journaled = evaluate_journaled(pb, index, x);
+  // NLopt's wrapper turns any exception of ours into a result code: the stop is carried past it
+  // in the problem, as the replay's NotJournaled is.
+  std::optional<Evaluation> journaled;
+  try {
+    if (pb.stop && pb.stop->stopped()) throw RunInterrupted("stopped");  // a run too short to poll would go on
+    journaled = evaluate_journaled(pb, index, x);
+  } catch (const RunInterrupted&) {
+    pb.interrupted = true;
+    throw nlopt::forced_stop();
+  }
   if (!journaled) {
     pb.not_journaled = not_journaled_text(pb, index, x);
     throw nlopt::forced_stop();
@@ -240,6 +267,7 @@ OptimizeResult optimize(Problem pb, const std::vector<double>& start, double ini
     out.failure = std::string("NLopt: ") + e.what();
   }
   out.wall_s = seconds_since(t0);
+  if (pb.interrupted) throw RunInterrupted("fit interrupted in " + pb.part + " " + pb.label);
   if (!pb.not_journaled.empty()) throw NotJournaled(pb.not_journaled);
   for (const auto& ev : pb.log)
     if (ev.status == "ok" && !(ev.objective >= out.objective)) {
@@ -251,8 +279,10 @@ OptimizeResult optimize(Problem pb, const std::vector<double>& start, double ini
   return out;
 }
 
-void run_task(const FitSpec& spec, const FitOptions& options, Optimization& o, std::mutex& progress_mutex, Counts& counts) {
+void run_task(const FitSpec& spec, const FitOptions& options, Optimization& o, std::mutex& progress_mutex, Counts& counts,
+              const StopMonitor& stop) {
   Problem pb;
+  pb.stop = &stop;
   pb.spec = &spec;
   pb.label = o.label;
   pb.part = "fit";
@@ -353,6 +383,7 @@ void run_task(const FitSpec& spec, const FitOptions& options, Optimization& o, s
       q.journal = options.journal;
       q.replay_only = options.replay_only;
       q.counts = &counts;
+      q.stop = &stop;
       q.exps = o.experiments;
       q.vars = o.variables;
       for (const std::size_t e : o.experiments) {
@@ -447,10 +478,12 @@ FitResult run_fit(const FitSpec& spec, const FitOptions& options) {
 
   std::mutex progress_mutex;
   Counts counts;
+  const StopMonitor stop(options.stop);
   tbb::task_arena arena(result.threads);
+  // A RunInterrupted of one task leaves the others to see the stop themselves; TBB rethrows it here.
   arena.execute([&] {
     tbb::parallel_for(std::size_t{0}, result.fits.size(),
-                      [&](std::size_t i) { run_task(spec, options, result.fits[i], progress_mutex, counts); });
+                      [&](std::size_t i) { run_task(spec, options, result.fits[i], progress_mutex, counts, stop); });
   });
   result.replayed = counts.replayed;
   result.computed = counts.computed;

@@ -19,6 +19,10 @@
 // journaled when computed, so a killed fit rerun with the same journal replays what it had done
 // (NLopt's derivative-free algorithms ask for the same points in the same order) and ends with
 // the uninterrupted result; array tasks run FitOptions::only, collect runs replay_only.
+//
+// Cancel (FitOptions::stop): every run polls it (RunMonitor) and stops within ~0.05 s; the
+// evaluation it belonged to is dropped, not journaled, and run_fit throws RunInterrupted.
+#include <atomic>
 #include <cstddef>
 #include <functional>
 #include <limits>
@@ -55,6 +59,11 @@ struct FitOptions {
   // `separate`, in file order; else the one joint fit); empty: all. FitResult::fits then holds
   // only these.
   std::vector<std::size_t> only;
+  // Cooperative cancel (the Python module's Ctrl-C; the command line is ended by the signal
+  // itself): once *stop is true, no evaluation starts, the runs in flight stop, and run_fit throws
+  // RunInterrupted (observe/run_monitor.hpp). Every evaluation that finished is in the journal,
+  // none that did not: a rerun with it resumes. May be null.
+  const std::atomic<bool>* stop = nullptr;
 };
 
 // run_fit with FitOptions::replay_only met an evaluation the journal does not hold.
@@ -139,7 +148,8 @@ struct FitResult {
 // NLopt's name of a result code (e.g. "XTOL_REACHED").
 std::string nlopt_result_name(int result);
 
-// Minimises; never throws for a failing evaluation (see Optimization::failure).
+// Minimises; never throws for a failing evaluation (see Optimization::failure). RunInterrupted
+// when FitOptions::stop cut it short.
 FitResult run_fit(const FitSpec& spec, const FitOptions& options = {});
 
 // The physical value of scaled coordinate u ∈ [0, 1] (clamped), exactly within [lo, hi].

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "fit/fit_inputs.hpp"
 #include "io/atomic_file.hpp"
 #include "io/csv.hpp"
 #include "io/input_error.hpp"
@@ -189,6 +190,27 @@ std::optional<std::pair<std::string, int>> FitJournal::where(const std::string& 
 std::size_t FitJournal::size() const {
   const std::lock_guard<std::mutex> lock(mutex_);
   return index_.size();
+}
+
+std::unique_ptr<DirLock> lock_fit_journal_dir(const fs::path& dir, const std::string& option) {
+  try {
+    return std::make_unique<DirLock>(dir, "asperity fit");
+  } catch (const std::runtime_error& e) {
+    throw InputError(dir.string(), 0, option, e.what());
+  }
+}
+
+void open_fit_journal(FitJournal& journal, const fs::path& dir, const std::string& inputs) {
+  const fs::path file = dir / "journal.csv", in = dir / "inputs.txt";
+  if (fs::exists(file)) {
+    if (!fs::exists(in))
+      throw InputError(file.string(), 0, "", "no inputs.txt beside it, so what its evaluations were computed from is "
+                                             "unknown; use another --out or remove the folder");
+    check_fit_inputs(in, inputs);
+  } else {
+    write_file_durably(in, inputs);
+  }
+  journal.open(file, true);
 }
 
 }  // namespace asperity

@@ -22,6 +22,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <string>
@@ -29,6 +30,7 @@
 #include <vector>
 
 #include "fit/fit.hpp"
+#include "io/dir_lock.hpp"
 
 namespace asperity {
 
@@ -70,5 +72,14 @@ class FitJournal {
 
 // The text a journal line holds for these values (';'-separated shortest round-trip numbers).
 std::string journal_values(const std::vector<double>& x);
+
+// One writer per journal folder (DirLock "asperity fit"); another process holding it → InputError
+// naming `dir`, key `option` ("--out" on the command line, "out" in Python).
+std::unique_ptr<DirLock> lock_fit_journal_dir(const std::filesystem::path& dir, const std::string& option);
+
+// Opens DIR/journal.csv for appending after checking DIR/inputs.txt says it was computed from
+// `inputs` (fit_inputs.hpp; InputError otherwise). A new journal: inputs.txt is written first,
+// durably, so a journal never exists without it.
+void open_fit_journal(FitJournal& journal, const std::filesystem::path& dir, const std::string& inputs);
 
 }  // namespace asperity

@@ -12,12 +12,14 @@ The engine of the `asperity` command line, from Python::
 
 Errors in inputs raise asperity.InputError (a ValueError) with the one-line message the command
 line prints, ``file:line: key: message``; a solver that cannot go on raises asperity.SolverError.
+Arguments are checked as the command line's options (a thread count from 1 to 1024, a path without
+a NUL byte), the message naming the argument: ``threads: Value 0 not in range 1 to 1024``.
 """
 from __future__ import annotations
 
 import os
 from dataclasses import dataclass, field
-from typing import Any, Mapping, Sequence, Union
+from typing import Any, Mapping, Optional, Sequence, Union
 
 from . import _asperity
 from ._asperity import InputError, Scene, SolverError
@@ -74,26 +76,33 @@ def measured(scene: Scene):
     return _asperity.measured(scene)
 
 
-def sweep(campaign: Union[str, os.PathLike], out: Union[str, os.PathLike] = "", threads: int = 0,
+def sweep(campaign: Union[str, os.PathLike], out: Union[str, os.PathLike] = "", threads: Optional[int] = None,
           shard: str = "0/1") -> dict:
-    """Runs (or resumes) a campaign into a store, as `asperity sweep`; returns its counts."""
+    """Runs (or resumes) a campaign into a store, as `asperity sweep`; returns its counts.
+    `threads`: 1 to 1024, as `--threads` (None: every hardware thread). Ctrl-C raises
+    KeyboardInterrupt within a second; the store's journal keeps every finished point, so the
+    same call again resumes."""
     return _asperity.sweep(os.fspath(campaign), os.fspath(out), threads, shard)
 
 
-def fit(fit_file: Union[str, os.PathLike], out: Union[str, os.PathLike] = "", threads: int = 2,
+def fit(fit_file: Union[str, os.PathLike], out: Union[str, os.PathLike] = "", threads: Optional[int] = 2,
         profile: bool = False, error_bars: bool = False) -> dict:
-    """Runs a calibration (as `asperity fit`); writes its results folder when `out` is given.
+    """Runs a calibration (as `asperity fit`); writes its results folder when `out` is given,
+    journaling every evaluation there as it finishes (Ctrl-C raises KeyboardInterrupt within a
+    second; the same call again resumes). `threads`: 1 to 1024, as `--threads` (None: all).
     Returns {"name", "fits": [{"label", "best": {key: value}, "objective", "evaluations",
-    "stop_reason", "failure", "runs": {experiment: summary}}], "wall_s", "fit_yaml"}."""
+    "stop_reason", "failure", "runs": {experiment: summary}}], "wall_s", "replayed", "computed",
+    "fit_yaml"} (replayed: evaluations answered from the journal in `out`; computed: run now)."""
     return _asperity.fit(os.fspath(fit_file), os.fspath(out), threads, profile, error_bars)
 
 
 def read_store(path: Union[str, os.PathLike]):
     """A sweep store's points.csv as a pandas DataFrame; provenance.yaml (parsed when PyYAML is
     installed, else its text) in df.attrs["provenance"], the store path in df.attrs["store"]."""
+    path = os.fspath(path)
+    _asperity.check_no_nul(path, "path")
     import pandas as pd  # only needed here
 
-    path = os.fspath(path)
     # round_trip: the shortest round-trip decimals of the store read back to the same doubles
     # (pandas' default fast parser may be off in the last bit).
     df = pd.read_csv(os.path.join(path, "points.csv"), float_precision="round_trip")
@@ -118,11 +127,11 @@ def read_series(path: Union[str, os.PathLike], index: int):
     failed, or no series). Read from the store's series.csv by the point's scene hash, as
     `asperity` writes and merges it (or from series/HASH.csv in a store written before it)."""
     import io
-    import pandas as pd  # only needed here
 
     texts = _asperity.store_series(os.fspath(path), [int(index)])
     if int(index) not in texts:
         raise KeyError(f"no series of point {index} in {os.fspath(path)}")
+    import pandas as pd  # only needed here
     return pd.read_csv(io.StringIO(texts[int(index)]), float_precision="round_trip")
 
 
