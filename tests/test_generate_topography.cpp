@@ -200,3 +200,15 @@ TEST_CASE("topography recipe: same bytes twice, measured map = synthetic heights
   CHECK(run.status == 0);
   fs::remove_all(d);
 }
+
+TEST_CASE("the committed topography example regenerates byte for byte", "[generate][topography][cli]") {
+  const fs::path src(ASPERITY_SOURCE_DIR);
+  const fs::path d = fresh_dir("asperity-topo-example");
+  const auto r = run_argv(d, {"generate", "--recipe", (src / "examples/topography/topo.yaml").string(), "--out",
+                              "generated", "--quiet"});
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  CHECK(slurp(d / "generated/junctions.csv") == slurp(src / "examples/topography/generated/junctions.csv"));
+  CHECK(slurp(d / "generated/experiment.yaml") == slurp(src / "examples/topography/generated/experiment.yaml"));
+  fs::remove_all(d);
+}
