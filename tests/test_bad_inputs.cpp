@@ -5,9 +5,9 @@
 // each case. Experiments are loaded through a scene, junction/measured CSVs through an
 // experiment, exactly as a user's files would be; campaigns run through `asperity sweep`, fits
 // through `asperity fit` (their scene paths are relative to tests/bad_inputs/), topography
-// recipes through `asperity generate --recipe`, and height maps (heights_*.csv) through a
-// topography recipe that names them. Inputs that
-// cannot be committed (a FIFO, a file over the size cap) are made here.
+// recipes through `asperity generate --recipe`, and height maps (heights_*.csv, float64 headers
+// heights_*.yaml) through a topography recipe that names them. Inputs that cannot be committed
+// (a FIFO, a file over the size cap) are made here.
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -173,8 +173,9 @@ TEST_CASE("bad-input corpus: each file is refused naming file, line and key, and
       command = "generate --recipe";
     } else if (c.file.rfind("heights_", 0) == 0) {
       scene = work / "recipe.yaml";
-      write(scene, "topography:\n  file: " + q(file) + "\n  pixel_m: 1e-6\nsphere_radius_m: 0.01\nE: 1.6e6\n"
-                   "nu: 0.5\nload_N: 1\n");
+      const bool csv = file.extension() == ".csv";  // a float64 header gives its own pixel size
+      write(scene, "topography:\n  file: " + q(file) + (csv ? "\n  pixel_m: 1e-6" : "") +
+                       "\nsphere_radius_m: 0.01\nE: 1.6e6\nnu: 0.5\nload_N: 1\n");
       command = "generate --recipe";
     } else {
       FAIL("unknown kind of bad input: " << c.file);
