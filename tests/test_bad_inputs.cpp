@@ -4,8 +4,10 @@
 // working folder and the corpus are listed (paths, sizes, modification times) before and after
 // each case. Experiments are loaded through a scene, junction/measured CSVs through an
 // experiment, exactly as a user's files would be; campaigns run through `asperity sweep`, fits
-// through `asperity fit` (their scene paths are relative to tests/bad_inputs/). Inputs that
-// cannot be committed (a FIFO, a file over the size cap) are made here.
+// through `asperity fit` (their scene paths are relative to tests/bad_inputs/), topography
+// recipes through `asperity generate --recipe`, and height maps (heights_*.csv, float64 headers
+// heights_*.yaml) through a topography recipe that names them. Inputs that cannot be committed
+// (a FIFO, a file over the size cap) are made here.
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -166,6 +168,15 @@ TEST_CASE("bad-input corpus: each file is refused naming file, line and key, and
       write(work / "experiment.yaml", e.str());
       scene = work / "scene.yaml";
       write(scene, "experiment: experiment.yaml\n");
+    } else if (c.file.rfind("topography_", 0) == 0) {
+      scene = file;
+      command = "generate --recipe";
+    } else if (c.file.rfind("heights_", 0) == 0) {
+      scene = work / "recipe.yaml";
+      const bool csv = file.extension() == ".csv";  // a float64 header gives its own pixel size
+      write(scene, "topography:\n  file: " + q(file) + (csv ? "\n  pixel_m: 1e-6" : "") +
+                       "\nsphere_radius_m: 0.01\nE: 1.6e6\nnu: 0.5\nload_N: 1\n");
+      command = "generate --recipe";
     } else {
       FAIL("unknown kind of bad input: " << c.file);
     }

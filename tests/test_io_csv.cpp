@@ -90,3 +90,41 @@ TEST_CASE("read_numeric_csv errors name file, line, column and column name", "[i
   CHECK(error_of("a,wxyz\n1,2\n").rfind("t.csv:1:2: wxyz: unknown column 'wxyz'", 0) == 0);
   CHECK(error_of("a\n1\n") == "");
 }
+
+namespace {
+
+// The one-line message read_numeric_matrix_csv gives for `text` (empty when it reads), with
+// caps of 3 rows and 3 columns.
+std::string matrix_error_of(const std::string& text) {
+  const fs::path p = write_text(temp_path("asperity-io-csv-matrix", ".csv"), text);
+  try {
+    read_numeric_matrix_csv(p, "m.csv", "h_m", 3, 3);
+  } catch (const InputError& e) {
+    fs::remove(p);
+    return e.what();
+  }
+  fs::remove(p);
+  return "";
+}
+
+}  // namespace
+
+TEST_CASE("numeric matrices: rows without a header, comments, caps and located errors", "[io][csv]") {
+  const fs::path p = write_text(temp_path("asperity-io-csv-matrix-ok", ".csv"),
+                                "# heights\n\n1, -2e-6,3\n# between rows\n4,5,6.5\n\n");
+  const CsvMatrix m = read_numeric_matrix_csv(p, "m.csv", "h_m", 3, 3);
+  fs::remove(p);
+  CHECK(m.rows == 2);
+  CHECK(m.columns == 3);
+  CHECK(m.first_line == 3);
+  CHECK(m.values == std::vector<double>{1, -2e-6, 3, 4, 5, 6.5});
+
+  CHECK(matrix_error_of("1,2\n3,nan\n") == "m.csv:2:2: h_m: must be a finite number, got 'nan'");
+  CHECK(matrix_error_of("1,2\n3\n") == "m.csv:2:2: h_m: expected 2 values (as in the first row, line 1), got 1");
+  CHECK(matrix_error_of("1,2,3,4\n") == "m.csv:1:4: h_m: row of 4 values, more than the 3 allowed");
+  CHECK(matrix_error_of("1\n2\n3\n4\n") == "m.csv:4: h_m: more than the 3 rows allowed");
+  CHECK(matrix_error_of("1,2\n\n3,4\n") ==
+        "m.csv:2: blank line inside the data (only trailing blank lines are allowed)");
+  CHECK(matrix_error_of("# nothing\n") == "m.csv:1: h_m: no rows of numbers");
+  CHECK(matrix_error_of("1,2 um\n").rfind("m.csv:1:2: h_m: expected a plain number in SI units", 0) == 0);
+}

@@ -1,5 +1,7 @@
 // asperity generate [--recipe data/standin/recipe.yaml] [--out data/standin] [--scenes DIR] [--quiet]
 // Rebuilds the stand-in experiments (MODEL.md §7) from their recipe; same recipe, same bytes.
+// A recipe with a `topography:` section (generate/topography.hpp, docs/topography.md) instead
+// writes one experiment whose junctions are the contact clusters of a surface under a sphere.
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -10,6 +12,9 @@
 #include "cli/options.hpp"
 #include "generate/recipe.hpp"
 #include "generate/standin.hpp"
+#include "generate/topography.hpp"
+#include "io/input_error.hpp"
+#include "io/numbers.hpp"
 #include "report/output_dir.hpp"
 
 namespace asperity::cli {
@@ -40,7 +45,30 @@ bool scenes_folder(const std::filesystem::path& d) {
   return any;
 }
 
+// Its own marker: a stand-in folder is never taken for a topography output, nor the reverse.
+constexpr const char* kTopographyMarker = "generate topography";
+
+int generate_topography(const GenerateCliOptions& o) {
+  const TopographyRecipe recipe = load_topography_recipe(o.recipe);
+  if (!o.scenes.empty())
+    throw InputError("--scenes", 0, "", "a topography recipe writes one experiment and no scenes; leave out --scenes");
+  check_ours(o.out, kTopographyMarker, "--out");
+  const TopographyJunctions t = build_topography_junctions(recipe);
+  write_topography_experiment(recipe, t, o.out);
+  write_marker(o.out, kTopographyMarker);
+  if (!o.quiet) {
+    double total = 0;
+    for (const double A : t.experiment.junctions.area_m2) total += A;
+    std::cout << "wrote " << t.experiment.junctions.size() << " junctions (" << t.clusters << " contact clusters, "
+              << t.merges << " merges of overlapping discs, total area " << scene_io::format_short(total)
+              << " m^2; contact solve " << t.iterations << " iterations) to " << o.out
+              << "/junctions.csv and experiment.yaml\n";
+  }
+  return exit_ok;
+}
+
 int generate(const GenerateCliOptions& o) {
+  if (is_topography_recipe(o.recipe)) return generate_topography(o);
   const StandinRecipe recipe = load_recipe(o.recipe);
   check_ours(o.out, "generate", "--out", standin_folder);
   if (!o.scenes.empty()) check_ours(o.scenes, "generate", "--scenes", scenes_folder);
@@ -64,7 +92,8 @@ int generate(const GenerateCliOptions& o) {
 Command add_generate_command(CLI::App& app) {
   auto opt = std::make_shared<GenerateCliOptions>();
   CLI::App* sub = app.add_subcommand(
-      "generate", "Generate the stand-in experiments (junctions, stand-in measured A(Q), README) from a recipe");
+      "generate", "Generate the stand-in experiments (junctions, stand-in measured A(Q), README) from a recipe, or with a "
+      "topography recipe one experiment whose junctions are the contact clusters of a surface under a sphere");
   sub->add_option("--recipe,-r", opt->recipe, "Recipe YAML")->capture_default_str();
   sub->add_option("--out,-o", opt->out, "Output folder (one P<load>N/ subfolder per experiment)")
       ->capture_default_str();

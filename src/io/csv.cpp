@@ -74,6 +74,24 @@ std::vector<std::string> split_plain_fields(std::string_view line) {
   return out;
 }
 
+// One field as a finite plain number, or InputError at its line and column.
+double field_number(const std::string& field, const std::string& display, int line_no, const std::string& name,
+                    int col) {
+  double x = 0;
+  switch (parse_double(field, x)) {
+    case NumberParse::ok:
+      return x;
+    case NumberParse::empty:
+      throw InputError(display, line_no, name, "empty field (expected a number)", col);
+    case NumberParse::has_unit:
+      throw InputError(display, line_no, name, "expected a plain number in SI units, got " + quote(field), col);
+    case NumberParse::not_finite:
+      throw InputError(display, line_no, name, "must be a finite number, got " + quote(field), col);
+    default:
+      throw InputError(display, line_no, name, "expected a number, got " + quote(field), col);
+  }
+}
+
 }  // namespace
 
 CsvTable read_numeric_csv(const std::filesystem::path& path, const std::string& display,
@@ -121,22 +139,8 @@ CsvTable read_numeric_csv(const std::filesystem::path& path, const std::string& 
                            std::to_string(fields.size()),
                        static_cast<int>(std::min(fields.size(), t.columns.size())) + 1);
     std::vector<double> row(fields.size());
-    for (std::size_t c = 0; c < fields.size(); ++c) {
-      const int col = static_cast<int>(c) + 1;
-      switch (parse_double(fields[c], row[c])) {
-        case NumberParse::ok:
-          break;
-        case NumberParse::empty:
-          throw InputError(display, line_no, t.columns[c], "empty field (expected a number)", col);
-        case NumberParse::has_unit:
-          throw InputError(display, line_no, t.columns[c],
-                           "expected a plain number in SI units, got " + quote(fields[c]), col);
-        case NumberParse::not_finite:
-          throw InputError(display, line_no, t.columns[c], "must be a finite number, got " + quote(fields[c]), col);
-        default:
-          throw InputError(display, line_no, t.columns[c], "expected a number, got " + quote(fields[c]), col);
-      }
-    }
+    for (std::size_t c = 0; c < fields.size(); ++c)
+      row[c] = field_number(fields[c], display, line_no, t.columns[c], static_cast<int>(c) + 1);
     t.rows.push_back(std::move(row));
     t.lines.push_back(line_no);
   }
@@ -146,6 +150,53 @@ CsvTable read_numeric_csv(const std::filesystem::path& path, const std::string& 
   if (t.rows.empty())
     throw InputError(display, t.header_line, required.empty() ? "" : required.front(), "no data rows after the header");
   return t;
+}
+
+CsvMatrix read_numeric_matrix_csv(const std::filesystem::path& path, const std::string& display,
+                                  const std::string& name, std::size_t max_rows, std::size_t max_columns) {
+  std::string text = read_input_file(path, display, kMaxCsvBytes);
+  if (text.rfind("\xEF\xBB\xBF", 0) == 0) text.erase(0, 3);  // UTF-8 byte-order mark
+
+  CsvMatrix m;
+  int line_no = 0, blank_line = 0;
+  std::size_t start = 0;
+  // Line by line over the text in place: the matrix may be most of the file's size.
+  while (start < text.size()) {
+    std::size_t end = text.find('\n', start);
+    if (end == std::string::npos) end = text.size();
+    const std::string_view line = trim(std::string_view(text).substr(start, end - start));
+    start = end + 1;
+    ++line_no;
+    if (line.empty()) {
+      if (m.rows && !blank_line) blank_line = line_no;
+      continue;
+    }
+    if (line.front() == '#') continue;
+    if (blank_line)
+      throw InputError(display, blank_line, "", "blank line inside the data (only trailing blank lines are allowed)");
+    const std::vector<std::string> fields = split_plain_fields(line);
+    if (!m.rows) {
+      if (fields.size() > max_columns)
+        throw InputError(display, line_no, name,
+                         "row of " + std::to_string(fields.size()) + " values, more than the " +
+                             std::to_string(max_columns) + " allowed",
+                         static_cast<int>(max_columns) + 1);
+      m.columns = fields.size();
+      m.first_line = line_no;
+    } else if (fields.size() != m.columns) {
+      throw InputError(display, line_no, name,
+                       "expected " + std::to_string(m.columns) + " values (as in the first row, line " +
+                           std::to_string(m.first_line) + "), got " + std::to_string(fields.size()),
+                       static_cast<int>(std::min(fields.size(), m.columns)) + 1);
+    }
+    if (m.rows == max_rows)
+      throw InputError(display, line_no, name, "more than the " + std::to_string(max_rows) + " rows allowed");
+    for (std::size_t c = 0; c < fields.size(); ++c)
+      m.values.push_back(field_number(fields[c], display, line_no, name, static_cast<int>(c) + 1));
+    ++m.rows;
+  }
+  if (!m.rows) throw InputError(display, std::max(line_no, 1), name, "no rows of numbers");
+  return m;
 }
 
 }  // namespace asperity

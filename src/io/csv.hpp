@@ -3,6 +3,8 @@
 //  - numeric input tables (junctions, measured curves): a header row naming the columns (any
 //    order), then one plain number per field; '#' lines are comments; blank lines only before
 //    the header and at the end. Errors are InputError "FILE:LINE:COL: COLUMN: message".
+//  - numeric matrices (a measured height map): rows of plain numbers, no header, every row as
+//    long as the first; '#' comments and blank lines as above. Same errors.
 //  - text tables we write and read back (the campaign store's points.csv and journal): fields
 //    quoted as RFC 4180 when they must be.
 // Numbers are written as the shortest text that reads back bit for bit (csv_number) or, where a
@@ -40,5 +42,19 @@ struct CsvTable {
 // every field a finite plain number; at least one data row.
 CsvTable read_numeric_csv(const std::filesystem::path& path, const std::string& display,
                           const std::vector<std::string>& allowed, const std::vector<std::string>& required);
+
+// --- numeric matrices ---------------------------------------------------------------------
+struct CsvMatrix {
+  std::size_t rows = 0, columns = 0;
+  std::vector<double> values;  // row-major, rows × columns
+  int first_line = 0;          // 1-based line of the first row
+};
+
+// Reads `path` like read_numeric_csv (same caps, comments, blank lines and number rules) as a
+// matrix without a header. `name` is the column name errors give (e.g. "h_m"). A row wider than
+// max_columns, more than max_rows rows, or a row of another width than the first is refused at
+// its line before it is stored; so is a file with no rows.
+CsvMatrix read_numeric_matrix_csv(const std::filesystem::path& path, const std::string& display,
+                                  const std::string& name, std::size_t max_rows, std::size_t max_columns);
 
 }  // namespace asperity

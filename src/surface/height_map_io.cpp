@@ -1,0 +1,110 @@
+#include "surface/height_map_io.hpp"
+
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+
+#include "io/atomic_file.hpp"
+#include "io/csv.hpp"
+#include "io/input_error.hpp"
+#include "io/numbers.hpp"
+#include "io/yaml_util.hpp"
+
+namespace asperity {
+
+namespace fs = std::filesystem;
+using scene_io::MapView;
+using scene_io::Source;
+
+HeightMap read_height_map_csv(const fs::path& csv, const std::string& display, double pixel_m) {
+  if (!(pixel_m > 0) || !std::isfinite(pixel_m))
+    throw InputError(display, 0, "", "pixel size must be a positive finite number of metres");
+  const CsvMatrix m = read_numeric_matrix_csv(csv, display, "h_m", kMaxHeightMapSide, kMaxHeightMapSide);
+  if (m.rows != m.columns)
+    throw InputError(display, m.first_line, "h_m",
+                     "height map is " + std::to_string(m.rows) + " rows of " + std::to_string(m.columns) +
+                         " values; it must be square (n rows of n heights)");
+  if (m.rows < 2) throw InputError(display, m.first_line, "h_m", "height map must be at least 2 x 2");
+  HeightMap map;
+  map.n = m.rows;
+  map.pixel_m = pixel_m;
+  map.h_m = m.values;
+  return map;
+}
+
+HeightMap read_height_map_binary(const fs::path& header_yaml, const std::string& display) {
+  const YAML::Node root = scene_io::load_yaml_file(header_yaml, display);
+  const MapView v(Source{display, nullptr}, root, "", {"n", "pixel_m", "data", "format"}, 1);
+  if (const auto f = v.find("format"))
+    v.enumeration<int>(*f, "format", {{"float64_le", 0}});
+  const YAML::Node nn = v.require("n");
+  const int n_int = v.integer(nn, "n");
+  if (n_int < 2 || static_cast<std::size_t>(n_int) > kMaxHeightMapSide)
+    v.fail_at(nn, "n", "must be in [2, " + std::to_string(kMaxHeightMapSide) + "], got " + std::to_string(n_int));
+  const auto n = static_cast<std::size_t>(n_int);
+  const YAML::Node pn = v.require("pixel_m");
+  const double pixel_m = v.number(pn, "pixel_m", "m");
+  if (!(pixel_m > 0)) v.fail_at(pn, "pixel_m", "must be > 0, got " + scene_io::format_double(pixel_m));
+
+  const YAML::Node dn = v.require("data");
+  const std::string rel = v.string(dn, "data");
+  if (scene_io::trim(rel).empty()) v.fail_at(dn, "data", "empty path (expected the float64 height file)");
+  const fs::path data = header_yaml.parent_path() / fs::path(rel);
+  const std::uintmax_t bytes = static_cast<std::uintmax_t>(n) * n * sizeof(double);
+  // Checked by path before opening (a FIFO is never opened), at the line that names the file.
+  if (std::string why = scene_io::input_file_problem(data, bytes); !why.empty()) {
+    std::error_code ec;
+    if (why != "file not found" && fs::is_regular_file(data, ec)) why = "is larger than expected";
+    v.fail_at(dn, "data", "height file " + why + ": " + data.lexically_normal().string() + " (expected n^2 x 8 = " +
+                              std::to_string(bytes) + " bytes of float64 little-endian)");
+  }
+  const std::string raw = scene_io::read_input_file(data, data.lexically_normal().string(), bytes);
+  if (raw.size() != bytes)
+    v.fail_at(dn, "data", "height file " + data.lexically_normal().string() + " has " + std::to_string(raw.size()) +
+                              " bytes, expected n^2 x 8 = " + std::to_string(bytes) + " (float64 little-endian)");
+  HeightMap map;
+  map.n = n;
+  map.pixel_m = pixel_m;
+  map.h_m.resize(n * n);
+  for (std::size_t k = 0; k < n * n; ++k) {
+    // Assembled byte by byte: little-endian whatever the machine's order, no aligned access.
+    std::uint64_t u = 0;
+    for (int b = 7; b >= 0; --b) u = (u << 8) | static_cast<unsigned char>(raw[k * 8 + static_cast<std::size_t>(b)]);
+    const double h = std::bit_cast<double>(u);
+    if (!std::isfinite(h))
+      v.fail_at(dn, "data", "height at row " + std::to_string(k / n + 1) + ", column " + std::to_string(k % n + 1) +
+                                " of " + data.lexically_normal().string() + " is " + (std::isnan(h) ? "NaN" : "infinite") +
+                                "; every height must be finite");
+    map.h_m[k] = h;
+  }
+  return map;
+}
+
+void write_height_map_csv(const fs::path& csv, const HeightMap& map) {
+  std::string s = "# height map: " + std::to_string(map.n) + " x " + std::to_string(map.n) +
+                  " heights in metres, pixel_m = " + csv_number(map.pixel_m) + "\n";
+  for (std::size_t i = 0; i < map.n; ++i) {
+    for (std::size_t j = 0; j < map.n; ++j) {
+      if (j) s += ',';
+      s += csv_number(map.h_m[i * map.n + j]);
+    }
+    s += '\n';
+  }
+  write_file_atomically(csv, s, Durability::unsynced);
+}
+
+void write_height_map_binary(const fs::path& header_yaml, const std::string& data_name, const HeightMap& map) {
+  std::string raw(map.h_m.size() * 8, '\0');
+  for (std::size_t k = 0; k < map.h_m.size(); ++k) {
+    const auto u = std::bit_cast<std::uint64_t>(map.h_m[k]);
+    for (std::size_t b = 0; b < 8; ++b) raw[k * 8 + b] = static_cast<char>((u >> (8 * b)) & 0xff);
+  }
+  write_file_atomically(header_yaml.parent_path() / data_name, raw, Durability::unsynced);
+  write_file_atomically(header_yaml,
+                        "n: " + std::to_string(map.n) + "\npixel_m: " + scene_io::format_double(map.pixel_m) +
+                            "\ndata: " + yaml_quoted(data_name) + "\nformat: float64_le\n",
+                        Durability::unsynced);
+}
+
+}  // namespace asperity
