@@ -756,3 +756,43 @@ TEST_CASE("scene error: a value overridden in the file keeps the file's line for
   const fs::path s = box.scene("experiment: exp/experiment.yaml\nmodel:\n  eta: 100\n  p: -2\n");
   expect_error(box, [&] { load_scene(s, {"model.eta=50"}); }, {"scene.yaml:4: model.p: must be in [0, 10], got -2"});
 }
+
+TEST_CASE("scene: experiment data inline (Scene.from_dict) load as the files and write back", "[scene]") {
+  const Scene files = load_scene(kData / "small_scene.yaml");
+  // The fixture's values and data written inline: the same scene, bit for bit.
+  Scene memory = files;
+  memory.experiment.file.clear();
+  const std::string text = scene_to_yaml(memory);
+  CHECK_THAT(text, Contains("  junctions: {area_m2: ["));
+  CHECK_THAT(text, Contains("  measured: {Q_N: ["));
+  CHECK(text.find("file:") == std::string::npos);
+  Sandbox box;
+  const Scene back = load_scene(box.scene(text));
+  CHECK(back.experiment.file.empty());
+  CHECK(same_bits(back.experiment.junctions.area_m2, files.experiment.junctions.area_m2));
+  CHECK(same_bits(back.experiment.junctions.x_m, files.experiment.junctions.x_m));
+  CHECK(same_bits(back.experiment.measured->A_m2, files.experiment.measured->A_m2));
+  CHECK(scene_to_yaml(back) == text);
+  const Scene tree = scene_from_memory(YAML::Load(text), box.root, "memory");
+  CHECK(tree.file.empty());
+  CHECK(scene_to_yaml(tree) == text);
+
+  // Values checked as CSV rows are, naming the value; files and inline data not both.
+  auto refused = [&](const std::string& scene_text, const std::string& fragment) {
+    const fs::path p = box.scene(scene_text, "bad.yaml");
+    expect_error(box, [&] { load_scene(p); }, {"bad.yaml:1: " + fragment});
+  };
+  const std::string head = "experiment: {name: x, mass: 0.1, k_L: 9200, v: 1e-4, E: 1.6e6, nu: 0.5, sigma_exp: 2e5, ";
+  refused(head + "junctions: {area_m2: [1e-8, 2]}}\n",
+          "experiment.junctions.area_m2[1]: junction area must be in [1e-20, 1] m^2, got 2");
+  refused(head + "junctions: {area_m2: [1e-8], x_m: [0]}}\n",
+          "experiment.junctions.y_m: x_m and y_m must be given together (or neither)");
+  refused(head + "junctions: {area_m2: [1e-8], x_m: [2e9], y_m: [0]}}\n",
+          "experiment.junctions.x_m[0]: junction centre must be within +-1e+09 m, got 2e+09");
+  refused(head + "junctions: {area_m2: [1e-8]}, measured: {Q_N: [-1], A_m2: [1e-8]}}\n",
+          "experiment.measured.Q_N[0]: force must be >= 0, got -1");
+  refused("experiment: {file: exp/experiment.yaml, junctions: {area_m2: [1e-8]}}\n",
+          "experiment.junctions: unknown key 'junctions'");  // the file holds the data
+  refused("experiment: {name: x, junctions: {area_m2: [1e-8]}}\n", "experiment.mass: missing required key");
+  refused(head + "measured: {Q_N: [0], A_m2: [1e-8]}}\n", "experiment.measured: needs the junctions inline too");
+}

@@ -75,12 +75,15 @@ std::string utc_now() {
 // One line on a terminal (redrawn), or a plain log line every 10 s otherwise.
 class Progress {
  public:
-  Progress(std::uint64_t total, bool quiet)
-      : total_(total), skipped_(0), quiet_(quiet), tty_(::isatty(2) == 1),
-        start_(std::chrono::steady_clock::now()), last_(start_) {}
+  Progress(std::uint64_t total, bool quiet, SweepCounters* counters)
+      : total_(total), skipped_(0), quiet_(quiet), tty_(::isatty(2) == 1), counters_(counters),
+        start_(std::chrono::steady_clock::now()), last_(start_) {
+    if (counters_) counters_->total = total;
+  }
 
   void point_done(bool failed) {
     ++done_;
+    if (counters_) ++counters_->finished;
     failed_ += failed ? 1 : 0;
     const auto now = std::chrono::steady_clock::now();
     const double since = std::chrono::duration<double>(now - last_).count();
@@ -90,7 +93,10 @@ class Progress {
   }
   // A point found in the store with its current hash (counted by the build stage, which runs
   // ahead of the writer: a stale stored point is not counted as finished).
-  void skipped_one() { ++skipped_; }
+  void skipped_one() {
+    ++skipped_;
+    if (counters_) ++counters_->finished;
+  }
   void finish() {
     if (!quiet_ && tty_ && done_ > 0) std::fputc('\n', stderr);
   }
@@ -119,6 +125,7 @@ class Progress {
   std::atomic<std::uint64_t> skipped_;  // incremented by the build stage while the writer reads it
   std::uint64_t done_ = 0, failed_ = 0;
   bool quiet_, tty_;
+  SweepCounters* counters_;
   std::chrono::steady_clock::time_point start_, last_;
 };
 
@@ -473,7 +480,7 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
   }
 
   CampaignScenes scenes(c);
-  Progress progress(rep.points, opt.quiet);
+  Progress progress(rep.points, opt.quiet, opt.counters);
   std::uint64_t next = shard.next(0);
   std::size_t cursor = 0;  // into `stored`, which is ascending like the points built
 

@@ -41,6 +41,12 @@ namespace asperity {
 // 16 bytes a point, reserved up front (1.6 GB at this size); larger campaigns run as shards.
 inline constexpr std::uint64_t kMaxShardPoints = 100'000'000;
 
+// What a caller may watch while run_sweep works on another thread (the Python module's progress
+// bar): the shard's points, and those finished so far (run now, or found in the store).
+struct SweepCounters {
+  std::atomic<std::uint64_t> total{0}, finished{0};
+};
+
 struct SweepOptions {
   int threads = 0;                   // 0: all hardware threads
   Shard shard;                       // default 0/1: every point
@@ -67,6 +73,7 @@ struct SweepOptions {
   // itself): once *stop is true, run_sweep syncs the journal, which keeps every point finished
   // so far, and throws RunInterrupted (observe/run_monitor.hpp); a rerun resumes. May be null.
   const std::atomic<bool>* stop = nullptr;
+  SweepCounters* counters = nullptr;  // may be null
 };
 
 struct SweepReport {

@@ -292,7 +292,10 @@ YAML::Node load_one_document(const std::string& text, const std::string& display
 }  // namespace
 
 YAML::Node load_yaml_file(const std::filesystem::path& path, const std::string& display) {
-  const std::string text = read_input_file(path, display, kMaxYamlBytes);
+  return load_yaml_document(read_input_file(path, display, kMaxYamlBytes), display);
+}
+
+YAML::Node load_yaml_document(const std::string& text, const std::string& display) {
   check_yaml_text(text, display, "");
   YAML::Node doc = load_one_document(text, display, "");  // malformed YAML is named first
   check_utf8(text, display, "");

@@ -66,6 +66,9 @@ std::string read_input_file(const std::filesystem::path& path, const std::string
 // Reads a whole YAML file (first and only document, read_input_file with kMaxYamlBytes); Null
 // when empty. Parse errors → InputError.
 YAML::Node load_yaml_file(const std::filesystem::path& path, const std::string& display);
+// Parses a whole YAML document given as text, as load_yaml_file parses a file's (lines kept for
+// messages, which name `display`).
+YAML::Node load_yaml_document(const std::string& text, const std::string& display);
 // Parses YAML text (an override value); errors are reported against `where`.
 YAML::Node load_yaml_text(const std::string& text, const std::string& where, const std::string& key);
 

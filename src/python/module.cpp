@@ -9,10 +9,13 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cctype>
 #include <chrono>
 #include <cmath>
+#include <filesystem>
+#include <functional>
 #include <future>
 #include <map>
 #include <string>
@@ -29,10 +32,13 @@
 #include "io/input_error.hpp"
 #include "io/provenance.hpp"
 #include "io/temp_files.hpp"
+#include "io/numbers.hpp"
 #include "observe/simulate.hpp"
 #include "report/fit_writer.hpp"
 #include "report/run_writer.hpp"
+#include "report/units.hpp"
 #include "scene/load.hpp"
+#include "scene/scene_keys.hpp"
 
 namespace py = pybind11;
 using namespace asperity;
@@ -113,28 +119,153 @@ int threads_argument(const py::object& value, const char* argument, int fallback
   return checked_threads(std::string(py::str(value)), argument);
 }
 
+// --- Scenes from Python objects ----------------------------------------------------------------
+// A Python value as the YAML node its text would parse to, so that the scene loader checks a dict
+// exactly as it checks a file: dicts → maps, lists/tuples/arrays → lists, bool → true/false,
+// numbers → their shortest round-trip text (read back bit for bit), str as is, None → null.
+YAML::Node yaml_node(const py::handle& v, const std::string& key) {
+  if (v.is_none()) return YAML::Node(YAML::NodeType::Null);
+  if (PyBool_Check(v.ptr())) return YAML::Node(v.ptr() == Py_True ? "true" : "false");
+  if (py::isinstance<py::str>(v)) return YAML::Node(v.cast<std::string>());
+  if (PyLong_Check(v.ptr())) return YAML::Node(std::string(py::str(v)));
+  if (PyFloat_Check(v.ptr())) return YAML::Node(scene_io::format_double(v.cast<double>()));
+  if (py::isinstance<py::dict>(v)) {
+    YAML::Node m(YAML::NodeType::Map);
+    for (const auto& [k, x] : v.cast<py::dict>()) {
+      if (!py::isinstance<py::str>(k)) throw py::type_error(key + ": keys must be str, got " + std::string(py::repr(k)));
+      const std::string name = k.cast<std::string>();
+      m[name] = yaml_node(x, key.empty() ? name : key + "." + name);
+    }
+    return m;
+  }
+  if (py::isinstance<py::list>(v) || py::isinstance<py::tuple>(v) || py::isinstance<py::array>(v)) {
+    YAML::Node s(YAML::NodeType::Sequence);
+    for (const py::handle x : py::isinstance<py::array>(v) ? v.attr("tolist")() : py::reinterpret_borrow<py::object>(v))
+      s.push_back(yaml_node(x, key));
+    return s;
+  }
+  if (py::hasattr(v, "__index__")) return YAML::Node(std::string(py::str(py::int_(py::reinterpret_borrow<py::object>(v)))));
+  if (py::hasattr(v, "__float__")) return YAML::Node(scene_io::format_double(v.cast<double>()));  // numpy floats
+  throw py::type_error(key + ": expected a number, text, bool, list or dict, got " +
+                       std::string(py::str(v.get_type().attr("__name__"))));
+}
+
+// One junction column (array, list, pandas Series) as the inline list the loader checks value by
+// value, as it checks the rows of a junctions CSV.
+YAML::Node junction_column(const py::object& column, const std::string& where, const std::string& name) {
+  using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
+  Array a = Array::ensure(column);
+  if (!a) {
+    PyErr_Clear();
+    throw py::type_error(name + ": expected numbers (a NumPy array, a list or a pandas column), got " +
+                         std::string(py::str(column.get_type().attr("__name__"))));
+  }
+  if (a.ndim() != 1)
+    throw InputError(where, 0, name,
+                     "expected one value per junction (one dimension), got " + std::to_string(a.ndim()) + " dimensions");
+  YAML::Node s(YAML::NodeType::Sequence);
+  const auto r = a.unchecked<1>();
+  for (py::ssize_t i = 0; i < r.shape(0); ++i) s.push_back(YAML::Node(scene_io::format_double(r(i))));
+  return s;
+}
+
+// The measured curve (a DataFrame or a mapping with Q_N and A_m2) as experiment.measured.
+YAML::Node measured_node(const py::object& measured, const std::string& where) {
+  const py::object columns = py::hasattr(measured, "columns") ? measured.attr("columns") : measured.attr("keys")();
+  YAML::Node m(YAML::NodeType::Map);
+  for (const py::handle c : columns) {
+    const std::string n = py::str(c);
+    if (n != "Q_N" && n != "A_m2")
+      throw InputError(where, 0, "measured", "unknown column " + scene_io::quote(n) + "; valid: Q_N, A_m2");
+    m[n] = junction_column(py::object(measured[c]), where, n);
+  }
+  return m;
+}
+
+// Scene.from_dict: the dict as a scene tree; junction arrays (or a DataFrame with the junctions
+// CSV's columns area_m2, x_m, y_m) go in as experiment.junctions, a measured curve as
+// experiment.measured; then the loader's own checks.
+Scene scene_from_dict(const py::dict& d, py::object areas, py::object x, py::object y, const py::object& measured) {
+  const std::string where = "Scene.from_dict";
+  YAML::Node tree = yaml_node(d, "");
+  if (py::hasattr(areas, "columns")) {  // a pandas DataFrame
+    if (!x.is_none() || !y.is_none())
+      throw InputError(where, 0, "x", "give x_m and y_m as columns of the DataFrame or as arrays, not both");
+    const py::object df = areas;
+    areas = py::none();
+    const std::vector<std::string> valid{"area_m2", "x_m", "y_m"};
+    for (const py::handle c : df.attr("columns")) {
+      const std::string n = py::str(c);
+      if (std::find(valid.begin(), valid.end(), n) == valid.end())
+        throw InputError(where, 0, "areas", "unknown column " + scene_io::quote(n) + scene_io::did_you_mean(n, valid) +
+                                                "; valid: area_m2, x_m, y_m");
+      (n == "area_m2" ? areas : n == "x_m" ? x : y) = py::object(df[c]);
+    }
+    if (areas.is_none()) throw InputError(where, 0, "areas", "missing column 'area_m2'");
+  }
+  if (areas.is_none()) {
+    if (!x.is_none() || !y.is_none()) throw InputError(where, 0, "areas", "x and y need the junction areas");
+    if (!measured.is_none()) throw InputError(where, 0, "measured", "needs the junction areas too");
+  } else {
+    const YAML::Node& view = tree;
+    if (!view["experiment"].IsDefined() || view["experiment"].IsNull()) tree["experiment"] = YAML::Node(YAML::NodeType::Map);
+    YAML::Node e = tree["experiment"];
+    if (!e.IsMap())
+      throw InputError(where, 0, "experiment",
+                       "with junction arrays, the experiment is a map of its values {name, mass, k_L, v, E, nu, "
+                       "sigma_exp}, not a file");
+    YAML::Node j(YAML::NodeType::Map);
+    j["area_m2"] = junction_column(areas, where, "area_m2");
+    if (!x.is_none()) j["x_m"] = junction_column(x, where, "x_m");
+    if (!y.is_none()) j["y_m"] = junction_column(y, where, "y_m");
+    e["junctions"] = j;
+    if (!measured.is_none()) e["measured"] = measured_node(measured, where);
+  }
+  return scene_from_memory(tree, std::filesystem::current_path(), where);
+}
+
 // Runs `work` (engine only: it never touches Python) on a worker thread, the GIL released, while
 // the calling thread takes the GIL every 0.1 s to run Python's signal handlers. When a handler
 // raises (Ctrl-C: KeyboardInterrupt), `stop` tells the engine, which stops within a fraction of a
 // second keeping what it journaled; then the handler's exception is raised (the engine's
 // RunInterrupted, or a result finished meanwhile, gives way to it). Handlers run only in the
 // main thread: called from another, the work runs to its end as before.
+// `tick` (may be empty; called with the GIL at every poll and once at the end) draws progress; an
+// exception it raises stops the work as Ctrl-C does and is raised.
 template <class F>
-auto interruptible(std::atomic<bool>& stop, F work) -> decltype(work()) {
+auto interruptible(std::atomic<bool>& stop, F work, const std::function<void()>& tick = {}) -> decltype(work()) {
   std::packaged_task<decltype(work())()> task(std::move(work));
   auto result = task.get_future();
   bool interrupted = false;
+  std::exception_ptr tick_error;
   {
     py::gil_scoped_release release;
     std::jthread worker(std::move(task));
     while (!interrupted && result.wait_for(std::chrono::milliseconds(100)) != std::future_status::ready) {
       py::gil_scoped_acquire gil;
       interrupted = PyErr_CheckSignals() != 0;  // the handler's exception stays set while we wait
+      if (!interrupted && tick) try {
+          tick();
+        } catch (...) {
+          tick_error = std::current_exception();
+          interrupted = true;
+        }
     }
     stop = interrupted;
   }  // joins the worker
+  if (tick_error) std::rethrow_exception(tick_error);
   if (interrupted) throw py::error_already_set();
+  if (tick) tick();  // the last count
   return result.get();  // the engine's exception, if any
+}
+
+// A progress tick calling Python's `progress(finished, total)` (total 0: unknown); none for None.
+std::function<void()> progress_tick(const py::object& progress, const std::function<std::pair<long long, long long>()>& counts) {
+  if (progress.is_none()) return {};
+  return [progress, counts] {
+    const auto [done, total] = counts();
+    progress(done, total);
+  };
 }
 
 }  // namespace
@@ -166,10 +297,22 @@ PYBIND11_MODULE(_asperity, m) {
         for (char& c : d) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
         return d.find("stand-in") != std::string::npos;
       })
-      .def("to_yaml", [](const Scene& s) { return scene_to_yaml(s); }, "The scene as `asperity run` writes scene.yaml")
+      .def("to_yaml", [](const Scene& s) { return scene_to_yaml(s); },
+           "The scene as `asperity run` writes scene.yaml (junctions inline when it has no experiment file); "
+           "Scene.from_yaml of it, or asperity.load_scene of it saved, gives the same scene")
+      .def_static("from_dict", &scene_from_dict, py::arg("d"), py::arg("areas") = py::none(), py::arg("x") = py::none(),
+                  py::arg("y") = py::none(), py::arg("measured") = py::none(),
+                  "A scene from a dict shaped as a scene file, checked as one; the experiment a map of its values with "
+                  "junction `areas` [m²] and optional centres `x`, `y` [m] (NumPy arrays, lists, or a pandas DataFrame "
+                  "with columns area_m2, x_m, y_m as `areas`), optional `measured` A(Q) (a DataFrame or dict with Q_N [N], "
+                  "A_m2 [m²]); or the experiment a path as in a scene file")
+      .def_static("from_yaml", [](const std::string& text) -> Scene {
+        const std::string where = "Scene.from_yaml";
+        return scene_from_memory(scene_io::load_yaml_document(text, where), std::filesystem::current_path(), where);
+      }, py::arg("text"), "A scene from scene-file text (paths relative to the working directory)")
       .def("__repr__", [](const Scene& s) {
         return "<asperity.Scene " + s.experiment.name + ", " + std::to_string(s.experiment.junctions.size()) +
-               " junctions, from " + s.file.string() + ">";
+               " junctions, from " + (s.file.empty() ? std::string("memory") : s.file.string()) + ">";
       });
 
   m.def("check_no_nul", &check_no_nul, py::arg("text"), py::arg("argument"),
@@ -188,7 +331,8 @@ PYBIND11_MODULE(_asperity, m) {
     return d;
   }, py::arg("scene"));
 
-  m.def("sweep", [](const std::string& campaign, const std::string& out, const py::object& threads, const std::string& shard) {
+  m.def("sweep", [](const std::string& campaign, const std::string& out, const py::object& threads, const std::string& shard,
+                   const py::object& progress) {
     check_no_nul(campaign, "campaign");
     check_no_nul(out, "out");
     SweepOptions o;
@@ -204,15 +348,21 @@ PYBIND11_MODULE(_asperity, m) {
     o.command_line = "python: asperity.sweep(" + campaign + ")";
     std::atomic<bool> stop{false};
     o.stop = &stop;
-    const SweepReport r = interruptible(stop, [&] { return run_sweep(c, o); });
+    SweepCounters counters;
+    o.counters = &counters;
+    const SweepReport r = interruptible(stop, [&] { return run_sweep(c, o); }, progress_tick(progress, [&] {
+      return std::pair<long long, long long>(counters.finished.load(), counters.total.load());
+    }));
     py::dict d;
     d["store"] = r.store.string();
     d["points"] = r.points, d["skipped"] = r.skipped, d["changed"] = r.changed, d["ran"] = r.ran;
     d["ok"] = r.ok, d["failed"] = r.failed, d["wall_s"] = r.wall_s;
     return d;
-  }, py::arg("campaign"), py::arg("out") = "", py::arg("threads") = py::none(), py::arg("shard") = "0/1");
+  }, py::arg("campaign"), py::arg("out") = "", py::arg("threads") = py::none(), py::arg("shard") = "0/1",
+     py::arg("progress") = py::none());
 
-  m.def("fit", [](const std::string& fit_file, const std::string& out, const py::object& threads, bool profile, bool error_bars) {
+  m.def("fit", [](const std::string& fit_file, const std::string& out, const py::object& threads, bool profile, bool error_bars,
+                 const py::object& progress) {
     check_no_nul(fit_file, "fit_file");
     check_no_nul(out, "out");
     FitOptions fo;
@@ -234,11 +384,13 @@ PYBIND11_MODULE(_asperity, m) {
     fo.error_bars = error_bars;
     std::atomic<bool> stop{false};
     fo.stop = &stop;
+    std::atomic<long long> evaluations{0};  // of the optimizations (profiles and error bars not counted)
+    fo.on_evaluation = [&](double) { ++evaluations; };
     const FitResult result = interruptible(stop, [&] {
       FitResult r = run_fit(spec, fo);
       if (!out.empty()) write_fit(out, spec, r, "python: asperity.fit(" + fit_file + ")");
       return r;
-    });
+    }, progress_tick(progress, [&] { return std::pair<long long, long long>(evaluations.load(), 0); }));
     py::list fits;
     for (const Optimization& o : result.fits) {
       py::dict d, best;
@@ -263,7 +415,7 @@ PYBIND11_MODULE(_asperity, m) {
     d["fit_yaml"] = fit_yaml(spec, result, "python: asperity.fit(" + fit_file + ")");
     return d;
   }, py::arg("fit_file"), py::arg("out") = "", py::arg("threads") = py::int_(2), py::arg("profile") = true,
-     py::arg("error_bars") = true);
+     py::arg("error_bars") = true, py::arg("progress") = py::none());
 
   m.def("store_series", [](const std::string& store, const std::vector<std::uint64_t>& indices) {
     check_no_nul(store, "path");  // asperity.read_series(path, index)
@@ -276,4 +428,17 @@ PYBIND11_MODULE(_asperity, m) {
   }, py::arg("store"), py::arg("indices"));
 
   m.def("version", [] { return version_line(); });
+  m.attr("__version__") = build_info().version;  // the number `asperity --version` prints
+
+  // Units of every column a result holds, from the engine's tables (report/units.hpp): SI text,
+  // "1" dimensionless, "" not a number (flags, names).
+  m.def("units", [] {
+    py::dict observables, series, keys;
+    for (const ObservableField& f : observable_fields()) observables[f.name] = column_unit(f.name);
+    for (const std::string& c : all_series()) series[py::str(c)] = series_unit(c);
+    for (const SceneKey& k : scene_keys()) keys[k.name] = column_unit(k.name);
+    py::dict d;
+    d["observables"] = observables, d["series"] = series, d["scene_keys"] = keys;
+    return d;
+  });
 }

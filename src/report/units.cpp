@@ -18,6 +18,14 @@ std::string column_unit(const std::string& column) {
   return "";
 }
 
+std::string series_unit(const std::string& column) {
+  static const char* const units[][2] = {{"t", "s"}, {"X", "m"}, {"V", "m/s"}, {"Q", "N"}, {"A", "m^2"},
+                                          {"n_slipping", "1"}, {"n_intact", "1"}};
+  for (const auto& [name, unit] : units)
+    if (column == name) return unit;
+  return "";
+}
+
 std::string axis_label(const std::string& column) {
   const std::string unit = column_unit(column);
   return unit.empty() ? column : column + " [" + unit + "]";
@@ -41,11 +49,7 @@ std::string units_reference_markdown() {
     md += std::string("| `") + f.name + "` | " + (u.empty() ? std::string("(text or true/false)") : u) + " |\n";
   }
   md += "\n## Series (series.csv, a store's series)\n\n| column | unit |\n|---|---|\n";
-  const char* series_units[][2] = {{"t", "s"}, {"X", "m"}, {"V", "m/s"}, {"Q", "N"}, {"A", "m^2"},
-                                   {"n_slipping", "1"}, {"n_intact", "1"}};
-  for (const std::string& c : all_series())
-    for (const auto& [name, unit] : series_units)
-      if (c == name) md += "| `" + c + "` | " + unit + " |\n";
+  for (const std::string& c : all_series()) md += "| `" + c + "` | " + series_unit(c) + " |\n";
   return md;
 }
 

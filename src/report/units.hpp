@@ -9,6 +9,10 @@ namespace asperity {
 // when the column is not a number we know (e.g. experiment, grid, status).
 std::string column_unit(const std::string& column);
 
+// SI unit of a series column (series.csv, a run's series): "s", "N", "1" for counts; "" when
+// `column` is not one (scene/scene.hpp all_series).
+std::string series_unit(const std::string& column);
+
 // "model.eta [1/s]", "model.epsilon [1]", or the column as is when its unit is unknown.
 std::string axis_label(const std::string& column);
 

@@ -14,6 +14,21 @@ using namespace scene_io;
 
 namespace scene_io {
 
+std::string junction_area_problem(double a) {
+  // 1e-20 m² (0.01 nm², below one atom) to 1 m²: outside it the contact law has no meaning,
+  // and A0^(p+1), slip distances and time scales leave the range of double.
+  if (a >= 1e-20 && a <= 1.0) return "";
+  return "junction area must be in [1e-20, 1] m^2, got " + format_double(a);
+}
+
+std::string junction_coordinate_problem(double v) {
+  if (std::abs(v) <= kMaxJunctionCoordinate_m) return "";
+  return "junction centre must be within +-" + format_double(kMaxJunctionCoordinate_m) + " m, got " + format_double(v);
+}
+
+std::string measured_force_problem(double q) { return q >= 0 ? "" : "force must be >= 0, got " + format_double(q); }
+std::string measured_area_problem(double a) { return a > 0 ? "" : "area must be > 0, got " + format_double(a); }
+
 JunctionPopulation read_junctions_csv(const std::filesystem::path& csv, const std::string& display) {
   const CsvTable t = read_numeric_csv(csv, display, {"area_m2", "x_m", "y_m"}, {"area_m2"});
   const int ca = t.column("area_m2"), cx = t.column("x_m"), cy = t.column("y_m");
@@ -25,19 +40,14 @@ JunctionPopulation read_junctions_csv(const std::filesystem::path& csv, const st
   p.area_m2.reserve(t.rows.size());
   for (std::size_t i = 0; i < t.rows.size(); ++i) {
     const double a = t.rows[i][static_cast<std::size_t>(ca)];
-    // 1e-20 m² (0.01 nm², below one atom) to 1 m²: outside it the contact law has no meaning,
-    // and A0^(p+1), slip distances and time scales leave the range of double.
-    if (!(a >= 1e-20 && a <= 1.0))
-      throw InputError(display, t.lines[i], "area_m2", "junction area must be in [1e-20, 1] m^2, got " + format_double(a), ca + 1);
+    if (const std::string why = junction_area_problem(a); !why.empty())
+      throw InputError(display, t.lines[i], "area_m2", why, ca + 1);
     p.area_m2.push_back(a);
     if (cx >= 0) {
       for (const int c : {cx, cy}) {
         const double v = t.rows[i][static_cast<std::size_t>(c)];
-        if (!(std::abs(v) <= kMaxJunctionCoordinate_m))
-          throw InputError(display, t.lines[i], t.columns[static_cast<std::size_t>(c)],
-                           "junction centre must be within +-" + format_double(kMaxJunctionCoordinate_m) +
-                               " m, got " + format_double(v),
-                           c + 1);
+        if (const std::string why = junction_coordinate_problem(v); !why.empty())
+          throw InputError(display, t.lines[i], t.columns[static_cast<std::size_t>(c)], why, c + 1);
       }
       p.x_m.push_back(t.rows[i][static_cast<std::size_t>(cx)]);
       p.y_m.push_back(t.rows[i][static_cast<std::size_t>(cy)]);
@@ -52,8 +62,8 @@ MeasuredCurve read_measured_csv(const std::filesystem::path& csv, const std::str
   MeasuredCurve m;
   for (std::size_t i = 0; i < t.rows.size(); ++i) {
     const double q = t.rows[i][static_cast<std::size_t>(cq)], a = t.rows[i][static_cast<std::size_t>(ca)];
-    if (!(q >= 0)) throw InputError(display, t.lines[i], "Q_N", "force must be >= 0, got " + format_double(q), cq + 1);
-    if (!(a > 0)) throw InputError(display, t.lines[i], "A_m2", "area must be > 0, got " + format_double(a), ca + 1);
+    if (const std::string why = measured_force_problem(q); !why.empty()) throw InputError(display, t.lines[i], "Q_N", why, cq + 1);
+    if (const std::string why = measured_area_problem(a); !why.empty()) throw InputError(display, t.lines[i], "A_m2", why, ca + 1);
     m.Q_N.push_back(q);
     m.A_m2.push_back(a);
   }

@@ -23,6 +23,14 @@ void write_junctions_csv(const std::filesystem::path& csv, const JunctionPopulat
 void write_measured_csv(const std::filesystem::path& csv, const MeasuredCurve& curve);
 
 namespace scene_io {
+// The one rule for a junction's values, whether from a CSV row or from columns given in memory
+// (a scene's inline experiment.junctions): "" when allowed, else the message.
+std::string junction_area_problem(double area_m2);        // must be in [1e-20, 1] m^2
+std::string junction_coordinate_problem(double coord_m);  // |x|, |y| <= kMaxJunctionCoordinate_m
+// The same for a measured curve's values.
+std::string measured_force_problem(double Q_N);  // >= 0
+std::string measured_area_problem(double A_m2);  // > 0
+
 // Same readers, naming `display` in errors (the path as the referring file spells it).
 JunctionPopulation read_junctions_csv(const std::filesystem::path& csv, const std::string& display);
 MeasuredCurve read_measured_csv(const std::filesystem::path& csv, const std::string& display);

@@ -58,6 +58,12 @@ const std::vector<std::string> kExperimentKeys = [] {  // the experiment file's:
   k.insert(k.end(), {"junctions", "measured"});
   return k;
 }();
+// A scene's experiment map may give its data inline instead of a file (Scene.from_dict).
+const std::vector<std::string> kExperimentInlineKeys = [] {
+  std::vector<std::string> k = kExperimentMapKeys;
+  k.insert(k.end(), {"junctions", "measured"});
+  return k;
+}();
 
 std::string display_path(const fs::path& p) { return p.lexically_normal().string(); }
 
@@ -93,9 +99,69 @@ struct Pick {
   explicit operator bool() const { return view != nullptr; }
 };
 
-Experiment load_experiment_impl(const fs::path& path, const std::string& display, const MapView* ov) {
-  const YAML::Node root = load_yaml_file(path, display);
-  const MapView f(Source{display, nullptr}, root, "", kExperimentKeys, 1);
+// A column given inline, checked value by value with the CSV reader's rules and words
+// (scene/csv.hpp), each error naming the value, e.g. area_m2[3].
+std::vector<double> inline_column(const MapView& v, const std::string& k, const char* unit,
+                                  std::string (*problem)(double)) {
+  const YAML::Node list = v.require(k);
+  if (!list.IsSequence()) v.fail_at(list, k, "expected a list of numbers, got " + node_kind(list));
+  std::vector<double> out;
+  out.reserve(list.size());
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const std::string ki = k + "[" + std::to_string(i) + "]";
+    const YAML::Node item = list[i];
+    const double x = v.number(item, ki, unit);
+    if (const std::string why = problem(x); !why.empty()) v.fail_at(item, ki, why);
+    out.push_back(x);
+  }
+  return out;
+}
+
+// Junction columns given inline, {area_m2: [...], x_m: [...], y_m: [...]}, as a junctions CSV's.
+JunctionPopulation inline_junctions(const MapView& ev, const YAML::Node& n) {
+  if (!n.IsMap())
+    ev.fail_at(n, "junctions", "expected a map {area_m2: [...], x_m: [...], y_m: [...]}, got " + node_kind(n));
+  const MapView jv(ev.source(), n, ev.key("junctions"), {"area_m2", "x_m", "y_m"});
+  auto column = [&](const std::string& k, const char* unit, std::string (*problem)(double)) {
+    return inline_column(jv, k, unit, problem);
+  };
+  JunctionPopulation p;
+  p.area_m2 = column("area_m2", "m^2", junction_area_problem);
+  if (p.area_m2.empty()) jv.fail_at(jv.require("area_m2"), "area_m2", "must hold at least one junction's area");
+  const auto x = jv.find("x_m"), y = jv.find("y_m");
+  if (x.has_value() != y.has_value())
+    jv.fail_at(n, x ? "y_m" : "x_m", "x_m and y_m must be given together (or neither)");
+  if (x) {
+    p.x_m = column("x_m", "m", junction_coordinate_problem);
+    p.y_m = column("y_m", "m", junction_coordinate_problem);
+    for (const auto& [k, c] : {std::pair{"x_m", &p.x_m}, std::pair{"y_m", &p.y_m}})
+      if (c->size() != p.area_m2.size())
+        jv.fail_at(*jv.find(k), k, "has " + std::to_string(c->size()) + " values, area_m2 has " +
+                                       std::to_string(p.area_m2.size()) + " (one per junction)");
+  }
+  return p;
+}
+
+// A measured curve given inline, {Q_N: [...], A_m2: [...]}, as a measured CSV's.
+MeasuredCurve inline_measured(const MapView& ev, const YAML::Node& n) {
+  if (!n.IsMap()) ev.fail_at(n, "measured", "expected a map {Q_N: [...], A_m2: [...]}, got " + node_kind(n));
+  const MapView mv(ev.source(), n, ev.key("measured"), {"Q_N", "A_m2"});
+  MeasuredCurve m;
+  m.Q_N = inline_column(mv, "Q_N", "N", measured_force_problem);
+  m.A_m2 = inline_column(mv, "A_m2", "m^2", measured_area_problem);
+  if (m.Q_N.size() != m.A_m2.size())
+    mv.fail_at(*mv.find("A_m2"), "A_m2", "has " + std::to_string(m.A_m2.size()) + " values, Q_N has " +
+                                             std::to_string(m.Q_N.size()) + " (one per sample)");
+  return m;
+}
+
+// `path` empty: the experiment is given whole in the scene's map `ov`, its data inline (node
+// `junctions`, and `measured` when the map has one).
+Experiment load_experiment_impl(const fs::path& path, const std::string& display, const MapView* ov,
+                                const YAML::Node* junctions = nullptr) {
+  std::optional<MapView> file_view;
+  if (!path.empty()) file_view.emplace(Source{display, nullptr}, load_yaml_file(path, display), "", kExperimentKeys, 1);
+  const MapView& f = file_view ? *file_view : *ov;
 
   auto pick = [&](const std::string& k) -> Pick {
     if (ov)
@@ -115,7 +181,7 @@ Experiment load_experiment_impl(const fs::path& path, const std::string& display
 
   Scene holder;  // the key table sets fields of a Scene
   Experiment& e = holder.experiment;
-  e.file = resolved(path);
+  if (!path.empty()) e.file = resolved(path);
   {
     const Pick p = required("name");
     e.name = p.view->string(p.node, "name");
@@ -131,6 +197,11 @@ Experiment load_experiment_impl(const fs::path& path, const std::string& display
     const auto [p, x] = number(leaf, k.unit);
     check(k, x, *p.view, p.node, leaf);
     k.set(holder, x);
+  }
+  if (!file_view) {
+    e.junctions = inline_junctions(*ov, *junctions);
+    if (const auto n = ov->find("measured")) e.measured = inline_measured(*ov, *n);
+    return std::move(e);
   }
   const fs::path base = path.parent_path();
   {
@@ -218,10 +289,11 @@ YAML::Node section(const MapView& root, const std::string& k) {
   return n ? *n : YAML::Node(YAML::NodeType::Null);
 }
 
-Scene scene_from_tree_impl(const YAML::Node& tree, const fs::path& origin, const std::string& display,
-                           const std::vector<SetRecord>* sets) {
+// origin: the scene file (empty: a scene given in memory); relative paths resolve against base_dir.
+Scene scene_from_tree_impl(const YAML::Node& tree, const fs::path& origin, const fs::path& base_dir,
+                           const std::string& display, const std::vector<SetRecord>* sets) {
   const Source src{display, sets};
-  const MapView root(src, tree, "", kSceneKeys, 1);
+  const MapView root(src, tree, "", kSceneKeys, origin.empty() ? 0 : 1);  // a tree in memory has no lines
   Scene s;
   if (!origin.empty()) s.file = resolved(origin);
 
@@ -232,18 +304,28 @@ Scene scene_from_tree_impl(const YAML::Node& tree, const fs::path& origin, const
     const MapView* fv = &root;
     std::string fk = "experiment";
     YAML::Node fn = en;
+    std::optional<YAML::Node> inline_junctions;
     if (en.IsMap()) {
-      ov.emplace(src, en, "experiment", kExperimentMapKeys);
+      // With a file, its data come from there (junctions or measured here: unknown keys, as before).
+      ov.emplace(src, en, "experiment", en["file"].IsDefined() ? kExperimentMapKeys : kExperimentInlineKeys);
       fv = &*ov;
       fk = "file";
-      fn = ov->require("file");
+      inline_junctions = ov->find("junctions");
+      if (!inline_junctions) {
+        if (const auto m = ov->find("measured")) ov->fail_at(*m, "measured", "needs the junctions inline too");
+        fn = ov->require("file");
+      }
     } else if (!en.IsScalar()) {
       root.fail_at(en, "experiment",
                    "expected the path of an experiment file or a map {file: path, ...}, got " + node_kind(en));
     }
-    const fs::path p = referenced_file(*fv, fn, fk, origin.parent_path(), "experiment file", kMaxYamlBytes);
-    s.experiment_ref = fn.Scalar();
-    s.experiment = load_experiment_impl(p, display_path(p), ov ? &*ov : nullptr);
+    if (inline_junctions) {
+      s.experiment = load_experiment_impl({}, display, &*ov, &*inline_junctions);
+    } else {
+      const fs::path p = referenced_file(*fv, fn, fk, base_dir, "experiment file", kMaxYamlBytes);
+      s.experiment_ref = fn.Scalar();
+      s.experiment = load_experiment_impl(p, display_path(p), ov ? &*ov : nullptr);
+    }
   }
 
   // model, solver, stop, output: every key of the table, in its order (the first bad one is reported).
@@ -280,7 +362,11 @@ Experiment load_experiment(const fs::path& yaml, const YAML::Node* overrides) {
 YAML::Node load_scene_tree(const fs::path& yaml) { return load_yaml_file(yaml, display_path(yaml)); }
 
 Scene scene_from_tree(const YAML::Node& tree, const fs::path& origin_file) {
-  return scene_from_tree_impl(tree, origin_file, display_path(origin_file), nullptr);
+  return scene_from_tree_impl(tree, origin_file, origin_file.parent_path(), display_path(origin_file), nullptr);
+}
+
+Scene scene_from_memory(const YAML::Node& tree, const fs::path& base_dir, const std::string& display) {
+  return scene_from_tree_impl(tree, {}, base_dir, display, nullptr);
 }
 
 TypedScene typed_scene_from_tree(const YAML::Node& tree, const fs::path& origin_file) {
@@ -313,7 +399,7 @@ Scene load_scene(const fs::path& yaml, const std::vector<std::string>& overrides
     tree = apply_override_at(tree, key, value, where);
     sets.push_back({key, where});
   }
-  return scene_from_tree_impl(tree, yaml, display, &sets);
+  return scene_from_tree_impl(tree, yaml, yaml.parent_path(), display, &sets);
 }
 
 }  // namespace asperity

@@ -12,6 +12,11 @@
 //   experiment: ../../data/standin/P4.00N/experiment.yaml     # relative to the scene file
 //   # or: experiment: {file: ../x/experiment.yaml, mass: 0.2, k_L: 9400, E: 1.7e6, ...}
 //   #     (overridable: name, description, mass, k_L, v, E, nu, sigma_exp)
+//   # or, given whole (Scene.from_dict; the scene text of such a scene):
+//   #   experiment: {name: x, mass: 0.2, k_L: 9400, v: 1e-4, E: 1.7e6, nu: 0.5, sigma_exp: 0.4e6,
+//   #                junctions: {area_m2: [...], x_m: [...], y_m: [...]},   # x_m, y_m optional
+//   #                measured: {Q_N: [...], A_m2: [...]}}                   # optional
+//   #   each value checked as a row of the junctions or measured CSV is
 //   model:  {eta: 100, epsilon: 0.9, c_min: 0.01, p: 1.5, alpha_b: 0.725e-15,
 //            junction_shape: elliptic|circular, area_law: until_first_slip|always,
 //            interactions: none|elastic, interaction_cutoff: 0, interaction_weighting: uniform|rigid,
@@ -69,6 +74,12 @@ YAML::Node apply_override(YAML::Node scene_tree, const std::string& dotted_key, 
 // Validates and converts a scene tree. Relative paths resolve against origin_file's folder;
 // errors name origin_file, the key, and the line when the node came from that file.
 Scene scene_from_tree(const YAML::Node& tree, const std::filesystem::path& origin_file);
+
+// A scene given in memory (the Python module's Scene.from_dict and Scene.from_yaml): `tree` as a
+// scene file's, checked by the same code; relative paths resolve against base_dir; errors name
+// `display` (the tree has no lines). Scene::file stays empty. Its experiment may be given whole,
+// data inline (above; also allowed in a scene file).
+Scene scene_from_memory(const YAML::Node& tree, const std::filesystem::path& base_dir, const std::string& display);
 
 // scene_from_tree, kept with where each key came from, so that variants with numbers changed
 // are built and checked without the tree (typed_scene.hpp). The tree is not kept.

@@ -101,6 +101,8 @@ std::vector<SceneKey> make_table() {
       k.written = [](const Scene& s) {
         return s.model.interactions != Interactions::none && s.model.interaction_weighting != TractionWeighting::uniform;
       };
+    // A scene given in memory has no experiment file (its junctions are written inline instead).
+    if (n == "experiment.file") k.written = [](const Scene& s) { return !s.experiment.file.empty(); };
     if (n == "stop.wall_time") k.written = [](const Scene& s) { return s.stop.wall_time != StopSettings{}.wall_time; };
     if (n == "stop.max_slips") {
       k.set = [](Scene& s, double x) { s.stop.max_slips = static_cast<std::int64_t>(x); };

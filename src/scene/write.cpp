@@ -19,6 +19,29 @@ std::string num(double x) {
   return scene_io::format_double(x);
 }
 
+// The data of an experiment given in memory (no file), as the loader reads them inline: the
+// junctions and the measured curve as flow maps of columns, ten numbers a line.
+std::string inline_data_yaml(const Experiment& e) {
+  std::string y;
+  auto column = [&](const char* name, const std::vector<double>& c) {
+    y += std::string(y.back() == '{' ? "" : ",\n      ") + name + ": [";
+    for (std::size_t i = 0; i < c.size(); ++i) y += (i ? (i % 10 ? ", " : ",\n        ") : "") + num(c[i]);
+    y += "]";
+  };
+  const JunctionPopulation& j = e.junctions;
+  y += "  junctions: {";
+  column("area_m2", j.area_m2);
+  if (!j.x_m.empty()) column("x_m", j.x_m), column("y_m", j.y_m);
+  y += "}\n";
+  if (e.measured) {
+    y += "  measured: {";
+    column("Q_N", e.measured->Q_N);
+    column("A_m2", e.measured->A_m2);
+    y += "}\n";
+  }
+  return y;
+}
+
 // The rows of the key table whose section is one of `sections`, as "section:\n  leaf: value\n".
 std::string sections_yaml(const Scene& s, std::initializer_list<std::string_view> sections) {
   std::string y, open;
@@ -26,10 +49,16 @@ std::string sections_yaml(const Scene& s, std::initializer_list<std::string_view
     const std::string sec = k.section();
     if (std::find(sections.begin(), sections.end(), sec) == sections.end()) continue;
     if (k.written && !k.written(s)) continue;
-    if (sec != open) y += sec + ":\n", open = sec;
+    if (sec != open) {
+      if (open == "experiment" && s.experiment.file.empty())
+        y += inline_data_yaml(s.experiment);
+      y += sec + ":\n", open = sec;
+    }
     const std::string text = k.text(s);
     y += "  " + k.leaf() + ": " + (k.kind == KeyKind::text ? yaml_quoted(text) : text) + "\n";
   }
+  if (open == "experiment" && s.experiment.file.empty())
+    y += inline_data_yaml(s.experiment);
   return y;
 }
 

@@ -8,27 +8,74 @@ The engine of the `asperity` command line, from Python::
     result.summary["Q_s"], result.series["Q"], result.series["A"]   # SI units, NumPy arrays
     fit = asperity.fit("fits/paper_alpha_b.yaml")                   # NLopt calibration
     store = asperity.sweep("sweeps/paper_exploration.yaml", out="results/x")
-    df = asperity.read_store("results/x")  # pandas DataFrame, provenance in df.attrs
+    df = asperity.read_store("results/x")  # pandas DataFrame, provenance and units in df.attrs
+    scene = asperity.Scene.from_dict({"experiment": {"name": "lab", "mass": 0.2, ...}},
+                                     areas=df_junctions)   # DataFrame: area_m2 [, x_m, y_m]
 
 Errors in inputs raise asperity.InputError (a ValueError) with the one-line message the command
 line prints, ``file:line: key: message``; a solver that cannot go on raises asperity.SolverError.
 Arguments are checked as the command line's options (a thread count from 1 to 1024, a path without
 a NUL byte), the message naming the argument: ``threads: Value 0 not in range 1 to 1024``.
 """
-from __future__ import annotations
-
-import os
-from dataclasses import dataclass, field
-from typing import Any, Mapping, Optional, Sequence, Union
+# Imports under private names: a notebook's dir(asperity) and tab completion show the API only.
+import os as _os
+from dataclasses import dataclass as _dataclass, field as _field
+from typing import Any as _Any, Mapping as _Mapping, Optional as _Optional, Sequence as _Sequence, Union as _Union
 
 from . import _asperity
 from ._asperity import InputError, Scene, SolverError
 
+__version__: str = _asperity.__version__  # the number `asperity --version` prints
+
 __all__ = ["InputError", "SolverError", "Scene", "Result", "load_scene", "run", "measured", "sweep",
-           "fit", "read_store", "version"]
+           "fit", "read_store", "read_series", "units", "version"]
+
+_PathLike = _Union[str, _os.PathLike]
 
 
-def _override_text(key: str, value: Any) -> str:
+def units(column: str) -> str:
+    """The SI unit of a column of a result (an observable, a series column or a scene key), from
+    the engine's tables: "N", "m^2", ...; "1" when dimensionless; "" when not a number or unknown."""
+    tables = _asperity.units()
+    for table in ("series", "observables", "scene_keys"):
+        if column in tables[table]:
+            return tables[table][column]
+    return ""
+
+
+def _units_of(columns, first: str = "observables") -> dict:
+    """{column: unit} for DataFrame attrs, looking in table `first`, then the others."""
+    tables = _asperity.units()
+    order = [first] + [t for t in ("observables", "series", "scene_keys") if t != first]
+    out = {}
+    for c in columns:
+        out[c] = next((tables[t][c] for t in order if c in tables[t]), "")
+    return out
+
+
+def _progress(progress, what: str, unit: str):
+    """(callback(finished, total), bar): `progress` True draws a tqdm bar when tqdm is importable
+    (else nothing), a callable is called as is, False/None draws nothing."""
+    if callable(progress):
+        return progress, None
+    if not progress:
+        return None, None
+    try:
+        from tqdm.auto import tqdm as _tqdm
+    except ImportError:
+        return None, None
+    bar = _tqdm(desc=what, unit=unit, leave=True)
+
+    def update(finished: int, total: int) -> None:
+        if total and bar.total != total:
+            bar.total = total
+            bar.refresh()
+        bar.update(finished - bar.n)
+
+    return update, bar
+
+
+def _override_text(key: str, value: _Any) -> str:
     """One `--set key=value` as the command line spells it (YAML scalars and lists)."""
     if isinstance(value, bool):
         text = "true" if value else "false"
@@ -39,36 +86,47 @@ def _override_text(key: str, value: Any) -> str:
     return f"{key}={text}"
 
 
-def load_scene(path: Union[str, os.PathLike], overrides: Union[Mapping[str, Any], Sequence[str], None] = None) -> Scene:
+def load_scene(path: _PathLike, overrides: _Union[_Mapping[str, _Any], _Sequence[str], None] = None) -> Scene:
     """Loads a scene YAML with overrides ({"model.eta": 50} or ["model.eta=50"]), checked as `--set`."""
     if overrides is None:
         sets: list[str] = []
-    elif isinstance(overrides, Mapping):
+    elif isinstance(overrides, _Mapping):
         sets = [_override_text(k, v) for k, v in overrides.items()]
     else:
         sets = list(overrides)
-    return _asperity.load_scene(os.fspath(path), sets)
+    return _asperity.load_scene(_os.fspath(path), sets)
 
 
-@dataclass
+@_dataclass
 class Result:
     """One run: `summary` (every observable of summary.yaml, SI units), `series` (NumPy arrays
     t [s], X [m], V [m/s], Q [N], A [m²], n_slipping, n_intact), `peaks` (confirmed stick-slip
-    peaks and troughs), `summary_yaml` (the text `asperity run` would write)."""
+    peaks and troughs), `summary_yaml` (the text `asperity run` would write), `units` ({name:
+    unit} of every summary and series entry, from the engine's tables)."""
     summary: dict
     series: dict
     peaks: list
-    summary_yaml: str = field(repr=False)
+    summary_yaml: str = _field(repr=False)
+    units: dict = _field(default_factory=dict, repr=False)
+
+    def frame(self):
+        """The series as a pandas DataFrame, one row per sample, units in df.attrs["units"]."""
+        import pandas as pd  # only needed here
+        df = pd.DataFrame(self.series)
+        df.attrs["units"] = _units_of(df.columns, "series")
+        return df
 
 
-def run(scene: Union[Scene, str, os.PathLike], overrides=None) -> Result:
+def run(scene: _Union[Scene, str, _os.PathLike], overrides=None) -> Result:
     """Runs a scene (a Scene, or a path loaded with `overrides`)."""
     if not isinstance(scene, Scene):
         scene = load_scene(scene, overrides)
     elif overrides:
         raise ValueError("overrides apply when loading: asperity.load_scene(path, overrides)")
     r = _asperity.run(scene)
-    return Result(r["summary"], r["series"], r["peaks"], r["summary_yaml"])
+    units_ = _units_of(r["summary"], "observables")
+    units_.update(_units_of(r["series"], "series"))
+    return Result(r["summary"], r["series"], r["peaks"], r["summary_yaml"], units_)
 
 
 def measured(scene: Scene):
@@ -76,39 +134,53 @@ def measured(scene: Scene):
     return _asperity.measured(scene)
 
 
-def sweep(campaign: Union[str, os.PathLike], out: Union[str, os.PathLike] = "", threads: Optional[int] = None,
-          shard: str = "0/1") -> dict:
+def sweep(campaign: _PathLike, out: _PathLike = "", threads: _Optional[int] = None,
+          shard: str = "0/1", progress=True) -> dict:
     """Runs (or resumes) a campaign into a store, as `asperity sweep`; returns its counts.
     `threads`: 1 to 1024, as `--threads` (None: every hardware thread). Ctrl-C raises
     KeyboardInterrupt within a second; the store's journal keeps every finished point, so the
-    same call again resumes."""
-    return _asperity.sweep(os.fspath(campaign), os.fspath(out), threads, shard)
+    same call again resumes. `progress`: a tqdm bar of points when tqdm is installed (False:
+    none; a callable: called as progress(finished, total) every 0.1 s and at the end)."""
+    callback, bar = _progress(progress, "sweep", "point")
+    try:
+        return _asperity.sweep(_os.fspath(campaign), _os.fspath(out), threads, shard, callback)
+    finally:
+        if bar is not None:
+            bar.close()
 
 
-def fit(fit_file: Union[str, os.PathLike], out: Union[str, os.PathLike] = "", threads: Optional[int] = 2,
-        profile: bool = False, error_bars: bool = False) -> dict:
+def fit(fit_file: _PathLike, out: _PathLike = "", threads: _Optional[int] = 2,
+        profile: bool = False, error_bars: bool = False, progress=True) -> dict:
     """Runs a calibration (as `asperity fit`); writes its results folder when `out` is given,
     journaling every evaluation there as it finishes (Ctrl-C raises KeyboardInterrupt within a
     second; the same call again resumes). `threads`: 1 to 1024, as `--threads` (None: all).
     Returns {"name", "fits": [{"label", "best": {key: value}, "objective", "evaluations",
     "stop_reason", "failure", "runs": {experiment: summary}}], "wall_s", "replayed", "computed",
-    "fit_yaml"} (replayed: evaluations answered from the journal in `out`; computed: run now)."""
-    return _asperity.fit(os.fspath(fit_file), os.fspath(out), threads, profile, error_bars)
+    "fit_yaml"} (replayed: evaluations answered from the journal in `out`; computed: run now).
+    `progress`: a tqdm counter of the optimizations' evaluations when tqdm is installed (False:
+    none; a callable: called as progress(evaluations, 0) every 0.1 s and at the end)."""
+    callback, bar = _progress(progress, "fit", "evaluation")
+    try:
+        return _asperity.fit(_os.fspath(fit_file), _os.fspath(out), threads, profile, error_bars, callback)
+    finally:
+        if bar is not None:
+            bar.close()
 
 
-def read_store(path: Union[str, os.PathLike]):
+def read_store(path: _PathLike):
     """A sweep store's points.csv as a pandas DataFrame; provenance.yaml (parsed when PyYAML is
-    installed, else its text) in df.attrs["provenance"], the store path in df.attrs["store"]."""
-    path = os.fspath(path)
+    installed, else its text) in df.attrs["provenance"], the store path in df.attrs["store"],
+    {column: unit} in df.attrs["units"]."""
+    path = _os.fspath(path)
     _asperity.check_no_nul(path, "path")
     import pandas as pd  # only needed here
 
     # round_trip: the shortest round-trip decimals of the store read back to the same doubles
     # (pandas' default fast parser may be off in the last bit).
-    df = pd.read_csv(os.path.join(path, "points.csv"), float_precision="round_trip")
-    prov_file = os.path.join(path, "provenance.yaml")
-    provenance: Any = None
-    if os.path.exists(prov_file):
+    df = pd.read_csv(_os.path.join(path, "points.csv"), float_precision="round_trip")
+    prov_file = _os.path.join(path, "provenance.yaml")
+    provenance: _Any = None
+    if _os.path.exists(prov_file):
         with open(prov_file, encoding="utf-8") as f:
             text = f.read()
         try:
@@ -118,21 +190,25 @@ def read_store(path: Union[str, os.PathLike]):
             provenance = text
     df.attrs["provenance"] = provenance
     df.attrs["store"] = path
+    df.attrs["units"] = _units_of(df.columns, "observables")
     return df
 
 
-def read_series(path: Union[str, os.PathLike], index: int):
+def read_series(path: _PathLike, index: int):
     """The sampled series of one point of a sweep store (campaign `series: true`) as a pandas
     DataFrame, one row per sample; KeyError when the store holds none for that point (not stored,
     failed, or no series). Read from the store's series.csv by the point's scene hash, as
-    `asperity` writes and merges it (or from series/HASH.csv in a store written before it)."""
+    `asperity` writes and merges it (or from series/HASH.csv in a store written before it);
+    {column: unit} in df.attrs["units"]."""
     import io
 
-    texts = _asperity.store_series(os.fspath(path), [int(index)])
+    texts = _asperity.store_series(_os.fspath(path), [int(index)])
     if int(index) not in texts:
-        raise KeyError(f"no series of point {index} in {os.fspath(path)}")
+        raise KeyError(f"no series of point {index} in {_os.fspath(path)}")
     import pandas as pd  # only needed here
-    return pd.read_csv(io.StringIO(texts[int(index)]), float_precision="round_trip")
+    df = pd.read_csv(io.StringIO(texts[int(index)]), float_precision="round_trip")
+    df.attrs["units"] = _units_of(df.columns, "series")
+    return df
 
 
 def version() -> str:
