@@ -31,6 +31,10 @@ inline double sheared_area(double A0_m2, double f_n, double alpha_b, double p) {
   return A0_m2 - alpha_b * f_n * f_n / std::pow(A0_m2, p);
 }
 
+// Eq. (3) in the dimensionless force φ = s f (s = ContactLaw::force_scale): A = A0 (1 − φ²) [m²].
+// The solvers, which work in φ (or ψ), call this one form.
+inline double sheared_area_phi(double A0_m2, double phi) { return A0_m2 * (1.0 - phi * phi); }
+
 // The parameters that turn areas into forces; one value shared by all junctions of a run.
 struct ContactLaw {
   double E = 1.6e6;        // Pa

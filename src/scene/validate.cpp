@@ -81,7 +81,7 @@ void check_area_law_domain(const Scene& s, const KeyOrigins& o) {
   const auto [lo, hi] = std::minmax_element(s.experiment.junctions.area_m2.begin(), s.experiment.junctions.area_m2.end());
   for (const double A0 : {*lo, *hi}) {  // φ_s is monotonic in A0
     const double phi = law.slip_phi(A0);
-    const double kept = 1.0 - phi * phi;
+    const double kept = sheared_area_phi(1.0, phi);  // A/A0 at the first slip
     if (kept >= kMinSlipAreaFraction) continue;
     // Blame a model key the user gave: one set by --set or a sweep (no file mark) first.
     std::string key;

@@ -75,7 +75,7 @@ double BinnedUniversalSum::exact_area(const Bin& b, double X) const {
   for (std::uint32_t s = b.begin; s < b.end; ++s) {
     if (!present_flag_[s]) continue;
     const double psi = c_[s] * X, phi = psi * law_.g(psi);
-    A += A0_[s] * (1.0 - phi * phi);
+    A += sheared_area_phi(A0_[s], phi);
   }
   return A;
 }

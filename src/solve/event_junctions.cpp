@@ -66,7 +66,7 @@ double EventJunctions::area(double X) const {
     const double d = X - nl_x_[j];
     const double psi = nl_c_[j] * d;
     const double phi = psi * table_->g(psi);
-    A += nl_A0_[j] * (1.0 - phi * phi);
+    A += sheared_area_phi(nl_A0_[j], phi);
   }
   return A;
 }

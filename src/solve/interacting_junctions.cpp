@@ -299,7 +299,7 @@ InteractingJunctions::Node InteractingJunctions::solve(double X) const {
     if (nl_[q]) {
       const std::size_t i = idx_[q];
       const double phi = s_[i] * node.f[q];
-      A += J_.A0[i] * (1.0 - phi * phi);
+      A += sheared_area_phi(J_.A0[i], phi);
       dA -= 2.0 * J_.A0[i] * phi * s_[i] * node.a[q];
     }
   }
