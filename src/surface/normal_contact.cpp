@@ -285,9 +285,9 @@ NormalContact solve_normal_contact(const HeightMap& map, const NormalContactSett
   double gbar = 0;
   for (int it = 1; it <= s.max_iterations; ++it) {
     // u = K p here. Gap on the contact set, shifted by its mean there (the unknown approach).
-    const auto [sum, count] = block_sums<2>(nn, T, [&](std::size_t k, auto& a) {
+    const auto [sum, count, square] = block_sums<3>(nn, T, [&](std::size_t k, auto& a) {
       g[k] = u[k] + h0[k];
-      if (p[k] > 0) a[0] += g[k], a[1] += 1;
+      if (p[k] > 0) a[0] += g[k], a[1] += 1, a[2] += g[k] * g[k];
     });
     const double nc = count;
     gbar = nc > 0 ? sum / nc : 0.0;
@@ -296,7 +296,7 @@ NormalContact solve_normal_contact(const HeightMap& map, const NormalContactSett
       if (p[k] > 0) a[0] += g[k] * g[k];
     })[0];
     // Conjugate direction on the contact set.
-    const double beta = delta ? G / G_old : 0.0;
+    const double beta = delta && G_old > 0 ? G / G_old : 0.0;  // G_old = 0: the last step was exact
     for_each_pixel(nn, T, [&](std::size_t k) { t[k] = p[k] > 0 ? g[k] + beta * t[k] : 0.0; });
     G_old = G;
     K.apply(t, r);
@@ -308,7 +308,11 @@ NormalContact solve_normal_contact(const HeightMap& map, const NormalContactSett
     const auto [gt, rt] = block_sums<2>(nn, T, [&](std::size_t k, auto& a) {
       if (p[k] > 0) a[0] += g[k] * t[k], a[1] += (r[k] - rbar) * t[k];
     });
-    const double tau = rt != 0 ? gt / rt : 0.0;
+    // A gap flat on the contact to rounding (rms deviation ≤ 1e-12 of its rms) is the answer: a step
+    // would be rounding over rounding (at Westergaard's full contact such steps grew until the CG
+    // broke down).
+    const bool exact = G <= 1e-24 * square;
+    const double tau = rt != 0 && !exact ? gt / rt : 0.0;
     p_old.swap(p);
     // The step; points outside the contact that the flat overlaps join it. `changed` counts the
     // points where the new pressures are not p − τt (clipped at zero, or joining).
@@ -346,8 +350,10 @@ NormalContact solve_normal_contact(const HeightMap& map, const NormalContactSett
     }
     // u = K p for the next iteration. Where no point was clipped or joined, p = f (p_old − τ t), so
     // K p = f (u − τ r) by linearity, without a convolution (within rounding: u is recomputed
-    // whenever the contact set changes, and at the end).
-    if (changed == 0)
+    // whenever the contact set changes, and at the end). Not for periodic maps: at Westergaard's
+    // exact full contact the steps are rounding over rounding and the updated u drifted from K p
+    // until the CG broke down (a recomputed u stays at rounding).
+    if (changed == 0 && !s.periodic)
       for_each_pixel(nn, T, [&](std::size_t k) { u[k] = f * (u[k] - tau * r[k]); });
     else
       K.apply(p, u), ++out.convolutions;
