@@ -50,17 +50,21 @@ std::vector<ContactBenchRow> run_contact_bench(const ContactBenchOptions& opt) {
     c.E_star_Pa = 2.13e6;
     c.load_N = 4.0;
     c.tolerance = opt.tolerance;
+    c.threads = opt.threads;
     ContactBenchRow r;
     r.n = n;
+    r.threads = opt.threads;
     const auto t0 = Clock::now();
     const NormalContact res = solve_normal_contact(m, c);
     r.wall_s = seconds_since(t0);
     r.iterations = res.iterations;
+    r.coarse_iterations = res.coarse_iterations;
+    r.convolutions = res.convolutions;
     r.converged = res.converged;
     r.per_iteration_s = r.wall_s / std::max(1, res.iterations);
     r.area_m2 = res.area_m2;
     {
-      FftBuffers f(2 * n);
+      FftBuffers f(2 * n, opt.threads);
       for (std::size_t k = 0; k < 4 * n * n; ++k) f.real()[k] = std::sin(1e-3 * static_cast<double>(k));
       std::vector<double> times;
       for (int rep = 0; rep < 7; ++rep) {
@@ -74,8 +78,9 @@ std::vector<ContactBenchRow> run_contact_bench(const ContactBenchOptions& opt) {
     }
     r.max_rss_kB = max_rss_kB();
     if (opt.log)
-      *opt.log << "  " << n << "^2 (padded " << 2 * n << "^2): " << r.iterations << " CG iterations"
-               << (r.converged ? "" : " (NOT converged)") << ", " << r.wall_s << " s, " << r.per_iteration_s * 1e3
+      *opt.log << "  " << n << "^2 (padded " << 2 * n << "^2), " << r.threads << " thread(s): " << r.iterations
+               << " CG iterations (+ " << r.coarse_iterations << " on coarser grids), " << r.convolutions
+               << " FFT pairs" << (r.converged ? "" : " (NOT converged)") << ", " << r.wall_s << " s, " << r.per_iteration_s * 1e3
                << " ms per iteration = " << r.per_iteration_s / (2 * r.fft_pair_s) << " x two FFT pairs ("
                << r.fft_pair_s * 1e3 << " ms each), peak RSS " << r.max_rss_kB / 1024 << " MB" << std::endl;
     rows.push_back(r);
@@ -85,9 +90,10 @@ std::vector<ContactBenchRow> run_contact_bench(const ContactBenchOptions& opt) {
 
 void write_contact_bench(const fs::path& dir, const std::vector<ContactBenchRow>& rows) {
   std::ostringstream o;
-  o << "n,padded,iterations,converged,wall_s,per_iteration_s,fft_pair_s,per_iteration_over_two_fft_pairs,area_m2,max_rss_kB\n";
+  o << "n,padded,threads,iterations,coarse_iterations,convolutions,converged,wall_s,per_iteration_s,fft_pair_s,per_iteration_over_two_fft_pairs,area_m2,max_rss_kB\n";
   for (const auto& r : rows)
-    o << r.n << ',' << 2 * r.n << ',' << r.iterations << ',' << (r.converged ? "true" : "false") << ','
+    o << r.n << ',' << 2 * r.n << ',' << r.threads << ',' << r.iterations << ',' << r.coarse_iterations << ','
+      << r.convolutions << ',' << (r.converged ? "true" : "false") << ','
       << csv_number(r.wall_s) << ',' << csv_number(r.per_iteration_s) << ',' << csv_number(r.fft_pair_s) << ','
       << csv_number(r.per_iteration_s / (2 * r.fft_pair_s)) << ',' << csv_number(r.area_m2) << ',' << r.max_rss_kB << '\n';
   fs::create_directories(dir);

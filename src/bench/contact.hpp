@@ -1,8 +1,9 @@
 #pragma once
 // `asperity bench contact`: the FFT boundary-element normal contact (surface/normal_contact.hpp)
 // of a sphere carrying a self-affine surface, at several grid sizes: wall time, CG iterations,
-// time per iteration beside the time of the two FFT pairs (forward + inverse on the padded grid)
-// an iteration needs, timed in the same run, and peak memory.
+// time per iteration beside the time of two FFT pairs (FFTW's 2-D r2c + c2r on the padded grid, the
+// work of one Polonsky–Keer iteration done plainly), timed in the same run with the same threads,
+// and peak memory.
 #include <cstddef>
 #include <filesystem>
 #include <ostream>
@@ -12,10 +13,13 @@ namespace asperity {
 
 struct ContactBenchRow {
   std::size_t n = 0;               // pixels per side (the padded grid is 2n)
-  int iterations = 0;
+  int threads = 1;
+  int iterations = 0;              // on the n grid
+  int coarse_iterations = 0;       // on the coarser grids of the coarse-to-fine start
+  int convolutions = 0;            // FFT pairs on the n grid (fewer than 2 per iteration: see normal_contact.cpp)
   bool converged = false;
-  double wall_s = 0;               // the whole solve
-  double per_iteration_s = 0;
+  double wall_s = 0;               // the whole solve (kernel, coarse grids, iterations)
+  double per_iteration_s = 0;      // wall_s / iterations
   double fft_pair_s = 0;           // one forward + inverse FFT on 2n × 2n, median of several
   double area_m2 = 0;
   long max_rss_kB = 0;             // of the process after this size (sizes in increasing order)
@@ -24,6 +28,7 @@ struct ContactBenchRow {
 struct ContactBenchOptions {
   std::vector<std::size_t> sizes{256, 512, 1024};
   double tolerance = 1e-8;
+  int threads = 1;
   std::ostream* log = nullptr;
 };
 

@@ -188,9 +188,10 @@ int contact(const BenchOptions& b) {
   ContactBenchOptions o;
   if (!b.contact_sizes.empty()) o.sizes = b.contact_sizes;
   if (b.quick) o.sizes = {128, 256};
+  o.threads = b.threads;
   o.log = &std::cout;
   machine_line(b);
-  std::printf("normal contact, FFT boundary elements (a sphere with a self-affine surface, 4 N; one thread)\n");
+  std::printf("normal contact, FFT boundary elements (a sphere with a self-affine surface, 4 N; %d thread(s))\n", b.threads);
   const auto rows = run_contact_bench(o);
   write_contact_bench(b.out, rows);
   write_marker(b.out, "bench");

@@ -21,6 +21,13 @@ struct NormalContactSettings {
   double load_N = 0;             // total normal load
   double tolerance = 1e-10;      // on Σ|Δp|A / P between two iterations
   int max_iterations = 5000;
+  // OpenMP threads of the FFTs (FFTW's) and of the loops over pixels. The sums are taken in a fixed
+  // order, so the result does not depend on the number of threads (see the tests).
+  int threads = 1;
+  // Isolated contacts on grids of ≥ 128 pixels (n even) start from the solution on the grid of
+  // half the width, interpolated (coarse-to-fine), instead of a uniform pressure: the same answer
+  // to the tolerance in fewer iterations.
+  bool coarse_start = true;
 };
 
 struct NormalContact {
@@ -28,7 +35,9 @@ struct NormalContact {
   std::vector<double> gap_m;        // per pixel, ≥ 0 (0 in contact, to the solver's tolerance)
   double area_m2 = 0;               // pixels in contact × pixel area
   double approach_m = 0;            // rigid-body approach of the flat past the highest summit
-  int iterations = 0;
+  int iterations = 0;               // on this grid
+  int coarse_iterations = 0;        // on the coarser grids of the coarse-to-fine start, all of them
+  int convolutions = 0;             // kernel convolutions (one FFT pair each) on this grid
   double residual = 0;              // the last Σ|Δp|A / P
   bool converged = false;
 };
