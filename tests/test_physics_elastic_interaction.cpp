@@ -13,51 +13,35 @@ namespace {
 
 constexpr double kE = 1.6e6, kNu = 0.5;
 
-// ∫∫ K(x_i − x_j) over disc i (radius a, centre d) and disc j (radius b, centre 0), each
-// normalised to a unit mean: Gauss–Legendre in r² (area-uniform) × midpoint in θ, n × 2n nodes
-// per disc. Exact for smooth integrands as n grows; the kernel is smooth for separated discs.
-double direct_disc_average(double dx, double dy, double a, double b, int n_theta) {
+// Radial nodes r/R on [0, 1] and weights summing to one, ±abscissa of 40-point Gauss–Legendre:
+//  - uniform traction: in s = r²/R² (area-uniform), r/R = sqrt(s);
+//  - the rigid punch's traction 1/(2πR sqrt(R² − r²)): with r = R sin φ its measure is
+//    sin φ dφ dθ / 2π, smooth in φ ∈ [0, π/2].
+void radial_nodes(bool rigid, std::vector<double>& rho, std::vector<double>& wr) {
   using G = boost::math::quadrature::gauss<double, 40>;
   const auto& x = G::abscissa();
   const auto& w = G::weights();
-  // Nodes in s = r²/R² ∈ [0, 1] (area-uniform), ±abscissa on [-1, 1] mapped to [0, 1].
-  std::vector<double> s, ws;
   for (std::size_t k = 0; k < x.size(); ++k)
     for (const double sign : {-1.0, 1.0}) {
       if (k == 0 && sign > 0 && x[0] == 0.0) continue;
-      s.push_back(0.5 * (1 + sign * x[k]));
-      ws.push_back(0.5 * w[k]);
+      if (rigid) {
+        const double phi = 0.25 * M_PI * (1 + sign * x[k]);
+        rho.push_back(std::sin(phi));
+        wr.push_back(0.25 * M_PI * w[k] * std::sin(phi));
+      } else {
+        rho.push_back(std::sqrt(0.5 * (1 + sign * x[k])));
+        wr.push_back(0.5 * w[k]);
+      }
     }
-  std::vector<double> px, py, pw;
-  for (std::size_t k = 0; k < s.size(); ++k)
-    for (int t = 0; t < n_theta; ++t) {
-      const double th = (t + 0.5) * 2 * M_PI / n_theta;
-      px.push_back(std::sqrt(s[k]) * std::cos(th));
-      py.push_back(std::sqrt(s[k]) * std::sin(th));
-      pw.push_back(ws[k] / n_theta);
-    }
-  double sum = 0;
-  for (std::size_t i = 0; i < px.size(); ++i)
-    for (std::size_t j = 0; j < px.size(); ++j)
-      sum += pw[i] * pw[j] * cerruti_compliance(dx + a * px[i] - b * px[j], dy + a * py[i] - b * py[j], kE, kNu);
-  return sum;
 }
 
-// The same double integral with the rigid punch's traction 1/(2πR sqrt(R² − r²)) on both discs:
-// with r = R sin φ its measure is sin φ dφ dθ / 2π, smooth in φ ∈ [0, π/2] (Gauss–Legendre,
-// 40 nodes) × midpoint in θ. An integration independent of the series and of its moments.
-double direct_rigid_average(double dx, double dy, double a, double b, int n_theta) {
-  using G = boost::math::quadrature::gauss<double, 40>;
-  const auto& x = G::abscissa();
-  const auto& w = G::weights();
-  std::vector<double> rho, wr;  // r/R and weight
-  for (std::size_t k = 0; k < x.size(); ++k)
-    for (const double sign : {-1.0, 1.0}) {
-      if (k == 0 && sign > 0 && x[0] == 0.0) continue;
-      const double phi = 0.25 * M_PI * (1 + sign * x[k]);
-      rho.push_back(std::sin(phi));
-      wr.push_back(0.25 * M_PI * w[k] * std::sin(phi));
-    }
+// ∫∫ K(x_i − x_j) over disc i (radius a, centre d) and disc j (radius b, centre 0), each
+// weighted by its traction (uniform or the rigid punch's) normalised to a unit total: the radial
+// nodes above × midpoint in θ. Exact for smooth integrands as the nodes grow; the kernel is smooth
+// for separated discs. Independent of the series and of its moments.
+double direct_average(double dx, double dy, double a, double b, int n_theta, bool rigid) {
+  std::vector<double> rho, wr;
+  radial_nodes(rigid, rho, wr);
   std::vector<double> px, py, pw;
   for (std::size_t k = 0; k < rho.size(); ++k)
     for (int t = 0; t < n_theta; ++t) {
@@ -71,6 +55,12 @@ double direct_rigid_average(double dx, double dy, double a, double b, int n_thet
     for (std::size_t j = 0; j < px.size(); ++j)
       sum += pw[i] * pw[j] * cerruti_compliance(dx + a * px[i] - b * px[j], dy + a * py[i] - b * py[j], kE, kNu);
   return sum;
+}
+double direct_disc_average(double dx, double dy, double a, double b, int n_theta) {
+  return direct_average(dx, dy, a, b, n_theta, false);
+}
+double direct_rigid_average(double dx, double dy, double a, double b, int n_theta) {
+  return direct_average(dx, dy, a, b, n_theta, true);
 }
 
 }  // namespace

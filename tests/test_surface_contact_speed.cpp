@@ -8,6 +8,7 @@
 #include <cstring>
 #include <vector>
 
+#include "bench/contact.hpp"
 #include "surface/height_map.hpp"
 #include "surface/normal_contact.hpp"
 #include "surface/self_affine.hpp"
@@ -17,27 +18,8 @@ using namespace asperity;
 namespace {
 
 // The bench's workload (src/bench/contact.cpp) at n pixels: a rough sphere, 4 N, E* 2.13 MPa.
-HeightMap rough_sphere(std::size_t n) {
-  SelfAffineSpec s;
-  s.n = n;
-  s.length_m = 4e-3;
-  s.hurst = 0.8;
-  s.rolloff_wavelength_m = 1e-3;
-  s.short_wavelength_m = 4 * s.length_m / static_cast<double>(n);
-  s.rms_height_m = 1e-6;
-  s.seed = 3;
-  HeightMap m = self_affine_surface(s);
-  add_sphere(m, 9.5e-3);
-  return m;
-}
-
-NormalContactSettings settings(double tolerance) {
-  NormalContactSettings c;
-  c.E_star_Pa = 2.13e6;
-  c.load_N = 4.0;
-  c.tolerance = tolerance;
-  return c;
-}
+HeightMap rough_sphere(std::size_t n) { return contact_bench_surface(n); }
+NormalContactSettings settings(double tolerance) { return contact_bench_settings(tolerance); }
 
 }  // namespace
 

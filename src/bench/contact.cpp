@@ -28,28 +28,38 @@ long max_rss_kB() {
 
 }  // namespace
 
+// A PDMS-like sphere (R 9.5 mm, E* 2.13 MPa) at the largest stand-in load's scale (4 N) on a
+// 4 mm box, carrying a self-affine surface (H 0.8, λ_r 1 mm, λ_s 4 pixels, h_rms 1 µm): an
+// illustration of the workload, not a measured topography.
+HeightMap contact_bench_surface(std::size_t n) {
+  SelfAffineSpec s;
+  s.n = n;
+  s.length_m = 4e-3;
+  s.hurst = 0.8;
+  s.rolloff_wavelength_m = 1e-3;
+  s.short_wavelength_m = 4 * s.length_m / static_cast<double>(n);
+  s.rms_height_m = 1e-6;
+  s.seed = 3;
+  HeightMap m = self_affine_surface(s);
+  add_sphere(m, 9.5e-3);
+  return m;
+}
+
+NormalContactSettings contact_bench_settings(double tolerance) {
+  NormalContactSettings c;
+  c.E_star_Pa = 2.13e6;
+  c.load_N = 4.0;
+  c.tolerance = tolerance;
+  return c;
+}
+
 std::vector<ContactBenchRow> run_contact_bench(const ContactBenchOptions& opt) {
   std::vector<std::size_t> sizes = opt.sizes;
   std::sort(sizes.begin(), sizes.end());
   std::vector<ContactBenchRow> rows;
   for (const std::size_t n : sizes) {
-    // A PDMS-like sphere (R 9.5 mm, E* 2.13 MPa) at the largest stand-in load's scale (4 N) on a
-    // 4 mm box, carrying a self-affine surface (H 0.8, λ_r 1 mm, λ_s 4 pixels, h_rms 1 µm):
-    // an illustration of the workload, not a measured topography.
-    SelfAffineSpec s;
-    s.n = n;
-    s.length_m = 4e-3;
-    s.hurst = 0.8;
-    s.rolloff_wavelength_m = 1e-3;
-    s.short_wavelength_m = 4 * s.length_m / static_cast<double>(n);
-    s.rms_height_m = 1e-6;
-    s.seed = 3;
-    HeightMap m = self_affine_surface(s);
-    add_sphere(m, 9.5e-3);
-    NormalContactSettings c;
-    c.E_star_Pa = 2.13e6;
-    c.load_N = 4.0;
-    c.tolerance = opt.tolerance;
+    const HeightMap m = contact_bench_surface(n);
+    NormalContactSettings c = contact_bench_settings(opt.tolerance);
     c.threads = opt.threads;
     ContactBenchRow r;
     r.n = n;

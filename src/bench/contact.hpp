@@ -9,6 +9,9 @@
 #include <ostream>
 #include <vector>
 
+#include "surface/height_map.hpp"
+#include "surface/normal_contact.hpp"
+
 namespace asperity {
 
 struct ContactBenchRow {
@@ -31,6 +34,11 @@ struct ContactBenchOptions {
   int threads = 1;
   std::ostream* log = nullptr;
 };
+
+// The workload at n pixels: a PDMS-like sphere (R 9.5 mm) carrying a self-affine surface on a 4 mm
+// box, and its settings (E* 2.13 MPa, 4 N, the tolerance given); the tests solve the same one.
+HeightMap contact_bench_surface(std::size_t n);
+NormalContactSettings contact_bench_settings(double tolerance);
 
 std::vector<ContactBenchRow> run_contact_bench(const ContactBenchOptions& opt);
 void write_contact_bench(const std::filesystem::path& dir, const std::vector<ContactBenchRow>& rows);  // DIR/contact.csv

@@ -38,16 +38,7 @@ void get_positive(const MapView& m, const std::string& k, double& out, const cha
   if (m.find(k)) out = positive(m, k, unit);
 }
 
-std::uint64_t seed_value(const MapView& m, const std::string& k) {
-  const YAML::Node n = m.require(k);
-  if (!n.IsScalar()) m.fail_at(n, k, "expected a non-negative integer seed, got " + scene_io::node_kind(n));
-  const std::string s(scene_io::trim(n.Scalar()));
-  std::uint64_t v = 0;
-  const auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
-  if (s.empty() || ec != std::errc() || p != s.data() + s.size())
-    m.fail_at(n, k, "expected a non-negative integer seed below 2^64, got " + scene_io::quote(s));
-  return v;
-}
+std::uint64_t seed_value(const MapView& m, const std::string& k) { return m.seed(m.require(k), k); }
 
 // n pixels per side in [lo, kMaxHeightMapSide] (even when asked): checked before any allocation.
 std::size_t side(const MapView& m, bool even) {

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
+#include <charconv>
 #include <cstdio>
 #include <cstdint>
 #include <cstring>
@@ -393,6 +394,16 @@ int MapView::integer(const YAML::Node& n, const std::string& k) const {
   if (!n.IsDefined() || n.IsNull()) fail_at(n, k, "missing value (expected an integer)");
   int v = 0;
   if (!n.IsScalar() || !parse_int(n.Scalar(), v)) fail_at(n, k, "expected an integer, got " + node_kind(n));
+  return v;
+}
+
+std::uint64_t MapView::seed(const YAML::Node& n, const std::string& k) const {
+  if (!n.IsScalar()) fail_at(n, k, "expected a non-negative integer seed, got " + node_kind(n));
+  const std::string s(trim(n.Scalar()));
+  std::uint64_t v = 0;
+  const auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+  if (s.empty() || ec != std::errc() || p != s.data() + s.size())
+    fail_at(n, k, "expected a non-negative integer seed below 2^64, got " + quote(s));
   return v;
 }
 

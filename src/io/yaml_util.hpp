@@ -92,6 +92,8 @@ class MapView {
   // Typed values. `unit` names the SI unit for the "1.6 MPa" message (nullptr: dimensionless).
   double number(const YAML::Node& n, const std::string& k, const char* unit) const;
   int integer(const YAML::Node& n, const std::string& k) const;
+  // A random seed: a non-negative integer below 2^64, written out in full.
+  std::uint64_t seed(const YAML::Node& n, const std::string& k) const;
   bool boolean(const YAML::Node& n, const std::string& k) const;
   std::string string(const YAML::Node& n, const std::string& k) const;
   std::vector<std::string> string_list(const YAML::Node& n, const std::string& k) const;
