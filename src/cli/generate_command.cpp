@@ -25,6 +25,7 @@ struct GenerateCliOptions {
   std::string out = "data/standin";
   std::string scenes;
   bool quiet = false;
+  int threads = 0;  // -j: the topography contact solve's threads (0: every hardware thread)
 };
 
 // Folders written before markers existed: the stand-in README's first line, or scenes that all
@@ -53,7 +54,7 @@ int generate_topography(const GenerateCliOptions& o) {
   if (!o.scenes.empty())
     throw InputError("--scenes", 0, "", "a topography recipe writes one experiment and no scenes; leave out --scenes");
   check_ours(o.out, kTopographyMarker, "--out");
-  const TopographyJunctions t = build_topography_junctions(recipe);
+  const TopographyJunctions t = build_topography_junctions(recipe, threads_or_all(o.threads));
   write_topography_experiment(recipe, t, o.out);
   write_marker(o.out, kTopographyMarker);
   if (!o.quiet) {
@@ -99,6 +100,7 @@ Command add_generate_command(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--scenes", opt->scenes,
                   "Also write one paper scene per experiment into this folder (e.g. scenes/paper)");
+  add_threads_option(sub, opt->threads, "the topography contact solve's FFTs and sums (same bytes with any count)");
   add_quiet_flag(sub, opt->quiet);
   return Command{sub, [opt](const Invocation&) { return generate(*opt); }};
 }

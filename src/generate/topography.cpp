@@ -271,7 +271,7 @@ std::size_t merge_overlapping_junctions(JunctionPopulation& J) {
   return merges;
 }
 
-TopographyJunctions build_topography_junctions(const TopographyRecipe& r) {
+TopographyJunctions build_topography_junctions(const TopographyRecipe& r, int threads) {
   const std::string display = display_of(r.file);
   TopographyJunctions t;
   t.recipe_sha256 = sha256_hex(scene_io::read_input_file(r.file, display, scene_io::kMaxYamlBytes));
@@ -290,6 +290,7 @@ TopographyJunctions build_topography_junctions(const TopographyRecipe& r) {
   s.load_N = r.load_N;
   s.tolerance = r.tolerance;
   s.max_iterations = r.max_iterations;
+  s.threads = threads;
   NormalContact c;
   try {
     c = solve_normal_contact(map, s);

@@ -81,7 +81,8 @@ struct TopographyJunctions {
 
 // Runs the recipe (surface → sphere → contact → clusters → merged junctions). InputError when
 // the contact solve does not converge within max_iterations.
-TopographyJunctions build_topography_junctions(const TopographyRecipe& recipe);
+// `threads`: the contact solve's FFTW and loop threads (the bytes do not depend on it).
+TopographyJunctions build_topography_junctions(const TopographyRecipe& recipe, int threads = 1);
 
 // The text of junctions.csv: '#' provenance lines, then area_m2,x_m,y_m (shortest round-trip
 // numbers). Deterministic.
