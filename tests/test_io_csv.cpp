@@ -18,17 +18,23 @@ using asperity::testing::write_text;
 
 namespace {
 
-// The one-line message read_numeric_csv gives for `text` (empty when it reads).
-std::string error_of(const std::string& text) {
+// The one-line message `read` gives for a file holding `text` (empty when it reads).
+template <class Read>
+std::string message_of(const std::string& text, Read read) {
   const fs::path p = write_text(temp_path("asperity-io-csv", ".csv"), text);
+  std::string message;
   try {
-    read_numeric_csv(p, "t.csv", {"a", "b"}, {"a"});
+    read(p);
   } catch (const InputError& e) {
-    fs::remove(p);
-    return e.what();
+    message = e.what();
   }
   fs::remove(p);
-  return "";
+  return message;
+}
+
+// ... of read_numeric_csv.
+std::string error_of(const std::string& text) {
+  return message_of(text, [](const fs::path& p) { read_numeric_csv(p, "t.csv", {"a", "b"}, {"a"}); });
 }
 
 }  // namespace
@@ -96,15 +102,7 @@ namespace {
 // The one-line message read_numeric_matrix_csv gives for `text` (empty when it reads), with
 // caps of 3 rows and 3 columns.
 std::string matrix_error_of(const std::string& text) {
-  const fs::path p = write_text(temp_path("asperity-io-csv-matrix", ".csv"), text);
-  try {
-    read_numeric_matrix_csv(p, "m.csv", "h_m", 3, 3);
-  } catch (const InputError& e) {
-    fs::remove(p);
-    return e.what();
-  }
-  fs::remove(p);
-  return "";
+  return message_of(text, [](const fs::path& p) { read_numeric_matrix_csv(p, "m.csv", "h_m", 3, 3); });
 }
 
 }  // namespace
