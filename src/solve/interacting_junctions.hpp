@@ -83,6 +83,7 @@ class InteractingJunctions {
   Node solve(double X) const;
   const Node& node_at(double X) const;  // the cache's node at X, solved and inserted if needed
   std::size_t covering_segment(double X) const;  // extends and refines the cache to cover X
+  std::size_t continuation_node(double X) const;  // past the next slip: see the .cpp (npos: none)
   bool segment_ok(std::size_t s) const;
   void refine_all() const;  // splits every piece whose estimated error is over the tolerance
   double threshold(std::size_t q) const;  // N, the slip force of position q
@@ -91,10 +92,14 @@ class InteractingJunctions {
   // time, most overloaded first; then the new slip positions. Returns how many slipped.
   std::int64_t settle(double X, std::size_t k);
   void find_thresholds(double X);
-  void remove_pinned(std::size_t q, double f_slip);  // rank-one removal of position q from P
+  // Rank-one removal of position q from P; at_X: the old set's solution at X (or null), from
+  // which the new set's seed there is predicted.
+  void remove_pinned(std::size_t q, double f_slip, const Node* at_X, double X);
+  // The iteration's start at X: f and df/dX per position of P (see the .cpp).
+  void warm_start(double X, std::vector<double>& f, std::vector<double>& a) const;
   void rebuild() const;  // G, a0, b0 from scratch for the current P and D (a cache: const)
   void refresh_vectors();             // a0 = G 1, b0 = −G h, sums
-  void start_slip(std::size_t i);
+  void start_slip(std::size_t i, double X);
 
   const Problem& p_;
   const ContactLaw& law_;
@@ -125,6 +130,10 @@ class InteractingJunctions {
   std::size_t k_up_ = npos, k_down_ = npos;  // junctions of the next slips
   mutable std::vector<Node> nodes_;          // sorted by X; cleared at every event
   mutable std::vector<double> last_f_, last_a_;  // by junction: the last solve (warm start)
+  // After a slip at seed_X_: the new set's forces and slopes there, predicted (warm start).
+  bool seed_valid_ = false;
+  double seed_X_ = 0;
+  std::vector<double> seed_f_, seed_a_;
   mutable int last_iterations_ = 0;
   mutable std::int64_t force_evals_ = 0;
   mutable Work work_;
