@@ -19,6 +19,7 @@
 #include "observe/simulate.hpp"
 #include "report/claims.hpp"
 #include "report/gnuplot.hpp"
+#include "report/junction_pairs.hpp"
 #include "scene/load.hpp"
 #include "solve/integrate.hpp"
 #include "solve/interaction_matrix.hpp"
@@ -90,12 +91,15 @@ struct Spread {
   std::vector<double> A0, x, y, crowding, ratio_inter, ratio_indep;  // at the peak
   std::vector<double> half_inter, half_indep;                           // at half its time
   std::vector<std::uint8_t> equal;  // in the equal-area set
+  Scene inter, indep;                 // the runs: interacting, and the same arrangement 10⁶ wider
+  double t_peak_inter = NAN, t_peak_indep = NAN;
 };
 
 // f_i/(σA_i) of every junction at half the first peak's time of `scene` (interacting) and at
 // the peak; both empty when the run has no peak.
 struct Ratios {
   std::vector<double> half, peak;
+  double t_peak = NAN;
 };
 Ratios ratios_at_half_and_peak(const Scene& base) {
   Scene s = base;
@@ -113,7 +117,7 @@ Ratios ratios_at_half_and_peak(const Scene& base) {
     integrate(stepper, p, rec);
     return stepper.junctions().load_ratios(stepper.X());
   };
-  return {at(0.5 * first.obs.t_peak), at(first.obs.t_peak)};
+  return {at(0.5 * first.obs.t_peak), at(first.obs.t_peak), first.obs.t_peak};
 }
 
 Spread force_spread(const fs::path& scene_file, double alpha_b, const std::string& name) {
@@ -137,6 +141,8 @@ Spread force_spread(const fs::path& scene_file, double alpha_b, const std::strin
   Ratios inter = ratios_at_half_and_peak(scene);
   sp.ratio_inter = std::move(inter.peak);
   sp.half_inter = std::move(inter.half);
+  sp.t_peak_inter = inter.t_peak;
+  sp.inter = scene;
   // The independent model through the same code: the arrangement 10⁶ times wider (coupling
   // ~1e-6 of a junction's own compliance).
   Scene far = scene;
@@ -144,6 +150,8 @@ Spread force_spread(const fs::path& scene_file, double alpha_b, const std::strin
   Ratios indep = ratios_at_half_and_peak(far);
   sp.ratio_indep = std::move(indep.peak);
   sp.half_indep = std::move(indep.half);
+  sp.t_peak_indep = indep.t_peak;
+  sp.indep = far;
   for (const auto* v : {&sp.ratio_inter, &sp.ratio_indep, &sp.half_inter, &sp.half_indep})
     if (v->size() != n) return sp;
   // Equal areas: the stand-ins' cluster of large junctions (a lognormal of 2 % width).
@@ -293,6 +301,27 @@ std::string run_interaction_study(const InteractionStudyOptions& opt) {
     std::string error;
     if (!render_plot(opt.out / "force_spread.png", gp.str(), 1000, 650, &error)) fig_note = "force_spread.png not drawn: " + error;
   }
+  // Equal-area pairs, crowded vs sparse, in time (both models, to past the interacting peak).
+  std::string pairs_md;
+  if (sp.ran) {
+    std::vector<std::size_t> candidates;
+    for (std::size_t i = 0; i < sp.A0.size(); ++i)
+      if (sp.equal[i]) candidates.push_back(i);
+    JunctionPairsEvidence ev;
+    ev.experiment = sp.experiment;
+    ev.sigma_Pa = make_problem(sp.inter).law.sigma;  // σ of the threshold f = σA
+    ev.t_peak_interacting_s = sp.t_peak_inter;
+    ev.t_peak_independent_s = sp.t_peak_indep;
+    ev.pairs = crowded_sparse_pairs(candidates, sp.crowding, 3);
+    ev.A0_m2 = sp.A0;
+    ev.crowding = sp.crowding;
+    std::vector<std::size_t> tracked;
+    for (const JunctionPair& pr : ev.pairs) tracked.push_back(pr.crowded), tracked.push_back(pr.sparse);
+    const double t_end = 1.1 * std::max(sp.t_peak_inter, sp.t_peak_indep);
+    ev.interacting = trace_junctions(sp.inter, tracked, t_end, 300);
+    ev.independent = trace_junctions(sp.indep, tracked, t_end, 300);
+    pairs_md = write_junction_pairs(opt.out, ev);
+  }
   // A(Q) of the spread experiment: measured, independent, interacting (calibrated).
   // (Kept to the table: the loading branches are in the runs' observables only.)
 
@@ -420,7 +449,8 @@ std::string run_interaction_study(const InteractionStudyOptions& opt) {
        << "![force spread](force_spread.png)\n\n"
        << (fig_note.empty() ? "" : fig_note + "\n\n")
        << "Every junction's ratio, crowding and position: `forces_at_peak.csv` (1 = at its threshold; ε = 0.9: "
-          "slipping).\n\n";
+          "slipping).\n\n"
+       << pairs_md;
   }
   // The sweep.
   const auto sw = sweep_rows(opt.sweep_store);

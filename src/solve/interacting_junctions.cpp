@@ -482,14 +482,20 @@ std::vector<double> InteractingJunctions::forces(double X) const {
   return f;
 }
 
-std::vector<double> InteractingJunctions::load_ratios(double X) const {
-  const std::vector<double> f = forces(X);
-  std::vector<double> r(N_);
+std::vector<double> InteractingJunctions::areas(const std::vector<double>& f) const {
+  std::vector<double> A(N_);
   for (std::size_t i = 0; i < N_; ++i) {
     const bool follows = pos_[i] != npos && nl_[pos_[i]];
-    const double A = follows ? law_.area(J_.A0[i], f[i]) : J_.area[i];
-    r[i] = f[i] / (law_.sigma * A);
+    A[i] = follows ? law_.area(J_.A0[i], f[i]) : J_.area[i];
   }
+  return A;
+}
+
+std::vector<double> InteractingJunctions::load_ratios(double X) const {
+  const std::vector<double> f = forces(X);
+  const std::vector<double> A = areas(f);
+  std::vector<double> r(N_);
+  for (std::size_t i = 0; i < N_; ++i) r[i] = f[i] / (law_.sigma * A[i]);
   return r;
 }
 

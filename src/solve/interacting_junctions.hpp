@@ -65,6 +65,10 @@ class InteractingJunctions {
   // f_i / (σ A_i) at X, A_i the current area (Eq. 3 at f_i for a junction whose area follows its
   // force): 1 at the slip threshold, ε for a slipping junction under area_law until_first_slip.
   std::vector<double> load_ratios(double X) const;
+  // Every junction's contact area [m²] with the forces f (N, by junction, as forces() gives them
+  // for the current set): Eq. (3) at f_i for a junction whose area follows its force, else its
+  // frozen area.
+  std::vector<double> areas(const std::vector<double>& f) const;
 
   // Work done, for benchmarks: exact solves, their chord iterations, rank-one updates, rebuilds.
   struct Work {
