@@ -57,6 +57,15 @@ std::string fmt(const char* f, double x) {
   return b;
 }
 
+// The data block of pair k, model m (0: interacting), neighbourhood sp (1: sparse).
+std::string block_name(std::size_t k, int m, int sp) {
+  std::string name = "p";
+  name += std::to_string(k);
+  name += m == 0 ? 'i' : 'n';
+  name += sp ? 's' : 'c';
+  return name;
+}
+
 // Linear interpolation of a trace's values at time t (NaN outside the record).
 double at(const std::vector<double>& t, const std::vector<double>& v, double x) {
   if (t.empty() || !(x >= t.front()) || !(x <= t.back())) return NAN;
@@ -127,7 +136,7 @@ std::string write_junction_pairs(const fs::path& out, const JunctionPairsEvidenc
         std::vector<std::vector<double>> rows;
         for (std::size_t j = 0; j < tr.t_s.size(); ++j)
           rows.push_back({tr.t_s[j], tr.f_N[j] / (e.sigma_Pa * A0), tr.A_m2[j] / A0});
-        gp << gnuplot_block("p" + std::to_string(k) + (m == 0 ? "i" : "n") + (sp ? "s" : "c"), rows);
+        gp << gnuplot_block(block_name(k, m, sp), rows);
       }
   const char* colours[] = {"#1b6ca8", "#c0392b", "#27ae60", "#8e44ad", "#d68910"};
   auto plot_cmd = [&](int column) {
@@ -137,7 +146,7 @@ std::string write_junction_pairs(const fs::path& out, const JunctionPairsEvidenc
     for (std::size_t k = 0; k < P; ++k)
       for (int m = 0; m < 2; ++m)
         for (int sp = 0; sp < 2; ++sp) {
-          const std::string name = "$p" + std::to_string(k) + (m == 0 ? "i" : "n") + (sp ? "s" : "c");
+          const std::string name = "$" + block_name(k, m, sp);
           const JunctionTrace& tr = trace(m == 0, k, sp == 1);
           std::string title = m == 0 ? "interacting, " : "independent, ";
           title += sp ? "sparse #" : "crowded #";
