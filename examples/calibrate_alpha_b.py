@@ -45,7 +45,7 @@ def main():
             "parameters: {model.alpha_b: {lo: 0.1e-15, hi: 5.0e-15, start: 0.725e-15, scale: log}}\n"
             "optimizer: {algorithm: LN_BOBYQA, xtol_rel: " + ("1.0e-3" if a.quick else "1.0e-4") +
             ", max_evaluations: " + ("20" if a.quick else "60") + ", initial_step: 0.05}\n")
-        result = asperity.fit(fit_file, threads=1)
+        result = asperity.fit(fit_file, threads=1, profile=False, error_bars=False)  # the optimum only
     (fit,) = result["fits"]
     if fit["failure"]:
         sys.exit(f"fit failed: {fit['failure']}")

@@ -61,16 +61,25 @@ struct StopMonitor {
 };
 
 // RunInterrupted (the stop's) passes through: the evaluation is abandoned, not failed.
+using UserTerm = std::function<double(const FitExperiment&, const Scene&, const RunResult&)>;
+
 ExperimentEval run_experiment(const FitSpec& spec, std::size_t e, const std::vector<SceneSetting>& settings,
-                              bool keep, const RunMonitor* monitor) {
+                              bool keep, const RunMonitor* monitor, const UserTerm* user_term) {
   omp_set_num_threads(1);  // this task is one of `threads` workers: no nested OpenMP team
   ExperimentEval out;
   try {
     const FitExperiment& fe = spec.experiments[e];
     const Scene scene = fe.scene.build(settings);
     RunResult r = simulate(scene, 0, monitor);
-    out.residual = experiment_residual(spec.objective, scene, r.obs, r.recorder.loading_branch(), fe.target);
-    if (std::isnan(out.residual)) {
+    if (spec.objective == FitObjective::user) {
+      if (!user_term || !*user_term) throw std::invalid_argument("run_fit: the user objective needs FitOptions::user_term");
+      out.residual = (*user_term)(fe, scene, r);
+    } else {
+      out.residual = experiment_residual(spec.objective, scene, r.obs, r.recorder.loading_branch(), fe.target);
+    }
+    if (std::isnan(out.residual) && spec.objective == FitObjective::user) {
+      out.error = "objective term of " + fe.name + " is NaN (the user objective returned nan)";
+    } else if (std::isnan(out.residual)) {
       out.error = "objective term of " + fe.name + " is NaN (model alpha = " + g6(r.obs.alpha) +
                   ", measured alpha = " + g6(r.obs.alpha_measured) + ", Q_s = " + g6(r.obs.Q_s) +
                   ", loading-branch points = " + std::to_string(r.recorder.loading_branch().size()) + ")";
@@ -118,6 +127,7 @@ struct Problem {
   Counts* counts = nullptr;
   std::string not_journaled;  // replay_only: the evaluation the journal lacked
   const StopMonitor* stop = nullptr;  // FitOptions::stop, polled by every run
+  const UserTerm* user_term = nullptr;  // FitOptions::user_term
   bool interrupted = false;           // the stop ended the optimization
 };
 
@@ -139,7 +149,8 @@ Evaluation evaluate(const Problem& pb, const std::vector<double>& x, std::vector
   // each nlopt::opt stays on its own thread, with no nested optimize on one stack).
   tbb::this_task_arena::isolate([&] {
     tbb::parallel_for(std::size_t{0}, pb.exps.size(), [&](std::size_t k) {
-      r[k] = run_experiment(*pb.spec, pb.exps[k], settings_for(pb, k, x), runs != nullptr, pb.stop ? pb.stop->get() : nullptr);
+      r[k] = run_experiment(*pb.spec, pb.exps[k], settings_for(pb, k, x), runs != nullptr, pb.stop ? pb.stop->get() : nullptr,
+                            pb.user_term);
     });
   });
   Evaluation ev;
@@ -293,6 +304,7 @@ void run_task(const FitSpec& spec, const FitOptions& options, Optimization& o, s
   pb.vars = o.variables;
   pb.extra.assign(o.experiments.size(), {});
   pb.on_evaluation = &options.on_evaluation;
+  pb.user_term = &options.user_term;
   OptimizeResult r = optimize(pb, o.start, spec.initial_step);
   o.best = r.best;
   o.objective = r.objective;
@@ -384,6 +396,7 @@ void run_task(const FitSpec& spec, const FitOptions& options, Optimization& o, s
       q.replay_only = options.replay_only;
       q.counts = &counts;
       q.stop = &stop;
+      q.user_term = &options.user_term;
       q.exps = o.experiments;
       q.vars = o.variables;
       for (const std::size_t e : o.experiments) {

@@ -38,6 +38,7 @@
 namespace asperity {
 
 class FitJournal;  // fit/fit_journal.hpp
+struct RunResult;  // observe/simulate.hpp
 
 struct FitOptions {
   int threads = 2;          // TBB workers
@@ -64,6 +65,13 @@ struct FitOptions {
   // RunInterrupted (observe/run_monitor.hpp). Every evaluation that finished is in the journal,
   // none that did not: a rerun with it resumes. May be null.
   const std::atomic<bool>* stop = nullptr;
+  // The term of one experiment's run for FitSpec::objective == FitObjective::user (required
+  // then, unused otherwise): the caller's own objective (the Python module's callable), summed
+  // over the experiments as the built-in terms are. Called from worker threads, concurrently: it
+  // must be thread-safe. A NaN fails the evaluation as a NaN term does; RunInterrupted thrown
+  // from it stops the fit as FitOptions::stop does (the caller keeps why); any other exception
+  // fails the evaluation with its message.
+  std::function<double(const FitExperiment&, const Scene&, const RunResult&)> user_term;
 };
 
 // run_fit with FitOptions::replay_only met an evaluation the journal does not hold.

@@ -42,6 +42,7 @@ std::string fit_inputs_text(const FitSpec& spec, const std::vector<std::string>&
   std::string t = std::string(kFirstLine) + "\nbuild " + build_id + "\ntask " + std::to_string(task.index) + "/" +
                   std::to_string(task.count) + "\n";
   for (const std::string& o : overrides) t += "set " + hex16(fnv1a64(o)) + "\n";
+  if (spec.file.empty()) t += "spec " + hex16(fnv1a64(spec.memory_text)) + "\n";  // given in memory: no fit file to hash
   std::vector<DataFile> files{{"fit", spec.file}};
   for (const FitExperiment& e : spec.experiments) {
     const std::vector<DataFile> f = input_files(e.scene.build());
@@ -94,6 +95,9 @@ void check_fit_inputs(const fs::path& file, const std::string& expected) {
                                             "' (a journal resumes only with the code that wrote it)" + fix);
     throw InputError(name, line, key, "the journal is array task " + a + ", this run is " + b + fix);
   }
+  if (const std::ptrdiff_t i = line_of(was, "spec"), j = line_of(now, "spec"); (i < 0) != (j < 0) || (i >= 0 && was[i] != now[j]))
+    throw InputError(name, i < 0 ? 1 : static_cast<int>(i) + 1, "spec",
+                     "the journal was computed from another fit spec (a dict given to asperity.fit, or a fit file)" + fix);
   std::vector<std::string> set_was, set_now;
   for (const auto& l : was) if (key_of(l) == "set") set_was.push_back(l);
   for (const auto& l : now) if (key_of(l) == "set") set_now.push_back(l);

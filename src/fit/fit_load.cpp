@@ -48,7 +48,12 @@ bool all_names_ok(const std::string& s) {
 }
 
 // Forced settings per objective (see fit_load.hpp), applied after the user's `set`.
-std::vector<std::pair<std::string, std::string>> forced_settings(FitObjective o) {
+std::vector<std::pair<std::string, std::string>> forced_settings(FitObjective o, bool series) {
+  if (o == FitObjective::user) {  // the scene's own stop; every series column when the caller reads them
+    std::string all;
+    for (const std::string& c : all_series()) all += (all.empty() ? "" : ", ") + c;
+    return {{"output.series", series ? "[" + all + "]" : "[]"}};
+  }
   if (o == FitObjective::stick_slip)
     return {{"output.series", "[]"}, {"stop.at_first_peak", "false"}, {"stop.cycles", "5"}};
   return {{"output.series", "[]"}, {"stop.at_first_peak", "true"}};
@@ -64,34 +69,40 @@ struct ParamNodes {  // where each parameter's values were written (for errors f
   YAML::Node key, lo, hi, start;
 };
 
-}  // namespace
-
-
-FitSpec load_fit(const fs::path& path, const std::vector<std::string>& overrides) {
-  const std::string display = display_path(path);
-  const YAML::Node root_node = load_yaml_file(path, display);
+// The fit tree `root_node` (a file's, or one given in memory: `path` empty) → FitSpec; relative
+// scene paths resolve against `base`, errors name `display`.
+FitSpec fit_from_tree(const YAML::Node& root_node, const fs::path& path, const fs::path& base, const std::string& display,
+                      const std::vector<std::string>& overrides, const FitLoadOptions& options) {
   const Source src{display, nullptr};
-  const MapView root(src, root_node, "", kFitKeys, 1);
-  const fs::path base = path.parent_path();
+  const MapView root(src, root_node, "", kFitKeys, path.empty() ? 0 : 1);  // a tree in memory has no lines
 
   FitSpec spec;
-  std::error_code ec;
-  spec.file = fs::weakly_canonical(fs::absolute(path), ec);
-  if (ec) spec.file = fs::absolute(path).lexically_normal();
+  if (!path.empty()) {
+    std::error_code ec;
+    spec.file = fs::weakly_canonical(fs::absolute(path), ec);
+    if (ec) spec.file = fs::absolute(path).lexically_normal();
+  }
 
   if (auto n = root.find("name")) {
     spec.name = root.string(*n, "name");
     if (!all_names_ok(spec.name))
       root.fail_at(*n, "name", "must be a folder name (letters, digits, '_', '-', '.'), got " + quote(spec.name));
   } else {
-    spec.name = path.stem().string();
+    spec.name = path.empty() ? std::string("fit") : path.stem().string();
   }
   if (auto n = root.find("description")) spec.description = root.string(*n, "description");
-  YAML::Node objective_node = root.require("objective");
-  spec.objective = root.enumeration<FitObjective>(objective_node, "objective",
-                                                  {{"quadratic_alpha", FitObjective::quadratic_alpha},
-                                                   {"area_curve", FitObjective::area_curve},
-                                                   {"stick_slip", FitObjective::stick_slip}});
+  if (options.user_objective) {
+    if (auto n = root.find("objective"))
+      root.fail_at(*n, "objective", "the objective is the caller's own (" + options.user_objective_name +
+                                        "); remove this key, or give no objective of your own");
+    spec.objective = FitObjective::user;
+  } else {
+    YAML::Node objective_node = root.require("objective");
+    spec.objective = root.enumeration<FitObjective>(objective_node, "objective",
+                                                    {{"quadratic_alpha", FitObjective::quadratic_alpha},
+                                                     {"area_curve", FitObjective::area_curve},
+                                                     {"stick_slip", FitObjective::stick_slip}});
+  }
   if (auto n = root.find("separate")) spec.separate = root.boolean(*n, "separate");
 
   // --- parameters ---------------------------------------------------------------------------
@@ -195,7 +206,7 @@ FitSpec load_fit(const fs::path& path, const std::vector<std::string>& overrides
           fixed.emplace_back(o.substr(0, eq), eq == std::string::npos ? "" : o.substr(eq + 1));
         }
       }
-      for (const auto& f : forced_settings(spec.objective)) fixed.push_back(f);
+      for (const auto& f : forced_settings(spec.objective, options.user_series)) fixed.push_back(f);
 
       Scene base_scene;
       try {
@@ -211,11 +222,12 @@ FitSpec load_fit(const fs::path& path, const std::vector<std::string>& overrides
       fe.name = base_scene.experiment.name;
       if (!names.insert(fe.name).second)
         sv.fail_at(scene_node, skey, "experiment " + quote(fe.name) + " is listed twice (outputs are named after it)");
-      if (spec.objective != FitObjective::stick_slip && !base_scene.experiment.measured)
+      const bool needs_measured = spec.objective == FitObjective::quadratic_alpha || spec.objective == FitObjective::area_curve;
+      if (needs_measured && !base_scene.experiment.measured)
         sv.fail_at(scene_node, skey, std::string("objective ") + objective_name(spec.objective) +
                                          " needs a measured A(Q) curve, and experiment " + quote(fe.name) + " (" +
                                          display_path(base_scene.experiment.file) + ") has none (key `measured`)");
-      if (spec.objective != FitObjective::stick_slip) {
+      if (needs_measured) {
         double A0_sum = 0;
         for (const double a : base_scene.experiment.junctions.area_m2) A0_sum += a;
         if (const std::string why = measured_curve_problem(*base_scene.experiment.measured, A0_sum); !why.empty()) {
@@ -357,6 +369,22 @@ FitSpec load_fit(const fs::path& path, const std::vector<std::string>& overrides
         spec.error_bars.push_back(eb);
       }
   }
+  return spec;
+}
+
+}  // namespace
+
+FitSpec load_fit(const fs::path& path, const std::vector<std::string>& overrides, const FitLoadOptions& options) {
+  const std::string display = display_path(path);
+  return fit_from_tree(load_yaml_file(path, display), path, path.parent_path(), display, overrides, options);
+}
+
+FitSpec fit_from_memory(const YAML::Node& tree, const fs::path& base_dir, const std::string& display,
+                        const std::vector<std::string>& overrides, const FitLoadOptions& options) {
+  FitSpec spec = fit_from_tree(tree, {}, base_dir, display, overrides, options);
+  YAML::Emitter out;
+  out << tree;
+  spec.memory_text = out.c_str();
   return spec;
 }
 

@@ -34,6 +34,9 @@
 // branch matters); stop.at_first_peak = false and stop.cycles = 5 for stick_slip.
 #include <filesystem>
 #include <string>
+#include <vector>
+
+#include <yaml-cpp/yaml.h>
 
 #include "fit/fit_spec.hpp"
 #include "io/input_error.hpp"
@@ -41,9 +44,27 @@
 
 namespace asperity {
 
+// How the runs are scored. By default, the file's `objective`. With user_objective (the Python
+// module's callable, FitOptions::user_term): FitObjective::user, the `objective` key must be
+// absent (InputError naming it and `user_objective_name`), no measured curve is needed, and the
+// only forced setting is output.series: every column when user_series (the caller reads the
+// series), else none; the scene's own stop applies.
+struct FitLoadOptions {
+  bool user_objective = false;
+  bool user_series = false;
+  std::string user_objective_name = "a user objective";
+};
+
 // `overrides` ("KEY=VALUE", as --set) apply to every experiment's scene after the fit file's own
 // `set`; each is checked on each scene first (InputError "--set KEY=VALUE: ...").
-FitSpec load_fit(const std::filesystem::path& fit_yaml, const std::vector<std::string>& overrides = {});
+FitSpec load_fit(const std::filesystem::path& fit_yaml, const std::vector<std::string>& overrides = {},
+                 const FitLoadOptions& options = {});
+
+// A fit given in memory (the Python module's dict): `tree` as a fit file's, checked by the same
+// code; scene paths relative to `base_dir`; errors name `display` (the tree has no lines).
+// FitSpec::file stays empty, the name defaults to "fit", FitSpec::memory_text is the tree's YAML.
+FitSpec fit_from_memory(const YAML::Node& tree, const std::filesystem::path& base_dir, const std::string& display,
+                        const std::vector<std::string>& overrides = {}, const FitLoadOptions& options = {});
 
 // NLopt's name of an algorithm is accepted by load_fit (derivative-free, needs no subsidiary
 // optimizer); "" when it is, else the reason.

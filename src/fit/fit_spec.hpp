@@ -15,6 +15,8 @@ enum class FitObjective {
   quadratic_alpha,  // Σ_e (α_model/α_measured − 1)²: the paper's calibration (MODEL.md §5)
   area_curve,       // Σ_e mean_j ((A_model(Q_j) − A_j)/A0)² over the measured samples
   stick_slip,       // Σ_e (drop/drop_target − 1)² + (period/period_target − 1)²
+  user,             // Σ_e of the caller's own term per run (FitOptions::user_term; the Python
+                    // module's callable); never read from a fit file
 };
 
 const char* objective_name(FitObjective o);
@@ -54,7 +56,8 @@ struct ProfileSettings {
 
 struct FitSpec {
   std::string name;                   // results/fits/<name>/
-  std::filesystem::path file;         // the fit file (provenance)
+  std::filesystem::path file;         // the fit file (provenance); empty for a spec given in memory
+  std::string memory_text;            // a spec given in memory: its YAML (hashed into a journal's inputs)
   std::string description;
   FitObjective objective = FitObjective::quadratic_alpha;
   std::vector<FitParameter> parameters;

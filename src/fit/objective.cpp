@@ -59,6 +59,7 @@ double experiment_residual(FitObjective objective, const Scene& scene, const Obs
       const double rp = (has ? obs.ss_period : 0.0) / target.period_s - 1.0;
       return rd * rd + rp * rp;
     }
+    case FitObjective::user: break;  // the caller's term (fit.cpp)
   }
   return Observables::nan;
 }

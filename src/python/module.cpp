@@ -18,6 +18,7 @@
 #include <functional>
 #include <future>
 #include <map>
+#include <mutex>
 #include <string>
 #include <thread>
 #include <vector>
@@ -73,6 +74,19 @@ py::array_t<long long> count_column(const std::vector<Sample>& s, std::int64_t S
   return a;
 }
 
+// The sampled series as {column: NumPy array}.
+py::dict series_dict(const std::vector<Sample>& s) {
+  py::dict series;
+  series["t"] = column(s, &Sample::t);
+  series["X"] = column(s, &Sample::X);
+  series["V"] = column(s, &Sample::V);
+  series["Q"] = column(s, &Sample::Q);
+  series["A"] = column(s, &Sample::A);
+  series["n_slipping"] = count_column(s, &Sample::n_slipping);
+  series["n_intact"] = count_column(s, &Sample::n_intact);
+  return series;
+}
+
 // Runs the scene with the GIL released; every period the monitor takes the GIL and lets Python
 // run its signal handlers (a pending KeyboardInterrupt stops the run).
 py::dict run_scene(const Scene& scene) {
@@ -86,15 +100,7 @@ py::dict run_scene(const Scene& scene) {
     py::gil_scoped_release release;
     return simulate(scene, 0, &monitor);
   }();
-  const std::vector<Sample>& s = r.recorder.series();
-  py::dict series;
-  series["t"] = column(s, &Sample::t);
-  series["X"] = column(s, &Sample::X);
-  series["V"] = column(s, &Sample::V);
-  series["Q"] = column(s, &Sample::Q);
-  series["A"] = column(s, &Sample::A);
-  series["n_slipping"] = count_column(s, &Sample::n_slipping);
-  series["n_intact"] = count_column(s, &Sample::n_intact);
+  const py::dict series = series_dict(r.recorder.series());
   py::list peaks;
   for (const Peak& p : r.recorder.peaks()) {
     py::dict d;
@@ -361,13 +367,67 @@ PYBIND11_MODULE(_asperity, m) {
   }, py::arg("campaign"), py::arg("out") = "", py::arg("threads") = py::none(), py::arg("shard") = "0/1",
      py::arg("progress") = py::none());
 
-  m.def("fit", [](const std::string& fit_file, const std::string& out, const py::object& threads, bool profile, bool error_bars,
-                 const py::object& progress) {
-    check_no_nul(fit_file, "fit_file");
+  m.def("fit", [](const py::object& fit_spec, const std::string& out, const py::object& threads, bool profile, bool error_bars,
+                 const py::object& progress, const py::object& objective, bool series, const py::object& base) {
     check_no_nul(out, "out");
     FitOptions fo;
     fo.threads = threads_argument(threads, "threads", hardware_threads());
-    const FitSpec spec = load_fit(fit_file);
+    // A Python objective: `objective(summary, series)` (series None unless asked; __init__.py
+    // wraps the user's callable) gives each experiment's term; the spec's `objective` key is
+    // then absent. Its runs are not journaled: a journal could not tell an edited callable.
+    FitLoadOptions lo;
+    if (!objective.is_none()) {
+      if (!out.empty())
+        throw InputError("", 0, "out", "a fit with a Python objective is not journaled (a changed callable could not be told "
+                                       "from the one that computed the journal); leave out empty and keep the returned dict");
+      lo.user_objective = true;
+      lo.user_series = series;
+      lo.user_objective_name = "the Python callable given as objective=";
+    } else if (series) {
+      throw InputError("", 0, "series", "passes the series to a Python objective; give objective= too");
+    }
+    std::string what;  // the spec, as the provenance's command line names it
+    FitSpec spec;
+    if (py::isinstance<py::dict>(fit_spec)) {
+      std::filesystem::path dir = std::filesystem::current_path();
+      if (!base.is_none()) {
+        const std::string b = py::str(base);
+        check_no_nul(b, "base");
+        dir = b;
+      }
+      spec = fit_from_memory(yaml_node(fit_spec, ""), dir, "asperity.fit", {}, lo);
+      what = "dict";
+    } else {
+      if (!base.is_none())
+        throw InputError("", 0, "base", "is for a dict spec; a fit file's paths are relative to the file");
+      what = py::str(fit_spec);
+      check_no_nul(what, "fit_file");
+      spec = load_fit(what, {}, lo);
+    }
+    const std::string command_line = "python: asperity.fit(" + what + ")";
+    // The user's objective is called from the fit's worker threads, each taking the GIL; its first
+    // exception stops the fit as Ctrl-C does and is raised here.
+    std::mutex user_mutex;
+    std::exception_ptr user_error;
+    std::atomic<bool> stop{false};
+    if (!objective.is_none()) {
+      fo.user_term = [&, series](const FitExperiment& fe, const Scene&, const RunResult& r) -> double {
+        py::gil_scoped_acquire gil;
+        try {
+          py::dict summary = summary_dict(r.obs);
+          summary["experiment"] = fe.name;
+          const py::object columns = series ? py::object(series_dict(r.recorder.series())) : py::object(py::none());
+          return objective(summary, columns).cast<double>();
+        } catch (...) {
+          {
+            const std::lock_guard<std::mutex> lock(user_mutex);
+            if (!user_error) user_error = std::current_exception();
+          }
+          stop = true;
+          throw RunInterrupted("the Python objective raised");
+        }
+      };
+    }
     // With `out`, as `asperity fit --out`: the folder is claimed first and every evaluation is
     // journaled there as it finishes, so a fit stopped by Ctrl-C (or killed) resumes when run
     // again into the same folder (by Python or by the command line: the same inputs.txt).
@@ -382,15 +442,21 @@ PYBIND11_MODULE(_asperity, m) {
     }
     fo.profile = profile;
     fo.error_bars = error_bars;
-    std::atomic<bool> stop{false};
     fo.stop = &stop;
     std::atomic<long long> evaluations{0};  // of the optimizations (profiles and error bars not counted)
     fo.on_evaluation = [&](double) { ++evaluations; };
-    const FitResult result = interruptible(stop, [&] {
-      FitResult r = run_fit(spec, fo);
-      if (!out.empty()) write_fit(out, spec, r, "python: asperity.fit(" + fit_file + ")");
-      return r;
-    }, progress_tick(progress, [&] { return std::pair<long long, long long>(evaluations.load(), 0); }));
+    FitResult result;
+    try {
+      result = interruptible(stop, [&] {
+        FitResult r = run_fit(spec, fo);
+        if (!out.empty()) write_fit(out, spec, r, command_line);
+        return r;
+      }, progress_tick(progress, [&] { return std::pair<long long, long long>(evaluations.load(), 0); }));
+    } catch (const RunInterrupted&) {
+      if (user_error) std::rethrow_exception(user_error);  // the objective's own exception
+      throw;
+    }
+    if (user_error) std::rethrow_exception(user_error);
     py::list fits;
     for (const Optimization& o : result.fits) {
       py::dict d, best;
@@ -412,10 +478,11 @@ PYBIND11_MODULE(_asperity, m) {
     d["fits"] = fits;
     d["wall_s"] = result.wall_s;
     d["replayed"] = result.replayed, d["computed"] = result.computed;  // evaluations from the journal, run now
-    d["fit_yaml"] = fit_yaml(spec, result, "python: asperity.fit(" + fit_file + ")");
+    d["fit_yaml"] = fit_yaml(spec, result, command_line);
     return d;
-  }, py::arg("fit_file"), py::arg("out") = "", py::arg("threads") = py::int_(2), py::arg("profile") = true,
-     py::arg("error_bars") = true, py::arg("progress") = py::none());
+  }, py::arg("spec"), py::arg("out") = "", py::arg("threads") = py::none(), py::arg("profile") = true,
+     py::arg("error_bars") = true, py::arg("progress") = py::none(), py::arg("objective") = py::none(),
+     py::arg("series") = false, py::arg("base") = py::none());
 
   m.def("store_series", [](const std::string& store, const std::vector<std::uint64_t>& indices) {
     check_no_nul(store, "path");  // asperity.read_series(path, index)

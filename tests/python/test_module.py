@@ -111,7 +111,7 @@ def test_fit_equals_the_command_line(source, binary, tmp_path):
     fit_file.write_text(
         "name: small\nobjective: area_curve\nexperiments: [" + str(source / "tests" / "data" / "scene" / "small_scene.yaml") + "]\n"
         "parameters: {model.alpha_b: {lo: 1e-16, hi: 5e-15, start: 1e-15, scale: log}}\n")
-    result = asperity.fit(fit_file, threads=1)
+    result = asperity.fit(fit_file, threads=1, profile=False, error_bars=False)  # as --no-profile --no-error-bars
     out = cli(binary, "fit", str(fit_file), "--out", str(tmp_path / "fit"), "--threads", "1", "--quiet",
               "--no-profile", "--no-error-bars")
     assert out.returncode in (0, 1), out.stderr

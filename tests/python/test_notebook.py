@@ -200,12 +200,16 @@ def test_type_stubs_match_the_package():
             names.add(node.name)
         elif isinstance(node, ast.AnnAssign) and isinstance(node.target, ast.Name):
             names.add(node.target.id)
+        elif isinstance(node, ast.ImportFrom) and node.level == 1:  # `from . import plot as plot`: a re-export
+            names.update(a.name for a in node.names if a.asname == a.name)
         if isinstance(node, ast.ClassDef) and node.name == "Scene":
             scene_methods = {n.name for n in node.body if isinstance(n, ast.FunctionDef)}
     public = {n for n in names if not n.startswith("_")}
     assert public == set(asperity.__all__)
     assert {"__version__", "__all__"} <= names
     assert scene_methods == {n for n in dir(asperity.Scene) if not n.startswith("_")}
+    plot_stub = ast.parse(stub.with_name("plot.pyi").read_text())
+    assert {n.name for n in plot_stub.body if isinstance(n, ast.FunctionDef)} == set(asperity.plot.__all__)
 
 
 def test_sweep_and_fit_report_progress(source, tmp_path):
@@ -220,7 +224,7 @@ def test_sweep_and_fit_report_progress(source, tmp_path):
         "name: small\nobjective: area_curve\nexperiments: [" + str(source / "tests" / "data" / "scene" / "small_scene.yaml") + "]\n"
         "parameters: {model.alpha_b: {lo: 1e-16, hi: 5e-15, start: 1e-15, scale: log}}\n")
     counts = []
-    result = asperity.fit(fit_file, threads=1, progress=lambda done, total: counts.append(done))
+    result = asperity.fit(fit_file, threads=1, profile=False, progress=lambda done, total: counts.append(done))
     assert counts[-1] == result["fits"][0]["evaluations"] > 3
 
     def boom(done, total):

@@ -24,11 +24,12 @@ from typing import Any as _Any, Mapping as _Mapping, Optional as _Optional, Sequ
 
 from . import _asperity
 from ._asperity import InputError, Scene, SolverError
+from . import plot  # figures with matplotlib (imported when a function draws)
 
 __version__: str = _asperity.__version__  # the number `asperity --version` prints
 
 __all__ = ["InputError", "SolverError", "Scene", "Result", "load_scene", "run", "measured", "sweep",
-           "fit", "read_store", "read_series", "units", "version"]
+           "fit", "read_store", "read_series", "units", "version", "plot"]
 
 _PathLike = _Union[str, _os.PathLike]
 
@@ -149,9 +150,37 @@ def sweep(campaign: _PathLike, out: _PathLike = "", threads: _Optional[int] = No
             bar.close()
 
 
-def fit(fit_file: _PathLike, out: _PathLike = "", threads: _Optional[int] = 2,
-        profile: bool = False, error_bars: bool = False, progress=True) -> dict:
-    """Runs a calibration (as `asperity fit`); writes its results folder when `out` is given,
+def _objective_term(objective, series: bool):
+    """The user's objective as the engine calls it: term(summary, columns) -> float, `columns`
+    the series as {column: array} (None unless `series`), given to the user as a DataFrame."""
+    def term(summary, columns):
+        if series:
+            import pandas as pd  # only needed here
+            frame = pd.DataFrame(columns)
+            frame.attrs["units"] = _units_of(frame.columns, "series")
+            value = objective(summary, frame)
+        else:
+            value = objective(summary)
+        try:
+            return float(value)
+        except (TypeError, ValueError):
+            raise TypeError(f"objective: must return a float, got {type(value).__name__}") from None
+    return term
+
+
+def fit(spec: _Union[_PathLike, _Mapping[str, _Any]], out: _PathLike = "", threads: _Optional[int] = None,
+        profile: bool = True, error_bars: bool = True, progress=True, objective=None, series: bool = False,
+        base: _Optional[_PathLike] = None) -> dict:
+    """Runs a calibration (as `asperity fit`, with its defaults: every hardware thread, the
+    profile and the error-bar refits the spec asks for). `spec`: a fit YAML file, or a dict of
+    the same keys checked by the same loader (one-line errors naming the key, located at
+    "asperity.fit"; scene paths relative to `base`, default the working directory).
+    `objective`: your own objective, a callable given each run's summary (a dict of every
+    observable, plus "experiment": its name) -- and with `series=True` the run's series as a
+    DataFrame too -- returning a float; the fit minimises the sum over the experiments with the
+    same NLopt machinery (the spec then has no `objective` key; the scene's own stop applies).
+    It is called from the fit's worker threads holding the GIL; an exception it raises stops the
+    fit and is raised. Writes the results folder when `out` is given (not with `objective`),
     journaling every evaluation there as it finishes (Ctrl-C raises KeyboardInterrupt within a
     second; the same call again resumes). `threads`: 1 to 1024, as `--threads` (None: all).
     Returns {"name", "fits": [{"label", "best": {key: value}, "objective", "evaluations",
@@ -159,9 +188,17 @@ def fit(fit_file: _PathLike, out: _PathLike = "", threads: _Optional[int] = 2,
     "fit_yaml"} (replayed: evaluations answered from the journal in `out`; computed: run now).
     `progress`: a tqdm counter of the optimizations' evaluations when tqdm is installed (False:
     none; a callable: called as progress(evaluations, 0) every 0.1 s and at the end)."""
+    if isinstance(spec, _Mapping):
+        spec = dict(spec)
+    else:
+        spec = _os.fspath(spec)
+    if objective is not None and not callable(objective):
+        raise TypeError(f"objective: expected a callable, got {type(objective).__name__}")
+    term = None if objective is None else _objective_term(objective, series)
     callback, bar = _progress(progress, "fit", "evaluation")
     try:
-        return _asperity.fit(_os.fspath(fit_file), _os.fspath(out), threads, profile, error_bars, callback)
+        return _asperity.fit(spec, _os.fspath(out), threads, profile, error_bars, callback, term, series,
+                             None if base is None else _os.fspath(base))
     finally:
         if bar is not None:
             bar.close()

@@ -6,6 +6,8 @@ from typing import Any, Callable, Mapping, Optional, Sequence, Union
 import numpy as np
 import numpy.typing as npt
 
+from . import plot as plot
+
 __version__: str
 __all__: list[str]
 
@@ -47,8 +49,10 @@ def run(scene: Union[Scene, _PathLike], overrides: Union[Mapping[str, Any], Sequ
 def measured(scene: Scene) -> Optional[dict[str, np.ndarray]]: ...
 def sweep(campaign: _PathLike, out: _PathLike = "", threads: Optional[int] = None, shard: str = "0/1",
           progress: _Progress = True) -> dict[str, Any]: ...
-def fit(fit_file: _PathLike, out: _PathLike = "", threads: Optional[int] = 2, profile: bool = False,
-        error_bars: bool = False, progress: _Progress = True) -> dict[str, Any]: ...
+def fit(spec: Union[_PathLike, Mapping[str, Any]], out: _PathLike = "", threads: Optional[int] = None,
+        profile: bool = True, error_bars: bool = True, progress: _Progress = True,
+        objective: Optional[Callable[..., float]] = None, series: bool = False,
+        base: Optional[_PathLike] = None) -> dict[str, Any]: ...
 def read_store(path: _PathLike) -> Any: ...  # pandas.DataFrame
 def read_series(path: _PathLike, index: int) -> Any: ...  # pandas.DataFrame
 def units(column: str) -> str: ...
