@@ -146,12 +146,12 @@ std::string write_junction_pairs(const fs::path& out, const JunctionPairsEvidenc
     for (std::size_t k = 0; k < P; ++k)
       for (int m = 0; m < 2; ++m)
         for (int sp = 0; sp < 2; ++sp) {
-          const std::string name = "$" + block_name(k, m, sp);
+          const std::string name = block_name(k, m, sp);
           const JunctionTrace& tr = trace(m == 0, k, sp == 1);
           std::string title = m == 0 ? "interacting, " : "independent, ";
           title += sp ? "sparse #" : "crowded #";
           title += std::to_string(tr.junction + 1);
-          c << (first ? "" : ", ") << name << " using 1:" << column << " with lines lw " << (m == 0 ? 2 : 1) << " dt "
+          c << (first ? "" : ", ") << "$" << name << " using 1:" << column << " with lines lw " << (m == 0 ? 2 : 1) << " dt "
             << (sp ? 2 : 1) << " lc rgb '" << colours[k % 5] << "' title " << gnuplot_quote(title);
           first = false;
         }
