@@ -170,7 +170,7 @@ TEST_CASE("figure formats: png, svg and pdf files of the right kind, sized for a
   fs::remove_all(w);
 }
 
-TEST_CASE("--figures chooses the formats of a run's plot; a bad list is a one-line usage error", "[cli][figures]") {
+TEST_CASE("run --plot --figures chooses the formats of the plot, a bad list is a one-line usage error", "[cli][figures]") {
   if (!gnuplot_available()) {
     WARN("gnuplot not installed: nothing to draw");
     return;

@@ -122,8 +122,8 @@ void write_savings(const fs::path& dir, const std::vector<SavingRow>& rows, cons
   }
   gp << "EOD\n"
      << "set title "
-     << gnuplot_text("Model only what a scene requires: " + exp +
-                     " (stand-in), CPU time of integration + writing the run directory")
+     << gnuplot_text("Model only what a scene requires: " + exp + " (stand-in)") << " . \"\\n\" . "
+     << gnuplot_quote("CPU time of integration + writing the run directory")
      << "\n"
      << "set style data histograms\nset style histogram clustered gap 1\nset style fill solid 0.8 border -1\n"
      << "set xtics noenhanced\n"  // the tic labels are scene settings (output.series=[]), not markup

@@ -134,8 +134,8 @@ std::string order_csv(const std::vector<OrderRow>& rows) {
 
 // Six log-log panels, error against wall time, one curve per method; errors below 1e-16
 // (or exactly 0) are drawn at 1e-16. Only the two ends of each curve carry their setting (the
-// inner ones crowd on the steep event curve); the key names the range. The reference curve
-// lies top right and the event curve left, so the key goes bottom right.
+// inner ones crowd on the steep event curve); the key names the range, under each panel (inside,
+// any corner meets a curve or an end label on some data).
 std::string plot_script(const TradeoffResult& r) {
   std::ostringstream gp;
   std::string range[2];
@@ -170,14 +170,14 @@ std::string plot_script(const TradeoffResult& r) {
                      " (60 junctions, stand-in recipe): error vs converged event run (tol 1e-12)")
      << "\n"
      << "set logscale xy\nset format y '10^{%T}'\nset format x '10^{%T}'\nset grid\n"
-     << "set xlabel 'wall time [s]'\nset ylabel 'relative error'\nset key bottom right font ',9'\n";
+     << "set xlabel 'wall time [s]'\nset ylabel 'relative error'\nset key bmargin center horizontal font ',9'\n";
   for (std::size_t i = 0; i < n_robust; ++i) {
     const int c = static_cast<int>(i) + 3;
     gp << "set title " << gnuplot_quote(column_symbol(robust_names()[i])) << "\n"
-       << "plot $reference using 1:" << c << " with linespoints pt 7 lw 2 title "
+       << "plot $reference using 1:" << c << " with linespoints pt 7 ps 0.6 lw 1.5 title "
        << gnuplot_quote("reference, C_t " + range[0]) << ", "
        << "$reference_ends using 1:" << c << ":(sprintf('%g',$2)) with labels right offset -1,0 font ',8' notitle, "
-       << "$event using 1:" << c << " with linespoints pt 5 lw 2 title " << gnuplot_quote("event, tol " + range[1]) << ", "
+       << "$event using 1:" << c << " with linespoints pt 5 ps 0.6 lw 1.5 title " << gnuplot_quote("event, tol " + range[1]) << ", "
        << "$event_ends using 1:" << c << ":(sprintf('%g',$2)) with labels left offset 1,0 font ',8' notitle\n";
   }
   gp << "unset multiplot\n";

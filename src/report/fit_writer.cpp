@@ -154,8 +154,8 @@ void write_optimization(const fs::path& d, const FitSpec& spec, const Optimizati
     std::ostringstream gp;
     gp << "set datafile separator ','\nset grid\n";
     gp << "set output " << gnuplot_quote("convergence" + ext) << "\n"
-       << "set title " << gnuplot_text(spec.name + " / " + o.label + ": objective (" + objective_name(spec.objective) +
-                                       "), " + spec.algorithm + ", stop " + o.stop_reason)
+       << "set title " << gnuplot_text(spec.name + " / " + o.label + ": objective (" + objective_name(spec.objective) + ")")
+       << " . \"\\n\" . " << gnuplot_text(spec.algorithm + ", stop " + o.stop_reason)
        << "\n"
        << "set xlabel 'evaluation number'\nset ylabel 'objective [1] (dimensionless)'\nset logscale y\nset key top right\n"
        << "best = 1e300\n"

@@ -286,8 +286,8 @@ std::string run_interaction_study(const InteractionStudyOptions& opt) {
     std::ostringstream gp;
     gp << gnuplot_block("crowded", crowded) << gnuplot_block("sparse", sparse) << gnuplot_block("indep", indep)
        << "set title " << gnuplot_text("STAND-IN " + sp.experiment) << " . "
-       << gnuplot_quote(": f/(σA) at half the time of the first peak, junctions of equal area (" + fmt("%.3g", sp.area_lo) +
-                        "–" + fmt("%.3g", sp.area_hi) + " m^2)")
+       << gnuplot_quote(": f/(σA) at half the time of the first peak") << " . \"\\n\" . "  // two lines: one column wide in a PDF
+       << gnuplot_quote("junctions of equal area (" + fmt("%.3g", sp.area_lo) + "–" + fmt("%.3g", sp.area_hi) + " m^2)")
        << "\nset xlabel " << gnuplot_quote("f_i / (σ A_i) [1]") << "\nset ylabel " << gnuplot_quote("junctions [1]")
        << "\nbin(x) = 0.02*floor(x/0.02) + 0.01\nset style fill transparent solid 0.5\nset boxwidth 0.02\nset key top right\n"
        // The independent model gives the junctions of equal area one f/(σA) (a range narrower
