@@ -78,8 +78,8 @@ TEST_CASE("heat map and line plot of a logspace grid: log axis, units, one line 
     CHECK_THROWS_WITH(plot_heatmap(w / "store", h), Contains("gnuplot not found"));
   }
   const std::string script = slurp(gp);
-  CHECK_THAT(script, Contains("set logscale x") && Contains("set xlabel 'model.c_min [1]'") &&
-                         Contains("set ylabel 'model.eta [1/s]'") && Contains("set cblabel 'Q_s [N]'"));
+  CHECK_THAT(script, Contains("set logscale x") && Contains("set xlabel 'c_{min} [1]'") &&
+                         Contains("set ylabel 'η [s^{-1}]'") && Contains("set cblabel 'Q_s [N]'"));
   CHECK(script.find("set logscale y") == std::string::npos);  // 0, 100, 250: linear
   CHECK(script.rfind("# asperity plot script", 0) == 0);
 

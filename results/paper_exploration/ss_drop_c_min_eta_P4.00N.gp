@@ -1,14 +1,14 @@
 # asperity plot script: `gnuplot ss_drop_c_min_eta_P4.00N.gp` redraws ss_drop_c_min_eta_P4.00N.png (data inline; restyle freely)
-set terminal pngcairo size 900,700 noenhanced
+set terminal pngcairo size 900,700 enhanced
 set output 'ss_drop_c_min_eta_P4.00N.png'
-set title 'ss_drop over model.c_min x model.eta, experiment=P4.00N, grid=c_min_eta' . "\n" . 'STAND-IN experiments, not measurements' . "\n" . '(blank: no value: NaN, e.g. no stick-slip cycle, or failed/missing point)'
-set cblabel 'ss_drop [N]'
+set title 'stick-slip drop ΔQ_{ss} over c_{min} × η, experiment=P4.00N, grid=c\_min\_eta' . "\n" . 'STAND-IN experiments, not measurements' . "\n" . '(blank: no value: NaN, e.g. no stick-slip cycle, or failed/missing point)'
+set cblabel 'stick-slip drop ΔQ_{ss} [N]'
 set palette defined (0 '#440154', 1 '#3b528b', 2 '#21908d', 3 '#5dc963', 4 '#fde725')
-set xlabel 'model.c_min [1]'
+set xlabel 'c_{min} [1]'
 set logscale x
 set xtics ('1e-05' 1e-05, '0.01' 0.01)
 set xrange [3.162277660168379e-07:0.31622776601683794]
-set ylabel 'model.eta [1/s]'
+set ylabel 'η [s^{-1}]'
 set ytics ('0' 0, '50' 50, '100' 100, '150' 150, '180' 180, '200' 200, '250' 250)
 set yrange [-25:275]
 $cells << EOD

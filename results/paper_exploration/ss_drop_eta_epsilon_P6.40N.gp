@@ -1,13 +1,13 @@
 # asperity plot script: `gnuplot ss_drop_eta_epsilon_P6.40N.gp` redraws ss_drop_eta_epsilon_P6.40N.png (data inline; restyle freely)
-set terminal pngcairo size 900,700 noenhanced
+set terminal pngcairo size 900,700 enhanced
 set output 'ss_drop_eta_epsilon_P6.40N.png'
-set title 'ss_drop over model.eta x model.epsilon, experiment=P6.40N, grid=eta_epsilon' . "\n" . 'STAND-IN experiments, not measurements' . "\n" . '(blank: no value: NaN, e.g. no stick-slip cycle, or failed/missing point)'
-set cblabel 'ss_drop [N]'
+set title 'stick-slip drop ΔQ_{ss} over η × ε, experiment=P6.40N, grid=eta\_epsilon' . "\n" . 'STAND-IN experiments, not measurements' . "\n" . '(blank: no value: NaN, e.g. no stick-slip cycle, or failed/missing point)'
+set cblabel 'stick-slip drop ΔQ_{ss} [N]'
 set palette defined (0 '#440154', 1 '#3b528b', 2 '#21908d', 3 '#5dc963', 4 '#fde725')
-set xlabel 'model.eta [1/s]'
+set xlabel 'η [s^{-1}]'
 set xtics ('0' 0, '50' 50, '100' 100, '150' 150, '180' 180, '200' 200, '250' 250)
 set xrange [-25:275]
-set ylabel 'model.epsilon [1]'
+set ylabel 'ε [1]'
 set ytics ('0.5' 0.5, '0.6' 0.6, '0.7' 0.7, '0.8' 0.8, '0.9' 0.9, '0.95' 0.95, '0.99' 0.99)
 set yrange [0.45:1.01]
 $cells << EOD

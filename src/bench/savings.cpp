@@ -98,7 +98,7 @@ std::vector<SavingRow> run_savings(const SavingsOptions& opt) {
   return rows;
 }
 
-void write_savings(const fs::path& dir, const std::vector<SavingRow>& rows) {
+void write_savings(const fs::path& dir, const std::vector<SavingRow>& rows, const FigureFormats& figures) {
   fs::create_directories(dir);
   std::ostringstream o;
   o << "experiment,saving,variant,baseline,wall_s,cpu_s,write_s,total_s,repeats,t_end_s,steps,force_evals,series_bytes\n";
@@ -122,14 +122,15 @@ void write_savings(const fs::path& dir, const std::vector<SavingRow>& rows) {
   }
   gp << "EOD\n"
      << "set title "
-     << gnuplot_quote("Model only what a scene requires: " + exp +
-                      " (stand-in), CPU time of integration + writing the run directory")
+     << gnuplot_text("Model only what a scene requires: " + exp + " (stand-in)") << " . \"\\n\" . "
+     << gnuplot_quote("CPU time of integration + writing the run directory")
      << "\n"
      << "set style data histograms\nset style histogram clustered gap 1\nset style fill solid 0.8 border -1\n"
+     << "set xtics noenhanced\n"  // the tic labels are scene settings (output.series=[]), not markup
      << "set bmargin 5\nset boxwidth 0.9\nset ylabel 'CPU time [ms]'\nset grid ytics\nset yrange [0:*]\nset key top right\n"
      << "plot $d using 2:xticlabels(1) title 'baseline' lc rgb '#4477aa', "
         "'' using 3 title 'variant (saving)' lc rgb '#ee6677'\n";
-  render_plot(dir / "savings.png", gp.str(), 1000, 600);
+  render_figures(dir / "savings.png", gp.str(), 1000, 600, figures);
 }
 
 }  // namespace asperity

@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "report/gnuplot.hpp"  // FigureFormats
+
 namespace asperity {
 
 struct SavingsOptions {
@@ -36,6 +38,7 @@ struct SavingRow {
 std::vector<SavingRow> run_savings(const SavingsOptions& opt);
 
 // DIR/savings.csv and DIR/savings.png (bar chart of the first scene; skipped without gnuplot).
-void write_savings(const std::filesystem::path& dir, const std::vector<SavingRow>& rows);
+void write_savings(const std::filesystem::path& dir, const std::vector<SavingRow>& rows,
+                   const FigureFormats& figures = {});
 
 }  // namespace asperity

@@ -7,6 +7,7 @@
 
 #include "bench/bench_scene.hpp"
 #include "report/gnuplot.hpp"
+#include "report/units.hpp"
 #include "bench/timed_run.hpp"
 #include "io/atomic_file.hpp"
 #include "io/numbers.hpp"
@@ -132,9 +133,12 @@ std::string order_csv(const std::vector<OrderRow>& rows) {
 }
 
 // Six log-log panels, error against wall time, one curve per method; errors below 1e-16
-// (or exactly 0) are drawn at 1e-16.
+// (or exactly 0) are drawn at 1e-16. Only the two ends of each curve carry their setting (the
+// inner ones crowd on the steep event curve); the key names the range, under each panel (inside,
+// any corner meets a curve or an end label on some data).
 std::string plot_script(const TradeoffResult& r) {
   std::ostringstream gp;
+  std::string range[2];
   for (const std::string method : {"reference", "event"}) {
     gp << "$" << method << " << EOD\n";
     std::vector<const WorkPrecisionRow*> rows;
@@ -147,28 +151,34 @@ std::string plot_script(const TradeoffResult& r) {
     std::sort(rows.begin(), rows.end(), [&](auto* a, auto* b) {
       return method == "reference" ? a->setting < b->setting : a->setting > b->setting;
     });
-    for (const WorkPrecisionRow* rp : rows) {
-      const auto& row = *rp;
-      gp << g(row.wall_s, 6) << ' ' << g(row.setting);
-      for (double e : row.error) gp << ' ' << g(std::isfinite(e) ? std::max(e, 1e-16) : NAN, 6);
-      gp << '\n';
+    std::ostringstream ends;
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      const auto& row = *rows[i];
+      std::ostringstream line;
+      line << g(row.wall_s, 6) << ' ' << g(row.setting);
+      for (double e : row.error) line << ' ' << g(std::isfinite(e) ? std::max(e, 1e-16) : NAN, 6);
+      gp << line.str() << '\n';
+      if (i == 0 || i + 1 == rows.size()) ends << line.str() << '\n';
     }
-    gp << "EOD\n";
+    gp << "EOD\n$" << method << "_ends << EOD\n" << ends.str() << "EOD\n";
+    if (!rows.empty())
+      range[method == "event"] = g(rows.front()->setting) + (rows.size() > 1 ? " … " + g(rows.back()->setting) : "");
   }
   const std::string exp = r.rows.empty() ? "" : r.rows.front().experiment;
   gp << "set multiplot layout 2,3 title "
-     << gnuplot_quote("Work-precision on bench experiment " + exp +
-                      " (60 junctions, stand-in recipe): error vs converged event run (tol 1e-12)")
+     << gnuplot_text("Work-precision on bench experiment " + exp +
+                     " (60 junctions, stand-in recipe): error vs converged event run (tol 1e-12)")
      << "\n"
-     << "set logscale xy\nset format y '1e%T'\nset format x '1e%T'\nset grid\n"
-     << "set xlabel 'wall time [s]'\nset ylabel 'relative error'\nset key center right font ',9'\n";
+     << "set logscale xy\nset format y '10^{%T}'\nset format x '10^{%T}'\nset grid\n"
+     << "set xlabel 'wall time [s]'\nset ylabel 'relative error'\nset key bmargin center horizontal font ',9'\n";
   for (std::size_t i = 0; i < n_robust; ++i) {
     const int c = static_cast<int>(i) + 3;
-    gp << "set title '" << robust_names()[i] << "'\n"
-       << "plot $reference using 1:" << c << " with linespoints pt 7 lw 2 title 'reference (Ct 1e2..)', "
-       << "'' using 1:" << c << ":(sprintf('%g',$2)) with labels offset 0,1 font ',8' notitle, "
-       << "$event using 1:" << c << " with linespoints pt 5 lw 2 title 'event (tol)', "
-       << "'' using 1:" << c << ":(sprintf('%g',$2)) with labels offset 0,-1 font ',7' notitle\n";
+    gp << "set title " << gnuplot_quote(column_symbol(robust_names()[i])) << "\n"
+       << "plot $reference using 1:" << c << " with linespoints pt 7 ps 0.6 lw 1.5 title "
+       << gnuplot_quote("reference, C_t " + range[0]) << ", "
+       << "$reference_ends using 1:" << c << ":(sprintf('%g',$2)) with labels right offset -1,0 font ',8' notitle, "
+       << "$event using 1:" << c << " with linespoints pt 5 ps 0.6 lw 1.5 title " << gnuplot_quote("event, tol " + range[1]) << ", "
+       << "$event_ends using 1:" << c << ":(sprintf('%g',$2)) with labels left offset 1,0 font ',8' notitle\n";
   }
   gp << "unset multiplot\n";
   return gp.str();
@@ -176,11 +186,11 @@ std::string plot_script(const TradeoffResult& r) {
 
 }  // namespace
 
-void write_tradeoff(const fs::path& dir, const TradeoffResult& r) {
+void write_tradeoff(const fs::path& dir, const TradeoffResult& r, const FigureFormats& figures) {
   fs::create_directories(dir);
   scene_io::write_text_file(dir / "work_precision.csv", work_precision_csv(r.rows));
   scene_io::write_text_file(dir / "reference_order.csv", order_csv(r.orders));
-  render_plot(dir / "work_precision.png", plot_script(r), 1500, 900);
+  render_figures(dir / "work_precision.png", plot_script(r), 1500, 900, figures);
 }
 
 }  // namespace asperity

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "bench/robust_error.hpp"
+#include "report/gnuplot.hpp"  // FigureFormats
 
 namespace asperity {
 
@@ -59,7 +60,7 @@ TradeoffResult run_tradeoff(const TradeoffOptions& opt);
 
 // Writes DIR/work_precision.csv, DIR/reference_order.csv and
 // DIR/work_precision.png (skipped when gnuplot is missing). Creates DIR.
-void write_tradeoff(const std::filesystem::path& dir, const TradeoffResult& r);
+void write_tradeoff(const std::filesystem::path& dir, const TradeoffResult& r, const FigureFormats& figures = {});
 
 // The CSV text of the rows (header + one line per row).
 std::string work_precision_csv(const std::vector<WorkPrecisionRow>& rows);

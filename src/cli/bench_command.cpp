@@ -33,6 +33,7 @@ struct BenchOptions {
   int repeats = 5;
   int threads = 1;
   bool quiet = false;
+  FigureFormats figures;  // of work_precision and savings (--figures)
   // tradeoff
   std::string scene = "bench/scenes/P0.20N.yaml";
   std::vector<double> Ct;
@@ -101,7 +102,7 @@ int tradeoff(const BenchOptions& b) {
     progress.update(static_cast<double>(done));
   };
   const TradeoffResult r = run_tradeoff(o);
-  write_tradeoff(b.out, r);
+  write_tradeoff(b.out, r, b.figures);
   // The interacting solver's knobs (tolerance, cut-off) on a stand-in with junction positions.
   InteractingTradeoffOptions io;
   io.repeats = o.repeats;
@@ -207,7 +208,7 @@ int savings(const BenchOptions& b) {
   o.log = &std::cout;
   machine_line(b);
   const auto rows = run_savings(o);
-  write_savings(b.out, rows);
+  write_savings(b.out, rows, b.figures);
   write_marker(b.out, "bench");
   auto cpu_ms = [](const SavingRow& r) { return (r.cpu_s + r.write_s) * 1e3; };
   for (std::size_t i = 0; i + 1 < rows.size(); i += 2)
@@ -227,6 +228,7 @@ Command add_bench_command(CLI::App& app) {
   sub->require_subcommand(1);
   sub->fallthrough();  // --out, --quick, --repeats also after the sub-subcommand
   sub->add_option("--out,-o", opt->out, "Output folder")->capture_default_str();
+  add_figures_option(sub, opt->figures);
   sub->add_flag("--quick", opt->quick, "Fewer settings and repeats (a smoke run, not the published figures)");
   sub->add_option("--repeats", opt->repeats, "Runs faster than 1 s: median wall time of this many")
       ->capture_default_str()

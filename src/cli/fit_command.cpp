@@ -41,6 +41,7 @@ struct FitCliOptions {
   bool quiet = false;
   std::string task;  // "I/N" or "auto": one array task of a separate fit
   bool collect = false;
+  FigureFormats figures;  // of the fit's figures (--figures)
 };
 
 namespace fs = std::filesystem;
@@ -180,7 +181,7 @@ int run(const FitCliOptions& opt, const Invocation& inv) {
     std::printf("  evaluations: %d replayed from the journal, %d computed\n", result.replayed, result.computed);
     std::fflush(stdout);
   }
-  if (!sharded) write_fit(out, spec, result, inv.command_line);
+  if (!sharded) write_fit(out, spec, result, inv.command_line, opt.figures);
   int evaluations = 0;
   bool ok = true;
   for (const auto& o : result.fits) {
@@ -213,6 +214,7 @@ Command add_fit_command(CLI::App& app) {
   sub->add_flag("--no-profile", opt->no_profile, "Skip the objective profile around the optimum");
   sub->add_flag("--no-error-bars", opt->no_error_bars, "Skip the error-bar refits");
   add_quiet_flag(sub, opt->quiet);
+  add_figures_option(sub, opt->figures);
   auto* task = sub->add_option("--task", opt->task,
                                "Run only array task I of N of a separate fit (I/N, or auto: the SLURM array task), "
                                "journaled into DIR/tasks/I-of-N/; then --collect");

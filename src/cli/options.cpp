@@ -1,5 +1,7 @@
 #include "cli/options.hpp"
 
+#include <stdexcept>
+
 #include "io/arguments.hpp"
 
 namespace asperity::cli {
@@ -23,6 +25,23 @@ void add_threads_option(CLI::App* sub, int& threads, const std::string& what) {
 void add_set_option(CLI::App* sub, std::vector<std::string>& sets, const std::string& what) {
   sub->add_option("-s,--set", sets, "Set a scene value KEY=VALUE " + what + ", e.g. --set model.eta=50 (repeatable)")
       ->allow_extra_args(false);  // one value per --set: never swallows a positional argument
+}
+
+void add_figures_option(CLI::App* sub, FigureFormats& formats) {
+  sub->add_option_function<std::string>(
+         "--figures", [&formats](const std::string& v) { formats = parse_figure_formats(v); },
+         "Figure formats, comma-separated: png, svg, pdf (default png; SVG and PDF sized for a journal column)")
+      ->type_name("LIST")
+      ->check(CLI::Validator(
+          [](std::string& v) {
+            try {
+              parse_figure_formats(v);
+            } catch (const std::invalid_argument& e) {
+              return std::string(e.what());
+            }
+            return std::string();
+          },
+          "LIST"));
 }
 
 void add_quiet_flag(CLI::App* sub, bool& quiet) { sub->add_flag("-q,--quiet", quiet, "Print nothing on success"); }

@@ -39,6 +39,7 @@ struct ReproduceOptions {
   bool quiet = false;
   bool claims = true;
   std::string fit;  // per-load α_b calibration for claim 5 (e.g. fits/paper_alpha_b.yaml)
+  FigureFormats figures;  // of Figures 3 and 4 (--figures)
 };
 
 int reproduce(const ReproduceOptions& opt, const Invocation& inv) {
@@ -101,8 +102,8 @@ int reproduce(const ReproduceOptions& opt, const Invocation& inv) {
   scene_io::write_text_file(out / "table.csv", paper_table_csv(runs));
   if (!runs.empty()) {
     // A figure gnuplot could not draw is said, not skipped silently; its script is kept.
-    for (const auto& [name, error] : {std::pair<const char*, std::string>{"fig3_Q_A_t.png", write_figure3(out, runs.front(), runs.back(), label)},
-                                      {"fig4_A_Q.png", write_figure4(out, runs, label)}})
+    for (const auto& [name, error] : {std::pair<const char*, std::string>{"fig3_Q_A_t.png", write_figure3(out, runs.front(), runs.back(), label, opt.figures)},
+                                      {"fig4_A_Q.png", write_figure4(out, runs, label, opt.figures)}})
       if (!error.empty())
         std::fprintf(stderr, "reproduce: %s not drawn: %s (its script, data inline, is kept beside it)\n", name, error.c_str());
   }
@@ -182,6 +183,7 @@ Command add_reproduce_command(CLI::App& app) {
   add_set_option(sub, opt->overrides, "in every scene");
   add_threads_option(sub, opt->threads, "Runs in parallel");
   add_quiet_flag(sub, opt->quiet);
+  add_figures_option(sub, opt->figures);
   sub->add_flag("!--no-claims", opt->claims, "Skip the claim variants and REPORT.md");
   sub->add_option("--fit", opt->fit, "Per-load alpha_b calibration for claim 5 (e.g. fits/paper_alpha_b.yaml)");
   return Command{sub, [opt](const Invocation& inv) { return reproduce(*opt, inv); }};

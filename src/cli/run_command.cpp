@@ -26,6 +26,7 @@ struct RunOptions {
   bool quiet = false;
   int threads = 0;
   bool plot = false;
+  FigureFormats figures;  // of plot.png (--figures)
 };
 
 void print_summary(const Scene& scene, const Observables& o, const std::filesystem::path& out) {
@@ -89,7 +90,7 @@ int run(const RunOptions& opt, const Invocation& inv) {
   }
   ::sigaction(SIGINT, &previous, nullptr);
   const RunResult& r = *result;
-  write_run(out, scene, r.obs, r.recorder, RunWriteOptions{opt.plot, inv.command_line});
+  write_run(out, scene, r.obs, r.recorder, RunWriteOptions{opt.plot, inv.command_line, opt.figures});
   if (!opt.quiet) print_summary(scene, r.obs, out);
   return exit_ok;
 }
@@ -106,6 +107,7 @@ Command add_run_command(CLI::App& app) {
   add_threads_option(sub, opt->threads, "OpenMP threads of the reference solver (junctions in parallel from 256 on)");
   add_quiet_flag(sub, opt->quiet);
   sub->add_flag("--plot", opt->plot, "Also write plot.png (Q(t), A(t), A(Q)) with gnuplot");
+  add_figures_option(sub, opt->figures);
   return Command{sub, [opt](const Invocation& inv) { return run(*opt, inv); }};
 }
 

@@ -29,6 +29,7 @@ Command add_study_command(CLI::App& app) {
   in->add_option("--fit-interacting", opt->fit_interacting, "fit.yaml of the interacting calibration");
   in->add_option("--sweep", opt->sweep_store, "Store of sweeps/interactions.yaml");
   in->add_option("--spread", opt->spread_experiment, "Experiment of the force-spread histogram (default P4.00N)");
+  add_figures_option(in, opt->figures);
   in->add_flag("-q,--quiet", *quiet, "Print nothing on success");
   return Command{sub, [opt, scenes, out, quiet](const Invocation&) {
     InteractionStudyOptions o = *opt;

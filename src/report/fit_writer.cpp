@@ -54,6 +54,9 @@ std::string file_stem(const std::string& name) {
 
 // Draws the fit's figures from the CSVs beside them; the script is kept as `gp_name` in the
 // folder (`gnuplot NAME.gp` there redraws them).
+// The fit figures: 800 × 560 pixels (PNG), one journal column (SVG, PDF).
+constexpr int kFitPlotWidth = 800, kFitPlotHeight = 560;
+
 void plot_quietly(const fs::path& dir, const std::string& script, const std::string& gp_name) {
   keep_plot_script(dir / gp_name, "# asperity plot script: `gnuplot " + gp_name + "` redraws this fit's figures\n" + script);
   try {
@@ -124,7 +127,8 @@ std::string profile_csv(const Optimization& o) {
 }
 
 // Writes the files of one optimization into `d` (plots when `plots`).
-void write_optimization(const fs::path& d, const FitSpec& spec, const Optimization& o, bool plots) {
+void write_optimization(const fs::path& d, const FitSpec& spec, const Optimization& o, bool plots,
+                        const FigureFormats& figures) {
   fs::create_directories(d);
   scene_io::write_text_file(d / "evaluations.csv", evaluations_csv(o, spec));
   if (!o.profile.empty()) scene_io::write_text_file(d / "profile.csv", profile_csv(o));
@@ -143,40 +147,46 @@ void write_optimization(const fs::path& d, const FitSpec& spec, const Optimizati
     }
   }
   if (!plots) return;
-  std::ostringstream gp;
-  gp << "set terminal pngcairo size 800,560 noenhanced\n"
-     << "set datafile separator ','\nset grid\n";
-  gp << "set output 'convergence.png'\n"
-     << "set title " << gnuplot_quote(spec.name + " / " + o.label + ": objective (" + objective_name(spec.objective) +
-                                      "), " + spec.algorithm + ", stop " + o.stop_reason)
-     << "\n"
-     << "set xlabel 'evaluation number'\nset ylabel 'objective [1] (dimensionless)'\nset logscale y\nset key top right\n"
-     << "best = 1e300\n"
-     << "plot 'evaluations.csv' skip 1 using 1:($" << (o.variables.size() + 2)
-     << " > 0 ? $" << (o.variables.size() + 2) << " : 1/0) with linespoints pt 7 ps 0.6 title 'objective', "
-     << "'' skip 1 using 1:(($" << (o.variables.size() + 2) << " > 0 && $" << (o.variables.size() + 2)
-     << " < best) ? (best = $" << (o.variables.size() + 2) << ") : best) with steps lw 2 title 'best so far'\n"
-     << "unset logscale y\n";
-  if (!o.profile.empty()) {
-    const std::string& key = spec.parameters[o.profile_parameter].key;
-    gp << "set output 'profile.png'\n"
-       << "set title " << gnuplot_quote(o.label + ": objective around the optimum, " + key + " varied (others fixed)")
-       << "\nset xlabel " << gnuplot_quote(axis_label(key)) << "\nset ylabel 'objective [1] (dimensionless)'\nset key off\n"
-       << "plot 'profile.csv' skip 1 using 2:($3 == $3 ? $3 : 1/0) with linespoints pt 7 lw 1.5\n";
+  // The figures of every chosen format, each format's terminal before its figures.
+  std::string script;
+  for (const fs::path& probe : figure_files("convergence.png", figures)) {
+    const std::string ext = probe.extension().string();
+    std::ostringstream gp;
+    gp << "set datafile separator ','\nset grid\n";
+    gp << "set output " << gnuplot_quote("convergence" + ext) << "\n"
+       << "set title " << gnuplot_text(spec.name + " / " + o.label + ": objective (" + objective_name(spec.objective) + ")")
+       << " . \"\\n\" . " << gnuplot_text(spec.algorithm + ", stop " + o.stop_reason)
+       << "\n"
+       << "set xlabel 'evaluation number'\nset ylabel 'objective [1] (dimensionless)'\nset logscale y\nset key top right\n"
+       << "best = 1e300\n"
+       << "plot 'evaluations.csv' skip 1 using 1:($" << (o.variables.size() + 2)
+       << " > 0 ? $" << (o.variables.size() + 2) << " : 1/0) with linespoints pt 7 ps 0.6 title 'objective', "
+       << "'' skip 1 using 1:(($" << (o.variables.size() + 2) << " > 0 && $" << (o.variables.size() + 2)
+       << " < best) ? (best = $" << (o.variables.size() + 2) << ") : best) with steps lw 2 title 'best so far'\n"
+       << "unset logscale y\n";
+    if (!o.profile.empty()) {
+      const std::string& key = spec.parameters[o.profile_parameter].key;
+      gp << "set output " << gnuplot_quote("profile" + ext) << "\n"
+         << "set title " << gnuplot_text(o.label) << " . " << gnuplot_quote(": objective around the optimum, ")
+         << " . " << gnuplot_quote(column_symbol(key)) << " . " << gnuplot_quote(" varied (others fixed)")
+         << "\nset xlabel " << gnuplot_quote(axis_markup(key)) << "\nset ylabel 'objective [1] (dimensionless)'\nset key off\n"
+         << "plot 'profile.csv' skip 1 using 2:($3 == $3 ? $3 : 1/0) with linespoints pt 7 lw 1.5\n";
+    }
+    for (const auto& r : o.best_runs) {
+      const std::string name = spec.experiments[r.experiment].name;
+      const std::string stem = "AQ_" + file_stem(name);
+      gp << "set output " << gnuplot_quote(stem + ext) << "\n"
+         << "set title " << gnuplot_text(name + (r.stand_in ? " (STAND-IN data)" : "") + ": A(Q) on the loading branch at the fit")
+         << "\nset xlabel 'Q [N]'\nset ylabel 'A [mm^2]'\nset key bottom left\n"
+         << "plot " << gnuplot_quote(stem + "_model.csv") << " skip 1 using 1:($2*1e6) with lines lw 2 title 'model (fitted)'";
+      if (r.measured)
+        gp << ", " << gnuplot_quote(stem + "_measured.csv") << " skip 1 using 1:($2*1e6) with points pt 7 ps 0.7 title '"
+           << (r.stand_in ? "stand-in measurement" : "measurement") << "'";
+      gp << "\n";
+    }
+    script += terminal_for(probe, kFitPlotWidth, kFitPlotHeight) + "\n" + script_for_terminal(probe, gp.str());
   }
-  for (const auto& r : o.best_runs) {
-    const std::string name = spec.experiments[r.experiment].name;
-    const std::string stem = "AQ_" + file_stem(name);
-    gp << "set output " << gnuplot_quote(stem + ".png") << "\n"
-       << "set title " << gnuplot_quote(name + (r.stand_in ? " (STAND-IN data)" : "") + ": A(Q) on the loading branch at the fit")
-       << "\nset xlabel 'Q [N]'\nset ylabel 'A [mm^2]'\nset key bottom left\n"
-       << "plot " << gnuplot_quote(stem + "_model.csv") << " skip 1 using 1:($2*1e6) with lines lw 2 title 'model (fitted)'";
-    if (r.measured)
-      gp << ", " << gnuplot_quote(stem + "_measured.csv") << " skip 1 using 1:($2*1e6) with points pt 7 ps 0.7 title '"
-         << (r.stand_in ? "stand-in measurement" : "measurement") << "'";
-    gp << "\n";
-  }
-  plot_quietly(d, gp.str(), "plots.gp");
+  plot_quietly(d, script, "plots.gp");
 }
 
 constexpr const char* kFitHeader = "# asperity fit results (SI units: m, m², N, s; alpha_b in m^(2p+2)/N²)";
@@ -307,12 +317,13 @@ const std::pair<const char*, const char*> kFittedObservables[] = {
     {"alpha", "alpha"}, {"alpha_measured", "alpha_measured"}, {"Q_s_N", "Q_s"}, {"area_drop_fraction", "area_drop_fraction"},
     {"shape_exponent", "shape_exponent"}, {"shape_exponent_measured", "shape_exponent_measured"}};
 
-void write_fit(const fs::path& dir, const FitSpec& spec, const FitResult& result, const std::string& command_line) {
+void write_fit(const fs::path& dir, const FitSpec& spec, const FitResult& result, const std::string& command_line,
+               const FigureFormats& figures) {
   // The results go in beside the fit's journals (journal.csv, inputs.txt, tasks/), which stay
   // where they are: publish_dir replaces only the result files the last write listed.
   publish_dir(dir, "fit", "--out", [&](const fs::path& tmp) {
     const bool plots = gnuplot_available();
-    for (const auto& o : result.fits) write_optimization(tmp / fit_subdir(spec, o), spec, o, plots);
+    for (const auto& o : result.fits) write_optimization(tmp / fit_subdir(spec, o), spec, o, plots, figures);
 
     // fitted.csv: one row per (optimization, experiment).
     std::ostringstream c;
@@ -348,13 +359,16 @@ void write_fit(const fs::path& dir, const FitSpec& spec, const FitResult& result
     if (plots && spec.separate && result.fits.size() > 1) {
       // First parameter against the load, with the error-bar range when computed.
       // The numbers travel in a data block: fitted.csv's quoted names may hold commas.
-      std::ostringstream gp;
-      gp << gnuplot_block("fitted", first) << "set terminal pngcairo size 800,560 noenhanced\nset grid\n"
-         << "set output 'fitted.png'\nset key top left\n"
-         << "set title " << gnuplot_quote(spec.name + ": fitted " + spec.parameters[0].key + " per experiment")
-         << "\nset xlabel 'P = M g [N]'\nset ylabel " << gnuplot_quote(axis_label(spec.parameters[0].key)) << "\n"
-         << "plot $fitted using 1:2:3:4 with yerrorbars pt 7 title 'fit (bars: error-bar range)'\n";
-      plot_quietly(tmp, gp.str(), "fitted.gp");
+      std::string script = gnuplot_block("fitted", first);
+      for (const fs::path& probe : figure_files("fitted.png", figures)) {
+        std::ostringstream gp;
+        gp << "set grid\nset output " << gnuplot_quote(probe.string()) << "\nset key top left\n"
+           << "set title " << gnuplot_text(spec.name) << " . " << gnuplot_quote(": fitted " + column_symbol(spec.parameters[0].key) + " per experiment")
+           << "\nset xlabel 'P = M g [N]'\nset ylabel " << gnuplot_quote(axis_markup(spec.parameters[0].key)) << "\n"
+           << "plot $fitted using 1:2:3:4 with yerrorbars pt 7 title 'fit (bars: error-bar range)'\n";
+        script += terminal_for(probe, kFitPlotWidth, kFitPlotHeight) + "\n" + script_for_terminal(probe, gp.str());
+      }
+      plot_quietly(tmp, script, "fitted.gp");
     }
     scene_io::write_text_file(tmp / "fit.yaml", fit_yaml(spec, result, command_line));
   });

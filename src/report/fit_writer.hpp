@@ -18,13 +18,15 @@
 
 #include "fit/fit.hpp"
 #include "fit/fit_spec.hpp"
+#include "report/gnuplot.hpp"  // FigureFormats
 
 namespace asperity {
 
 std::string fit_yaml(const FitSpec& spec, const FitResult& result, const std::string& command_line = "");
 
+// The figures in each format of `figures` (--figures; PNG alone by default).
 void write_fit(const std::filesystem::path& dir, const FitSpec& spec, const FitResult& result,
-               const std::string& command_line = "");
+               const std::string& command_line = "", const FigureFormats& figures = {});
 
 // Throws the error write_fit would give for an existing `dir` that is not a fit directory.
 void check_fit_dir(const std::filesystem::path& dir);

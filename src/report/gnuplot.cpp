@@ -1,5 +1,6 @@
 #include "report/gnuplot.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -8,6 +9,7 @@
 #include <iterator>
 #include <stdexcept>
 #include <system_error>
+#include <utility>
 
 #include "io/atomic_file.hpp"
 
@@ -89,6 +91,51 @@ std::string gnuplot_quote(const std::string& text) {
   return out;
 }
 
+std::string enhanced_literal(const std::string& text) {
+  std::string out;
+  out.reserve(text.size() + 8);
+  for (const char c : text) {
+    switch (c) {
+      case '^': case '_': case '@': case '&': case '~': case '{': case '}': case '\\':
+        out += '\\';
+        break;
+      default:
+        break;
+    }
+    out += c;
+  }
+  return out;
+}
+
+std::string gnuplot_text(const std::string& text) { return gnuplot_quote(enhanced_literal(text)); }
+
+FigureFormats parse_figure_formats(const std::string& list) {
+  FigureFormats f{false, false, false};
+  std::size_t begin = 0;
+  bool any = false;
+  while (begin <= list.size()) {
+    const std::size_t comma = std::min(list.find(',', begin), list.size());
+    std::string name = list.substr(begin, comma - begin);
+    while (!name.empty() && name.front() == ' ') name.erase(name.begin());
+    while (!name.empty() && name.back() == ' ') name.pop_back();
+    if (name == "png") f.png = true;
+    else if (name == "svg") f.svg = true;
+    else if (name == "pdf") f.pdf = true;
+    else throw std::invalid_argument("unknown figure format '" + name + "' (use png, svg or pdf, comma-separated)");
+    any = true;
+    begin = comma + 1;
+  }
+  if (!any) throw std::invalid_argument("no figure format (use png, svg or pdf, comma-separated)");
+  return f;
+}
+
+std::vector<fs::path> figure_files(const fs::path& figure, const FigureFormats& formats) {
+  std::vector<fs::path> out;
+  for (const auto& [on, ext] : {std::pair{formats.png, ".png"}, {formats.svg, ".svg"}, {formats.pdf, ".pdf"}})
+    if (on) out.push_back(fs::path(figure).replace_extension(ext));
+  return out;
+}
+
 std::string gnuplot_block(const std::string& name, const std::vector<std::vector<double>>& rows) {
   std::string s = "$" + name + " << EOD\n";
   char buf[32];
@@ -110,18 +157,54 @@ std::string gnuplot_block(const std::string& name, const std::vector<std::vector
 namespace {
 const std::string kScriptHeader = "# asperity plot script";
 
-// The terminal line for a figure file, by its extension.
+// Journal sizes: a column of a two-column page (8.6 cm, e.g. Physical Review) and the full
+// width (17.8 cm); text in 8.5 pt.
+constexpr double kColumnCm = 8.6, kPageCm = 17.8, kPaperFontPt = 8.5;
+
+// gnuplot 5.4's svg terminal writes an escaped \& as a raw & (not XML); the octal escape \046
+// comes out as &amp;. Only enhanced_literal writes \& (a raw & of markup is never written).
+std::string svg_ampersands(const std::string& script) {
+  std::string out;
+  out.reserve(script.size());
+  for (std::size_t i = 0; i < script.size(); ++i) {
+    if (script[i] == '\\' && i + 1 < script.size()) {
+      if (script[i + 1] == '&') {
+        out += "\\046";
+      } else {
+        out += script[i];
+        out += script[i + 1];
+      }
+      ++i;
+      continue;
+    }
+    out += script[i];
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string script_for_terminal(const fs::path& figure, const std::string& script) {
+  return figure.extension() == ".svg" ? svg_ampersands(script) : script;
+}
+
 std::string terminal_for(const fs::path& figure, int width, int height) {
   const std::string ext = figure.extension().string();
-  if (ext == ".svg") return "set terminal svg size " + std::to_string(width) + "," + std::to_string(height) + " noenhanced";
-  if (ext == ".pdf") {
-    char buf[96];
-    std::snprintf(buf, sizeof buf, "set terminal pdfcairo size %.2fin,%.2fin noenhanced", width / 100.0, height / 100.0);
+  const double w_cm = width <= 1000 ? kColumnCm : kPageCm, h_cm = w_cm * height / std::max(width, 1);
+  char buf[160];
+  if (ext == ".svg") {  // CSS pixels, 96 per inch; fonts scaled from points to them
+    std::snprintf(buf, sizeof buf, "set terminal svg size %d,%d enhanced font 'Sans,%g' fontscale %.6g",
+                  static_cast<int>(std::lround(w_cm / 2.54 * 96)), static_cast<int>(std::lround(h_cm / 2.54 * 96)),
+                  kPaperFontPt, 96.0 / 72.0);
     return buf;
   }
-  return "set terminal pngcairo size " + std::to_string(width) + "," + std::to_string(height) + " noenhanced";
+  if (ext == ".pdf") {
+    std::snprintf(buf, sizeof buf, "set terminal pdfcairo size %.2fcm,%.2fcm enhanced font 'Sans,%g'", w_cm, h_cm,
+                  kPaperFontPt);
+    return buf;
+  }
+  return "set terminal pngcairo size " + std::to_string(width) + "," + std::to_string(height) + " enhanced";
 }
-}  // namespace
 
 fs::path plot_script_path(const fs::path& figure) {
   fs::path gp = figure;
@@ -139,13 +222,27 @@ bool keep_plot_script(const fs::path& gp, const std::string& script) {
   return true;
 }
 
-bool render_plot(const fs::path& figure, const std::string& script, int width, int height, std::string* error) {
-  const std::string terminal = terminal_for(figure, width, height);
-  // The kept script draws the figure by its own name, from its own folder.
-  keep_plot_script(plot_script_path(figure),
-                   kScriptHeader + ": `gnuplot " + plot_script_path(figure).filename().string() + "` redraws " +
-                       figure.filename().string() + " (data inline; restyle freely)\n" + terminal + "\nset output " +
-                       gnuplot_quote(figure.filename().string()) + "\n" + script + "\nunset output\n");
+namespace {
+
+// The kept script: its header names every figure it redraws, then per figure the terminal,
+// the output and the whole script.
+std::string kept_script(const std::vector<fs::path>& figures, const std::string& script, int width, int height) {
+  std::string names;
+  for (const fs::path& f : figures) names += (names.empty() ? "" : ", ") + f.filename().string();
+  std::string text = kScriptHeader + ": `gnuplot " + plot_script_path(figures.front()).filename().string() + "` redraws " +
+                     names + " (data inline; restyle freely)\n";
+  for (std::size_t i = 0; i < figures.size(); ++i) {
+    if (i) text += '\n';
+    text += terminal_for(figures[i], width, height);
+    text += "\nset output " + gnuplot_quote(figures[i].filename().string()) + "\n";
+    text += script_for_terminal(figures[i], script);
+    text += "\nunset output\n";
+  }
+  return text;
+}
+
+// Draws one figure (the script kept by the caller).
+bool draw(const fs::path& figure, const std::string& script, int width, int height, std::string* error) {
   if (!gnuplot_available()) {
     if (error) *error = "gnuplot not found on the PATH";
     return false;
@@ -156,7 +253,8 @@ bool render_plot(const fs::path& figure, const std::string& script, int width, i
   const std::string tmp_name = ".plot.tmp-" + unique_tmp_suffix();  // the ".NAME.tmp-*" pattern of output_dir
   const fs::path tmp = dir / tmp_name;
   const TempGuard on_signal(tmp);
-  const std::string text = terminal + "\nset output " + gnuplot_quote(tmp_name) + "\n" + script + "\nunset output\n";
+  const std::string text = terminal_for(figure, width, height) + "\nset output " + gnuplot_quote(tmp_name) + "\n" +
+                           script_for_terminal(figure, script) + "\nunset output\n";
   std::error_code ec;
   try {
     run_gnuplot(dir, text);
@@ -180,12 +278,40 @@ bool render_plot(const fs::path& figure, const std::string& script, int width, i
   return true;
 }
 
+}  // namespace
+
+bool render_plot(const fs::path& figure, const std::string& script, int width, int height, std::string* error) {
+  // The kept script draws the figure by its own name, from its own folder.
+  keep_plot_script(plot_script_path(figure), kept_script({figure}, script, width, height));
+  return draw(figure, script, width, height, error);
+}
+
+bool render_figures(const fs::path& figure, const std::string& script, int width, int height,
+                    const FigureFormats& formats, std::string* error) {
+  const std::vector<fs::path> figures = figure_files(figure, formats);
+  if (figures.empty()) return true;
+  keep_plot_script(plot_script_path(figure), kept_script(figures, script, width, height));
+  bool ok = true;
+  for (const fs::path& f : figures) {
+    std::string why;
+    if (!draw(f, script, width, height, &why) && ok) {
+      ok = false;
+      if (error) *error = why;
+    }
+  }
+  return ok;
+}
+
 bool png_is_ours(const fs::path& png) {
   std::error_code ec;
   if (!fs::is_regular_file(fs::symlink_status(png, ec))) return false;
   if (png.extension() != ".png") {  // SVG, PDF: our kept script names it
-    const std::string head = read_all(plot_script_path(png), 512);
-    return head.rfind(kScriptHeader, 0) == 0 && head.find("redraws " + png.filename().string() + " (") != std::string::npos;
+    std::string head = read_all(plot_script_path(png), 1024);
+    head = head.substr(0, head.find('\n'));
+    const std::size_t from = head.find("` redraws "), to = head.rfind(" (data inline");
+    if (head.rfind(kScriptHeader, 0) != 0 || from == std::string::npos || to == std::string::npos || to < from) return false;
+    const std::string names = ", " + head.substr(from + 10, to - from - 10) + ", ";
+    return names.find(", " + png.filename().string() + ", ") != std::string::npos;
   }
   const std::string s = read_all(png, 1 << 16);
   if (s.size() < 8 || std::memcmp(s.data(), kPngSignature, 8) != 0) return false;

@@ -76,14 +76,15 @@ HeatmapReport plot_heatmap(const fs::path& store, const HeatmapOptions& opt) {
 
   const bool stand_in = read_file_text(store / "provenance.yaml").find("stand_in_data: true") != std::string::npos;
   std::ostringstream gp;
-  // Every text from the store or the command line enters the script as a gnuplot_quote literal;
-  // line breaks of the title are gnuplot's "\n" between them.
-  std::string title = opt.z + " over " + opt.x + " x " + opt.y;
-  for (const std::string& w : opt.where) title += ", " + w;
+  // Every text from the store or the command line enters the script as a gnuplot_quote literal
+  // (and its markup through enhanced_literal); line breaks of the title are gnuplot's "\n" between them.
+  // Markup: the columns' symbols; the --where filters as they were typed.
+  std::string title = column_symbol(opt.z) + " over " + column_symbol(opt.x) + " × " + column_symbol(opt.y);
+  for (const std::string& w : opt.where) title += ", " + enhanced_literal(w);
   gp << "set title " << gnuplot_quote(title);
   if (stand_in) gp << " . \"\\n\" . " << gnuplot_quote("STAND-IN experiments, not measurements");
   gp << " . \"\\n\" . " << gnuplot_quote("(blank: no value: NaN, e.g. no stick-slip cycle, or failed/missing point)") << "\n";
-  gp << "set cblabel " << gnuplot_quote(axis_label(opt.z)) << "\n";
+  gp << "set cblabel " << gnuplot_quote(axis_markup(opt.z)) << "\n";
   gp << "set palette defined (0 '#440154', 1 '#3b528b', 2 '#21908d', 3 '#5dc963', 4 '#fde725')\n";
   // Numeric axes: each cell spans the values between its neighbours, so η = 150, 180, 200 sit
   // where they are, and a logspace axis (α_b, c_min) is drawn on a log scale.

@@ -288,18 +288,33 @@ std::string run_interaction_study(const InteractionStudyOptions& opt) {
       (sp.crowding[i] >= sp.crowding_median ? crowded : sparse).push_back({sp.half_inter[i]});
       indep.push_back({sp.half_indep[i]});
     }
+    double lo = NAN, hi = NAN;  // the independent model's range (one bin wide or less)
+    for (const auto& v : indep)
+      if (std::isfinite(v[0])) lo = std::isnan(lo) ? v[0] : std::min(lo, v[0]), hi = std::isnan(hi) ? v[0] : std::max(hi, v[0]);
     std::ostringstream gp;
     gp << gnuplot_block("crowded", crowded) << gnuplot_block("sparse", sparse) << gnuplot_block("indep", indep)
-       << "set title " << gnuplot_quote("STAND-IN " + sp.experiment + ": f/(σA) at half the time of the first peak, junctions of equal area (" +
-                                        fmt("%.3g", sp.area_lo) + "–" + fmt("%.3g", sp.area_hi) + " m²)")
+       << "set title " << gnuplot_text("STAND-IN " + sp.experiment) << " . "
+       << gnuplot_quote(": f/(σA) at half the time of the first peak") << " . \"\\n\" . "  // two lines: one column wide in a PDF
+       << gnuplot_quote("junctions of equal area (" + fmt("%.3g", sp.area_lo) + "–" + fmt("%.3g", sp.area_hi) + " m^2)")
        << "\nset xlabel " << gnuplot_quote("f_i / (σ A_i) [1]") << "\nset ylabel " << gnuplot_quote("junctions [1]")
-       << "\nbin(x) = 0.02*floor(x/0.02) + 0.01\nset style fill transparent solid 0.5\nset boxwidth 0.02\nset key top left\n"
+       << "\nbin(x) = 0.02*floor(x/0.02) + 0.01\nset style fill transparent solid 0.5\nset boxwidth 0.02\nset key top right\n"
+       // The independent model gives the junctions of equal area one f/(σA) (a range narrower
+       // than a bin): a band and a line across the plot, not a bar as tall as all the junctions
+       // (which squashed the histograms); the y range is the histograms'.
+       << "set yrange [0:*]\nset offsets 0, 0, graph 0.1, 0\n"
+       << (std::isfinite(lo) ? "set object 1 rect from first " + fmt("%.10g", lo) + ", graph 0 to first " + fmt("%.10g", hi) +
+                                   ", graph 1 behind fc rgb '#56b4e9' fs solid 0.35 noborder\nset arrow 1 from first " +
+                                   fmt("%.10g", 0.5 * (lo + hi)) + ", graph 0 to first " + fmt("%.10g", 0.5 * (lo + hi)) +
+                                   ", graph 1 nohead lw 3 lc rgb '#56b4e9'\n"
+                             : std::string())
        << "plot $crowded using (bin($1)):(1) smooth frequency with boxes title "
-       << gnuplot_quote("interacting, crowded (k_iΣC_ij ≥ median)") << ", $sparse using (bin($1)):(1) smooth frequency "
-       << "with boxes title " << gnuplot_quote("interacting, sparse") << ", $indep using (bin($1)):(1) smooth frequency "
-       << "with impulses lw 4 title " << gnuplot_quote("independent model (same junctions)") << "\n";
+       << gnuplot_quote("interacting, crowded (k_i Σ_j C_{ij} ≥ median)") << ", $sparse using (bin($1)):(1) smooth frequency "
+       << "with boxes title " << gnuplot_quote("interacting, sparse") << ", NaN with lines lw 3 lc rgb '#56b4e9' title "
+       << gnuplot_quote("independent model (same junctions): " + fmt("%.3g", lo) + (hi > lo ? "–" + fmt("%.3g", hi) : ""))
+       << "\n";
     std::string error;
-    if (!render_plot(opt.out / "force_spread.png", gp.str(), 1000, 650, &error)) fig_note = "force_spread.png not drawn: " + error;
+    if (!render_figures(opt.out / "force_spread.png", gp.str(), 1000, 650, opt.figures, &error))
+      fig_note = "force_spread.png not drawn: " + error;
   }
   // Equal-area pairs, crowded vs sparse, in time (both models, to past the interacting peak).
   std::string pairs_md;

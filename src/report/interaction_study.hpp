@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include "report/gnuplot.hpp"  // FigureFormats
+
 namespace asperity {
 
 struct InteractionStudyOptions {
@@ -23,6 +25,7 @@ struct InteractionStudyOptions {
   std::string spread_experiment = "P4.00N";
   int threads = 2;
   std::ostream* log = nullptr;
+  FigureFormats figures;  // of force_spread (--figures)
 };
 
 // Runs the study and writes OUT/REPORT.md, table.csv, forces_at_peak.csv and figures. Returns

@@ -61,13 +61,14 @@ LinePlotReport plot_lines(const fs::path& store, const LinePlotOptions& opt) {
 
   const bool stand_in = read_file_text(store / "provenance.yaml").find("stand_in_data: true") != std::string::npos;
   std::ostringstream gp;
-  std::string title = opt.y + " over " + opt.x;
-  for (const std::string& w : opt.where) title += ", " + w;
+  // Markup: the columns' symbols; the --where filters as they were typed.
+  std::string title = column_symbol(opt.y) + " over " + column_symbol(opt.x);
+  for (const std::string& w : opt.where) title += ", " + enhanced_literal(w);
   gp << "set title " << gnuplot_quote(title);
   if (stand_in) gp << " . \"\\n\" . " << gnuplot_quote("STAND-IN experiments, not measurements");
   gp << "\nset grid\nset key outside right\n";
   gp << axis_settings("x", opt.x, xtexts, {}, xlog);
-  gp << "set ylabel " << gnuplot_quote(axis_label(opt.y)) << "\n";
+  gp << "set ylabel " << gnuplot_quote(axis_markup(opt.y)) << "\n";
   if (xtexts.size() > 8) gp << "set xtics rotate by 60 right\n";
   if (xlog && xv.size() > 1) gp << "set xrange [" << scene_io::format_double(xv.front() / std::pow(xv.back() / xv.front(), 0.03))
                                  << ":" << scene_io::format_double(xv.back() * std::pow(xv.back() / xv.front(), 0.03)) << "]\n";
@@ -88,7 +89,7 @@ LinePlotReport plot_lines(const fs::path& store, const LinePlotOptions& opt) {
     }
     gp << "EOD\n";
     plot += std::string(k ? ", " : "") + "$line" + std::to_string(k) + " using 1:2 with linespoints pt 7 ps 0.8 lw 1.5 title " +
-            gnuplot_quote(experiment);
+            gnuplot_text(experiment);
     ++k;
   }
   rep.lines = k;

@@ -43,23 +43,28 @@ std::vector<std::vector<double>> measured_rows(const PaperRun& r) {
   return rows;
 }
 
+// The PNGs' 10-point text (their layout is made for it); SVG and PDF keep their journal size.
+constexpr const char* kScreenFont = "if (GPVAL_TERM eq 'pngcairo') set termoption font ',10'\n";
+
 const char* kColors[] = {"#1b9e77", "#d95f02", "#7570b3", "#e7298a", "#66a61e", "#e6ab02", "#a6761d", "#666666"};
 
 }  // namespace
 
 std::string write_figure3(const fs::path& out_dir, const PaperRun& small, const PaperRun& large,
-                   const std::string& label) {
+                   const std::string& label, const FigureFormats& formats) {
   std::ostringstream gp;
   gp << gnuplot_block("ms", series_rows(small.series)) << gnuplot_block("me", measured_rows(small))
      << gnuplot_block("ls", series_rows(large.series)) << gnuplot_block("le", measured_rows(large));
-  gp << "set termoption font ',10'\n"
-     << "set grid\nset key top left opaque box\n"
+  gp << kScreenFont << "set grid\n"
      << "set multiplot layout 2,2 title "
-     << gnuplot_quote(label + ": Figure 3 analogue. Measured A(Q) has no time axis: its samples sit at the model time "
-                              "of equal Q (loading branch).")
+     << gnuplot_text(label + ": Figure 3 analogue. Measured A(Q) has no time axis: its samples sit at the model time "
+                             "of equal Q (loading branch).")
      << "\n";
   auto panel = [&](const PaperRun& r, const char* model, const char* meas, bool area) {
-    gp << "set title " << gnuplot_quote(r.scene.experiment.name + " (N = " + std::to_string(r.obs.N) + ")") << "\n"
+    // Q rises from the lower left, A falls from the upper left (the measured points start
+    // there): each key sits in the corner its curves leave empty.
+    gp << "set title " << gnuplot_text(r.scene.experiment.name + " (N = " + std::to_string(r.obs.N) + ")") << "\n"
+       << "set key " << (area ? "bottom left" : "top left") << " opaque box\n"
        << "set xlabel 't [s]'\nset ylabel '" << (area ? "A [mm^2]" : "Q [N]") << "'\n"
        << "plot $" << model << " using 1:" << (area ? 3 : 2) << " with lines lw 1.5 lc rgb '#1f4e9a' title 'model'";
     if (area && r.scene.experiment.measured)
@@ -72,11 +77,12 @@ std::string write_figure3(const fs::path& out_dir, const PaperRun& small, const 
   panel(large, "ls", "le", true);
   gp << "unset multiplot\n";
   std::string error;
-  if (!render_plot(out_dir / "fig3_Q_A_t.png", gp.str(), 1200, 900, &error)) return error;
+  if (!render_figures(out_dir / "fig3_Q_A_t.png", gp.str(), 1200, 900, formats, &error)) return error;
   return "";
 }
 
-std::string write_figure4(const fs::path& out_dir, const std::vector<PaperRun>& runs, const std::string& label) {
+std::string write_figure4(const fs::path& out_dir, const std::vector<PaperRun>& runs, const std::string& label,
+                          const FigureFormats& formats) {
   std::ostringstream gp;
   for (std::size_t k = 0; k < runs.size(); ++k) {
     const PaperRun& r = runs[k];
@@ -91,21 +97,20 @@ std::string write_figure4(const fs::path& out_dir, const std::vector<PaperRun>& 
     const std::string id = std::to_string(k);
     gp << gnuplot_block(std::string("m").append(id), model) << gnuplot_block(std::string("e").append(id), meas);
   }
-  gp << "set termoption font ',10'\n"
-     << "set grid\nset key outside right\n"
+  gp << kScreenFont << "set grid\nset key outside right\n"
      << "set multiplot layout 1,2 title "
-     << gnuplot_quote(label + ": Figure 4 analogue. Lines: model loading branch; points: measured (stand-in).") << "\n";
+     << gnuplot_text(label + ": Figure 4 analogue. Lines: model loading branch; points: measured (stand-in).") << "\n";
   for (int panel = 0; panel < 2; ++panel) {
     const int cx = panel == 0 ? 1 : 3, cy = panel == 0 ? 2 : 4;
     gp << (panel == 0 ? "set xlabel 'Q [N]'\nset ylabel 'A [mm^2]'\nset title 'A(Q)'\n"
-                      : "set xlabel 'Q / Q_s'\nset ylabel 'A / A0'\nset title 'normalised: a straight line is "
+                      : "set xlabel 'Q/Q_s'\nset ylabel 'A/A_0'\nset title 'normalised: a straight line is "
                         "quasi-linear, a parabola quadratic'\n");
     gp << "plot ";
     for (std::size_t k = 0; k < runs.size(); ++k) {
       const char* col = kColors[k % 8];
       if (k) gp << ", ";
       gp << "$m" << k << " using " << cx << ":" << cy << " with lines lw 2 lc rgb '" << col << "' title "
-         << gnuplot_quote(runs[k].scene.experiment.name);
+         << gnuplot_text(runs[k].scene.experiment.name);
       if (runs[k].scene.experiment.measured)
         gp << ", $e" << k << " using " << cx << ":" << cy << " with points pt 7 ps 0.4 lc rgb '" << col
            << "' notitle";
@@ -114,7 +119,7 @@ std::string write_figure4(const fs::path& out_dir, const std::vector<PaperRun>& 
   }
   gp << "unset multiplot\n";
   std::string error;
-  if (!render_plot(out_dir / "fig4_A_Q.png", gp.str(), 1300, 600, &error)) return error;
+  if (!render_figures(out_dir / "fig4_A_Q.png", gp.str(), 1300, 600, formats, &error)) return error;
   return "";
 }
 

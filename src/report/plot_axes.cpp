@@ -109,7 +109,7 @@ std::vector<std::pair<double, double>> cell_edges(const std::vector<double>& v, 
 std::string axis_settings(const char* axis, const std::string& column, const std::vector<std::string>& texts,
                           const std::vector<std::pair<double, double>>& edges, bool log) {
   std::ostringstream gp;
-  gp << "set " << axis << "label " << gnuplot_quote(axis_label(column)) << "\n";
+  gp << "set " << axis << "label " << gnuplot_quote(axis_markup(column)) << "\n";
   if (log) gp << "set logscale " << axis << "\n";
   if (texts.size() <= 12) {
     gp << "set " << axis << "tics (";
@@ -117,7 +117,7 @@ std::string axis_settings(const char* axis, const std::string& column, const std
       double v = 0;
       number_of(texts[i], v);
       // Labels to 6 digits (the store's exact texts can be 17); positions exact.
-      gp << (i ? ", " : "") << gnuplot_quote(scene_io::format_short(v)) << " " << scene_io::format_double(v);
+      gp << (i ? ", " : "") << gnuplot_text(scene_io::format_short(v)) << " " << scene_io::format_double(v);
     }
     gp << ")\n";
   }

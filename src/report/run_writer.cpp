@@ -90,14 +90,14 @@ void write_run(const fs::path& dir, const Scene& scene, const Observables& obs, 
     scene_io::write_text_file(tmp / "scene.yaml", scene_text);
     if (opt.plot) {
       std::string error;
-      if (!write_run_plot(tmp, &error))
+      if (!write_run_plot(tmp, &error, opt.figures))
         std::fprintf(stderr, "%s: plot.png not drawn: %s (plot.gp is kept: `gnuplot plot.gp` in the run folder)\n",
                      dir.string().c_str(), error.c_str());
     }
   });
 }
 
-bool write_run_plot(const fs::path& dir, std::string* error) {
+bool write_run_plot(const fs::path& dir, std::string* error, const FigureFormats& formats) {
   const fs::path csv = dir / "series.csv";
   std::ifstream in(csv);
   std::string header;
@@ -130,7 +130,7 @@ bool write_run_plot(const fs::path& dir, std::string* error) {
      << "set xlabel 'Q [N]'\nset ylabel 'A [mm^2]'\n"
      << "plot 'series.csv' skip 1 using " << q << ":($" << a << "*1e6) with lines lw 1.5\n"
      << "unset multiplot\n";
-  return render_plot(dir / "plot.png", gp.str(), 900, 1000, error);
+  return render_figures(dir / "plot.png", gp.str(), 900, 1000, formats, error);
 }
 
 }  // namespace asperity

@@ -14,6 +14,7 @@
 
 #include "observe/observables.hpp"
 #include "observe/recorder.hpp"
+#include "report/gnuplot.hpp"  // FigureFormats
 #include "scene/scene.hpp"
 
 namespace asperity {
@@ -28,6 +29,7 @@ std::string summary_yaml(const Scene& scene, const Observables& obs, const std::
 struct RunWriteOptions {
   bool plot = false;         // also write plot.png (skipped silently without gnuplot or series)
   std::string command_line;  // the command that ran it (provenance)
+  FigureFormats figures;     // the formats of the plot (--figures; PNG alone by default)
 };
 
 // Writes the run directory `dir` atomically, replacing an existing run directory. Throws
@@ -43,6 +45,6 @@ void check_run_dir(const std::filesystem::path& dir);
 // Renders DIR/plot.png from DIR/series.csv (needs columns t, Q, A) and keeps its script as
 // DIR/plot.gp. Returns false when the series lacks a column, gnuplot is missing or fails (why in
 // *error); write_run says so on stderr.
-bool write_run_plot(const std::filesystem::path& dir, std::string* error = nullptr);
+bool write_run_plot(const std::filesystem::path& dir, std::string* error = nullptr, const FigureFormats& formats = {});
 
 }  // namespace asperity

@@ -1,6 +1,10 @@
 #include "report/units.hpp"
 
+#include <cctype>
+#include <utility>
+
 #include "observe/observables.hpp"
+#include "report/gnuplot.hpp"
 #include "scene/scene_keys.hpp"
 
 namespace asperity {
@@ -29,6 +33,118 @@ std::string series_unit(const std::string& column) {
 std::string axis_label(const std::string& column) {
   const std::string unit = column_unit(column);
   return unit.empty() ? column : column + " [" + unit + "]";
+}
+
+namespace {
+
+// What a figure calls each numeric column (enhanced text): every number key of the scene key
+// table, every real or count of the observable table, the series columns (a test checks that
+// none is missing). A short word goes before a symbol the reader would not know.
+const std::pair<const char*, const char*> kSymbols[] = {
+    // scene keys
+    {"experiment.mass", "M"},
+    {"experiment.k_L", "k_L"},
+    {"experiment.v", "v"},
+    {"experiment.E", "E"},
+    {"experiment.nu", "ν"},
+    {"experiment.sigma_exp", "σ_{exp}"},
+    {"model.eta", "η"},
+    {"model.epsilon", "ε"},
+    {"model.c_min", "c_{min}"},
+    {"model.p", "p"},
+    {"model.alpha_b", "α_b"},
+    {"model.interaction_cutoff", "cutoff r_c"},
+    {"model.position_scale", "position scale s"},
+    {"solver.Ct", "C_t"},
+    {"solver.tolerance", "tolerance"},
+    {"stop.time", "t_{stop}"},
+    {"stop.cycles", "stop after cycles"},
+    {"stop.wall_time", "wall-time limit"},
+    {"stop.max_slips", "slip limit"},
+    {"output.every", "Δt_{out}"},
+    {"output.peak_min_drop", "peak drop threshold"},
+    // observables
+    {"N", "junctions N"},
+    {"A0", "A_0"},
+    {"K0", "K_0"},
+    {"T0", "T_0"},
+    {"dt", "Δt"},
+    {"Q_s", "Q_s"},
+    {"A_s", "A_s"},
+    {"t_peak", "t_{peak}"},
+    {"alpha", "α"},
+    {"alpha_R2", "R^2 of α"},
+    {"alpha_points", "points of the α fit"},
+    {"shape_exponent", "shape exponent n"},
+    {"shape_prefactor", "shape prefactor c_n"},
+    {"area_drop_fraction", "area drop 1 - A_s/A_0"},
+    {"alpha_measured", "α_{meas}"},
+    {"alpha_measured_R2", "R^2 of α_{meas}"},
+    {"shape_exponent_measured", "shape exponent n_{meas}"},
+    {"ss_cycles", "stick-slip cycles"},
+    {"ss_drop", "stick-slip drop ΔQ_{ss}"},
+    {"ss_period", "stick-slip period T_{ss}"},
+    {"n_peaks", "peaks"},
+    {"max_f_over_sigmaA", "max f_i/(σA_i)"},
+    {"max_f_over_sigma_exp_A", "max f_i/(σ_{exp}A_i)"},
+    {"t_end", "t_{end}"},
+    {"steps", "steps"},
+    {"rejected", "rejected steps"},
+    {"force_evals", "force evaluations"},
+    {"slips", "slips"},
+    {"repins", "repins"},
+    {"wall_s", "wall time"},
+    // series columns
+    {"t", "t"},
+    {"X", "X"},
+    {"V", "V"},
+    {"Q", "Q"},
+    {"A", "A"},
+    {"n_slipping", "slipping junctions"},
+    {"n_intact", "intact junctions"},
+};
+
+const char* find_symbol(const std::string& column) {
+  for (const auto& [name, symbol] : kSymbols)
+    if (column == name) return symbol;
+  return nullptr;
+}
+
+// "m^(2p+2)" → "m^{2p+2}", "N^2" → "N^2", "m" → "m": one factor of a unit.
+std::string factor_markup(const std::string& f, bool negate) {
+  const std::size_t hat = f.find('^');
+  std::string base = f.substr(0, hat), exponent = hat == std::string::npos ? "" : f.substr(hat + 1);
+  if (exponent.size() >= 2 && exponent.front() == '(' && exponent.back() == ')') exponent = exponent.substr(1, exponent.size() - 2);
+  if (negate) exponent = "-" + (exponent.empty() ? std::string("1") : exponent);
+  if (exponent.empty()) return enhanced_literal(base);
+  const bool one_char = exponent.size() == 1;
+  return enhanced_literal(base) + "^" + (one_char ? "" : "{") + enhanced_literal(exponent) + (one_char ? "" : "}");
+}
+
+}  // namespace
+
+std::string column_symbol(const std::string& column) {
+  const char* s = find_symbol(column);
+  return s ? s : enhanced_literal(column);
+}
+
+bool has_column_symbol(const std::string& column) { return find_symbol(column) != nullptr; }
+
+std::string unit_markup(const std::string& unit) {
+  const std::size_t slash = unit.find('/');
+  if (slash == std::string::npos) return factor_markup(unit, false);
+  const std::string num = unit.substr(0, slash), den = unit.substr(slash + 1);
+  // A plain denominator stays a fraction (N/m, m/s); one with a power, or over 1, becomes a
+  // negative power (m^{2p+2} N^{-2}, s^{-1}).
+  if (num == "1") return factor_markup(den, true);
+  if (den.find('^') == std::string::npos) return factor_markup(num, false) + "/" + factor_markup(den, false);
+  return factor_markup(num, false) + " " + factor_markup(den, true);
+}
+
+std::string axis_markup(const std::string& column) {
+  std::string unit = column_unit(column);
+  if (unit.empty()) unit = series_unit(column);
+  return unit.empty() ? column_symbol(column) : column_symbol(column) + " [" + unit_markup(unit) + "]";
 }
 
 std::string units_reference_markdown() {

@@ -13,8 +13,20 @@ std::string column_unit(const std::string& column);
 // `column` is not one (scene/scene.hpp all_series).
 std::string series_unit(const std::string& column);
 
-// "model.eta [1/s]", "model.epsilon [1]", or the column as is when its unit is unknown.
+// "model.eta [1/s]", "model.epsilon [1]", or the column as is when its unit is unknown (plain
+// text: messages; figures use axis_markup).
 std::string axis_label(const std::string& column);
+
+// Figure labels, in gnuplot enhanced text (report/gnuplot.hpp), from the display table in
+// units.cpp (the symbol is a figure's fact; the unit stays the key and field tables' one):
+//   column_symbol("model.alpha_b") == "α_b", ("t_peak") == "t_{peak}"; a column the table does
+//     not hold (experiment, a name from a store) prints as itself (enhanced_literal);
+//   unit_markup("m^(2p+2)/N^2") == "m^{2p+2} N^{-2}", ("1/s") == "s^{-1}", ("N/m") == "N/m";
+//   axis_markup("model.alpha_b") == "α_b [m^{2p+2} N^{-2}]", ("model.epsilon") == "ε [1]".
+std::string column_symbol(const std::string& column);
+bool has_column_symbol(const std::string& column);
+std::string unit_markup(const std::string& unit);
+std::string axis_markup(const std::string& column);
 
 // docs/units.md: the unit of every column a result holds (scene keys, observables, series
 // columns), from the same tables; a test keeps the committed file equal to it.
