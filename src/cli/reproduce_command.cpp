@@ -79,7 +79,7 @@ int reproduce(const ReproduceOptions& opt, const Invocation& inv) {
     tbb::parallel_for(std::size_t{0}, runs.size(), [&](std::size_t i) {
       try {
         RunResult r = simulate(runs[i].scene);
-        write_run(dirs[i], runs[i].scene, r.obs, r.recorder, RunWriteOptions{false, inv.command_line});
+        write_run(dirs[i], runs[i].scene, r.obs, r.recorder, RunWriteOptions{false, inv.command_line, {}});
         runs[i].obs = r.obs;
         runs[i].series = r.recorder.series();
         runs[i].loading = r.recorder.loading_branch();

@@ -335,7 +335,7 @@ std::string run_interaction_study(const InteractionStudyOptions& opt) {
     const double t_end = 1.1 * std::max(sp.t_peak_inter, sp.t_peak_indep);
     ev.interacting = trace_junctions(sp.inter, tracked, t_end, 300);
     ev.independent = trace_junctions(sp.indep, tracked, t_end, 300);
-    pairs_md = write_junction_pairs(opt.out, ev);
+    pairs_md = write_junction_pairs(opt.out, ev, opt.figures);
   }
   // A(Q) of the spread experiment: measured, independent, interacting (calibrated).
   // (Kept to the table: the loading branches are in the runs' observables only.)

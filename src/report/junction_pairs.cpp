@@ -104,7 +104,7 @@ std::vector<JunctionPair> crowded_sparse_pairs(std::vector<std::size_t> candidat
   return pairs;
 }
 
-std::string write_junction_pairs(const fs::path& out, const JunctionPairsEvidence& e) {
+std::string write_junction_pairs(const fs::path& out, const JunctionPairsEvidence& e, const FigureFormats& formats) {
   const std::size_t P = e.pairs.size();
   auto trace = [&](bool interacting, std::size_t pair, bool sparse) -> const JunctionTrace& {
     return (interacting ? e.interacting : e.independent)[2 * pair + (sparse ? 1 : 0)];
@@ -152,14 +152,15 @@ std::string write_junction_pairs(const fs::path& out, const JunctionPairsEvidenc
           title += sp ? "sparse #" : "crowded #";
           title += std::to_string(tr.junction + 1);
           c << (first ? "" : ", ") << "$" << name << " using 1:" << column << " with lines lw " << (m == 0 ? 2 : 1) << " dt "
-            << (sp ? 2 : 1) << " lc rgb '" << colours[k % 5] << "' title " << gnuplot_quote(title);
+            << (sp ? 2 : 1) << " lc rgb '" << colours[k % 5] << "' title " << gnuplot_text(title);
           first = false;
         }
     return c.str();
   };
   gp << "set multiplot layout 2,1 title "
-     << gnuplot_quote("STAND-IN " + e.experiment + ": equal-area junction pairs, crowded (solid) vs sparse (dashed); "
-                      "thick: interacting, thin: independent")
+     << gnuplot_quote("STAND-IN " + enhanced_literal(e.experiment) +
+                      ": equal-area junction pairs, crowded (solid) vs sparse (dashed)")
+     << " . \"\\n\" . " << gnuplot_quote("thick: interacting, thin: independent; dotted: the first peaks")
      << "\nset key outside right top font ',8'\nset grid\nset xlabel 't [s]'\n"
      << "set ylabel 'f_i / (σ A_{0,i}) [1]'\n"
      << "set arrow from " << csv_number(e.t_peak_interacting_s) << ", graph 0 to " << csv_number(e.t_peak_interacting_s)
@@ -168,7 +169,8 @@ std::string write_junction_pairs(const fs::path& out, const JunctionPairsEvidenc
      << ", graph 1 nohead dt 3 lc rgb 'gray50'\n"
      << plot_cmd(2) << "\nset ylabel 'A_i / A_{0,i} [1]'\n" << plot_cmd(3) << "\nunset multiplot\n";
   std::string error, note;
-  if (!render_plot(out / "junction_pairs.png", gp.str(), 1200, 1000, &error)) note = "junction_pairs.png not drawn: " + error;
+  if (!render_figures(out / "junction_pairs.png", gp.str(), 1200, 1000, formats, &error))
+    note = "junction_pairs.png not drawn: " + error;
 
   // The section.
   std::ostringstream md;

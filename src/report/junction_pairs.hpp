@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "report/gnuplot.hpp"
 #include "scene/scene.hpp"
 
 namespace asperity {
@@ -46,9 +47,10 @@ struct JunctionPairsEvidence {
   std::vector<JunctionTrace> interacting, independent;  // pairs' junctions in order: crowded, sparse, …
 };
 
-// Writes OUT/junction_pairs.csv and OUT/junction_pairs.png (a failure to draw is returned as a
+// Writes OUT/junction_pairs.csv and OUT/junction_pairs.png (and the other `formats`; a failure to draw is returned as a
 // note) and returns the report's section (markdown): per junction, the first slip time and
 // f/(σA) and A/A0 at half the first peak's time and at it, in both models.
-std::string write_junction_pairs(const std::filesystem::path& out, const JunctionPairsEvidence& e);
+std::string write_junction_pairs(const std::filesystem::path& out, const JunctionPairsEvidence& e,
+                                 const FigureFormats& formats);
 
 }  // namespace asperity
