@@ -1,5 +1,5 @@
 # asperity plot script: `gnuplot force_spread.gp` redraws force_spread.png (data inline; restyle freely)
-set terminal pngcairo size 1000,650 noenhanced
+set terminal pngcairo size 1000,650 enhanced
 set output 'force_spread.png'
 $crowded << EOD
 0.1736604392
@@ -129,13 +129,17 @@ $indep << EOD
 0.2735965913
 0.2713864901
 EOD
-set title 'STAND-IN P4.00N: f/(σA) at half the time of the first peak, junctions of equal area (9.53e-08–1.05e-07 m²)'
+set title 'STAND-IN P4.00N' . ': f/(σA) at half the time of the first peak' . "\n" . 'junctions of equal area (9.53e-08–1.05e-07 m^2)'
 set xlabel 'f_i / (σ A_i) [1]'
 set ylabel 'junctions [1]'
 bin(x) = 0.02*floor(x/0.02) + 0.01
 set style fill transparent solid 0.5
 set boxwidth 0.02
-set key top left
-plot $crowded using (bin($1)):(1) smooth frequency with boxes title 'interacting, crowded (k_iΣC_ij ≥ median)', $sparse using (bin($1)):(1) smooth frequency with boxes title 'interacting, sparse', $indep using (bin($1)):(1) smooth frequency with impulses lw 4 title 'independent model (same junctions)'
+set key top right
+set yrange [0:*]
+set offsets 0, 0, graph 0.1, 0
+set object 1 rect from first 0.2702658957, graph 0 to first 0.2797509777, graph 1 behind fc rgb '#56b4e9' fs solid 0.35 noborder
+set arrow 1 from first 0.2750084367, graph 0 to first 0.2750084367, graph 1 nohead lw 3 lc rgb '#56b4e9'
+plot $crowded using (bin($1)):(1) smooth frequency with boxes title 'interacting, crowded (k_i Σ_j C_{ij} ≥ median)', $sparse using (bin($1)):(1) smooth frequency with boxes title 'interacting, sparse', NaN with lines lw 3 lc rgb '#56b4e9' title 'independent model (same junctions): 0.27–0.28'
 
 unset output

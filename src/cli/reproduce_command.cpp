@@ -20,7 +20,7 @@
 #include "io/progress.hpp"
 #include "observe/simulate.hpp"
 #include "fit/fit.hpp"
-#include "report/claims.hpp"
+#include "studies/claims.hpp"
 #include "fit/fit_load.hpp"
 #include "report/paper_figures.hpp"
 #include "report/output_dir.hpp"

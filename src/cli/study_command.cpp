@@ -8,7 +8,7 @@
 #include "bench/bench_scene.hpp"
 #include "cli/commands.hpp"
 #include "cli/options.hpp"
-#include "report/interaction_study.hpp"
+#include "studies/interaction_study.hpp"
 #include "report/output_dir.hpp"
 
 namespace asperity::cli {

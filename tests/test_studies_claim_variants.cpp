@@ -1,4 +1,4 @@
-// report/claim_variants.hpp: the variant list and run_variants against direct runs of the
+// studies/claim_variants.hpp: the variant list and run_variants against direct runs of the
 // changed scenes (the same observables, bit for bit, whatever the order of the parallel jobs).
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include <string>
 
 #include "observe/simulate.hpp"
-#include "report/claim_variants.hpp"
+#include "studies/claim_variants.hpp"
 #include "support.hpp"
 
 using namespace asperity;

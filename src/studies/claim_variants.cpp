@@ -1,4 +1,4 @@
-#include "report/claim_variants.hpp"
+#include "studies/claim_variants.hpp"
 
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>

@@ -1,6 +1,6 @@
 #pragma once
 // Evidence for the paper's claims (MODEL.md §6) on a set of experiments: from the base runs,
-// the variants (report/claim_variants.hpp) and the calibration, the REPORT.md that states,
+// the variants (studies/claim_variants.hpp) and the calibration, the REPORT.md that states,
 // claim by claim, what was measured and whether it reproduces.
 #include <filesystem>
 #include <optional>
@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "observe/observables.hpp"
-#include "report/claim_variants.hpp"
-#include "report/claim_verdicts.hpp"
+#include "studies/claim_variants.hpp"
+#include "studies/claim_verdicts.hpp"
 #include "report/paper_figures.hpp"
 #include "scene/scene.hpp"
 
@@ -32,7 +32,7 @@ struct Calibration {
   std::vector<CalibratedRun> runs;   // one per experiment of the fit, failed ones included
 };
 
-// The observables the verdicts read (report/claim_verdicts.hpp), from the runs of this reproduction.
+// The observables the verdicts read (studies/claim_verdicts.hpp), from the runs of this reproduction.
 // Least-squares slope dA/dQ [m²/N] over Q ∈ [0, frac·Q_max] (incipient loading).
 double initial_slope(std::span<const double> Q, std::span<const double> A, double frac);
 // Area decay, incipient slope (Q ≤ 0.3 Q_max) and shape exponent of a run's loading branch next

@@ -1,4 +1,4 @@
-#include "report/junction_pairs.hpp"
+#include "studies/junction_pairs.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "report/interaction_study.hpp"
+#include "studies/interaction_study.hpp"
 
 #include <yaml-cpp/yaml.h>
 
@@ -15,11 +15,12 @@
 #include "io/atomic_file.hpp"
 #include "io/csv.hpp"
 #include "io/input_error.hpp"
+#include "io/yaml_util.hpp"
 #include "observe/shape_comparison.hpp"
 #include "observe/simulate.hpp"
-#include "report/claims.hpp"
+#include "studies/claims.hpp"
 #include "report/gnuplot.hpp"
-#include "report/junction_pairs.hpp"
+#include "studies/junction_pairs.hpp"
 #include "scene/load.hpp"
 #include "solve/integrate.hpp"
 #include "solve/interaction_matrix.hpp"
@@ -41,7 +42,7 @@ std::map<std::string, double> calibrated_alpha_b(const fs::path& fit_yaml) {
   std::map<std::string, double> out;
   if (!fs::exists(fit_yaml)) return out;
   try {
-    const YAML::Node root = YAML::LoadFile(fit_yaml.string());
+    const YAML::Node root = scene_io::load_yaml_file(fit_yaml, fit_yaml.string());  // the hardened reader
     for (const auto& f : root["fits"]) {
       if (f["status"].as<std::string>("") != "ok") continue;
       const YAML::Node p = f["parameters"]["model.alpha_b"];

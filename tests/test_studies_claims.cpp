@@ -1,12 +1,12 @@
-// The verdict rules of REPORT.md (report/claim_verdicts.hpp) on made-up observables: for every
+// The verdict rules of REPORT.md (studies/claim_verdicts.hpp) on made-up observables: for every
 // claim, one change at a time flips the verdict from reproduced to not reproduced and to no
 // evidence; and the report says "no evidence" where a variant or a calibration failed.
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <limits>
 
-#include "report/claim_verdicts.hpp"
-#include "report/claims.hpp"
+#include "studies/claim_verdicts.hpp"
+#include "studies/claims.hpp"
 #include "support.hpp"
 
 using namespace asperity;

@@ -1,4 +1,4 @@
-#include "report/claims.hpp"
+#include "studies/claims.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "report/claim_verdicts.hpp"
+#include "studies/claim_verdicts.hpp"
 
 #include <algorithm>
 #include <cmath>

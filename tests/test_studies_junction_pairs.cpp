@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "physics/elastic_interaction.hpp"
-#include "report/junction_pairs.hpp"
+#include "studies/junction_pairs.hpp"
 #include "solve/problem.hpp"
 #include "support.hpp"
 
