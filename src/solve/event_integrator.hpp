@@ -16,6 +16,7 @@
 #include <optional>
 #include <string>
 
+#include "solve/junction_model.hpp"
 #include "solve/observer.hpp"
 #include "solve/problem.hpp"
 #include "solve/run_info.hpp"
@@ -38,10 +39,9 @@ constexpr int kProbe = 8;  // interior probes: catch crossings that revert withi
 
 }  // namespace event_detail
 
-// The event method over a junction model (EventJunctions: independent; InteractingJunctions:
-// elastic interactions). The model gives force(X), area(X), the next slip position above X (and
-// below it, has_threshold_below()), slip_crossed(X) and repin_all(X).
-template <class Junctions>
+// The event method over a junction model (solve/junction_model.hpp: EventJunctions,
+// InteractingJunctions).
+template <JunctionModel Junctions>
 struct EventIntegrator {
   using State = event_detail::State;
   using Dense = event_detail::Dense;
@@ -101,7 +101,7 @@ struct EventIntegrator {
   bool finished = false;
 };
 
-template <class Junctions>
+template <JunctionModel Junctions>
 void EventIntegrator<Junctions>::advance(RunObserver& out) {
   using namespace event_detail;
   const double t_stop = p.t_stop, v = p.slider.v;
