@@ -12,10 +12,12 @@ using namespace asperity;
 
 namespace {
 
-// Every operation of the concept, with a constructor from a Problem.
-struct Complete {
-  Complete() = default;
-  explicit Complete(const Problem&) {}
+// Every operation of the concept, with a constructor from a Problem; without repin_all when
+// Repin is false (a model that could never end a slip).
+template <bool Repin>
+struct Model {
+  Model() = default;
+  explicit Model(const Problem&) {}
   double force(double) const { return 0; }
   double area(double) const { return 0; }
   bool has_threshold() const { return false; }
@@ -28,25 +30,12 @@ struct Complete {
   std::int64_t slips() const { return 0; }
   std::int64_t repins() const { return 0; }
   std::int64_t slip_crossed(double) { return 0; }
-  void repin_all(double) {}
+  void repin_all(double)
+    requires Repin
+  {}
 };
-
-// The same without repin_all: a model that could never end a slip.
-struct NoRepin {
-  explicit NoRepin(const Problem&) {}
-  double force(double) const { return 0; }
-  double area(double) const { return 0; }
-  bool has_threshold() const { return false; }
-  double next_threshold() const { return 0; }
-  bool has_threshold_below() const { return false; }
-  double next_threshold_below() const { return 0; }
-  std::int64_t n_slipping() const { return 0; }
-  std::int64_t n_intact() const { return 0; }
-  std::int64_t force_evals() const { return 0; }
-  std::int64_t slips() const { return 0; }
-  std::int64_t repins() const { return 0; }
-  std::int64_t slip_crossed(double) { return 0; }
-};
+using Complete = Model<true>;
+using NoRepin = Model<false>;
 
 // Everything, but built without a Problem.
 struct NoProblem : Complete {
