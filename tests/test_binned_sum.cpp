@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "physics/contact_law.hpp"
-#include "solve/binned_sum.hpp"
+#include "solve/event/binned_sum.hpp"
 
 using namespace asperity;
 

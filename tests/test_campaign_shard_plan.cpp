@@ -17,8 +17,8 @@
 #include "campaign/merge.hpp"
 #include "campaign/shard_plan.hpp"
 #include "campaign/sweep.hpp"
-#include "solve/problem.hpp"
-#include "solve/run_cost.hpp"
+#include "solve/core/problem.hpp"
+#include "solve/core/run_cost.hpp"
 #include "support.hpp"
 
 namespace fs = std::filesystem;

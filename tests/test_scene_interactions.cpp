@@ -8,7 +8,7 @@
 #include "io/input_error.hpp"
 #include "scene/load.hpp"
 #include "scene/validate.hpp"
-#include "solve/problem.hpp"
+#include "solve/core/problem.hpp"
 #include "support.hpp"
 
 namespace fs = std::filesystem;

@@ -1,11 +1,11 @@
-// solve/anderson.hpp: Anderson acceleration of a fixed-point iteration.
+// solve/interacting/anderson.hpp: Anderson acceleration of a fixed-point iteration.
 #include <Eigen/Dense>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <random>
 #include <vector>
 
-#include "solve/anderson.hpp"
+#include "solve/interacting/anderson.hpp"
 
 namespace {
 

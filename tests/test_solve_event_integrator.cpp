@@ -1,4 +1,4 @@
-// solve/event_integrator.hpp: the event method's integrator. Here: a slip position crossed and
+// solve/event/event_integrator.hpp: the event method's integrator. Here: a slip position crossed and
 // re-crossed inside one of the integrator's probe intervals (the slider turning back, η = 0) is
 // found, so no pinned junction is ever carried beyond its slip position.
 #include <catch2/catch.hpp>
@@ -7,8 +7,8 @@
 #include <limits>
 
 #include "scene/load.hpp"
-#include "solve/event_integrator.hpp"
-#include "solve/event_junctions.hpp"
+#include "solve/event/event_integrator.hpp"
+#include "solve/event/event_junctions.hpp"
 #include "support.hpp"
 
 using namespace asperity;

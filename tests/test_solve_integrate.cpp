@@ -1,4 +1,4 @@
-// solve/integrate.hpp and solve/observer.hpp: the loop every stepper shares, the observer
+// solve/integrate.hpp and solve/core/observer.hpp: the loop every stepper shares, the observer
 // concept, and the two methods behind one integrate().
 #include <catch2/catch.hpp>
 #include <cmath>

@@ -7,8 +7,8 @@
 
 #include "observe/simulate.hpp"
 #include "physics/elastic_interaction.hpp"
-#include "solve/coupled_forces.hpp"
-#include "solve/interaction_matrix.hpp"
+#include "solve/interacting/coupled_forces.hpp"
+#include "solve/interacting/interaction_matrix.hpp"
 #include "support.hpp"
 
 using namespace asperity;

@@ -10,8 +10,8 @@
 #include "observe/simulate.hpp"
 #include "physics/elastic_interaction.hpp"
 #include "scene/load.hpp"
-#include "solve/interacting_junctions.hpp"
-#include "solve/interaction_matrix.hpp"
+#include "solve/interacting/interacting_junctions.hpp"
+#include "solve/interacting/interaction_matrix.hpp"
 #include "support.hpp"
 
 using namespace asperity;

@@ -1,12 +1,12 @@
-// solve/junction_model.hpp: both junction models meet the concept the event integrator is
+// solve/core/junction_model.hpp: both junction models meet the concept the event integrator is
 // written against, and a type that lacks one of its operations (or cannot be built from a
 // Problem) does not.
 #include <catch2/catch.hpp>
 #include <cstdint>
 
-#include "solve/event_junctions.hpp"
-#include "solve/interacting_junctions.hpp"
-#include "solve/junction_model.hpp"
+#include "solve/event/event_junctions.hpp"
+#include "solve/interacting/interacting_junctions.hpp"
+#include "solve/core/junction_model.hpp"
 
 using namespace asperity;
 

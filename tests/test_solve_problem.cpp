@@ -1,8 +1,8 @@
-// solve/problem.hpp: the Problem a stepper runs, built once from a Scene.
+// solve/core/problem.hpp: the Problem a stepper runs, built once from a Scene.
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "solve/problem.hpp"
+#include "solve/core/problem.hpp"
 #include "support.hpp"
 
 using namespace asperity;

@@ -8,7 +8,7 @@
 
 #include "physics/elastic_interaction.hpp"
 #include "studies/junction_pairs.hpp"
-#include "solve/problem.hpp"
+#include "solve/core/problem.hpp"
 #include "support.hpp"
 
 using namespace asperity;

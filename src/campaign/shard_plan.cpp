@@ -7,8 +7,8 @@
 #include <unordered_map>
 
 #include "campaign/campaign_scenes.hpp"
-#include "solve/problem.hpp"
-#include "solve/run_cost.hpp"
+#include "solve/core/problem.hpp"
+#include "solve/core/run_cost.hpp"
 
 namespace asperity {
 

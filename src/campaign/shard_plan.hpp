@@ -2,7 +2,7 @@
 // Which points of a campaign one shard runs (`--shard I/N`, `--balance index|cost`).
 //
 // index: round robin, the points with index % N == I.
-// cost:  balanced by expected cost (solve/run_cost.hpp): the points, in index order, each go to
+// cost:  balanced by expected cost (solve/core/run_cost.hpp): the points, in index order, each go to
 //        the shard with the least expected cost so far (ties: the lowest shard). Every shard
 //        computes the same plan from the campaign alone (no coordination between array tasks).
 //        Greedy list scheduling bounds the spread: the most loaded shard exceeds the least

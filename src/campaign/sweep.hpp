@@ -80,7 +80,7 @@ struct SweepReport {
   std::filesystem::path store;
   std::uint64_t points = 0;          // points of this shard
   ShardBalance balance = ShardBalance::index;
-  // Expected seconds on one core (solve/run_cost.hpp) of this shard and of the costliest and
+  // Expected seconds on one core (solve/core/run_cost.hpp) of this shard and of the costliest and
   // cheapest shard; NaN unless the plan was balanced by cost over unequal costs.
   double expected_s = std::numeric_limits<double>::quiet_NaN();
   double expected_max_s = std::numeric_limits<double>::quiet_NaN(), expected_min_s = expected_max_s;

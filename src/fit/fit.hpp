@@ -33,7 +33,7 @@
 
 #include "fit/fit_spec.hpp"
 #include "observe/observables.hpp"
-#include "solve/observer.hpp"
+#include "solve/core/observer.hpp"
 
 namespace asperity {
 

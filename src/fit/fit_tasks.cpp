@@ -4,8 +4,8 @@
 #include <numeric>
 #include <stdexcept>
 
-#include "solve/problem.hpp"
-#include "solve/run_cost.hpp"
+#include "solve/core/problem.hpp"
+#include "solve/core/run_cost.hpp"
 
 namespace asperity {
 

@@ -9,7 +9,7 @@
 #include <span>
 #include <vector>
 
-#include "solve/observer.hpp"
+#include "solve/core/observer.hpp"
 
 namespace asperity {
 

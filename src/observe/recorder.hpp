@@ -14,7 +14,7 @@
 #include <limits>
 #include <vector>
 
-#include "solve/observer.hpp"
+#include "solve/core/observer.hpp"
 
 namespace asperity {
 
@@ -55,7 +55,7 @@ class Recorder {
   void extremum(const Extremum& e);
   void population(const PopulationChange& c);
   bool done() const { return done_; }
-  // A sweep's per-point time limit ended the run (the solver checks it: solve/run_limits.hpp).
+  // A sweep's per-point time limit ended the run (the solver checks it: solve/core/run_limits.hpp).
   void mark_timed_out() { done_ = timed_out_ = true; }
   bool timed_out() const { return timed_out_; }
 

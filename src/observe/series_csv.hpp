@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "solve/observer.hpp"
+#include "solve/core/observer.hpp"
 
 namespace asperity {
 

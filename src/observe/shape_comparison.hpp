@@ -15,7 +15,7 @@
 #include <limits>
 #include <vector>
 
-#include "solve/observer.hpp"
+#include "solve/core/observer.hpp"
 
 namespace asperity {
 

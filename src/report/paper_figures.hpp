@@ -13,7 +13,7 @@
 
 #include "observe/observables.hpp"
 #include "report/gnuplot.hpp"  // FigureFormats
-#include "solve/observer.hpp"
+#include "solve/core/observer.hpp"
 #include "scene/scene.hpp"
 
 namespace asperity {

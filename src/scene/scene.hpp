@@ -78,7 +78,7 @@ struct StopSettings {
   double time = 1.0;         // s, hard end of the run
   bool at_first_peak = false;// stop once the first macroscopic peak of Q is confirmed
   int cycles = -1;           // stop once this many stick-slip cycles are complete (-1: never)
-  // Resource limits, checked inside the solver loops (solve/run_limits.hpp): reaching one ends
+  // Resource limits, checked inside the solver loops (solve/core/run_limits.hpp): reaching one ends
   // the run with a SolverError naming the key. The defaults never trigger on the shipped scenes.
   double wall_time = 3600.0; // s of wall-clock time for one run
   std::int64_t max_slips = 0;// pinned → slipping transitions; 0: automatic (default_max_slips)

@@ -8,14 +8,14 @@
 #include <stdexcept>
 
 #include "scene/scene.hpp"
-#include "solve/event_stepper.hpp"
-#include "solve/interacting_event_stepper.hpp"
-#include "solve/interacting_reference_stepper.hpp"
-#include "solve/observer.hpp"
-#include "solve/problem.hpp"
-#include "solve/reference_stepper.hpp"
-#include "solve/run_info.hpp"
-#include "solve/run_limits.hpp"
+#include "solve/event/event_stepper.hpp"
+#include "solve/interacting/interacting_event_stepper.hpp"
+#include "solve/interacting/interacting_reference_stepper.hpp"
+#include "solve/core/observer.hpp"
+#include "solve/core/problem.hpp"
+#include "solve/reference/reference_stepper.hpp"
+#include "solve/core/run_info.hpp"
+#include "solve/core/run_limits.hpp"
 
 namespace asperity {
 

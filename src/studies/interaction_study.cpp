@@ -23,7 +23,7 @@
 #include "studies/junction_pairs.hpp"
 #include "scene/load.hpp"
 #include "solve/integrate.hpp"
-#include "solve/interaction_matrix.hpp"
+#include "solve/interacting/interaction_matrix.hpp"
 
 namespace asperity {
 namespace fs = std::filesystem;

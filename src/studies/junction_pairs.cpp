@@ -9,7 +9,7 @@
 #include "io/csv.hpp"
 #include "report/gnuplot.hpp"
 #include "solve/integrate.hpp"
-#include "solve/interacting_event_stepper.hpp"
+#include "solve/interacting/interacting_event_stepper.hpp"
 
 namespace asperity {
 namespace fs = std::filesystem;

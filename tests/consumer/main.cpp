@@ -6,7 +6,7 @@
 #include <cstdio>
 
 #include "scene/load.hpp"
-#include "solve/problem.hpp"
+#include "solve/core/problem.hpp"
 
 int main(int argc, char** argv) {
   if (argc != 2) {

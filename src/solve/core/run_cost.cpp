@@ -1,0 +1,37 @@
+#include "solve/core/run_cost.hpp"
+
+#include <cmath>
+
+namespace asperity {
+
+namespace {
+// Constants, seconds on one core of the development machine (README, Benchmarks):
+// event: P4.00N whole run (N = 1201, 5.70 s simulated) 0.170 s → 2.5e-5 s per junction·s
+//   (results/bench/speed_runs.csv, tolerance 1e-9);
+// reference: same run at C_t 100, 59,741 steps in 187.6 s → 2.6e-6 s per junction·step
+//   (results/bench/speed_ratio.csv);
+// interacting event: N = 1200 to its first peak at t = 7.45 s in 21 s → 1.6e-9 s per N³·s
+//   (results/bench/interacting.csv);
+// interacting reference: one LU-like dense solve of N³/3 flops per step, ~1 Gflop/s;
+// per run: loading the scene, observables and the row, ~1 ms.
+constexpr double kEventPerJunctionSecond = 2.5e-5;
+constexpr double kReferencePerJunctionStep = 2.6e-6;
+constexpr double kInteractingEventPerCubeSecond = 1.6e-9;
+constexpr double kInteractingReferencePerCubeStep = 3.3e-10;
+constexpr double kPerRun = 1e-3;
+}  // namespace
+
+double expected_run_seconds(const Problem& p) {
+  const double n = static_cast<double>(p.size());
+  const double t = std::isfinite(p.t_stop) && p.t_stop > 0 ? p.t_stop : 0.0;
+  const double steps = p.dt > 0 && std::isfinite(p.dt) ? t / p.dt : 0.0;
+  const bool event = p.solver.method == SolverMethod::event;
+  double s = 0;
+  if (p.interacting())
+    s = event ? kInteractingEventPerCubeSecond * n * n * n * t : kInteractingReferencePerCubeStep * n * n * n * steps;
+  else
+    s = event ? kEventPerJunctionSecond * n * t : kReferencePerJunctionStep * n * steps;
+  return kPerRun + (std::isfinite(s) ? s : 0.0);
+}
+
+}  // namespace asperity

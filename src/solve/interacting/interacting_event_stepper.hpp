@@ -1,0 +1,35 @@
+#pragma once
+// The event method for interacting junctions (solver.method: event with model.interactions:
+// elastic): EventIntegrator over InteractingJunctions. Same continuous model as
+// InteractingReferenceStepper (its dt → 0 limit).
+#include <cstdint>
+#include <memory>
+
+#include "solve/interacting/interacting_junctions.hpp"
+#include "solve/core/observer.hpp"
+#include "solve/core/problem.hpp"
+#include "solve/core/run_info.hpp"
+
+namespace asperity {
+
+class InteractingEventStepper {
+ public:
+  explicit InteractingEventStepper(const Problem& problem);
+  ~InteractingEventStepper();
+
+  void start(RunObserver& out);
+  bool finished() const;
+  std::int64_t slips() const;
+  void advance(RunObserver& out);
+  void stop_early();
+  void finish(RunInfo& info) const;
+
+  const InteractingJunctions& junctions() const;
+  double X() const;  // m, the slider position now
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace asperity

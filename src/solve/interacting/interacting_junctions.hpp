@@ -1,0 +1,147 @@
+#pragma once
+// Interacting junctions as the event method sees them (MODEL.md §8, the fast solver): the same
+// interface as EventJunctions (force(X), area(X), slip positions above and below X,
+// slip_crossed, repin_all), so EventIntegrator runs them unchanged.
+//
+// The pinned set P obeys, for i ∈ P,  u_i(f_i) + Σ_{j∈P, j≠i} C_ij f_j = X − h_i,  with u_i the
+// junction's own displacement at force f_i (f/k, or Eq. (3)'s nonlinear form for a junction
+// whose area follows its force) and h_i = x_i + Σ_{j slipping} C_ij f_j. With M = D + C_PP, D
+// a diagonal reference compliance (u_i' at some force; exact for linear junctions),
+//   f = X a0 + b0 − G Δ(f),   G = M⁻¹, a0 = G 1, b0 = −G h,  Δ_i(f) = u_i(f_i) − D_i f_i,
+// exact for linear junctions (Δ = 0, no iteration) and a contraction for the nonlinear ones
+// (a chord iteration whose rate is the drift of u_i' from D_i; when it slows, D is reset to the
+// current u' and G rebuilt: a Newton step). G is kept explicitly and updated when one junction
+// changes state: a slip removes its row and column (rank-one, O(N²)); a repin, and every N
+// rank-one updates (rounding), rebuild G (LAPACK Cholesky inverse in place). Memory: C and G,
+// 2 N² doubles, plus O(N) vectors.
+//
+// Between events the total force F(X) and area A(X) are smooth functions of X alone: while
+// nonlinear junctions remain, they are piecewise cubic Hermite interpolants on nodes where the
+// system is solved exactly (with dF/dX from the differentiated system), refined until each
+// piece's estimated error is below the tolerance; linear-only populations have F = X Σa0 + Σb0 + F_slip
+// exactly. The slip positions are found by Newton in X on the exact solutions.
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "physics/universal_law.hpp"
+#include "solve/interacting/interaction_matrix.hpp"
+#include "solve/core/junction_state.hpp"
+#include "solve/core/problem.hpp"
+
+namespace asperity {
+
+class InteractingJunctions {
+ public:
+  // Throws SolverError when the universal law's table cannot reach the needed accuracy.
+  explicit InteractingJunctions(const Problem& problem);
+  ~InteractingJunctions();
+  InteractingJunctions(const InteractingJunctions&) = delete;
+  InteractingJunctions& operator=(const InteractingJunctions&) = delete;
+
+  double force(double X) const;  // total junction force at slider position X [N]
+  double area(double X) const;   // total area [m²]
+  bool has_threshold() const;
+  double next_threshold() const { return x_up_; }  // m: the next slip as X grows
+  bool has_threshold_below() const;
+  double next_threshold_below() const { return x_down_; }  // m: the next slip as X decreases
+  std::int64_t n_slipping() const { return static_cast<std::int64_t>(N_ - nP_); }
+  std::int64_t n_intact() const { return n_intact_; }
+  std::int64_t force_evals() const { return force_evals_; }
+  std::int64_t slips() const { return slips_; }
+  std::int64_t repins() const { return repins_; }
+
+  // The junction whose threshold was reached slips, then every pinned junction at or over its
+  // threshold at the same X, one at a time (an avalanche at fixed X); returns how many slipped.
+  std::int64_t slip_crossed(double X);
+  // All slipping junctions repin at X, with no force jump.
+  void repin_all(double X);
+
+  // Every junction's force at X (N, by junction) for the current pinned set; for tests and
+  // the force-spread study.
+  std::vector<double> forces(double X) const;
+  const JunctionState& state() const { return J_; }  // areas, thresholds, pinned, intact
+  // f_i / (σ A_i) at X, A_i the current area (Eq. 3 at f_i for a junction whose area follows its
+  // force): 1 at the slip threshold, ε for a slipping junction under area_law until_first_slip.
+  std::vector<double> load_ratios(double X) const;
+  // Every junction's contact area [m²] with the forces f (N, by junction, as forces() gives them
+  // for the current set): Eq. (3) at f_i for a junction whose area follows its force, else its
+  // frozen area.
+  std::vector<double> areas(const std::vector<double>& f) const;
+
+  // Work done, for benchmarks: exact solves, their chord iterations, rank-one updates, rebuilds.
+  struct Work {
+    std::int64_t solves = 0, iterations = 0, rank_one = 0, rebuilds = 0;
+  };
+  const Work& work() const { return work_; }
+
+ private:
+  struct Node;
+  static constexpr std::size_t npos = static_cast<std::size_t>(-1);
+
+  // Own displacement u(f) [m] and du/df [m/N] of the junction at position q of P.
+  void own(std::size_t q, double f, double& u, double& du) const;
+  bool nonlinear(std::size_t q) const { return nl_[q] != 0; }
+  // Exact solve at X, warm-started from the nearest node: a new node (F, dF/dX, A, dA/dX, f, df/dX).
+  Node solve(double X) const;
+  const Node& node_at(double X) const;  // the cache's node at X, solved and inserted if needed
+  std::size_t covering_segment(double X) const;  // extends and refines the cache to cover X
+  std::size_t continuation_node(double X) const;  // past the next slip: see the .cpp (npos: none)
+  bool segment_ok(std::size_t s) const;
+  void refine_all() const;  // splits every piece whose estimated error is over the tolerance
+  double threshold(std::size_t q) const;  // N, the slip force of position q
+  void after_change(double X);  // new event point: node, thresholds
+  // Junction k (npos: none) slips at X, then every pinned one at or over its threshold, one at a
+  // time, most overloaded first; then the new slip positions. Returns how many slipped.
+  std::int64_t settle(double X, std::size_t k);
+  void find_thresholds(double X);
+  // Rank-one removal of position q from P; at_X: the old set's solution at X (or null), from
+  // which the new set's seed there is predicted.
+  void remove_pinned(std::size_t q, double f_slip, const Node* at_X, double X);
+  // The iteration's start at X: f and df/dX per position of P (see the .cpp).
+  void warm_start(double X, std::vector<double>& f, std::vector<double>& a) const;
+  void rebuild() const;  // G, a0, b0 from scratch for the current P and D (a cache: const)
+  void refresh_vectors();             // a0 = G 1, b0 = −G h, sums
+  void start_slip(std::size_t i, double X);
+
+  const Problem& p_;
+  const ContactLaw& law_;
+  AreaLaw area_law_;
+  bool nonlinear_law_;
+  std::size_t N_ = 0, nP_ = 0;
+  InteractionMatrix C_;
+  // G, D, a0, b0 change with the reference compliances, a choice of the iteration, not of the
+  // solution: refreshed inside const solves.
+  mutable std::vector<double> G_;  // N × N, row-major over positions of P (leading dimension N)
+  JunctionState J_;
+  std::shared_ptr<const UniversalForceLaw> table_;
+  // Per junction: ψ per metre c = ℓ0 E s and force scale s (1/N) of the universal law.
+  std::vector<double> c_, s_;
+  std::vector<double> f_slip_nl_;          // N, slip force of an Eq. (3) junction: phi_s/s
+  mutable std::vector<double> psi_guess_;  // by junction: the last psi (warm start of own())
+  // Per position q of P: junction idx_[q], reference compliance D, h, a0, b0, nonlinear flag.
+  std::vector<std::uint32_t> idx_;
+  std::vector<std::size_t> pos_;  // junction → position (npos: slipping)
+  mutable std::vector<double> D_, a0_, b0_;
+  std::vector<double> h_;
+  std::vector<std::uint8_t> nl_;
+  std::size_t n_nl_ = 0;
+  double sum_a0_ = 0, sum_b0_ = 0, F_slip_ = 0, A_fixed_ = 0;
+  std::int64_t n_intact_ = 0, slips_ = 0, repins_ = 0;
+  mutable std::int64_t updates_since_rebuild_ = 0;
+  double x_up_ = 0, x_down_ = 0;
+  std::size_t k_up_ = npos, k_down_ = npos;  // junctions of the next slips
+  mutable std::vector<Node> nodes_;          // sorted by X; cleared at every event
+  mutable std::vector<double> last_f_, last_a_;  // by junction: the last solve (warm start)
+  // After a slip at seed_X_: the new set's forces and slopes there, predicted (warm start).
+  bool seed_valid_ = false;
+  double seed_X_ = 0;
+  std::vector<double> seed_f_, seed_a_;
+  mutable int last_iterations_ = 0;
+  mutable std::int64_t force_evals_ = 0;
+  mutable Work work_;
+  double tol_ = 1e-10;
+};
+
+}  // namespace asperity

@@ -1,0 +1,27 @@
+#include "solve/interacting/interaction_matrix.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "physics/elastic_interaction.hpp"
+
+namespace asperity {
+
+InteractionMatrix interaction_matrix(const Problem& p) {
+  if (!p.interacting()) throw std::logic_error("interaction_matrix: the problem has no junction positions");
+  const std::size_t n = p.size();
+  InteractionMatrix m{n, std::vector<double>(n * n, 0.0)};
+  std::vector<double> radius(n);
+  for (std::size_t i = 0; i < n; ++i) radius[i] = std::sqrt(p.A0[i] / M_PI);
+  const double cutoff = p.interaction_cutoff;
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i + 1; j < n; ++j) {
+      const double dx = p.x[i] - p.x[j], dy = p.y[i] - p.y[j];
+      if (cutoff > 0 && std::hypot(dx, dy) > cutoff) continue;
+      const double c = disc_compliance(dx, dy, radius[i], radius[j], p.law.E, p.law.nu, p.interaction_weighting);
+      m.c[i * n + j] = m.c[j * n + i] = c;
+    }
+  return m;
+}
+
+}  // namespace asperity
