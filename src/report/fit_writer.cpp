@@ -170,7 +170,9 @@ void write_optimization(const fs::path& d, const FitSpec& spec, const Optimizati
          << "set title " << gnuplot_text(o.label) << " . " << gnuplot_quote(": objective around the optimum, ")
          << " . " << gnuplot_quote(column_symbol(key)) << " . " << gnuplot_quote(" varied (others fixed)")
          << "\nset xlabel " << gnuplot_quote(axis_markup(key)) << "\nset ylabel 'objective [1] (dimensionless)'\nset key off\n"
-         << "plot 'profile.csv' skip 1 using 2:($3 == $3 ? $3 : 1/0) with linespoints pt 7 lw 1.5\n";
+         << "set rmargin 6\n"  // room for the last x tic label (10^{-16}-style labels are wide)
+         << "plot 'profile.csv' skip 1 using 2:($3 == $3 ? $3 : 1/0) with linespoints pt 7 lw 1.5\n"
+         << "set rmargin -1\n";
     }
     for (const auto& r : o.best_runs) {
       const std::string name = spec.experiments[r.experiment].name;
