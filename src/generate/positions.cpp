@@ -9,6 +9,7 @@
 
 #include "generate/distributions.hpp"
 #include "io/numbers.hpp"
+#include "physics/contact_law.hpp"
 
 namespace asperity {
 
@@ -17,7 +18,7 @@ Positions place_in_contact_disc(const std::vector<double>& areas, double R, std:
   const std::size_t n = areas.size();
   std::vector<double> radius(n);
   double r_max = 0;
-  for (std::size_t i = 0; i < n; ++i) r_max = std::max(r_max, radius[i] = std::sqrt(areas[i] / M_PI));
+  for (std::size_t i = 0; i < n; ++i) r_max = std::max(r_max, radius[i] = disc_radius(areas[i]));
   std::vector<std::size_t> order(n);
   std::iota(order.begin(), order.end(), std::size_t{0});
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return areas[a] > areas[b]; });

@@ -34,6 +34,11 @@ inline double sheared_area(double A0_m2, double f_n, double alpha_b, double p) {
 // Eq. (3) in the dimensionless force φ = s f (s = ContactLaw::force_scale): A = A0 (1 − φ²) [m²].
 // The solvers, which work in φ (or ψ), call this one form.
 inline double sheared_area_phi(double A0_m2, double phi) { return A0_m2 * (1.0 - phi * phi); }
+// Its slope dA/dφ = −2 A0 φ [m²] (the interacting solver's dA/dX = dA/dφ · s · df/dX).
+inline double sheared_area_phi_slope(double A0_m2, double phi) { return -2.0 * A0_m2 * phi; }
+
+// Radius [m] of the disc of area A [m²] (a junction's footprint in the interaction kernel).
+inline double disc_radius(double area_m2) { return std::sqrt(area_m2 / M_PI); }
 
 // The parameters that turn areas into forces; one value shared by all junctions of a run.
 struct ContactLaw {

@@ -9,6 +9,7 @@
 
 #include "io/input_error.hpp"
 #include "io/numbers.hpp"
+#include "physics/contact_law.hpp"
 
 namespace asperity {
 
@@ -143,8 +144,8 @@ void check_interactions(const Scene& s, const KeyOrigins& o) {
                          " overlap (centres " +
                          format_short(std::hypot(J.x_m[pair->first] - J.x_m[pair->second],
                                                  J.y_m[pair->first] - J.y_m[pair->second])) +
-                         " m apart, radii sqrt(A0/pi) = " + format_short(std::sqrt(J.area_m2[pair->first] / M_PI)) +
-                         " and " + format_short(std::sqrt(J.area_m2[pair->second] / M_PI)) +
+                         " m apart, radii sqrt(A0/pi) = " + format_short(disc_radius(J.area_m2[pair->first])) +
+                         " and " + format_short(disc_radius(J.area_m2[pair->second])) +
                          " m); elastic interactions need separate junctions");
 }
 
@@ -156,7 +157,7 @@ std::optional<std::pair<std::size_t, std::size_t>> first_overlap(const JunctionP
   const std::size_t n = J.size();
   if (n < 2) return std::nullopt;
   double r_max = 0;
-  for (const double A : J.area_m2) r_max = std::max(r_max, std::sqrt(A / M_PI));
+  for (const double A : J.area_m2) r_max = std::max(r_max, disc_radius(A));
   // Cells no smaller than 1e-12 of the extent keep every cell index far inside int64 (a larger
   // cell only adds candidates, it never misses a pair).
   double extent = 0;
@@ -180,7 +181,7 @@ std::optional<std::pair<std::size_t, std::size_t>> first_overlap(const JunctionP
         for (const std::size_t j : it->second) {
           if (j <= i) continue;
           const double d = std::hypot(J.x_m[i] - J.x_m[j], J.y_m[i] - J.y_m[j]);
-          if (d < std::sqrt(J.area_m2[i] / M_PI) + std::sqrt(J.area_m2[j] / M_PI))
+          if (d < disc_radius(J.area_m2[i]) + disc_radius(J.area_m2[j]))
             return std::pair{std::min(i, j), std::max(i, j)};
         }
       }

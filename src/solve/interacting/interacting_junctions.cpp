@@ -337,7 +337,7 @@ InteractingJunctions::Node InteractingJunctions::solve(double X) const {
       const std::size_t i = idx_[q];
       const double phi = s_[i] * node.f[q];
       A += sheared_area_phi(J_.A0[i], phi);
-      dA -= 2.0 * J_.A0[i] * phi * s_[i] * node.a[q];
+      dA += sheared_area_phi_slope(J_.A0[i], phi) * s_[i] * node.a[q];
     }
   }
   node.F = F;

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "physics/contact_law.hpp"
 #include "physics/elastic_interaction.hpp"
 
 namespace asperity {
@@ -12,7 +13,7 @@ InteractionMatrix interaction_matrix(const Problem& p) {
   const std::size_t n = p.size();
   InteractionMatrix m{n, std::vector<double>(n * n, 0.0)};
   std::vector<double> radius(n);
-  for (std::size_t i = 0; i < n; ++i) radius[i] = std::sqrt(p.A0[i] / M_PI);
+  for (std::size_t i = 0; i < n; ++i) radius[i] = disc_radius(p.A0[i]);
   const double cutoff = p.interaction_cutoff;
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = i + 1; j < n; ++j) {
