@@ -115,7 +115,7 @@ std::string factor_markup(const std::string& f, bool negate) {
   const std::size_t hat = f.find('^');
   std::string base = f.substr(0, hat), exponent = hat == std::string::npos ? "" : f.substr(hat + 1);
   if (exponent.size() >= 2 && exponent.front() == '(' && exponent.back() == ')') exponent = exponent.substr(1, exponent.size() - 2);
-  if (negate) exponent = "-" + (exponent.empty() ? std::string("1") : exponent);
+  if (negate) exponent.insert(0, exponent.empty() ? "-1" : "-");
   if (exponent.empty()) return enhanced_literal(base);
   const bool one_char = exponent.size() == 1;
   return enhanced_literal(base) + "^" + (one_char ? "" : "{") + enhanced_literal(exponent) + (one_char ? "" : "}");

@@ -446,33 +446,28 @@ double hermite(double x0, double x1, double v0, double d0, double v1, double d1,
 }
 }  // namespace
 
-double InteractingJunctions::force(double X) const {
-  ++force_evals_;
-  if (n_nl_ == 0) return X * sum_a0_ + sum_b0_ + F_slip_;
+double InteractingJunctions::cached(double X, double Node::*value, double Node::*slope) const {
   if (const std::size_t c = continuation_node(X); c != npos) {
     const Node& a = nodes_[c];
     const Node& b = nodes_.back();
-    return hermite(a.X, b.X, a.F, a.dF, b.F, b.dF, X);
+    return hermite(a.X, b.X, a.*value, a.*slope, b.*value, b.*slope, X);
   }
   const std::size_t s = covering_segment(X);
-  if (nodes_.size() == 1) return nodes_[0].F + nodes_[0].dF * (X - nodes_[0].X);
+  if (nodes_.size() == 1) return nodes_[0].*value + nodes_[0].*slope * (X - nodes_[0].X);
   const Node& a = nodes_[s];
   const Node& b = nodes_[s + 1];
-  return hermite(a.X, b.X, a.F, a.dF, b.F, b.dF, X);
+  return hermite(a.X, b.X, a.*value, a.*slope, b.*value, b.*slope, X);
+}
+
+double InteractingJunctions::force(double X) const {
+  ++force_evals_;
+  if (n_nl_ == 0) return X * sum_a0_ + sum_b0_ + F_slip_;
+  return cached(X, &Node::F, &Node::dF);
 }
 
 double InteractingJunctions::area(double X) const {
   if (n_nl_ == 0) return A_fixed_;
-  if (const std::size_t c = continuation_node(X); c != npos) {
-    const Node& a = nodes_[c];
-    const Node& b = nodes_.back();
-    return hermite(a.X, b.X, a.A, a.dA, b.A, b.dA, X);
-  }
-  const std::size_t s = covering_segment(X);
-  if (nodes_.size() == 1) return nodes_[0].A + nodes_[0].dA * (X - nodes_[0].X);
-  const Node& a = nodes_[s];
-  const Node& b = nodes_[s + 1];
-  return hermite(a.X, b.X, a.A, a.dA, b.A, b.dA, X);
+  return cached(X, &Node::A, &Node::dA);
 }
 
 std::vector<double> InteractingJunctions::forces(double X) const {

@@ -88,6 +88,9 @@ class InteractingJunctions {
   const Node& node_at(double X) const;  // the cache's node at X, solved and inserted if needed
   std::size_t covering_segment(double X) const;  // extends and refines the cache to cover X
   std::size_t continuation_node(double X) const;  // past the next slip: see the .cpp (npos: none)
+  // F(X) or A(X) (value and slope members of Node) from the cache: its Hermite pieces, or their
+  // continuation past the next slip.
+  double cached(double X, double Node::*value, double Node::*slope) const;
   bool segment_ok(std::size_t s) const;
   void refine_all() const;  // splits every piece whose estimated error is over the tolerance
   double threshold(std::size_t q) const;  // N, the slip force of position q
