@@ -27,6 +27,10 @@ std::string format_printf(const char* format, double x) {
   return buf;
 }
 
+std::string format_cell(const char* format, double x) {
+  return std::isfinite(x) ? format_printf(format, x) : "–";
+}
+
 std::string format_short(double x) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.3g", x);

@@ -15,6 +15,9 @@ std::string format_g17(double x);
 // x through a printf format with one double conversion ("%g", "%.3g", "%.4g"), for report text.
 std::string format_printf(const char* format, double x);
 
+// format_printf, or "–" when x is not finite: a report table's cell with no value.
+std::string format_cell(const char* format, double x);
+
 // Three significant digits for derived values in messages, e.g. 1.5e+07, 0.000209.
 std::string format_short(double x);
 

@@ -14,6 +14,7 @@
 #include "campaign/store.hpp"
 #include "io/atomic_file.hpp"
 #include "io/csv.hpp"
+#include "io/numbers.hpp"
 #include "io/input_error.hpp"
 #include "io/yaml_util.hpp"
 #include "observe/shape_comparison.hpp"
@@ -29,13 +30,6 @@ namespace asperity {
 namespace fs = std::filesystem;
 
 namespace {
-
-std::string fmt(const char* f, double x) {
-  if (!std::isfinite(x)) return "–";
-  char b[64];
-  std::snprintf(b, sizeof b, f, x);
-  return b;
-}
 
 // label → best α_b of a fit.yaml written by `asperity fit` (separate fits); empty when absent.
 std::map<std::string, double> calibrated_alpha_b(const fs::path& fit_yaml) {
@@ -237,9 +231,9 @@ std::string run_interaction_study(const InteractionStudyOptions& opt) {
     r.indep = run_side(f, {}, find(alpha_indep), 12.0);
     r.inter = run_side(f, {"model.interactions=elastic"}, find(alpha_inter), 20.0);
     if (opt.log)
-      *opt.log << "  " << name << ": n independent " << fmt("%.3f", r.indep.obs.shape_exponent) << ", interacting "
-               << fmt("%.3f", r.inter.obs.shape_exponent) << ", measured " << fmt("%.3f", r.inter.areas.n_measured)
-               << " (" << fmt("%.1f", r.inter.wall_s) << " s)" << std::endl;
+      *opt.log << "  " << name << ": n independent " << scene_io::format_cell("%.3f", r.indep.obs.shape_exponent) << ", interacting "
+               << scene_io::format_cell("%.3f", r.inter.obs.shape_exponent) << ", measured " << scene_io::format_cell("%.3f", r.inter.areas.n_measured)
+               << " (" << scene_io::format_cell("%.1f", r.inter.wall_s) << " s)" << std::endl;
     if (name == opt.spread_experiment) spread_scene = f;
     rows.push_back(std::move(r));
   }
@@ -296,22 +290,22 @@ std::string run_interaction_study(const InteractionStudyOptions& opt) {
     gp << gnuplot_block("crowded", crowded) << gnuplot_block("sparse", sparse) << gnuplot_block("indep", indep)
        << "set title " << gnuplot_text("STAND-IN " + sp.experiment) << " . "
        << gnuplot_quote(": f/(σA) at half the time of the first peak") << " . \"\\n\" . "  // two lines: one column wide in a PDF
-       << gnuplot_quote("junctions of equal area (" + fmt("%.3g", sp.area_lo) + "–" + fmt("%.3g", sp.area_hi) + " m^2)")
+       << gnuplot_quote("junctions of equal area (" + scene_io::format_cell("%.3g", sp.area_lo) + "–" + scene_io::format_cell("%.3g", sp.area_hi) + " m^2)")
        << "\nset xlabel " << gnuplot_quote("f_i / (σ A_i) [1]") << "\nset ylabel " << gnuplot_quote("junctions [1]")
        << "\nbin(x) = 0.02*floor(x/0.02) + 0.01\nset style fill transparent solid 0.5\nset boxwidth 0.02\nset key top right\n"
        // The independent model gives the junctions of equal area one f/(σA) (a range narrower
        // than a bin): a band and a line across the plot, not a bar as tall as all the junctions
        // (which squashed the histograms); the y range is the histograms'.
        << "set yrange [0:*]\nset offsets 0, 0, graph 0.1, 0\n"
-       << (std::isfinite(lo) ? "set object 1 rect from first " + fmt("%.10g", lo) + ", graph 0 to first " + fmt("%.10g", hi) +
+       << (std::isfinite(lo) ? "set object 1 rect from first " + scene_io::format_cell("%.10g", lo) + ", graph 0 to first " + scene_io::format_cell("%.10g", hi) +
                                    ", graph 1 behind fc rgb '#56b4e9' fs solid 0.35 noborder\nset arrow 1 from first " +
-                                   fmt("%.10g", 0.5 * (lo + hi)) + ", graph 0 to first " + fmt("%.10g", 0.5 * (lo + hi)) +
+                                   scene_io::format_cell("%.10g", 0.5 * (lo + hi)) + ", graph 0 to first " + scene_io::format_cell("%.10g", 0.5 * (lo + hi)) +
                                    ", graph 1 nohead lw 3 lc rgb '#56b4e9'\n"
                              : std::string())
        << "plot $crowded using (bin($1)):(1) smooth frequency with boxes title "
        << gnuplot_quote("interacting, crowded (k_i Σ_j C_{ij} ≥ median)") << ", $sparse using (bin($1)):(1) smooth frequency "
        << "with boxes title " << gnuplot_quote("interacting, sparse") << ", NaN with lines lw 3 lc rgb '#56b4e9' title "
-       << gnuplot_quote("independent model (same junctions): " + fmt("%.3g", lo) + (hi > lo ? "–" + fmt("%.3g", hi) : ""))
+       << gnuplot_quote("independent model (same junctions): " + scene_io::format_cell("%.3g", lo) + (hi > lo ? "–" + scene_io::format_cell("%.3g", hi) : ""))
        << "\n";
     std::string error;
     if (!render_figures(opt.out / "force_spread.png", gp.str(), 1000, 650, opt.figures, &error))
@@ -385,7 +379,7 @@ std::string run_interaction_study(const InteractionStudyOptions& opt) {
        << "the interacting model is closer than the independent one at " << closer << of << ", farther at " << farther
        << ", and the difference is within its spread (no evidence either way) at " << undecided << ". ";
   if (dn_count > 0)
-    md << "Interactions change the shape exponent n by " << fmt("%+.3f", dn_sum / dn_count)
+    md << "Interactions change the shape exponent n by " << scene_io::format_cell("%+.3f", dn_sum / dn_count)
        << " on average (interacting − independent, each at its own calibrated α_b); the stand-in \"measured\" "
           "curves are parabolas plus noise by construction, and their own n spreads by ±0.1 or more over that noise "
           "(table), so n alone decides nothing.";
@@ -406,12 +400,12 @@ std::string run_interaction_study(const InteractionStudyOptions& opt) {
         md << "| " << r.name << " | " << model << " | no calibration: no evidence | | | | | | | | | | |\n";
         continue;
       }
-      md << "| " << r.name << " | " << model << " | " << fmt("%.4f", s->alpha_b * 1e15) << " | "
-         << fmt("%.3f", s->obs.shape_exponent) << " | " << fmt("%.3f", s->areas.n_measured) << " | "
-         << fmt("%.3f", s->areas.decay_model) << " | " << fmt("%.3f", s->areas.decay_measured) << " | "
-         << fmt("%.3f", s->areas.slope_model * 1e6) << " | " << fmt("%.3f", s->areas.slope_measured * 1e6) << " | "
-         << fmt("%.4f", s->obs.Q_s) << " | " << fmt("%.3f", s->obs.t_peak) << " | " << s->obs.ss_cycles << " | "
-         << fmt("%.1f", s->wall_s) << " |\n";
+      md << "| " << r.name << " | " << model << " | " << scene_io::format_cell("%.4f", s->alpha_b * 1e15) << " | "
+         << scene_io::format_cell("%.3f", s->obs.shape_exponent) << " | " << scene_io::format_cell("%.3f", s->areas.n_measured) << " | "
+         << scene_io::format_cell("%.3f", s->areas.decay_model) << " | " << scene_io::format_cell("%.3f", s->areas.decay_measured) << " | "
+         << scene_io::format_cell("%.3f", s->areas.slope_model * 1e6) << " | " << scene_io::format_cell("%.3f", s->areas.slope_measured * 1e6) << " | "
+         << scene_io::format_cell("%.4f", s->obs.Q_s) << " | " << scene_io::format_cell("%.3f", s->obs.t_peak) << " | " << s->obs.ss_cycles << " | "
+         << scene_io::format_cell("%.1f", s->wall_s) << " |\n";
     }
   md << "\n(n: exponent of A0 − A = c Qⁿ on the loading branch; area decay 1 − A_s/A0; incipient slope: least-squares "
         "dA/dQ over Q ≤ 0.3 Q_max; runs to five stick-slip cycles or 12 s, 20 s with interactions.)\n\n";
@@ -424,11 +418,11 @@ std::string run_interaction_study(const InteractionStudyOptions& opt) {
       if (!s->ran || !std::isfinite(s->shape.residual_rms)) continue;
       const ShapeComparison& c = s->shape;
       md << "| " << r.name << " | " << (s == &r.indep ? "independent" : "interacting") << " | "
-         << fmt("%.4f", c.residual_rms * 1e6) << " | " << fmt("%.4f", c.residual_rms_sd * 1e6) << " | "
-         << fmt("%.4f", c.noise_rms * 1e6) << " | " << fmt("%.4f", c.noise_rms_p95 * 1e6) << " | "
-         << (c.residual_exceeds_noise() ? "no" : "yes") << " | " << fmt("%.4f", c.alpha_model * 1e6) << " | "
-         << fmt("%.4f", c.alpha_measured * 1e6) << " ± " << fmt("%.4f", c.alpha_measured_sd * 1e6) << " | "
-         << fmt("%.3f", c.n_measured) << " ± " << fmt("%.3f", c.n_measured_sd) << " | " << c.points_used << " |\n";
+         << scene_io::format_cell("%.4f", c.residual_rms * 1e6) << " | " << scene_io::format_cell("%.4f", c.residual_rms_sd * 1e6) << " | "
+         << scene_io::format_cell("%.4f", c.noise_rms * 1e6) << " | " << scene_io::format_cell("%.4f", c.noise_rms_p95 * 1e6) << " | "
+         << (c.residual_exceeds_noise() ? "no" : "yes") << " | " << scene_io::format_cell("%.4f", c.alpha_model * 1e6) << " | "
+         << scene_io::format_cell("%.4f", c.alpha_measured * 1e6) << " ± " << scene_io::format_cell("%.4f", c.alpha_measured_sd * 1e6) << " | "
+         << scene_io::format_cell("%.3f", c.n_measured) << " ± " << scene_io::format_cell("%.3f", c.n_measured_sd) << " | " << c.points_used << " |\n";
     }
   md << "\n(Residual: rms of A_model − A_measured at the measured Q the model's loading branch reaches; noise: rms of "
         "the measured points about their own parabola A0 − αQ², and its 95th percentile over the bootstrap. α: "
@@ -448,8 +442,8 @@ std::string run_interaction_study(const InteractionStudyOptions& opt) {
     };
     md << "The paper's Figure 2 argument: two junctions of similar area carry very different forces, presumably "
           "because crowded neighbourhoods evolve differently. Junctions of equal area ("
-       << fmt("%.3g", sp.area_lo) << "–" << fmt("%.3g", sp.area_hi) << " m², the stand-ins' cluster) at the first peak, "
-       << "split at the median of their crowding k_i Σ_j C_ij (" << fmt("%.3f", sp.crowding_median)
+       << scene_io::format_cell("%.3g", sp.area_lo) << "–" << scene_io::format_cell("%.3g", sp.area_hi) << " m², the stand-ins' cluster) at the first peak, "
+       << "split at the median of their crowding k_i Σ_j C_ij (" << scene_io::format_cell("%.3f", sp.crowding_median)
        << ", the compliance the neighbours add relative to the junction's own), at half the time of the first peak "
           "and at the peak:\n\n"
        << "| when | set | junctions | mean f/(σA) | sd | min | max |\n|---|---|---|---|---|---|---|\n";
@@ -458,8 +452,8 @@ std::string run_interaction_study(const InteractionStudyOptions& opt) {
       const char* names[3] = {"interacting, crowded", "interacting, sparse", "independent (same junctions)"};
       for (int k = 0; k < 3; ++k)
         md << "| " << (w == 0 ? "half t_peak" : "t_peak") << " | " << names[k] << " | " << st[k].n << " | "
-           << fmt("%.4f", st[k].mean) << " | " << fmt("%.4f", st[k].sd) << " | " << fmt("%.4f", st[k].lo) << " | "
-           << fmt("%.4f", st[k].hi) << " |\n";
+           << scene_io::format_cell("%.4f", st[k].mean) << " | " << scene_io::format_cell("%.4f", st[k].sd) << " | " << scene_io::format_cell("%.4f", st[k].lo) << " | "
+           << scene_io::format_cell("%.4f", st[k].hi) << " |\n";
     }
     md << "\n"
        << "![force spread](force_spread.png)\n\n"
@@ -480,10 +474,10 @@ std::string run_interaction_study(const InteractionStudyOptions& opt) {
     for (const auto& r : sw) {
       auto g = [&](const std::string& k) { const auto it = r.find(k); return it == r.end() ? std::string() : it->second; };
       md << "| " << g("experiment") << " | " << g("grid") << " | " << g("model.position_scale") << " | "
-         << (num(r, "model.interaction_cutoff") > 0 ? fmt("%.2f", num(r, "model.interaction_cutoff") * 1e3) : "every pair")
-         << " | " << fmt("%.3f", num(r, "shape_exponent"))
-         << " | " << fmt("%.3f", num(r, "area_drop_fraction")) << " | " << fmt("%.4f", num(r, "Q_s")) << " | "
-         << fmt("%.3f", num(r, "t_peak")) << " | " << g("ss_cycles") << " | " << g("status") << " |\n";
+         << (num(r, "model.interaction_cutoff") > 0 ? scene_io::format_cell("%.2f", num(r, "model.interaction_cutoff") * 1e3) : "every pair")
+         << " | " << scene_io::format_cell("%.3f", num(r, "shape_exponent"))
+         << " | " << scene_io::format_cell("%.3f", num(r, "area_drop_fraction")) << " | " << scene_io::format_cell("%.4f", num(r, "Q_s")) << " | "
+         << scene_io::format_cell("%.3f", num(r, "t_peak")) << " | " << g("ss_cycles") << " | " << g("status") << " |\n";
     }
     md << "\n(Position scale s: the same arrangement in an apparent contact s times as wide, 1/s² as crowded; 1000: "
           "practically independent. A cut-off drops the pairs farther apart.)\n\n";

@@ -7,6 +7,7 @@
 
 #include "io/atomic_file.hpp"
 #include "io/csv.hpp"
+#include "io/numbers.hpp"
 #include "report/gnuplot.hpp"
 #include "solve/integrate.hpp"
 #include "solve/interacting/interacting_event_stepper.hpp"
@@ -49,13 +50,6 @@ class TraceObserver {
   double t_end_;
   int n_, k_ = 0;
 };
-
-std::string fmt(const char* f, double x) {
-  if (!std::isfinite(x)) return "–";
-  char b[64];
-  std::snprintf(b, sizeof b, f, x);
-  return b;
-}
 
 // The data block of pair k, model m (0: interacting), neighbourhood sp (1: sparse).
 std::string block_name(std::size_t k, int m, int sp) {
@@ -179,7 +173,7 @@ std::string write_junction_pairs(const fs::path& out, const JunctionPairsEvidenc
         "the k-th least crowded (crowding k_i Σ_j C_ij), their force and area from the start of loading to past the "
         "interacting model's first peak, in both models (the independent one through the same solver, the arrangement "
         "10⁶ times wider). First slip: the time each junction first reaches its threshold (t_peak: "
-     << fmt("%.3f", e.t_peak_interacting_s) << " s interacting, " << fmt("%.3f", e.t_peak_independent_s)
+     << scene_io::format_cell("%.3f", e.t_peak_interacting_s) << " s interacting, " << scene_io::format_cell("%.3f", e.t_peak_independent_s)
      << " s independent).\n\n"
      << "| pair | neighbourhood | junction | A0 [m²] | crowding | model | first slip [s] | first slip / t_peak | "
         "f/(σA) at ½ t_peak | f/(σA) at t_peak | A/A0 at t_peak |\n|---|---|---|---|---|---|---|---|---|---|---|\n";
@@ -191,10 +185,10 @@ std::string write_junction_pairs(const fs::path& out, const JunctionPairsEvidenc
         const double A0 = e.A0_m2[tr.junction];
         auto ratio = [&](double x) { return at(tr.t_s, tr.f_N, x) / (e.sigma_Pa * at(tr.t_s, tr.A_m2, x)); };
         md << "| " << k + 1 << " | " << (sp ? "sparse" : "crowded") << " | " << tr.junction + 1 << " | "
-           << fmt("%.4g", A0) << " | " << fmt("%.2f", e.crowding[tr.junction]) << " | "
-           << (m == 0 ? "interacting" : "independent") << " | " << fmt("%.3f", tr.first_slip_s) << " | "
-           << fmt("%.3f", tr.first_slip_s / tp) << " | " << fmt("%.3f", ratio(0.5 * tp)) << " | "
-           << fmt("%.3f", ratio(tp)) << " | " << fmt("%.4f", at(tr.t_s, tr.A_m2, tp) / A0) << " |\n";
+           << scene_io::format_cell("%.4g", A0) << " | " << scene_io::format_cell("%.2f", e.crowding[tr.junction]) << " | "
+           << (m == 0 ? "interacting" : "independent") << " | " << scene_io::format_cell("%.3f", tr.first_slip_s) << " | "
+           << scene_io::format_cell("%.3f", tr.first_slip_s / tp) << " | " << scene_io::format_cell("%.3f", ratio(0.5 * tp)) << " | "
+           << scene_io::format_cell("%.3f", ratio(tp)) << " | " << scene_io::format_cell("%.4f", at(tr.t_s, tr.A_m2, tp) / A0) << " |\n";
       }
   md << "\n![junction pairs](junction_pairs.png)\n\n" << (note.empty() ? "" : note + "\n\n")
      << "Every sample of every junction above: `junction_pairs.csv` (f/(σA) = 1 at the threshold; a slipping "

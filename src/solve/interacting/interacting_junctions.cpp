@@ -37,6 +37,17 @@ constexpr std::size_t kParallelWork = 200000;
   throw SolverError(msg);
 }
 
+// Cubic Hermite on [x0, x1] from values and slopes at both ends, at X (also outside, continued);
+// its slope there in *slope when asked.
+double hermite(double x0, double x1, double v0, double d0, double v1, double d1, double X, double* slope = nullptr) {
+  const double h = x1 - x0;
+  const double t = (X - x0) / h;
+  const double c2 = 3 * (v1 - v0) - h * (2 * d0 + d1);
+  const double c3 = 2 * (v0 - v1) + h * (d0 + d1);
+  if (slope) *slope = d0 + t * (2 * c2 + 3 * t * c3) / h;
+  return v0 + t * (h * d0 + t * (c2 + t * c3));
+}
+
 }  // namespace
 
 InteractingJunctions::InteractingJunctions(const Problem& problem)
@@ -157,12 +168,8 @@ void InteractingJunctions::warm_start(double X, std::vector<double>& f, std::vec
     const double h = n1.X - n0.X;
     const double t = (X - n0.X) / h;
     if (h > 0 && t >= -2.0 && t <= 3.0) {
-      for (std::size_t q = 0; q < n; ++q) {
-        const double c2 = 3 * (n1.f[q] - n0.f[q]) - h * (2 * n0.a[q] + n1.a[q]);
-        const double c3 = 2 * (n0.f[q] - n1.f[q]) + h * (n0.a[q] + n1.a[q]);
-        f[q] = n0.f[q] + t * (h * n0.a[q] + t * (c2 + t * c3));
-        a[q] = n0.a[q] + t * (2 * c2 + 3 * t * c3) / h;
-      }
+      for (std::size_t q = 0; q < n; ++q)
+        f[q] = hermite(n0.X, n1.X, n0.f[q], n0.a[q], n1.f[q], n1.a[q], X, &a[q]);
       return;
     }
   }
@@ -435,16 +442,6 @@ std::size_t InteractingJunctions::covering_segment(double X) const {
   return std::min(s, nodes_.size() - 2);
 }
 
-namespace {
-// Cubic Hermite on [x0, x1] from values and slopes at both ends.
-double hermite(double x0, double x1, double v0, double d0, double v1, double d1, double X) {
-  const double h = x1 - x0;
-  const double t = (X - x0) / h;
-  const double c2 = 3 * (v1 - v0) - h * (2 * d0 + d1);
-  const double c3 = 2 * (v0 - v1) + h * (d0 + d1);
-  return v0 + t * (h * d0 + t * (c2 + t * c3));
-}
-}  // namespace
 
 double InteractingJunctions::cached(double X, double Node::*value, double Node::*slope) const {
   if (const std::size_t c = continuation_node(X); c != npos) {
