@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <functional>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -18,6 +19,8 @@
 #include "io/shard.hpp"  // Shard, parse_shard: a campaign's --shard I/N (round robin over point indices)
 
 namespace asperity {
+
+class TopographyCache;
 
 // One value an axis gives its key: a number (exact double) or text (a path, an enum name, a
 // boolean spelled as in YAML). `text` is what the store prints (format_double for numbers).
@@ -60,6 +63,10 @@ struct Campaign {
   std::vector<Grid> grids;
   bool series = false;                              // also store each point's series.csv
   double time_limit_s = 0;                          // wall-clock limit per point (0: none)
+  // The contact solves of topography scenes (scene/topography_cache.hpp), shared by the campaign's
+  // load checks, its store set-up and its points: each distinct surface and load is solved once
+  // per process. Null: each CampaignScenes makes its own.
+  std::shared_ptr<TopographyCache> topography;
 
   std::uint64_t size() const;                       // total points (overflow checked at load)
   // Every key some grid varies, in first-appearance order: the store's value columns.

@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <limits>
 
+#include "scene/topography_cache.hpp"
 #include "scene/load.hpp"
 #include "io/numbers.hpp"
 #include "io/yaml_util.hpp"
@@ -152,6 +153,7 @@ Campaign load_campaign(const fs::path& yaml) {
   const MapView m(src, root, "", kCampaignKeys, 1);
 
   Campaign c;
+  c.topography = std::make_shared<TopographyCache>();
   c.file = fs::absolute(yaml).lexically_normal();
   c.name = yaml.stem().string();
   if (auto n = m.find("name")) {

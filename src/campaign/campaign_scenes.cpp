@@ -9,6 +9,7 @@
 #include "io/yaml_util.hpp"
 #include "scene/load.hpp"
 #include "scene/scene_keys.hpp"
+#include "scene/topography_cache.hpp"
 
 namespace asperity {
 
@@ -27,7 +28,10 @@ namespace {
 
 // Values naming files (the experiment) are relative to the campaign file; the scene loader
 // resolves them against the base scene, so they are handed over as absolute paths.
-bool is_path_key(const std::string& key) { return key == "experiment" || key == "experiment.file"; }
+bool is_path_key(const std::string& key) {
+  return key == "experiment" || key == "experiment.file" || key == "topography" || key == "topography.recipe" ||
+         key == "topography.file";
+}
 
 YAML::Node override_value(const std::string& key, const AxisValue& v, const fs::path& campaign_dir) {
   if (v.is_number) return YAML::Node(format_double(v.number));
@@ -61,12 +65,13 @@ YAML::Node parse_base(const BaseScene& b) {
 YAML::Node base_tree(const Campaign& c, const BaseScene& b, const std::vector<int>* set_lines) {
   const fs::path dir = c.file.parent_path();
   YAML::Node tree = parse_base(b);
-  if (set_lines) scene_from_tree(tree, b.file);  // the base scene alone: its own errors first
+  TopographyCache* const cache = c.topography.get();
+  if (set_lines) scene_from_tree(tree, b.file, cache);  // the base scene alone: its own errors first
   for (std::size_t i = 0; i < c.set.size(); ++i) {
     const auto& [key, v] = c.set[i];
     try {
       tree.reset(apply_override(tree, key, override_value(key, v, dir)));
-      if (set_lines) scene_from_tree(tree, b.file);
+      if (set_lines) scene_from_tree(tree, b.file, cache);
     } catch (const InputError& e) {
       if (!set_lines) throw;
       rethrow_at_campaign_line(e, c.file.lexically_normal().string(), (*set_lines)[i], "set." + key);
@@ -98,6 +103,7 @@ struct CampaignScenes::Impl {
   // Base scene + set + a point's values that are not numbers (e.g. another experiment file),
   // converted once per distinct combination; nothing when that alone is not a valid scene.
   std::map<std::string, std::optional<TypedScene>> checked;
+  std::shared_ptr<TopographyCache> topography;  // the campaign's, or this object's own
 };
 
 void check_base_scenes(const Campaign& c, const std::vector<int>& set_lines) {
@@ -107,6 +113,7 @@ void check_base_scenes(const Campaign& c, const std::vector<int>& set_lines) {
 CampaignScenes::CampaignScenes(const Campaign& campaign) : impl_(std::make_unique<Impl>()) {
   impl_->campaign = &campaign;
   impl_->bases = base_scenes(campaign);
+  impl_->topography = campaign.topography ? campaign.topography : std::make_shared<TopographyCache>();
 }
 CampaignScenes::~CampaignScenes() = default;
 CampaignScenes::CampaignScenes(CampaignScenes&&) noexcept = default;
@@ -141,7 +148,7 @@ Scene CampaignScenes::scene(const Point& point) const {
         YAML::Node tree = base_tree(*im.campaign, b, nullptr);
         for (const PointValue* pv : other)
           tree.reset(apply_override(tree, pv->axis->key, override_value(pv->axis->key, pv->value, dir)));
-        t.emplace(typed_scene_from_tree(tree, b.file));
+        t.emplace(typed_scene_from_tree(tree, b.file, im.topography));
       } catch (const InputError&) {
         // Reported point by point below (the point's numbers may also make it valid).
       }
@@ -152,7 +159,7 @@ Scene CampaignScenes::scene(const Point& point) const {
   YAML::Node tree = base_tree(*im.campaign, b, nullptr);  // this point's own tree
   for (const PointValue& pv : point.values)
     tree.reset(apply_override(tree, pv.axis->key, override_value(pv.axis->key, pv.value, dir)));
-  return scene_from_tree(tree, b.file);
+  return scene_from_tree(tree, b.file, im.topography.get());
 }
 
 std::optional<Scene> CampaignScenes::unchecked_scene(const Point& point) const {
@@ -161,7 +168,7 @@ std::optional<Scene> CampaignScenes::unchecked_scene(const Point& point) const {
     for (const BaseScene& b : im.bases) {
       std::optional<Scene> s;
       try {
-        s = scene_from_tree(base_tree(*im.campaign, b, nullptr), b.file);
+        s = scene_from_tree(base_tree(*im.campaign, b, nullptr), b.file, im.topography.get());
         s->experiment.junctions = {};  // the hash names the data by its files' bytes
         s->experiment.measured.reset();
       } catch (const std::exception&) {

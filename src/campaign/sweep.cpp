@@ -337,6 +337,12 @@ std::string canonical_scene_text(const Scene& scene, const fs::path& base_dir, F
   text += "data:\n";
   text += "  junctions_fnv1a64: " + yaml_quoted(e.junctions_file.empty() ? "" : hex16(data.of(e.junctions_file))) + "\n";
   text += "  measured_fnv1a64: " + yaml_quoted(e.measured_file.empty() ? "" : hex16(data.of(e.measured_file))) + "\n";
+  // A topography scene's text holds its whole recipe; a measured height map is named by path, so
+  // its bytes count too. Only then: other scenes keep their text (and stored hashes).
+  if (const auto& t = scene.topography) {
+    data.note(t->file);
+    if (!t->map_file.empty()) text += "  height_map_fnv1a64: " + yaml_quoted(hex16(data.of(t->map_file))) + "\n";
+  }
   return text;
 }
 

@@ -47,6 +47,7 @@ std::string scene_keys_markdown() {
     if (numeric) def = std::isnan(k.default_value) ? "required" : scene_io::format_double(k.default_value);
     else if (k.text) def = k.text(defaults);
     if (std::string(k.name).rfind("experiment.", 0) == 0 && !numeric) def = "(from the experiment file)";
+    if (std::string(k.name).rfind("topography.", 0) == 0) def = "(from the recipe)";  // only in topography scenes
     md += "| `" + std::string(k.name) + "` | " + kind_name(k.kind) + " | " + cell(unit) + " | " +
           cell(k.range ? k.range : "") + " | " + (def.empty() ? "" : "`" + cell(def) + "`") + " | " +
           (k.fittable ? "yes" : "") + " | " + cell(k.why ? k.why : "") + " |\n";

@@ -12,6 +12,8 @@
 #include "io/yaml_util.hpp"
 #include "scene/override.hpp"
 #include "scene/scene_keys.hpp"
+#include "scene/topography_cache.hpp"
+#include "scene/topography_recipe_load.hpp"
 #include "scene/validate.hpp"
 
 namespace asperity {
@@ -51,7 +53,7 @@ std::vector<std::string> leaves(const std::string& section) {
   return out;
 }
 
-const std::vector<std::string> kSceneKeys{"experiment", "model", "solver", "stop", "output"};
+const std::vector<std::string> kSceneKeys{"experiment", "topography", "model", "solver", "stop", "output"};
 const std::vector<std::string> kExperimentMapKeys = leaves("experiment");
 const std::vector<std::string> kExperimentKeys = [] {  // the experiment file's: its data, not the path
   std::vector<std::string> k(kExperimentMapKeys.begin() + 1, kExperimentMapKeys.end());
@@ -290,15 +292,36 @@ YAML::Node section(const MapView& root, const std::string& k) {
 }
 
 // origin: the scene file (empty: a scene given in memory); relative paths resolve against base_dir.
+// A scene's `topography:` (a recipe file's path, or a map: the recipe inline or {recipe: path,
+// values replaced}) → its recipe, and the experiment of its contact (through `cache` when given).
+void read_topography(const MapView& root, const YAML::Node& tn, const fs::path& base_dir, TopographyCache* cache,
+                     Scene& s) {
+  if (const auto en = root.find("experiment"))
+    root.fail_at(*en, "experiment", "give either experiment or topography (which makes the experiment), not both");
+  TopographyRecipe r;
+  if (tn.IsScalar()) {
+    const fs::path p = referenced_file(root, tn, "topography", base_dir, "topography recipe", kMaxYamlBytes);
+    r = load_topography_recipe(p);
+  } else if (tn.IsMap()) {
+    r = topography_recipe_from_scene(root.source(), tn, base_dir);
+  } else {
+    root.fail_at(tn, "topography", "expected the path of a topography recipe or a map of its keys, got " + node_kind(tn));
+  }
+  const auto contact = topography_contact(r, cache);
+  s.experiment = topography_experiment(r, *contact, scene_made_by(r));
+  s.topography = std::move(r);
+}
+
 Scene scene_from_tree_impl(const YAML::Node& tree, const fs::path& origin, const fs::path& base_dir,
-                           const std::string& display, const std::vector<SetRecord>* sets) {
+                           const std::string& display, const std::vector<SetRecord>* sets, TopographyCache* cache) {
   const Source src{display, sets};
   const MapView root(src, tree, "", kSceneKeys, origin.empty() ? 0 : 1);  // a tree in memory has no lines
   Scene s;
   if (!origin.empty()) s.file = resolved(origin);
 
-  // experiment: a path, or a map {file: path, value overrides...}
-  {
+  if (const auto tn = root.find("topography")) {
+    read_topography(root, *tn, base_dir, cache, s);
+  } else {  // experiment: a path, or a map {file: path, value overrides...}
     const YAML::Node en = root.require("experiment");
     std::optional<MapView> ov;
     const MapView* fv = &root;
@@ -361,16 +384,18 @@ Experiment load_experiment(const fs::path& yaml, const YAML::Node* overrides) {
 
 YAML::Node load_scene_tree(const fs::path& yaml) { return load_yaml_file(yaml, display_path(yaml)); }
 
-Scene scene_from_tree(const YAML::Node& tree, const fs::path& origin_file) {
-  return scene_from_tree_impl(tree, origin_file, origin_file.parent_path(), display_path(origin_file), nullptr);
+Scene scene_from_tree(const YAML::Node& tree, const fs::path& origin_file, TopographyCache* topography) {
+  return scene_from_tree_impl(tree, origin_file, origin_file.parent_path(), display_path(origin_file), nullptr,
+                              topography);
 }
 
 Scene scene_from_memory(const YAML::Node& tree, const fs::path& base_dir, const std::string& display) {
-  return scene_from_tree_impl(tree, {}, base_dir, display, nullptr);
+  return scene_from_tree_impl(tree, {}, base_dir, display, nullptr, nullptr);
 }
 
-TypedScene typed_scene_from_tree(const YAML::Node& tree, const fs::path& origin_file) {
-  Scene s = scene_from_tree(tree, origin_file);
+TypedScene typed_scene_from_tree(const YAML::Node& tree, const fs::path& origin_file,
+                                 std::shared_ptr<TopographyCache> topography) {
+  Scene s = scene_from_tree(tree, origin_file, topography.get());
   // The line of each key's value (of its key when the value is empty), as MapView::fail_at names it.
   auto line_of = [](const YAML::Node& n) { return n.IsDefined() && !n.Mark().is_null() ? n.Mark().line + 1 : 0; };
   std::map<std::string, int> lines;
@@ -382,7 +407,7 @@ TypedScene typed_scene_from_tree(const YAML::Node& tree, const fs::path& origin_
         lines[std::string(sec) + "." + it->first.Scalar()] =
             it->second.IsDefined() && !it->second.IsNull() ? line_of(it->second) : line_of(it->first);
   }
-  return TypedScene(std::move(s), display_path(origin_file), std::move(lines));
+  return TypedScene(std::move(s), display_path(origin_file), std::move(lines), std::move(topography));
 }
 
 Scene load_scene(const fs::path& yaml, const std::vector<std::string>& overrides) {
@@ -399,7 +424,7 @@ Scene load_scene(const fs::path& yaml, const std::vector<std::string>& overrides
     tree = apply_override_at(tree, key, value, where);
     sets.push_back({key, where});
   }
-  return scene_from_tree_impl(tree, yaml, yaml.parent_path(), display, &sets);
+  return scene_from_tree_impl(tree, yaml, yaml.parent_path(), display, &sets, nullptr);
 }
 
 }  // namespace asperity

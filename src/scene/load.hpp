@@ -17,6 +17,12 @@
 //   #                junctions: {area_m2: [...], x_m: [...], y_m: [...]},   # x_m, y_m optional
 //   #                measured: {Q_N: [...], A_m2: [...]}}                   # optional
 //   #   each value checked as a row of the junctions or measured CSV is
+//   # or, instead of experiment, junctions from topography (topography_recipe.hpp,
+//   # docs/topography.md): the contact clusters of a rough sphere, solved when the scene is read:
+//   #   topography: path/to/topo.yaml          # a recipe file, relative to the scene
+//   #   topography: {recipe: topo.yaml, self_affine: {hurst: 0.6}}   # the file, some values replaced
+//   #   topography: {self_affine: {...}, sphere_radius_m: 0.065, E: 1.6e6, nu: 0.5, load_N: 0.98,
+//   #                contact: {...}, slider: {...}, name: x}       # a recipe inline, its surface lifted
 //   model:  {eta: 100, epsilon: 0.9, c_min: 0.01, p: 1.5, alpha_b: 0.725e-15,
 //            junction_shape: elliptic|circular, area_law: until_first_slip|always,
 //            interactions: none|elastic, interaction_cutoff: 0, interaction_weighting: uniform|rigid,
@@ -50,6 +56,8 @@
 
 namespace asperity {
 
+class TopographyCache;
+
 // Reads an experiment file and its CSVs. `overrides` (optional) is a map of experiment values
 // that replace the file's (same keys as the scene's experiment map; `file` is ignored).
 Experiment load_experiment(const std::filesystem::path& yaml, const YAML::Node* overrides = nullptr);
@@ -73,7 +81,9 @@ YAML::Node apply_override(YAML::Node scene_tree, const std::string& dotted_key, 
 
 // Validates and converts a scene tree. Relative paths resolve against origin_file's folder;
 // errors name origin_file, the key, and the line when the node came from that file.
-Scene scene_from_tree(const YAML::Node& tree, const std::filesystem::path& origin_file);
+// `topography` (optional): where a topography scene gets its contact solve (nullptr: solved now).
+Scene scene_from_tree(const YAML::Node& tree, const std::filesystem::path& origin_file,
+                      TopographyCache* topography = nullptr);
 
 // A scene given in memory (the Python module's Scene.from_dict and Scene.from_yaml): `tree` as a
 // scene file's, checked by the same code; relative paths resolve against base_dir; errors name
@@ -83,7 +93,8 @@ Scene scene_from_memory(const YAML::Node& tree, const std::filesystem::path& bas
 
 // scene_from_tree, kept with where each key came from, so that variants with numbers changed
 // are built and checked without the tree (typed_scene.hpp). The tree is not kept.
-TypedScene typed_scene_from_tree(const YAML::Node& tree, const std::filesystem::path& origin_file);
+TypedScene typed_scene_from_tree(const YAML::Node& tree, const std::filesystem::path& origin_file,
+                                 std::shared_ptr<TopographyCache> topography = nullptr);
 
 // --- Writing --------------------------------------------------------------------------------
 // The fully resolved scene: experiment as a map {file: <absolute path>, name, description and

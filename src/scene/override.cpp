@@ -39,9 +39,11 @@ YAML::Node set_path(const YAML::Node& node, const std::vector<std::string>& part
     return s;
   }();
   YAML::Node cur = node;
-  if (cur.IsDefined() && cur.IsScalar() && here == "experiment") {  // path → {file: path}
+  // path → {file: path} (an experiment) or {recipe: path} (a topography recipe): values set
+  // inside replace the file's.
+  if (cur.IsDefined() && cur.IsScalar() && (here == "experiment" || here == "topography")) {
     YAML::Node m(YAML::NodeType::Map);
-    m[YAML::Node("file")] = cur;
+    m[YAML::Node(here == "experiment" ? "file" : "recipe")] = cur;
     cur.reset(m);  // rebind: `cur = m` would turn the caller's (shared) node into the map
   }
   if (cur.IsDefined() && !cur.IsNull() && !cur.IsMap())

@@ -8,6 +8,7 @@
 
 #include "physics/contact_law.hpp"
 #include "physics/elastic_interaction.hpp"
+#include "scene/topography_recipe.hpp"
 
 namespace asperity {
 
@@ -103,6 +104,9 @@ struct Scene {
   std::filesystem::path file;           // the scene YAML
   std::filesystem::path experiment_ref; // as written in the scene (relative to it)
   Experiment experiment;
+  // A scene whose `topography:` section makes its experiment (topography_recipe.hpp): the
+  // experiment above is then the recipe's, its junctions those of the contact solve.
+  std::optional<TopographyRecipe> topography;
   ModelSettings model;
   SolverSettings solver;
   StopSettings stop;

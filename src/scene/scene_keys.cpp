@@ -22,6 +22,16 @@ const char* name_of(JunctionShape s) { return s == JunctionShape::circular ? "ci
 const char* name_of(AreaLaw a) { return a == AreaLaw::always ? "always" : "until_first_slip"; }
 const char* name_of(Interactions i) { return i == Interactions::elastic ? "elastic" : "none"; }
 const char* name_of(TractionWeighting w) { return w == TractionWeighting::rigid ? "rigid" : "uniform"; }
+// The recipe of a topography scene; any other scene has none to read or set.
+const TopographyRecipe& recipe_of(const Scene& s) {
+  if (!s.topography) throw std::invalid_argument("the scene has no topography section");
+  return *s.topography;
+}
+TopographyRecipe& recipe_of(Scene& s) {
+  if (!s.topography) throw std::invalid_argument("the scene has no topography section");
+  return *s.topography;
+}
+
 const char* name_of(SolverMethod m) { return m == SolverMethod::reference ? "reference" : "event"; }
 
 // A number row: FIELD is an lvalue expression of `s`.
@@ -87,9 +97,67 @@ std::vector<SceneKey> make_table() {
         return y + "]";
       }()),
       NUMBER("output.peak_min_drop", nullptr, "in (0, 1)", x > 0 && x < 1, "", 0.02, false, s.output.peak_min_drop),
+      // A topography scene's recipe (topography_recipe.hpp): setting one re-makes the junctions
+      // (one contact solve per distinct surface and load, topography_cache.hpp).
+      NUMBER("topography.self_affine.seed", nullptr, "a whole number in [0, 2^53]",
+             x >= 0 && x <= 9007199254740992.0 && x == std::floor(x), "larger seeds are not exact as numbers",
+             kRequired, false, recipe_of(s).self_affine.seed),
+      NUMBER("topography.self_affine.hurst", nullptr, "in (0, 1)", x > 0 && x < 1, "", kRequired, false,
+             recipe_of(s).self_affine.hurst),
+      NUMBER("topography.self_affine.rms_height_m", "m", "> 0", x > 0, "", kRequired, false,
+             recipe_of(s).self_affine.rms_height_m),
+      NUMBER("topography.self_affine.rms_slope", nullptr, "> 0", x > 0, "", kRequired, false,
+             recipe_of(s).self_affine.rms_slope),
+      NUMBER("topography.sphere_radius_m", "m", "> 0", x > 0, "", kRequired, false, recipe_of(s).sphere_radius_m),
+      NUMBER("topography.E", "Pa", "> 0", x > 0, "", kRequired, false, recipe_of(s).E_Pa),
+      NUMBER("topography.nu", nullptr, "in [0, 0.5]", x >= 0 && x <= 0.5, "", kRequired, false, recipe_of(s).nu),
+      NUMBER("topography.load_N", "N", "> 0", x > 0, "", kRequired, false, recipe_of(s).load_N),
   };
   for (SceneKey& k : t) {
     const std::string n = k.name;
+    // Topography keys: only in a topography scene (its own section, written by the writer).
+    if (n.rfind("topography.", 0) == 0) {
+      const bool surface = n.rfind("topography.self_affine.", 0) == 0;
+      k.written = surface ? +[](const Scene& s) {
+        return s.topography && s.topography->kind == TopographyKind::self_affine;
+      } : +[](const Scene& s) { return s.topography.has_value(); };
+    }
+    // Empty for a scene without topography (the macro's text would throw there).
+    if (n == "topography.sphere_radius_m")
+      k.text = [](const Scene& s) { return s.topography ? num(s.topography->sphere_radius_m) : std::string(); };
+    if (n == "topography.E")
+      k.text = [](const Scene& s) { return s.topography ? num(s.topography->E_Pa) : std::string(); };
+    if (n == "topography.nu")
+      k.text = [](const Scene& s) { return s.topography ? num(s.topography->nu) : std::string(); };
+    if (n == "topography.load_N")
+      k.text = [](const Scene& s) { return s.topography ? num(s.topography->load_N) : std::string(); };
+    if (n == "topography.self_affine.seed") {
+      k.set = [](Scene& s, double x) { recipe_of(s).self_affine.seed = static_cast<std::uint64_t>(x); };
+      k.text = [](const Scene& s) { return s.topography ? std::to_string(s.topography->self_affine.seed) : std::string(); };
+    }
+    if (n == "topography.self_affine.hurst")
+      k.text = [](const Scene& s) { return s.topography ? num(s.topography->self_affine.hurst) : std::string(); };
+    // One of rms height and rms slope sets the surface's amplitude: setting one drops the other.
+    if (n == "topography.self_affine.rms_height_m") {
+      k.set = [](Scene& s, double x) {
+        recipe_of(s).self_affine.rms_height_m = x;
+        recipe_of(s).self_affine.rms_slope = 0;
+      };
+      k.text = [](const Scene& s) {
+        return s.topography && s.topography->self_affine.rms_height_m > 0 ? num(s.topography->self_affine.rms_height_m)
+                                                                          : std::string();
+      };
+    }
+    if (n == "topography.self_affine.rms_slope") {
+      k.set = [](Scene& s, double x) {
+        recipe_of(s).self_affine.rms_slope = x;
+        recipe_of(s).self_affine.rms_height_m = 0;
+      };
+      k.text = [](const Scene& s) {
+        return s.topography && s.topography->self_affine.rms_height_m == 0 ? num(s.topography->self_affine.rms_slope)
+                                                                           : std::string();
+      };
+    }
     // Limits only when set: a default one leaves the text (and so the sweep store's scene hash)
     // as it was before the keys existed.
     // The interaction keys only when interactions are on: a scene of independent junctions has

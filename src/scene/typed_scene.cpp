@@ -3,6 +3,8 @@
 #include <cmath>
 
 #include "io/input_error.hpp"
+#include "scene/topography_cache.hpp"
+#include "scene/topography_junctions.hpp"
 #include "scene/validate.hpp"
 
 namespace asperity {
@@ -40,8 +42,12 @@ class VariantOrigins final : public KeyOrigins {
 
 }  // namespace
 
-TypedScene::TypedScene(Scene scene, std::string display_file, std::map<std::string, int> given_lines)
-    : scene_(std::move(scene)), display_(std::move(display_file)), lines_(std::move(given_lines)) {}
+TypedScene::TypedScene(Scene scene, std::string display_file, std::map<std::string, int> given_lines,
+                       std::shared_ptr<TopographyCache> topography)
+    : scene_(std::move(scene)),
+      display_(std::move(display_file)),
+      lines_(std::move(given_lines)),
+      topography_(std::move(topography)) {}
 
 bool TypedScene::settable(const SceneKey* key, double value) {
   return key && key->kind == KeyKind::number && std::isfinite(value);
@@ -49,6 +55,7 @@ bool TypedScene::settable(const SceneKey* key, double value) {
 
 Scene TypedScene::with(const std::vector<NumberSetting>& settings) const {
   Scene s = scene_;
+  bool recipe_changed = false;
   // The loader checks keys in table order: the first bad one in that order is the one reported.
   for (const SceneKey& k : scene_keys()) {
     const NumberSetting* last = nullptr;
@@ -58,7 +65,24 @@ Scene TypedScene::with(const std::vector<NumberSetting>& settings) const {
     if (!settable(last->key, last->value)) throw std::logic_error(std::string("TypedScene: cannot set ") + k.name);
     // A value set from outside the file has no line: the loader names the scene file alone.
     if (!k.allowed(last->value)) throw InputError(display_, 0, k.name, out_of_range_message(k, last->value));
+    const std::string name = k.name;
+    // A topography scene's experiment is its recipe's: set the recipe, never the experiment
+    // (scene.yaml writes the recipe, so an experiment value set here would not be repeated).
+    if (name.rfind("topography.", 0) == 0) {
+      if (!s.topography)
+        throw InputError(display_, 0, name, "the scene has no topography section (its junctions come from a file)");
+      if (name.rfind("topography.self_affine.", 0) == 0 && s.topography->kind != TopographyKind::self_affine)
+        throw InputError(display_, 0, name, "the scene's topography is not self_affine");
+      recipe_changed = true;
+    } else if (s.topography && name.rfind("experiment.", 0) == 0) {
+      throw InputError(display_, 0, name, "a topography scene's experiment comes from its recipe: set topography.* instead");
+    }
     k.set(s, last->value);
+  }
+  if (recipe_changed) {
+    if (const auto p = topography_recipe_problem(*s.topography)) throw InputError(display_, 0, p->key, p->message);
+    const TopographyRecipe& r = *s.topography;
+    s.experiment = topography_experiment(r, *topography_contact(r, topography_.get()), scene_made_by(r));
   }
   validate_scene(s, VariantOrigins(display_, lines_, settings));
   return s;

@@ -4,6 +4,7 @@
 // points and fit evaluations. A variant is checked like the loader checks the scene file with
 // those values set (same ranges, same cross-key bounds, same messages).
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -11,6 +12,8 @@
 #include "scene/scene_keys.hpp"
 
 namespace asperity {
+
+class TopographyCache;
 
 struct NumberSetting {
   const SceneKey* key = nullptr;  // a key of kind number
@@ -21,7 +24,10 @@ class TypedScene {
  public:
   // `given_lines`: every model/solver/stop/output/experiment key the scene's tree holds, with the
   // file line of its value (0 when an override put it there). load.hpp's typed_scene_from_tree.
-  TypedScene(Scene scene, std::string display_file, std::map<std::string, int> given_lines);
+  // `topography`: where a variant that changes topography.* keys gets its contact (nullptr:
+  // solved for each such variant).
+  TypedScene(Scene scene, std::string display_file, std::map<std::string, int> given_lines,
+             std::shared_ptr<TopographyCache> topography = nullptr);
 
   const Scene& scene() const { return scene_; }
 
@@ -30,13 +36,15 @@ class TypedScene {
   static bool settable(const SceneKey* key, double value);
 
   // scene() with `settings` applied in order (a later value of a key wins). InputError as
-  // scene_from_tree of the scene's tree with these values set would throw. Thread-safe.
+  // scene_from_tree of the scene's tree with these values set would throw. Thread-safe. A
+  // topography.* value re-makes the experiment from the changed recipe (through the cache).
   Scene with(const std::vector<NumberSetting>& settings) const;
 
  private:
   Scene scene_;
   std::string display_;
   std::map<std::string, int> lines_;
+  std::shared_ptr<TopographyCache> topography_;
 };
 
 }  // namespace asperity

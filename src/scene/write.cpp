@@ -72,8 +72,12 @@ std::string model_solver_yaml(const ModelSettings& m, const SolverSettings& solv
 }
 
 std::string scene_to_yaml(const Scene& s) {
-  return "# asperity scene, fully resolved: every value explicit, numbers round-trip exactly\n" +
-         sections_yaml(s, {"experiment", "model", "solver", "stop", "output"});
+  const std::string head = "# asperity scene, fully resolved: every value explicit, numbers round-trip exactly\n";
+  // A topography scene repeats its recipe, which makes the same experiment again.
+  if (s.topography)
+    return head + "topography:\n" + topography_section_yaml(*s.topography) +
+           sections_yaml(s, {"model", "solver", "stop", "output"});
+  return head + sections_yaml(s, {"experiment", "model", "solver", "stop", "output"});
 }
 
 std::string experiment_to_yaml(const Experiment& e, const std::string& junctions_rel, const std::string& measured_rel) {

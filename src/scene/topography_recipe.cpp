@@ -1,0 +1,85 @@
+#include "scene/topography_recipe.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "io/numbers.hpp"
+#include "io/yaml_util.hpp"  // yaml_quoted
+
+namespace asperity {
+
+namespace {
+
+std::string num(double x) {
+  if (!std::isfinite(x)) throw std::invalid_argument("cannot write a non-finite number to a scene file");
+  return scene_io::format_double(x);
+}
+
+}  // namespace
+
+std::optional<RecipeProblem> topography_recipe_problem(const TopographyRecipe& r) {
+  if (r.kind != TopographyKind::self_affine) return std::nullopt;
+  const SelfAffineSpec& s = r.self_affine;
+  const double lr = s.rolloff_wavelength_m > 0 ? s.rolloff_wavelength_m : s.length_m;
+  const double ls = s.short_wavelength_m > 0 ? s.short_wavelength_m : 2 * r.pixel_m;
+  if (s.rolloff_wavelength_m > 0 && lr > s.length_m * (1 + 1e-12))
+    return RecipeProblem{"topography.self_affine.rolloff_wavelength_m",
+                         "must be at most the map's size " + num(s.length_m) + " m"};
+  if (s.short_wavelength_m > 0 && (ls < 2 * r.pixel_m * (1 - 1e-12) || !(ls < lr)))
+    return RecipeProblem{"topography.self_affine.short_wavelength_m",
+                         "must be at least 2 pixels (" + num(2 * r.pixel_m) + " m) and below the roll-off wavelength " +
+                             num(lr) + " m"};
+  return std::nullopt;
+}
+
+std::string topography_section_yaml(const TopographyRecipe& r, bool with_slider) {
+  std::string y;
+  auto line = [&](int indent, const std::string& key, const std::string& value) {
+    y += std::string(static_cast<std::size_t>(indent), ' ') + key + ":" + (value.empty() ? "" : " " + value) + "\n";
+  };
+  if (with_slider) line(2, "name", yaml_quoted(r.name));
+  switch (r.kind) {
+    case TopographyKind::smooth:
+      line(2, "smooth", "");
+      line(4, "n", std::to_string(r.n));
+      line(4, "pixel_m", num(r.pixel_m));
+      break;
+    case TopographyKind::self_affine: {
+      const SelfAffineSpec& s = r.self_affine;
+      line(2, "self_affine", "");
+      line(4, "seed", std::to_string(s.seed));
+      line(4, "n", std::to_string(s.n));
+      line(4, "pixel_m", num(r.pixel_m));
+      line(4, "hurst", num(s.hurst));
+      if (s.rolloff_wavelength_m > 0) line(4, "rolloff_wavelength_m", num(s.rolloff_wavelength_m));
+      if (s.short_wavelength_m > 0) line(4, "short_wavelength_m", num(s.short_wavelength_m));
+      if (s.rms_height_m > 0) line(4, "rms_height_m", num(s.rms_height_m));
+      else line(4, "rms_slope", num(s.rms_slope));
+      break;
+    }
+    case TopographyKind::measured:
+      // Absolute: the scene written elsewhere still finds its map.
+      line(2, "file", yaml_quoted(std::filesystem::absolute(r.map_file).lexically_normal().string()));
+      if (r.map_file.extension() == ".csv") line(2, "pixel_m", num(r.pixel_m));
+      break;
+  }
+  line(2, "sphere_radius_m", num(r.sphere_radius_m));
+  line(2, "E", num(r.E_Pa));
+  line(2, "nu", num(r.nu));
+  line(2, "load_N", num(r.load_N));
+  line(2, "contact", "");
+  line(4, "tolerance", num(r.tolerance));
+  line(4, "max_iterations", std::to_string(r.max_iterations));
+  line(4, "connectivity", r.connectivity == Connectivity::four ? "4" : "8");
+  if (with_slider) {
+    line(2, "slider", "");
+    line(4, "gravity", num(r.gravity));
+    if (r.mass_kg > 0) line(4, "mass_kg", num(r.mass_kg));
+    line(4, "k_L", num(r.k_L));
+    line(4, "v", num(r.v));
+    line(4, "sigma_exp", num(r.sigma_exp));
+  }
+  return y;
+}
+
+}  // namespace asperity
