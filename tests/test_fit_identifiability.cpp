@@ -66,7 +66,7 @@ TEST_CASE("area_curve recovers a known alpha_b to 5e-4", "[fit][identifiability]
   std::filesystem::remove_all(c.dir);
 }
 
-TEST_CASE("area_curve recovers alpha_b and p jointly to 5e-3 and 3e-4", "[fit][identifiability]") {
+TEST_CASE("area_curve recovers alpha_b and p jointly to 5e-3 and 3e-4", "[fit][identifiability][heavy]") {
   // alpha_b and p are correlated (only alpha_b / A0^p matters per junction; d ln alpha_b / dp =
   // ln A0 ≈ −18 along the valley): the spread of the areas over two decades separates them, but
   // the valley is narrow. LN_BOBYQA stops on it (p 0.7 % off, alpha_b 17 % off, objective 50×

@@ -46,7 +46,7 @@ TEST_CASE("regress: tolerance is 10x the tightening change, floored at 10x the s
   fs::remove(f);
 }
 
-TEST_CASE("asperity regress passes on the committed golden results and catches an injected drift", "[regress][cli]") {
+TEST_CASE("asperity regress passes on the committed golden results and catches an injected drift", "[regress][cli][heavy]") {
   const fs::path src(ASPERITY_SOURCE_DIR);
   const fs::path work = asperity::testing::temp_path("asperity_test_regress");
   fs::remove_all(work);

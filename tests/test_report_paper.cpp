@@ -27,7 +27,7 @@ TEST_CASE("loading_time_at inverts a linear loading branch and is NaN beyond it"
   CHECK(std::isnan(loading_time_at(s, 2.5)));
 }
 
-TEST_CASE("asperity reproduce: table rows equal single runs, figures written", "[report][cli]") {
+TEST_CASE("asperity reproduce: table rows equal single runs, figures written", "[report][cli][heavy]") {
   const fs::path src(ASPERITY_SOURCE_DIR);
   const fs::path work = asperity::testing::temp_path("asperity_test_reproduce");
   fs::remove_all(work);

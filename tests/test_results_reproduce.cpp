@@ -79,7 +79,7 @@ std::string provenance_value(const fs::path& file, const std::string& key) {
 
 }  // namespace
 
-TEST_CASE("every committed results/ store: a sample of its points rerun by this build gives its rows", "[results]") {
+TEST_CASE("every committed results/ store: a sample of its points rerun by this build gives its rows", "[results][heavy]") {
   for (const std::string& n : kUpToPeak) CHECK_NOTHROW(observable_field(n));
   for (const std::string& n : kWorkCounters) CHECK_NOTHROW(observable_field(n));
   int stores = 0;

@@ -40,7 +40,7 @@ struct OverloadWatch final : RunObserver {
 
 }  // namespace
 
-TEST_CASE("event integrator: a slip position reached while the slider turns back fires (eta = 0)", "[solve][event]") {
+TEST_CASE("event integrator: a slip position reached while the slider turns back fires (eta = 0)", "[solve][event][heavy]") {
   // Stand-in P6.40N without damping: the slider overshoots after each slip and turns back; on
   // the build of this test's commit, without the turning-point check, X passed a slip position
   // between two probes at t = 11.64 s and the run stopped with "slip distance is below the

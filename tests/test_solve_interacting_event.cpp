@@ -37,7 +37,7 @@ void cluster(std::size_t n, double pitch_m, std::vector<double>& x, std::vector<
 }  // namespace
 
 TEST_CASE("event solver: junctions far apart reproduce the independent event solver on every observable",
-          "[solve][interacting][event]") {
+          "[solve][interacting][event][heavy]") {
   // The stand-in P0.98N (294 junctions; stick-slip: slips and a repin inside the window) with
   // its junctions 10^7 m apart, where the coupling is ~1e-12 of a junction's own compliance.
   Scene inter = load_scene(std::filesystem::path(ASPERITY_SOURCE_DIR) / "scenes/paper/P0.98N.yaml");

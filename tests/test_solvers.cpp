@@ -102,7 +102,7 @@ TEST_CASE("model forces exceed σ_exp A transiently but never σ A (claim 7)", "
   CHECK(out.info.max_f_over_sigma_exp_A > 1.0);
 }
 
-TEST_CASE("event solver and reference agree, the reference converging to it", "[solver]") {
+TEST_CASE("event solver and reference agree, the reference converging to it", "[solver][heavy]") {
   Scene s = paper_scene(spread_areas(40, 1e-9, 1e-7), 0.1);
   s.stop.time = 0.8;
   s.stop.at_first_peak = true;

@@ -112,7 +112,7 @@ TEST_CASE("periodic: a wavy surface gives Westergaard's pressure in full contact
 }
 
 TEST_CASE("self-affine surfaces at small loads: contact area linear in load, kappa in the published range",
-          "[surface][contact]") {
+          "[surface][contact][heavy]") {
   // A/A0 = κ p̄ / (E* h'_rms) at small loads; simulations give κ ≈ 2–2.5 depending on H and on how
   // well the shortest wavelength is resolved (Hyun, Pei, Molinari & Robbins, PRE 70, 026117,
   // 2004; Müser et al., Tribol. Lett. 65, 118, 2017: κ ≈ 2 in the continuum limit), above
