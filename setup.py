@@ -40,6 +40,11 @@ class CMakeBuildPy(build_py):
         target = pathlib.Path(self.build_lib) / "asperity"
         target.mkdir(parents=True, exist_ok=True)
         shutil.copy2(module, target / module.name)
+        # `pip install -e .` imports the package from src/python/asperity itself (setuptools maps
+        # the source folder), so the compiled module goes there too (ignored by git), as
+        # `build_ext --inplace` would put it; rerun `pip install -e .` after a rebuild.
+        if getattr(self, "editable_mode", False):
+            shutil.copy2(module, ROOT / "src" / "python" / "asperity" / module.name)
 
 
 class BinaryDistribution(Distribution):
