@@ -136,4 +136,4 @@ def test_ctrl_c_interrupts_a_long_run(source):
         asperity.run(scene)
     elapsed = time.monotonic() - start
     timer.cancel()
-    assert elapsed < 2.0, elapsed
+    assert elapsed - 0.5 < 1.0, elapsed  # stopped within 1 s of the Ctrl-C (measured ~0.1 s)
