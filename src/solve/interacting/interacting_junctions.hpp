@@ -22,21 +22,24 @@
 // exactly. The slip positions are found by Newton in X on the exact solutions.
 #include <cstddef>
 #include <cstdint>
-#include <memory>
 #include <vector>
 
-#include "physics/universal_law.hpp"
-#include "solve/interacting/interaction_matrix.hpp"
 #include "solve/core/junction_state.hpp"
 #include "solve/core/problem.hpp"
+#include "solve/interacting/eq3_displacement.hpp"
+#include "solve/interacting/force_cache.hpp"
+#include "solve/interacting/pinned_compliance.hpp"
 
 namespace asperity {
 
+// The jobs are split: PinnedCompliance keeps G and the load vectors of the pinned set,
+// Eq3Displacement the junctions' own nonlinear law, ForceCache the exact solves between events
+// and their interpolants; this class runs the chord iteration (solve) and the events (slip
+// positions, avalanches, repins).
 class InteractingJunctions {
  public:
   // Throws SolverError when the universal law's table cannot reach the needed accuracy.
   explicit InteractingJunctions(const Problem& problem);
-  ~InteractingJunctions();
   InteractingJunctions(const InteractingJunctions&) = delete;
   InteractingJunctions& operator=(const InteractingJunctions&) = delete;
 
@@ -46,7 +49,7 @@ class InteractingJunctions {
   double next_threshold() const { return x_up_; }  // m: the next slip as X grows
   bool has_threshold_below() const;
   double next_threshold_below() const { return x_down_; }  // m: the next slip as X decreases
-  std::int64_t n_slipping() const { return static_cast<std::int64_t>(N_ - nP_); }
+  std::int64_t n_slipping() const { return static_cast<std::int64_t>(N_ - pinned_.size()); }
   std::int64_t n_intact() const { return n_intact_; }
   std::int64_t force_evals() const { return force_evals_; }
   std::int64_t slips() const { return slips_; }
@@ -74,77 +77,49 @@ class InteractingJunctions {
   struct Work {
     std::int64_t solves = 0, iterations = 0, rank_one = 0, rebuilds = 0;
   };
-  const Work& work() const { return work_; }
+  Work work() const;
 
  private:
-  struct Node;
   static constexpr std::size_t npos = static_cast<std::size_t>(-1);
 
   // Own displacement u(f) [m] and du/df [m/N] of the junction at position q of P.
   void own(std::size_t q, double f, double& u, double& du) const;
-  bool nonlinear(std::size_t q) const { return nl_[q] != 0; }
-  // Exact solve at X, warm-started from the nearest node: a new node (F, dF/dX, A, dA/dX, f, df/dX).
-  Node solve(double X) const;
-  const Node& node_at(double X) const;  // the cache's node at X, solved and inserted if needed
-  std::size_t covering_segment(double X) const;  // extends and refines the cache to cover X
-  std::size_t continuation_node(double X) const;  // past the next slip: see the .cpp (npos: none)
-  // F(X) or A(X) (value and slope members of Node) from the cache: its Hermite pieces, or their
-  // continuation past the next slip.
-  double cached(double X, double Node::*value, double Node::*slope) const;
-  bool segment_ok(std::size_t s) const;
-  void refine_all() const;  // splits every piece whose estimated error is over the tolerance
+  // Exact solve at X by the chord iteration, warm-started from the cache: a new node.
+  ForceNode solve(double X) const;
+  // The iteration's start at X: f and df/dX per position of P (see the .cpp).
+  void warm_start(double X, std::vector<double>& f, std::vector<double>& a) const;
   double threshold(std::size_t q) const;  // N, the slip force of position q
   void after_change(double X);  // new event point: node, thresholds
   // Junction k (npos: none) slips at X, then every pinned one at or over its threshold, one at a
   // time, most overloaded first; then the new slip positions. Returns how many slipped.
   std::int64_t settle(double X, std::size_t k);
   void find_thresholds(double X);
-  // Rank-one removal of position q from P; at_X: the old set's solution at X (or null), from
-  // which the new set's seed there is predicted.
-  void remove_pinned(std::size_t q, double f_slip, const Node* at_X, double X);
-  // The iteration's start at X: f and df/dX per position of P (see the .cpp).
-  void warm_start(double X, std::vector<double>& f, std::vector<double>& a) const;
-  void rebuild() const;  // G, a0, b0 from scratch for the current P and D (a cache: const)
-  void refresh_vectors();             // a0 = G 1, b0 = −G h, sums
+  // Position q leaves P carrying f_slip; at_X: the old set's solution nearest X (or null), from
+  // which the new set's seed at X is predicted.
+  void remove_pinned(std::size_t q, double f_slip, const ForceNode* at_X, double X);
   void start_slip(std::size_t i, double X);
 
   const Problem& p_;
   const ContactLaw& law_;
   AreaLaw area_law_;
   bool nonlinear_law_;
-  std::size_t N_ = 0, nP_ = 0;
-  InteractionMatrix C_;
-  // G, D, a0, b0 change with the reference compliances, a choice of the iteration, not of the
-  // solution: refreshed inside const solves.
-  mutable std::vector<double> G_;  // N × N, row-major over positions of P (leading dimension N)
+  std::size_t N_ = 0;
   JunctionState J_;
-  std::shared_ptr<const UniversalForceLaw> table_;
-  // Per junction: ψ per metre c = ℓ0 E s and force scale s (1/N) of the universal law.
-  std::vector<double> c_, s_;
-  std::vector<double> f_slip_nl_;          // N, slip force of an Eq. (3) junction: phi_s/s
-  mutable std::vector<double> psi_guess_;  // by junction: the last psi (warm start of own())
-  // Per position q of P: junction idx_[q], reference compliance D, h, a0, b0, nonlinear flag.
-  std::vector<std::uint32_t> idx_;
-  std::vector<std::size_t> pos_;  // junction → position (npos: slipping)
-  mutable std::vector<double> D_, a0_, b0_;
-  std::vector<double> h_;
-  std::vector<std::uint8_t> nl_;
-  std::size_t n_nl_ = 0;
+  Eq3Displacement eq3_;
+  // G, D, a0, b0 change with the reference compliances, a choice of the iteration, not of the
+  // solution: refreshed inside const solves. The cache is a memo of the same const solves.
+  mutable PinnedCompliance pinned_;
+  mutable ForceCache cache_;
   double sum_a0_ = 0, sum_b0_ = 0, F_slip_ = 0, A_fixed_ = 0;
   std::int64_t n_intact_ = 0, slips_ = 0, repins_ = 0;
-  mutable std::int64_t updates_since_rebuild_ = 0;
   double x_up_ = 0, x_down_ = 0;
   std::size_t k_up_ = npos, k_down_ = npos;  // junctions of the next slips
-  mutable std::vector<Node> nodes_;          // sorted by X; cleared at every event
   mutable std::vector<double> last_f_, last_a_;  // by junction: the last solve (warm start)
   // After a slip at seed_X_: the new set's forces and slopes there, predicted (warm start).
   bool seed_valid_ = false;
   double seed_X_ = 0;
   std::vector<double> seed_f_, seed_a_;
-  mutable int last_iterations_ = 0;
-  mutable std::int64_t force_evals_ = 0;
-  mutable Work work_;
-  double tol_ = 1e-10;
+  mutable std::int64_t force_evals_ = 0, solves_ = 0, iterations_ = 0;
 };
 
 }  // namespace asperity

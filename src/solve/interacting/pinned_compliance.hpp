@@ -1,0 +1,74 @@
+#pragma once
+// The pinned set P of an interacting population and the linear algebra the fast solver keeps for
+// it (MODEL.md §8). With D a diagonal reference compliance (u_i' at some force: exact for linear
+// junctions, a choice of the iteration for Eq. (3) ones) and h_i = x_i + Σ_{j slipping} C_ij f_j,
+// M = D + C_PP is kept as its explicit inverse G = M⁻¹, with a0 = G 1 and b0 = −G h, so that
+// the pinned forces are f = X a0 + b0 − G Δ(f) (Δ = 0 for linear junctions).
+// A slip removes one position (rank-one, O(N²)); a repin adds the slipping junctions back and a
+// change of D takes effect, both by a rebuild (LAPACK Cholesky inverse in place, O(N³)); after
+// about N rank-one updates G is rebuilt too (their rounding accumulates). Memory: C and G, 2 N²
+// doubles. Positions q = 0 .. size()−1 index P; junction(q) is the junction there.
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "solve/core/problem.hpp"
+#include "solve/interacting/interaction_matrix.hpp"
+
+namespace asperity {
+
+class PinnedCompliance {
+ public:
+  static constexpr std::size_t npos = static_cast<std::size_t>(-1);
+
+  // Every junction pinned at position q = i, with reference compliance reference[i] [m/N],
+  // nonlinear (Eq. 3) or not, h = 0; G built.
+  PinnedCompliance(const Problem& problem, std::vector<double> reference, bool nonlinear);
+
+  std::size_t size() const { return n_; }  // |P|
+  std::size_t junction(std::size_t q) const { return idx_[q]; }
+  std::size_t position(std::size_t i) const { return pos_[i]; }  // npos: slipping
+  bool nonlinear(std::size_t q) const { return nl_[q] != 0; }
+  std::size_t n_nonlinear() const { return n_nl_; }
+  double reference(std::size_t q) const { return D_[q]; }  // m/N
+  double a0(std::size_t q) const { return a0_[q]; }        // df_q/dX of the linear system [N/m]
+  double b0(std::size_t q) const { return b0_[q]; }        // N
+  double coupling(std::size_t i, std::size_t j) const { return C_(i, j); }  // C_ij [m/N], junctions
+
+  // y1 = G w1, y2 = G w2 over P with w1, w2 nonzero only at the positions `columns` (one pass
+  // over those rows of G; G symmetric). y1, y2 are overwritten (size() entries).
+  void apply(const std::vector<std::size_t>& columns, const std::vector<double>& w1, const std::vector<double>& w2,
+             std::vector<double>& y1, std::vector<double>& y2) const;
+  // G's row q (= column q), size() entries.
+  std::vector<double> row(std::size_t q) const;
+
+  // A new reference compliance at position q [m/N]; takes effect at the next rebuild().
+  void set_reference(std::size_t q, double D) { D_[q] = D; }
+  void rebuild();  // G, a0, b0 from scratch for the current P, D and h
+
+  // The junction at position q leaves P and carries the constant force f_slip [N] from now on:
+  // G loses its row and column (rank-one), a0, b0 and h follow in closed form; the last position
+  // moves into q.
+  void remove(std::size_t q, double f_slip);
+  // Slipping junction i joins P (not nonlinear unless asked); returns its position. G, a0, b0
+  // are stale until set_anchors() and rebuild().
+  std::size_t add(std::size_t i, bool nonlinear);
+  // h_q = anchor[junction(q)]: every junction pinned, nobody slips.
+  void set_anchors(const std::vector<double>& anchor_m);
+
+  std::int64_t rank_one_updates() const { return rank_one_; }
+  std::int64_t rebuilds() const { return rebuilds_; }
+
+ private:
+  std::size_t N_ = 0, n_ = 0;
+  InteractionMatrix C_;
+  std::vector<double> G_;  // N × N, row-major over positions of P (leading dimension N)
+  std::vector<std::uint32_t> idx_;  // position → junction
+  std::vector<std::size_t> pos_;    // junction → position (npos: slipping)
+  std::vector<double> D_, h_, a0_, b0_;
+  std::vector<std::uint8_t> nl_;
+  std::size_t n_nl_ = 0;
+  std::int64_t updates_since_rebuild_ = 0, rank_one_ = 0, rebuilds_ = 0;
+};
+
+}  // namespace asperity
