@@ -36,6 +36,10 @@ std::size_t JournalFile::append(std::string_view row) {
   return line.size();
 }
 
+void JournalFile::append_durably(std::string_view row) {
+  if (!write_fully(fd_, journal_line(row)) || ::fdatasync(fd_) != 0) sys_fail("cannot write", name_);
+}
+
 void JournalFile::sync() {
   if (::fdatasync(fd_) != 0) sys_fail("cannot sync", name_);
 }

@@ -28,6 +28,9 @@ class JournalFile {
   // Appends the checked line of `row` (no newline) with one write(); returns its length in bytes
   // (std::runtime_error "cannot write NAME: ..." on failure).
   std::size_t append(std::string_view row);
+  // append() then fdatasync, either failing as "cannot write NAME: ..." (a fit's evaluation: the
+  // line is durable before the next one is asked for).
+  void append_durably(std::string_view row);
   void sync();                    // fdatasync (std::runtime_error "cannot sync NAME: ...")
   bool try_sync() noexcept;       // the same for a destructor: false when it failed
   // Cuts the file to its first `size` bytes (a torn or damaged tail after the last good line).

@@ -190,8 +190,7 @@ void FitJournal::append(const std::string& part, const std::string& optimization
                           csv_number(ev.wall_s);
   const std::lock_guard<std::mutex> lock(mutex_);
   if (!file_) throw std::logic_error("FitJournal::append: no journal opened for appending");
-  file_->append(row);
-  file_->sync();
+  file_->append_durably(row);
   index_.emplace(key_of(part, optimization, x), ev);
 }
 
