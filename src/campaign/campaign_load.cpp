@@ -144,18 +144,8 @@ Grid parse_grid(const Source& src, const MapView& m, const std::string& name) {
   return g;
 }
 
-}  // namespace
-
-Campaign load_campaign(const fs::path& yaml) {
-  const std::string display = yaml.lexically_normal().string();
-  const Source src{display, nullptr};
-  const YAML::Node root = load_yaml_file(yaml, display);
-  const MapView m(src, root, "", kCampaignKeys, 1);
-
-  Campaign c;
-  c.topography = std::make_shared<TopographyCache>();
-  c.file = fs::absolute(yaml).lexically_normal();
-  c.name = yaml.stem().string();
+// The keys of the campaign itself: name, description, series, time_limit.
+void read_campaign_keys(const MapView& m, Campaign& c) {
   if (auto n = m.find("name")) {
     c.name = m.string(*n, "name");
     const bool ok = !c.name.empty() && c.name.find_first_of("/\\") == std::string::npos && c.name != "." &&
@@ -168,8 +158,10 @@ Campaign load_campaign(const fs::path& yaml) {
     c.time_limit_s = m.number(*n, "time_limit", "s");
     if (!(c.time_limit_s > 0)) m.fail_at(*n, "time_limit", "must be > 0 (seconds of wall time per point), got " + format_double(c.time_limit_s));
   }
+}
 
-  // Base scenes.
+// `scene:` or `scenes:`, each file checked to exist once.
+void read_base_scenes(const MapView& m, const fs::path& yaml, Campaign& c) {
   const auto one = m.find("scene");
   const auto many = m.find("scenes");
   if (one && many) m.fail_at(*many, "scenes", "give either scene or scenes, not both");
@@ -191,8 +183,10 @@ Campaign load_campaign(const fs::path& yaml) {
       if (fs::equivalent(q, p, ec)) m.fail_at(at, k, "scene " + quote(scene_texts[i]) + " listed twice");
     c.scenes.push_back(p.lexically_normal());
   }
+}
 
-  // Fixed overrides.
+// `set:`: the fixed overrides into c.set; the line of each.
+std::vector<int> read_set(const Source& src, const MapView& m, Campaign& c) {
   std::vector<int> set_lines;
   if (auto n = m.find("set")) {
     for (const auto& [kn, vn] : free_map(m, *n, "set")) {
@@ -206,8 +200,11 @@ Campaign load_campaign(const fs::path& yaml) {
       set_lines.push_back(line_of(kn));
     }
   }
+  return set_lines;
+}
 
-  // Grids.
+// `axes:` (one grid), `grids:`, or neither (the base scenes only).
+void read_grids(const Source& src, const MapView& m, Campaign& c) {
   const auto axes = m.find("axes");
   const auto grids = m.find("grids");
   if (axes && grids) m.fail_at(*grids, "grids", "give either axes (one grid) or grids, not both");
@@ -230,23 +227,11 @@ Campaign load_campaign(const fs::path& yaml) {
     if (auto n = m.find("combine")) m.fail_at(*n, "combine", "combine without axes");
     c.grids.push_back(Grid{"base", Combine::product, {}});  // just the base scenes
   }
-  std::uint64_t total = 0;
-  for (const Grid& g : c.grids) {
-    total += checked_mul(g.size(), c.scenes.size(), src, root, "grids");
-    if (total > (std::uint64_t(1) << 62)) fail(src, root, "grids", "too many points (more than 2^62)");
-  }
+}
 
-  // Keys given both as set and as an axis are a mistake (the axis would silently win).
-  for (const Grid& g : c.grids)
-    for (const Axis& ax : g.axes)
-      for (std::size_t i = 0; i < c.set.size(); ++i)
-        if (c.set[i].first == ax.key)
-          throw InputError(display, ax.line, ax.key,
-                           "also fixed by set (line " + std::to_string(set_lines[i]) + "); keep one");
-
-  // Semantic checks against the scenes: every base scene with `set`, then every list value and
-  // both end points of every space on the first base scene (unknown keys, out-of-range values).
-  check_base_scenes(c, set_lines);
+// Every list value and both end points of every space on the first base scene (unknown keys,
+// out-of-range values), each error at its axis's line.
+void probe_axes(const Campaign& c, const std::string& display) {
   const CampaignScenes scenes(c);
   for (std::size_t gi = 0; gi < c.grids.size(); ++gi)
     for (const Axis& ax : c.grids[gi].axes) {
@@ -263,6 +248,41 @@ Campaign load_campaign(const fs::path& yaml) {
         }
       }
     }
+}
+
+}  // namespace
+
+Campaign load_campaign(const fs::path& yaml) {
+  const std::string display = yaml.lexically_normal().string();
+  const Source src{display, nullptr};
+  const YAML::Node root = load_yaml_file(yaml, display);
+  const MapView m(src, root, "", kCampaignKeys, 1);
+
+  Campaign c;
+  c.topography = std::make_shared<TopographyCache>();
+  c.file = fs::absolute(yaml).lexically_normal();
+  c.name = yaml.stem().string();
+  read_campaign_keys(m, c);
+  read_base_scenes(m, yaml, c);
+  const std::vector<int> set_lines = read_set(src, m, c);
+  read_grids(src, m, c);
+  std::uint64_t total = 0;
+  for (const Grid& g : c.grids) {
+    total += checked_mul(g.size(), c.scenes.size(), src, root, "grids");
+    if (total > (std::uint64_t(1) << 62)) fail(src, root, "grids", "too many points (more than 2^62)");
+  }
+
+  // Keys given both as set and as an axis are a mistake (the axis would silently win).
+  for (const Grid& g : c.grids)
+    for (const Axis& ax : g.axes)
+      for (std::size_t i = 0; i < c.set.size(); ++i)
+        if (c.set[i].first == ax.key)
+          throw InputError(display, ax.line, ax.key,
+                           "also fixed by set (line " + std::to_string(set_lines[i]) + "); keep one");
+
+  // Semantic checks against the scenes: every base scene with `set`, then every axis value.
+  check_base_scenes(c, set_lines);
+  probe_axes(c, display);
   return c;
 }
 

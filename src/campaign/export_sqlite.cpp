@@ -106,53 +106,140 @@ struct TempFile {
   }
 };
 
-}  // namespace
-
-SqliteExportReport export_sqlite(const fs::path& store, const fs::path& file) {
+// FILE must be new, in a folder that exists (export makes no folders, replaces no file).
+void check_export_target(const fs::path& file) {
   if (fs::exists(fs::symlink_status(file)))
     throw InputError(file.string(), 0, "--sqlite", "exists; export writes a new file only (choose another name)");
   const fs::path folder = file.parent_path().empty() ? fs::path(".") : file.parent_path();
   if (!fs::is_directory(folder))
     throw InputError(file.string(), 0, "--sqlite",
                      "its folder " + folder.string() + " does not exist (export writes a file, it makes no folders)");
-  const StoreReader s(store);
-  const std::vector<std::string> names = csv_split(s.header());
-  const std::string where = fs::exists(store / "journal.csv") ? (store / "journal.csv").string() : (store / "points.csv").string();
-  const bool has_status = std::find(names.begin(), names.end(), "status") != names.end();
-  const std::size_t status = has_status ? Journal::status_column(s.header()) : 0;
-  if (status < 4 || names.size() < 4 || names[0] != "index" || names[1] != "hash")
-    throw InputError(where, 1, "", "not a sweep store header: " + s.header().substr(0, 80));
+}
 
-  // Column types: the fixed columns and observables by what they are; a varied key REAL when
-  // every value of it is a number (first pass over the rows), TEXT otherwise.
-  std::vector<Type> types(names.size(), Type::text);
-  types[0] = Type::integer;
-  std::vector<std::size_t> varied;
-  for (std::size_t c = 4; c < status; ++c) varied.push_back(c), types[c] = Type::real;
-  for (std::size_t c = status + 2; c < names.size(); ++c) {
-    types[c] = Type::real;  // wall_s and any observable not in the table
+// The store's columns as the table holds them, and where its rows are read from (for messages).
+struct ExportColumns {
+  std::vector<std::string> names, cols;  // as in the store; unique in the table (NAME_2, NAME_3)
+  std::vector<Type> types;
+  std::vector<std::size_t> varied;       // the varied keys' columns (indexed)
+  std::string where;
+};
+
+// Column types: the fixed columns and observables by what they are; a varied key REAL when every
+// value of it is a number (a first pass over the rows), TEXT otherwise.
+void set_column_types(const StoreReader& s, std::size_t status, ExportColumns& x) {
+  x.types.assign(x.names.size(), Type::text);
+  x.types[0] = Type::integer;
+  for (std::size_t c = 4; c < status; ++c) x.varied.push_back(c), x.types[c] = Type::real;
+  for (std::size_t c = status + 2; c < x.names.size(); ++c) {
+    x.types[c] = Type::real;  // wall_s and any observable not in the table
     for (const ObservableField& f : observable_fields())
-      if (names[c] == f.name)
-        types[c] = f.kind == ObservableKind::real ? Type::real
-                   : f.kind == ObservableKind::count ? Type::integer
-                   : f.kind == ObservableKind::flag ? Type::flag
-                                                    : Type::text;
+      if (x.names[c] == f.name)
+        x.types[c] = f.kind == ObservableKind::real ? Type::real
+                     : f.kind == ObservableKind::count ? Type::integer
+                     : f.kind == ObservableKind::flag ? Type::flag
+                                                      : Type::text;
   }
-  if (!varied.empty())
-    for (const StoredRow& r : s.rows()) {
-      const std::vector<std::string> f = csv_split(s.row(r));
-      for (const std::size_t c : varied) {
-        double x = 0;
-        if (types[c] == Type::real && c < f.size() && !f[c].empty() && !store_number(f[c], x)) types[c] = Type::text;
-      }
+  if (x.varied.empty()) return;
+  for (const StoredRow& r : s.rows()) {
+    const std::vector<std::string> f = csv_split(s.row(r));
+    for (const std::size_t c : x.varied) {
+      double v = 0;
+      if (x.types[c] == Type::real && c < f.size() && !f[c].empty() && !store_number(f[c], v)) x.types[c] = Type::text;
     }
-  // Unique column names (an `experiment` axis repeats the experiment column): NAME_2, NAME_3.
-  std::vector<std::string> cols = names;
-  for (std::size_t c = 0; c < cols.size(); ++c) {
-    auto taken = [&](const std::string& n) { return std::find(cols.begin(), cols.begin() + static_cast<std::ptrdiff_t>(c), n) != cols.begin() + static_cast<std::ptrdiff_t>(c); };
-    for (std::size_t k = 2; taken(cols[c]); ++k) cols[c] = names[c] + "_" + std::to_string(k);
   }
+}
 
+ExportColumns export_columns(const StoreReader& s, const fs::path& store) {
+  ExportColumns x;
+  x.names = csv_split(s.header());
+  x.where = fs::exists(store / "journal.csv") ? (store / "journal.csv").string() : (store / "points.csv").string();
+  const bool has_status = std::find(x.names.begin(), x.names.end(), "status") != x.names.end();
+  const std::size_t status = has_status ? Journal::status_column(s.header()) : 0;
+  if (status < 4 || x.names.size() < 4 || x.names[0] != "index" || x.names[1] != "hash")
+    throw InputError(x.where, 1, "", "not a sweep store header: " + s.header().substr(0, 80));
+  set_column_types(s, status, x);
+  // Unique column names (an `experiment` axis repeats the experiment column): NAME_2, NAME_3.
+  x.cols = x.names;
+  for (std::size_t c = 0; c < x.cols.size(); ++c) {
+    auto taken = [&](const std::string& n) { return std::find(x.cols.begin(), x.cols.begin() + static_cast<std::ptrdiff_t>(c), n) != x.cols.begin() + static_cast<std::ptrdiff_t>(c); };
+    for (std::size_t k = 2; taken(x.cols[c]); ++k) x.cols[c] = x.names[c] + "_" + std::to_string(k);
+  }
+  return x;
+}
+
+// Binds the fields of the row of point `index` to the insert statement, each by its column's type.
+void bind_row(sqlite3_stmt* st, const std::vector<std::string>& f, const ExportColumns& x, std::uint64_t index) {
+  if (f.size() != x.cols.size())
+    throw std::runtime_error(x.where + ": point " + std::to_string(index) + ": " + std::to_string(f.size()) +
+                             " fields, the header has " + std::to_string(x.cols.size()));
+  for (std::size_t c = 0; c < x.cols.size(); ++c) {
+    const int at = static_cast<int>(c) + 1;
+    const std::string& v = f[c];
+    auto bad = [&](const char* what) {
+      return std::runtime_error(x.where + ": point " + std::to_string(index) + ": " + x.names[c] + ": " + what + " '" +
+                                v.substr(0, 40) + "'");
+    };
+    if (x.types[c] == Type::text) {
+      sqlite3_bind_text(st, at, v.data(), static_cast<int>(v.size()), SQLITE_TRANSIENT);
+    } else if (v.empty() || v == "nan") {
+      sqlite3_bind_null(st, at);
+    } else if (x.types[c] == Type::flag) {
+      if (v != "true" && v != "false") throw bad("not true/false");
+      sqlite3_bind_int(st, at, v == "true" ? 1 : 0);
+    } else if (x.types[c] == Type::integer) {
+      std::int64_t n = 0;
+      const auto p = std::from_chars(v.data(), v.data() + v.size(), n);
+      if (p.ec != std::errc() || p.ptr != v.data() + v.size()) throw bad("not an integer");
+      sqlite3_bind_int64(st, at, n);
+    } else {
+      double d = 0;
+      if (!store_number(v, d)) throw bad("not a number");
+      sqlite3_bind_double(st, at, d);
+    }
+  }
+}
+
+// The database at `tmp`: the points table (one row per stored point), the store's text files,
+// an index per varied key.
+void write_database(const fs::path& tmp, const StoreReader& s, const fs::path& store, const ExportColumns& x,
+                    SqliteExportReport& rep) {
+  Db db(tmp);
+  // A new file published only when complete: no rollback journal needed, no fsync per step.
+  db.exec("PRAGMA journal_mode = OFF; PRAGMA synchronous = OFF;");
+  std::string create = "CREATE TABLE points (";
+  for (std::size_t c = 0; c < x.cols.size(); ++c)
+    create += (c ? ", " : "") + quoted_name(x.cols[c]) + " " + sql_type(x.types[c]) + (c == 0 ? " PRIMARY KEY" : "");
+  db.exec(create + ")");
+  db.exec("CREATE TABLE store_files (name TEXT PRIMARY KEY, text TEXT)");
+  db.exec("BEGIN");
+  std::string insert = "INSERT INTO points VALUES (";
+  for (std::size_t c = 0; c < x.cols.size(); ++c) insert += c ? ", ?" : "?";
+  sqlite3_stmt* st = db.prepare(insert + ")");
+  for (const StoredRow& r : s.rows()) {
+    bind_row(st, csv_split(s.row(r)), x, r.index);
+    db.step_reset(st);
+    ++rep.rows;
+  }
+  sqlite3_stmt* files = db.prepare("INSERT INTO store_files VALUES (?, ?)");
+  for (const std::string name : {"provenance.yaml", "campaign.yaml"}) {
+    if (!fs::exists(store / name)) continue;
+    const std::string text = read_file_text(store / name);
+    sqlite3_bind_text(files, 1, name.data(), static_cast<int>(name.size()), SQLITE_TRANSIENT);
+    sqlite3_bind_text(files, 2, text.data(), static_cast<int>(text.size()), SQLITE_TRANSIENT);
+    db.step_reset(files);
+  }
+  db.exec("COMMIT");
+  for (std::size_t k = 0; k < x.varied.size(); ++k, ++rep.indexes)
+    db.exec("CREATE INDEX points_by_" + std::to_string(k + 1) + " ON points (" + quoted_name(x.cols[x.varied[k]]) + ")");
+  db.close();
+}
+
+}  // namespace
+
+SqliteExportReport export_sqlite(const fs::path& store, const fs::path& file) {
+  check_export_target(file);
+  const StoreReader s(store);
+  const ExportColumns x = export_columns(s, store);
   std::string tmp_name = ".";
   tmp_name += file.filename().string();
   tmp_name += ".tmp-";
@@ -161,66 +248,8 @@ SqliteExportReport export_sqlite(const fs::path& store, const fs::path& file) {
   TempFile guard{tmp};
   const TempGuard on_signal(tmp);
   SqliteExportReport rep;
-  rep.columns = cols.size();
-  {
-    Db db(tmp);
-    // A new file published only when complete: no rollback journal needed, no fsync per step.
-    db.exec("PRAGMA journal_mode = OFF; PRAGMA synchronous = OFF;");
-    std::string create = "CREATE TABLE points (";
-    for (std::size_t c = 0; c < cols.size(); ++c)
-      create += (c ? ", " : "") + quoted_name(cols[c]) + " " + sql_type(types[c]) + (c == 0 ? " PRIMARY KEY" : "");
-    db.exec(create + ")");
-    db.exec("CREATE TABLE store_files (name TEXT PRIMARY KEY, text TEXT)");
-    db.exec("BEGIN");
-    std::string insert = "INSERT INTO points VALUES (";
-    for (std::size_t c = 0; c < cols.size(); ++c) insert += c ? ", ?" : "?";
-    sqlite3_stmt* st = db.prepare(insert + ")");
-    for (const StoredRow& r : s.rows()) {
-      const std::vector<std::string> f = csv_split(s.row(r));
-      if (f.size() != cols.size())
-        throw std::runtime_error(where + ": point " + std::to_string(r.index) + ": " + std::to_string(f.size()) +
-                                 " fields, the header has " + std::to_string(cols.size()));
-      for (std::size_t c = 0; c < cols.size(); ++c) {
-        const int at = static_cast<int>(c) + 1;
-        const std::string& v = f[c];
-        auto bad = [&](const char* what) {
-          return std::runtime_error(where + ": point " + std::to_string(r.index) + ": " + names[c] + ": " + what + " '" +
-                                    v.substr(0, 40) + "'");
-        };
-        if (types[c] == Type::text) {
-          sqlite3_bind_text(st, at, v.data(), static_cast<int>(v.size()), SQLITE_TRANSIENT);
-        } else if (v.empty() || v == "nan") {
-          sqlite3_bind_null(st, at);
-        } else if (types[c] == Type::flag) {
-          if (v != "true" && v != "false") throw bad("not true/false");
-          sqlite3_bind_int(st, at, v == "true" ? 1 : 0);
-        } else if (types[c] == Type::integer) {
-          std::int64_t n = 0;
-          const auto p = std::from_chars(v.data(), v.data() + v.size(), n);
-          if (p.ec != std::errc() || p.ptr != v.data() + v.size()) throw bad("not an integer");
-          sqlite3_bind_int64(st, at, n);
-        } else {
-          double x = 0;
-          if (!store_number(v, x)) throw bad("not a number");
-          sqlite3_bind_double(st, at, x);
-        }
-      }
-      db.step_reset(st);
-      ++rep.rows;
-    }
-    sqlite3_stmt* files = db.prepare("INSERT INTO store_files VALUES (?, ?)");
-    for (const std::string name : {"provenance.yaml", "campaign.yaml"}) {
-      if (!fs::exists(store / name)) continue;
-      const std::string text = read_file_text(store / name);
-      sqlite3_bind_text(files, 1, name.data(), static_cast<int>(name.size()), SQLITE_TRANSIENT);
-      sqlite3_bind_text(files, 2, text.data(), static_cast<int>(text.size()), SQLITE_TRANSIENT);
-      db.step_reset(files);
-    }
-    db.exec("COMMIT");
-    for (std::size_t k = 0; k < varied.size(); ++k, ++rep.indexes)
-      db.exec("CREATE INDEX points_by_" + std::to_string(k + 1) + " ON points (" + quoted_name(cols[varied[k]]) + ")");
-    db.close();
-  }
+  rep.columns = x.cols.size();
+  write_database(tmp, s, store, x, rep);
   // Published without ever replacing a file: link() fails when FILE exists.
   if (::link(tmp.c_str(), file.c_str()) != 0) {
     const int e = errno;

@@ -47,37 +47,32 @@ void check_same_point(std::uint64_t index, const std::string& kept, const std::s
                                " (another build or machine?); merge stores computed by one build");
 }
 
-}  // namespace
-
-MergeReport merge_stores(const std::vector<fs::path>& inputs, const fs::path& out) {
-  if (inputs.empty()) throw std::runtime_error("merge: no input stores");
-  if (fs::exists(out / "journal.csv"))
-    throw std::runtime_error("merge: " + out.string() + " already holds a store; choose a new --out");
-  MergeReport rep;
-  std::string header, campaign_hash, provenance;
-  // Only the index of each input is held (16 bytes a row), never the rows' text, and the inputs
-  // are merged by walking their sorted indexes side by side: memory does not grow with the rows'
-  // text, and holds no index of the output.
+// The input stores, read-only (only their indexes are held: 16 bytes a row), after checking they
+// share their columns and campaign text; `first_provenance`: the first input's provenance.yaml.
+std::vector<StoreReader> open_inputs(const std::vector<fs::path>& inputs, std::string& header, std::string& first_provenance) {
+  std::string campaign_hash;
   std::vector<StoreReader> stores;
   stores.reserve(inputs.size());
-  for (std::size_t i = 0; i < inputs.size(); ++i) {
-    const fs::path& in = inputs[i];
+  for (const fs::path& in : inputs) {
     const StoreReader& s = stores.emplace_back(in);
     const std::string prov = read_file_text(in / "provenance.yaml");
     const std::string h = provenance_line(prov, "campaign_fnv1a64");
     if (header.empty()) {
-      header = s.header(), campaign_hash = h, provenance = prov;
-    } else {
-      if (s.header() != header) throw std::runtime_error("merge: " + in.string() + " has other columns than " + inputs[0].string());
-      if (h != campaign_hash)
-        throw std::runtime_error("merge: " + in.string() + " comes from another campaign text than " + inputs[0].string() +
-                                 " (" + h + " vs " + campaign_hash + ")");
+      header = s.header(), campaign_hash = h, first_provenance = prov;
+      continue;
     }
+    if (s.header() != header) throw std::runtime_error("merge: " + in.string() + " has other columns than " + inputs[0].string());
+    if (h != campaign_hash)
+      throw std::runtime_error("merge: " + in.string() + " comes from another campaign text than " + inputs[0].string() +
+                               " (" + h + " vs " + campaign_hash + ")");
   }
-  const std::size_t status_col = Journal::status_column(header);
-  // Series files (series.csv) of the inputs that have one: one set of columns for all.
+  return stores;
+}
+
+// Series files (series.csv) of the inputs that have one (null where none): one set of columns
+// for all, whose header line is `series_header` (empty: no input has series).
+std::vector<std::unique_ptr<SeriesFile>> open_input_series(const std::vector<fs::path>& inputs, std::string& series_header) {
   std::vector<std::unique_ptr<SeriesFile>> series(inputs.size());
-  std::string series_header;
   for (std::size_t i = 0; i < inputs.size(); ++i) {
     if (!fs::exists(inputs[i] / "series.csv")) continue;
     series[i] = std::make_unique<SeriesFile>(inputs[i], false);
@@ -88,70 +83,60 @@ MergeReport merge_stores(const std::vector<fs::path>& inputs, const fs::path& ou
       throw std::runtime_error("merge: " + (inputs[i] / "series.csv").string() + " has other series columns (" + h +
                                ") than the first input's (" + series_header + ")");
   }
-  // Visits every point index once, ascending, with the inputs holding it (in input order).
-  auto for_each_point = [&](const std::function<void(std::uint64_t, const std::vector<std::size_t>&)>& visit) {
-    std::vector<std::size_t> pos(stores.size(), 0), holders;
-    for (;;) {
-      std::uint64_t next = 0;
-      bool any = false;
-      for (std::size_t i = 0; i < stores.size(); ++i)
-        if (pos[i] < stores[i].rows().size() && (!any || stores[i].rows()[pos[i]].index < next))
-          next = stores[i].rows()[pos[i]].index, any = true;
-      if (!any) return;
-      holders.clear();
-      for (std::size_t i = 0; i < stores.size(); ++i)
-        if (pos[i] < stores[i].rows().size() && stores[i].rows()[pos[i]].index == next) holders.push_back(i);
-      visit(next, holders);
-      for (const std::size_t i : holders) ++pos[i];
-    }
-  };
-  auto row_of = [&](std::size_t input, std::uint64_t index) {
-    const auto r = stores[input].rows();
-    const auto it = std::lower_bound(r.begin(), r.end(), index, [](const StoredRow& e, std::uint64_t i) { return e.index < i; });
-    return stores[input].row(*it);
-  };
-  // First pass, before anything is written: points held by more than one input must agree; the
-  // one kept is the first that ran to the end (only these choices are held).
+  return series;
+}
+
+// Visits every point index once, ascending, with the inputs holding it (in input order), by
+// walking the sorted indexes side by side: no index of the output is held.
+void for_each_point(const std::vector<StoreReader>& stores,
+                    const std::function<void(std::uint64_t, const std::vector<std::size_t>&)>& visit) {
+  std::vector<std::size_t> pos(stores.size(), 0), holders;
+  for (;;) {
+    std::uint64_t next = 0;
+    bool any = false;
+    for (std::size_t i = 0; i < stores.size(); ++i)
+      if (pos[i] < stores[i].rows().size() && (!any || stores[i].rows()[pos[i]].index < next))
+        next = stores[i].rows()[pos[i]].index, any = true;
+    if (!any) return;
+    holders.clear();
+    for (std::size_t i = 0; i < stores.size(); ++i)
+      if (pos[i] < stores[i].rows().size() && stores[i].rows()[pos[i]].index == next) holders.push_back(i);
+    visit(next, holders);
+    for (const std::size_t i : holders) ++pos[i];
+  }
+}
+
+// The row of point `index` in a store that holds it.
+std::string row_of(const StoreReader& store, std::uint64_t index) {
+  const auto r = store.rows();
+  const auto it = std::lower_bound(r.begin(), r.end(), index, [](const StoredRow& e, std::uint64_t i) { return e.index < i; });
+  return store.row(*it);
+}
+
+// Before anything is written: points held by more than one input must agree; the one kept is the
+// first that ran to the end (only these choices are held, by point index).
+std::map<std::uint64_t, std::size_t> choose_duplicates(const std::vector<StoreReader>& stores, const std::vector<fs::path>& inputs,
+                                                       const std::string& header, MergeReport& rep) {
+  const std::size_t status_col = Journal::status_column(header);
   std::map<std::uint64_t, std::size_t> chosen;
-  for_each_point([&](std::uint64_t index, const std::vector<std::size_t>& holders) {
+  for_each_point(stores, [&](std::uint64_t index, const std::vector<std::size_t>& holders) {
     if (holders.size() < 2) return;
     std::size_t kept = holders[0];
-    std::string kept_row = row_of(kept, index);
+    std::string kept_row = row_of(stores[kept], index);
     for (std::size_t k = 1; k < holders.size(); ++k) {
       ++rep.duplicates;
-      const std::string row = row_of(holders[k], index);
+      const std::string row = row_of(stores[holders[k]], index);
       check_same_point(index, kept_row, row, inputs[kept], inputs[holders[k]], header);
       // Both agree (or one failed): keep a row that ran to the end.
       if (csv_split(kept_row).at(status_col) != "ok") kept = holders[k], kept_row = row;
     }
     chosen[index] = kept;
   });
-  fs::create_directories(out);
-  StoreLock lock(out);
-  AtomicFileWriter journal(out / "journal.csv", Durability::synced), points(out / "points.csv", Durability::synced);
-  journal.write(journal_header(header) + "\n");
-  points.write(header + "\n");
-  std::optional<AtomicFileWriter> series_out;
-  if (!series_header.empty()) {
-    series_out.emplace(out / "series.csv", Durability::synced);
-    series_out->write(series_header + "\n");
-  }
-  for_each_point([&](std::uint64_t index, const std::vector<std::size_t>& holders) {
-    const auto it = holders.size() > 1 ? chosen.find(index) : chosen.end();
-    const std::size_t input = it != chosen.end() ? it->second : holders[0];
-    const std::string row = row_of(input, index);
-    journal.write(journal_line(row));
-    points.write(row + "\n");
-    // The point's series block from the input whose row is kept, when it has the row's hash.
-    if (series_out && series[input]) {
-      const auto f = csv_split(row);
-      const SeriesBlock* b = series[input]->find(index);
-      if (b && hex16(b->hash) == f.at(1)) series_out->write(series_block(index, b->hash, series[input]->rows(*b)));
-    }
-    ++rep.rows;
-    if (csv_split(row).at(status_col) != "ok") ++rep.failed;
-  });
-  // Provenance of the first input, with its shard replaced by the list of merged stores.
+  return chosen;
+}
+
+// Provenance of the first input, with its shard replaced by the list of merged stores.
+std::string merged_provenance(const std::string& provenance, const std::vector<fs::path>& inputs) {
   std::string prov;
   for (std::size_t pos = 0; pos < provenance.size();) {
     const std::size_t nl = provenance.find('\n', pos);
@@ -165,8 +150,11 @@ MergeReport merge_stores(const std::vector<fs::path>& inputs, const fs::path& ou
       prov += line;
     }
   }
-  write_file_durably(out / "campaign.yaml", read_file_text(inputs[0] / "campaign.yaml"));
-  write_file_durably(out / "provenance.yaml", prov);
+  return prov;
+}
+
+// Stores written before series.csv hold series/HASH.csv per point: copied as they are.
+void copy_legacy_series(const std::vector<fs::path>& inputs, const fs::path& out) {
   for (const fs::path& in : inputs)
     if (fs::is_directory(in / "series")) {
       fs::create_directories(out / "series");
@@ -174,6 +162,48 @@ MergeReport merge_stores(const std::vector<fs::path>& inputs, const fs::path& ou
         if (e.path().extension() == ".csv")
           fs::copy_file(e.path(), out / "series" / e.path().filename(), fs::copy_options::skip_existing);
     }
+}
+
+}  // namespace
+
+MergeReport merge_stores(const std::vector<fs::path>& inputs, const fs::path& out) {
+  if (inputs.empty()) throw std::runtime_error("merge: no input stores");
+  if (fs::exists(out / "journal.csv"))
+    throw std::runtime_error("merge: " + out.string() + " already holds a store; choose a new --out");
+  MergeReport rep;
+  std::string header, provenance, series_header;
+  const std::vector<StoreReader> stores = open_inputs(inputs, header, provenance);
+  const std::size_t status_col = Journal::status_column(header);
+  const std::vector<std::unique_ptr<SeriesFile>> series = open_input_series(inputs, series_header);
+  const std::map<std::uint64_t, std::size_t> chosen = choose_duplicates(stores, inputs, header, rep);
+  fs::create_directories(out);
+  StoreLock lock(out);
+  AtomicFileWriter journal(out / "journal.csv", Durability::synced), points(out / "points.csv", Durability::synced);
+  journal.write(journal_header(header) + "\n");
+  points.write(header + "\n");
+  std::optional<AtomicFileWriter> series_out;
+  if (!series_header.empty()) {
+    series_out.emplace(out / "series.csv", Durability::synced);
+    series_out->write(series_header + "\n");
+  }
+  for_each_point(stores, [&](std::uint64_t index, const std::vector<std::size_t>& holders) {
+    const auto it = holders.size() > 1 ? chosen.find(index) : chosen.end();
+    const std::size_t input = it != chosen.end() ? it->second : holders[0];
+    const std::string row = row_of(stores[input], index);
+    journal.write(journal_line(row));
+    points.write(row + "\n");
+    // The point's series block from the input whose row is kept, when it has the row's hash.
+    if (series_out && series[input]) {
+      const auto f = csv_split(row);
+      const SeriesBlock* b = series[input]->find(index);
+      if (b && hex16(b->hash) == f.at(1)) series_out->write(series_block(index, b->hash, series[input]->rows(*b)));
+    }
+    ++rep.rows;
+    if (csv_split(row).at(status_col) != "ok") ++rep.failed;
+  });
+  write_file_durably(out / "campaign.yaml", read_file_text(inputs[0] / "campaign.yaml"));
+  write_file_durably(out / "provenance.yaml", merged_provenance(provenance, inputs));
+  copy_legacy_series(inputs, out);
   if (series_out) series_out->commit();
   journal.commit();
   points.commit();

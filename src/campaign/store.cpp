@@ -13,6 +13,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "batch/journal_file.hpp"
 #include "io/digest.hpp"
 #include "io/input_error.hpp"
 #include "io/journal_line.hpp"
@@ -82,20 +83,6 @@ class LineReader {
   std::uint64_t pos_ = 0;
   bool torn_ = false;
 };
-
-// The line starting at `offset` of a file, without its newline (read in pieces up to it).
-std::string read_line(int fd, std::uint64_t offset, const std::string& file) {
-  std::string s;
-  char buf[1024];
-  for (;;) {
-    const ssize_t r = ::pread(fd, buf, sizeof buf, static_cast<off_t>(offset + s.size()));
-    if (r < 0 && errno == EINTR) continue;
-    if (r <= 0) throw std::runtime_error("cannot read " + file + " (a row ends without its newline)");
-    const char* nl = static_cast<const char*>(std::memchr(buf, '\n', static_cast<std::size_t>(r)));
-    s.append(buf, nl ? static_cast<std::size_t>(nl - buf) : static_cast<std::size_t>(r));
-    if (nl) return s;
-  }
-}
 
 // Field `col` of a CSV row (RFC 4180 quoting, returned as written, quotes included), without
 // splitting the whole row; false when the row has fewer fields.
@@ -239,8 +226,7 @@ Journal::Journal(const fs::path& dir, const std::string& header, JournalSync syn
     out.commit();
     digest_ = JournalDigest::sha256;
   }
-  fd_ = open_regular(path, O_RDWR | O_APPEND, "--out");
-  if (fd_ < 0) sys_fail("cannot open", path);
+  file_ = std::make_unique<JournalFile>(path, true, "journal.csv");
   if (!indexed) {  // the offsets into the file as it is now
     const std::size_t dropped = dropped_;
     scan(path);
@@ -249,16 +235,13 @@ Journal::Journal(const fs::path& dir, const std::string& header, JournalSync syn
 }
 
 Journal::~Journal() {
-  if (fd_ < 0) return;
-  if (unsynced_ > 0) ::fdatasync(fd_);  // no throwing here: a failure leaves rows to rerun
-  ::close(fd_);
+  if (file_ && unsynced_ > 0) file_->try_sync();  // no throwing here: a failure leaves rows to rerun
 }
 
 void Journal::append(const std::string& row) {
-  const std::string line = journal_line(row);
-  if (!write_fully(fd_, line)) sys_fail("cannot write", "journal.csv");
-  add_entry(row, size_);
-  size_ += line.size();
+  const std::uint64_t at = size_;
+  size_ += file_->append(row);
+  add_entry(row, at);
   ++unsynced_;
   if (unsynced_ >= policy_.every ||
       (policy_.seconds > 0 &&
@@ -269,14 +252,14 @@ void Journal::append(const std::string& row) {
 void Journal::sync() {
   if (unsynced_ == 0) return;
   if (before_sync_) before_sync_();
-  if (::fdatasync(fd_) != 0) sys_fail("cannot sync", "journal.csv");
+  file_->sync();
   unsynced_ = 0;
   ++syncs_;
   last_sync_ = std::chrono::steady_clock::now();
 }
 
 std::string Journal::row(const StoredRow& e) const {
-  std::string line = read_line(fd_, e.offset(), "journal.csv");
+  std::string line = file_->line_at(e.offset());
   line.resize(journal_row(line).size());  // without ",digest"
   return line;
 }
@@ -339,7 +322,7 @@ StoreReader::StoreReader(StoreReader&& o) noexcept
 }
 
 std::string StoreReader::row(const StoredRow& r) const {
-  std::string line = read_line(fd_, r.offset(), file_.string());
+  std::string line = read_line_at(fd_, r.offset(), file_.string());
   if (journal_) line.resize(journal_row(line).size());  // without ",digest"
   return line;
 }

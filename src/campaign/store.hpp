@@ -21,12 +21,14 @@
 #include <functional>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <span>
 #include <string>
 #include <string_view>
 #include <vector>
 
 // The store is written with these (its users call them through this header too).
+#include "batch/journal_file.hpp"
 #include "io/atomic_file.hpp"
 #include "io/csv.hpp"
 #include "io/dir_lock.hpp"
@@ -125,7 +127,7 @@ class Journal {
   std::string header_;
   JournalDigest digest_ = JournalDigest::sha256;  // of the journal as read (legacy: rewritten at open)
   std::size_t status_col_;
-  int fd_ = -1;
+  std::unique_ptr<JournalFile> file_;  // open once the journal is recovered
   std::uint64_t size_ = 0;
   std::size_t dropped_ = 0;
   JournalSync policy_;

@@ -19,13 +19,9 @@
 #include <sstream>
 #include <stdexcept>
 
-#include <tbb/blocked_range.h>
-#include <tbb/enumerable_thread_specific.h>
-#include <tbb/info.h>
-#include <tbb/parallel_for.h>
-#include <tbb/parallel_pipeline.h>
-#include <tbb/task_arena.h>
-
+#include "batch/inputs_fingerprint.hpp"
+#include "batch/parallel_runner.hpp"
+#include "batch/stop_flag.hpp"
 #include "campaign/store.hpp"
 #include "observe/simulate.hpp"
 #include "observe/series_csv.hpp"
@@ -214,10 +210,9 @@ ShardBalance prepare_store(const fs::path& dir, const Campaign& c, const SweepOp
   return balance;
 }
 
-// DIR/inputs.txt: what the stored points' hashes were last all checked against (see
+// DIR/inputs.txt (batch/inputs_fingerprint.hpp): what the stored points' hashes were last all checked against (see
 // SweepOptions::build_id). The next run recomputes this text from the files it lists and trusts
 // the stored hashes when it comes out the same.
-const char* const kInputsFile = "inputs.txt";
 const std::string kInputsFirstLine =
     "# asperity sweep: the inputs every stored point's hash was checked against at the end of the last "
     "complete run (the next run trusts the stored hashes while this text is unchanged)";
@@ -225,23 +220,15 @@ const std::string kInputsFirstLine =
 std::string inputs_text(const Campaign& c, const std::string& build_id, const ShardPlan& plan,
                         const std::vector<fs::path>& files, FileHashes& hashes) {
   const Shard& shard = plan.shard();
-  std::string t = kInputsFirstLine + "\nbuild " + build_id + "\nshard " + std::to_string(shard.index) + "/" +
-                  std::to_string(shard.count) +
-                  (plan.balance() == ShardBalance::index || shard.count == 1 ? std::string() : " " + shard_balance_name(plan.balance())) + "\n";
+  InputsFingerprint t(kInputsFirstLine, build_id, "shard", shard,
+                      plan.balance() == ShardBalance::index || shard.count == 1 ? std::string() : shard_balance_name(plan.balance()));
   // The effective `set` (the campaign's, then --set): --set changes points without changing the campaign text.
   for (const auto& [key, v] : c.set)
-    t += "set " + hex16(fnv1a64(key + "\n" + std::to_string(v.is_number) + std::to_string(v.is_yaml) + "\n" +
-                                scene_io::format_double(v.number) + "\n" + v.text)) + "\n";
+    t.add("set", hex16(fnv1a64(key + "\n" + std::to_string(v.is_number) + std::to_string(v.is_yaml) + "\n" +
+                               scene_io::format_double(v.number) + "\n" + v.text)));
   const fs::path base = fs::absolute(c.file.parent_path()).lexically_normal();
-  for (const fs::path& f : files) {
-    std::string sum(16, '-');  // missing or unreadable
-    try {
-      sum = hex16(hashes.of(f));
-    } catch (const std::exception&) {
-    }
-    t += "file " + sum + " " + f.lexically_relative(base).generic_string() + "\n";
-  }
-  return t;
+  for (const fs::path& f : files) t.add_file("", f.lexically_relative(base).generic_string(), [&] { return hashes.of(f); });
+  return t.text();
 }
 
 // inputs.txt ends with the SHA-256 of points.csv as written with it: "points.csv sha256 HEX".
@@ -346,324 +333,380 @@ std::string canonical_scene_text(const Scene& scene, const fs::path& base_dir, F
   return text;
 }
 
-SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
-  const auto t0 = std::chrono::steady_clock::now();
-  SweepReport rep;
-  rep.store = opt.out.empty() ? fs::path("results") / c.name : opt.out;
-  // `--out .` or a typo must not write store files among unrelated ones (points.csv would be
-  // replaced): an existing folder may hold only what a store holds (a run killed at its start
-  // may have left some of it), including our temporary files (".NAME.tmp-*") and figures.
-  if (fs::is_directory(rep.store))
-    for (const auto& e : fs::directory_iterator(rep.store)) {
-      static const char* const known[] = {".lock", "campaign.yaml", "provenance.yaml", "journal.csv", "points.csv", "series", "series.csv", kInputsFile};
-      const std::string n = e.path().filename().string();
-      if (std::find(std::begin(known), std::end(known), n) == std::end(known) && n.find(".tmp-") == std::string::npos &&
-          e.path().extension() != ".png" && e.path().extension() != ".svg" && e.path().extension() != ".pdf" &&
-          e.path().extension() != ".gp")  // figures drawn from the store and their kept scripts
-        throw InputError(rep.store.string(), 0, "--out",
-                         "refusing to use it as a sweep store: it holds '" + n + "', which no store holds");
-    }
-  // One process holds an index entry per point of its shard (16 bytes, reserved up front): a
-  // shard larger than this is refused before anything is created, whatever the campaign's size.
-  if (const std::uint64_t mine = opt.shard.size(c.size()); mine > kMaxShardPoints)
+namespace {
+
+// `--out .` or a typo must not write store files among unrelated ones (points.csv would be
+// replaced): an existing folder may hold only what a store holds (a run killed at its start may
+// have left some of it), including our temporary files (".NAME.tmp-*") and figures.
+void check_store_folder(const fs::path& dir) {
+  if (!fs::is_directory(dir)) return;
+  for (const auto& e : fs::directory_iterator(dir)) {
+    static const std::string_view known[] = {".lock", "campaign.yaml", "provenance.yaml", "journal.csv", "points.csv", "series", "series.csv", kInputsFileName};
+    const std::string n = e.path().filename().string();
+    if (std::find(std::begin(known), std::end(known), n) == std::end(known) && n.find(".tmp-") == std::string::npos &&
+        e.path().extension() != ".png" && e.path().extension() != ".svg" && e.path().extension() != ".pdf" &&
+        e.path().extension() != ".gp")  // figures drawn from the store and their kept scripts
+      throw InputError(dir.string(), 0, "--out", "refusing to use it as a sweep store: it holds '" + n + "', which no store holds");
+  }
+}
+
+// One process holds an index entry per point of its shard (16 bytes, reserved up front): a
+// shard larger than this is refused before anything is created, whatever the campaign's size.
+void check_shard_size(const Campaign& c, const Shard& shard) {
+  if (const std::uint64_t mine = shard.size(c.size()); mine > kMaxShardPoints)
     throw InputError("", 0, "--shard",
                      "this shard has " + std::to_string(mine) + " of the campaign's " + std::to_string(c.size()) +
                          " points, more than the " + std::to_string(kMaxShardPoints) +
                          " one process may hold; run it as at least " +
                          std::to_string((c.size() + kMaxShardPoints - 1) / kMaxShardPoints) + " shards");
-  fs::create_directories(rep.store);
-  StoreLock lock(rep.store);
-  remove_stale_temporaries(rep.store);  // of a sweep or merge that died while writing (kill -9, a lost node)
-  rep.balance = prepare_store(rep.store, c, opt);
-  const std::string header = store_header(c);
-  const std::uint64_t total = c.size();
-  const ShardPlan shard = [&] {
+}
+
+// The shard's plan, its size and expected costs noted in the report.
+ShardPlan plan_and_report(const Campaign& c, const Shard& shard, SweepReport& rep) {
+  const ShardPlan plan = [&] {
     try {
-      return plan_shard(c, opt.shard, rep.balance);
+      return plan_shard(c, shard, rep.balance);
     } catch (const std::invalid_argument& e) {  // --balance cost on too large a campaign: bad input
       throw InputError("", 0, "--balance", e.what());
     }
   }();
-  rep.points = shard.size();
-  if (!shard.expected_s().empty()) {
-    const auto& e = shard.expected_s();
-    rep.expected_s = e[opt.shard.index];
+  rep.points = plan.size();
+  if (!plan.expected_s().empty()) {
+    const auto& e = plan.expected_s();
+    rep.expected_s = e[shard.index];
     rep.expected_max_s = *std::max_element(e.begin(), e.end());
     rep.expected_min_s = *std::min_element(e.begin(), e.end());
   }
-  // Room for one row per point of the shard: the index the build stage reads (`stored`) does not
-  // move while the writer stage appends (each point is appended at most once per run).
-  Journal journal(rep.store, header, opt.sync, rep.points);
-  rep.dropped_lines = journal.dropped_lines();
-  // Series: one append-only file (store.hpp, SeriesFile), its columns those of the shard's first
-  // point (every point's block has them), synced before the journal so that a synced row
-  // implies its synced series.
-  std::optional<SeriesFile> series;
-  if (c.series) {
-    std::vector<std::string> columns;
-    if (!fs::exists(rep.store / "series.csv")) {
-      try {
-        columns = CampaignScenes(c).scene(point_at(c, shard.next(0))).output.series;
-      } catch (const std::exception&) {  // no first point or an invalid one: every column
-      }
-      if (columns.empty()) columns = all_series();
+  return plan;
+}
+
+// Series: one append-only file (store.hpp, SeriesFile), its columns those of the shard's first
+// point (every point's block has them), synced before the journal so that a synced row implies
+// its synced series. Null for a campaign without series.
+std::unique_ptr<SeriesFile> open_series(const Campaign& c, const fs::path& dir, const ShardPlan& shard, Journal& journal) {
+  if (!c.series) return nullptr;
+  std::vector<std::string> columns;
+  if (!fs::exists(dir / "series.csv")) {
+    try {
+      columns = CampaignScenes(c).scene(point_at(c, shard.next(0))).output.series;
+    } catch (const std::exception&) {  // no first point or an invalid one: every column
     }
-    series.emplace(rep.store, true, columns);
-    journal.before_sync([&series] { series->sync(); });
+    if (columns.empty()) columns = all_series();
   }
-  const std::vector<std::string> series_columns = series ? series->columns() : std::vector<std::string>{};
-  // A stored ok point of a series campaign counts only with its series block (same scene hash):
-  // a power cut may keep a journal row whose block was lost.
-  auto has_series = [&](const StoredRow& st) {
-    if (!series || !st.ok()) return true;
-    const SeriesBlock* b = series->find(st.index);
-    return b && b->hash == row_hash(journal.row(st));
-  };
+  auto series = std::make_unique<SeriesFile>(dir, true, columns);
+  journal.before_sync([s = series.get()] { s->sync(); });
+  return series;
+}
 
-  const std::vector<std::string> varied_keys = c.varied_keys();
-  const fs::path base_dir = c.file.parent_path();
-
-  // What the journal holds at the start, ascending by index (16 bytes a row; rows of other
-  // shards are skipped by the build stage), and whether each stored hash is the one its point's
-  // scene and data give now (1 byte a row).
+// Whether the stored hash of each entry of `stored` is the one its point's scene and data give
+// now: every stored point of the shard rebuilt and hashed, in parallel (one scene builder per
+// thread); `rehashed` counts them.
+std::vector<std::uint8_t> recheck_stored(const Campaign& c, const SweepOptions& opt, const ShardPlan& shard,
+                                         const Journal& journal, FileHashes& data_hashes, const ParallelRunner& runner,
+                                         std::uint64_t& rehashed_out) {
   const std::span<const StoredRow> stored = journal.entries();
   std::vector<std::uint8_t> current(stored.size(), 0);
-
-  FileHashes data_hashes;  // thread-safe: the check of stored points below hashes in parallel
-  data_hashes.note(c.file);
-  const int threads = opt.threads > 0 ? opt.threads : tbb::info::default_concurrency();
-  tbb::task_arena arena(threads);
-
-  // Are the stored hashes still the ones the points' scenes and data give? Trusted when the
-  // inputs the last complete run checked them against are unchanged; otherwise every stored point
-  // is rebuilt and hashed, in parallel (one scene builder per thread). inputs.txt is removed
-  // before anything is appended: a run killed after running points with other files leaves none,
-  // and the next run checks everything.
-  const fs::path inputs_path = rep.store / kInputsFile;
-  std::string points_digest;  // SHA-256 of points.csv as the last complete run wrote it
-  if (std::string old; read_regular(inputs_path, old, "--out")) {
-    points_digest = take_points_digest(old);
-    rep.trusted = !opt.build_id.empty() &&
-                  inputs_text(c, opt.build_id, shard, listed_inputs(old, c), data_hashes) == old;
-    remove_file_durably(inputs_path);
-  }
-  if (rep.trusted) {
-    std::fill(current.begin(), current.end(), 1);
-  } else {
-    tbb::enumerable_thread_specific<std::optional<CampaignScenes>> builders;
-    std::atomic<std::uint64_t> rehashed{0};
-    arena.execute([&] {
-      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, stored.size(), 256), [&](const tbb::blocked_range<std::size_t>& r) {
-        std::optional<CampaignScenes>& scenes = builders.local();
-        if (!scenes) scenes.emplace(c);
-        for (std::size_t i = r.begin(); i != r.end(); ++i) {
-          const StoredRow& s = stored[i];
-          if (s.index >= total || !shard.contains(s.index)) continue;
-          if (!s.ok() && opt.retry_failed) continue;  // rerun anyway
-          ++rehashed;
-          const Point p = point_at(c, s.index);
-          const std::uint64_t stored_hash = row_hash(journal.row(s));  // pread: thread-safe
+  const fs::path base_dir = c.file.parent_path();
+  std::vector<std::optional<CampaignScenes>> builders(static_cast<std::size_t>(runner.threads()));  // one a thread
+  std::atomic<std::uint64_t> rehashed{0};
+  runner.for_each_range(stored.size(), 256, [&](std::size_t begin, std::size_t end, int slot) {
+    std::optional<CampaignScenes>& scenes = builders[static_cast<std::size_t>(slot)];
+    if (!scenes) scenes.emplace(c);
+    for (std::size_t i = begin; i != end; ++i) {
+      const StoredRow& s = stored[i];
+      if (s.index >= c.size() || !shard.contains(s.index)) continue;
+      if (!s.ok() && opt.retry_failed) continue;  // rerun anyway
+      ++rehashed;
+      const Point p = point_at(c, s.index);
+      const std::uint64_t stored_hash = row_hash(journal.row(s));  // pread: thread-safe
+      try {
+        // The typed scene first (no file read, no YAML), the checked one when it differs or has none.
+        if (const auto quick = scenes->unchecked_scene(p))
+          current[i] = fnv1a64(canonical_scene_text(*quick, base_dir, data_hashes)) == stored_hash;
+        if (!current[i]) {
+          std::uint64_t h = 0;
           try {
-            // The typed scene first (no file read, no YAML), the checked one when it differs or has none.
-            if (const auto quick = scenes->unchecked_scene(p))
-              current[i] = fnv1a64(canonical_scene_text(*quick, base_dir, data_hashes)) == stored_hash;
-            if (!current[i]) {
-              std::uint64_t h = 0;
-              try {
-                h = fnv1a64(canonical_scene_text(scenes->scene(p), base_dir, data_hashes));
-              } catch (const std::exception& e) {  // an invalid point is stored with the hash of its error
-                h = fnv1a64("invalid point: " + std::string(e.what()));
-              }
-              current[i] = h == stored_hash;
-            }
-          } catch (const std::exception&) {
-            current[i] = 0;  // the build stage below reports it
+            h = fnv1a64(canonical_scene_text(scenes->scene(p), base_dir, data_hashes));
+          } catch (const std::exception& e) {  // an invalid point is stored with the hash of its error
+            h = fnv1a64("invalid point: " + std::string(e.what()));
           }
+          current[i] = h == stored_hash;
         }
-      });
-    });
-    rep.rehashed = rehashed;
+      } catch (const std::exception&) {
+        current[i] = 0;  // the build stage reports it
+      }
+    }
+  });
+  rehashed_out = rehashed;
+  return current;
+}
+
+// The text of each varied key at a point (store_header order): its axis value, or the scene's.
+std::vector<std::string> varied_texts(const Point& p, const std::optional<Scene>& scene, const std::vector<std::string>& keys) {
+  std::vector<std::string> out;
+  for (const std::string& k : keys) {
+    std::string v;
+    bool mine = false;
+    for (const PointValue& pv : p.values)
+      if (pv.axis->key == k) v = pv.value.text, mine = true;
+    if (!mine && scene) v = CampaignScenes::value_text(*scene, k);
+    out.push_back(v);
   }
+  return out;
+}
 
-  CampaignScenes scenes(c);
-  Progress progress(rep.points, opt.quiet, opt.counters);
-  std::uint64_t next = shard.next(0);
-  std::size_t cursor = 0;  // into `stored`, which is ascending like the points built
-
-  // Set when SweepOptions::stop left points of the shard unrun.
-  std::atomic<bool> cut_short{false};
-  auto stopping = [&] { return opt.stop && opt.stop->load(std::memory_order_relaxed); };
-  // Points in flight poll the stop this often: a Ctrl-C ends the sweep well within a second.
-  RunMonitor monitor;
-  if (opt.stop) {
-    monitor.period_s = 0.05;
-    monitor.poll = [&](double, double) { return !stopping(); };
+// A run's series as a series.csv block's rows ("index,sample...\n" lines).
+std::string series_block_rows(std::uint64_t index, const RunResult& r, const std::vector<std::string>& columns) {
+  std::ostringstream csv;
+  write_series_csv(csv, r.recorder.series(), columns);
+  const std::string text = csv.str();
+  const std::string prefix = std::to_string(index) + ",";
+  std::string rows;
+  rows.reserve(text.size() + r.recorder.series().size() * prefix.size());
+  for (std::size_t at = text.find('\n') + 1; at < text.size();) {  // past the header
+    const std::size_t nl = text.find('\n', at);
+    rows.append(prefix).append(text, at, nl + 1 - at);
+    at = nl + 1;
   }
+  return rows;
+}
 
-  auto build = [&](tbb::flow_control& fc) -> std::shared_ptr<Job> {
-    while (next < total) {
-      if (stopping()) {
-        cut_short = true;
+// Why a finished run counts as failed (empty: it did not).
+std::string run_failure(const Campaign& c, const RunResult& r) {
+  if (r.recorder.timed_out())
+    return "per-point time limit of " + num(c.time_limit_s) + " s exceeded at simulated t = " + num(r.recorder.last().t) + " s";
+  // A run that ends before any junction slips has no peak (Q_s = NaN) and is not a failure.
+  const bool peak = r.obs.peak_found;
+  for (const auto& [name, x] : {std::pair<const char*, double>{"Q_s", peak ? r.obs.Q_s : 0.0},
+                                {"A_s", peak ? r.obs.A_s : 0.0}, {"t_peak", peak ? r.obs.t_peak : 0.0},
+                                {"t_end", r.obs.t_end}})
+    if (!std::isfinite(x)) return std::string("non-finite observable ") + name;
+  return {};
+}
+
+// The journal row of a job: index, hash, grid, experiment, varied values, status, error,
+// observables (empty when failed), wall time.
+std::string job_row(const Campaign& c, const Job& job, const std::optional<RunResult>& r, double wall) {
+  std::string row = std::to_string(job.point.index) + "," + hex16(job.hash) + "," + csv_field(c.grids[job.point.grid].name) +
+                    "," + csv_field(job.scene ? job.scene->experiment.name : "");
+  for (const std::string& v : job.varied) row.append(",").append(csv_field(v));
+  row += job.failed ? ",failed," + csv_field(job.error) : ",ok,";
+  for (const ObservableField& f : observable_fields())
+    if (f.per_point) row.append(",").append(r && !job.failed ? observable_text(f, r->obs, num) : std::string());
+  return row + "," + num(wall);
+}
+
+// The three stages of the sweep's pipeline over one shard (sweep.hpp) and what they share.
+class ShardRun {
+ public:
+  ShardRun(const Campaign& c, const SweepOptions& opt, const ShardPlan& shard, Journal& journal, SeriesFile* series,
+           std::vector<std::uint8_t> current, FileHashes& data_hashes, SweepReport& rep)
+      : c_(c), opt_(opt), shard_(shard), journal_(journal), series_(series), stored_(journal.entries()),
+        current_(std::move(current)), data_hashes_(data_hashes), rep_(rep), scenes_(c), varied_keys_(c.varied_keys()),
+        series_columns_(series ? series->columns() : std::vector<std::string>{}), progress_(rep.points, opt.quiet, opt.counters),
+        stop_(opt.stop), next_(shard.next(0)) {}
+
+  // Serial, in order: the next point of the shard that needs a run; null at the end or on a stop.
+  std::shared_ptr<Job> build() {
+    while (next_ < c_.size()) {
+      if (stop_.requested()) {
+        cut_short_ = true;
         break;
       }
-      const std::uint64_t index = next;
-      next = shard.next(index + 1);
-      while (cursor < stored.size() && stored[cursor].index < index) ++cursor;
-      const StoredRow* st = cursor < stored.size() && stored[cursor].index == index ? &stored[cursor] : nullptr;
-      if (st && current[cursor] && (st->ok() || !opt.retry_failed) && has_series(*st)) {
-        ++rep.skipped;
-        progress.skipped_one();
-        continue;
-      }
-      auto job = std::make_shared<Job>();
-      job->point = point_at(c, index);
-      try {
-        job->scene = scenes.scene(job->point);
-        job->hash = fnv1a64(canonical_scene_text(*job->scene, base_dir, data_hashes));
-      } catch (const std::exception& e) {  // a bad combination of values: recorded, not fatal
-        job->scene.reset();
-        job->error = e.what();
-        job->hash = fnv1a64("invalid point: " + job->error);
-      }
-      if (st) {
-        const bool same = row_hash(journal.row(*st)) == job->hash;  // pread of an old row: safe while the writer appends
-        if (same && (st->ok() || !opt.retry_failed) && has_series(*st)) {
-          ++rep.skipped;
-          progress.skipped_one();
-          continue;
-        }
-        // Stored from another scene or other data: rerun; the new row supersedes the stale one.
-        if (!same) ++rep.changed;
-      }
-      const Point& p = job->point;
-      for (const std::string& k : varied_keys) {
-        std::string v;
-        bool mine = false;
-        for (const PointValue& pv : p.values)
-          if (pv.axis->key == k) v = pv.value.text, mine = true;
-        if (!mine && job->scene) v = CampaignScenes::value_text(*job->scene, k);
-        job->varied.push_back(v);
-      }
-      return job;
+      const std::uint64_t index = next_;
+      next_ = shard_.next(index + 1);
+      if (auto job = job_for(index)) return job;
     }
-    fc.stop();
     return nullptr;
-  };
+  }
 
-  auto run = [&](std::shared_ptr<Job> job) -> std::shared_ptr<Job> {
+  // Parallel: runs the job's scene and formats its row (and series block).
+  void run(Job& job) {
     omp_set_num_threads(1);  // see sweep.hpp: the points are the parallelism
     std::optional<RunResult> r;
     double wall = 0;
-    if (job->scene) {
+    if (job.scene) {
       const auto t = std::chrono::steady_clock::now();
       try {
-        r = simulate(*job->scene, c.time_limit_s, opt.stop ? &monitor : nullptr);
-        if (r->recorder.timed_out())
-          job->error = "per-point time limit of " + num(c.time_limit_s) + " s exceeded at simulated t = " +
-                       num(r->recorder.last().t) + " s";
-        // A run that ends before any junction slips has no peak (Q_s = NaN) and is not a failure.
-        const bool peak = r->obs.peak_found;
-        for (const auto& [name, x] : {std::pair<const char*, double>{"Q_s", peak ? r->obs.Q_s : 0.0},
-                                      {"A_s", peak ? r->obs.A_s : 0.0}, {"t_peak", peak ? r->obs.t_peak : 0.0},
-                                      {"t_end", r->obs.t_end}})
-          if (job->error.empty() && !std::isfinite(x)) job->error = std::string("non-finite observable ") + name;
-        if (series && job->error.empty()) {  // the block's rows, formatted here in parallel
-          std::ostringstream csv;
-          write_series_csv(csv, r->recorder.series(), series_columns);
-          const std::string text = csv.str();
-          const std::string prefix = std::to_string(job->point.index) + ",";
-          job->series_rows.reserve(text.size() + r->recorder.series().size() * prefix.size());
-          for (std::size_t at = text.find('\n') + 1; at < text.size();) {  // past the header
-            const std::size_t nl = text.find('\n', at);
-            job->series_rows.append(prefix).append(text, at, nl + 1 - at);
-            at = nl + 1;
-          }
-          job->has_series = true;
+        r = simulate(*job.scene, c_.time_limit_s, stop_.monitor());
+        job.error = run_failure(c_, *r);
+        if (series_ && job.error.empty()) {  // the block's rows, formatted here in parallel
+          job.series_rows = series_block_rows(job.point.index, *r, series_columns_);
+          job.has_series = true;
         }
       } catch (const RunInterrupted&) {
-        job->interrupted = true;
-        cut_short = true;
-        return job;
+        job.interrupted = true;
+        cut_short_ = true;
+        return;
       } catch (const SolverError& e) {
-        job->error = std::string("solver error: ") + e.what();
+        job.error = std::string("solver error: ") + e.what();
       } catch (const std::exception& e) {
-        job->error = e.what();
+        job.error = e.what();
       }
       wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
     }
-    job->failed = !job->error.empty();
-    std::string row = std::to_string(job->point.index) + "," + hex16(job->hash) + "," +
-                      csv_field(c.grids[job->point.grid].name) + "," +
-                      csv_field(job->scene ? job->scene->experiment.name : "");
-    for (const std::string& v : job->varied) row.append(",").append(csv_field(v));
-    row += job->failed ? ",failed," + csv_field(job->error) : ",ok,";
-    for (const ObservableField& f : observable_fields())
-      if (f.per_point) row.append(",").append(r && !job->failed ? observable_text(f, r->obs, num) : std::string());
-    row += "," + num(wall);
-    job->row = std::move(row);
-    job->scene.reset();  // free the junctions before the job waits for the writer
+    job.failed = !job.error.empty();
+    job.row = job_row(c_, job, r, wall);
+    job.scene.reset();  // free the junctions before the job waits for the writer
+  }
+
+  // Serial, out of order: the job's series block, then its row.
+  void store(Job& job) {
+    if (job.interrupted) return;
+    if (job.has_series) series_->append(job.point.index, job.hash, job.series_rows);  // before its row
+    journal_.append(job.row);
+    ++rep_.ran;
+    rep_.failed_now += job.failed ? 1 : 0;
+    progress_.point_done(job.failed);
+  }
+
+  void finish() { progress_.finish(); }
+  bool cut_short() const { return cut_short_; }  // the stop left points of the shard unrun
+
+ private:
+  // A stored ok point of a series campaign counts only with its series block (same scene hash):
+  // a power cut may keep a journal row whose block was lost.
+  bool has_series(const StoredRow& st) const {
+    if (!series_ || !st.ok()) return true;
+    const SeriesBlock* b = series_->find(st.index);
+    return b && b->hash == row_hash(journal_.row(st));
+  }
+  bool keep(const StoredRow& st) const { return (st.ok() || !opt_.retry_failed) && has_series(st); }
+
+  // The job of point `index`; null when the store holds it already (counted as skipped).
+  std::shared_ptr<Job> job_for(std::uint64_t index) {
+    while (cursor_ < stored_.size() && stored_[cursor_].index < index) ++cursor_;
+    const StoredRow* st = cursor_ < stored_.size() && stored_[cursor_].index == index ? &stored_[cursor_] : nullptr;
+    if (st && current_[cursor_] && keep(*st)) return skip();
+    auto job = std::make_shared<Job>();
+    job->point = point_at(c_, index);
+    try {
+      job->scene = scenes_.scene(job->point);
+      job->hash = fnv1a64(canonical_scene_text(*job->scene, c_.file.parent_path(), data_hashes_));
+    } catch (const std::exception& e) {  // a bad combination of values: recorded, not fatal
+      job->scene.reset();
+      job->error = e.what();
+      job->hash = fnv1a64("invalid point: " + job->error);
+    }
+    if (st) {
+      const bool same = row_hash(journal_.row(*st)) == job->hash;  // pread of an old row: safe while the writer appends
+      if (same && keep(*st)) return skip();
+      // Stored from another scene or other data: rerun; the new row supersedes the stale one.
+      if (!same) ++rep_.changed;
+    }
+    job->varied = varied_texts(job->point, job->scene, varied_keys_);
     return job;
-  };
+  }
+  std::shared_ptr<Job> skip() {
+    ++rep_.skipped;
+    progress_.skipped_one();
+    return nullptr;
+  }
 
-  auto store = [&](std::shared_ptr<Job> job) {
-    if (job->interrupted) return;
-    if (job->has_series) series->append(job->point.index, job->hash, job->series_rows);  // before its row
-    journal.append(job->row);
-    ++rep.ran;
-    rep.failed_now += job->failed ? 1 : 0;
-    progress.point_done(job->failed);
-  };
+  const Campaign& c_;
+  const SweepOptions& opt_;
+  const ShardPlan& shard_;
+  Journal& journal_;
+  SeriesFile* series_;
+  const std::span<const StoredRow> stored_;  // the journal at the start, ascending by index
+  const std::vector<std::uint8_t> current_;  // per stored row: its hash is the one its point gives now
+  FileHashes& data_hashes_;
+  SweepReport& rep_;
+  CampaignScenes scenes_;
+  const std::vector<std::string> varied_keys_, series_columns_;
+  Progress progress_;
+  const StopFlag stop_;  // points in flight poll it: a Ctrl-C ends the sweep well within a second
+  std::uint64_t next_;
+  std::size_t cursor_ = 0;  // into stored_, which is ascending like the points built
+  std::atomic<bool> cut_short_{false};
+};
 
-  arena.execute([&] {
-    tbb::parallel_pipeline(static_cast<std::size_t>(2 * threads),
-                           tbb::make_filter<void, std::shared_ptr<Job>>(tbb::filter_mode::serial_in_order, build) &
-                               tbb::make_filter<std::shared_ptr<Job>, std::shared_ptr<Job>>(tbb::filter_mode::parallel, run) &
-                               tbb::make_filter<std::shared_ptr<Job>, void>(tbb::filter_mode::serial_out_of_order, store));
-  });
-  progress.finish();
+// series.csv without superseded blocks or blocks of points no longer ok (streamed rewrite; only
+// when it holds any).
+void compact_series(SeriesFile& series, const Journal& journal) {
+  bool stale = series.superseded();
+  for (const SeriesBlock& b : series.blocks()) {
+    const StoredRow* e = journal.find(b.index);
+    stale = stale || !e || !e->ok();
+  }
+  if (stale)
+    series.compact([&](std::uint64_t index, std::uint64_t hash) {
+      const StoredRow* e = journal.find(index);
+      return e && e->ok() && row_hash(journal.row(*e)) == hash;
+    });
+}
+
+// Whether points.csv is known to be the journal's already: nothing appended or dropped now,
+// inputs.txt was there (written only after points.csv at the end of a run, removed before a run
+// appends anything) and unchanged, and points.csv still has the SHA-256 it was written with (a
+// truncated or edited copy is rebuilt from the journal).
+bool points_current(const SweepReport& rep, const std::string& points_digest) {
+  const fs::path points_path = rep.store / "points.csv";
+  if (!(rep.trusted && rep.ran == 0 && rep.dropped_lines == 0 && !points_digest.empty() &&
+        fs::is_regular_file(fs::symlink_status(points_path))))
+    return false;
+  try {
+    return sha256_file_hex(points_path) == points_digest;
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
+}  // namespace
+
+SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
+  const auto t0 = std::chrono::steady_clock::now();
+  SweepReport rep;
+  rep.store = opt.out.empty() ? fs::path("results") / c.name : opt.out;
+  check_store_folder(rep.store);
+  check_shard_size(c, opt.shard);
+  fs::create_directories(rep.store);
+  StoreLock lock(rep.store);
+  remove_stale_temporaries(rep.store);  // of a sweep or merge that died while writing (kill -9, a lost node)
+  rep.balance = prepare_store(rep.store, c, opt);
+  const ShardPlan shard = plan_and_report(c, opt.shard, rep);
+  // Room for one row per point of the shard: the index the build stage reads (entries()) does
+  // not move while the writer stage appends (each point is appended at most once per run).
+  Journal journal(rep.store, store_header(c), opt.sync, rep.points);
+  rep.dropped_lines = journal.dropped_lines();
+  const std::unique_ptr<SeriesFile> series = open_series(c, rep.store, shard, journal);
+  FileHashes data_hashes;  // thread-safe: the check of stored points hashes in parallel
+  data_hashes.note(c.file);
+  const ParallelRunner runner(opt.threads);
+
+  // Are the stored hashes still the ones the points' scenes and data give? Trusted when the
+  // inputs the last complete run checked them against are unchanged; otherwise every stored point
+  // is checked. inputs.txt is removed before anything is appended: a run killed after running
+  // points with other files leaves none, and the next run checks everything.
+  std::string points_digest;  // SHA-256 of points.csv as the last complete run wrote it
+  if (std::optional<std::string> old = read_inputs(rep.store)) {
+    points_digest = take_points_digest(*old);
+    rep.trusted = !opt.build_id.empty() && inputs_text(c, opt.build_id, shard, listed_inputs(*old, c), data_hashes) == *old;
+    remove_file_durably(rep.store / kInputsFileName);
+  }
+  std::vector<std::uint8_t> current(journal.entries().size(), 1);
+  if (!rep.trusted) current = recheck_stored(c, opt, shard, journal, data_hashes, runner, rep.rehashed);
+
+  ShardRun stages(c, opt, shard, journal, series.get(), std::move(current), data_hashes, rep);
+  runner.pipeline<Job>([&] { return stages.build(); }, [&](Job& j) { stages.run(j); }, [&](Job& j) { stages.store(j); });
+  stages.finish();
   journal.sync();
   rep.syncs = journal.syncs();
   // Stopped: the journal (synced above) keeps what ran; points.csv and inputs.txt are written by
   // the run that completes the shard (inputs.txt is absent now, so it checks every stored point).
-  if (cut_short)
+  if (stages.cut_short())
     throw RunInterrupted("sweep interrupted: " + std::to_string(rep.ran) + " point(s) run now, kept in " +
                          (rep.store / "journal.csv").string() + "; run it again to resume");
 
-  auto mine = [&](std::uint64_t index) { return index < total && shard.contains(index); };
-  // points.csv is rewritten unless it is known to be the journal's already: nothing appended or
-  // dropped now, inputs.txt was there (written only after points.csv at the end of a run,
-  // removed before a run appends anything) and unchanged, and points.csv still has the SHA-256
-  // it was written with (a truncated or edited copy is rebuilt from the journal).
-  const fs::path points_path = rep.store / "points.csv";
-  bool points_current = rep.trusted && rep.ran == 0 && rep.dropped_lines == 0 && !points_digest.empty() &&
-                        fs::is_regular_file(fs::symlink_status(points_path));
-  if (points_current) {
-    try {
-      points_current = sha256_file_hex(points_path) == points_digest;
-    } catch (const std::exception&) {
-      points_current = false;
-    }
-  }
+  auto mine = [&](std::uint64_t index) { return index < c.size() && shard.contains(index); };
+  const bool unchanged = points_current(rep, points_digest);
   journal.settle();
-  if (!points_current) points_digest = journal.write_points(rep.store, mine);
-  // series.csv without superseded blocks or blocks of points no longer ok (streamed rewrite;
-  // only when it holds any).
-  if (series) {
-    bool stale = series->superseded();
-    for (const SeriesBlock& b : series->blocks()) {
-      const StoredRow* e = journal.find(b.index);
-      stale = stale || !e || !e->ok();
-    }
-    if (stale)
-      series->compact([&](std::uint64_t index, std::uint64_t hash) {
-        const StoredRow* e = journal.find(index);
-        return e && e->ok() && row_hash(journal.row(*e)) == hash;
-      });
-  }
+  if (!unchanged) points_digest = journal.write_points(rep.store, mine);
+  if (series) compact_series(*series, journal);
   // Every stored point of the shard is now checked against (or computed from) these inputs.
   if (!opt.build_id.empty())
-    write_file_durably(inputs_path, inputs_text(c, opt.build_id, shard, data_hashes.inputs(), data_hashes) +
-                                        kPointsDigestTag + points_digest + "\n");
+    write_inputs(rep.store, inputs_text(c, opt.build_id, shard, data_hashes.inputs(), data_hashes) + kPointsDigestTag +
+                                points_digest + "\n");
   for (const StoredRow& e : journal.entries())
     if (mine(e.index)) (e.ok() ? rep.ok : rep.failed) += 1;
   rep.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

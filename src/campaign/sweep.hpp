@@ -1,8 +1,8 @@
 #pragma once
 // Runs the points of a campaign (or of one shard of it) into a result store (store.hpp), in
-// parallel with TBB, resuming whatever the store already holds.
+// parallel, resuming whatever the store already holds.
 //
-// Parallelism: a tbb::parallel_pipeline inside a task_arena of `threads` threads:
+// Parallelism: the pipeline of batch/parallel_runner.hpp (a task arena of `threads` threads):
 //   1. serial: next point of the shard → canonical hash of its scene; points already in the
 //      journal with the same hash are skipped. A stored point is first tried with the typed
 //      scene (CampaignScenes::unchecked_scene: no file read, no YAML), so a no-op resume costs
@@ -18,7 +18,7 @@
 // At most 2·threads points are in flight: memory does not grow with the campaign.
 //
 // Cancel (SweepOptions::stop): the build stage starts no point once it is set, and every point
-// in flight polls it (RunMonitor) and stops within ~0.05 s without a row, so it reruns next time.
+// in flight polls it (batch/stop_flag.hpp) and stops within ~0.05 s without a row, so it reruns next time.
 #include <atomic>
 #include <cstdint>
 #include <filesystem>

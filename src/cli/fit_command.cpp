@@ -92,19 +92,93 @@ std::vector<std::unique_ptr<DirLock>> open_task_journals(FitJournal& journal, co
   return locks;
 }
 
+// --task I/N|auto (0/1 without it).
+Shard parse_task(const FitCliOptions& opt) {
+  if (opt.task.empty()) return {};
+  try {
+    return parse_shard(opt.task, [](const char* n) { return std::getenv(n); }, "--task");
+  } catch (const std::invalid_argument& e) {
+    throw InputError("", 0, "--task", e.what());
+  }
+}
+
+// The locks a fit holds while it runs: its journal folder's, and with --collect every task's.
+struct JournalLocks {
+  std::unique_ptr<DirLock> own;
+  std::vector<std::unique_ptr<DirLock>> tasks;
+};
+
+// Opens the journal this run appends to (OUT/ or its task's folder), or with --collect every
+// task's journal for replay.
+JournalLocks open_journals(FitJournal& journal, const FitCliOptions& opt, const fs::path& out, const FitSpec& spec,
+                           const Shard& task) {
+  const std::string build = code_build_id();
+  JournalLocks locks;
+  if (opt.collect) {
+    locks.own = lock_fit_journal_dir(out, "--out");
+    locks.tasks = open_task_journals(journal, out, spec, opt.overrides, build);
+    return locks;
+  }
+  const fs::path dir = opt.task.empty() ? out : task_dir(out, task);
+  // tasks/ and tasks/I-of-N/ must be real folders inside --out: a link there would put the
+  // journal elsewhere.
+  check_real_folders(out, dir.lexically_relative(out), "--out");
+  fs::create_directories(dir);
+  locks.own = lock_fit_journal_dir(dir, "--out");
+  remove_stale_temporaries(dir);  // of a fit that died while writing (kill -9, a lost node)
+  open_fit_journal(journal, dir, fit_inputs_text(spec, opt.overrides, build, task));
+  return locks;
+}
+
+// The progress line of a fit: evaluations against the budget (an optimization may stop earlier:
+// the ETA is an upper bound) and the best objective so far.
+class EvaluationProgress {
+ public:
+  EvaluationProgress(double budget, bool quiet) : line_("fit", "evaluations (budget)", budget, quiet) {}
+  void evaluated(double objective) {  // thread-safe
+    double b;
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      if (objective < best_) best_ = objective;
+      b = best_;
+    }
+    char text[64];
+    std::snprintf(text, sizeof text, "best objective %.4g", b);
+    line_.update(++count_, text);
+  }
+
+ private:
+  ProgressLine line_;
+  std::atomic<int> count_{0};
+  std::mutex mutex_;
+  double best_ = HUGE_VAL;
+};
+
+// The summary lines and the exit code of a finished fit (failed optimizations on stderr).
+int report_fit(const FitCliOptions& opt, const FitResult& result, const fs::path& written) {
+  int evaluations = 0;
+  bool ok = true;
+  for (const auto& o : result.fits) {
+    evaluations += o.evaluations;
+    ok = ok && o.ok();
+  }
+  if (!opt.quiet)
+    std::printf("  %d evaluations in %zu fit(s); optimizations %.3f s (sum), total wall %.3f s (incl. profile, error-bar refits)\n  -> %s\n",
+                evaluations, result.fits.size(), result.fit_wall_s, result.wall_s, written.string().c_str());
+  if (!ok) {
+    for (const auto& o : result.fits)
+      if (!o.ok()) std::cerr << "fit " << o.label << " failed: " << o.failure << '\n';
+    return exit_failure;
+  }
+  return exit_ok;
+}
+
 int run(const FitCliOptions& opt, const Invocation& inv) {
   const FitSpec spec = load_fit(opt.fit_file, opt.overrides);
   const std::filesystem::path out =
       opt.out.empty() ? std::filesystem::path("results") / "fits" / spec.name : std::filesystem::path(opt.out);
   const bool sharded = !opt.task.empty();
-  Shard task;
-  if (sharded) {
-    try {
-      task = parse_shard(opt.task, [](const char* n) { return std::getenv(n); }, "--task");
-    } catch (const std::invalid_argument& e) {
-      throw InputError("", 0, "--task", e.what());
-    }
-  }
+  const Shard task = parse_task(opt);
   if ((sharded || opt.collect) && !spec.separate)
     throw InputError(opt.fit_file, 0, sharded ? "--task" : "--collect",
                      "a joint fit (separate: false) is one optimization and cannot be split into array tasks; run it without " +
@@ -112,23 +186,8 @@ int run(const FitCliOptions& opt, const Invocation& inv) {
   // The folder is claimed (made, with the marker) before the fit, so its journal can live there;
   // only a folder asperity fit made, or a new or empty one, is used.
   claim_fit_dir(out);
-  const std::string build = code_build_id();
   FitJournal journal;
-  std::unique_ptr<DirLock> lock;
-  std::vector<std::unique_ptr<DirLock>> task_locks;
-  if (opt.collect) {
-    lock = lock_fit_journal_dir(out, "--out");
-    task_locks = open_task_journals(journal, out, spec, opt.overrides, build);
-  } else {
-    const fs::path dir = sharded ? task_dir(out, task) : out;
-    // tasks/ and tasks/I-of-N/ must be real folders inside --out: a link there would put the
-    // journal elsewhere.
-    check_real_folders(out, dir.lexically_relative(out), "--out");
-    fs::create_directories(dir);
-    lock = lock_fit_journal_dir(dir, "--out");
-    remove_stale_temporaries(dir);  // of a fit that died while writing (kill -9, a lost node)
-    open_fit_journal(journal, dir, fit_inputs_text(spec, opt.overrides, build, task));
-  }
+  const JournalLocks locks = open_journals(journal, opt, out, spec, task);
   FitOptions fo;
   fo.journal = &journal;
   fo.replay_only = opt.collect;
@@ -152,23 +211,9 @@ int run(const FitCliOptions& opt, const Invocation& inv) {
       std::fflush(stdout);
     };
   }
-  // Evaluations against the budget (an optimization may stop earlier: the ETA is an upper bound).
   const std::size_t optimizations = sharded ? fo.only.size() : spec.separate ? spec.experiments.size() : 1;
-  ProgressLine progress("fit", "evaluations (budget)", static_cast<double>(spec.max_evaluations) * static_cast<double>(optimizations), opt.quiet);
-  std::atomic<int> evaluated{0};
-  std::mutex best_mutex;
-  double best = HUGE_VAL;
-  fo.on_evaluation = [&](double objective) {
-    double b;
-    {
-      const std::lock_guard<std::mutex> lock(best_mutex);
-      if (objective < best) best = objective;
-      b = best;
-    }
-    char text[64];
-    std::snprintf(text, sizeof text, "best objective %.4g", b);
-    progress.update(++evaluated, text);
-  };
+  EvaluationProgress progress(static_cast<double>(spec.max_evaluations) * static_cast<double>(optimizations), opt.quiet);
+  fo.on_evaluation = [&](double objective) { progress.evaluated(objective); };
   FitResult result;
   try {
     result = run_fit(spec, fo);
@@ -182,22 +227,7 @@ int run(const FitCliOptions& opt, const Invocation& inv) {
     std::fflush(stdout);
   }
   if (!sharded) write_fit(out, spec, result, inv.command_line, opt.figures);
-  int evaluations = 0;
-  bool ok = true;
-  for (const auto& o : result.fits) {
-    evaluations += o.evaluations;
-    ok = ok && o.ok();
-  }
-  if (!opt.quiet)
-    std::printf("  %d evaluations in %zu fit(s); optimizations %.3f s (sum), total wall %.3f s (incl. profile, error-bar refits)\n  -> %s\n",
-                evaluations, result.fits.size(), result.fit_wall_s, result.wall_s,
-                (sharded ? task_dir(out, task) / "journal.csv" : out).string().c_str());
-  if (!ok) {
-    for (const auto& o : result.fits)
-      if (!o.ok()) std::cerr << "fit " << o.label << " failed: " << o.failure << '\n';
-    return exit_failure;
-  }
-  return exit_ok;
+  return report_fit(opt, result, sharded ? task_dir(out, task) / "journal.csv" : out);
 }
 
 }  // namespace

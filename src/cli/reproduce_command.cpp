@@ -1,8 +1,6 @@
 // asperity reproduce SCENE.yaml... [--out results/paper] [--set key=value]... [--threads N] [--quiet]
 // The paper reproduction (main job): runs every scene (in parallel), writes one run directory
 // per scene, the analogues of the paper's Figures 3 and 4, and table.csv.
-#include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <atomic>
@@ -15,6 +13,7 @@
 #include <thread>
 #include <vector>
 
+#include "batch/parallel_runner.hpp"
 #include "cli/commands.hpp"
 #include "cli/options.hpp"
 #include "io/progress.hpp"
@@ -42,55 +41,140 @@ struct ReproduceOptions {
   FigureFormats figures;  // of Figures 3 and 4 (--figures)
 };
 
-int reproduce(const ReproduceOptions& opt, const Invocation& inv) {
+// The calibration fit of claim 5 (`--fit`), checked before any run.
+FitSpec calibration_spec(const std::string& fit) {
+  if (fit.empty()) return {};
+  FitSpec spec = load_fit(fit);
+  if (spec.objective != FitObjective::quadratic_alpha || !spec.separate || spec.parameters.size() != 1 ||
+      spec.parameters.front().key != "model.alpha_b")
+    throw InputError(fit, 0, "", "reproduce --fit needs a per-experiment (separate) quadratic_alpha fit of "
+                                 "model.alpha_b alone, like fits/paper_alpha_b.yaml");
+  return spec;
+}
+
+// The run folder of each scene in `out` (refused when two collide or one is not ours).
+std::vector<std::filesystem::path> run_dirs(const std::vector<std::string>& scenes, const std::filesystem::path& out) {
   namespace fs = std::filesystem;
-  const auto t0 = std::chrono::steady_clock::now();
-  // Load everything first: a bad scene fails before any run.
-  std::vector<PaperRun> runs(opt.scenes.size());
-  for (std::size_t i = 0; i < opt.scenes.size(); ++i) runs[i].scene = load_scene(opt.scenes[i], opt.overrides);
-  FitSpec spec_of_fit;
-  if (!opt.fit.empty()) {
-    spec_of_fit = load_fit(opt.fit);
-    if (spec_of_fit.objective != FitObjective::quadratic_alpha || !spec_of_fit.separate ||
-        spec_of_fit.parameters.size() != 1 || spec_of_fit.parameters.front().key != "model.alpha_b")
-      throw InputError(opt.fit, 0, "", "reproduce --fit needs a per-experiment (separate) quadratic_alpha fit of "
-                                       "model.alpha_b alone, like fits/paper_alpha_b.yaml");
-  }
-  const fs::path out(opt.out);
-  // Only into a new or empty folder, or one reproduce wrote (before markers: its table.csv).
-  check_ours(out, "reproduce", "--out",
-             [](const fs::path& d) { return first_line_is(d / "table.csv", kPaperTableHeader); });
   std::vector<fs::path> dirs;
-  for (const auto& s : opt.scenes) {
+  for (const auto& s : scenes) {
     dirs.push_back(out / fs::path(s).stem());
     if (std::count(dirs.begin(), dirs.end(), dirs.back()) > 1)
       throw InputError(s, 0, "", "two scenes share the file name " + fs::path(s).filename().string() +
                                      ": their run folders in " + out.string() + " would collide");
     check_run_dir(dirs.back());
   }
+  return dirs;
+}
+
+// Every paper run (in parallel), each written to its folder; SolverError names the first that failed.
+void run_paper(std::vector<PaperRun>& runs, const std::vector<std::filesystem::path>& dirs, const ReproduceOptions& opt,
+               const Invocation& inv, int threads) {
+  std::vector<std::string> errors(runs.size());
+  ProgressLine progress("reproduce", "runs", static_cast<double>(runs.size()), opt.quiet);
+  ParallelRunner(threads).for_each(runs.size(), [&](std::size_t i) {
+    try {
+      RunResult r = simulate(runs[i].scene);
+      write_run(dirs[i], runs[i].scene, r.obs, r.recorder, RunWriteOptions{false, inv.command_line, {}});
+      runs[i].obs = r.obs;
+      runs[i].series = r.recorder.series();
+      runs[i].loading = r.recorder.loading_branch();
+    } catch (const std::exception& e) {
+      errors[i] = e.what();
+    }
+  }, [&](std::size_t finished, std::size_t) { progress.update(static_cast<double>(finished)); });
+  for (std::size_t i = 0; i < runs.size(); ++i)
+    if (!errors[i].empty()) throw SolverError(opt.scenes[i] + ": " + errors[i]);
+}
+
+// table.csv and Figures 3 and 4 (a figure gnuplot could not draw is said, its script kept).
+void write_paper_outputs(const std::filesystem::path& out, const std::vector<PaperRun>& runs, const std::string& label,
+                         const FigureFormats& figures) {
+  std::filesystem::remove(out / "REPORT.md");  // a previous one would describe other runs
+  scene_io::write_text_file(out / "table.csv", paper_table_csv(runs));
+  if (runs.empty()) return;
+  for (const auto& [name, error] : {std::pair<const char*, std::string>{"fig3_Q_A_t.png", write_figure3(out, runs.front(), runs.back(), label, figures)},
+                                    {"fig4_A_Q.png", write_figure4(out, runs, label, figures)}})
+    if (!error.empty())
+      std::fprintf(stderr, "reproduce: %s not drawn: %s (its script, data inline, is kept beside it)\n", name, error.c_str());
+}
+
+// Claim 5's per-load calibration (run_fit); adds its evaluations to `runs_count`.
+Calibration calibrate(const FitSpec& spec, const std::string& fit_file, int threads, bool quiet, std::size_t& runs_count) {
+  Calibration calibration;
+  calibration.fit_file = fit_file;
+  FitOptions fo;
+  fo.threads = threads;
+  fo.profile = false;
+  fo.error_bars = false;
+  ProgressLine fp("reproduce", "calibration evaluations (at most)", static_cast<double>(spec.max_evaluations) * static_cast<double>(spec.experiments.size()), quiet);
+  std::atomic<int> evaluations{0};
+  fo.on_evaluation = [&](double) { fp.update(++evaluations); };
+  const FitResult fr = run_fit(spec, fo);
+  for (const Optimization& f : fr.fits) {
+    // A failed calibration stays in the report as failed: claim 5 then has no evidence at that load.
+    CalibratedRun c;
+    c.experiment = f.label;
+    if (!f.ok() || f.best_runs.empty() || f.best.empty()) {
+      c.failure = f.failure.empty() ? std::string("no successful evaluation") : f.failure;
+      std::fprintf(stderr, "calibration %s failed: %s\n", f.label.c_str(), c.failure.c_str());
+    } else {
+      c.alpha_b = f.best.front();
+      c.obs = f.best_runs.front().obs;
+      c.loading = f.best_runs.front().loading;
+      c.evaluations = f.evaluations;
+      c.stop_reason = f.stop_reason;
+    }
+    calibration.runs.push_back(std::move(c));
+  }
+  runs_count += static_cast<std::size_t>(std::accumulate(
+      fr.fits.begin(), fr.fits.end(), 0, [](int a, const Optimization& f) { return a + f.evaluations; }));
+  return calibration;
+}
+
+// REPORT.md: the claim variants (and the calibration) run, then judged; returns the runs made.
+std::size_t write_claims(const std::filesystem::path& out, const std::vector<PaperRun>& runs, const FitSpec& spec_of_fit,
+                         const ReproduceOptions& opt, int threads, const std::string& label) {
+  std::vector<Scene> base;
+  for (const auto& r : runs) base.push_back(r.scene);
+  ProgressLine vp("reproduce", "claim-variant runs", 0, opt.quiet);
+  const auto variants = run_variants(base, paper_claim_variants(), threads, [&](std::size_t done, std::size_t total) {
+    vp.set_total(static_cast<double>(total));
+    vp.update(static_cast<double>(done));
+  });
+  std::size_t n_runs = variants.size();
+  const Calibration calibration = opt.fit.empty() ? Calibration{} : calibrate(spec_of_fit, opt.fit, threads, opt.quiet, n_runs);
+  scene_io::write_text_file(out / "REPORT.md", claims_report(runs, variants, calibration, label));
+  return n_runs;
+}
+
+void print_summary(const std::vector<PaperRun>& runs, bool standin) {
+  std::printf("%-8s %6s %10s %10s %9s %12s %7s %6s %10s %10s %7s\n", "exp", "N", "Q_s [N]", "A_s [mm2]",
+              "t_peak", "alpha", "n", "n_meas", "ss_drop", "ss_period", "wall");
+  for (const auto& r : runs) {
+    const auto& o = r.obs;
+    std::printf("%-8s %6zu %10.5g %10.5g %9.4g %12.5g %7.3g %6.3g %10.4g %10.4g %6.2fs\n",
+                r.scene.experiment.name.c_str(), o.N, o.Q_s, o.A_s * 1e6, o.t_peak, o.alpha, o.shape_exponent,
+                o.shape_exponent_measured, o.ss_drop, o.ss_period, o.wall_s);
+  }
+  if (standin) std::printf("STAND-IN data: these numbers are not properties of the real experiments.\n");
+}
+
+int reproduce(const ReproduceOptions& opt, const Invocation& inv) {
+  namespace fs = std::filesystem;
+  const auto t0 = std::chrono::steady_clock::now();
+  // Load everything first: a bad scene fails before any run.
+  std::vector<PaperRun> runs(opt.scenes.size());
+  for (std::size_t i = 0; i < opt.scenes.size(); ++i) runs[i].scene = load_scene(opt.scenes[i], opt.overrides);
+  const FitSpec spec_of_fit = calibration_spec(opt.fit);
+  const fs::path out(opt.out);
+  // Only into a new or empty folder, or one reproduce wrote (before markers: its table.csv).
+  check_ours(out, "reproduce", "--out",
+             [](const fs::path& d) { return first_line_is(d / "table.csv", kPaperTableHeader); });
+  const std::vector<fs::path> dirs = run_dirs(opt.scenes, out);
   fs::create_directories(out);
   write_marker(out, "reproduce");
   const int threads = threads_or_all(opt.threads);
-  std::vector<std::string> errors(runs.size());
-  ProgressLine progress("reproduce", "runs", static_cast<double>(runs.size()), opt.quiet);
-  std::atomic<std::size_t> finished{0};
-  tbb::task_arena arena(threads);
-  arena.execute([&] {
-    tbb::parallel_for(std::size_t{0}, runs.size(), [&](std::size_t i) {
-      try {
-        RunResult r = simulate(runs[i].scene);
-        write_run(dirs[i], runs[i].scene, r.obs, r.recorder, RunWriteOptions{false, inv.command_line, {}});
-        runs[i].obs = r.obs;
-        runs[i].series = r.recorder.series();
-        runs[i].loading = r.recorder.loading_branch();
-      } catch (const std::exception& e) {
-        errors[i] = e.what();
-      }
-      progress.update(static_cast<double>(++finished));
-    });
-  });
-  for (std::size_t i = 0; i < runs.size(); ++i)
-    if (!errors[i].empty()) throw SolverError(opt.scenes[i] + ": " + errors[i]);
+  run_paper(runs, dirs, opt, inv, threads);
   // Figures and table in load order (smallest load first when the scenes are named so).
   std::sort(runs.begin(), runs.end(), [](const PaperRun& a, const PaperRun& b) {
     return a.scene.experiment.junctions.size() < b.scene.experiment.junctions.size();
@@ -98,71 +182,17 @@ int reproduce(const ReproduceOptions& opt, const Invocation& inv) {
   bool standin = false;
   for (const auto& r : runs) standin = standin || r.scene.experiment.description.find("STAND-IN") != std::string::npos;
   const std::string label = standin ? "STAND-IN data, not measurements" : "";
-  fs::remove(out / "REPORT.md");  // a previous one would describe other runs
-  scene_io::write_text_file(out / "table.csv", paper_table_csv(runs));
-  if (!runs.empty()) {
-    // A figure gnuplot could not draw is said, not skipped silently; its script is kept.
-    for (const auto& [name, error] : {std::pair<const char*, std::string>{"fig3_Q_A_t.png", write_figure3(out, runs.front(), runs.back(), label, opt.figures)},
-                                      {"fig4_A_Q.png", write_figure4(out, runs, label, opt.figures)}})
-      if (!error.empty())
-        std::fprintf(stderr, "reproduce: %s not drawn: %s (its script, data inline, is kept beside it)\n", name, error.c_str());
-  }
+  write_paper_outputs(out, runs, label, opt.figures);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   double wall_claims = 0;
   std::size_t n_variant_runs = 0;
   if (opt.claims && !runs.empty()) {
     const auto t1 = std::chrono::steady_clock::now();
-    std::vector<Scene> base;
-    for (const auto& r : runs) base.push_back(r.scene);
-    ProgressLine vp("reproduce", "claim-variant runs", 0, opt.quiet);
-    const auto variants = run_variants(base, paper_claim_variants(), threads, [&](std::size_t done, std::size_t total) {
-      vp.set_total(static_cast<double>(total));
-      vp.update(static_cast<double>(done));
-    });
-    n_variant_runs = variants.size();
-    Calibration calibration;
-    if (!opt.fit.empty()) {
-      calibration.fit_file = opt.fit;
-      FitOptions fo;
-      fo.threads = threads;
-      fo.profile = false;
-      fo.error_bars = false;
-      ProgressLine fp("reproduce", "calibration evaluations (at most)", static_cast<double>(spec_of_fit.max_evaluations) * static_cast<double>(spec_of_fit.experiments.size()), opt.quiet);
-      std::atomic<int> evaluations{0};
-      fo.on_evaluation = [&](double) { fp.update(++evaluations); };
-      const FitResult fr = run_fit(spec_of_fit, fo);
-      for (const Optimization& f : fr.fits) {
-        // A failed calibration stays in the report as failed: claim 5 then has no evidence at that load.
-        CalibratedRun c;
-        c.experiment = f.label;
-        if (!f.ok() || f.best_runs.empty() || f.best.empty()) {
-          c.failure = f.failure.empty() ? std::string("no successful evaluation") : f.failure;
-          std::fprintf(stderr, "calibration %s failed: %s\n", f.label.c_str(), c.failure.c_str());
-        } else {
-          c.alpha_b = f.best.front();
-          c.obs = f.best_runs.front().obs;
-          c.loading = f.best_runs.front().loading;
-          c.evaluations = f.evaluations;
-          c.stop_reason = f.stop_reason;
-        }
-        calibration.runs.push_back(std::move(c));
-      }
-      n_variant_runs += static_cast<std::size_t>(std::accumulate(
-          fr.fits.begin(), fr.fits.end(), 0, [](int a, const Optimization& f) { return a + f.evaluations; }));
-    }
-    scene_io::write_text_file(out / "REPORT.md", claims_report(runs, variants, calibration, label));
+    n_variant_runs = write_claims(out, runs, spec_of_fit, opt, threads, label);
     wall_claims = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
   }
   if (!opt.quiet) {
-    std::printf("%-8s %6s %10s %10s %9s %12s %7s %6s %10s %10s %7s\n", "exp", "N", "Q_s [N]", "A_s [mm2]",
-                "t_peak", "alpha", "n", "n_meas", "ss_drop", "ss_period", "wall");
-    for (const auto& r : runs) {
-      const auto& o = r.obs;
-      std::printf("%-8s %6zu %10.5g %10.5g %9.4g %12.5g %7.3g %6.3g %10.4g %10.4g %6.2fs\n",
-                  r.scene.experiment.name.c_str(), o.N, o.Q_s, o.A_s * 1e6, o.t_peak, o.alpha, o.shape_exponent,
-                  o.shape_exponent_measured, o.ss_drop, o.ss_period, o.wall_s);
-    }
-    if (standin) std::printf("STAND-IN data: these numbers are not properties of the real experiments.\n");
+    print_summary(runs, standin);
     std::printf("%zu runs on %d threads in %.2f s wall -> %s (table.csv, fig3_Q_A_t.png, fig4_A_Q.png)\n",
                 runs.size(), threads, wall, out.string().c_str());
     if (opt.claims)

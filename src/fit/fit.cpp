@@ -2,8 +2,6 @@
 
 #include <nlopt.hpp>
 #include <omp.h>
-#include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <atomic>
@@ -14,6 +12,8 @@
 #include <mutex>
 #include <stdexcept>
 
+#include "batch/parallel_runner.hpp"
+#include "batch/stop_flag.hpp"
 #include "fit/fit_journal.hpp"
 #include "fit/objective.hpp"
 #include "io/input_error.hpp"
@@ -45,19 +45,6 @@ struct ExperimentEval {
   bool stand_in = false;
   std::optional<MeasuredCurve> measured;
   std::string error;  // empty: ran
-};
-
-// The monitor of every run while FitOptions::stop is set (null: none).
-struct StopMonitor {
-  RunMonitor monitor;
-  const std::atomic<bool>* flag = nullptr;
-  explicit StopMonitor(const std::atomic<bool>* stop) : flag(stop) {
-    if (!stop) return;
-    monitor.period_s = 0.05;  // a Ctrl-C stops the fit well within a second
-    monitor.poll = [stop](double, double) { return !stop->load(std::memory_order_relaxed); };
-  }
-  const RunMonitor* get() const { return monitor.poll ? &monitor : nullptr; }
-  bool stopped() const { return flag && flag->load(std::memory_order_relaxed); }
 };
 
 // RunInterrupted (the stop's) passes through: the evaluation is abandoned, not failed.
@@ -126,7 +113,7 @@ struct Problem {
   bool replay_only = false;                                    // FitOptions::replay_only
   Counts* counts = nullptr;
   std::string not_journaled;  // replay_only: the evaluation the journal lacked
-  const StopMonitor* stop = nullptr;  // FitOptions::stop, polled by every run
+  const StopFlag* stop = nullptr;     // FitOptions::stop, polled by every run
   const UserTerm* user_term = nullptr;  // FitOptions::user_term
   bool interrupted = false;           // the stop ended the optimization
 };
@@ -147,12 +134,10 @@ Evaluation evaluate(const Problem& pb, const std::vector<double>& x, std::vector
   std::vector<ExperimentEval> r(pb.exps.size());
   // Isolated: a thread waiting here runs only these runs, never another task's optimizer (so
   // each nlopt::opt stays on its own thread, with no nested optimize on one stack).
-  tbb::this_task_arena::isolate([&] {
-    tbb::parallel_for(std::size_t{0}, pb.exps.size(), [&](std::size_t k) {
-      r[k] = run_experiment(*pb.spec, pb.exps[k], settings_for(pb, k, x), runs != nullptr, pb.stop ? pb.stop->get() : nullptr,
-                            pb.user_term);
-    });
-  });
+  for_each_nested(pb.exps.size(), [&](std::size_t k) {
+    r[k] = run_experiment(*pb.spec, pb.exps[k], settings_for(pb, k, x), runs != nullptr, pb.stop ? pb.stop->monitor() : nullptr,
+                          pb.user_term);
+  }, Nesting::isolated);
   Evaluation ev;
   ev.values = x;
   ev.objective = 0;
@@ -212,7 +197,7 @@ double nlopt_objective(unsigned n, const double* u, double* /*grad: derivative-f
   // in the problem, as the replay's NotJournaled is.
   std::optional<Evaluation> journaled;
   try {
-    if (pb.stop && pb.stop->stopped()) throw RunInterrupted("stopped");  // a run too short to poll would go on
+    if (pb.stop && pb.stop->requested()) throw RunInterrupted("stopped");  // a run too short to poll would go on
     journaled = evaluate_journaled(pb, index, x);
   } catch (const RunInterrupted&) {
     pb.interrupted = true;
@@ -290,8 +275,10 @@ OptimizeResult optimize(Problem pb, const std::vector<double>& start, double ini
   return out;
 }
 
-void run_task(const FitSpec& spec, const FitOptions& options, Optimization& o, std::mutex& progress_mutex, Counts& counts,
-              const StopMonitor& stop) {
+// The optimization's problem as FitOptions asks for it: its part and journal, its experiments and
+// free variables, no shifts.
+Problem fit_problem(const FitSpec& spec, const FitOptions& options, const Optimization& o, Counts& counts,
+                    const StopFlag& stop) {
   Problem pb;
   pb.stop = &stop;
   pb.spec = &spec;
@@ -305,6 +292,125 @@ void run_task(const FitSpec& spec, const FitOptions& options, Optimization& o, s
   pb.extra.assign(o.experiments.size(), {});
   pb.on_evaluation = &options.on_evaluation;
   pb.user_term = &options.user_term;
+  return pb;
+}
+
+// The best runs, kept for the report (deterministic: same objective as journaled).
+void keep_best_runs(const Problem& pb, Optimization& o) {
+  std::vector<ExperimentEval> runs;
+  const Evaluation ev = evaluate(pb, o.best, &runs);
+  for (std::size_t k = 0; k < runs.size(); ++k) {
+    ExperimentRun er;
+    er.experiment = o.experiments[k];
+    er.residual = runs[k].residual;
+    er.obs = runs[k].obs;
+    er.loading = std::move(runs[k].loading);
+    er.mass_kg = runs[k].mass_kg;
+    er.stand_in = runs[k].stand_in;
+    er.measured = std::move(runs[k].measured);
+    o.best_runs.push_back(std::move(er));
+  }
+  if (ev.status != "ok" && o.failure.empty()) o.failure = "re-run at the optimum failed: " + ev.status;
+  // A best taken from a journal line is only as good as that line: runs are deterministic, so
+  // its re-run must give its objective (to rounding of the same binary on another core: bit
+  // for bit in practice; 1e-9 leaves room for another libm). A line whose digest was recomputed
+  // after an edit passes the journal's check but not this one.
+  if (!pb.journal || ev.status != "ok") return;
+  const double tol = 1e-9 * std::max(std::abs(ev.objective), std::abs(o.objective)) + 1e-300;
+  if (std::abs(ev.objective - o.objective) <= tol) return;
+  if (const auto at = pb.journal->where(pb.part, pb.label, o.best)) {
+    char msg[300];
+    std::snprintf(msg, sizeof msg,
+                  "the journaled best evaluation of %s has objective %.10g but its re-run gives %.10g: the "
+                  "line was edited or forged; remove it (or the folder) and rerun",
+                  o.label.c_str(), o.objective, ev.objective);
+    throw InputError(at->first, at->second, "objective", msg);
+  }
+}
+
+// The objective along the profiled parameter around the optimum (in parallel, journaled).
+void run_profile(const FitSpec& spec, const Problem& pb, Optimization& o) {
+  const auto t0 = Clock::now();
+  const ProfileSettings& ps = spec.profile_settings;
+  const FitParameter& p = spec.parameters[ps.parameter];
+  o.profile_parameter = ps.parameter;
+  std::vector<ProfilePoint> pts(static_cast<std::size_t>(ps.points));
+  for_each_nested(pts.size(), [&](std::size_t i) {
+    ProfilePoint& pt = pts[i];
+    pt.factor = 1.0 + ps.span * (2.0 * static_cast<double>(i) / static_cast<double>(pts.size() - 1) - 1.0);
+    std::vector<double> x = o.best;
+    bool inside = true;
+    for (std::size_t j = 0; j < x.size(); ++j)
+      if (o.variables[j].parameter == ps.parameter) {
+        x[j] = o.best[j] * pt.factor;
+        pt.value = x[j];
+        inside = inside && x[j] >= p.lo && x[j] <= p.hi;
+      }
+    if (!inside) {
+      pt.status = "outside the bounds";
+      return;
+    }
+    Problem q = pb;
+    q.part = "profile";
+    const std::optional<Evaluation> ev = evaluate_journaled(q, static_cast<int>(i) + 1, x);
+    if (!ev) throw NotJournaled(not_journaled_text(q, static_cast<int>(i) + 1, x));
+    pt.objective = ev->objective;
+    pt.status = ev->status;
+  });
+  o.profile = std::move(pts);
+  o.profile_wall_s = seconds_since(t0);
+}
+
+// The refits with each error-bar key shifted by -bar and +bar (in parallel, journaled).
+void run_refits(const FitSpec& spec, const FitOptions& options, Optimization& o, Counts& counts, const StopFlag& stop) {
+  const auto t0 = Clock::now();
+  std::vector<ErrorBarRefit> refits;
+  for (const auto& eb : spec.error_bars)
+    for (const int sign : {-1, +1}) refits.push_back({eb.key, eb.bar, sign, {}, Observables::nan, 0, "", ""});
+  for_each_nested(refits.size(), [&](std::size_t i) {
+    ErrorBarRefit& rf = refits[i];
+    Problem q;
+    q.spec = &spec;
+    q.label = o.label;
+    q.part = "refit " + rf.key + " " + (rf.sign < 0 ? "-1" : "+1");
+    q.journal = options.journal;
+    q.replay_only = options.replay_only;
+    q.counts = &counts;
+    q.stop = &stop;
+    q.user_term = &options.user_term;
+    q.exps = o.experiments;
+    q.vars = o.variables;
+    for (const std::size_t e : o.experiments) {
+      const double nominal = scene_value(spec.experiments[e].scene.build(), rf.key);
+      q.extra.push_back({{rf.key, nominal + rf.sign * rf.bar}});
+    }
+    // Start at the optimum with a smaller first step: the shift moves it little.
+    OptimizeResult rr = optimize(std::move(q), o.best, spec.initial_step * 0.25);
+    rf.best = rr.best;
+    rf.objective = rr.objective;
+    rf.evaluations = static_cast<int>(rr.log.size());
+    rf.stop_reason = rr.stop_reason;
+    rf.failure = rr.failure;
+  });
+  o.refits = std::move(refits);
+  o.refits_wall_s = seconds_since(t0);
+}
+
+// The line FitOptions::progress gets when an optimization is done.
+std::string done_line(const Problem& pb, const Optimization& o) {
+  std::string line = o.label + ": ";
+  if (o.best.empty() || !std::isfinite(o.objective)) line += "no successful evaluation";
+  else line += values_text(pb, o.best) + ", objective " + g6(o.objective);
+  line += ", " + std::to_string(o.evaluations) + " evaluations, " + o.stop_reason + ", " + g6(o.wall_s) + " s";
+  if (!o.failure.empty()) line += "; FAILED: " + o.failure;
+  return line;
+}
+
+// One optimization (a task of the runner): optimize, then the best runs, the profile and the
+// error-bar refits as asked.
+void run_task(const FitSpec& spec, const FitOptions& options, Optimization& o, std::mutex& progress_mutex, Counts& counts,
+              const StopFlag& stop) {
+  const Problem pb = fit_problem(spec, options, o, counts, stop);
   OptimizeResult r = optimize(pb, o.start, spec.initial_step);
   o.best = r.best;
   o.objective = r.objective;
@@ -314,113 +420,11 @@ void run_task(const FitSpec& spec, const FitOptions& options, Optimization& o, s
   o.wall_s = r.wall_s;
   o.log = std::move(r.log);
   const bool have_best = std::isfinite(o.objective);
-
-  if (have_best) {  // the best runs, kept for the report (deterministic: same objective)
-    std::vector<ExperimentEval> runs;
-    const Evaluation ev = evaluate(pb, o.best, &runs);
-    for (std::size_t k = 0; k < runs.size(); ++k) {
-      ExperimentRun er;
-      er.experiment = o.experiments[k];
-      er.residual = runs[k].residual;
-      er.obs = runs[k].obs;
-      er.loading = std::move(runs[k].loading);
-      er.mass_kg = runs[k].mass_kg;
-      er.stand_in = runs[k].stand_in;
-      er.measured = std::move(runs[k].measured);
-      o.best_runs.push_back(std::move(er));
-    }
-    if (ev.status != "ok" && o.failure.empty()) o.failure = "re-run at the optimum failed: " + ev.status;
-    // A best taken from a journal line is only as good as that line: runs are deterministic, so
-    // its re-run must give its objective (to rounding of the same binary on another core: bit
-    // for bit in practice; 1e-9 leaves room for another libm). A line whose digest was recomputed
-    // after an edit passes the journal's check but not this one.
-    if (pb.journal && ev.status == "ok") {
-      const double tol = 1e-9 * std::max(std::abs(ev.objective), std::abs(o.objective)) + 1e-300;
-      if (!(std::abs(ev.objective - o.objective) <= tol)) {
-        if (const auto at = pb.journal->where(pb.part, pb.label, o.best)) {
-          char msg[300];
-          std::snprintf(msg, sizeof msg,
-                        "the journaled best evaluation of %s has objective %.10g but its re-run gives %.10g: the "
-                        "line was edited or forged; remove it (or the folder) and rerun",
-                        o.label.c_str(), o.objective, ev.objective);
-          throw InputError(at->first, at->second, "objective", msg);
-        }
-      }
-    }
-  }
-
-  if (have_best && o.ok() && options.profile && spec.profile) {
-    const auto t0 = Clock::now();
-    const ProfileSettings& ps = spec.profile_settings;
-    const FitParameter& p = spec.parameters[ps.parameter];
-    o.profile_parameter = ps.parameter;
-    std::vector<ProfilePoint> pts(static_cast<std::size_t>(ps.points));
-    tbb::parallel_for(std::size_t{0}, pts.size(), [&](std::size_t i) {
-      ProfilePoint& pt = pts[i];
-      pt.factor = 1.0 + ps.span * (2.0 * static_cast<double>(i) / static_cast<double>(pts.size() - 1) - 1.0);
-      std::vector<double> x = o.best;
-      bool inside = true;
-      for (std::size_t j = 0; j < x.size(); ++j)
-        if (o.variables[j].parameter == ps.parameter) {
-          x[j] = o.best[j] * pt.factor;
-          pt.value = x[j];
-          inside = inside && x[j] >= p.lo && x[j] <= p.hi;
-        }
-      if (!inside) {
-        pt.status = "outside the bounds";
-        return;
-      }
-      Problem q = pb;
-      q.part = "profile";
-      const std::optional<Evaluation> ev = evaluate_journaled(q, static_cast<int>(i) + 1, x);
-      if (!ev) throw NotJournaled(not_journaled_text(q, static_cast<int>(i) + 1, x));
-      pt.objective = ev->objective;
-      pt.status = ev->status;
-    });
-    o.profile = std::move(pts);
-    o.profile_wall_s = seconds_since(t0);
-  }
-
-  if (have_best && o.ok() && options.error_bars && !spec.error_bars.empty()) {
-    const auto t0 = Clock::now();
-    std::vector<ErrorBarRefit> refits;
-    for (const auto& eb : spec.error_bars)
-      for (const int sign : {-1, +1}) refits.push_back({eb.key, eb.bar, sign, {}, Observables::nan, 0, "", ""});
-    tbb::parallel_for(std::size_t{0}, refits.size(), [&](std::size_t i) {
-      ErrorBarRefit& rf = refits[i];
-      Problem q;
-      q.spec = &spec;
-      q.label = o.label;
-      q.part = "refit " + rf.key + " " + (rf.sign < 0 ? "-1" : "+1");
-      q.journal = options.journal;
-      q.replay_only = options.replay_only;
-      q.counts = &counts;
-      q.stop = &stop;
-      q.user_term = &options.user_term;
-      q.exps = o.experiments;
-      q.vars = o.variables;
-      for (const std::size_t e : o.experiments) {
-        const double nominal = scene_value(spec.experiments[e].scene.build(), rf.key);
-        q.extra.push_back({{rf.key, nominal + rf.sign * rf.bar}});
-      }
-      // Start at the optimum with a smaller first step: the shift moves it little.
-      OptimizeResult rr = optimize(std::move(q), o.best, spec.initial_step * 0.25);
-      rf.best = rr.best;
-      rf.objective = rr.objective;
-      rf.evaluations = static_cast<int>(rr.log.size());
-      rf.stop_reason = rr.stop_reason;
-      rf.failure = rr.failure;
-    });
-    o.refits = std::move(refits);
-    o.refits_wall_s = seconds_since(t0);
-  }
-
+  if (have_best) keep_best_runs(pb, o);
+  if (have_best && o.ok() && options.profile && spec.profile) run_profile(spec, pb, o);
+  if (have_best && o.ok() && options.error_bars && !spec.error_bars.empty()) run_refits(spec, options, o, counts, stop);
   if (options.progress) {
-    std::string line = o.label + ": ";
-    if (o.best.empty() || !std::isfinite(o.objective)) line += "no successful evaluation";
-    else line += values_text(pb, o.best) + ", objective " + g6(o.objective);
-    line += ", " + std::to_string(o.evaluations) + " evaluations, " + o.stop_reason + ", " + g6(o.wall_s) + " s";
-    if (!o.failure.empty()) line += "; FAILED: " + o.failure;
+    const std::string line = done_line(pb, o);
     std::lock_guard<std::mutex> lock(progress_mutex);
     options.progress(line);
   }
@@ -491,12 +495,10 @@ FitResult run_fit(const FitSpec& spec, const FitOptions& options) {
 
   std::mutex progress_mutex;
   Counts counts;
-  const StopMonitor stop(options.stop);
-  tbb::task_arena arena(result.threads);
-  // A RunInterrupted of one task leaves the others to see the stop themselves; TBB rethrows it here.
-  arena.execute([&] {
-    tbb::parallel_for(std::size_t{0}, result.fits.size(),
-                      [&](std::size_t i) { run_task(spec, options, result.fits[i], progress_mutex, counts, stop); });
+  const StopFlag stop(options.stop);
+  // A RunInterrupted of one task leaves the others to see the stop themselves; the runner rethrows it here.
+  ParallelRunner(result.threads).for_each(result.fits.size(), [&](std::size_t i) {
+    run_task(spec, options, result.fits[i], progress_mutex, counts, stop);
   });
   result.replayed = counts.replayed;
   result.computed = counts.computed;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <sstream>
 
+#include "batch/inputs_fingerprint.hpp"
 #include "io/atomic_file.hpp"
 #include "io/hash.hpp"
 #include "io/input_error.hpp"
@@ -39,10 +40,9 @@ std::string key_of(const std::string& line) {
 
 std::string fit_inputs_text(const FitSpec& spec, const std::vector<std::string>& overrides, const std::string& build_id,
                             const Shard& task) {
-  std::string t = std::string(kFirstLine) + "\nbuild " + build_id + "\ntask " + std::to_string(task.index) + "/" +
-                  std::to_string(task.count) + "\n";
-  for (const std::string& o : overrides) t += "set " + hex16(fnv1a64(o)) + "\n";
-  if (spec.file.empty()) t += "spec " + hex16(fnv1a64(spec.memory_text)) + "\n";  // given in memory: no fit file to hash
+  InputsFingerprint t(kFirstLine, build_id, "task", task);
+  for (const std::string& o : overrides) t.add("set", hex16(fnv1a64(o)));
+  if (spec.file.empty()) t.add("spec", hex16(fnv1a64(spec.memory_text)));  // given in memory: no fit file to hash
   std::vector<DataFile> files{{"fit", spec.file}};
   for (const FitExperiment& e : spec.experiments) {
     const std::vector<DataFile> f = input_files(e.scene.build());
@@ -55,14 +55,9 @@ std::string fit_inputs_text(const FitSpec& spec, const std::vector<std::string>&
     const std::string rel = fs::absolute(f.path).lexically_normal().lexically_relative(base).generic_string();
     if (std::find(seen.begin(), seen.end(), rel) != seen.end()) continue;
     seen.push_back(rel);
-    std::string sum(16, '-');  // unreadable: never equal to a hash
-    try {
-      sum = hex16(fnv1a64(read_file_text(f.path)));
-    } catch (const std::exception&) {
-    }
-    t += "file " + sum + " " + f.role + " " + rel + "\n";
+    t.add_file(f.role, rel, [&] { return fnv1a64(read_file_text(f.path)); });
   }
-  return t;
+  return t.text();
 }
 
 void check_fit_inputs(const fs::path& file, const std::string& expected) {

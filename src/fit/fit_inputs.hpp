@@ -1,5 +1,5 @@
 #pragma once
-// DIR/inputs.txt beside a fit journal: what its evaluations were computed from, so a resume never
+// DIR/inputs.txt beside a fit journal (batch/inputs_fingerprint.hpp): what its evaluations were computed from, so a resume never
 // mixes evaluations of two fits, two data sets or two codes. Written (durably) before the journal
 // is created; a run resumes the journal only when the text it computes now is the same:
 //   # asperity fit journal inputs ...           (first line: recognises the file)

@@ -1,14 +1,10 @@
 #include "fit/fit_journal.hpp"
 
-#include <fcntl.h>
-#include <unistd.h>
-
-#include <cerrno>
 #include <charconv>
-#include <cstring>
 #include <fstream>
 #include <stdexcept>
 
+#include "batch/inputs_fingerprint.hpp"
 #include "fit/fit_inputs.hpp"
 #include "io/atomic_file.hpp"
 #include "io/csv.hpp"
@@ -59,104 +55,124 @@ std::string journal_values(const std::vector<double>& x) {
   return s;
 }
 
-FitJournal::~FitJournal() {
-  if (fd_ >= 0) ::close(fd_);
+FitJournal::~FitJournal() = default;
+
+void FitJournal::open(const fs::path& file, bool append) { read(file, append && !file_); }
+
+namespace {
+
+// One evaluation from the fields of a good line (InputError "FILE:LINE: KEY: ..." when malformed).
+Evaluation parse_evaluation(const std::vector<std::string>& f, const std::string& name, int lineno) {
+  if (f.size() != 8)
+    throw InputError(name, lineno, f.size() < 8 ? kColumns[f.size()] : "check",
+                     "expected 8 fields and a checksum, got " + std::to_string(f.size()) + " fields");
+  Evaluation ev;
+  if (!scene_io::parse_int(f[2], ev.index) || ev.index < 1)
+    throw InputError(name, lineno, "evaluation", "not a positive whole number: " + scene_io::quote(f[2]));
+  if (!parse_list(f[3], ev.values) || ev.values.empty())
+    throw InputError(name, lineno, "x", "not a ';'-separated list of numbers: " + scene_io::quote(f[3]));
+  if (!parse_number(f[4], ev.objective)) throw InputError(name, lineno, "objective", "not a number: " + scene_io::quote(f[4]));
+  if (!parse_list(f[5], ev.residuals))
+    throw InputError(name, lineno, "terms", "not a ';'-separated list of numbers: " + scene_io::quote(f[5]));
+  if (f[6].empty()) throw InputError(name, lineno, "status", "empty");
+  ev.status = f[6];
+  if (!parse_number(f[7], ev.wall_s)) throw InputError(name, lineno, "wall_s", "not a number: " + scene_io::quote(f[7]));
+  return ev;
 }
 
-void FitJournal::open(const fs::path& file, bool append) { read(file, append && fd_ < 0); }
+// What a strict read of a journal's text found.
+struct JournalScan {
+  std::uint64_t good_end = 0;  // bytes up to the end of the last good line
+  JournalDigest digest = JournalDigest::sha256;
+  std::size_t dropped = 0;     // torn or damaged tail lines
+  std::map<std::string, std::pair<Evaluation, int>> found;  // key → evaluation, line
+};
+
+// Reads a journal strictly: a torn last line, or a tail of damaged lines after the last good one
+// (a kill, a power cut before the flush), is dropped; a damaged line followed by good ones, a
+// wrong header or a malformed field is InputError.
+JournalScan scan_journal(const std::string& text, const std::string& name) {
+  JournalScan scan;
+  std::string line;
+  std::uint64_t offset = 0;
+  int lineno = 0;
+  int first_bad = 0;  // a damaged line: fatal if a good one follows, a dropped tail otherwise
+  for (std::size_t at = 0; at < text.size();) {
+    const std::size_t nl = text.find('\n', at);
+    line.assign(text, at, nl == std::string::npos ? std::string::npos : nl - at);
+    at = nl == std::string::npos ? text.size() : nl + 1;
+    ++lineno;
+    const bool whole = nl != std::string::npos;  // a last line without its newline is torn
+    const std::uint64_t end = offset + line.size() + (whole ? 1 : 0);
+    offset = end;
+    if (lineno == 1) {
+      if (!whole) break;  // torn header: as good as an empty journal
+      const std::optional<JournalDigest> d = journal_digest_of(line, kColumnsLine);
+      if (!d) throw InputError(name, 1, "header", "not an asperity fit journal (expected '" + journal_header(kColumnsLine) + "')");
+      scan.digest = *d;
+      scan.good_end = end;
+      continue;
+    }
+    std::string_view row;
+    if (!whole || !checked_journal_row(line, row, scan.digest)) {
+      if (first_bad == 0) first_bad = lineno;
+      continue;
+    }
+    if (first_bad != 0)
+      throw InputError(name, first_bad, "check",
+                       "damaged line (its checksum does not match) followed by good ones: the journal was edited or "
+                       "corrupted; remove that line or the folder");
+    std::vector<std::string> f;
+    try {
+      f = csv_split(row);
+    } catch (const std::exception& e) {
+      throw InputError(name, lineno, "part", e.what());
+    }
+    Evaluation ev = parse_evaluation(f, name, lineno);
+    scan.good_end = end;
+    scan.found[key_of(f[0], f[1], f[3])] = {std::move(ev), lineno};
+  }
+  if (first_bad != 0) scan.dropped = static_cast<std::size_t>(lineno - first_bad + 1);
+  return scan;
+}
+
+// A journal from before SHA-256: its good lines (checked with FNV-1a) re-digested, under a new header.
+std::string redigested(std::string_view text, JournalDigest digest) {
+  std::string out = journal_header(kColumnsLine) + "\n";
+  std::size_t at = text.find('\n') + 1;
+  for (std::size_t nl; at < text.size() && (nl = text.find('\n', at)) != std::string::npos; at = nl + 1) {
+    std::string_view row;
+    if (checked_journal_row(text.substr(at, nl - at), row, digest)) out += journal_line(row);
+  }
+  return out;
+}
+
+}  // namespace
 
 void FitJournal::read(const fs::path& file, bool append) {
   const std::string name = file.string();
-  std::uint64_t good_end = 0;  // bytes up to the end of the last good line
-  const std::string header = journal_header(kColumnsLine);
-  JournalDigest digest = JournalDigest::sha256;
+  JournalScan scan;
   // Read without following a link, a regular file only (a FIFO would block): io/safe_open.hpp.
   std::string text;
   if (read_regular(file, text, "--out")) {
-    std::string line;
-    std::uint64_t offset = 0;
-    int lineno = 0;
-    int first_bad = 0;  // a damaged line: fatal if a good one follows, a dropped tail otherwise
-    std::map<std::string, std::pair<Evaluation, int>> found;  // → evaluation, line
-    for (std::size_t at = 0; at < text.size();) {
-      const std::size_t nl = text.find('\n', at);
-      line.assign(text, at, nl == std::string::npos ? std::string::npos : nl - at);
-      at = nl == std::string::npos ? text.size() : nl + 1;
-      ++lineno;
-      const bool whole = nl != std::string::npos;  // a last line without its newline is torn
-      const std::uint64_t end = offset + line.size() + (whole ? 1 : 0);
-      offset = end;
-      if (lineno == 1) {
-        if (!whole) break;  // torn header: as good as an empty journal
-        const std::optional<JournalDigest> d = journal_digest_of(line, kColumnsLine);
-        if (!d) throw InputError(name, 1, "header", "not an asperity fit journal (expected '" + header + "')");
-        digest = *d;
-        good_end = end;
-        continue;
-      }
-      std::string_view row;
-      if (!whole || !checked_journal_row(line, row, digest)) {
-        if (first_bad == 0) first_bad = lineno;
-        continue;
-      }
-      if (first_bad != 0)
-        throw InputError(name, first_bad, "check",
-                         "damaged line (its checksum does not match) followed by good ones: the journal was edited or "
-                         "corrupted; remove that line or the folder");
-      std::vector<std::string> f;
-      try {
-        f = csv_split(row);
-      } catch (const std::exception& e) {
-        throw InputError(name, lineno, "part", e.what());
-      }
-      if (f.size() != 8)
-        throw InputError(name, lineno, f.size() < 8 ? kColumns[f.size()] : "check",
-                         "expected 8 fields and a checksum, got " + std::to_string(f.size()) + " fields");
-      Evaluation ev;
-      std::vector<double> wall;
-      if (!scene_io::parse_int(f[2], ev.index) || ev.index < 1)
-        throw InputError(name, lineno, "evaluation", "not a positive whole number: " + scene_io::quote(f[2]));
-      if (!parse_list(f[3], ev.values) || ev.values.empty())
-        throw InputError(name, lineno, "x", "not a ';'-separated list of numbers: " + scene_io::quote(f[3]));
-      if (!parse_number(f[4], ev.objective))
-        throw InputError(name, lineno, "objective", "not a number: " + scene_io::quote(f[4]));
-      if (!parse_list(f[5], ev.residuals))
-        throw InputError(name, lineno, "terms", "not a ';'-separated list of numbers: " + scene_io::quote(f[5]));
-      if (f[6].empty()) throw InputError(name, lineno, "status", "empty");
-      ev.status = f[6];
-      if (!parse_number(f[7], ev.wall_s)) throw InputError(name, lineno, "wall_s", "not a number: " + scene_io::quote(f[7]));
-      good_end = end;
-      found[key_of(f[0], f[1], f[3])] = {std::move(ev), lineno};
-    }
-    if (first_bad != 0) dropped_ += static_cast<std::size_t>(lineno - first_bad + 1);
+    scan = scan_journal(text, name);
+    dropped_ += scan.dropped;
     const std::lock_guard<std::mutex> lock(mutex_);
-    for (auto& [k, ev] : found)  // the first file read wins
+    for (auto& [k, ev] : scan.found)  // the first file read wins
       if (index_.emplace(k, std::move(ev.first)).second) where_.emplace(k, std::make_pair(name, ev.second));
   }
   files_.push_back(file);
   if (!append) return;
-  if (good_end == 0) {
-    write_file_durably(file, header + "\n");
-  } else if (digest == JournalDigest::fnv1a64_legacy) {
-    // A journal from before SHA-256: its good lines (checked with FNV-1a above) re-digested and
-    // written atomically in its place; a torn or damaged tail goes with it.
-    text.resize(good_end);
-    std::string out = header + "\n";
-    std::size_t at = text.find('\n') + 1;
-    for (std::size_t nl; at < text.size() && (nl = text.find('\n', at)) != std::string::npos; at = nl + 1) {
-      std::string_view row;
-      if (checked_journal_row(std::string_view(text).substr(at, nl - at), row, digest)) out += journal_line(row);
-    }
-    write_file_durably(file, out);
+  if (scan.good_end == 0) {
+    write_file_durably(file, journal_header(kColumnsLine) + "\n");
+  } else if (scan.digest == JournalDigest::fnv1a64_legacy) {
+    // Written atomically in its place; a torn or damaged tail goes with it.
+    text.resize(scan.good_end);
+    write_file_durably(file, redigested(text, scan.digest));
   }
-  fd_ = open_regular(file, O_WRONLY | O_APPEND, "--out");
-  if (fd_ < 0) throw std::runtime_error("cannot open " + name + ": " + std::strerror(errno));
-  if (good_end < text.size() && ::ftruncate(fd_, static_cast<off_t>(good_end)) != 0)
-    // Only a torn or damaged tail is cut (what follows the last good line), so nothing computed
-    // is lost; the sync below makes the cut survive a power cut too.
-    throw std::runtime_error("cannot cut the torn tail of " + name + ": " + std::strerror(errno));
-  if (::fdatasync(fd_) != 0) throw std::runtime_error("cannot sync " + name + ": " + std::strerror(errno));
-  appending_ = file;
+  file_ = std::make_unique<JournalFile>(file, false, name);
+  if (scan.good_end < text.size()) file_->cut(scan.good_end);  // only a torn or damaged tail: nothing computed is lost
+  else file_->sync();
 }
 
 std::optional<Evaluation> FitJournal::find(const std::string& part, const std::string& optimization,
@@ -173,9 +189,8 @@ void FitJournal::append(const std::string& part, const std::string& optimization
                           csv_number(ev.objective) + "," + journal_values(ev.residuals) + "," + csv_field(ev.status) + "," +
                           csv_number(ev.wall_s);
   const std::lock_guard<std::mutex> lock(mutex_);
-  if (fd_ < 0) throw std::logic_error("FitJournal::append: no journal opened for appending");
-  if (!write_fully(fd_, journal_line(row)) || ::fdatasync(fd_) != 0)
-    throw std::runtime_error("cannot write " + appending_.string() + ": " + std::strerror(errno));
+  if (!file_) throw std::logic_error("FitJournal::append: no journal opened for appending");
+  file_->append_durably(row);
   index_.emplace(key_of(part, optimization, x), ev);
 }
 
@@ -201,14 +216,14 @@ std::unique_ptr<DirLock> lock_fit_journal_dir(const fs::path& dir, const std::st
 }
 
 void open_fit_journal(FitJournal& journal, const fs::path& dir, const std::string& inputs) {
-  const fs::path file = dir / "journal.csv", in = dir / "inputs.txt";
+  const fs::path file = dir / "journal.csv", in = dir / kInputsFileName;
   if (fs::exists(file)) {
     if (!fs::exists(in))
       throw InputError(file.string(), 0, "", "no inputs.txt beside it, so what its evaluations were computed from is "
                                              "unknown; use another --out or remove the folder");
     check_fit_inputs(in, inputs);
   } else {
-    write_file_durably(in, inputs);
+    write_inputs(dir, inputs);
   }
   journal.open(file, true);
 }

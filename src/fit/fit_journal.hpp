@@ -29,6 +29,7 @@
 #include <utility>
 #include <vector>
 
+#include "batch/journal_file.hpp"
 #include "fit/fit.hpp"
 #include "io/dir_lock.hpp"
 
@@ -65,8 +66,7 @@ class FitJournal {
   std::map<std::string, Evaluation> index_;  // part '\n' optimization '\n' x text → evaluation
   std::map<std::string, std::pair<std::string, int>> where_;  // the same key → file, line it was read from
   std::vector<std::filesystem::path> files_;
-  std::filesystem::path appending_;
-  int fd_ = -1;
+  std::unique_ptr<JournalFile> file_;  // the one file append()s go to
   std::size_t dropped_ = 0;
 };
 

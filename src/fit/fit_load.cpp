@@ -8,7 +8,6 @@
 #include <cmath>
 #include <cstdio>
 #include <optional>
-#include <set>
 #include <system_error>
 
 #include "io/numbers.hpp"
@@ -69,20 +68,8 @@ struct ParamNodes {  // where each parameter's values were written (for errors f
   YAML::Node key, lo, hi, start;
 };
 
-// The fit tree `root_node` (a file's, or one given in memory: `path` empty) → FitSpec; relative
-// scene paths resolve against `base`, errors name `display`.
-FitSpec fit_from_tree(const YAML::Node& root_node, const fs::path& path, const fs::path& base, const std::string& display,
-                      const std::vector<std::string>& overrides, const FitLoadOptions& options) {
-  const Source src{display, nullptr};
-  const MapView root(src, root_node, "", kFitKeys, path.empty() ? 0 : 1);  // a tree in memory has no lines
-
-  FitSpec spec;
-  if (!path.empty()) {
-    std::error_code ec;
-    spec.file = fs::weakly_canonical(fs::absolute(path), ec);
-    if (ec) spec.file = fs::absolute(path).lexically_normal();
-  }
-
+// What the fit's top-level keys name: name, description, objective, separate.
+void read_fit_header(const MapView& root, const fs::path& path, const FitLoadOptions& options, FitSpec& spec) {
   if (auto n = root.find("name")) {
     spec.name = root.string(*n, "name");
     if (!all_names_ok(spec.name))
@@ -104,271 +91,338 @@ FitSpec fit_from_tree(const YAML::Node& root_node, const fs::path& path, const f
                                                      {"stick_slip", FitObjective::stick_slip}});
   }
   if (auto n = root.find("separate")) spec.separate = root.boolean(*n, "separate");
+}
 
-  // --- parameters ---------------------------------------------------------------------------
+// One free parameter `key` from its map {lo:, hi:, start:, scale:, per_experiment:}.
+FitParameter read_parameter(const Source& src, const MapView& params, const std::string& key, const YAML::Node& node,
+                            const FitSpec& spec, ParamNodes& nodes) {
+  const MapView p(src, node, params.key(key), kParameterKeys);
+  if (!node.IsMap()) params.fail_at(node, key, "expected a map {lo:, hi:, start:}, got " + node_kind(node));
+  FitParameter fp;
+  fp.key = key;
+  nodes.lo = p.require("lo"), nodes.hi = p.require("hi"), nodes.start = p.require("start");
+  const char* unit = unit_of(key);
+  fp.lo = p.number(nodes.lo, "lo", unit);
+  fp.hi = p.number(nodes.hi, "hi", unit);
+  fp.start = p.number(nodes.start, "start", unit);
+  if (!(fp.lo < fp.hi)) p.fail_at(nodes.hi, "hi", "must be > lo = " + format_double(fp.lo) + ", got " + format_double(fp.hi));
+  if (!(fp.start >= fp.lo && fp.start <= fp.hi))
+    p.fail_at(nodes.start, "start", "must be in [lo, hi] = [" + format_double(fp.lo) + ", " +
+                                        format_double(fp.hi) + "], got " + format_double(fp.start));
+  if (auto s = p.find("scale")) {
+    fp.log_scale = p.enumeration<bool>(*s, "scale", {{"linear", false}, {"log", true}});
+    if (fp.log_scale && !(fp.lo > 0)) p.fail_at(*s, "scale", "log scale needs lo > 0, got lo = " + format_double(fp.lo));
+  }
+  if (auto s = p.find("per_experiment")) {
+    fp.per_experiment = p.boolean(*s, "per_experiment");
+    if (fp.per_experiment && spec.separate)
+      p.fail_at(*s, "per_experiment", "has no effect with separate: true (every parameter is then per experiment); remove it");
+  }
+  return fp;
+}
+
+// `parameters:` into spec.parameters; where each one's values were written.
+std::vector<ParamNodes> read_parameters(const Source& src, const MapView& root, FitSpec& spec) {
   std::vector<ParamNodes> pnodes;
-  {
-    const YAML::Node pn = root.require("parameters");
-    if (!pn.IsMap() || pn.size() == 0)
-      root.fail_at(pn, "parameters", "expected a map of free parameters, e.g. {model.alpha_b: {lo: 1e-16, hi: 3e-15, start: 7.25e-16}}, got " + node_kind(pn));
-    const MapView params(src, pn, "parameters", numeric_scene_keys());
-    for (auto it = pn.begin(); it != pn.end(); ++it) {
-      const std::string key = it->first.Scalar();
-      const MapView p(src, it->second, params.key(key), kParameterKeys);
-      if (!it->second.IsMap()) params.fail_at(it->second, key, "expected a map {lo:, hi:, start:}, got " + node_kind(it->second));
-      FitParameter fp;
-      fp.key = key;
-      ParamNodes nodes{it->first, p.require("lo"), p.require("hi"), p.require("start")};
-      const char* unit = unit_of(key);
-      fp.lo = p.number(nodes.lo, "lo", unit);
-      fp.hi = p.number(nodes.hi, "hi", unit);
-      fp.start = p.number(nodes.start, "start", unit);
-      if (!(fp.lo < fp.hi))
-        p.fail_at(nodes.hi, "hi", "must be > lo = " + format_double(fp.lo) + ", got " + format_double(fp.hi));
-      if (!(fp.start >= fp.lo && fp.start <= fp.hi))
-        p.fail_at(nodes.start, "start", "must be in [lo, hi] = [" + format_double(fp.lo) + ", " +
-                                            format_double(fp.hi) + "], got " + format_double(fp.start));
-      if (auto s = p.find("scale")) {
-        fp.log_scale = p.enumeration<bool>(*s, "scale", {{"linear", false}, {"log", true}});
-        if (fp.log_scale && !(fp.lo > 0))
-          p.fail_at(*s, "scale", "log scale needs lo > 0, got lo = " + format_double(fp.lo));
-      }
-      if (auto s = p.find("per_experiment")) {
-        fp.per_experiment = p.boolean(*s, "per_experiment");
-        if (fp.per_experiment && spec.separate)
-          p.fail_at(*s, "per_experiment", "has no effect with separate: true (every parameter is then per experiment); remove it");
-      }
-      spec.parameters.push_back(fp);
-      pnodes.push_back(nodes);
+  const YAML::Node pn = root.require("parameters");
+  if (!pn.IsMap() || pn.size() == 0)
+    root.fail_at(pn, "parameters", "expected a map of free parameters, e.g. {model.alpha_b: {lo: 1e-16, hi: 3e-15, start: 7.25e-16}}, got " + node_kind(pn));
+  const MapView params(src, pn, "parameters", numeric_scene_keys());
+  for (auto it = pn.begin(); it != pn.end(); ++it) {
+    ParamNodes nodes{it->first, {}, {}, {}};
+    spec.parameters.push_back(read_parameter(src, params, it->first.Scalar(), it->second, spec, nodes));
+    pnodes.push_back(nodes);
+  }
+  return pnodes;
+}
+
+// An entry of `experiments:` as written: a scene path, or a map {scene:, set:, target:}.
+struct ExperimentEntry {
+  YAML::Node scene_node;
+  std::optional<MapView> view;                                  // the map form's
+  std::vector<std::pair<std::string, std::string>> fixed;       // settings, in order
+  std::vector<std::pair<std::string, YAML::Node>> set_nodes;    // where each `set` key was written
+  StickSlipTarget target;
+  bool has_target = false;
+};
+
+ExperimentEntry read_entry(const Source& src, const MapView& root, const YAML::Node& en, std::size_t i, const FitSpec& spec) {
+  const YAML::Node item = en[i];
+  const std::string ikey = "experiments[" + std::to_string(i) + "]";
+  ExperimentEntry x;
+  if (item.IsScalar()) {
+    x.scene_node = item;
+    return x;
+  }
+  if (!item.IsMap())
+    root.fail_at(item.Mark().is_null() ? en : item, ikey, "expected a scene path or a map {scene: path, set: {...}}, got " + node_kind(item));
+  MapView& ev = x.view.emplace(src, item, ikey, kExperimentKeys);
+  x.scene_node = ev.require("scene");
+  if (auto s = ev.find("set")) {
+    if (!s->IsMap()) ev.fail_at(*s, "set", "expected a map of dotted scene keys, e.g. {model.eta: 50}, got " + node_kind(*s));
+    for (auto it = s->begin(); it != s->end(); ++it) {
+      if (!it->first.IsScalar()) ev.fail_at(it->first, "set", "keys must be dotted scene keys");
+      const std::string k = it->first.Scalar();
+      if (std::any_of(spec.parameters.begin(), spec.parameters.end(), [&](const FitParameter& p) { return p.key == k; }))
+        ev.fail_at(it->first, "set." + k, "is a free parameter of this fit; it cannot also be set");
+      YAML::Emitter out;
+      out << YAML::Flow << it->second;
+      x.fixed.emplace_back(k, out.c_str());
+      x.set_nodes.emplace_back(k, it->first);
     }
   }
+  if (auto t = ev.find("target")) {
+    if (spec.objective != FitObjective::stick_slip)
+      ev.fail_at(*t, "target", std::string("stick-slip targets are used by the stick_slip objective only, not ") + objective_name(spec.objective));
+    const MapView tv(src, *t, ev.key("target"), kTargetKeys);
+    x.target.drop_N = positive(tv, tv.require("drop"), "drop", "N");
+    x.target.period_s = positive(tv, tv.require("period"), "period", "s");
+    x.has_target = true;
+  }
+  return x;
+}
 
-  // --- experiments --------------------------------------------------------------------------
-  {
-    const YAML::Node en = root.require("experiments");
-    if (!en.IsSequence() || en.size() == 0)
-      root.fail_at(en, "experiments", "expected a non-empty list of scene files, got " + node_kind(en));
-    std::set<std::string> names;
-    for (std::size_t i = 0; i < en.size(); ++i) {
-      const YAML::Node item = en[i];
-      const std::string ikey = "experiments[" + std::to_string(i) + "]";
-      YAML::Node scene_node;
-      std::optional<MapView> ev;
-      std::vector<std::pair<std::string, std::string>> fixed;
-      std::vector<std::pair<std::string, YAML::Node>> set_nodes;
-      FitExperiment fe;
-      bool has_target = false;
-      if (item.IsScalar()) {
-        scene_node = item;
-      } else if (item.IsMap()) {
-        ev.emplace(src, item, ikey, kExperimentKeys);
-        scene_node = ev->require("scene");
-        if (auto s = ev->find("set")) {
-          if (!s->IsMap()) ev->fail_at(*s, "set", "expected a map of dotted scene keys, e.g. {model.eta: 50}, got " + node_kind(*s));
-          for (auto it = s->begin(); it != s->end(); ++it) {
-            if (!it->first.IsScalar()) ev->fail_at(it->first, "set", "keys must be dotted scene keys");
-            const std::string k = it->first.Scalar();
-            if (std::any_of(spec.parameters.begin(), spec.parameters.end(), [&](const FitParameter& p) { return p.key == k; }))
-              ev->fail_at(it->first, "set." + k, "is a free parameter of this fit; it cannot also be set");
-            YAML::Emitter out;
-            out << YAML::Flow << it->second;
-            fixed.emplace_back(k, out.c_str());
-            set_nodes.emplace_back(k, it->first);
-          }
-        }
-        if (auto t = ev->find("target")) {
-          if (spec.objective != FitObjective::stick_slip)
-            ev->fail_at(*t, "target", std::string("stick-slip targets are used by the stick_slip objective only, not ") + objective_name(spec.objective));
-          const MapView tv(src, *t, ev->key("target"), kTargetKeys);
-          fe.target.drop_N = positive(tv, tv.require("drop"), "drop", "N");
-          fe.target.period_s = positive(tv, tv.require("period"), "period", "s");
-          has_target = true;
-        }
-      } else {
-        root.fail_at(item.Mark().is_null() ? en : item, ikey, "expected a scene path or a map {scene: path, set: {...}}, got " + node_kind(item));
-      }
-      const MapView& sv = ev ? *ev : root;
-      const std::string skey = ev ? "scene" : ikey;
-      const std::string rel = sv.string(scene_node, skey);
-      const fs::path scene_path = base / fs::path(rel);
-      {
-        std::error_code e2;
-        const auto st = fs::status(scene_path, e2);
-        if (!fs::exists(st)) sv.fail_at(scene_node, skey, "scene file not found: " + quote(rel) + " (looked for " + display_path(scene_path) + ")");
-        if (fs::is_directory(st)) sv.fail_at(scene_node, skey, "scene file is a directory: " + display_path(scene_path));
-      }
-      if (spec.objective == FitObjective::stick_slip && !has_target)
-        sv.fail_at(item, ev ? "target" : ikey, "the stick_slip objective needs target: {drop: N, period: s} for every experiment");
-      if (!overrides.empty()) {  // before the objective's forced settings, which win
-        (void)load_scene(scene_path, overrides);  // each --set checked on this scene, with its message
-        for (const std::string& o : overrides) {
-          const std::size_t eq = o.find('=');
-          fixed.emplace_back(o.substr(0, eq), eq == std::string::npos ? "" : o.substr(eq + 1));
-        }
-      }
-      for (const auto& f : forced_settings(spec.objective, options.user_series)) fixed.push_back(f);
+// The measured A(Q) curve an objective needs, checked; an error is located at the experiment
+// file's `measured:` line, the key the user would fix.
+void check_measured(const Scene& scene, const std::string& name, const FitSpec& spec, const MapView& sv,
+                    const YAML::Node& scene_node, const std::string& skey, const std::string& display) {
+  const bool needs_measured = spec.objective == FitObjective::quadratic_alpha || spec.objective == FitObjective::area_curve;
+  if (!needs_measured) return;
+  if (!scene.experiment.measured)
+    sv.fail_at(scene_node, skey, std::string("objective ") + objective_name(spec.objective) +
+                                     " needs a measured A(Q) curve, and experiment " + quote(name) + " (" +
+                                     display_path(scene.experiment.file) + ") has none (key `measured`)");
+  double A0_sum = 0;
+  for (const double a : scene.experiment.junctions.area_m2) A0_sum += a;
+  const std::string why = measured_curve_problem(*scene.experiment.measured, A0_sum);
+  if (why.empty()) return;
+  const fs::path& ef = scene.experiment.file;
+  const std::string edisplay = display_path(ef);
+  int line = 0;
+  try {
+    const YAML::Node m = load_yaml_file(ef, edisplay)["measured"];
+    if (m.IsDefined()) line = m.Mark().line + 1;
+  } catch (const std::exception&) {
+    // the file was read a moment ago; without it the message keeps no line
+  }
+  throw InputError(edisplay, line, "measured",
+                   why + " (" + display_path(scene.experiment.measured_file) + ", experiment " + quote(name) + " of " +
+                       display + ")");
+}
 
-      Scene base_scene;
+// Every value the optimizer may try must make a valid scene: the bounds checked on `fe`.
+void check_bounds(const Source& src, const MapView& root, const FitSpec& spec, const std::vector<ParamNodes>& pnodes,
+                  const FitExperiment& fe) {
+  for (std::size_t j = 0; j < spec.parameters.size(); ++j) {
+    const FitParameter& p = spec.parameters[j];
+    for (const auto& [which, x, node] : {std::tuple{"lo", p.lo, pnodes[j].lo}, std::tuple{"hi", p.hi, pnodes[j].hi}}) {
       try {
-        fe.scene = SceneTemplate::load(scene_path, fixed);
-        base_scene = fe.scene.build();
+        fe.scene.build({{p.key, x}});
       } catch (const InputError& e) {
-        // A value from `set` carries no line of the scene file: name the fit file's line.
-        for (const auto& [k, kn] : set_nodes)
-          if (e.line == 0 && (e.key == k || e.key.rfind(k + ".", 0) == 0 || k.rfind(e.key, 0) == 0))
-            ev->fail_at(kn, "set." + k, e.message);
-        throw;
+        const MapView pv(src, root.require("parameters")[p.key], "parameters." + p.key, kParameterKeys);
+        pv.fail_at(node, which, "invalid for experiment " + quote(fe.name) + ": " + e.message);
       }
-      fe.name = base_scene.experiment.name;
-      if (!names.insert(fe.name).second)
-        sv.fail_at(scene_node, skey, "experiment " + quote(fe.name) + " is listed twice (outputs are named after it)");
-      const bool needs_measured = spec.objective == FitObjective::quadratic_alpha || spec.objective == FitObjective::area_curve;
-      if (needs_measured && !base_scene.experiment.measured)
-        sv.fail_at(scene_node, skey, std::string("objective ") + objective_name(spec.objective) +
-                                         " needs a measured A(Q) curve, and experiment " + quote(fe.name) + " (" +
-                                         display_path(base_scene.experiment.file) + ") has none (key `measured`)");
-      if (needs_measured) {
-        double A0_sum = 0;
-        for (const double a : base_scene.experiment.junctions.area_m2) A0_sum += a;
-        if (const std::string why = measured_curve_problem(*base_scene.experiment.measured, A0_sum); !why.empty()) {
-          // Located at the experiment file's `measured:` line, the key the user would fix.
-          const fs::path& ef = base_scene.experiment.file;
-          const std::string edisplay = display_path(ef);
-          int line = 0;
-          try {
-            const YAML::Node m = load_yaml_file(ef, edisplay)["measured"];
-            if (m.IsDefined()) line = m.Mark().line + 1;
-          } catch (const std::exception&) {
-            // the file was read a moment ago; without it the message keeps no line
-          }
-          throw InputError(edisplay, line, "measured",
-                           why + " (" + display_path(base_scene.experiment.measured_file) + ", experiment " +
-                               quote(fe.name) + " of " + display + ")");
-        }
-      }
-      // Every value the optimizer may try must make a valid scene: check the bounds now.
-      for (std::size_t j = 0; j < spec.parameters.size(); ++j) {
-        const FitParameter& p = spec.parameters[j];
-        for (const auto& [which, x, node] : {std::tuple{"lo", p.lo, pnodes[j].lo}, std::tuple{"hi", p.hi, pnodes[j].hi}}) {
-          try {
-            fe.scene.build({{p.key, x}});
-          } catch (const InputError& e) {
-            const MapView pv(src, root.require("parameters")[p.key], "parameters." + p.key, kParameterKeys);
-            pv.fail_at(node, which, "invalid for experiment " + quote(fe.name) + ": " + e.message);
-          }
-        }
-      }
-      spec.experiments.push_back(std::move(fe));
     }
   }
+}
 
-  // --- optimizer ----------------------------------------------------------------------------
+// Where a fit's experiments resolve their scenes and what they add to them.
+struct ExperimentContext {
+  const Source& src;
+  const MapView& root;
+  const fs::path& base;
+  const std::string& display;
+  const std::vector<std::string>& overrides;
+  const FitLoadOptions& options;
+};
+
+// Experiment i of `experiments:` (en): its scene template with every setting, checked.
+FitExperiment read_experiment(const ExperimentContext& cx, const YAML::Node& en, std::size_t i, const FitSpec& spec,
+                              const std::vector<ParamNodes>& pnodes) {
+  ExperimentEntry x = read_entry(cx.src, cx.root, en, i, spec);
+  const MapView& sv = x.view ? *x.view : cx.root;
+  const std::string skey = x.view ? "scene" : "experiments[" + std::to_string(i) + "]";
+  const std::string rel = sv.string(x.scene_node, skey);
+  const fs::path scene_path = cx.base / fs::path(rel);
+  {
+    std::error_code e2;
+    const auto st = fs::status(scene_path, e2);
+    if (!fs::exists(st)) sv.fail_at(x.scene_node, skey, "scene file not found: " + quote(rel) + " (looked for " + display_path(scene_path) + ")");
+    if (fs::is_directory(st)) sv.fail_at(x.scene_node, skey, "scene file is a directory: " + display_path(scene_path));
+  }
+  if (spec.objective == FitObjective::stick_slip && !x.has_target)
+    sv.fail_at(en[i], x.view ? "target" : skey, "the stick_slip objective needs target: {drop: N, period: s} for every experiment");
+  if (!cx.overrides.empty()) {  // before the objective's forced settings, which win
+    (void)load_scene(scene_path, cx.overrides);  // each --set checked on this scene, with its message
+    for (const std::string& o : cx.overrides) {
+      const std::size_t eq = o.find('=');
+      x.fixed.emplace_back(o.substr(0, eq), eq == std::string::npos ? "" : o.substr(eq + 1));
+    }
+  }
+  for (const auto& f : forced_settings(spec.objective, cx.options.user_series)) x.fixed.push_back(f);
+  FitExperiment fe;
+  fe.target = x.target;
+  Scene base_scene;
+  try {
+    fe.scene = SceneTemplate::load(scene_path, x.fixed);
+    base_scene = fe.scene.build();
+  } catch (const InputError& e) {
+    // A value from `set` carries no line of the scene file: name the fit file's line.
+    for (const auto& [k, kn] : x.set_nodes)
+      if (e.line == 0 && (e.key == k || e.key.rfind(k + ".", 0) == 0 || k.rfind(e.key, 0) == 0))
+        x.view->fail_at(kn, "set." + k, e.message);
+    throw;
+  }
+  fe.name = base_scene.experiment.name;
+  if (std::any_of(spec.experiments.begin(), spec.experiments.end(), [&](const FitExperiment& o) { return o.name == fe.name; }))
+    sv.fail_at(x.scene_node, skey, "experiment " + quote(fe.name) + " is listed twice (outputs are named after it)");
+  check_measured(base_scene, fe.name, spec, sv, x.scene_node, skey, cx.display);
+  check_bounds(cx.src, cx.root, spec, pnodes, fe);
+  return fe;
+}
+
+// `optimizer:` into spec; the node that named the algorithm (undefined: none).
+YAML::Node read_optimizer(const Source& src, const MapView& root, FitSpec& spec) {
   YAML::Node algorithm_node;
-  if (auto on = root.find("optimizer")) {
-    const MapView o(src, *on, "optimizer", kOptimizerKeys);
-    if (auto n = o.find("algorithm")) {
-      spec.algorithm = o.string(*n, "algorithm");
-      if (const std::string why = check_fit_algorithm(spec.algorithm); !why.empty()) o.fail_at(*n, "algorithm", why);
-      algorithm_node = *n;
-    }
-    if (auto n = o.find("xtol_rel")) {
-      spec.xtol_rel = o.number(*n, "xtol_rel", nullptr);
-      if (!(spec.xtol_rel > 0 && spec.xtol_rel < 1)) o.fail_at(*n, "xtol_rel", "must be in (0, 1), got " + format_double(spec.xtol_rel));
-    }
-    if (auto n = o.find("ftol_rel")) {
-      spec.ftol_rel = o.number(*n, "ftol_rel", nullptr);
-      if (!(spec.ftol_rel >= 0 && spec.ftol_rel < 1)) o.fail_at(*n, "ftol_rel", "must be in [0, 1) (0: off), got " + format_double(spec.ftol_rel));
-    }
-    if (auto n = o.find("ftol_abs")) {
-      spec.ftol_abs = o.number(*n, "ftol_abs", nullptr);
-      if (!(spec.ftol_abs >= 0)) o.fail_at(*n, "ftol_abs", "must be >= 0 (0: off), got " + format_double(spec.ftol_abs));
-    }
-    if (auto n = o.find("max_evaluations")) {
-      spec.max_evaluations = o.integer(*n, "max_evaluations");
-      if (spec.max_evaluations < 1) o.fail_at(*n, "max_evaluations", "must be >= 1, got " + std::to_string(spec.max_evaluations));
-    }
-    if (auto n = o.find("initial_step")) {
-      spec.initial_step = o.number(*n, "initial_step", nullptr);
-      if (!(spec.initial_step > 0 && spec.initial_step <= 1))
-        o.fail_at(*n, "initial_step", "must be in (0, 1] (a fraction of each parameter's scaled range), got " + format_double(spec.initial_step));
-    }
+  const auto on = root.find("optimizer");
+  if (!on) return algorithm_node;
+  const MapView o(src, *on, "optimizer", kOptimizerKeys);
+  if (auto n = o.find("algorithm")) {
+    spec.algorithm = o.string(*n, "algorithm");
+    if (const std::string why = check_fit_algorithm(spec.algorithm); !why.empty()) o.fail_at(*n, "algorithm", why);
+    algorithm_node = *n;
   }
-  {  // The algorithm must accept this many variables (e.g. LN_NEWUOA_BOUND needs ≥ 2).
-    std::size_t n = 0;
-    for (const auto& p : spec.parameters) n += (p.per_experiment && !spec.separate) ? spec.experiments.size() : 1;
-    try {
-      nlopt::opt trial(static_cast<nlopt::algorithm>(nlopt_algorithm_from_string(spec.algorithm.c_str())), static_cast<unsigned>(n));
-      trial.set_lower_bounds(std::vector<double>(n, 0.0));
-      trial.set_upper_bounds(std::vector<double>(n, 1.0));
-      trial.set_min_objective([](unsigned m, const double* x, double*, void*) {
-        double s = 0;
-        for (unsigned i = 0; i < m; ++i) s += (x[i] - 0.3) * (x[i] - 0.3);
-        return s;
-      }, nullptr);
-      trial.set_maxeval(3);
-      std::vector<double> x(n, 0.5);
-      double f = 0;
-      trial.optimize(x, f);
-    } catch (const std::invalid_argument& e) {
-      const std::string msg = "NLopt rejects " + spec.algorithm + " with " + std::to_string(n) + " free variable(s): " + e.what();
-      if (algorithm_node.IsDefined()) root.fail_at(algorithm_node, "optimizer.algorithm", msg);
-      throw InputError(display, 0, "optimizer.algorithm", msg);
-    } catch (const std::exception&) {
-      // Other stops of a 3-evaluation trial (e.g. roundoff) say nothing about the input.
-    }
+  if (auto n = o.find("xtol_rel")) {
+    spec.xtol_rel = o.number(*n, "xtol_rel", nullptr);
+    if (!(spec.xtol_rel > 0 && spec.xtol_rel < 1)) o.fail_at(*n, "xtol_rel", "must be in (0, 1), got " + format_double(spec.xtol_rel));
   }
+  if (auto n = o.find("ftol_rel")) {
+    spec.ftol_rel = o.number(*n, "ftol_rel", nullptr);
+    if (!(spec.ftol_rel >= 0 && spec.ftol_rel < 1)) o.fail_at(*n, "ftol_rel", "must be in [0, 1) (0: off), got " + format_double(spec.ftol_rel));
+  }
+  if (auto n = o.find("ftol_abs")) {
+    spec.ftol_abs = o.number(*n, "ftol_abs", nullptr);
+    if (!(spec.ftol_abs >= 0)) o.fail_at(*n, "ftol_abs", "must be >= 0 (0: off), got " + format_double(spec.ftol_abs));
+  }
+  if (auto n = o.find("max_evaluations")) {
+    spec.max_evaluations = o.integer(*n, "max_evaluations");
+    if (spec.max_evaluations < 1) o.fail_at(*n, "max_evaluations", "must be >= 1, got " + std::to_string(spec.max_evaluations));
+  }
+  if (auto n = o.find("initial_step")) {
+    spec.initial_step = o.number(*n, "initial_step", nullptr);
+    if (!(spec.initial_step > 0 && spec.initial_step <= 1))
+      o.fail_at(*n, "initial_step", "must be in (0, 1] (a fraction of each parameter's scaled range), got " + format_double(spec.initial_step));
+  }
+  return algorithm_node;
+}
 
-  // --- profile ------------------------------------------------------------------------------
-  if (auto pn = root.find("profile")) {
-    if (pn->IsScalar()) {
-      spec.profile = root.boolean(*pn, "profile");
-    } else {
-      const MapView p(src, *pn, "profile", kProfileKeys);
-      if (auto n = p.find("parameter")) {
-        const std::string k = p.string(*n, "parameter");
-        const auto it = std::find_if(spec.parameters.begin(), spec.parameters.end(), [&](const FitParameter& q) { return q.key == k; });
-        if (it == spec.parameters.end()) {
-          std::vector<std::string> keys;
-          for (const auto& q : spec.parameters) keys.push_back(q.key);
-          p.fail_at(*n, "parameter", "not a free parameter of this fit: " + quote(k) + did_you_mean(k, keys) + "; free: " + join(keys));
+// The algorithm must accept this many variables (e.g. LN_NEWUOA_BOUND needs ≥ 2): a 3-evaluation trial.
+void check_algorithm_accepts(const FitSpec& spec, const MapView& root, const YAML::Node& algorithm_node,
+                             const std::string& display) {
+  std::size_t n = 0;
+  for (const auto& p : spec.parameters) n += (p.per_experiment && !spec.separate) ? spec.experiments.size() : 1;
+  try {
+    nlopt::opt trial(static_cast<nlopt::algorithm>(nlopt_algorithm_from_string(spec.algorithm.c_str())), static_cast<unsigned>(n));
+    trial.set_lower_bounds(std::vector<double>(n, 0.0));
+    trial.set_upper_bounds(std::vector<double>(n, 1.0));
+    trial.set_min_objective([](unsigned m, const double* x, double*, void*) {
+      double s = 0;
+      for (unsigned i = 0; i < m; ++i) s += (x[i] - 0.3) * (x[i] - 0.3);
+      return s;
+    }, nullptr);
+    trial.set_maxeval(3);
+    std::vector<double> x(n, 0.5);
+    double f = 0;
+    trial.optimize(x, f);
+  } catch (const std::invalid_argument& e) {
+    const std::string msg = "NLopt rejects " + spec.algorithm + " with " + std::to_string(n) + " free variable(s): " + e.what();
+    if (algorithm_node.IsDefined()) root.fail_at(algorithm_node, "optimizer.algorithm", msg);
+    throw InputError(display, 0, "optimizer.algorithm", msg);
+  } catch (const std::exception&) {
+    // Other stops of a 3-evaluation trial (e.g. roundoff) say nothing about the input.
+  }
+}
+
+// `profile:` (a flag, or a map {parameter:, span:, points:}) into spec.
+void read_profile(const Source& src, const MapView& root, FitSpec& spec) {
+  const auto pn = root.find("profile");
+  if (!pn) return;
+  if (pn->IsScalar()) {
+    spec.profile = root.boolean(*pn, "profile");
+    return;
+  }
+  const MapView p(src, *pn, "profile", kProfileKeys);
+  if (auto n = p.find("parameter")) {
+    const std::string k = p.string(*n, "parameter");
+    const auto it = std::find_if(spec.parameters.begin(), spec.parameters.end(), [&](const FitParameter& q) { return q.key == k; });
+    if (it == spec.parameters.end()) {
+      std::vector<std::string> keys;
+      for (const auto& q : spec.parameters) keys.push_back(q.key);
+      p.fail_at(*n, "parameter", "not a free parameter of this fit: " + quote(k) + did_you_mean(k, keys) + "; free: " + join(keys));
+    }
+    spec.profile_settings.parameter = static_cast<std::size_t>(it - spec.parameters.begin());
+  }
+  if (auto n = p.find("span")) {
+    spec.profile_settings.span = p.number(*n, "span", nullptr);
+    if (!(spec.profile_settings.span > 0 && spec.profile_settings.span < 1))
+      p.fail_at(*n, "span", "must be in (0, 1) (relative), got " + format_double(spec.profile_settings.span));
+  }
+  if (auto n = p.find("points")) {
+    spec.profile_settings.points = p.integer(*n, "points");
+    if (spec.profile_settings.points < 3 || spec.profile_settings.points > 201)
+      p.fail_at(*n, "points", "must be in [3, 201], got " + std::to_string(spec.profile_settings.points));
+  }
+}
+
+// `error_bars:` into spec, each nominal ± bar checked to give a valid scene for every experiment.
+void read_error_bars(const Source& src, const MapView& root, FitSpec& spec) {
+  const auto bn = root.find("error_bars");
+  if (!bn) return;
+  const MapView b(src, *bn, "error_bars", numeric_scene_keys());
+  if (!bn->IsMap()) return;
+  for (auto it = bn->begin(); it != bn->end(); ++it) {
+    const std::string k = it->first.Scalar();
+    if (std::any_of(spec.parameters.begin(), spec.parameters.end(), [&](const FitParameter& p) { return p.key == k; }))
+      b.fail_at(it->first, k, "is a free parameter of this fit; it has no error bar to propagate");
+    ErrorBar eb{k, positive(b, it->second, k, unit_of(k))};
+    for (const auto& e : spec.experiments) {
+      const double nominal = scene_value(e.scene.build(), k);
+      for (const double x : {nominal - eb.bar, nominal + eb.bar}) {
+        try {
+          e.scene.build({{k, x}});
+        } catch (const InputError& err) {
+          b.fail_at(it->second, k, "nominal ± bar gives an invalid scene for experiment " + quote(e.name) + ": " + err.message);
         }
-        spec.profile_settings.parameter = static_cast<std::size_t>(it - spec.parameters.begin());
-      }
-      if (auto n = p.find("span")) {
-        spec.profile_settings.span = p.number(*n, "span", nullptr);
-        if (!(spec.profile_settings.span > 0 && spec.profile_settings.span < 1))
-          p.fail_at(*n, "span", "must be in (0, 1) (relative), got " + format_double(spec.profile_settings.span));
-      }
-      if (auto n = p.find("points")) {
-        spec.profile_settings.points = p.integer(*n, "points");
-        if (spec.profile_settings.points < 3 || spec.profile_settings.points > 201)
-          p.fail_at(*n, "points", "must be in [3, 201], got " + std::to_string(spec.profile_settings.points));
       }
     }
+    spec.error_bars.push_back(eb);
   }
+}
 
-  // --- error bars ---------------------------------------------------------------------------
-  if (auto bn = root.find("error_bars")) {
-    const MapView b(src, *bn, "error_bars", numeric_scene_keys());
-    if (bn->IsMap())
-      for (auto it = bn->begin(); it != bn->end(); ++it) {
-        const std::string k = it->first.Scalar();
-        if (std::any_of(spec.parameters.begin(), spec.parameters.end(), [&](const FitParameter& p) { return p.key == k; }))
-          b.fail_at(it->first, k, "is a free parameter of this fit; it has no error bar to propagate");
-        ErrorBar eb{k, positive(b, it->second, k, unit_of(k))};
-        for (const auto& e : spec.experiments) {
-          const double nominal = scene_value(e.scene.build(), k);
-          for (const double x : {nominal - eb.bar, nominal + eb.bar}) {
-            try {
-              e.scene.build({{k, x}});
-            } catch (const InputError& err) {
-              b.fail_at(it->second, k, "nominal ± bar gives an invalid scene for experiment " + quote(e.name) + ": " + err.message);
-            }
-          }
-        }
-        spec.error_bars.push_back(eb);
-      }
+// The fit tree `root_node` (a file's, or one given in memory: `path` empty) → FitSpec; relative
+// scene paths resolve against `base`, errors name `display`. The keys are read in file-format
+// order, so the first error reported stays the same.
+FitSpec fit_from_tree(const YAML::Node& root_node, const fs::path& path, const fs::path& base, const std::string& display,
+                      const std::vector<std::string>& overrides, const FitLoadOptions& options) {
+  const Source src{display, nullptr};
+  const MapView root(src, root_node, "", kFitKeys, path.empty() ? 0 : 1);  // a tree in memory has no lines
+  FitSpec spec;
+  if (!path.empty()) {
+    std::error_code ec;
+    spec.file = fs::weakly_canonical(fs::absolute(path), ec);
+    if (ec) spec.file = fs::absolute(path).lexically_normal();
   }
+  read_fit_header(root, path, options, spec);
+  const std::vector<ParamNodes> pnodes = read_parameters(src, root, spec);
+  const YAML::Node en = root.require("experiments");
+  if (!en.IsSequence() || en.size() == 0)
+    root.fail_at(en, "experiments", "expected a non-empty list of scene files, got " + node_kind(en));
+  const ExperimentContext cx{src, root, base, display, overrides, options};
+  for (std::size_t i = 0; i < en.size(); ++i) spec.experiments.push_back(read_experiment(cx, en, i, spec, pnodes));
+  const YAML::Node algorithm_node = read_optimizer(src, root, spec);
+  check_algorithm_accepts(spec, root, algorithm_node, display);
+  read_profile(src, root, spec);
+  read_error_bars(src, root, spec);
   return spec;
 }
 

@@ -4,6 +4,7 @@
 #include <numeric>
 #include <stdexcept>
 
+#include "batch/shard_plan.hpp"
 #include "solve/core/problem.hpp"
 #include "solve/core/run_cost.hpp"
 
@@ -18,13 +19,12 @@ std::vector<std::size_t> task_optimizations(const FitSpec& spec, const Shard& ta
   std::vector<std::size_t> order(n);
   std::iota(order.begin(), order.end(), std::size_t{0});
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return cost[a] > cost[b]; });
-  std::vector<double> load(static_cast<std::size_t>(task.count), 0.0);
   std::vector<std::size_t> mine;
-  for (const std::size_t e : order) {
-    const std::size_t t = static_cast<std::size_t>(std::min_element(load.begin(), load.end()) - load.begin());
-    load[t] += cost[e];
-    if (t == task.index) mine.push_back(e);
-  }
+  deal_by_cost(
+      n, task.count, [&](std::uint64_t k) { return cost[order[k]]; },
+      [&](std::uint64_t k, std::uint64_t t) {
+        if (t == task.index) mine.push_back(order[k]);
+      });
   std::sort(mine.begin(), mine.end());
   return mine;
 }

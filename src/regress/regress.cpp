@@ -1,12 +1,10 @@
 #include "regress/regress.hpp"
 
-#include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 
+#include "batch/parallel_runner.hpp"
 #include "observe/simulate.hpp"
 #include "scene/load.hpp"
 
@@ -40,25 +38,22 @@ std::vector<RegressResult> run_regress_suite(const RegressSuite& suite, bool tig
     out[i].solver_rel_floor = ref ? 1e-12 : 10 * scenes[i].solver.tolerance;
   }
   const std::size_t jobs = tight ? 2 * n : n;
-  tbb::task_arena arena(std::max(1, threads));
-  arena.execute([&] {
-    tbb::parallel_for(std::size_t{0}, jobs, [&](std::size_t j) {
-      const std::size_t i = j % n;
-      const bool twin = j >= n;
-      Scene s = scenes[i];
-      s.output.series.clear();
-      if (twin) {
-        if (s.solver.method == SolverMethod::reference) s.solver.Ct *= 2;
-        else s.solver.tolerance = std::max(1e-13, s.solver.tolerance * 1e-2);
-      }
-      try {
-        const RunResult r = simulate(s);
-        (twin ? out[i].tight : out[i].values) = regress_observables(r.obs);
-        if (!twin) out[i].wall_s = r.obs.wall_s;
-      } catch (const std::exception& e) {
-        out[i].error = std::string(twin ? "tightened twin: " : "") + e.what();
-      }
-    }, tbb::simple_partitioner());
+  ParallelRunner(std::max(1, threads)).for_each(jobs, [&](std::size_t j) {
+    const std::size_t i = j % n;
+    const bool twin = j >= n;
+    Scene s = scenes[i];
+    s.output.series.clear();
+    if (twin) {
+      if (s.solver.method == SolverMethod::reference) s.solver.Ct *= 2;
+      else s.solver.tolerance = std::max(1e-13, s.solver.tolerance * 1e-2);
+    }
+    try {
+      const RunResult r = simulate(s);
+      (twin ? out[i].tight : out[i].values) = regress_observables(r.obs);
+      if (!twin) out[i].wall_s = r.obs.wall_s;
+    } catch (const std::exception& e) {
+      out[i].error = std::string(twin ? "tightened twin: " : "") + e.what();
+    }
   });
   return out;
 }

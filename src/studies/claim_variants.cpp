@@ -1,12 +1,10 @@
 #include "studies/claim_variants.hpp"
 
-#include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
-
 #include <algorithm>
 #include <atomic>
 #include <cstdio>
 
+#include "batch/parallel_runner.hpp"
 #include "observe/simulate.hpp"
 
 namespace asperity {
@@ -51,7 +49,6 @@ std::vector<ClaimVariant> paper_claim_variants() {
 
 std::vector<VariantRun> run_variants(const std::vector<Scene>& base, const std::vector<ClaimVariant>& variants,
                                      int threads, const std::function<void(std::size_t, std::size_t)>& done) {
-  std::atomic<std::size_t> finished{0};
   struct Job { std::size_t scene, variant; };
   std::vector<Job> jobs;
   for (std::size_t v = 0; v < variants.size(); ++v)
@@ -62,23 +59,19 @@ std::vector<VariantRun> run_variants(const std::vector<Scene>& base, const std::
     return !variants[a.variant].all_experiments && variants[b.variant].all_experiments;
   });
   std::vector<VariantRun> out(jobs.size());
-  tbb::task_arena arena(std::max(1, threads));
-  arena.execute([&] {
-    tbb::parallel_for(std::size_t{0}, jobs.size(), [&](std::size_t j) {
-      Scene s = base[jobs[j].scene];
-      const ClaimVariant& v = variants[jobs[j].variant];
-      v.apply(s);
-      s.output.series.clear();  // only observables are needed
-      out[j].experiment = s.experiment.name;
-      out[j].label = v.label;
-      try {
-        out[j].obs = simulate(s).obs;
-      } catch (const std::exception& e) {
-        out[j].error = e.what();
-      }
-      if (done) done(++finished, jobs.size());
-    }, tbb::simple_partitioner());
-  });
+  ParallelRunner(std::max(1, threads)).for_each(jobs.size(), [&](std::size_t j) {
+    Scene s = base[jobs[j].scene];
+    const ClaimVariant& v = variants[jobs[j].variant];
+    v.apply(s);
+    s.output.series.clear();  // only observables are needed
+    out[j].experiment = s.experiment.name;
+    out[j].label = v.label;
+    try {
+      out[j].obs = simulate(s).obs;
+    } catch (const std::exception& e) {
+      out[j].error = e.what();
+    }
+  }, done);
   return out;
 }
 

@@ -104,12 +104,22 @@ ClaimObservables claim_observables(const std::vector<PaperRun>& base, const std:
   return c;
 }
 
-std::string claims_report(const std::vector<PaperRun>& base, const std::vector<VariantRun>& variants,
-                          const Calibration& calibration, const std::string& data_label) {
-  const ClaimObservables co = claim_observables(base, variants, calibration);
-  const ClaimRules rules;
-  std::ostringstream r;
-  const bool standin = !data_label.empty();
+namespace {
+
+// What every section of REPORT.md reads.
+struct ReportInputs {
+  const std::vector<PaperRun>& base;
+  const std::vector<VariantRun>& variants;
+  const Calibration& calibration;
+  const ClaimObservables& co;
+  const ClaimRules& rules;
+  bool standin;  // stand-in data: a caveat where it matters
+};
+
+// The title, the stand-in caveat and how the base runs were stopped.
+void write_intro(std::ostream& r, const ReportInputs& x, const std::string& data_label) {
+  const bool standin = x.standin;
+  const std::vector<PaperRun>& base = x.base;
   r << "# Reproduction report: the paper's claims (MODEL.md §6)\n\n";
   if (standin)
     r << "> **" << data_label << ".** Every number below comes from the project's stand-in experiments "
@@ -138,8 +148,13 @@ std::string claims_report(const std::vector<PaperRun>& base, const std::vector<V
        "Verdicts: **Reproduced** (the runs the claim needs exist and meet the rule stated), **Not reproduced** "
        "(a run contradicts it), **No evidence** (no contradiction, but a run it needs is missing or failed, or "
        "cannot show the effect).\n\n";
+}
 
-  // 1. dt.
+// Claim 1 of REPORT.md: dt.
+void write_claim1(std::ostream& r, const ReportInputs& x) {
+  const ClaimObservables& co = x.co;
+  const ClaimRules& rules = x.rules;
+  const bool standin = x.standin;
   r << "## 1. dt ≈ 1 µs at C_t = 1e4 for the mid loads\n\n| experiment | N | dt [µs] |\n|---|---:|---:|\n";
   for (const auto& l : co.loads)
     r << "| " << l.experiment << " | " << l.base.N << " | " << cell("%.3f", l.base.dt * 1e6) << " |\n";
@@ -147,8 +162,12 @@ std::string claims_report(const std::vector<PaperRun>& base, const std::vector<V
     << fmt("%g", rules.dt_hi * 1e6) << " µs at every load but the smallest and the largest)"
     << (standin ? "; by construction: the stand-ins were generated to satisfy it, so this is a check of the "
                   "generator, not evidence" : "") << ".\n\n";
+}
 
-  // 2. Stick-slip at all loads.
+// Claim 2 of REPORT.md: Stick-slip at all loads.
+void write_claim2(std::ostream& r, const ReportInputs& x) {
+  const ClaimObservables& co = x.co;
+  const bool standin = x.standin;
   r << "## 2. Stick-slip at all six loads (ε = 0.9, η = 100)\n\n"
        "| experiment | cycles | mean drop [N] | drop / Q_s | mean period [s] | verdict |\n|---|---:|---:|---:|---:|---|\n";
   for (const auto& l : co.loads) {
@@ -159,8 +178,20 @@ std::string claims_report(const std::vector<PaperRun>& base, const std::vector<V
   r << "\n" << verdict_bold(claim2_stick_slip(co)) << " (rule: at least one stick-slip cycle after the first "
        "peak at every load; no evidence where a run stopped at its first peak or never confirmed it)."
     << (standin ? " The stand-in population was chosen to show it (README: stand-in search)." : "") << "\n\n";
+}
 
-  // 3. η.
+// The η bracket where stick-slip vanishes, as claim 3's table writes it.
+std::string bracket_text(const VanishBracket& vb) {
+  if (std::isnan(vb.last_with)) return "–";
+  if (std::isinf(vb.first_without)) return std::string("> ").append(eta_text(vb.last_with)).append(" (not in the scan)");
+  if (std::isinf(vb.last_with)) return std::string("≤ ").append(eta_text(vb.first_without)).append(" (none at any η)");
+  return std::string("(").append(eta_text(vb.last_with)).append(", ").append(eta_text(vb.first_without)).append("]");
+}
+
+// Claim 3 of REPORT.md: η.
+void write_claim3(std::ostream& r, const ReportInputs& x) {
+  const ClaimObservables& co = x.co;
+  const ClaimRules& rules = x.rules;
   r << "## 3. η = 50 and 100 virtually identical; stick-slip vanishes for η ≳ 180–200\n\n";
   std::vector<double> eta_cols{100};
   for (double e : kClaimEtaScan) eta_cols.push_back(e);
@@ -187,12 +218,7 @@ std::string claims_report(const std::vector<PaperRun>& base, const std::vector<V
     const VanishBracket vb = claim3_vanish_bracket(l, rules);
     vanish.push_back(vb.verdict);
     vanish_ok += vb.verdict == Verdict::reproduced ? 1 : 0;
-    std::string bracket;
-    if (std::isnan(vb.last_with)) bracket = "–";
-    else if (std::isinf(vb.first_without)) bracket = "> " + eta_text(vb.last_with) + " (not in the scan)";
-    else if (std::isinf(vb.last_with)) bracket = "≤ " + eta_text(vb.first_without) + " (none at any η)";
-    else bracket = "(" + eta_text(vb.last_with) + ", " + eta_text(vb.first_without) + "]";
-    r << " " << bracket << " | " << verdict_text(vb.verdict) << " |\n";
+    r << " " << bracket_text(vb) << " | " << verdict_text(vb.verdict) << " |\n";
   }
   const EtaComparison e50 = claim3_eta50_vs_base(co, rules);
   const Verdict v3b = combine(std::span<const Verdict>(vanish));
@@ -202,14 +228,24 @@ std::string claims_report(const std::vector<PaperRun>& base, const std::vector<V
     << fmt("%g", rules.same_stick_slip) << "). Stick-slip vanishes in a bracket that meets η ∈ ["
     << fmt("%g", rules.vanish_min) << ", " << fmt("%g", rules.vanish_max) << "] (the claim's 180–200 ± 10 %) at " << vanish_ok << " of " << co.loads.size() << " loads.\n\n"
     << "First half: " << verdict_bold(e50.verdict) << ". Second half: " << verdict_bold(v3b) << ".\n\n";
+}
 
-  // 4. c_min.
+// Claim 4 of REPORT.md: c_min.
+void write_claim4(std::ostream& r, const ReportInputs& x) {
+  const ClaimObservables& co = x.co;
+  const ClaimRules& rules = x.rules;
   const MaxDifference c4 = claim4_c_min(co, rules);
   r << "## 4. c_min = 1e-5 and 0.01 indistinguishable\n\nLargest relative difference over Q_s, A_s, t_peak, "
        "stick-slip drop and period, all loads: " << cell("%.3g", c4.diff) << " (rule < " << fmt("%g", rules.same_c_min)
     << ").\n\n" << verdict_bold(c4.verdict) << ".\n\n";
+}
 
-  // 5. Calibrated α_b: decay, incipient slope, shape.
+// Claim 5 of REPORT.md: Calibrated α_b: decay, incipient slope, shape.
+void write_claim5(std::ostream& r, const ReportInputs& x) {
+  const ClaimObservables& co = x.co;
+  const ClaimRules& rules = x.rules;
+  const bool standin = x.standin;
+  const Calibration& calibration = x.calibration;
   r << "## 5. With α_b calibrated: area decay and incipient slope match, but A(Q) is quasi-linear in the "
        "model and quadratic in the experiment\n\n";
   int n_cal = 0;
@@ -262,8 +298,13 @@ std::string claims_report(const std::vector<PaperRun>& base, const std::vector<V
          "is zero, so a quasi-linear model cannot match the incipient slope, and their quadratic shape is "
          "built in, so only the model side of the shape contrast is evidence.";
   r << "\n\n";
+}
 
-  // 6. Equal areas → quadratic.
+// Claim 6 of REPORT.md: Equal areas → quadratic.
+void write_claim6(std::ostream& r, const ReportInputs& x) {
+  const ClaimObservables& co = x.co;
+  const ClaimRules& rules = x.rules;
+  const std::vector<PaperRun>& base = x.base;
   r << "## 6. Equal initial areas give an exactly quadratic A(Q) up to macroscopic sliding\n\n"
        "Same N and Σ A0 as each experiment, all areas equal, run to the first peak.\n\n"
        "| experiment | R² of A0 − αQ² | n | α / (α_b / (N a^p)) | verdict |\n|---|---:|---:|---:|---|\n";
@@ -283,8 +324,13 @@ std::string claims_report(const std::vector<PaperRun>& base, const std::vector<V
   r << "\n(α uses Q; the closed form holds for the junction force F = Q − M(Ẍ + ηẊ), which differs by the "
        "viscous term. Rule: R² > " << fmt("%g", rules.quadratic_R2) << " with a confirmed peak.)\n\n"
     << verdict_bold(combine(std::span<const Verdict>(v6))) << ".\n\n";
+}
 
-  // 7. Forces vs σ A.
+// Claim 7 of REPORT.md: Forces vs σ A.
+void write_claim7(std::ostream& r, const ReportInputs& x) {
+  const ClaimObservables& co = x.co;
+  const std::vector<PaperRun>& base = x.base;
+  const std::vector<VariantRun>& variants = x.variants;
   r << "## 7. Forces exceed σ_exp A transiently but stay below σ A = σ_exp A/ε\n\n";
   if (const VariantRun* v = base.empty() ? nullptr : find_run(variants, base.front().scene.experiment.name, kReferenceVariantLabel)) {
     if (!v->error.empty())
@@ -299,8 +345,12 @@ std::string claims_report(const std::vector<PaperRun>& base, const std::vector<V
   r << "(Only the reference solver measures f/(σA) at every junction and step: the event solver locates each slip "
        "at f = σA, so it cannot test this claim. Rule: at least one slip in the window, max f/(σA) ≤ 1 and "
        "max f/(σ_exp A) > 1.)\n\n" << verdict_bold(claim7_forces(co)) << ".\n\n";
+}
 
-  // 8. Robustness of the shape.
+// Claim 8 of REPORT.md: Robustness of the shape.
+void write_claim8(std::ostream& r, const ReportInputs& x) {
+  const ClaimObservables& co = x.co;
+  const ClaimRules& rules = x.rules;
   r << "## 8. Quasi-linear shape robust to circular junctions and to Eq. (3) applied always\n\n"
        "| experiment | n elliptic, until first slip | n circular | n always | verdict |\n|---|---:|---:|---:|---|\n";
   std::vector<Verdict> v8;
@@ -312,7 +362,12 @@ std::string claims_report(const std::vector<PaperRun>& base, const std::vector<V
   }
   r << "\n" << verdict_bold(combine(std::span<const Verdict>(v8))) << " (rule: n < " << fmt("%g", rules.quasi_linear_n)
     << " in all three at every load).\n\n";
+}
 
+// The runs that failed, if any.
+void write_failed_runs(std::ostream& r, const ReportInputs& x) {
+  const std::vector<VariantRun>& variants = x.variants;
+  const Calibration& calibration = x.calibration;
   int failed = 0;
   for (const auto& v : variants) failed += v.error.empty() ? 0 : 1;
   for (const auto& c : calibration.runs) failed += c.failure.empty() ? 0 : 1;
@@ -323,6 +378,26 @@ std::string claims_report(const std::vector<PaperRun>& base, const std::vector<V
     for (const auto& c : calibration.runs)
       if (!c.failure.empty()) r << "- " << c.experiment << " calibration: " << c.failure << "\n";
   }
+}
+
+}  // namespace
+
+std::string claims_report(const std::vector<PaperRun>& base, const std::vector<VariantRun>& variants,
+                          const Calibration& calibration, const std::string& data_label) {
+  const ClaimObservables co = claim_observables(base, variants, calibration);
+  const ClaimRules rules;
+  std::ostringstream r;
+  const ReportInputs x{base, variants, calibration, co, rules, !data_label.empty()};
+  write_intro(r, x, data_label);
+  write_claim1(r, x);
+  write_claim2(r, x);
+  write_claim3(r, x);
+  write_claim4(r, x);
+  write_claim5(r, x);
+  write_claim6(r, x);
+  write_claim7(r, x);
+  write_claim8(r, x);
+  write_failed_runs(r, x);
   return r.str();
 }
 

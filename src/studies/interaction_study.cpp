@@ -208,20 +208,19 @@ double num(const std::map<std::string, std::string>& r, const std::string& k) {
   }
 }
 
-}  // namespace
+// One experiment: the independent and the interacting model, each at its own calibrated α_b.
+struct StudyRow {
+  std::string name;
+  Side indep, inter;
+};
 
-std::string run_interaction_study(const InteractionStudyOptions& opt) {
-  const auto alpha_indep = calibrated_alpha_b(opt.fit_independent);
-  const auto alpha_inter = calibrated_alpha_b(opt.fit_interacting);
-  struct Row {
-    std::string name;
-    Side indep, inter;
-  };
-  std::vector<Row> rows;
-  fs::path spread_scene;
+// Both models on every scene of the study; `spread_scene`: the scene of opt.spread_experiment.
+std::vector<StudyRow> run_rows(const InteractionStudyOptions& opt, const std::map<std::string, double>& alpha_indep,
+                               const std::map<std::string, double>& alpha_inter, fs::path& spread_scene) {
+  std::vector<StudyRow> rows;
   for (const fs::path& f : opt.scenes) {
     const std::string name = load_scene(f).experiment.name;
-    Row r{name, {}, {}};
+    StudyRow r{name, {}, {}};
     auto find = [&](const std::map<std::string, double>& m) -> std::optional<double> {
       const auto it = m.find(name);
       return it == m.end() ? std::nullopt : std::optional<double>(it->second);
@@ -237,135 +236,155 @@ std::string run_interaction_study(const InteractionStudyOptions& opt) {
     if (name == opt.spread_experiment) spread_scene = f;
     rows.push_back(std::move(r));
   }
-  Spread sp;
-  if (!spread_scene.empty() && alpha_inter.count(opt.spread_experiment))
-    sp = force_spread(spread_scene, alpha_inter.at(opt.spread_experiment), opt.spread_experiment);
+  return rows;
+}
 
-  fs::create_directories(opt.out);
-  // table.csv
-  {
-    std::ostringstream t;
-    t << "experiment,model,alpha_b,Q_s_N,t_peak_s,shape_exponent,shape_exponent_measured,area_decay,area_decay_measured,"
-         "incipient_slope_m2_per_N,incipient_slope_measured_m2_per_N,ss_cycles,ss_drop,wall_s,"
-         "alpha_m2_per_N2,alpha_measured_m2_per_N2,alpha_measured_sd_m2_per_N2,shape_exponent_measured_sd,"
-         "residual_rms_m2,residual_rms_sd_m2,noise_rms_m2,noise_rms_p95_m2,measured_points_used\n";
-    for (const auto& r : rows)
-      for (const auto* s : {&r.indep, &r.inter}) {
-        if (!s->ran) continue;
-        t << r.name << ',' << (s == &r.indep ? "independent" : "interacting") << ',' << csv_number(s->alpha_b) << ','
-          << csv_number(s->obs.Q_s) << ',' << csv_number(s->obs.t_peak) << ',' << csv_number(s->obs.shape_exponent) << ','
-          << csv_number(s->areas.n_measured) << ',' << csv_number(s->areas.decay_model) << ','
-          << csv_number(s->areas.decay_measured) << ',' << csv_number(s->areas.slope_model) << ','
-          << csv_number(s->areas.slope_measured) << ',' << s->obs.ss_cycles << ',' << csv_number(s->obs.ss_drop) << ','
-          << csv_number(s->wall_s) << ',' << csv_number(s->shape.alpha_model) << ','
-          << csv_number(s->shape.alpha_measured) << ',' << csv_number(s->shape.alpha_measured_sd) << ','
-          << csv_number(s->shape.n_measured_sd) << ',' << csv_number(s->shape.residual_rms) << ','
-          << csv_number(s->shape.residual_rms_sd) << ',' << csv_number(s->shape.noise_rms) << ','
-          << csv_number(s->shape.noise_rms_p95) << ',' << s->shape.points_used << '\n';
-      }
-    scene_io::write_text_file(opt.out / "table.csv", t.str());
-  }
-  // forces_at_peak.csv and the spread figure.
-  std::string fig_note;
-  if (sp.ran) {
-    std::ostringstream t;
-    t << "junction,A0_m2,x_m,y_m,crowding,equal_area_set,f_over_sigmaA_interacting,f_over_sigmaA_independent,"
-         "f_over_sigmaA_interacting_half,f_over_sigmaA_independent_half\n";
-    for (std::size_t i = 0; i < sp.A0.size(); ++i)
-      t << i + 1 << ',' << csv_number(sp.A0[i]) << ',' << csv_number(sp.x[i]) << ',' << csv_number(sp.y[i]) << ','
-        << csv_number(sp.crowding[i]) << ',' << int(sp.equal[i]) << ',' << csv_number(sp.ratio_inter[i]) << ','
-        << csv_number(sp.ratio_indep[i]) << ',' << csv_number(sp.half_inter[i]) << ','
-        << csv_number(sp.half_indep[i]) << '\n';
-    scene_io::write_text_file(opt.out / "forces_at_peak.csv", t.str());
-    std::vector<std::vector<double>> crowded, sparse, indep;
-    for (std::size_t i = 0; i < sp.A0.size(); ++i) {
-      if (!sp.equal[i]) continue;
-      (sp.crowding[i] >= sp.crowding_median ? crowded : sparse).push_back({sp.half_inter[i]});
-      indep.push_back({sp.half_indep[i]});
+// table.csv: one row per model and experiment that ran.
+void write_table_csv(const fs::path& out, const std::vector<StudyRow>& rows) {
+  std::ostringstream t;
+  t << "experiment,model,alpha_b,Q_s_N,t_peak_s,shape_exponent,shape_exponent_measured,area_decay,area_decay_measured,"
+       "incipient_slope_m2_per_N,incipient_slope_measured_m2_per_N,ss_cycles,ss_drop,wall_s,"
+       "alpha_m2_per_N2,alpha_measured_m2_per_N2,alpha_measured_sd_m2_per_N2,shape_exponent_measured_sd,"
+       "residual_rms_m2,residual_rms_sd_m2,noise_rms_m2,noise_rms_p95_m2,measured_points_used\n";
+  for (const auto& r : rows)
+    for (const auto* s : {&r.indep, &r.inter}) {
+      if (!s->ran) continue;
+      t << r.name << ',' << (s == &r.indep ? "independent" : "interacting") << ',' << csv_number(s->alpha_b) << ','
+        << csv_number(s->obs.Q_s) << ',' << csv_number(s->obs.t_peak) << ',' << csv_number(s->obs.shape_exponent) << ','
+        << csv_number(s->areas.n_measured) << ',' << csv_number(s->areas.decay_model) << ','
+        << csv_number(s->areas.decay_measured) << ',' << csv_number(s->areas.slope_model) << ','
+        << csv_number(s->areas.slope_measured) << ',' << s->obs.ss_cycles << ',' << csv_number(s->obs.ss_drop) << ','
+        << csv_number(s->wall_s) << ',' << csv_number(s->shape.alpha_model) << ','
+        << csv_number(s->shape.alpha_measured) << ',' << csv_number(s->shape.alpha_measured_sd) << ','
+        << csv_number(s->shape.n_measured_sd) << ',' << csv_number(s->shape.residual_rms) << ','
+        << csv_number(s->shape.residual_rms_sd) << ',' << csv_number(s->shape.noise_rms) << ','
+        << csv_number(s->shape.noise_rms_p95) << ',' << s->shape.points_used << '\n';
     }
-    double lo = NAN, hi = NAN;  // the independent model's range (one bin wide or less)
-    for (const auto& v : indep)
-      if (std::isfinite(v[0])) lo = std::isnan(lo) ? v[0] : std::min(lo, v[0]), hi = std::isnan(hi) ? v[0] : std::max(hi, v[0]);
-    std::ostringstream gp;
-    gp << gnuplot_block("crowded", crowded) << gnuplot_block("sparse", sparse) << gnuplot_block("indep", indep)
-       << "set title " << gnuplot_text("STAND-IN " + sp.experiment) << " . "
-       << gnuplot_quote(": f/(σA) at half the time of the first peak") << " . \"\\n\" . "  // two lines: one column wide in a PDF
-       << gnuplot_quote("junctions of equal area (" + scene_io::format_cell("%.3g", sp.area_lo) + "–" + scene_io::format_cell("%.3g", sp.area_hi) + " m^2)")
-       << "\nset xlabel " << gnuplot_quote("f_i / (σ A_i) [1]") << "\nset ylabel " << gnuplot_quote("junctions [1]")
-       << "\nbin(x) = 0.02*floor(x/0.02) + 0.01\nset style fill transparent solid 0.5\nset boxwidth 0.02\nset key top right\n"
-       // The independent model gives the junctions of equal area one f/(σA) (a range narrower
-       // than a bin): a band and a line across the plot, not a bar as tall as all the junctions
-       // (which squashed the histograms); the y range is the histograms'.
-       << "set yrange [0:*]\nset offsets 0, 0, graph 0.1, 0\n"
-       << (std::isfinite(lo) ? "set object 1 rect from first " + scene_io::format_cell("%.10g", lo) + ", graph 0 to first " + scene_io::format_cell("%.10g", hi) +
-                                   ", graph 1 behind fc rgb '#56b4e9' fs solid 0.35 noborder\nset arrow 1 from first " +
-                                   scene_io::format_cell("%.10g", 0.5 * (lo + hi)) + ", graph 0 to first " + scene_io::format_cell("%.10g", 0.5 * (lo + hi)) +
-                                   ", graph 1 nohead lw 3 lc rgb '#56b4e9'\n"
-                             : std::string())
-       << "plot $crowded using (bin($1)):(1) smooth frequency with boxes title "
-       << gnuplot_quote("interacting, crowded (k_i Σ_j C_{ij} ≥ median)") << ", $sparse using (bin($1)):(1) smooth frequency "
-       << "with boxes title " << gnuplot_quote("interacting, sparse") << ", NaN with lines lw 3 lc rgb '#56b4e9' title "
-       << gnuplot_quote("independent model (same junctions): " + scene_io::format_cell("%.3g", lo) + (hi > lo ? "–" + scene_io::format_cell("%.3g", hi) : ""))
-       << "\n";
-    std::string error;
-    if (!render_figures(opt.out / "force_spread.png", gp.str(), 1000, 650, opt.figures, &error))
-      fig_note = "force_spread.png not drawn: " + error;
-  }
-  // Equal-area pairs, crowded vs sparse, in time (both models, to past the interacting peak).
-  std::string pairs_md;
-  if (sp.ran) {
-    std::vector<std::size_t> candidates;
-    for (std::size_t i = 0; i < sp.A0.size(); ++i)
-      if (sp.equal[i]) candidates.push_back(i);
-    JunctionPairsEvidence ev;
-    ev.experiment = sp.experiment;
-    ev.sigma_Pa = make_problem(sp.inter).law.sigma;  // σ of the threshold f = σA
-    ev.t_peak_interacting_s = sp.t_peak_inter;
-    ev.t_peak_independent_s = sp.t_peak_indep;
-    ev.pairs = crowded_sparse_pairs(candidates, sp.crowding, 3);
-    ev.A0_m2 = sp.A0;
-    ev.crowding = sp.crowding;
-    std::vector<std::size_t> tracked;
-    for (const JunctionPair& pr : ev.pairs) tracked.push_back(pr.crowded), tracked.push_back(pr.sparse);
-    const double t_end = 1.1 * std::max(sp.t_peak_inter, sp.t_peak_indep);
-    ev.interacting = trace_junctions(sp.inter, tracked, t_end, 300);
-    ev.independent = trace_junctions(sp.indep, tracked, t_end, 300);
-    pairs_md = write_junction_pairs(opt.out, ev, opt.figures);
-  }
-  // A(Q) of the spread experiment: measured, independent, interacting (calibrated).
-  // (Kept to the table: the loading branches are in the runs' observables only.)
+  scene_io::write_text_file(out / "table.csv", t.str());
+}
 
-  // The verdict, on a measure whose spread over the measurement noise is known (issue 22): the
-  // rms residual of each model's A(Q) at the measured points, in linear space. A model
-  // reproduces the measured (quadratic) shape at a load when its residual is within what noise
-  // alone leaves in 95 % of the bootstrap resamples; interacting is closer than independent when
-  // their residuals differ by more than twice the spread of the difference (the two sds added).
+// forces_at_peak.csv: every junction's f/(σA) in both models, its crowding and position.
+void write_forces_csv(const fs::path& out, const Spread& sp) {
+  std::ostringstream t;
+  t << "junction,A0_m2,x_m,y_m,crowding,equal_area_set,f_over_sigmaA_interacting,f_over_sigmaA_independent,"
+       "f_over_sigmaA_interacting_half,f_over_sigmaA_independent_half\n";
+  for (std::size_t i = 0; i < sp.A0.size(); ++i)
+    t << i + 1 << ',' << csv_number(sp.A0[i]) << ',' << csv_number(sp.x[i]) << ',' << csv_number(sp.y[i]) << ','
+      << csv_number(sp.crowding[i]) << ',' << int(sp.equal[i]) << ',' << csv_number(sp.ratio_inter[i]) << ','
+      << csv_number(sp.ratio_indep[i]) << ',' << csv_number(sp.half_inter[i]) << ','
+      << csv_number(sp.half_indep[i]) << '\n';
+  scene_io::write_text_file(out / "forces_at_peak.csv", t.str());
+}
+
+// The gnuplot script of force_spread.png: histograms of f/(σA) at half the peak's time among the
+// junctions of equal area, crowded vs sparse, and the independent model's band.
+std::string force_spread_plot(const Spread& sp) {
+  std::vector<std::vector<double>> crowded, sparse, indep;
+  for (std::size_t i = 0; i < sp.A0.size(); ++i) {
+    if (!sp.equal[i]) continue;
+    (sp.crowding[i] >= sp.crowding_median ? crowded : sparse).push_back({sp.half_inter[i]});
+    indep.push_back({sp.half_indep[i]});
+  }
+  double lo = NAN, hi = NAN;  // the independent model's range (one bin wide or less)
+  for (const auto& v : indep)
+    if (std::isfinite(v[0])) lo = std::isnan(lo) ? v[0] : std::min(lo, v[0]), hi = std::isnan(hi) ? v[0] : std::max(hi, v[0]);
+  std::ostringstream gp;
+  gp << gnuplot_block("crowded", crowded) << gnuplot_block("sparse", sparse) << gnuplot_block("indep", indep)
+     << "set title " << gnuplot_text("STAND-IN " + sp.experiment) << " . "
+     << gnuplot_quote(": f/(σA) at half the time of the first peak") << " . \"\\n\" . "  // two lines: one column wide in a PDF
+     << gnuplot_quote("junctions of equal area (" + scene_io::format_cell("%.3g", sp.area_lo) + "–" + scene_io::format_cell("%.3g", sp.area_hi) + " m^2)")
+     << "\nset xlabel " << gnuplot_quote("f_i / (σ A_i) [1]") << "\nset ylabel " << gnuplot_quote("junctions [1]")
+     << "\nbin(x) = 0.02*floor(x/0.02) + 0.01\nset style fill transparent solid 0.5\nset boxwidth 0.02\nset key top right\n"
+     // The independent model gives the junctions of equal area one f/(σA) (a range narrower
+     // than a bin): a band and a line across the plot, not a bar as tall as all the junctions
+     // (which squashed the histograms); the y range is the histograms'.
+     << "set yrange [0:*]\nset offsets 0, 0, graph 0.1, 0\n"
+     << (std::isfinite(lo) ? "set object 1 rect from first " + scene_io::format_cell("%.10g", lo) + ", graph 0 to first " + scene_io::format_cell("%.10g", hi) +
+                                 ", graph 1 behind fc rgb '#56b4e9' fs solid 0.35 noborder\nset arrow 1 from first " +
+                                 scene_io::format_cell("%.10g", 0.5 * (lo + hi)) + ", graph 0 to first " + scene_io::format_cell("%.10g", 0.5 * (lo + hi)) +
+                                 ", graph 1 nohead lw 3 lc rgb '#56b4e9'\n"
+                           : std::string())
+     << "plot $crowded using (bin($1)):(1) smooth frequency with boxes title "
+     << gnuplot_quote("interacting, crowded (k_i Σ_j C_{ij} ≥ median)") << ", $sparse using (bin($1)):(1) smooth frequency "
+     << "with boxes title " << gnuplot_quote("interacting, sparse") << ", NaN with lines lw 3 lc rgb '#56b4e9' title "
+     << gnuplot_quote("independent model (same junctions): " + scene_io::format_cell("%.3g", lo) + (hi > lo ? "–" + scene_io::format_cell("%.3g", hi) : ""))
+     << "\n";
+  return gp.str();
+}
+
+// The figure of the force spread; a note when gnuplot could not draw it (empty otherwise).
+std::string draw_force_spread(const InteractionStudyOptions& opt, const Spread& sp) {
+  std::string error;
+  if (!render_figures(opt.out / "force_spread.png", force_spread_plot(sp), 1000, 650, opt.figures, &error))
+    return "force_spread.png not drawn: " + error;
+  return {};
+}
+
+// Equal-area pairs, crowded vs sparse, in time (both models, to past the interacting peak): the
+// section of REPORT.md that write_junction_pairs writes, and its files.
+std::string write_pairs(const InteractionStudyOptions& opt, const Spread& sp) {
+  std::vector<std::size_t> candidates;
+  for (std::size_t i = 0; i < sp.A0.size(); ++i)
+    if (sp.equal[i]) candidates.push_back(i);
+  JunctionPairsEvidence ev;
+  ev.experiment = sp.experiment;
+  ev.sigma_Pa = make_problem(sp.inter).law.sigma;  // σ of the threshold f = σA
+  ev.t_peak_interacting_s = sp.t_peak_inter;
+  ev.t_peak_independent_s = sp.t_peak_indep;
+  ev.pairs = crowded_sparse_pairs(candidates, sp.crowding, 3);
+  ev.A0_m2 = sp.A0;
+  ev.crowding = sp.crowding;
+  std::vector<std::size_t> tracked;
+  for (const JunctionPair& pr : ev.pairs) tracked.push_back(pr.crowded), tracked.push_back(pr.sparse);
+  const double t_end = 1.1 * std::max(sp.t_peak_inter, sp.t_peak_indep);
+  ev.interacting = trace_junctions(sp.inter, tracked, t_end, 300);
+  ev.independent = trace_junctions(sp.indep, tracked, t_end, 300);
+  return write_junction_pairs(opt.out, ev, opt.figures);
+}
+
+// The verdict's counts over the loads (see verdict_of).
+struct Tally {
   int ran = 0, quadratic = 0, indep_quadratic = 0, closer = 0, farther = 0, undecided = 0;
   double dn_sum = 0;
   int dn_count = 0;
+};
+
+// The verdict, on a measure whose spread over the measurement noise is known (issue 22): the
+// rms residual of each model's A(Q) at the measured points, in linear space. A model
+// reproduces the measured (quadratic) shape at a load when its residual is within what noise
+// alone leaves in 95 % of the bootstrap resamples; interacting is closer than independent when
+// their residuals differ by more than twice the spread of the difference (the two sds added).
+Tally tally_rows(const std::vector<StudyRow>& rows) {
+  Tally t;
   for (const auto& r : rows) {
     if (!r.inter.ran || !std::isfinite(r.inter.shape.residual_rms)) continue;
-    ++ran;
-    if (!r.inter.shape.residual_exceeds_noise()) ++quadratic;
+    ++t.ran;
+    if (!r.inter.shape.residual_exceeds_noise()) ++t.quadratic;
     if (r.indep.ran && std::isfinite(r.indep.shape.residual_rms)) {
-      if (!r.indep.shape.residual_exceeds_noise()) ++indep_quadratic;
+      if (!r.indep.shape.residual_exceeds_noise()) ++t.indep_quadratic;
       const double diff = r.indep.shape.residual_rms - r.inter.shape.residual_rms;
       const double spread = 2 * (r.indep.shape.residual_rms_sd + r.inter.shape.residual_rms_sd);
-      if (diff > spread) ++closer;
-      else if (-diff > spread) ++farther;
-      else ++undecided;
+      if (diff > spread) ++t.closer;
+      else if (-diff > spread) ++t.farther;
+      else ++t.undecided;
     }
     if (r.indep.ran && std::isfinite(r.indep.obs.shape_exponent) && std::isfinite(r.inter.obs.shape_exponent))
-      dn_sum += r.inter.obs.shape_exponent - r.indep.obs.shape_exponent, ++dn_count;
+      t.dn_sum += r.inter.obs.shape_exponent - r.indep.obs.shape_exponent, ++t.dn_count;
   }
-  std::string verdict;
-  const std::string of = " of " + std::to_string(ran) + " loads";
-  if (ran == 0) verdict = "No evidence (no calibrated interacting run with a measured curve)";
-  else if (quadratic == ran) verdict = "Quadratic within the noise at every load (" + std::to_string(ran) + of + ")";
-  else verdict = "Not quadratic: the interacting A(Q) is within the measurement noise of the measured curve at " +
-                 std::to_string(quadratic) + of;
+  return t;
+}
 
-  std::ostringstream md;
+std::string verdict_of(const Tally& t) {
+  const std::string of = " of " + std::to_string(t.ran) + " loads";
+  if (t.ran == 0) return "No evidence (no calibrated interacting run with a measured curve)";
+  if (t.quadratic == t.ran) return "Quadratic within the noise at every load (" + std::to_string(t.ran) + of + ")";
+  return "Not quadratic: the interacting A(Q) is within the measurement noise of the measured curve at " +
+         std::to_string(t.quadratic) + of;
+}
+
+// REPORT.md's title, provenance and verdict.
+void write_verdict_md(std::ostream& md, const InteractionStudyOptions& opt, const Tally& t, const std::string& verdict) {
+  const std::string of = " of " + std::to_string(t.ran) + " loads";
   md << "# Elastic interactions between junctions: does A(Q) turn quadratic?\n\n"
      << "**STAND-IN DATA.** Every number here comes from the stand-in experiments of `data/standin/` (areas, "
         "positions and \"measured\" curves generated, not measured): it tests the model on made-up data of the right "
@@ -374,12 +393,12 @@ std::string run_interaction_study(const InteractionStudyOptions& opt) {
      << opt.fit_independent.generic_string() << "` and `" << opt.fit_interacting.generic_string()
      << "`, the sweep from `" << opt.sweep_store.generic_string() << "/points.csv`).\n\n"
      << "## Verdict\n\n**" << verdict << ".** ";
-  if (ran > 0)
-    md << "The independent model is within the noise at " << indep_quadratic << of << ". Against the measured curve, "
-       << "the interacting model is closer than the independent one at " << closer << of << ", farther at " << farther
-       << ", and the difference is within its spread (no evidence either way) at " << undecided << ". ";
-  if (dn_count > 0)
-    md << "Interactions change the shape exponent n by " << scene_io::format_cell("%+.3f", dn_sum / dn_count)
+  if (t.ran > 0)
+    md << "The independent model is within the noise at " << t.indep_quadratic << of << ". Against the measured curve, "
+       << "the interacting model is closer than the independent one at " << t.closer << of << ", farther at " << t.farther
+       << ", and the difference is within its spread (no evidence either way) at " << t.undecided << ". ";
+  if (t.dn_count > 0)
+    md << "Interactions change the shape exponent n by " << scene_io::format_cell("%+.3f", t.dn_sum / t.dn_count)
        << " on average (interacting − independent, each at its own calibrated α_b); the stand-in \"measured\" "
           "curves are parabolas plus noise by construction, and their own n spreads by ±0.1 or more over that noise "
           "(table), so n alone decides nothing.";
@@ -388,6 +407,10 @@ std::string run_interaction_study(const InteractionStudyOptions& opt) {
         "parabola: within its 95th percentile over a residual bootstrap of the measured points (1,000 seeded "
         "resamples) counts as reproducing the measured shape. Two models differ when their residuals differ by more "
         "than twice the sum of their bootstrap sds.\n\n";
+}
+
+// REPORT.md: the per-load table, each model at its own calibrated α_b.
+void write_loads_md(std::ostream& md, const std::vector<StudyRow>& rows) {
   md << "## Per load, each model at its own calibrated α_b (the paper's method: α of A = A0 − αQ² matches the "
         "measured one)\n\n"
      << "| experiment | model | α_b [1e-15] | n | n measured | area decay | decay measured | incipient slope "
@@ -409,6 +432,10 @@ std::string run_interaction_study(const InteractionStudyOptions& opt) {
     }
   md << "\n(n: exponent of A0 − A = c Qⁿ on the loading branch; area decay 1 − A_s/A0; incipient slope: least-squares "
         "dA/dQ over Q ≤ 0.3 Q_max; runs to five stick-slip cycles or 12 s, 20 s with interactions.)\n\n";
+}
+
+// REPORT.md: each model's A(Q) against the measured curve, at its noise.
+void write_shape_md(std::ostream& md, const std::vector<StudyRow>& rows) {
   md << "## Shape against the measured curve, at its noise\n\n"
      << "| experiment | model | residual rms [mm²] | ± sd | noise rms [mm²] | noise 95 % [mm²] | within noise | "
         "α [mm²/N²] | α measured ± sd | n measured ± sd | points |\n"
@@ -427,6 +454,11 @@ std::string run_interaction_study(const InteractionStudyOptions& opt) {
   md << "\n(Residual: rms of A_model − A_measured at the measured Q the model's loading branch reaches; noise: rms of "
         "the measured points about their own parabola A0 − αQ², and its 95th percentile over the bootstrap. α: "
         "A = A0 − αQ² with A0 fixed, which the calibration matches by construction.)\n\n";
+}
+
+// REPORT.md: the force spread at the first peak (the paper's Figure 2 argument) and the pairs.
+void write_spread_md(std::ostream& md, const InteractionStudyOptions& opt, const Spread& sp, const std::string& fig_note,
+                     const std::string& pairs_md) {
   md << "## Force spread at the first peak (" << opt.spread_experiment << ")\n\n";
   if (!sp.ran) {
     md << "No evidence: the interacting calibration of " << opt.spread_experiment << " or its runs are missing.\n\n";
@@ -462,7 +494,10 @@ std::string run_interaction_study(const InteractionStudyOptions& opt) {
           "slipping).\n\n"
        << pairs_md;
   }
-  // The sweep.
+}
+
+// REPORT.md: the crowding and cut-off sweep's table, read from its store.
+void write_sweep_md(std::ostream& md, const InteractionStudyOptions& opt) {
   const auto sw = sweep_rows(opt.sweep_store);
   md << "## Crowding and cut-off (`sweeps/interactions.yaml`, α_b = 0.725e-15, not recalibrated)\n\n";
   if (sw.empty()) {
@@ -482,6 +517,37 @@ std::string run_interaction_study(const InteractionStudyOptions& opt) {
     md << "\n(Position scale s: the same arrangement in an apparent contact s times as wide, 1/s² as crowded; 1000: "
           "practically independent. A cut-off drops the pairs farther apart.)\n\n";
   }
+}
+
+}  // namespace
+
+std::string run_interaction_study(const InteractionStudyOptions& opt) {
+  const auto alpha_indep = calibrated_alpha_b(opt.fit_independent);
+  const auto alpha_inter = calibrated_alpha_b(opt.fit_interacting);
+  fs::path spread_scene;
+  const std::vector<StudyRow> rows = run_rows(opt, alpha_indep, alpha_inter, spread_scene);
+  Spread sp;
+  if (!spread_scene.empty() && alpha_inter.count(opt.spread_experiment))
+    sp = force_spread(spread_scene, alpha_inter.at(opt.spread_experiment), opt.spread_experiment);
+
+  fs::create_directories(opt.out);
+  write_table_csv(opt.out, rows);
+  std::string fig_note;
+  if (sp.ran) {
+    write_forces_csv(opt.out, sp);
+    fig_note = draw_force_spread(opt, sp);
+  }
+  const std::string pairs_md = sp.ran ? write_pairs(opt, sp) : std::string();
+  // A(Q) of the spread experiment: measured, independent, interacting (calibrated).
+  // (Kept to the table: the loading branches are in the runs' observables only.)
+  const Tally t = tally_rows(rows);
+  const std::string verdict = verdict_of(t);
+  std::ostringstream md;
+  write_verdict_md(md, opt, t, verdict);
+  write_loads_md(md, rows);
+  write_shape_md(md, rows);
+  write_spread_md(md, opt, sp, fig_note, pairs_md);
+  write_sweep_md(md, opt);
   scene_io::write_text_file(opt.out / "REPORT.md", md.str());
   return verdict;
 }

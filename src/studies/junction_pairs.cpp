@@ -98,18 +98,22 @@ std::vector<JunctionPair> crowded_sparse_pairs(std::vector<std::size_t> candidat
   return pairs;
 }
 
-std::string write_junction_pairs(const fs::path& out, const JunctionPairsEvidence& e, const FigureFormats& formats) {
+namespace {
+
+// The trace of one junction of pair `pair`: crowded or sparse, interacting or independent.
+const JunctionTrace& trace_of(const JunctionPairsEvidence& e, bool interacting, std::size_t pair, bool sparse) {
+  return (interacting ? e.interacting : e.independent)[2 * pair + (sparse ? 1 : 0)];
+}
+
+// junction_pairs.csv: long format, one row per junction, model and sample.
+void write_pairs_csv(const fs::path& out, const JunctionPairsEvidence& e) {
   const std::size_t P = e.pairs.size();
-  auto trace = [&](bool interacting, std::size_t pair, bool sparse) -> const JunctionTrace& {
-    return (interacting ? e.interacting : e.independent)[2 * pair + (sparse ? 1 : 0)];
-  };
-  // junction_pairs.csv: long format, one row per junction, model and sample.
   std::ostringstream t;
   t << "pair,neighbourhood,junction,A0_m2,crowding,model,t_s,f_N,A_m2,f_over_sigmaA,A_over_A0\n";
   for (std::size_t k = 0; k < P; ++k)
     for (int m = 0; m < 2; ++m)
       for (int sp = 0; sp < 2; ++sp) {
-        const JunctionTrace& tr = trace(m == 0, k, sp == 1);
+        const JunctionTrace& tr = trace_of(e, m == 0, k, sp == 1);
         const double A0 = e.A0_m2[tr.junction];
         for (std::size_t j = 0; j < tr.t_s.size(); ++j)
           t << k + 1 << ',' << (sp ? "sparse" : "crowded") << ',' << tr.junction + 1 << ',' << csv_number(A0) << ','
@@ -118,39 +122,45 @@ std::string write_junction_pairs(const fs::path& out, const JunctionPairsEvidenc
             << csv_number(tr.f_N[j] / (e.sigma_Pa * tr.A_m2[j])) << ',' << csv_number(tr.A_m2[j] / A0) << '\n';
       }
   scene_io::write_text_file(out / "junction_pairs.csv", t.str());
+}
 
-  // The figure: f/(σA0) and A/A0 against t / t_peak of each model; crowded solid, sparse dashed;
-  // the independent model thin.
+// The plot command of one panel (column 2: f/(σA0), 3: A/A0) over every trace's data block.
+std::string plot_command(const JunctionPairsEvidence& e, int column) {
+  const std::size_t P = e.pairs.size();
+  const char* colours[] = {"#1b6ca8", "#c0392b", "#27ae60", "#8e44ad", "#d68910"};
+  std::ostringstream c;
+  c << "plot ";
+  bool first = true;
+  for (std::size_t k = 0; k < P; ++k)
+    for (int m = 0; m < 2; ++m)
+      for (int sp = 0; sp < 2; ++sp) {
+        const std::string name = block_name(k, m, sp);
+        const JunctionTrace& tr = trace_of(e, m == 0, k, sp == 1);
+        std::string title = m == 0 ? "interacting, " : "independent, ";
+        title += sp ? "sparse #" : "crowded #";
+        title += std::to_string(tr.junction + 1);
+        c << (first ? "" : ", ") << "$" << name << " using 1:" << column << " with lines lw " << (m == 0 ? 2 : 1) << " dt "
+          << (sp ? 2 : 1) << " lc rgb '" << colours[k % 5] << "' title " << gnuplot_text(title);
+        first = false;
+      }
+  return c.str();
+}
+
+// The figure's script: f/(σA0) and A/A0 against t of each model; crowded solid, sparse dashed;
+// the independent model thin.
+std::string pairs_plot(const JunctionPairsEvidence& e) {
+  const std::size_t P = e.pairs.size();
   std::ostringstream gp;
   for (std::size_t k = 0; k < P; ++k)
     for (int m = 0; m < 2; ++m)
       for (int sp = 0; sp < 2; ++sp) {
-        const JunctionTrace& tr = trace(m == 0, k, sp == 1);
+        const JunctionTrace& tr = trace_of(e, m == 0, k, sp == 1);
         const double A0 = e.A0_m2[tr.junction];
         std::vector<std::vector<double>> rows;
         for (std::size_t j = 0; j < tr.t_s.size(); ++j)
           rows.push_back({tr.t_s[j], tr.f_N[j] / (e.sigma_Pa * A0), tr.A_m2[j] / A0});
         gp << gnuplot_block(block_name(k, m, sp), rows);
       }
-  const char* colours[] = {"#1b6ca8", "#c0392b", "#27ae60", "#8e44ad", "#d68910"};
-  auto plot_cmd = [&](int column) {
-    std::ostringstream c;
-    c << "plot ";
-    bool first = true;
-    for (std::size_t k = 0; k < P; ++k)
-      for (int m = 0; m < 2; ++m)
-        for (int sp = 0; sp < 2; ++sp) {
-          const std::string name = block_name(k, m, sp);
-          const JunctionTrace& tr = trace(m == 0, k, sp == 1);
-          std::string title = m == 0 ? "interacting, " : "independent, ";
-          title += sp ? "sparse #" : "crowded #";
-          title += std::to_string(tr.junction + 1);
-          c << (first ? "" : ", ") << "$" << name << " using 1:" << column << " with lines lw " << (m == 0 ? 2 : 1) << " dt "
-            << (sp ? 2 : 1) << " lc rgb '" << colours[k % 5] << "' title " << gnuplot_text(title);
-          first = false;
-        }
-    return c.str();
-  };
   gp << "set multiplot layout 2,1 title "
      << gnuplot_quote("STAND-IN " + enhanced_literal(e.experiment) +
                       ": equal-area junction pairs, crowded (solid) vs sparse (dashed)")
@@ -161,12 +171,13 @@ std::string write_junction_pairs(const fs::path& out, const JunctionPairsEvidenc
      << ", graph 1 nohead dt 3 lc rgb 'black'\n"
      << "set arrow from " << csv_number(e.t_peak_independent_s) << ", graph 0 to " << csv_number(e.t_peak_independent_s)
      << ", graph 1 nohead dt 3 lc rgb 'gray50'\n"
-     << plot_cmd(2) << "\nset ylabel 'A_i / A_{0,i} [1]'\n" << plot_cmd(3) << "\nunset multiplot\n";
-  std::string error, note;
-  if (!render_figures(out / "junction_pairs.png", gp.str(), 1200, 1000, formats, &error))
-    note = "junction_pairs.png not drawn: " + error;
+     << plot_command(e, 2) << "\nset ylabel 'A_i / A_{0,i} [1]'\n" << plot_command(e, 3) << "\nunset multiplot\n";
+  return gp.str();
+}
 
-  // The section.
+// REPORT.md's section: each junction's first slip and its f/(σA) and A/A0 around the peaks.
+std::string pairs_section(const JunctionPairsEvidence& e, const std::string& note) {
+  const std::size_t P = e.pairs.size();
   std::ostringstream md;
   md << "## Junction pairs in time (" << e.experiment << ")\n\n"
      << "The same argument followed in time: " << P << " pairs of junctions of equal area, the k-th most crowded with "
@@ -180,7 +191,7 @@ std::string write_junction_pairs(const fs::path& out, const JunctionPairsEvidenc
   for (std::size_t k = 0; k < P; ++k)
     for (int sp = 0; sp < 2; ++sp)
       for (int m = 0; m < 2; ++m) {
-        const JunctionTrace& tr = trace(m == 0, k, sp == 1);
+        const JunctionTrace& tr = trace_of(e, m == 0, k, sp == 1);
         const double tp = m == 0 ? e.t_peak_interacting_s : e.t_peak_independent_s;
         const double A0 = e.A0_m2[tr.junction];
         auto ratio = [&](double x) { return at(tr.t_s, tr.f_N, x) / (e.sigma_Pa * at(tr.t_s, tr.A_m2, x)); };
@@ -194,6 +205,16 @@ std::string write_junction_pairs(const fs::path& out, const JunctionPairsEvidenc
      << "Every sample of every junction above: `junction_pairs.csv` (f/(σA) = 1 at the threshold; a slipping "
         "junction carries ε times it).\n\n";
   return md.str();
+}
+
+}  // namespace
+
+std::string write_junction_pairs(const fs::path& out, const JunctionPairsEvidence& e, const FigureFormats& formats) {
+  write_pairs_csv(out, e);
+  std::string error, note;
+  if (!render_figures(out / "junction_pairs.png", pairs_plot(e), 1200, 1000, formats, &error))
+    note = "junction_pairs.png not drawn: " + error;
+  return pairs_section(e, note);
 }
 
 }  // namespace asperity
