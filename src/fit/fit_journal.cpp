@@ -163,15 +163,21 @@ void FitJournal::read(const fs::path& file, bool append) {
   }
   files_.push_back(file);
   if (!append) return;
+  // A file written afresh here (no header yet, or a torn one; a legacy journal re-digested) is
+  // exactly what was written: it has no tail to cut (cutting at the old text's good end would cut
+  // the fresh header away).
+  bool rewritten = true;
   if (scan.good_end == 0) {
     write_file_durably(file, journal_header(kColumnsLine) + "\n");
   } else if (scan.digest == JournalDigest::fnv1a64_legacy) {
     // Written atomically in its place; a torn or damaged tail goes with it.
     text.resize(scan.good_end);
     write_file_durably(file, redigested(text, scan.digest));
+  } else {
+    rewritten = false;
   }
   file_ = std::make_unique<JournalFile>(file, false, name);
-  if (scan.good_end < text.size()) file_->cut(scan.good_end);  // only a torn or damaged tail: nothing computed is lost
+  if (!rewritten && scan.good_end < text.size()) file_->cut(scan.good_end);  // only a torn or damaged tail: nothing computed is lost
   else file_->sync();
 }
 
