@@ -6,8 +6,9 @@
 // the pinned forces are f = X a0 + b0 − G Δ(f) (Δ = 0 for linear junctions).
 // A slip removes one position (rank-one, O(N²)); a repin adds the slipping junctions back and a
 // change of D takes effect, both by a rebuild (LAPACK Cholesky inverse in place, O(N³)); after
-// about N rank-one updates G is rebuilt too (their rounding accumulates). Memory: C and G, 2 N²
-// doubles. Positions q = 0 .. size()−1 index P; junction(q) is the junction there.
+// about N rank-one updates G is rebuilt too (their rounding accumulates). G is symmetric: only its
+// upper triangle is kept up to date and read (half the memory traffic of every pass and update).
+// Memory: C and G, 2 N² doubles. Positions q = 0 .. size()−1 index P; junction(q) is the junction there.
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -35,8 +36,8 @@ class PinnedCompliance {
   double b0(std::size_t q) const { return b0_[q]; }        // N
   double coupling(std::size_t i, std::size_t j) const { return C_(i, j); }  // C_ij [m/N], junctions
 
-  // y1 = G w1, y2 = G w2 over P with w1, w2 nonzero only at the positions `columns` (one pass
-  // over those rows of G; G symmetric). y1, y2 are overwritten (size() entries).
+  // y1 = G w1, y2 = G w2 over P with w1, w2 (size() entries) zero outside the positions
+  // `columns` (one pass over the stored triangle of G). y1, y2 are overwritten.
   void apply(const std::vector<std::size_t>& columns, const std::vector<double>& w1, const std::vector<double>& w2,
              std::vector<double>& y1, std::vector<double>& y2) const;
   // G's row q (= column q), size() entries.
@@ -62,7 +63,14 @@ class PinnedCompliance {
  private:
   std::size_t N_ = 0, n_ = 0;
   InteractionMatrix C_;
-  std::vector<double> G_;  // N × N, row-major over positions of P (leading dimension N)
+  // y1 = G w1, y2 = G w2 over all of P (w1, w2: size() entries).
+  void symmetric_product(const std::vector<double>& w1, const std::vector<double>& w2, std::vector<double>& y1,
+                         std::vector<double>& y2) const;
+
+  // N × N, row-major over positions of P (leading dimension N); only the upper triangle
+  // (column ≥ row) is kept: G is symmetric, and every pass over it reads half as much.
+  std::vector<double> G_;
+  mutable std::vector<double> partial_;  // the symmetric product's per-block sums (a workspace)
   std::vector<std::uint32_t> idx_;  // position → junction
   std::vector<std::size_t> pos_;    // junction → position (npos: slipping)
   std::vector<double> D_, h_, a0_, b0_;
