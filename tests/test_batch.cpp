@@ -18,7 +18,7 @@
 #include "batch/shard_plan.hpp"
 #include "batch/stop_flag.hpp"
 #include "io/journal_line.hpp"
-#include "support.hpp"
+#include "support_files.hpp"
 
 namespace fs = std::filesystem;
 using namespace asperity;

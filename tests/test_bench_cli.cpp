@@ -13,7 +13,7 @@
 
 #include "scene/load.hpp"
 #include "solve/integrate.hpp"
-#include "support.hpp"
+#include "support_files.hpp"
 
 namespace fs = std::filesystem;
 

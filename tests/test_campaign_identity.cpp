@@ -12,7 +12,7 @@
 #include "campaign/store.hpp"
 #include "campaign/sweep.hpp"
 #include "campaign/campaign_load.hpp"
-#include "support.hpp"
+#include "support_files.hpp"
 
 namespace fs = std::filesystem;
 using namespace asperity;

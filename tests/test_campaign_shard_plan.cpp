@@ -19,7 +19,7 @@
 #include "campaign/sweep.hpp"
 #include "solve/core/problem.hpp"
 #include "solve/core/run_cost.hpp"
-#include "support.hpp"
+#include "support_files.hpp"
 
 namespace fs = std::filesystem;
 using namespace asperity;

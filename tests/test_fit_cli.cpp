@@ -9,7 +9,7 @@
 #include "fit_support.hpp"
 #include "io/hash.hpp"
 
-#include "support.hpp"
+#include "support_files.hpp"
 
 using namespace asperity::testing;
 namespace fs = std::filesystem;

@@ -16,7 +16,7 @@
 #include "io/hash.hpp"
 #include "io/input_error.hpp"
 #include "io/journal_line.hpp"
-#include "support.hpp"
+#include "support_files.hpp"
 
 using namespace asperity;
 namespace fs = std::filesystem;

@@ -14,7 +14,7 @@
 #include "io/numbers.hpp"
 #include "scene/validate.hpp"
 #include "surface/height_map_io.hpp"
-#include "support.hpp"
+#include "support_files.hpp"
 
 using namespace asperity;
 namespace fs = std::filesystem;

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "io/atomic_file.hpp"
-#include "support.hpp"
+#include "support_files.hpp"
 
 using namespace asperity;
 namespace fs = std::filesystem;

@@ -9,7 +9,7 @@
 
 #include "io/csv.hpp"
 #include "io/input_error.hpp"
-#include "support.hpp"
+#include "support_files.hpp"
 
 using namespace asperity;
 namespace fs = std::filesystem;

@@ -4,7 +4,7 @@
 #include <string>
 
 #include "io/gnuplot_runner.hpp"
-#include "support.hpp"
+#include "support_files.hpp"
 
 using namespace asperity;
 namespace fs = std::filesystem;

@@ -13,7 +13,7 @@
 #include "campaign/campaign_load.hpp"
 #include "campaign/sweep.hpp"
 #include "io/provenance.hpp"
-#include "support.hpp"
+#include "support_files.hpp"
 
 namespace fs = std::filesystem;
 using namespace asperity;

@@ -12,7 +12,7 @@
 
 #include "io/input_error.hpp"
 #include "io/safe_open.hpp"
-#include "support.hpp"
+#include "support_files.hpp"
 
 namespace fs = std::filesystem;
 using namespace asperity;

@@ -12,7 +12,7 @@
 
 #include "io/atomic_file.hpp"
 #include "io/temp_files.hpp"
-#include "support.hpp"
+#include "support_files.hpp"
 
 namespace fs = std::filesystem;
 using namespace asperity;

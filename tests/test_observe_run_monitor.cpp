@@ -4,7 +4,7 @@
 #include <vector>
 
 #include "observe/simulate.hpp"
-#include "support.hpp"
+#include "support_scenes.hpp"
 
 using namespace asperity;
 using namespace asperity::testing;

@@ -10,7 +10,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "support.hpp"
+#include "support_files.hpp"
 #include "regress/regress.hpp"
 #include "scene/load.hpp"
 

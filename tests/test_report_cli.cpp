@@ -11,7 +11,7 @@
 #include <sstream>
 #include <string>
 
-#include "support.hpp"
+#include "support_files.hpp"
 
 namespace fs = std::filesystem;
 

@@ -14,7 +14,7 @@
 #include "report/units.hpp"
 #include "scene/scene.hpp"
 #include "scene/scene_keys.hpp"
-#include "support.hpp"
+#include "support_files.hpp"
 
 namespace fs = std::filesystem;
 using namespace asperity;

@@ -11,7 +11,7 @@
 #include <sstream>
 #include <string>
 
-#include "support.hpp"
+#include "support_files.hpp"
 #include "observe/simulate.hpp"
 #include "report/paper_figures.hpp"
 #include "scene/load.hpp"

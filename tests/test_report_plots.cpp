@@ -13,7 +13,7 @@
 #include "report/line_plot.hpp"
 #include "report/plot_axes.hpp"
 #include "report/units.hpp"
-#include "support.hpp"
+#include "support_files.hpp"
 
 namespace fs = std::filesystem;
 using namespace asperity;

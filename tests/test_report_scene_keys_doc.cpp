@@ -5,7 +5,7 @@
 
 #include "report/scene_keys_doc.hpp"
 #include "scene/scene_keys.hpp"
-#include "support.hpp"
+#include "support_files.hpp"
 
 using namespace asperity;
 

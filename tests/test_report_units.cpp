@@ -4,7 +4,7 @@
 
 #include "report/units.hpp"
 #include "scene/scene.hpp"
-#include "support.hpp"
+#include "support_files.hpp"
 
 using namespace asperity;
 

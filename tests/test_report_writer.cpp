@@ -12,7 +12,7 @@
 
 #include "report/run_writer.hpp"
 
-#include "support.hpp"
+#include "support_files.hpp"
 
 using namespace asperity;
 namespace fs = std::filesystem;

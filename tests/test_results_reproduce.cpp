@@ -29,7 +29,7 @@
 #include "io/hash.hpp"
 #include "observe/observables.hpp"
 #include "observe/simulate.hpp"
-#include "support.hpp"
+#include "support_files.hpp"
 
 namespace fs = std::filesystem;
 using namespace asperity;

@@ -9,7 +9,7 @@
 #include "scene/load.hpp"
 #include "scene/validate.hpp"
 #include "solve/core/problem.hpp"
-#include "support.hpp"
+#include "support_files.hpp"
 
 namespace fs = std::filesystem;
 using namespace asperity;

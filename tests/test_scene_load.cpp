@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "support.hpp"
+#include "support_files.hpp"
 #include "scene/load.hpp"
 
 namespace fs = std::filesystem;

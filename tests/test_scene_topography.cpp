@@ -15,7 +15,7 @@
 #include "io/input_error.hpp"
 #include "scene/load.hpp"
 #include "scene/topography_cache.hpp"
-#include "support.hpp"
+#include "support_files.hpp"
 
 using namespace asperity;
 namespace fs = std::filesystem;

@@ -9,10 +9,8 @@
 #include "scene/load.hpp"
 #include "solve/event/event_integrator.hpp"
 #include "solve/event/event_junctions.hpp"
-#include "support.hpp"
 
 using namespace asperity;
-using namespace asperity::testing;
 
 namespace {
 

@@ -6,7 +6,7 @@
 
 #include "observe/recorder.hpp"
 #include "solve/integrate.hpp"
-#include "support.hpp"
+#include "support_scenes.hpp"
 
 using namespace asperity;
 using namespace asperity::testing;

@@ -9,7 +9,7 @@
 #include "physics/elastic_interaction.hpp"
 #include "solve/interacting/coupled_forces.hpp"
 #include "solve/interacting/interaction_matrix.hpp"
-#include "support.hpp"
+#include "support_scenes.hpp"
 
 using namespace asperity;
 using namespace asperity::testing;

@@ -12,7 +12,7 @@
 #include "scene/load.hpp"
 #include "solve/interacting/interacting_junctions.hpp"
 #include "solve/interacting/interaction_matrix.hpp"
-#include "support.hpp"
+#include "support_scenes.hpp"
 
 using namespace asperity;
 using namespace asperity::testing;

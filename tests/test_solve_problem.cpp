@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "solve/core/problem.hpp"
-#include "support.hpp"
+#include "support_scenes.hpp"
 
 using namespace asperity;
 using namespace asperity::testing;

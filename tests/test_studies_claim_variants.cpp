@@ -7,7 +7,7 @@
 
 #include "observe/simulate.hpp"
 #include "studies/claim_variants.hpp"
-#include "support.hpp"
+#include "support_scenes.hpp"
 
 using namespace asperity;
 

@@ -7,7 +7,7 @@
 
 #include "studies/claim_verdicts.hpp"
 #include "studies/claims.hpp"
-#include "support.hpp"
+#include "support_scenes.hpp"
 
 using namespace asperity;
 

@@ -9,7 +9,7 @@
 #include "physics/elastic_interaction.hpp"
 #include "studies/junction_pairs.hpp"
 #include "solve/core/problem.hpp"
-#include "support.hpp"
+#include "support_scenes.hpp"
 
 using namespace asperity;
 using namespace asperity::testing;

@@ -10,7 +10,7 @@
 
 #include "io/input_error.hpp"
 #include "surface/height_map_io.hpp"
-#include "support.hpp"
+#include "support_files.hpp"
 
 using namespace asperity;
 namespace fs = std::filesystem;
