@@ -12,6 +12,7 @@
 #include "scene/csv.hpp"
 #include "scene/load.hpp"
 #include "io/numbers.hpp"
+#include "support_files.hpp"
 #include "support_scenes.hpp"
 
 namespace asperity::testing {
