@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "support.hpp"
+#include "support_files.hpp"
 
 extern char** environ;
 

@@ -12,7 +12,8 @@
 #include "scene/csv.hpp"
 #include "scene/load.hpp"
 #include "io/numbers.hpp"
-#include "support.hpp"
+#include "support_files.hpp"
+#include "support_scenes.hpp"
 
 namespace asperity::testing {
 

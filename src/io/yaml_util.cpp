@@ -159,7 +159,7 @@ std::string read_input_file(const std::filesystem::path& path, const std::string
 }
 
 // YAML forbids C0 control characters other than tab, LF and CR (and DEL); yaml-cpp 0.7 can loop
-// forever on some of them (found by fuzz/fuzz_scene.cpp), so they are refused before parsing.
+// forever on some of them (found by tests/fuzz/fuzz_scene.cpp), so they are refused before parsing.
 static void check_yaml_text(const std::string& text, const std::string& display, const std::string& key) {
   int line = 1, col = 0;
   for (unsigned char c : text) {
@@ -204,7 +204,7 @@ static void check_utf8(const std::string& text, const std::string& display, cons
 
 namespace {
 // Counts documents without building them. YAML::LoadAll loops forever on some malformed input
-// (e.g. a lone ',': every call "finds" another empty document; found by fuzz/fuzz_scene.cpp),
+// (e.g. a lone ',': every call "finds" another empty document; found by tests/fuzz/fuzz_scene.cpp),
 // so documents are counted with a cap instead.
 //
 // It also measures the document as it would be with every alias expanded (nodes plus scalar

@@ -32,7 +32,7 @@ std::string scene_keys_markdown() {
   std::string md =
       "# Scene keys\n\n"
       "Generated from the key table (`src/scene/scene_keys.cpp`, written by `src/report/scene_keys_doc.cpp`;\n"
-      "`tests/test_report_scene_keys_doc.cpp` keeps this file equal to it). The loader checks every\n"
+      "`tests/unit/report/test_report_scene_keys_doc.cpp` keeps this file equal to it). The loader checks every\n"
       "value against these ranges (one line `file:line: key: message`, exit 2), and `--set`, campaign\n"
       "axes and fit parameters go through the same checks. Defaults are the paper's values; `required`:\n"
       "the experiment file must give it. Units are SI (`1`: dimensionless). Checks that involve\n"

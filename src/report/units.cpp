@@ -158,7 +158,7 @@ std::string axis_markup(const std::string& column) {
 std::string units_reference_markdown() {
   std::string md =
       "# Units of every column\n\n"
-      "Generated from the key and observable tables (`src/report/units.cpp`; `tests/test_report_units.cpp`\n"
+      "Generated from the key and observable tables (`src/report/units.cpp`; `tests/unit/report/test_report_units.cpp`\n"
       "keeps this file equal to them). All values are SI. `1`: dimensionless. Columns of a store's\n"
       "`points.csv`, of `summary.yaml`, `fitted.csv` and the bench CSVs are named as below; `table.csv`\n"
       "of `asperity reproduce` carries its units in its header names (`Q_s_N`, `A0_m2`, ...).\n\n"

@@ -4,7 +4,7 @@
 // planner needs (its plans are not thread-safe to make or destroy; executing them is). A plan may
 // use several threads (libfftw3_threads): FFTW splits the loops of one transform among them, each
 // thread computing the same numbers as one thread would (the bits do not depend on the count:
-// tests/test_surface_contact_speed.cpp).
+// tests/unit/bench/test_surface_contact_speed.cpp).
 #include <fftw3.h>
 
 #include <cstddef>

@@ -12,7 +12,7 @@ scripts/setup.sh --deps-only
 cmake -S . -B build-fuzz -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DASPERITY_FUZZ=ON -DASPERITY_TESTS=OFF >/dev/null
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=($(ls fuzz/fuzz_*.cpp | xargs -n1 basename | sed 's/\.cpp$//'))
+[ ${#targets[@]} -gt 0 ] || targets=($(ls tests/fuzz/fuzz_*.cpp | xargs -n1 basename | sed 's/\.cpp$//'))
 cmake --build build-fuzz -j"$(nproc)" --target "${targets[@]}"
 for t in "${targets[@]}"; do
   corpus=build-fuzz/corpus/$t; mkdir -p "$corpus" build-fuzz/crashes/$t

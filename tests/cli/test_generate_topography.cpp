@@ -1,0 +1,214 @@
+// generate/topography.hpp: junctions from topography. Overlapping equivalent discs are merged
+// (area conserved, area-weighted centroid, cascades), a smooth sphere gives Hertz's contact as one
+// junction, the recipe gives the same bytes twice (synthetic or the same heights read from a
+// measured map), bad recipes are refused at their line, and the experiment written runs.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <filesystem>
+#include <numbers>
+#include <string>
+
+#include "cli_spawn.hpp"
+#include "generate/topography.hpp"
+#include "io/input_error.hpp"
+#include "io/numbers.hpp"
+#include "scene/validate.hpp"
+#include "surface/height_map_io.hpp"
+#include "support_files.hpp"
+
+using namespace asperity;
+namespace fs = std::filesystem;
+using asperity::testing::fresh_dir;
+using asperity::testing::run_argv;
+using asperity::testing::slurp;
+using asperity::testing::write_text;
+
+namespace {
+
+// A recipe for a sphere of R = 10 mm on a 5 mm wide map, E = 1.6 MPa, ν = 0.5 (the paper's
+// elastomer), P = 1 N: Hertz's a = 1.52 mm, ~39 pixels at 128².
+std::string recipe_text(const std::string& topography) {
+  return "name: topo-test\n"
+         "topography:\n" +
+         topography +
+         "sphere_radius_m: 0.01\n"
+         "E: 1.6e6\n"
+         "nu: 0.5\n"
+         "load_N: 1\n"
+         "contact:\n"
+         "  tolerance: 1e-10\n"
+         "  max_iterations: 2000\n"
+         "  connectivity: 8\n";
+}
+
+const char* kSelfAffine =
+    "  self_affine:\n"
+    "    seed: 7\n"
+    "    n: 64\n"
+    "    size_m: 5e-3\n"
+    "    hurst: 0.8\n"
+    "    rolloff_wavelength_m: 1.25e-3\n"
+    "    short_wavelength_m: 3.125e-4\n"
+    "    rms_height_m: 4e-5\n";  // rough enough for 10 clusters, two of which merge (measured)
+
+std::string load_error(const fs::path& dir, const std::string& text) {
+  write_text(dir / "bad.yaml", text);
+  try {
+    load_topography_recipe(dir / "bad.yaml");
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// The data lines of a junctions CSV (its provenance header left out).
+std::string data_lines(const std::string& csv) { return csv.substr(csv.find("area_m2,x_m,y_m\n")); }
+
+}  // namespace
+
+TEST_CASE("overlapping junction discs are merged, area conserved, until none overlap", "[generate][topography]") {
+  const double pi = std::numbers::pi;
+  // A (r = 1) and B (r = 1) overlap; C (r = 0.5) overlaps neither but overlaps their merged disc
+  // (r = √2 at (0.95, 0), 1.9 away < 1.914); D is far away and stays.
+  JunctionPopulation J;
+  J.area_m2 = {pi, pi, 0.25 * pi, 0.01};
+  J.x_m = {0, 1.9, 0.95, 10};
+  J.y_m = {0, 0, 1.9, 10};
+  REQUIRE(first_overlap(J));
+  const std::size_t merges = merge_overlapping_junctions(J);
+  CHECK(merges == 2);
+  REQUIRE(J.size() == 2);
+  CHECK(J.area_m2[0] == Approx(2.25 * pi).epsilon(1e-15));
+  CHECK(J.x_m[0] == Approx(0.95).epsilon(1e-15));
+  CHECK(J.y_m[0] == Approx(0.25 * 1.9 / 2.25).epsilon(1e-15));
+  CHECK(J.area_m2[1] == 0.01);
+  CHECK(J.x_m[1] == 10);
+  CHECK_FALSE(first_overlap(J));
+  // Touching discs (d = r1 + r2) are separate junctions, as first_overlap has it.
+  JunctionPopulation T{{pi, pi}, {0, 2}, {0, 0}};
+  CHECK(merge_overlapping_junctions(T) == 0);
+  CHECK(T.size() == 2);
+}
+
+TEST_CASE("a smooth sphere gives one junction of Hertz's area", "[generate][topography]") {
+  const fs::path d = fresh_dir("asperity-topo-hertz");
+  write_text(d / "smooth.yaml", recipe_text("  smooth:\n    n: 128\n    size_m: 5e-3\n"));
+  const TopographyRecipe r = load_topography_recipe(d / "smooth.yaml");
+  const TopographyJunctions t = build_topography_junctions(r);
+  REQUIRE(t.experiment.junctions.size() == 1);
+  CHECK(t.clusters == 1);
+  CHECK(t.merges == 0);
+  const double E_star = 1.6e6 / (1 - 0.25);
+  const double a = std::cbrt(3 * 1.0 * 0.01 / (4 * E_star));  // 1.5207 mm = 38.9 pixels
+  const double hertz = std::numbers::pi * a * a;
+  const double A = t.experiment.junctions.area_m2[0];
+  // Pixels counted in contact against π a² (7.2636e-6 m²): measured +0.83 % at 128² (4800
+  // pixels of 39.06 µm; a = 38.9 pixels), +1.51 % at 64², +0.35 % at 256²: first order in the
+  // pixel, as a pixel-wise contact edge is. The bound is one ring of pixels, 2 px / a = 5.1 %;
+  // the second check holds the measured value with a little margin.
+  INFO("A = " << A << " m^2, Hertz " << hertz << " m^2, relative error " << (A / hertz - 1));
+  CHECK(std::abs(A / hertz - 1) < 2 * r.pixel_m / a);
+  CHECK(std::abs(A / hertz - 1) < 0.01);  // what is measured, with margin
+  // Symmetric about the grid's centre.
+  CHECK(std::abs(t.experiment.junctions.x_m[0]) < 1e-9 * r.pixel_m);
+  CHECK(std::abs(t.experiment.junctions.y_m[0]) < 1e-9 * r.pixel_m);
+  CHECK(t.experiment.mass_kg == 1 / 9.81);  // P / g, the paper's slider otherwise
+  CHECK(t.experiment.k_L == 9200);
+  CHECK(t.experiment.sigma_exp == 0.23e6);
+  const std::string csv = topography_junctions_csv(r, t);
+  CHECK(csv.find("# surface: a smooth sphere (no roughness), generated from a synthetic surface\n") !=
+        std::string::npos);
+  CHECK(csv.find("# junctions: 1, total area_m2: ") != std::string::npos);
+  fs::remove_all(d);
+}
+
+TEST_CASE("topography recipes: bad values refused at their line", "[generate][topography]") {
+  const fs::path d = fresh_dir("asperity-topo-bad");
+  CHECK(load_error(d, recipe_text("  smooth:\n    n: 64\n    size_m: 5e-3\n  file: map.csv\n")) ==
+        (d / "bad.yaml").string() + ":3: topography.file: give exactly one of smooth, self_affine and file");
+  CHECK(load_error(d, recipe_text("  smooth:\n    n: 9000\n    size_m: 5e-3\n")) ==
+        (d / "bad.yaml").string() + ":4: topography.smooth.n: must be in [2, 8192], got 9000");
+  CHECK(load_error(d, recipe_text("  file: map.csv\n  pixel_m: 1e-6\n"))
+            .rfind((d / "bad.yaml").string() + ":3: topography.file: height map not found: 'map.csv'", 0) == 0);
+  std::string c6 = recipe_text("  smooth:\n    n: 64\n    size_m: 5e-3\n");
+  c6.replace(c6.find("connectivity: 8"), 15, "connectivity: 6");
+  CHECK(load_error(d, c6) == (d / "bad.yaml").string() + ":13: contact.connectivity: must be 4 or 8, got 6");
+  // Found by the solve: a contact wider than the map (Hertz's a = 1.52 mm on a 2 mm map), and a
+  // solve stopped before its tolerance.
+  const auto build_error = [&](const std::string& text) {
+    write_text(d / "bad.yaml", text);
+    try {
+      build_topography_junctions(load_topography_recipe(d / "bad.yaml"));
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  CHECK(build_error(recipe_text("  smooth:\n    n: 32\n    size_m: 2e-3\n")) ==
+        (d / "bad.yaml").string() +
+            ":3: topography: the contact reaches the edge of the 32 x 32 map: enlarge the map (or lower load_N, or "
+            "the sphere_radius_m)");
+  std::string once = recipe_text("  smooth:\n    n: 64\n    size_m: 5e-3\n");
+  once.replace(once.find("max_iterations: 2000"), 20, "max_iterations: 1");
+  CHECK(build_error(once).rfind((d / "bad.yaml").string() +
+                                    ": contact.max_iterations: the normal contact did not converge in 1 iterations",
+                                0) == 0);
+  fs::remove_all(d);
+}
+
+TEST_CASE("topography recipe: same bytes twice, measured map = synthetic heights, the experiment runs",
+          "[generate][topography][cli]") {
+  const fs::path d = fresh_dir("asperity-topo-cli");
+  write_text(d / "topo.yaml", recipe_text(kSelfAffine));
+  auto r1 = run_argv(d, {"generate", "--recipe", "topo.yaml", "--out", "one", "--quiet"});
+  auto r2 = run_argv(d, {"generate", "--recipe", "topo.yaml", "--out", "two", "--quiet"});
+  INFO(r1.err << r2.err);
+  REQUIRE(r1.status == 0);
+  REQUIRE(r2.status == 0);
+  const std::string csv = slurp(d / "one/junctions.csv");
+  CHECK(csv == slurp(d / "two/junctions.csv"));
+  CHECK(slurp(d / "one/experiment.yaml") == slurp(d / "two/experiment.yaml"));
+  CHECK(csv.find("generated from a synthetic surface") != std::string::npos);
+  CHECK(csv.find("# seed: 7\n") != std::string::npos);
+  CHECK(csv.find("# recipe_sha256: ") != std::string::npos);
+  CHECK(csv.find("# clusters: 10 (connectivity 8), merges of overlapping equivalent discs: 1\n") != std::string::npos);
+  CHECK(csv.find("# junctions: 9, total area_m2: ") != std::string::npos);
+  // Again into the same folder (ours, by its marker): same bytes.
+  REQUIRE(run_argv(d, {"generate", "--recipe", "topo.yaml", "--out", "one", "--quiet"}).status == 0);
+  CHECK(slurp(d / "one/junctions.csv") == csv);
+
+  // The same heights as a measured map (CSV and float64) give the same junctions.
+  const TopographyRecipe r = load_topography_recipe(d / "topo.yaml");
+  const HeightMap map = topography_surface(r);
+  write_height_map_csv(d / "map.csv", map);
+  write_height_map_binary(d / "map.yaml", "map.f64", map);
+  write_text(d / "measured_csv.yaml",
+             recipe_text("  file: map.csv\n  pixel_m: " + scene_io::format_double(map.pixel_m) + "\n"));
+  write_text(d / "measured_bin.yaml", recipe_text("  file: map.yaml\n"));
+  REQUIRE(run_argv(d, {"generate", "--recipe", "measured_csv.yaml", "--out", "mcsv", "--quiet"}).status == 0);
+  REQUIRE(run_argv(d, {"generate", "--recipe", "measured_bin.yaml", "--out", "mbin", "--quiet"}).status == 0);
+  CHECK(data_lines(slurp(d / "mcsv/junctions.csv")) == data_lines(csv));
+  CHECK(data_lines(slurp(d / "mbin/junctions.csv")) == data_lines(csv));
+  CHECK(slurp(d / "mcsv/junctions.csv").find("# surface: measured height map map.csv\n") != std::string::npos);
+
+  // The experiment runs, with elastic interactions (which need the discs apart).
+  write_text(d / "scene.yaml",
+             "experiment: one/experiment.yaml\nmodel:\n  interactions: elastic\nstop:\n  time: 0.02\n"
+             "output:\n  every: 0.001\n");
+  const auto run = run_argv(d, {"run", "scene.yaml", "--out", "run", "--quiet"});
+  INFO(run.err);
+  CHECK(run.status == 0);
+  fs::remove_all(d);
+}
+
+TEST_CASE("the committed topography example regenerates byte for byte", "[generate][topography][cli]") {
+  const fs::path src(ASPERITY_SOURCE_DIR);
+  const fs::path d = fresh_dir("asperity-topo-example");
+  const auto r = run_argv(d, {"generate", "--recipe", (src / "examples/topography/topo.yaml").string(), "--out",
+                              "generated", "--quiet"});
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  CHECK(slurp(d / "generated/junctions.csv") == slurp(src / "examples/topography/generated/junctions.csv"));
+  CHECK(slurp(d / "generated/experiment.yaml") == slurp(src / "examples/topography/generated/experiment.yaml"));
+  fs::remove_all(d);
+}

@@ -1,0 +1,42 @@
+#pragma once
+// Files and temporary folders for tests (no asperity header: usable by the tests of every layer).
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace asperity::testing {
+// The whole text of a file (empty when it cannot be read).
+inline std::string slurp(const std::filesystem::path& p) {
+  std::ifstream f(p);
+  std::stringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+// Writes `text` to `p` byte for byte, making its parent folders; returns `p`.
+inline std::filesystem::path write_text(const std::filesystem::path& p, const std::string& text) {
+  if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path());
+  std::ofstream(p, std::ios::binary) << text;
+  return p;
+}
+
+// A path in the temporary folder unique to this process (test suites may run side by side).
+inline std::filesystem::path temp_path(const std::string& stem, const std::string& ext = "") {
+  std::string name = stem;
+  name += '-';
+  name += std::to_string(::getpid());
+  name += ext;
+  return std::filesystem::temp_directory_path() / name;
+}
+
+// An empty folder temp_path(stem) (removed first if a crashed run left it).
+inline std::filesystem::path fresh_dir(const std::string& stem) {
+  const std::filesystem::path d = temp_path(stem);
+  std::filesystem::remove_all(d);
+  std::filesystem::create_directories(d);
+  return d;
+}
+}  // namespace asperity::testing

@@ -1,0 +1,107 @@
+// io/provenance.hpp: what every result says about where it came from (build, command line,
+// input files by content), and the results that carry it (summary.yaml, a store's
+// provenance.yaml).
+#include <yaml-cpp/yaml.h>
+
+#include <catch2/catch.hpp>
+#include <cstdio>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+
+#include "campaign/campaign_load.hpp"
+#include "campaign/sweep.hpp"
+#include "io/provenance.hpp"
+#include "support_files.hpp"
+
+namespace fs = std::filesystem;
+using namespace asperity;
+using namespace asperity::testing;
+
+namespace {
+
+// FNV-1a 64 written out from its definition (offset basis and prime), independent of io/hash.
+std::string fnv1a64_hex(const std::string& bytes) {
+  std::uint64_t h = 14695981039346656037ull;
+  for (const unsigned char c : bytes) h = (h ^ c) * 1099511628211ull;
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+  return buf;
+}
+
+std::string command_output(const std::string& cmd) {
+  std::string out;
+  if (FILE* p = ::popen(cmd.c_str(), "r")) {
+    char buf[256];
+    while (std::fgets(buf, sizeof buf, p)) out += buf;
+    ::pclose(p);
+  }
+  while (!out.empty() && (out.back() == '\n' || out.back() == '\r')) out.pop_back();
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("the provenance block names the build, the command and each input file's hash", "[io][provenance]") {
+  const fs::path dir = temp_path("provenance");
+  fs::create_directories(dir);
+  const fs::path a = write_text(dir / "junctions.csv", "area_m2\n1e-9\n2e-9\n");
+  const std::string command = "asperity run \"it's\" --set model.eta=5";
+  const std::string text = provenance_yaml(
+      command, {{"junctions", a}, {"junctions", dir / "." / "junctions.csv"}, {"measured", dir / "missing.csv"}, {"none", ""}});
+  const YAML::Node p = YAML::Load(text)["provenance"];
+  REQUIRE(p);
+  CHECK(p["command_line"].as<std::string>() == command);  // quoted so that it reads back as is
+  CHECK(p["asperity_version"].as<std::string>() == build_info().version);
+  CHECK(p["git_commit"].as<std::string>() == build_info().git_commit);
+  CHECK_THAT(p["libraries"].as<std::string>(), Catch::Contains("NLopt 2.") && Catch::Contains("TBB 20"));
+  REQUIRE(p["files"].size() == 2);  // the same file once; an empty path not at all
+  CHECK(p["files"][0]["role"].as<std::string>() == "junctions");
+  CHECK(p["files"][0]["fnv1a64"].as<std::string>() == fnv1a64_hex("area_m2\n1e-9\n2e-9\n"));
+  CHECK(p["files"][1]["fnv1a64"].as<std::string>() == "unreadable");
+  fs::remove_all(dir);
+}
+
+TEST_CASE("the build's commit is the checkout's HEAD", "[io][provenance]") {
+  const std::string head =
+      command_output("git -C '" + std::string(ASPERITY_SOURCE_DIR) + "' rev-parse --short=12 HEAD 2>/dev/null");
+  const std::string commit = build_info().git_commit;
+  if (head.empty()) {
+    CHECK(commit == "unknown");
+  } else {
+    // The binary may predate the last commit only if the build is stale; the test binary is
+    // rebuilt with the library, so its commit is HEAD (with -dirty for local changes).
+    CHECK(std::regex_match(commit, std::regex("[0-9a-f]{12}(-dirty)?")));
+    CHECK(commit.substr(0, 12) == head);
+  }
+  CHECK_THAT(version_line(), Catch::Contains("commit " + commit));
+}
+
+TEST_CASE("display_path is relative inside the working directory and as given outside", "[io][provenance]") {
+  CHECK(display_path(fs::current_path() / "a" / "b.csv") == "a/b.csv");
+  CHECK(display_path("/nonexistent_root_dir/x.csv") == "/nonexistent_root_dir/x.csv");
+}
+
+TEST_CASE("a store's provenance names the command and the data each base scene reads", "[io][provenance][campaign]") {
+  const fs::path data = fs::path(ASPERITY_SOURCE_DIR) / "tests" / "data";
+  const Campaign c = load_campaign(data / "campaign" / "tiny.yaml");
+  const fs::path out = temp_path("provenance_store");
+  SweepOptions o;
+  o.out = out;
+  o.threads = 1;
+  o.quiet = true;
+  o.command_line = "asperity sweep tiny.yaml -j 1";
+  run_sweep(c, o);
+  const YAML::Node p = YAML::LoadFile((out / "provenance.yaml").string())["provenance"];
+  REQUIRE(p);
+  CHECK(p["command_line"].as<std::string>() == o.command_line);
+  bool junctions = false;
+  for (const auto& f : p["files"])
+    if (f["role"].as<std::string>() == "junctions") {
+      junctions = true;
+      CHECK(f["fnv1a64"].as<std::string>() == fnv1a64_hex(slurp(data / "scene" / "exp_small" / "junctions.csv")));
+    }
+  CHECK(junctions);
+  fs::remove_all(out);
+}
