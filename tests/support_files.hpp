@@ -32,6 +32,9 @@ inline std::filesystem::path temp_path(const std::string& stem, const std::strin
   return std::filesystem::temp_directory_path() / name;
 }
 
+// The path in single quotes, for a command line the tests build (their paths hold no quote).
+inline std::string shell_quoted(const std::filesystem::path& p) { return "'" + p.string() + "'"; }
+
 // An empty folder temp_path(stem) (removed first if a crashed run left it).
 inline std::filesystem::path fresh_dir(const std::string& stem) {
   const std::filesystem::path d = temp_path(stem);

@@ -29,12 +29,7 @@ namespace fs = std::filesystem;
 namespace {
 
 using asperity::testing::slurp;
-std::string q(const fs::path& p) {
-  std::string s(1, '\'');
-  s += p.string();
-  s += '\'';
-  return s;
-}
+std::string q(const fs::path& p) { return asperity::testing::shell_quoted(p); }
 void write(const fs::path& p, const std::string& text) { asperity::testing::write_text(p, text); }
 
 struct Case {

@@ -18,13 +18,7 @@ namespace fs = std::filesystem;
 namespace {
 
 using asperity::testing::slurp;
-
-std::string q(const fs::path& p) {
-  std::string s(1, '\'');
-  s += p.string();
-  s += '\'';
-  return s;
-}
+std::string q(const fs::path& p) { return asperity::testing::shell_quoted(p); }
 
 // Runs the asperity binary with `args`; returns its exit status, stderr in `err`.
 int run_cli(const std::string& args, const fs::path& work, std::string* err = nullptr) {

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "campaign/campaign_load.hpp"
+#include "support_files.hpp"
 
 namespace fs = std::filesystem;
 using namespace asperity;
@@ -18,11 +19,7 @@ const fs::path kData = fs::path(ASPERITY_SOURCE_DIR) / "tests" / "data" / "campa
 
 fs::path temp_dir() {
   static int counter = 0;
-  const fs::path d = fs::temp_directory_path() /
-                     ("asperity_campaign_in_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-  fs::remove_all(d);  // a folder left by an earlier run whose process had the same pid
-  fs::create_directories(d);
-  return d;
+  return asperity::testing::fresh_dir("asperity_campaign_in_" + std::to_string(counter++));
 }
 
 // A campaign file whose line 1 is the scene list; `body` starts at line 2.

@@ -22,6 +22,7 @@
 #include "observe/simulate.hpp"
 #include "io/digest.hpp"
 #include "io/hash.hpp"
+#include "support_files.hpp"
 
 namespace fs = std::filesystem;
 using namespace asperity;
@@ -33,19 +34,9 @@ const fs::path kData = fs::path(ASPERITY_SOURCE_DIR) / "tests" / "data" / "campa
 
 fs::path temp_dir() {
   static int counter = 0;
-  const fs::path d = fs::temp_directory_path() /
-                     ("asperity_store_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
+  return asperity::testing::fresh_dir("asperity_store_" + std::to_string(counter++));
 }
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using asperity::testing::slurp;
 
 std::vector<std::string> lines_of(const std::string& text) {
   std::vector<std::string> out;
