@@ -120,6 +120,8 @@ class InteractingJunctions {
   double seed_X_ = 0;
   std::vector<double> seed_f_, seed_a_;
   mutable std::int64_t force_evals_ = 0, solves_ = 0, iterations_ = 0;
+  // Chord passes that contracted slowly since G was last rebuilt (rebuild count slow_since_).
+  mutable std::int64_t slow_passes_ = 0, slow_since_ = -1;
 };
 
 }  // namespace asperity

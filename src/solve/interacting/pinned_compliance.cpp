@@ -24,6 +24,8 @@ constexpr std::size_t kProductBlocks = 16;
 // Below n / kFewColumns weighted columns, the product reads those columns alone (strided above
 // the diagonal, about 8 times the cost of a sequential read: break-even near n / 9).
 constexpr std::size_t kFewColumns = 10;
+// Pinned sets below this size are factorised and inverted by LAPACK on one thread.
+constexpr std::size_t kParallelLapack = 2000;
 
 }  // namespace
 
@@ -203,10 +205,15 @@ void PinnedCompliance::rebuild() {
   // our upper triangle.
   const int ni = static_cast<int>(n), lda = static_cast<int>(N);
   int info = 0;
+  // Below kParallelLapack, one thread: OpenBLAS's many short parallel regions gain little there,
+  // and on a loaded machine their spinning barriers made a rebuild of n = 300 some 100 times
+  // slower (0.49 → 14 s for a whole N = 300 run); the bits then do not depend on the thread count.
+  const int threads = omp_get_max_threads();
+  if (n < kParallelLapack) omp_set_num_threads(1);
   dpotrf_("L", &ni, G, &lda, &info);
+  if (info == 0) dpotri_("L", &ni, G, &lda, &info);
+  omp_set_num_threads(threads);
   if (info != 0) interacting_solver_failure("the pinned junctions' compliance matrix is not positive definite", 0.0);
-  dpotri_("L", &ni, G, &lda, &info);
-  if (info != 0) interacting_solver_failure("the pinned junctions' compliance matrix is singular", 0.0);
   // a0 = G 1, b0 = −G h.
   const std::vector<double> ones(n, 1.0), h(h_.begin(), h_.begin() + static_cast<std::ptrdiff_t>(n));
   std::vector<double> a(n), b(n);
