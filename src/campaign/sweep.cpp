@@ -68,12 +68,13 @@ std::string utc_now() {
   return buf;
 }
 
-// One line on a terminal (redrawn), or a plain log line every 10 s otherwise.
+// The sweep's counts (finished, skipped as already stored, failed) behind the one progress line
+// of io/progress.hpp (redrawn on a terminal, a plain line every 10 s in a log).
 class Progress {
  public:
   Progress(std::uint64_t total, bool quiet, SweepCounters* counters)
-      : total_(total), skipped_(0), quiet_(quiet), tty_(::isatty(2) == 1), counters_(counters),
-        start_(std::chrono::steady_clock::now()), last_(start_) {
+      : total_(total), skipped_(0), counters_(counters),
+        line_("sweep", "points", static_cast<double>(total), quiet, 0.0, 10.0) {
     if (counters_) counters_->total = total;
   }
 
@@ -81,48 +82,23 @@ class Progress {
     ++done_;
     if (counters_) ++counters_->finished;
     failed_ += failed ? 1 : 0;
-    const auto now = std::chrono::steady_clock::now();
-    const double since = std::chrono::duration<double>(now - last_).count();
-    if (quiet_ || (since < (tty_ ? 0.2 : 10.0) && done_ + skipped_.load() < total_)) return;
-    last_ = now;
-    print(now);
+    const std::uint64_t finished = std::min(total_, done_ + skipped_.load());
+    line_.update(static_cast<double>(finished), std::to_string(failed_) + " failed");
   }
+  void finish() { line_.close(); }
   // A point found in the store with its current hash (counted by the build stage, which runs
   // ahead of the writer: a stale stored point is not counted as finished).
   void skipped_one() {
     ++skipped_;
     if (counters_) ++counters_->finished;
   }
-  void finish() {
-    if (!quiet_ && tty_ && done_ > 0) std::fputc('\n', stderr);
-  }
 
  private:
-  void print(std::chrono::steady_clock::time_point now) {
-    const double el = std::chrono::duration<double>(now - start_).count();
-    const double rate = el > 0 ? static_cast<double>(done_) / el : 0;
-    const std::uint64_t finished = std::min(total_, done_ + skipped_);
-    const double eta = rate > 0 ? static_cast<double>(total_ - finished) / rate : NAN;
-    char line[200];
-    std::snprintf(line, sizeof line, "%llu/%llu points, %.2f points/s, ETA %s, %llu failed",
-                  static_cast<unsigned long long>(finished), static_cast<unsigned long long>(total_), rate,
-                  duration_text(eta).c_str(), static_cast<unsigned long long>(failed_));
-    if (tty_) {
-      const int width = 30;
-      const int fill = total_ ? static_cast<int>(width * static_cast<double>(finished) / static_cast<double>(total_)) : width;
-      std::fprintf(stderr, "\r[%s%s] %s\033[K", std::string(static_cast<std::size_t>(fill), '#').c_str(),
-                   std::string(static_cast<std::size_t>(width - fill), '.').c_str(), line);
-    } else {
-      std::fprintf(stderr, "sweep: %s\n", line);
-    }
-    std::fflush(stderr);
-  }
   std::uint64_t total_;
   std::atomic<std::uint64_t> skipped_;  // incremented by the build stage while the writer reads it
   std::uint64_t done_ = 0, failed_ = 0;
-  bool quiet_, tty_;
   SweepCounters* counters_;
-  std::chrono::steady_clock::time_point start_, last_;
+  ProgressLine line_;
 };
 
 // Whether the first point of any base scene runs on stand-in data (its experiment says so).
@@ -559,8 +535,8 @@ class ShardRun {
     rep_.failed_now += job.failed ? 1 : 0;
     progress_.point_done(job.failed);
   }
-
   void finish() { progress_.finish(); }
+
   bool cut_short() const { return cut_short_; }  // the stop left points of the shard unrun
 
  private:

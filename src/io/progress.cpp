@@ -27,8 +27,12 @@ ProgressLine::ProgressLine(std::string what, std::string unit, double total, boo
     : what_(std::move(what)), unit_(std::move(unit)), total_(total), quiet_(quiet), tty_(::isatty(2) == 1),
       delay_s_(delay_s), log_period_s_(log_period_s), start_(Clock::now()), last_(start_) {}
 
-ProgressLine::~ProgressLine() {
+ProgressLine::~ProgressLine() { close(); }
+
+void ProgressLine::close() {
+  const std::lock_guard<std::mutex> lock(mutex_);
   if (drawn_ && tty_) std::fputc('\n', stderr);
+  drawn_ = false;
 }
 
 void ProgressLine::set_total(double total) {

@@ -27,6 +27,8 @@ class ProgressLine {
 
   void update(double done, const std::string& extra = "");
   void set_total(double total);
+  // Ends a line drawn on a terminal (as the destructor does), so what prints next starts afresh.
+  void close();
   // The line as it would print now (for tests and for logs).
   std::string text(double done, double elapsed_s, const std::string& extra) const;
 
