@@ -9,7 +9,7 @@
 
 #include "observe/recorder.hpp"
 #include "scene/scene.hpp"
-#include "solve/integrate.hpp"
+#include "solve/core/run_info.hpp"
 
 namespace asperity {
 
