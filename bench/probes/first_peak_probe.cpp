@@ -1,0 +1,47 @@
+// Probe (not part of the build): one `bench interacting` first-peak row (the stand-in P4.00N's
+// areas repeated to N, placed as the bench places them, no output series) with the solver's work
+// counters, for side-by-side runs of two builds of the solver (issue 26). Build against a Release
+// build in build/ and run from the repository root:
+//   B=build; g++ -O2 -std=c++20 -Isrc bench/probes/first_peak_probe.cpp -o /tmp/first_peak \
+//     -Wl,--start-group $B/libasperity_observe.a $B/libasperity_solve.a $B/libasperity_scene.a \
+//     $B/libasperity_surface.a $B/libasperity_physics.a $B/libasperity_io.a $B/libasperity_generate.a \
+//     $B/libasperity_batch.a -Wl,--end-group -lyaml-cpp -lcrypto -ltbb -lopenblas -lfftw3_threads -lfftw3 \
+//     -lfftw3_omp -fopenmp
+//   OMP_NUM_THREADS=1 /tmp/first_peak 1200
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cmath>
+#include "generate/positions.hpp"
+#include "observe/recorder.hpp"
+#include "observe/simulate.hpp"
+#include "scene/load.hpp"
+#include "solve/integrate.hpp"
+#include "solve/interacting/interacting_event_stepper.hpp"
+using namespace asperity;
+int main(int argc, char** argv) {
+  const std::size_t N = std::atoi(argv[1]);
+  Scene base = load_scene("scenes/paper/P4.00N.yaml");  // run from the repository root
+  const auto areas = base.experiment.junctions.area_m2;
+  const std::size_t N0 = areas.size();
+  Scene s = base;
+  s.experiment.junctions.area_m2.resize(N);
+  for (std::size_t i = 0; i < N; ++i) s.experiment.junctions.area_m2[i] = areas[i % N0];
+  s.experiment.mass_kg = base.experiment.mass_kg * double(N) / double(N0);
+  s.stop.at_first_peak = true; s.stop.time = 60; s.stop.wall_time = 7200;
+  s.output.series.clear();
+  const double R = 4.5e-3 * std::sqrt(double(N) / double(N0));
+  const Positions p = place_in_contact_disc(s.experiment.junctions.area_m2, R, 20200318);
+  s.experiment.junctions.x_m = p.x_m; s.experiment.junctions.y_m = p.y_m;
+  s.model.interactions = Interactions::elastic; s.solver.method = SolverMethod::event;
+  const Problem problem = make_problem(s);
+  Recorder rec = make_recorder(s);
+  auto t0 = std::chrono::steady_clock::now();
+  InteractingEventStepper stepper(problem);
+  const RunInfo info = integrate(stepper, problem, rec);
+  double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const auto w = stepper.junctions().work();
+  const FirstPeak fp = rec.first_peak();
+  std::printf("N %zu wall %.3f s  Q_s %.17g t_peak %.17g A_s %.17g steps %lld slips %lld solves %lld iters %lld rank1 %lld rebuilds %lld\n", N, wall, fp.max.Q, fp.max.t, fp.max.A,
+    (long long)info.stats.steps, (long long)info.stats.slips, (long long)w.solves, (long long)w.iterations, (long long)w.rank_one, (long long)w.rebuilds);
+}
