@@ -155,38 +155,7 @@ ForceNode InteractingJunctions::solve(double X) const {
         z[nA + k] = node.a[q] / a_scale;
         g[nA + k] = (pinned_.a0(q) - y2[q]) / a_scale;
       }
-      // Damped: no nonlinear junction's φ = s f moves by more than 0.1 in one iteration (far
-      // from the solution, e.g. a poor warm start, the full step can overshoot into φ → 1).
-      // The accelerated step is taken only where the plain one needs no damping and stays
-      // within the same bound itself.
-      double step_phi = 0;
-      for (std::size_t k = 0; k < nA; ++k) {
-        const std::size_t q = active[k];
-        step_phi = std::max(step_phi, eq3_.force_scale(pinned_.junction(q)) * threshold(q) * std::abs(g[k] - z[k]));
-      }
-      const double damp = step_phi > 0.1 ? 0.1 / step_phi : 1.0;
-      bool accelerated = false;
-      if (damp == 1.0) {
-        accelerated = aa.step(z, g);  // g becomes the accelerated iterate when true
-        if (accelerated) {
-          double jump = 0;
-          for (std::size_t k = 0; k < nA; ++k) {
-            const std::size_t q = active[k];
-            jump = std::max(jump, eq3_.force_scale(pinned_.junction(q)) * threshold(q) * std::abs(g[k] - z[k]));
-          }
-          if (!(jump <= 0.1)) {  // an extrapolation too far: back to the plain step
-            aa.clear();
-            accelerated = false;
-            for (std::size_t k = 0; k < nA; ++k) {
-              const std::size_t q = active[k];
-              g[k] = (X * pinned_.a0(q) + pinned_.b0(q) - y1[q]) / threshold(q);
-              g[nA + k] = (pinned_.a0(q) - y2[q]) / a_scale;
-            }
-          }
-        }
-      } else {
-        aa.clear();
-      }
+      const double damp = chord_step(X, active, a_scale, y1, y2, z, g, aa);
       double change = 0;
       for (std::size_t q = 0; q < n; ++q) {
         if (pinned_.nonlinear(q)) continue;
@@ -236,13 +205,59 @@ ForceNode InteractingJunctions::solve(double X) const {
       }
       // Stalled at rounding: the change stops shrinking once it is of the order of the
       // rounding of the sums.
-      if (iter >= 3 && change < 1e-12 && change > 0.5 * previous) break;
+      if (iter >= 3 && change < 1e-11 && change > 0.5 * previous) break;
       if (iter >= 200) interacting_solver_failure("the chord iteration did not converge in 200 iterations", X);
       previous = change;
     }
     iterations_ += iter;
   }
+  add_totals(node);
+  for (std::size_t q = 0; q < n; ++q) {
+    last_f_[pinned_.junction(q)] = node.f[q];
+    last_a_[pinned_.junction(q)] = node.a[q];
+  }
+  ++solves_;
+  return node;
+}
+
+double InteractingJunctions::chord_step(double X, const std::vector<std::size_t>& active, double a_scale,
+                                        const std::vector<double>& y1, const std::vector<double>& y2,
+                                        const std::vector<double>& z, std::vector<double>& g, Anderson& aa) const {
+  const std::size_t nA = active.size();
+  // Damped: no nonlinear junction's φ = s f moves by more than 0.1 in one iteration (far
+  // from the solution, e.g. a poor warm start, the full step can overshoot into φ → 1).
+  // The accelerated step is taken only where the plain one needs no damping and stays
+  // within the same bound itself.
+  double step_phi = 0;
+  for (std::size_t k = 0; k < nA; ++k) {
+    const std::size_t q = active[k];
+    step_phi = std::max(step_phi, eq3_.force_scale(pinned_.junction(q)) * threshold(q) * std::abs(g[k] - z[k]));
+  }
+  const double damp = step_phi > 0.1 ? 0.1 / step_phi : 1.0;
+  if (damp < 1.0) {
+    aa.clear();
+    return damp;
+  }
+  if (!aa.step(z, g)) return damp;  // g becomes the accelerated iterate when true
+  double jump = 0;
+  for (std::size_t k = 0; k < nA; ++k) {
+    const std::size_t q = active[k];
+    jump = std::max(jump, eq3_.force_scale(pinned_.junction(q)) * threshold(q) * std::abs(g[k] - z[k]));
+  }
+  if (!(jump <= 0.1)) {  // an extrapolation too far: back to the plain step
+    aa.clear();
+    for (std::size_t k = 0; k < nA; ++k) {
+      const std::size_t q = active[k];
+      g[k] = (X * pinned_.a0(q) + pinned_.b0(q) - y1[q]) / threshold(q);
+      g[nA + k] = (pinned_.a0(q) - y2[q]) / a_scale;
+    }
+  }
+  return damp;
+}
+
+void InteractingJunctions::add_totals(ForceNode& node) const {
   // Totals and their X-derivatives.
+  const std::size_t n = pinned_.size();
   double F = F_slip_, dF = 0, A = A_fixed_, dA = 0;
   for (std::size_t q = 0; q < n; ++q) {
     F += node.f[q];
@@ -258,12 +273,6 @@ ForceNode InteractingJunctions::solve(double X) const {
   node.dF = dF;
   node.A = A;
   node.dA = dA;
-  for (std::size_t q = 0; q < n; ++q) {
-    last_f_[pinned_.junction(q)] = node.f[q];
-    last_a_[pinned_.junction(q)] = node.a[q];
-  }
-  ++solves_;
-  return node;
 }
 
 double InteractingJunctions::force(double X) const {

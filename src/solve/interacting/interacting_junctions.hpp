@@ -26,6 +26,7 @@
 
 #include "solve/core/junction_state.hpp"
 #include "solve/core/problem.hpp"
+#include "solve/interacting/anderson.hpp"
 #include "solve/interacting/eq3_displacement.hpp"
 #include "solve/interacting/force_cache.hpp"
 #include "solve/interacting/pinned_compliance.hpp"
@@ -86,6 +87,12 @@ class InteractingJunctions {
   void own(std::size_t q, double f, double& u, double& du) const;
   // Exact solve at X by the chord iteration, warm-started from the cache: a new node.
   ForceNode solve(double X) const;
+  // One chord iteration's step on the active positions: damps it (returns the factor) or
+  // replaces g by Anderson's accelerated iterate when that stays within the same bound.
+  double chord_step(double X, const std::vector<std::size_t>& active, double a_scale, const std::vector<double>& y1,
+                    const std::vector<double>& y2, const std::vector<double>& z, std::vector<double>& g,
+                    Anderson& aa) const;
+  void add_totals(ForceNode& node) const;  // F, dF/dX, A, dA/dX of a solved node
   // The iteration's start at X: f and df/dX per position of P (see the .cpp).
   void warm_start(double X, std::vector<double>& f, std::vector<double>& a) const;
   double threshold(std::size_t q) const;  // N, the slip force of position q
