@@ -11,6 +11,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include <omp.h>
+
 #include "surface/fft_planner.hpp"
 
 namespace asperity {
@@ -25,9 +27,15 @@ constexpr std::size_t kParallelFrom = std::size_t{1} << 18;
 
 template <class F>
 void for_each_pixel(std::size_t count, int threads, F f) {
-  const std::ptrdiff_t m = static_cast<std::ptrdiff_t>(count);
-#pragma omp parallel for num_threads(threads) schedule(static) if (threads > 1 && count >= kParallelFrom)
-  for (std::ptrdiff_t k = 0; k < m; ++k) f(static_cast<std::size_t>(k));
+  // In blocks handed out as threads come free (dynamic): on a machine shared with other work, a
+  // thread that loses its core for a while does not hold the other up (a block's values do not
+  // depend on the thread that computes it).
+  const std::ptrdiff_t blocks = static_cast<std::ptrdiff_t>((count + kBlock - 1) / kBlock);
+#pragma omp parallel for num_threads(threads) schedule(dynamic) if (threads > 1 && count >= kParallelFrom)
+  for (std::ptrdiff_t b = 0; b < blocks; ++b) {
+    const std::size_t begin = static_cast<std::size_t>(b) * kBlock, end = std::min(count, begin + kBlock);
+    for (std::size_t k = begin; k < end; ++k) f(k);
+  }
 }
 
 // M sums at once: f(k, acc) adds pixel k's terms to acc[0..M).
@@ -35,7 +43,7 @@ template <std::size_t M, class F>
 std::array<double, M> block_sums(std::size_t count, int threads, F f) {
   const std::ptrdiff_t blocks = static_cast<std::ptrdiff_t>((count + kBlock - 1) / kBlock);
   std::vector<std::array<double, M>> part(static_cast<std::size_t>(blocks));
-#pragma omp parallel for num_threads(threads) schedule(static) if (threads > 1 && count >= kParallelFrom)
+#pragma omp parallel for num_threads(threads) schedule(dynamic) if (threads > 1 && count >= kParallelFrom)
   for (std::ptrdiff_t b = 0; b < blocks; ++b) {
     std::array<double, M> acc{};
     const std::size_t begin = static_cast<std::size_t>(b) * kBlock, end = std::min(count, begin + kBlock);
@@ -84,76 +92,143 @@ class PeriodicConvolution final : public Convolution {
   std::vector<double> kernel_;  // real spectrum, divided by n² (FFTW's transforms are unnormalised)
 };
 
-// Isolated: the field zero-padded to N = 2n, a kernel given in real space on N × N (wrapped
-// offsets). The 2-D transform is done as rows then columns so that the rows known to be zero
-// (input rows n..N−1) and the rows not wanted (output rows n..N−1) are never transformed: 3/4 of
-// the row transforms of a full 2-D r2c + c2r pair, the same arithmetic otherwise.
+// Isolated: the field zero-padded to N = 2n and convolved with a kernel given by its values at the
+// offsets 0..n in each direction (even in both: Love's rectangle), wrapped on the N × N grid. The
+// 2-D transform is done as rows then columns, in fixed blocks of rows and of columns shared among
+// the threads, each block by the same one-thread FFTW plan (so the bits do not depend on the
+// number of threads): the input rows n..N−1 (zero) and the output rows n..N−1 (not wanted) are
+// never transformed, and each block of columns is gathered into a contiguous buffer, transformed,
+// multiplied by the kernel, transformed back and scattered, in cache: the N × (n + 1) spectrum is
+// never stored whole. The kernel is real and even, so its spectrum is real and even: a 2-D DCT-I
+// of the (n + 1)² values gives it (ky and N − ky share a value).
 class PaddedConvolution final : public Convolution {
  public:
-  PaddedConvolution(std::size_t n, const std::vector<double>& kernel, int threads)
-      : n_(n), N_(2 * n), nc_(n + 1), threads_(threads) {
-    real_ = fftw_alloc_real(n_ * N_);
-    spec_ = fftw_alloc_complex(N_ * nc_);
-    if (!real_ || !spec_) {
-      fftw_free(real_), fftw_free(spec_);
-      throw std::bad_alloc();
-    }
-    {
-      // The kernel's spectrum, by FFTW's own 2-D r2c (the same layout: N rows of nc).
-      FftBuffers full(N_, threads);
-      std::copy(kernel.begin(), kernel.end(), full.real());
-      full.forward();
-      const double scale = 1.0 / static_cast<double>(N_ * N_);
-      kernel_.resize(2 * N_ * nc_);
-      for (std::size_t k = 0; k < N_ * nc_; ++k)
-        kernel_[2 * k] = full.spectrum()[k][0] * scale, kernel_[2 * k + 1] = full.spectrum()[k][1] * scale;
+  PaddedConvolution(std::size_t n, std::vector<double> even, int threads)
+      : n_(n), N_(2 * n), nc_(n + 1), threads_(std::max(1, threads)) {
+    spec_ = fftw_alloc_complex(n_ * nc_);
+    if (!spec_) throw std::bad_alloc();
+    const std::size_t T = static_cast<std::size_t>(threads_);
+    for (std::size_t t = 0; t < T; ++t) {
+      row_buf_.push_back(fftw_alloc_real(kRows * N_));
+      col_buf_.push_back(fftw_alloc_complex(kCols * N_));
+      if (!row_buf_.back() || !col_buf_.back()) {
+        release();
+        throw std::bad_alloc();
+      }
     }
     const auto lock = lock_fftw_planner();
-    fftw_plan_with_nthreads(std::max(1, threads));
-    const int len = static_cast<int>(N_), rows = static_cast<int>(n_), cols = static_cast<int>(nc_);
-    rows_forward_ = fftw_plan_many_dft_r2c(1, &len, rows, real_, nullptr, 1, len, spec_, nullptr, 1, cols, FFTW_ESTIMATE);
-    cols_forward_ = fftw_plan_many_dft(1, &len, cols, spec_, nullptr, cols, 1, spec_, nullptr, cols, 1, FFTW_FORWARD,
-                                       FFTW_ESTIMATE);
-    cols_inverse_ = fftw_plan_many_dft(1, &len, cols, spec_, nullptr, cols, 1, spec_, nullptr, cols, 1, FFTW_BACKWARD,
-                                       FFTW_ESTIMATE);
-    rows_inverse_ = fftw_plan_many_dft_c2r(1, &len, rows, spec_, nullptr, 1, cols, real_, nullptr, 1, len, FFTW_ESTIMATE);
-  }
-  ~PaddedConvolution() override {
+    fftw_plan_with_nthreads(1);
     {
-      const auto lock = lock_fftw_planner();
-      for (fftw_plan p : {rows_forward_, cols_forward_, cols_inverse_, rows_inverse_}) fftw_destroy_plan(p);
+      // The kernel's spectrum: K(ky, kx) = Σ over the wrapped offsets = FFTW's REDFT00 of the
+      // (n + 1)² even values, real; stored column by column (kx), ky = 0..n, divided by N².
+      const int m = static_cast<int>(nc_);
+      fftw_plan dct = fftw_plan_r2r_2d(m, m, even.data(), even.data(), FFTW_REDFT00, FFTW_REDFT00, FFTW_ESTIMATE);
+      fftw_execute(dct);
+      fftw_destroy_plan(dct);
+      const double scale = 1.0 / static_cast<double>(N_ * N_);
+      kernel_.resize(nc_ * nc_);
+      for (std::size_t ky = 0; ky < nc_; ++ky)
+        for (std::size_t kx = 0; kx < nc_; ++kx) kernel_[kx * nc_ + ky] = even[ky * nc_ + kx] * scale;
     }
-    fftw_free(real_), fftw_free(spec_);
+    const int len = static_cast<int>(N_), cols = static_cast<int>(nc_);
+    for (int k = 0; k < 2; ++k) {
+      const int rows = k == 0 ? static_cast<int>(kRows) : static_cast<int>(n_ % kRows);
+      const int many = k == 0 ? static_cast<int>(kCols) : static_cast<int>(nc_ % kCols);
+      if (rows > 0) {
+        rows_forward_[k] = fftw_plan_many_dft_r2c(1, &len, rows, row_buf_[0], nullptr, 1, len, spec_, nullptr, 1, cols,
+                                                  FFTW_ESTIMATE);
+        rows_inverse_[k] = fftw_plan_many_dft_c2r(1, &len, rows, spec_, nullptr, 1, cols, row_buf_[0], nullptr, 1, len,
+                                                  FFTW_ESTIMATE);
+      }
+      if (many > 0) {
+        cols_forward_[k] = fftw_plan_many_dft(1, &len, many, col_buf_[0], nullptr, 1, len, col_buf_[0], nullptr, 1, len,
+                                              FFTW_FORWARD, FFTW_ESTIMATE);
+        cols_inverse_[k] = fftw_plan_many_dft(1, &len, many, col_buf_[0], nullptr, 1, len, col_buf_[0], nullptr, 1, len,
+                                              FFTW_BACKWARD, FFTW_ESTIMATE);
+      }
+    }
   }
+  ~PaddedConvolution() override { release(); }
   PaddedConvolution(const PaddedConvolution&) = delete;
   PaddedConvolution& operator=(const PaddedConvolution&) = delete;
 
   void apply(const std::vector<double>& in, std::vector<double>& out) override {
-    for_each_pixel(n_, threads_, [&](std::size_t i) {
-      std::copy(&in[i * n_], &in[i * n_] + n_, real_ + i * N_);
-      std::fill(real_ + i * N_ + n_, real_ + (i + 1) * N_, 0.0);
-    });
-    fftw_execute(rows_forward_);
-    std::memset(static_cast<void*>(spec_ + n_ * nc_), 0, sizeof(fftw_complex) * (N_ - n_) * nc_);  // the padding rows
-    fftw_execute(cols_forward_);
+    const std::ptrdiff_t row_blocks = static_cast<std::ptrdiff_t>((n_ + kRows - 1) / kRows);
+    const std::ptrdiff_t col_blocks = static_cast<std::ptrdiff_t>((nc_ + kCols - 1) / kCols);
     const double* K = kernel_.data();
-    for_each_pixel(N_ * nc_, threads_, [&](std::size_t k) {
-      const double a = spec_[k][0], b = spec_[k][1], c = K[2 * k], d = K[2 * k + 1];
-      spec_[k][0] = a * c - b * d;
-      spec_[k][1] = a * d + b * c;
-    });
-    fftw_execute(cols_inverse_);
-    fftw_execute(rows_inverse_);
-    for_each_pixel(n_, threads_, [&](std::size_t i) { std::copy(real_ + i * N_, real_ + i * N_ + n_, &out[i * n_]); });
+#pragma omp parallel num_threads(threads_) if (threads_ > 1 && n_ * n_ >= kParallelFrom)
+    {
+      const std::size_t t = static_cast<std::size_t>(omp_get_thread_num());
+      double* rb = row_buf_[t];
+      fftw_complex* cb = col_buf_[t];
+      // Rows: the n nonzero rows of the padded field, r2c.
+#pragma omp for schedule(dynamic)
+      for (std::ptrdiff_t b = 0; b < row_blocks; ++b) {
+        const std::size_t i0 = static_cast<std::size_t>(b) * kRows, rows = std::min(kRows, n_ - i0);
+        for (std::size_t r = 0; r < rows; ++r) {
+          std::copy(&in[(i0 + r) * n_], &in[(i0 + r) * n_] + n_, rb + r * N_);
+          std::fill(rb + r * N_ + n_, rb + (r + 1) * N_, 0.0);
+        }
+        fftw_execute_dft_r2c(rows_forward_[rows == kRows ? 0 : 1], rb, spec_ + i0 * nc_);
+      }
+      // Columns: gathered (rows n..N−1 zero), forward, × kernel, backward, the first n scattered back.
+#pragma omp for schedule(dynamic)
+      for (std::ptrdiff_t b = 0; b < col_blocks; ++b) {
+        const std::size_t c0 = static_cast<std::size_t>(b) * kCols, cols = std::min(kCols, nc_ - c0);
+        for (std::size_t i = 0; i < n_; ++i)
+          for (std::size_t c = 0; c < cols; ++c) {
+            cb[c * N_ + i][0] = spec_[i * nc_ + c0 + c][0];
+            cb[c * N_ + i][1] = spec_[i * nc_ + c0 + c][1];
+          }
+        for (std::size_t c = 0; c < cols; ++c) std::memset(static_cast<void*>(cb + c * N_ + n_), 0, sizeof(fftw_complex) * (N_ - n_));
+        const int which = cols == kCols ? 0 : 1;
+        fftw_execute_dft(cols_forward_[which], cb, cb);
+        for (std::size_t c = 0; c < cols; ++c) {
+          fftw_complex* x = cb + c * N_;
+          const double* k = K + (c0 + c) * nc_;
+          for (std::size_t ky = 0; ky <= n_; ++ky) x[ky][0] *= k[ky], x[ky][1] *= k[ky];
+          for (std::size_t ky = n_ + 1; ky < N_; ++ky) x[ky][0] *= k[N_ - ky], x[ky][1] *= k[N_ - ky];
+        }
+        fftw_execute_dft(cols_inverse_[which], cb, cb);
+        for (std::size_t i = 0; i < n_; ++i)
+          for (std::size_t c = 0; c < cols; ++c) {
+            spec_[i * nc_ + c0 + c][0] = cb[c * N_ + i][0];
+            spec_[i * nc_ + c0 + c][1] = cb[c * N_ + i][1];
+          }
+      }
+      // Rows back: c2r of the n wanted rows, their first n values.
+#pragma omp for schedule(dynamic)
+      for (std::ptrdiff_t b = 0; b < row_blocks; ++b) {
+        const std::size_t i0 = static_cast<std::size_t>(b) * kRows, rows = std::min(kRows, n_ - i0);
+        fftw_execute_dft_c2r(rows_inverse_[rows == kRows ? 0 : 1], spec_ + i0 * nc_, rb);
+        for (std::size_t r = 0; r < rows; ++r) std::copy(rb + r * N_, rb + r * N_ + n_, &out[(i0 + r) * n_]);
+      }
+    }
   }
 
  private:
+  static constexpr std::size_t kRows = 4, kCols = 4;  // rows and columns per block (fixed: the bits)
+  void release() {
+    {
+      const auto lock = lock_fftw_planner();
+      for (fftw_plan* ps : {rows_forward_, rows_inverse_, cols_forward_, cols_inverse_})
+        for (int k = 0; k < 2; ++k)
+          if (ps[k]) fftw_destroy_plan(ps[k]), ps[k] = nullptr;
+    }
+    for (double* b : row_buf_) fftw_free(b);
+    for (fftw_complex* b : col_buf_) fftw_free(b);
+    row_buf_.clear(), col_buf_.clear();
+    fftw_free(spec_), spec_ = nullptr;
+  }
+
   std::size_t n_, N_, nc_;
   int threads_;
-  double* real_ = nullptr;       // n rows of N (the nonzero half of the padded field)
-  fftw_complex* spec_ = nullptr;  // N rows of nc
-  std::vector<double> kernel_;   // its spectrum (re, im interleaved), divided by N²
-  fftw_plan rows_forward_ = nullptr, cols_forward_ = nullptr, cols_inverse_ = nullptr, rows_inverse_ = nullptr;
+  fftw_complex* spec_ = nullptr;           // the n wanted rows' spectra, nc each
+  std::vector<double*> row_buf_;           // per thread: kRows padded rows of N
+  std::vector<fftw_complex*> col_buf_;     // per thread: kCols columns of N
+  std::vector<double> kernel_;             // its real spectrum, column kx holding ky = 0..n, divided by N²
+  // [0]: a whole block, [1]: the last, shorter one (if any)
+  fftw_plan rows_forward_[2] = {}, rows_inverse_[2] = {}, cols_forward_[2] = {}, cols_inverse_[2] = {};
 };
 
 }  // namespace
@@ -223,7 +298,7 @@ NormalContact solve_normal_contact(const HeightMap& map, const NormalContactSett
     if (!std::isfinite(h)) throw std::invalid_argument("normal contact: a height is not finite");
   const int T = std::max(1, s.threads);
   const double A = map.pixel_m * map.pixel_m, half = 0.5 * map.pixel_m;
-  const std::size_t N = 2 * n, nn = n * n;
+  const std::size_t nn = n * n;
 
   NormalContact out;
   std::vector<double>& p = out.pressure_Pa;
@@ -262,13 +337,7 @@ NormalContact solve_normal_contact(const HeightMap& map, const NormalContactSett
       const double i = static_cast<double>(k / (n + 1)), j = static_cast<double>(k % (n + 1));
       even[k] = love_rectangle(j * map.pixel_m, i * map.pixel_m, half, half) / s.E_star_Pa;
     });
-    std::vector<double> kernel(N * N);
-    for (std::size_t i = 0; i < N; ++i)
-      for (std::size_t j = 0; j < N; ++j) {
-        const std::size_t di = i < n ? i : N - i, dj = j < n ? j : N - j;  // |offset|, offsets −n..n−1
-        kernel[i * N + j] = even[di * (n + 1) + dj];
-      }
-    convolution = std::make_unique<PaddedConvolution>(n, kernel, T);
+    convolution = std::make_unique<PaddedConvolution>(n, std::move(even), T);
   }
   Convolution& K = *convolution;
 
