@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <memory>
@@ -322,6 +323,7 @@ NormalContact solve_normal_contact(const HeightMap& map, const NormalContactSett
   if (!started) p.assign(nn, s.load_N / (A * static_cast<double>(nn)));
 
   std::unique_ptr<Convolution> convolution;
+  std::vector<double> influence;  // isolated: the kernel at offsets (|di|, |dj|), (n + 1)², row |di|
   if (s.periodic) {
     // u(q) = 2 p(q) / (E* |q|); the mean (q = 0) displacement is the free approach.
     const double qL = 2 * std::numbers::pi / map.length_m();
@@ -332,12 +334,12 @@ NormalContact solve_normal_contact(const HeightMap& map, const NormalContactSett
   } else {
     // Influence of a unit pressure on one pixel, at every offset (wrapped on the 2n grid). Love's
     // rectangle is even in both offsets: evaluated once per (|di|, |dj|).
-    std::vector<double> even((n + 1) * (n + 1));
+    influence.resize((n + 1) * (n + 1));
     for_each_pixel((n + 1) * (n + 1), T, [&](std::size_t k) {
       const double i = static_cast<double>(k / (n + 1)), j = static_cast<double>(k % (n + 1));
-      even[k] = love_rectangle(j * map.pixel_m, i * map.pixel_m, half, half) / s.E_star_Pa;
+      influence[k] = love_rectangle(j * map.pixel_m, i * map.pixel_m, half, half) / s.E_star_Pa;
     });
-    convolution = std::make_unique<PaddedConvolution>(n, std::move(even), T);
+    convolution = std::make_unique<PaddedConvolution>(n, influence, T);
   }
   Convolution& K = *convolution;
 
@@ -347,6 +349,42 @@ NormalContact solve_normal_contact(const HeightMap& map, const NormalContactSett
   for (std::size_t k = 0; k < nn; ++k) h0[k] = top - map.h_m[k];
 
   std::vector<double> u(nn), g(nn), t(nn, 0.0), r(nn), p_old(nn);
+  // u ← f (u − τ r + K δ), δ the pressure jumps (beyond p_old − τ t) of the points clipped (p_old − τ t
+  // < 0 set to 0) or joining (p_old = 0 set to −τ g), in the order of their index; each row of u sums
+  // them in that order, so the bits do not depend on the number of threads.
+  const double direct_max = std::max(2.0, static_cast<double>(std::bit_width(n)) * 4.0);
+  std::vector<std::pair<std::size_t, double>> jumps;
+  auto direct_update = [&](const std::vector<double>& p0, const std::vector<double>& t0, const std::vector<double>& g0,
+                           double tau, double f) {
+    jumps.clear();
+    for (std::size_t k = 0; k < nn; ++k) {
+      if (p0[k] > 0) {
+        const double lin = p0[k] - tau * t0[k];
+        if (lin < 0) jumps.emplace_back(k, -lin);
+      } else if (g0[k] < 0) {
+        jumps.emplace_back(k, -tau * g0[k]);
+      }
+    }
+    const std::ptrdiff_t rows = static_cast<std::ptrdiff_t>(n);
+#pragma omp parallel num_threads(T) if (T > 1 && nn >= kParallelFrom)
+    {
+      std::vector<double> acc(n);
+#pragma omp for schedule(dynamic, 8)
+      for (std::ptrdiff_t ii = 0; ii < rows; ++ii) {
+        const std::size_t i = static_cast<std::size_t>(ii);
+        std::fill(acc.begin(), acc.end(), 0.0);
+        for (const auto& [l, d] : jumps) {
+          const std::size_t a = l / n, b = l % n;
+          const double* row = &influence[(i > a ? i - a : a - i) * (n + 1)];
+          for (std::size_t j = 0; j < b; ++j) acc[j] += d * row[b - j];
+          for (std::size_t j = b; j < n; ++j) acc[j] += d * row[j - b];
+        }
+        double* uk = &u[i * n];
+        const double* rk = &r[i * n];
+        for (std::size_t j = 0; j < n; ++j) uk[j] = f * (uk[j] - tau * rk[j] + acc[j]);
+      }
+    }
+  };
   K.apply(p, u);
   out.convolutions = 1;
   double G_old = 1.0;
@@ -418,12 +456,19 @@ NormalContact solve_normal_contact(const HeightMap& map, const NormalContactSett
       break;
     }
     // u = K p for the next iteration. Where no point was clipped or joined, p = f (p_old − τ t), so
-    // K p = f (u − τ r) by linearity, without a convolution (within rounding: u is recomputed
-    // whenever the contact set changes, and at the end). Not for periodic maps: at Westergaard's
-    // exact full contact the steps are rounding over rounding and the updated u drifted from K p
-    // until the CG broke down (a recomputed u stays at rounding).
+    // K p = f (u − τ r) by linearity, without a convolution (within rounding: u is recomputed at the
+    // end). Where a few points were (isolated contacts), p = f (p_old − τ t + δ) with δ nonzero at
+    // those points only, and K p = f (u − τ r + K δ), K δ summed directly from the kernel (n² terms a
+    // point): cheaper than a convolution up to about 4 log2(n) points (measured on the bench's 1024²
+    // sphere, one thread: 200 → 165 convolutions, 14 % less CPU time; 12 log2(n) and 24 log2(n) were
+    // slower; the pressures within 5e-12 of the convolved ones, Σ|Δp| / Σp).
+    // Not for periodic maps: at Westergaard's exact full contact the steps are rounding over
+    // rounding and the updated u drifted from K p until the CG broke down (a recomputed u stays at
+    // rounding).
     if (changed == 0 && !s.periodic)
       for_each_pixel(nn, T, [&](std::size_t k) { u[k] = f * (u[k] - tau * r[k]); });
+    else if (!s.periodic && changed <= direct_max)
+      direct_update(p_old, t, g, tau, f);
     else
       K.apply(p, u), ++out.convolutions;
   }
