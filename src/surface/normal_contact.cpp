@@ -2,6 +2,12 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
+#include <condition_variable>
+#include <cstdint>
+#include <mutex>
+#include <thread>
+#include <type_traits>
 #include <bit>
 #include <cmath>
 #include <cstring>
@@ -11,8 +17,6 @@
 #include <optional>
 #include <stdexcept>
 #include <utility>
-
-#include <omp.h>
 
 #include "surface/fft_planner.hpp"
 
@@ -26,31 +30,99 @@ constexpr std::size_t kBlock = 1 << 14;
 // than they save (and a thread waiting for a busy core stalls the others).
 constexpr std::size_t kParallelFrom = std::size_t{1} << 18;
 
-template <class F>
-void for_each_pixel(std::size_t count, int threads, F f) {
-  // In blocks handed out as threads come free (dynamic): on a machine shared with other work, a
-  // thread that loses its core for a while does not hold the other up (a block's values do not
-  // depend on the thread that computes it).
-  const std::ptrdiff_t blocks = static_cast<std::ptrdiff_t>((count + kBlock - 1) / kBlock);
-#pragma omp parallel for num_threads(threads) schedule(dynamic) if (threads > 1 && count >= kParallelFrom)
-  for (std::ptrdiff_t b = 0; b < blocks; ++b) {
-    const std::size_t begin = static_cast<std::size_t>(b) * kBlock, end = std::min(count, begin + kBlock);
-    for (std::size_t k = begin; k < end; ++k) f(k);
+// The threads of one solve: the caller and threads − 1 workers that wait blocked (not spinning) for
+// work. A loop is cut into fixed chunks handed out as threads come free; the caller does every
+// chunk no worker has taken and waits only for the chunks taken, never for a worker to wake: on a
+// machine shared with other work, a worker that has lost its core does not hold the solve up (an
+// OpenMP team, whose barriers wait for every thread and spin, took up to 17× longer on a loaded
+// 2-core machine). A chunk's values do not depend on the thread that computes it.
+class Workers {
+ public:
+  explicit Workers(int threads) : count_(std::max(1, threads)) {
+    for (int i = 1; i < count_; ++i) threads_.emplace_back([this, i] { serve(static_cast<std::size_t>(i)); });
   }
+  ~Workers() {
+    {
+      std::lock_guard<std::mutex> l(m_);
+      stop_ = true;
+    }
+    work_.notify_all();
+    for (auto& t : threads_) t.join();
+  }
+  Workers(const Workers&) = delete;
+  Workers& operator=(const Workers&) = delete;
+  int count() const { return count_; }
+
+  // f(chunk, thread) for chunk = 0..chunks−1, thread < count(); on the caller alone if !parallel.
+  template <class F>
+  void run(std::size_t chunks, bool parallel, F&& f) {
+    if (count_ == 1 || !parallel || chunks < 2) {
+      for (std::size_t c = 0; c < chunks; ++c) f(c, std::size_t{0});
+      return;
+    }
+    auto call = [](void* ctx, std::size_t c, std::size_t t) { (*static_cast<std::remove_reference_t<F>*>(ctx))(c, t); };
+    {
+      std::lock_guard<std::mutex> l(m_);
+      fn_ = call, ctx_ = static_cast<void*>(&f), chunks_ = chunks, next_.store(0), open_ = true, ++generation_;
+    }
+    work_.notify_all();
+    take(0);
+    std::unique_lock<std::mutex> l(m_);
+    open_ = false;  // a worker waking from now on finds nothing to do
+    done_.wait(l, [&] { return busy_ == 0; });
+  }
+
+ private:
+  void take(std::size_t thread) {
+    for (std::size_t c; (c = next_.fetch_add(1)) < chunks_;) fn_(ctx_, c, thread);
+  }
+  void serve(std::size_t thread) {
+    std::unique_lock<std::mutex> l(m_);
+    std::uint64_t seen = 0;
+    for (;;) {
+      work_.wait(l, [&] { return stop_ || (open_ && generation_ != seen); });
+      if (stop_) return;
+      seen = generation_;
+      ++busy_;
+      l.unlock();
+      take(thread);
+      l.lock();
+      if (--busy_ == 0) done_.notify_one();
+    }
+  }
+
+  int count_;
+  std::vector<std::thread> threads_;
+  std::mutex m_;
+  std::condition_variable work_, done_;
+  void (*fn_)(void*, std::size_t, std::size_t) = nullptr;
+  void* ctx_ = nullptr;
+  std::size_t chunks_ = 0;
+  std::atomic<std::size_t> next_{0};
+  bool open_ = false, stop_ = false;
+  int busy_ = 0;
+  std::uint64_t generation_ = 0;
+};
+
+template <class F>
+void for_each_pixel(std::size_t count, Workers& w, F f) {
+  w.run((count + kBlock - 1) / kBlock, count >= kParallelFrom, [&](std::size_t b, std::size_t) {
+    const std::size_t begin = b * kBlock, end = std::min(count, begin + kBlock);
+    for (std::size_t k = begin; k < end; ++k) f(k);
+  });
 }
 
 // M sums at once: f(k, acc) adds pixel k's terms to acc[0..M).
 template <std::size_t M, class F>
-std::array<double, M> block_sums(std::size_t count, int threads, F f) {
-  const std::ptrdiff_t blocks = static_cast<std::ptrdiff_t>((count + kBlock - 1) / kBlock);
-  std::vector<std::array<double, M>> part(static_cast<std::size_t>(blocks));
-#pragma omp parallel for num_threads(threads) schedule(dynamic) if (threads > 1 && count >= kParallelFrom)
-  for (std::ptrdiff_t b = 0; b < blocks; ++b) {
+std::array<double, M> block_sums(std::size_t count, Workers& w, F f) {
+  const std::size_t blocks = (count + kBlock - 1) / kBlock;
+  std::vector<std::array<double, M>> part(blocks);
+  w.run(blocks, count >= kParallelFrom, [&](std::size_t b, std::size_t) {
     std::array<double, M> acc{};
-    const std::size_t begin = static_cast<std::size_t>(b) * kBlock, end = std::min(count, begin + kBlock);
+    const std::size_t begin = b * kBlock, end = std::min(count, begin + kBlock);
     for (std::size_t k = begin; k < end; ++k) f(k, acc);
-    part[static_cast<std::size_t>(b)] = acc;
-  }
+    part[b] = acc;
+  });
   std::array<double, M> total{};
   for (const auto& a : part)
     for (std::size_t i = 0; i < M; ++i) total[i] += a[i];
@@ -68,8 +140,8 @@ class Convolution {
 class PeriodicConvolution final : public Convolution {
  public:
   template <class F>
-  PeriodicConvolution(std::size_t n, int threads, F spectrum)
-      : n_(n), nc_(n / 2 + 1), threads_(threads), fft_(n, threads), kernel_(n * nc_) {
+  PeriodicConvolution(std::size_t n, Workers& w, F spectrum)
+      : n_(n), nc_(n / 2 + 1), w_(w), fft_(n, w.count()), kernel_(n * nc_) {
     const double scale = 1.0 / static_cast<double>(n * n);
     for (std::size_t i = 0; i < n_; ++i)
       for (std::size_t j = 0; j < nc_; ++j) {
@@ -81,14 +153,14 @@ class PeriodicConvolution final : public Convolution {
     std::copy(in.begin(), in.end(), fft_.real());
     fft_.forward();
     fftw_complex* spec = fft_.spectrum();
-    for_each_pixel(n_ * nc_, threads_, [&](std::size_t k) { spec[k][0] *= kernel_[k], spec[k][1] *= kernel_[k]; });
+    for_each_pixel(n_ * nc_, w_, [&](std::size_t k) { spec[k][0] *= kernel_[k], spec[k][1] *= kernel_[k]; });
     fft_.inverse();
     std::copy(fft_.real(), fft_.real() + n_ * n_, out.begin());
   }
 
  private:
   std::size_t n_, nc_;
-  int threads_;
+  Workers& w_;
   FftBuffers fft_;
   std::vector<double> kernel_;  // real spectrum, divided by n² (FFTW's transforms are unnormalised)
 };
@@ -104,11 +176,11 @@ class PeriodicConvolution final : public Convolution {
 // of the (n + 1)² values gives it (ky and N − ky share a value).
 class PaddedConvolution final : public Convolution {
  public:
-  PaddedConvolution(std::size_t n, std::vector<double> even, int threads)
-      : n_(n), N_(2 * n), nc_(n + 1), threads_(std::max(1, threads)) {
+  PaddedConvolution(std::size_t n, std::vector<double> even, Workers& w)
+      : n_(n), N_(2 * n), nc_(n + 1), w_(w) {
     spec_ = fftw_alloc_complex(n_ * nc_);
     if (!spec_) throw std::bad_alloc();
-    const std::size_t T = static_cast<std::size_t>(threads_);
+    const std::size_t T = static_cast<std::size_t>(w_.count());
     for (std::size_t t = 0; t < T; ++t) {
       row_buf_.push_back(fftw_alloc_real(kRows * N_));
       col_buf_.push_back(fftw_alloc_complex(kCols * N_));
@@ -157,54 +229,49 @@ class PaddedConvolution final : public Convolution {
     const std::ptrdiff_t row_blocks = static_cast<std::ptrdiff_t>((n_ + kRows - 1) / kRows);
     const std::ptrdiff_t col_blocks = static_cast<std::ptrdiff_t>((nc_ + kCols - 1) / kCols);
     const double* K = kernel_.data();
-#pragma omp parallel num_threads(threads_) if (threads_ > 1 && n_ * n_ >= kParallelFrom)
-    {
-      const std::size_t t = static_cast<std::size_t>(omp_get_thread_num());
+const bool parallel = n_ * n_ >= kParallelFrom;
+    // Rows: the n nonzero rows of the padded field, r2c.
+    w_.run(static_cast<std::size_t>(row_blocks), parallel, [&](std::size_t b, std::size_t t) {
       double* rb = row_buf_[t];
+      const std::size_t i0 = b * kRows, rows = std::min(kRows, n_ - i0);
+      for (std::size_t r = 0; r < rows; ++r) {
+        std::copy(&in[(i0 + r) * n_], &in[(i0 + r) * n_] + n_, rb + r * N_);
+        std::fill(rb + r * N_ + n_, rb + (r + 1) * N_, 0.0);
+      }
+      fftw_execute_dft_r2c(rows_forward_[rows == kRows ? 0 : 1], rb, spec_ + i0 * nc_);
+    });
+    // Columns: gathered (rows n..N−1 zero), forward, × kernel, backward, the first n scattered back.
+    w_.run(static_cast<std::size_t>(col_blocks), parallel, [&](std::size_t b, std::size_t t) {
       fftw_complex* cb = col_buf_[t];
-      // Rows: the n nonzero rows of the padded field, r2c.
-#pragma omp for schedule(dynamic)
-      for (std::ptrdiff_t b = 0; b < row_blocks; ++b) {
-        const std::size_t i0 = static_cast<std::size_t>(b) * kRows, rows = std::min(kRows, n_ - i0);
-        for (std::size_t r = 0; r < rows; ++r) {
-          std::copy(&in[(i0 + r) * n_], &in[(i0 + r) * n_] + n_, rb + r * N_);
-          std::fill(rb + r * N_ + n_, rb + (r + 1) * N_, 0.0);
-        }
-        fftw_execute_dft_r2c(rows_forward_[rows == kRows ? 0 : 1], rb, spec_ + i0 * nc_);
-      }
-      // Columns: gathered (rows n..N−1 zero), forward, × kernel, backward, the first n scattered back.
-#pragma omp for schedule(dynamic)
-      for (std::ptrdiff_t b = 0; b < col_blocks; ++b) {
-        const std::size_t c0 = static_cast<std::size_t>(b) * kCols, cols = std::min(kCols, nc_ - c0);
-        for (std::size_t i = 0; i < n_; ++i)
-          for (std::size_t c = 0; c < cols; ++c) {
-            cb[c * N_ + i][0] = spec_[i * nc_ + c0 + c][0];
-            cb[c * N_ + i][1] = spec_[i * nc_ + c0 + c][1];
-          }
-        for (std::size_t c = 0; c < cols; ++c) std::memset(static_cast<void*>(cb + c * N_ + n_), 0, sizeof(fftw_complex) * (N_ - n_));
-        const int which = cols == kCols ? 0 : 1;
-        fftw_execute_dft(cols_forward_[which], cb, cb);
+      const std::size_t c0 = b * kCols, cols = std::min(kCols, nc_ - c0);
+      for (std::size_t i = 0; i < n_; ++i)
         for (std::size_t c = 0; c < cols; ++c) {
-          fftw_complex* x = cb + c * N_;
-          const double* k = K + (c0 + c) * nc_;
-          for (std::size_t ky = 0; ky <= n_; ++ky) x[ky][0] *= k[ky], x[ky][1] *= k[ky];
-          for (std::size_t ky = n_ + 1; ky < N_; ++ky) x[ky][0] *= k[N_ - ky], x[ky][1] *= k[N_ - ky];
+          cb[c * N_ + i][0] = spec_[i * nc_ + c0 + c][0];
+          cb[c * N_ + i][1] = spec_[i * nc_ + c0 + c][1];
         }
-        fftw_execute_dft(cols_inverse_[which], cb, cb);
-        for (std::size_t i = 0; i < n_; ++i)
-          for (std::size_t c = 0; c < cols; ++c) {
-            spec_[i * nc_ + c0 + c][0] = cb[c * N_ + i][0];
-            spec_[i * nc_ + c0 + c][1] = cb[c * N_ + i][1];
-          }
+      for (std::size_t c = 0; c < cols; ++c) std::memset(static_cast<void*>(cb + c * N_ + n_), 0, sizeof(fftw_complex) * (N_ - n_));
+      const int which = cols == kCols ? 0 : 1;
+      fftw_execute_dft(cols_forward_[which], cb, cb);
+      for (std::size_t c = 0; c < cols; ++c) {
+        fftw_complex* x = cb + c * N_;
+        const double* k = K + (c0 + c) * nc_;
+        for (std::size_t ky = 0; ky <= n_; ++ky) x[ky][0] *= k[ky], x[ky][1] *= k[ky];
+        for (std::size_t ky = n_ + 1; ky < N_; ++ky) x[ky][0] *= k[N_ - ky], x[ky][1] *= k[N_ - ky];
       }
-      // Rows back: c2r of the n wanted rows, their first n values.
-#pragma omp for schedule(dynamic)
-      for (std::ptrdiff_t b = 0; b < row_blocks; ++b) {
-        const std::size_t i0 = static_cast<std::size_t>(b) * kRows, rows = std::min(kRows, n_ - i0);
-        fftw_execute_dft_c2r(rows_inverse_[rows == kRows ? 0 : 1], spec_ + i0 * nc_, rb);
-        for (std::size_t r = 0; r < rows; ++r) std::copy(rb + r * N_, rb + r * N_ + n_, &out[(i0 + r) * n_]);
-      }
-    }
+      fftw_execute_dft(cols_inverse_[which], cb, cb);
+      for (std::size_t i = 0; i < n_; ++i)
+        for (std::size_t c = 0; c < cols; ++c) {
+          spec_[i * nc_ + c0 + c][0] = cb[c * N_ + i][0];
+          spec_[i * nc_ + c0 + c][1] = cb[c * N_ + i][1];
+        }
+    });
+    // Rows back: c2r of the n wanted rows, their first n values.
+    w_.run(static_cast<std::size_t>(row_blocks), parallel, [&](std::size_t b, std::size_t t) {
+      double* rb = row_buf_[t];
+      const std::size_t i0 = b * kRows, rows = std::min(kRows, n_ - i0);
+      fftw_execute_dft_c2r(rows_inverse_[rows == kRows ? 0 : 1], spec_ + i0 * nc_, rb);
+      for (std::size_t r = 0; r < rows; ++r) std::copy(rb + r * N_, rb + r * N_ + n_, &out[(i0 + r) * n_]);
+    });
   }
 
  private:
@@ -223,7 +290,7 @@ class PaddedConvolution final : public Convolution {
   }
 
   std::size_t n_, N_, nc_;
-  int threads_;
+  Workers& w_;
   fftw_complex* spec_ = nullptr;           // the n wanted rows' spectra, nc each
   std::vector<double*> row_buf_;           // per thread: kRows padded rows of N
   std::vector<fftw_complex*> col_buf_;     // per thread: kCols columns of N
@@ -297,7 +364,7 @@ NormalContact solve_normal_contact(const HeightMap& map, const NormalContactSett
     throw std::invalid_argument("normal contact: E* and the load must be positive and finite");
   for (const double h : map.h_m)
     if (!std::isfinite(h)) throw std::invalid_argument("normal contact: a height is not finite");
-  const int T = std::max(1, s.threads);
+  Workers W(s.threads);
   const double A = map.pixel_m * map.pixel_m, half = 0.5 * map.pixel_m;
   const std::size_t nn = n * n;
 
@@ -327,7 +394,7 @@ NormalContact solve_normal_contact(const HeightMap& map, const NormalContactSett
   if (s.periodic) {
     // u(q) = 2 p(q) / (E* |q|); the mean (q = 0) displacement is the free approach.
     const double qL = 2 * std::numbers::pi / map.length_m();
-    convolution = std::make_unique<PeriodicConvolution>(n, T, [&](long ky, long kx) {
+    convolution = std::make_unique<PeriodicConvolution>(n, W, [&](long ky, long kx) {
       const double q = qL * std::hypot(static_cast<double>(ky), static_cast<double>(kx));
       return q > 0 ? 2.0 / (s.E_star_Pa * q) : 0.0;
     });
@@ -335,11 +402,11 @@ NormalContact solve_normal_contact(const HeightMap& map, const NormalContactSett
     // Influence of a unit pressure on one pixel, at every offset (wrapped on the 2n grid). Love's
     // rectangle is even in both offsets: evaluated once per (|di|, |dj|).
     influence.resize((n + 1) * (n + 1));
-    for_each_pixel((n + 1) * (n + 1), T, [&](std::size_t k) {
+    for_each_pixel((n + 1) * (n + 1), W, [&](std::size_t k) {
       const double i = static_cast<double>(k / (n + 1)), j = static_cast<double>(k % (n + 1));
       influence[k] = love_rectangle(j * map.pixel_m, i * map.pixel_m, half, half) / s.E_star_Pa;
     });
-    convolution = std::make_unique<PaddedConvolution>(n, influence, T);
+    convolution = std::make_unique<PaddedConvolution>(n, influence, W);
   }
   Convolution& K = *convolution;
 
@@ -354,6 +421,7 @@ NormalContact solve_normal_contact(const HeightMap& map, const NormalContactSett
   // them in that order, so the bits do not depend on the number of threads.
   const double direct_max = std::max(2.0, static_cast<double>(std::bit_width(n)) * 4.0);
   std::vector<std::pair<std::size_t, double>> jumps;
+  std::vector<std::vector<double>> acc(static_cast<std::size_t>(W.count()), std::vector<double>(s.periodic ? 0 : n));
   auto direct_update = [&](const std::vector<double>& p0, const std::vector<double>& t0, const std::vector<double>& g0,
                            double tau, double f) {
     jumps.clear();
@@ -365,25 +433,23 @@ NormalContact solve_normal_contact(const HeightMap& map, const NormalContactSett
         jumps.emplace_back(k, -tau * g0[k]);
       }
     }
-    const std::ptrdiff_t rows = static_cast<std::ptrdiff_t>(n);
-#pragma omp parallel num_threads(T) if (T > 1 && nn >= kParallelFrom)
-    {
-      std::vector<double> acc(n);
-#pragma omp for schedule(dynamic, 8)
-      for (std::ptrdiff_t ii = 0; ii < rows; ++ii) {
-        const std::size_t i = static_cast<std::size_t>(ii);
-        std::fill(acc.begin(), acc.end(), 0.0);
+    // Rows in chunks of 8: each thread sums into its own row of `acc`.
+    constexpr std::size_t kRowChunk = 8;
+    W.run((n + kRowChunk - 1) / kRowChunk, nn >= kParallelFrom, [&](std::size_t c, std::size_t th) {
+      std::vector<double>& a = acc[th];
+      for (std::size_t i = c * kRowChunk; i < std::min(n, (c + 1) * kRowChunk); ++i) {
+        std::fill(a.begin(), a.end(), 0.0);
         for (const auto& [l, d] : jumps) {
-          const std::size_t a = l / n, b = l % n;
-          const double* row = &influence[(i > a ? i - a : a - i) * (n + 1)];
-          for (std::size_t j = 0; j < b; ++j) acc[j] += d * row[b - j];
-          for (std::size_t j = b; j < n; ++j) acc[j] += d * row[j - b];
+          const std::size_t r0 = l / n, b = l % n;
+          const double* row = &influence[(i > r0 ? i - r0 : r0 - i) * (n + 1)];
+          for (std::size_t j = 0; j < b; ++j) a[j] += d * row[b - j];
+          for (std::size_t j = b; j < n; ++j) a[j] += d * row[j - b];
         }
         double* uk = &u[i * n];
         const double* rk = &r[i * n];
-        for (std::size_t j = 0; j < n; ++j) uk[j] = f * (uk[j] - tau * rk[j] + acc[j]);
+        for (std::size_t j = 0; j < n; ++j) uk[j] = f * (uk[j] - tau * rk[j] + a[j]);
       }
-    }
+    });
   };
   K.apply(p, u);
   out.convolutions = 1;
@@ -392,27 +458,27 @@ NormalContact solve_normal_contact(const HeightMap& map, const NormalContactSett
   double gbar = 0;
   for (int it = 1; it <= s.max_iterations; ++it) {
     // u = K p here. Gap on the contact set, shifted by its mean there (the unknown approach).
-    const auto [sum, count, square] = block_sums<3>(nn, T, [&](std::size_t k, auto& a) {
+    const auto [sum, count, square] = block_sums<3>(nn, W, [&](std::size_t k, auto& a) {
       g[k] = u[k] + h0[k];
       if (p[k] > 0) a[0] += g[k], a[1] += 1, a[2] += g[k] * g[k];
     });
     const double nc = count;
     gbar = nc > 0 ? sum / nc : 0.0;
-    const double G = block_sums<1>(nn, T, [&](std::size_t k, auto& a) {
+    const double G = block_sums<1>(nn, W, [&](std::size_t k, auto& a) {
       g[k] -= gbar;
       if (p[k] > 0) a[0] += g[k] * g[k];
     })[0];
     // Conjugate direction on the contact set.
     const double beta = delta && G_old > 0 ? G / G_old : 0.0;  // G_old = 0: the last step was exact
-    for_each_pixel(nn, T, [&](std::size_t k) { t[k] = p[k] > 0 ? g[k] + beta * t[k] : 0.0; });
+    for_each_pixel(nn, W, [&](std::size_t k) { t[k] = p[k] > 0 ? g[k] + beta * t[k] : 0.0; });
     G_old = G;
     K.apply(t, r);
     ++out.convolutions;
-    const double rsum = block_sums<1>(nn, T, [&](std::size_t k, auto& a) {
+    const double rsum = block_sums<1>(nn, W, [&](std::size_t k, auto& a) {
       if (p[k] > 0) a[0] += r[k];
     })[0];
     const double rbar = nc > 0 ? rsum / nc : 0.0;
-    const auto [gt, rt] = block_sums<2>(nn, T, [&](std::size_t k, auto& a) {
+    const auto [gt, rt] = block_sums<2>(nn, W, [&](std::size_t k, auto& a) {
       if (p[k] > 0) a[0] += g[k] * t[k], a[1] += (r[k] - rbar) * t[k];
     });
     // A gap flat on the contact to rounding (rms deviation ≤ 1e-12 of its rms) is the answer: a step
@@ -423,7 +489,7 @@ NormalContact solve_normal_contact(const HeightMap& map, const NormalContactSett
     p_old.swap(p);
     // The step; points outside the contact that the flat overlaps join it. `changed` counts the
     // points where the new pressures are not p − τt (clipped at zero, or joining).
-    const auto [total_p, changed] = block_sums<2>(nn, T, [&](std::size_t k, auto& a) {
+    const auto [total_p, changed] = block_sums<2>(nn, W, [&](std::size_t k, auto& a) {
       double x = 0;
       if (p_old[k] > 0) {
         x = p_old[k] - tau * t[k];
@@ -445,7 +511,7 @@ NormalContact solve_normal_contact(const HeightMap& map, const NormalContactSett
     const double total = total_p * A;
     if (!(total > 0)) throw std::runtime_error("normal contact: the pressures vanished (CG breakdown)");
     const double f = s.load_N / total;
-    const double change = block_sums<1>(nn, T, [&](std::size_t k, auto& a) {
+    const double change = block_sums<1>(nn, W, [&](std::size_t k, auto& a) {
       p[k] *= f;
       a[0] += std::abs(p[k] - p_old[k]);
     })[0];
@@ -466,7 +532,7 @@ NormalContact solve_normal_contact(const HeightMap& map, const NormalContactSett
     // rounding and the updated u drifted from K p until the CG broke down (a recomputed u stays at
     // rounding).
     if (changed == 0 && !s.periodic)
-      for_each_pixel(nn, T, [&](std::size_t k) { u[k] = f * (u[k] - tau * r[k]); });
+      for_each_pixel(nn, W, [&](std::size_t k) { u[k] = f * (u[k] - tau * r[k]); });
     else if (!s.periodic && changed <= direct_max)
       direct_update(p_old, t, g, tau, f);
     else
@@ -474,7 +540,7 @@ NormalContact solve_normal_contact(const HeightMap& map, const NormalContactSett
   }
   K.apply(p, u);
   ++out.convolutions;
-  const auto [area_count, shift_sum] = block_sums<2>(nn, T, [&](std::size_t k, auto& a) {
+  const auto [area_count, shift_sum] = block_sums<2>(nn, W, [&](std::size_t k, auto& a) {
     if (p[k] > 0) a[0] += 1, a[1] += u[k] + h0[k];
   });
   out.area_m2 = area_count * A;
