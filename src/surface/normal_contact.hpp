@@ -21,8 +21,9 @@ struct NormalContactSettings {
   double load_N = 0;             // total normal load
   double tolerance = 1e-10;      // on Σ|Δp|A / P between two iterations
   int max_iterations = 5000;
-  // OpenMP threads of the FFTs (FFTW's) and of the loops over pixels. The sums are taken in a fixed
-  // order, so the result does not depend on the number of threads (see the tests).
+  // Threads of the FFTs and of the loops over pixels (the solve's own blocked workers; FFTW's threads
+  // for the periodic kernel's transforms). The work is cut in fixed blocks and the sums are taken in
+  // a fixed order, so the result does not depend on the number of threads (see the tests).
   int threads = 1;
   // Isolated contacts on grids of ≥ 128 pixels (n even) start from the solution on the grid of
   // half the width, interpolated (coarse-to-fine), instead of a uniform pressure: the same answer
