@@ -2,12 +2,6 @@
 
 #include <algorithm>
 #include <array>
-#include <atomic>
-#include <condition_variable>
-#include <cstdint>
-#include <mutex>
-#include <thread>
-#include <type_traits>
 #include <bit>
 #include <cmath>
 #include <cstring>
@@ -17,6 +11,11 @@
 #include <optional>
 #include <stdexcept>
 #include <utility>
+#include <vector>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include "surface/fft_planner.hpp"
 
@@ -30,27 +29,15 @@ constexpr std::size_t kBlock = 1 << 14;
 // than they save (and a thread waiting for a busy core stalls the others).
 constexpr std::size_t kParallelFrom = std::size_t{1} << 18;
 
-// The threads of one solve: the caller and threads − 1 workers that wait blocked (not spinning) for
-// work. A loop is cut into fixed chunks handed out as threads come free; the caller does every
-// chunk no worker has taken and waits only for the chunks taken, never for a worker to wake: on a
-// machine shared with other work, a worker that has lost its core does not hold the solve up (an
-// OpenMP team, whose barriers wait for every thread and spin, took up to 17× longer on a loaded
-// 2-core machine). A chunk's values do not depend on the thread that computes it.
+// The threads of one solve: a TBB task arena of `threads`. A loop is cut into fixed chunks, one
+// task each, taken as threads come free: idle workers sleep instead of spinning at a barrier, and
+// the caller takes chunks itself, so a worker that has lost its core on a machine shared with
+// other work holds up at most the chunk it took (an OpenMP team, whose barriers wait for every
+// thread and spin, took up to 17× longer on a loaded 2-core machine). A chunk's values do not
+// depend on the thread that computes it.
 class Workers {
  public:
-  explicit Workers(int threads) : count_(std::max(1, threads)) {
-    for (int i = 1; i < count_; ++i) threads_.emplace_back([this, i] { serve(static_cast<std::size_t>(i)); });
-  }
-  ~Workers() {
-    {
-      std::lock_guard<std::mutex> l(m_);
-      stop_ = true;
-    }
-    work_.notify_all();
-    for (auto& t : threads_) t.join();
-  }
-  Workers(const Workers&) = delete;
-  Workers& operator=(const Workers&) = delete;
+  explicit Workers(int threads) : count_(std::max(1, threads)), arena_(count_) {}
   int count() const { return count_; }
 
   // f(chunk, thread) for chunk = 0..chunks−1, thread < count(); on the caller alone if !parallel.
@@ -60,48 +47,20 @@ class Workers {
       for (std::size_t c = 0; c < chunks; ++c) f(c, std::size_t{0});
       return;
     }
-    auto call = [](void* ctx, std::size_t c, std::size_t t) { (*static_cast<std::remove_reference_t<F>*>(ctx))(c, t); };
-    {
-      std::lock_guard<std::mutex> l(m_);
-      fn_ = call, ctx_ = static_cast<void*>(&f), chunks_ = chunks, next_.store(0), open_ = true, ++generation_;
-    }
-    work_.notify_all();
-    take(0);
-    std::unique_lock<std::mutex> l(m_);
-    open_ = false;  // a worker waking from now on finds nothing to do
-    done_.wait(l, [&] { return busy_ == 0; });
+    arena_.execute([&] {
+      tbb::parallel_for(
+          tbb::blocked_range<std::size_t>(0, chunks, 1),
+          [&](const tbb::blocked_range<std::size_t>& r) {
+            const auto t = static_cast<std::size_t>(tbb::this_task_arena::current_thread_index());
+            for (std::size_t c = r.begin(); c != r.end(); ++c) f(c, t);
+          },
+          tbb::simple_partitioner());
+    });
   }
 
  private:
-  void take(std::size_t thread) {
-    for (std::size_t c; (c = next_.fetch_add(1)) < chunks_;) fn_(ctx_, c, thread);
-  }
-  void serve(std::size_t thread) {
-    std::unique_lock<std::mutex> l(m_);
-    std::uint64_t seen = 0;
-    for (;;) {
-      work_.wait(l, [&] { return stop_ || (open_ && generation_ != seen); });
-      if (stop_) return;
-      seen = generation_;
-      ++busy_;
-      l.unlock();
-      take(thread);
-      l.lock();
-      if (--busy_ == 0) done_.notify_one();
-    }
-  }
-
   int count_;
-  std::vector<std::thread> threads_;
-  std::mutex m_;
-  std::condition_variable work_, done_;
-  void (*fn_)(void*, std::size_t, std::size_t) = nullptr;
-  void* ctx_ = nullptr;
-  std::size_t chunks_ = 0;
-  std::atomic<std::size_t> next_{0};
-  bool open_ = false, stop_ = false;
-  int busy_ = 0;
-  std::uint64_t generation_ = 0;
+  tbb::task_arena arena_;
 };
 
 template <class F>
