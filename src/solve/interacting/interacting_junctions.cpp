@@ -88,9 +88,13 @@ void InteractingJunctions::warm_start(double X, std::vector<double>& f, std::vec
     const ForceNode* near = &cache_.nodes()[0];
     for (const ForceNode& k : cache_.nodes())
       if (std::abs(k.X - X) < std::abs(near->X - X)) near = &k;
+    // From the node a slip left, with the curvatures predicted there: second order.
+    // (Within twice the old nodes' spacing, where that cubic's curvature holds.)
+    const bool curved = seed_valid_ && near->X == seed_X_ && seed_c_.size() == n && std::abs(X - near->X) <= 2 * seed_h_;
     for (std::size_t q = 0; q < n; ++q) {
-      f[q] = near->f[q] + near->a[q] * (X - near->X);
-      a[q] = near->a[q];
+      const double d = X - near->X, c = curved ? seed_c_[q] : 0.0;
+      f[q] = near->f[q] + (near->a[q] + 0.5 * c * d) * d;
+      a[q] = near->a[q] + c * d;
     }
     return;
   }
@@ -470,11 +474,17 @@ void InteractingJunctions::start_slip(std::size_t i, double X) {
   const ForceNode* near = nullptr;
   for (const ForceNode& m : cache_.nodes())
     if (!near || std::abs(m.X - X) < std::abs(near->X - X)) near = &m;
-  remove_pinned(q, f_sl, near, X);
+  // The node farthest from it (the last Newton iterates sit within rounding of each other, too
+  // close for a second difference): with it, the per-junction curvature at X.
+  const ForceNode* other = nullptr;
+  for (const ForceNode& m : cache_.nodes())
+    if (near && (!other || std::abs(m.X - near->X) > std::abs(other->X - near->X))) other = &m;
+  remove_pinned(q, f_sl, near, other, X);
   cache_.clear();
 }
 
-void InteractingJunctions::remove_pinned(std::size_t q, double f_sl, const ForceNode* at_X, double X) {
+void InteractingJunctions::remove_pinned(std::size_t q, double f_sl, const ForceNode* at_X, const ForceNode* other,
+                                         double X) {
   const std::size_t n = pinned_.size();
   // The new set's solution at X, to first order: the others take up the slipped junction's
   // force change through column q of G (exact for linear junctions, where Δ = 0; for Eq. (3)
@@ -494,10 +504,33 @@ void InteractingJunctions::remove_pinned(std::size_t q, double f_sl, const Force
       seed_f_[r] = at_X->f[r] + at_X->a[r] * dX + g[r] / gqq * df;
       seed_a_[r] = at_X->a[r] + g[r] / gqq * da;
     }
+    // Curvatures d²f/dX² at X: the old set's, from the cubic Hermite of at_X and its neighbour,
+    // redistributed like the slopes (the slipping force's is zero). They make the first solve
+    // away from X (Newton on the next slip position) start at second order instead of first.
+    seed_c_.clear();
+    if (other && other->X != at_X->X && other->f.size() == n) {
+      const bool right = at_X->X > other->X;  // at_X is the piece's right end
+      const ForceNode& a = right ? *other : *at_X;
+      const ForceNode& b = right ? *at_X : *other;
+      const double h = b.X - a.X;
+      seed_h_ = h;
+      seed_c_.resize(n);
+      for (std::size_t r = 0; r < n; ++r) {
+        const double c2 = 3 * (b.f[r] - a.f[r]) - h * (2 * a.a[r] + b.a[r]);
+        const double c3 = 2 * (a.f[r] - b.f[r]) + h * (a.a[r] + b.a[r]);
+        seed_c_[r] = (2 * c2 + (right ? 6 * c3 : 0.0)) / (h * h);
+      }
+      const double dc = -seed_c_[q];
+      for (std::size_t r = 0; r < n; ++r) seed_c_[r] += g[r] / gqq * dc;
+    }
     // The positions as PinnedCompliance::remove leaves them: the last moves into q.
     if (q != n - 1) seed_f_[q] = seed_f_[n - 1], seed_a_[q] = seed_a_[n - 1];
     seed_f_.pop_back();
     seed_a_.pop_back();
+    if (!seed_c_.empty()) {
+      if (q != n - 1) seed_c_[q] = seed_c_[n - 1];
+      seed_c_.pop_back();
+    }
   }
   pinned_.remove(q, f_sl);
 }
@@ -524,6 +557,7 @@ void InteractingJunctions::repin_all(double X) {
   F_slip_ = 0.0;
   cache_.clear();  // its nodes belong to the old set
   seed_valid_ = false;
+  seed_c_.clear();
   pinned_.rebuild();
   // Rounding of the new G may put a junction that was at its threshold a hair over it.
   settle(X, npos);

@@ -103,7 +103,8 @@ class InteractingJunctions {
   void find_thresholds(double X);
   // Position q leaves P carrying f_slip; at_X: the old set's solution nearest X (or null), from
   // which the new set's seed at X is predicted.
-  void remove_pinned(std::size_t q, double f_slip, const ForceNode* at_X, double X);
+  // other: at_X's neighbour in the old cache (or null), for the curvatures.
+  void remove_pinned(std::size_t q, double f_slip, const ForceNode* at_X, const ForceNode* other, double X);
   void start_slip(std::size_t i, double X);
 
   const Problem& p_;
@@ -125,7 +126,8 @@ class InteractingJunctions {
   // After a slip at seed_X_: the new set's forces and slopes there, predicted (warm start).
   bool seed_valid_ = false;
   double seed_X_ = 0;
-  std::vector<double> seed_f_, seed_a_;
+  std::vector<double> seed_f_, seed_a_, seed_c_;  // c: d²f/dX² (empty: unknown)
+  double seed_h_ = 0;  // m: the spacing of the old nodes the curvatures come from
   mutable std::int64_t force_evals_ = 0, solves_ = 0, iterations_ = 0;
   // Chord passes that contracted slowly since G was last rebuilt (rebuild count slow_since_).
   mutable std::int64_t slow_passes_ = 0, slow_since_ = -1;
