@@ -2,12 +2,12 @@
 // areas repeated to N, placed as the bench places them, no output series) with the solver's work
 // counters, for side-by-side runs of two builds of the solver (issue 26). Build against a Release
 // build in build/ and run from the repository root:
-//   B=build; g++ -O2 -std=c++20 -Isrc bench/probes/first_peak_probe.cpp -o /tmp/first_peak \
+//   B=build; g++ -O2 -std=c++20 -Isrc bench/probes/first_peak_probe.cpp -o build/first_peak \
 //     -Wl,--start-group $B/libasperity_observe.a $B/libasperity_solve.a $B/libasperity_scene.a \
 //     $B/libasperity_surface.a $B/libasperity_physics.a $B/libasperity_io.a $B/libasperity_generate.a \
 //     $B/libasperity_batch.a -Wl,--end-group -lyaml-cpp -lcrypto -ltbb -lopenblas -lfftw3_threads -lfftw3 \
 //     -lfftw3_omp -fopenmp
-//   OMP_NUM_THREADS=1 /tmp/first_peak 1200
+//   OMP_NUM_THREADS=1 build/first_peak 1200
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>

@@ -6,10 +6,10 @@
 // leaves of `leaf` junctions, admissibility eta), factorises it (LLT), and times a two-column
 // solve and product against Eigen's dense LLT, with the relative errors against it.
 // Needs Debian's libhmat-oss-dev (not a dependency of asperity) and a Release build in build/:
-//   g++ -O2 -std=c++20 -Isrc -I/usr/include/eigen3 bench/probes/hmat_probe.cpp -o /tmp/hmat_probe \
+//   g++ -O2 -std=c++20 -Isrc -I/usr/include/eigen3 bench/probes/hmat_probe.cpp -o build/hmat_probe \
 //     -Wl,--start-group build/libasperity_generate.a build/libasperity_physics.a build/libasperity_io.a \
 //     -Wl,--end-group -lhmat -fopenmp
-//   OMP_NUM_THREADS=1 /tmp/hmat_probe N eps [leaf [eta]]      (from the repository root)
+//   OMP_NUM_THREADS=1 build/hmat_probe N eps [leaf [eta]]      (from the repository root)
 #include <hmat/hmat.h>
 #include <chrono>
 #include <cmath>
