@@ -440,6 +440,35 @@ void profile_interval(ParameterProfile& pp, double f0, double rise, double x0) {
   double a = crossing(left, -1), b = crossing(right, +1);
   if (a > b) std::swap(a, b);
   pp.lo = a, pp.hi = b;
+  // Least-squares parabola in d = value − x0 (normal equations, scaled by the span).
+  double span = 0;
+  for (const ProfilePoint& p : pts) span = std::max(span, std::abs(p.value - x0));
+  if (!(span > 0)) return;
+  double S[5] = {0, 0, 0, 0, 0}, T[3] = {0, 0, 0};
+  int m = 0;
+  for (const ProfilePoint& p : pts) {
+    if (p.status != "ok" || !std::isfinite(p.objective)) continue;
+    const double d = (p.value - x0) / span;
+    double dk = 1;
+    for (int k = 0; k < 5; ++k, dk *= d) {
+      S[k] += dk;
+      if (k < 3) T[k] += dk * (p.objective - f0);
+    }
+    ++m;
+  }
+  if (m < 3) return;
+  const double M[3][3] = {{S[0], S[1], S[2]}, {S[1], S[2], S[3]}, {S[2], S[3], S[4]}};
+  auto det3 = [](const double A[3][3]) {
+    return A[0][0] * (A[1][1] * A[2][2] - A[1][2] * A[2][1]) - A[0][1] * (A[1][0] * A[2][2] - A[1][2] * A[2][0]) +
+           A[0][2] * (A[1][0] * A[2][1] - A[1][1] * A[2][0]);
+  };
+  const double D = det3(M);
+  if (!(std::abs(D) > 0)) return;
+  double Mc[3][3];
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) Mc[r][c] = c == 2 ? T[r] : M[r][c];
+  const double c2 = det3(Mc) / D / (span * span);  // Cramer's rule, back to SI
+  if (c2 > 0) pp.parabola_sigma = std::sqrt(rise / c2);
 }
 
 // Inverse of a symmetric positive definite matrix by Cholesky; false when not positive definite.

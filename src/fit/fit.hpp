@@ -126,6 +126,11 @@ struct ParameterProfile {
   std::size_t parameter = 0;        // index into FitSpec::parameters
   std::vector<ProfilePoint> points;
   double lo = std::numeric_limits<double>::quiet_NaN(), hi = std::numeric_limits<double>::quiet_NaN();
+  // sqrt(s² / c) for the least-squares parabola J ≈ a + b d + c d² through the profile's points
+  // (d = value − optimum): a conditional standard deviation over the whole span, robust to
+  // roughness and jumps of J at scales below the points' spacing (where the Hessian is not);
+  // NaN when c ≤ 0 or fewer than 3 points.
+  double parabola_sigma = std::numeric_limits<double>::quiet_NaN();
 };
 
 // Statistical uncertainty of an area_and_force fit (a chi-square J): the Hessian H of J at the

@@ -330,7 +330,9 @@ std::string fit_yaml(const FitSpec& spec, const FitResult& result, const std::st
       y << "      method: \"chi-square: Hessian H of the objective at the optimum by central differences (relative steps from "
         << num(un.step) << ", rescaled until each parameter's own rise is 1-16 s^2), covariance 2 s^2 H^-1, s^2 = objective / (residuals - free variables) (the reduced chi-square); "
            "sigma: marginal standard deviation; interval95: value +- 1.96 sigma; profile_interval: where the one-parameter "
-           "profile (others at the optimum) rises by s^2 (conditional, narrower when correlated)\"\n";
+           "profile (others at the optimum) rises by s^2 (conditional, narrower when correlated); profile_sigma: sqrt(s^2/c) "
+           "of the least-squares parabola through the profile's points (conditional; robust to jumps of the objective "
+           "below the points' spacing, where sigma is not)\"\n";
       y << "      residuals: " << un.residuals << "\n      reduced_chi2: " << num(un.reduced_chi2) << "\n";
       y << "      evaluations: " << un.evaluations << "\n      wall_s: " << num(un.wall_s) << "\n";
       if (!un.computed) {
@@ -339,12 +341,12 @@ std::string fit_yaml(const FitSpec& spec, const FitResult& result, const std::st
         y << "      parameters:\n";
         for (std::size_t i = 0; i < o.variables.size(); ++i) {
           const double x = o.best[i], sg = un.sigma[i];
-          double plo = Observables::nan, phi = Observables::nan;
+          double plo = Observables::nan, phi = Observables::nan, psg = Observables::nan;
           for (const ParameterProfile& pp : o.profiles)
-            if (pp.parameter == o.variables[i].parameter && o.variables[i].experiment < 0) plo = pp.lo, phi = pp.hi;
+            if (pp.parameter == o.variables[i].parameter && o.variables[i].experiment < 0) plo = pp.lo, phi = pp.hi, psg = pp.parabola_sigma;
           y << "        " << yaml_quoted(o.variables[i].label) << ": {value: " << num(x) << ", step: " << num(un.steps[i]) << ", sigma: " << num(sg)
             << ", sigma_relative: " << num(sg / std::abs(x)) << ", interval95: [" << num(x - 1.96 * sg) << ", " << num(x + 1.96 * sg)
-            << "], profile_interval: [" << num(plo) << ", " << num(phi) << "]}\n";
+            << "], profile_interval: [" << num(plo) << ", " << num(phi) << "], profile_sigma: " << num(psg) << "}\n";
         }
         y << "      correlation:\n";
         for (std::size_t i = 0; i < o.variables.size(); ++i) {
