@@ -304,7 +304,7 @@ OptimizeResult optimize(Problem pb, const std::vector<double>& start, double ini
       for (unsigned i = 0; i < n; ++i) u[i] = parameter_coordinate(spec.parameters[pb.vars[i].parameter], from[i]);
       const std::string r = nlopt_stage(pb, spec.polish_algorithm, spec.polish_max_evaluations, u, from,
                                         polish_only ? initial_step : initial_step * 0.5, out.failure);
-      out.stop_reason = polish_only ? r : out.stop_reason + "; polish " + spec.polish_algorithm + ": " + r;
+      out.stop_reason = polish_only ? r : out.stop_reason + ", then " + spec.polish_algorithm + " " + r;
       interrupted();
     }
   }
