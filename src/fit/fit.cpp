@@ -44,6 +44,8 @@ struct ExperimentEval {
   double mass_kg = 0;
   bool stand_in = false;
   std::optional<MeasuredCurve> measured;
+  JointTerms terms;
+  std::vector<Sample> series;
   std::string error;  // empty: ran
 };
 
@@ -61,6 +63,9 @@ ExperimentEval run_experiment(const FitSpec& spec, std::size_t e, const std::vec
     if (spec.objective == FitObjective::user) {
       if (!user_term || !*user_term) throw std::invalid_argument("run_fit: the user objective needs FitOptions::user_term");
       out.residual = (*user_term)(fe, scene, r);
+    } else if (spec.objective == FitObjective::area_and_force) {
+      out.terms = area_and_force_terms(scene, r.obs, r.recorder.loading_branch(), r.recorder.series(), fe, spec.noise);
+      out.residual = out.terms.total();
     } else {
       out.residual = experiment_residual(spec.objective, scene, r.obs, r.recorder.loading_branch(), fe.target);
     }
@@ -70,7 +75,9 @@ ExperimentEval run_experiment(const FitSpec& spec, std::size_t e, const std::vec
       out.error = "objective term of " + fe.name + " is NaN (model alpha = " + g6(r.obs.alpha) +
                   ", measured alpha = " + g6(r.obs.alpha_measured) + ", Q_s = " + g6(r.obs.Q_s) +
                   ", loading-branch points = " + std::to_string(r.recorder.loading_branch().size()) + ")";
-    } else if (!r.obs.peak_found) {
+    } else if (!r.obs.peak_found && spec.objective != FitObjective::area_and_force) {
+      // (area_and_force compares the whole measured Q(t) window, peak or not: a model without a
+      // peak there is a poor fit, scored as such, not a broken run.)
       // Without a confirmed peak, Q_s, the loading branch and every objective built on them
       // come from wherever the run stopped: a number, but not the one the fit is about.
       out.error = fe.name + " (" + display_path(scene.experiment.file) +
@@ -84,6 +91,7 @@ ExperimentEval run_experiment(const FitSpec& spec, std::size_t e, const std::vec
       out.mass_kg = scene.experiment.mass_kg;
       out.stand_in = scene.experiment.description.find("STAND-IN") != std::string::npos;
       out.measured = scene.experiment.measured;
+      if (spec.objective == FitObjective::area_and_force) out.series = r.recorder.series();
     }
   } catch (const RunInterrupted&) {
     throw;
@@ -225,20 +233,17 @@ struct OptimizeResult {
   double wall_s = 0;
 };
 
-// Runs the optimization's problem (Problem::part set) from `start`. NotJournaled when replay_only
-// and an evaluation was not journaled.
-OptimizeResult optimize(Problem pb, const std::vector<double>& start, double initial_step) {
+// One NLopt run of `algorithm` on the problem from scaled point u (updated to where it ended).
+std::string nlopt_stage(Problem& pb, const std::string& algorithm, int max_evaluations, std::vector<double>& u,
+                        const std::vector<double>& start, double initial_step, std::string& failure) {
   const FitSpec& spec = *pb.spec;
   const auto n = static_cast<unsigned>(pb.vars.size());
-  OptimizeResult out;
-  const auto t0 = Clock::now();
-  nlopt::opt opt(static_cast<nlopt::algorithm>(nlopt_algorithm_from_string(spec.algorithm.c_str())), n);
+  nlopt::opt opt(static_cast<nlopt::algorithm>(nlopt_algorithm_from_string(algorithm.c_str())), n);
   opt.set_lower_bounds(std::vector<double>(n, 0.0));
   opt.set_upper_bounds(std::vector<double>(n, 1.0));
-  std::vector<double> xtol(n), u(n), step(n, initial_step);
+  std::vector<double> xtol(n), step(n, initial_step);
   for (unsigned i = 0; i < n; ++i) {
     const FitParameter& p = spec.parameters[pb.vars[i].parameter];
-    u[i] = parameter_coordinate(p, start[i]);
     // xtol_rel on x → absolute on the scaled coordinate: Δu = Δx/x / ln(hi/lo) (log scale),
     // Δu = xtol_rel·|x_ref| / (hi − lo) (linear, x_ref = start, or the larger bound if 0).
     const double ref = start[i] != 0 ? std::abs(start[i]) : std::max(std::abs(p.lo), std::abs(p.hi));
@@ -247,24 +252,63 @@ OptimizeResult optimize(Problem pb, const std::vector<double>& start, double ini
   opt.set_xtol_abs(xtol);
   if (spec.ftol_rel > 0) opt.set_ftol_rel(spec.ftol_rel);
   if (spec.ftol_abs > 0) opt.set_ftol_abs(spec.ftol_abs);
-  opt.set_maxeval(spec.max_evaluations);
+  opt.set_maxeval(max_evaluations);
   opt.set_initial_step(step);
   opt.set_min_objective(nlopt_objective, &pb);
   double f = 0;
+  std::string reason;
   try {
-    out.stop_reason = nlopt_result_name(opt.optimize(u, f));
+    reason = nlopt_result_name(opt.optimize(u, f));
   } catch (const nlopt::forced_stop&) {
-    out.stop_reason = "FORCED_STOP";
-    out.failure = pb.failure.empty() ? "NLopt forced stop" : pb.failure;
+    reason = "FORCED_STOP";
+    failure = pb.failure.empty() ? "NLopt forced stop" : pb.failure;
   } catch (const nlopt::roundoff_limited&) {
-    out.stop_reason = "ROUNDOFF_LIMITED";  // best point so far is still the answer
+    reason = "ROUNDOFF_LIMITED";  // best point so far is still the answer
   } catch (const std::exception& e) {
-    out.stop_reason = "FAILURE";
-    out.failure = std::string("NLopt: ") + e.what();
+    reason = "FAILURE";
+    failure = std::string("NLopt: ") + e.what();
+  }
+  return reason;
+}
+
+// Runs the optimization's problem (Problem::part set) from `start`: the algorithm, then the
+// polish stage from its best point when the spec has one (`polish_only`: the polish alone, or
+// the algorithm when there is none). NotJournaled when replay_only and an evaluation was not
+// journaled.
+OptimizeResult optimize(Problem pb, const std::vector<double>& start, double initial_step, bool polish_only = false) {
+  const FitSpec& spec = *pb.spec;
+  const auto n = static_cast<unsigned>(pb.vars.size());
+  OptimizeResult out;
+  const auto t0 = Clock::now();
+  std::vector<double> u(n);
+  for (unsigned i = 0; i < n; ++i) u[i] = parameter_coordinate(spec.parameters[pb.vars[i].parameter], start[i]);
+  const bool polish = !spec.polish_algorithm.empty();
+  auto best_so_far = [&] {
+    double fb = Observables::nan;
+    std::vector<double> xb;
+    for (const auto& ev : pb.log)
+      if (ev.status == "ok" && !(ev.objective >= fb)) fb = ev.objective, xb = ev.values;
+    return xb;
+  };
+  auto interrupted = [&] {
+    if (pb.interrupted) throw RunInterrupted("fit interrupted in " + pb.part + " " + pb.label);
+    if (!pb.not_journaled.empty()) throw NotJournaled(pb.not_journaled);
+  };
+  if (!(polish_only && polish)) {
+    out.stop_reason = nlopt_stage(pb, spec.algorithm, spec.max_evaluations, u, start, initial_step, out.failure);
+    interrupted();
+  }
+  if (polish && out.failure.empty()) {
+    std::vector<double> from = polish_only ? start : best_so_far();
+    if (!from.empty()) {
+      for (unsigned i = 0; i < n; ++i) u[i] = parameter_coordinate(spec.parameters[pb.vars[i].parameter], from[i]);
+      const std::string r = nlopt_stage(pb, spec.polish_algorithm, spec.polish_max_evaluations, u, from,
+                                        polish_only ? initial_step : initial_step * 0.5, out.failure);
+      out.stop_reason = polish_only ? r : out.stop_reason + ", then " + spec.polish_algorithm + " " + r;
+      interrupted();
+    }
   }
   out.wall_s = seconds_since(t0);
-  if (pb.interrupted) throw RunInterrupted("fit interrupted in " + pb.part + " " + pb.label);
-  if (!pb.not_journaled.empty()) throw NotJournaled(pb.not_journaled);
   for (const auto& ev : pb.log)
     if (ev.status == "ok" && !(ev.objective >= out.objective)) {
       out.objective = ev.objective;
@@ -308,6 +352,9 @@ void keep_best_runs(const Problem& pb, Optimization& o) {
     er.mass_kg = runs[k].mass_kg;
     er.stand_in = runs[k].stand_in;
     er.measured = std::move(runs[k].measured);
+    er.terms = runs[k].terms;
+    er.series = std::move(runs[k].series);
+    er.force = pb.spec->experiments[o.experiments[k]].force;
     o.best_runs.push_back(std::move(er));
   }
   if (ev.status != "ok" && o.failure.empty()) o.failure = "re-run at the optimum failed: " + ev.status;
@@ -328,20 +375,27 @@ void keep_best_runs(const Problem& pb, Optimization& o) {
   }
 }
 
-// The objective along the profiled parameter around the optimum (in parallel, journaled).
+// The objective along each profiled parameter around the optimum, the others at the optimum
+// (in parallel, journaled; points of every profile share the part "profile": their values differ).
 void run_profile(const FitSpec& spec, const Problem& pb, Optimization& o) {
   const auto t0 = Clock::now();
   const ProfileSettings& ps = spec.profile_settings;
-  const FitParameter& p = spec.parameters[ps.parameter];
-  o.profile_parameter = ps.parameter;
-  std::vector<ProfilePoint> pts(static_cast<std::size_t>(ps.points));
-  for_each_nested(pts.size(), [&](std::size_t i) {
-    ProfilePoint& pt = pts[i];
-    pt.factor = 1.0 + ps.span * (2.0 * static_cast<double>(i) / static_cast<double>(pts.size() - 1) - 1.0);
+  const std::vector<std::size_t> which = ps.parameters.empty() ? std::vector<std::size_t>{ps.parameter} : ps.parameters;
+  const std::size_t m = static_cast<std::size_t>(ps.points);
+  std::vector<ParameterProfile> profiles(which.size());
+  for (std::size_t q = 0; q < which.size(); ++q) {
+    profiles[q].parameter = which[q];
+    profiles[q].points.resize(m);
+  }
+  for_each_nested(which.size() * m, [&](std::size_t flat) {
+    const std::size_t q = flat / m, i = flat % m;
+    const FitParameter& p = spec.parameters[which[q]];
+    ProfilePoint& pt = profiles[q].points[i];
+    pt.factor = 1.0 + ps.span * (2.0 * static_cast<double>(i) / static_cast<double>(m - 1) - 1.0);
     std::vector<double> x = o.best;
     bool inside = true;
     for (std::size_t j = 0; j < x.size(); ++j)
-      if (o.variables[j].parameter == ps.parameter) {
+      if (o.variables[j].parameter == which[q]) {
         x[j] = o.best[j] * pt.factor;
         pt.value = x[j];
         inside = inside && x[j] >= p.lo && x[j] <= p.hi;
@@ -350,15 +404,256 @@ void run_profile(const FitSpec& spec, const Problem& pb, Optimization& o) {
       pt.status = "outside the bounds";
       return;
     }
-    Problem q = pb;
-    q.part = "profile";
-    const std::optional<Evaluation> ev = evaluate_journaled(q, static_cast<int>(i) + 1, x);
-    if (!ev) throw NotJournaled(not_journaled_text(q, static_cast<int>(i) + 1, x));
+    Problem qb = pb;
+    qb.part = "profile";
+    const int index = static_cast<int>(flat) + 1;
+    const std::optional<Evaluation> ev = evaluate_journaled(qb, index, x);
+    if (!ev) throw NotJournaled(not_journaled_text(qb, index, x));
     pt.objective = ev->objective;
     pt.status = ev->status;
   });
-  o.profile = std::move(pts);
+  o.profiles = std::move(profiles);
+  o.profile_parameter = o.profiles.front().parameter;
+  o.profile = o.profiles.front().points;
   o.profile_wall_s = seconds_since(t0);
+}
+
+// Where the profile rises by `rise` above `f0` on each side of the optimum (linear between
+// points); NaN where it does not within the span.
+void profile_interval(ParameterProfile& pp, double f0, double rise, double x0) {
+  const auto& pts = pp.points;
+  auto crossing = [&](int from, int step) {
+    double xa = x0, fa = f0;
+    for (int i = from; i >= 0 && i < static_cast<int>(pts.size()); i += step) {
+      const ProfilePoint& p = pts[static_cast<std::size_t>(i)];
+      if (p.status != "ok" || !std::isfinite(p.objective)) return Observables::nan;
+      if (p.objective - f0 >= rise) return xa + (f0 + rise - fa) / (p.objective - fa) * (p.value - xa);
+      xa = p.value, fa = p.objective;
+    }
+    return Observables::nan;
+  };
+  std::size_t mid = 0;  // the point nearest factor 1
+  for (std::size_t i = 0; i < pts.size(); ++i)
+    if (std::abs(pts[i].factor - 1) < std::abs(pts[mid].factor - 1)) mid = i;
+  const bool at_mid = std::abs(pts[mid].factor - 1) < 1e-12;
+  const int left = static_cast<int>(mid) - (at_mid ? 1 : 0), right = static_cast<int>(mid) + (at_mid ? 1 : 0);
+  double a = crossing(left, -1), b = crossing(right, +1);
+  if (a > b) std::swap(a, b);
+  pp.lo = a, pp.hi = b;
+  // Least-squares parabola in d = value − x0 (normal equations, scaled by the span).
+  double span = 0;
+  for (const ProfilePoint& p : pts) span = std::max(span, std::abs(p.value - x0));
+  if (!(span > 0)) return;
+  double S[5] = {0, 0, 0, 0, 0}, T[3] = {0, 0, 0};
+  int m = 0;
+  for (const ProfilePoint& p : pts) {
+    if (p.status != "ok" || !std::isfinite(p.objective)) continue;
+    const double d = (p.value - x0) / span;
+    double dk = 1;
+    for (int k = 0; k < 5; ++k, dk *= d) {
+      S[k] += dk;
+      if (k < 3) T[k] += dk * (p.objective - f0);
+    }
+    ++m;
+  }
+  if (m < 3) return;
+  const double M[3][3] = {{S[0], S[1], S[2]}, {S[1], S[2], S[3]}, {S[2], S[3], S[4]}};
+  auto det3 = [](const double A[3][3]) {
+    return A[0][0] * (A[1][1] * A[2][2] - A[1][2] * A[2][1]) - A[0][1] * (A[1][0] * A[2][2] - A[1][2] * A[2][0]) +
+           A[0][2] * (A[1][0] * A[2][1] - A[1][1] * A[2][0]);
+  };
+  const double D = det3(M);
+  if (!(std::abs(D) > 0)) return;
+  double Mc[3][3];
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) Mc[r][c] = c == 2 ? T[r] : M[r][c];
+  const double c2 = det3(Mc) / D / (span * span);  // Cramer's rule, back to SI
+  if (c2 > 0) pp.parabola_sigma = std::sqrt(rise / c2);
+}
+
+// Inverse of a symmetric positive definite matrix by Cholesky; false when not positive definite.
+bool spd_inverse(std::vector<std::vector<double>> a, std::vector<std::vector<double>>& inv) {
+  const std::size_t n = a.size();
+  std::vector<std::vector<double>> L(n, std::vector<double>(n, 0.0));
+  for (std::size_t j = 0; j < n; ++j) {
+    double d = a[j][j];
+    for (std::size_t k = 0; k < j; ++k) d -= L[j][k] * L[j][k];
+    if (!(d > 0) || !std::isfinite(d)) return false;
+    L[j][j] = std::sqrt(d);
+    for (std::size_t i = j + 1; i < n; ++i) {
+      double v = a[i][j];
+      for (std::size_t k = 0; k < j; ++k) v -= L[i][k] * L[j][k];
+      L[i][j] = v / L[j][j];
+    }
+  }
+  inv.assign(n, std::vector<double>(n, 0.0));
+  for (std::size_t c = 0; c < n; ++c) {  // solve L Lᵀ x = e_c
+    std::vector<double> y(n, 0.0), x(n, 0.0);
+    for (std::size_t i = 0; i < n; ++i) {
+      double v = i == c ? 1.0 : 0.0;
+      for (std::size_t k = 0; k < i; ++k) v -= L[i][k] * y[k];
+      y[i] = v / L[i][i];
+    }
+    for (std::size_t ii = n; ii-- > 0;) {
+      double v = y[ii];
+      for (std::size_t k = ii + 1; k < n; ++k) v -= L[k][ii] * x[k];
+      x[ii] = v / L[ii][ii];
+    }
+    for (std::size_t r = 0; r < n; ++r) inv[r][c] = x[r];
+  }
+  return true;
+}
+
+// The Hessian of the objective at the optimum by central differences in the scaled coordinates,
+// its covariance and the marginal standard deviations (fit.hpp, Uncertainty).
+void run_uncertainty(const FitSpec& spec, const Problem& pb, Optimization& o) {
+  const auto t0 = Clock::now();
+  Uncertainty& un = o.uncertainty;
+  un.step = spec.hessian_step;
+  const std::size_t n = o.variables.size();
+  for (const std::size_t e : o.experiments) un.residuals += area_and_force_count(spec.experiments[e].scene.build(), spec.experiments[e]);
+  const double f0 = o.objective;
+  if (un.residuals <= static_cast<int>(n)) {
+    un.failure = std::to_string(un.residuals) + " residuals for " + std::to_string(n) + " free variables";
+    return;
+  }
+  un.reduced_chi2 = f0 / static_cast<double>(un.residuals - static_cast<int>(n));
+  std::vector<double> u0(n), h(n), dxdu(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const FitParameter& p = spec.parameters[o.variables[i].parameter];
+    u0[i] = parameter_coordinate(p, o.best[i]);
+    if (p.log_scale) {
+      h[i] = spec.hessian_step / std::log(p.hi / p.lo);
+      dxdu[i] = o.best[i] * std::log(p.hi / p.lo);
+    } else {
+      h[i] = spec.hessian_step * std::max(std::abs(o.best[i]), 0.01 * (p.hi - p.lo)) / (p.hi - p.lo);
+      dxdu[i] = p.hi - p.lo;
+    }
+    if (u0[i] - h[i] < 0 || u0[i] + h[i] > 1) {
+      un.failure = o.variables[i].label + " = " + g6(o.best[i]) + " is within one step (" + g6(spec.hessian_step) +
+                   " relative) of its bound: no central difference";
+      return;
+    }
+  }
+  // Evaluations at scaled points, in parallel and journaled (part "hessian", numbered on).
+  int counter = 0;
+  auto eval_points = [&](const std::vector<std::vector<double>>& us, std::vector<double>& fv, std::vector<std::string>& st) {
+    fv.assign(us.size(), Observables::nan);
+    st.assign(us.size(), "");
+    const int base = counter;
+    counter += static_cast<int>(us.size());
+    for_each_nested(us.size(), [&](std::size_t k) {
+      std::vector<double> x(n);
+      for (std::size_t v = 0; v < n; ++v) x[v] = parameter_value(spec.parameters[o.variables[v].parameter], us[k][v]);
+      Problem qb = pb;
+      qb.part = "hessian";
+      const int index = base + static_cast<int>(k) + 1;
+      const std::optional<Evaluation> ev = evaluate_journaled(qb, index, x);
+      if (!ev) throw NotJournaled(not_journaled_text(qb, index, x));
+      fv[k] = ev->objective;
+      st[k] = ev->status;
+    });
+  };
+  // Steps: from hessian_step, rescaled (up to 4 rounds) until each parameter's own central
+  // rise (f(+h) + f(−h))/2 − f0 is within [1, 16] s² (target 4 s²: about two conditional
+  // standard deviations): large enough above rounding, small enough to stay quadratic where the
+  // objective is sharp (epsilon moves every stick-slip event).
+  const double target = 4 * un.reduced_chi2;
+  std::vector<bool> settled(n, false);
+  for (int round = 0; round < 5; ++round) {
+    std::vector<std::vector<double>> us;
+    std::vector<std::size_t> who;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (settled[i]) continue;
+      for (const int sg : {-1, +1}) {
+        std::vector<double> u = u0;
+        u[i] += sg * h[i];
+        us.push_back(u);
+      }
+      who.push_back(i);
+    }
+    if (who.empty()) break;
+    std::vector<double> fv;
+    std::vector<std::string> st;
+    eval_points(us, fv, st);
+    for (std::size_t w = 0; w < who.size(); ++w) {
+      const std::size_t i = who[w];
+      if (st[2 * w] != "ok" || st[2 * w + 1] != "ok") {
+        un.failure = "hessian evaluation along " + o.variables[i].label + ": " + (st[2 * w] != "ok" ? st[2 * w] : st[2 * w + 1]);
+        un.evaluations = counter;
+        return;
+      }
+      const double rise = 0.5 * (fv[2 * w] + fv[2 * w + 1]) - f0;
+      if (round == 4 || (rise >= target / 4 && rise <= target * 4)) {
+        settled[i] = true;
+        continue;
+      }
+      const double factor = rise > 0 ? std::clamp(std::sqrt(target / rise), 0.05, 20.0) : 10.0;
+      const double hmax = std::min(u0[i], 1 - u0[i]);
+      h[i] = std::min(h[i] * factor, hmax);
+      if (!(h[i] > 0)) {
+        un.failure = o.variables[i].label + " is at its bound: no central difference";
+        un.evaluations = counter;
+        return;
+      }
+    }
+  }
+  // The points: ±h_i, then (±h_i, ±h_j) for i < j.
+  struct Point { std::size_t i, j; int si, sj; };
+  std::vector<Point> pts;
+  for (std::size_t i = 0; i < n; ++i) for (const int si : {-1, +1}) pts.push_back({i, i, si, 0});
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i + 1; j < n; ++j)
+      for (const int si : {-1, +1}) for (const int sj : {-1, +1}) pts.push_back({i, j, si, sj});
+  std::vector<std::vector<double>> us;
+  for (const Point& pt : pts) {
+    std::vector<double> u = u0;
+    u[pt.i] += pt.si * h[pt.i];
+    if (pt.sj != 0) u[pt.j] += pt.sj * h[pt.j];
+    us.push_back(u);
+  }
+  std::vector<double> f;
+  std::vector<std::string> status;
+  eval_points(us, f, status);
+  un.evaluations = counter;
+  for (std::size_t k = 0; k < pts.size(); ++k)
+    if (status[k] != "ok") {
+      un.failure = "hessian evaluation " + std::to_string(k + 1) + ": " + status[k];
+      return;
+    }
+  std::vector<std::vector<double>> H(n, std::vector<double>(n, 0.0));
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < n; ++i, k += 2) H[i][i] = (f[k] - 2 * f0 + f[k + 1]) / (h[i] * h[i]);
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i + 1; j < n; ++j, k += 4) {
+      // order: (−,−), (−,+), (+,−), (+,+)
+      H[i][j] = H[j][i] = (f[k + 3] - f[k + 2] - f[k + 1] + f[k]) / (4 * h[i] * h[j]);
+    }
+  std::vector<std::vector<double>> inv;
+  if (!spd_inverse(H, inv)) {
+    std::string rows;
+    for (std::size_t i = 0; i < n; ++i) {
+      rows += i ? "; " : "";
+      for (std::size_t j = 0; j < n; ++j) rows += (j ? " " : "") + g6(H[i][j]);
+    }
+    un.failure = "the Hessian of the objective at the optimum is not positive definite (a flat or unidentifiable direction, "
+                 "or the optimum is not a minimum on the step's scale): H = [" + rows + "] in the scaled coordinates";
+    return;
+  }
+  un.steps.resize(n);
+  for (std::size_t i = 0; i < n; ++i) un.steps[i] = h[i] * std::abs(dxdu[i]) / std::abs(o.best[i]);
+  un.sigma.resize(n);
+  un.correlation.assign(n, std::vector<double>(n, 0.0));
+  for (std::size_t i = 0; i < n; ++i) un.sigma[i] = std::abs(dxdu[i]) * std::sqrt(2 * un.reduced_chi2 * inv[i][i]);
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = 0; j < n; ++j) un.correlation[i][j] = inv[i][j] / std::sqrt(inv[i][i] * inv[j][j]);
+  un.computed = true;
+  un.wall_s = seconds_since(t0);
+  // The profiles' conditional intervals at the same rise s².
+  for (ParameterProfile& pp : o.profiles)
+    for (std::size_t v = 0; v < n; ++v)
+      if (o.variables[v].parameter == pp.parameter && o.variables[v].experiment < 0)
+        profile_interval(pp, f0, un.reduced_chi2, o.best[v]);
 }
 
 // The refits with each error-bar key shifted by -bar and +bar (in parallel, journaled).
@@ -385,7 +680,7 @@ void run_refits(const FitSpec& spec, const FitOptions& options, Optimization& o,
       q.extra.push_back({{rf.key, nominal + rf.sign * rf.bar}});
     }
     // Start at the optimum with a smaller first step: the shift moves it little.
-    OptimizeResult rr = optimize(std::move(q), o.best, spec.initial_step * 0.25);
+    OptimizeResult rr = optimize(std::move(q), o.best, spec.initial_step * 0.25, /*polish_only=*/true);
     rf.best = rr.best;
     rf.objective = rr.objective;
     rf.evaluations = static_cast<int>(rr.log.size());
@@ -422,6 +717,7 @@ void run_task(const FitSpec& spec, const FitOptions& options, Optimization& o, s
   const bool have_best = std::isfinite(o.objective);
   if (have_best) keep_best_runs(pb, o);
   if (have_best && o.ok() && options.profile && spec.profile) run_profile(spec, pb, o);
+  if (have_best && o.ok() && options.error_bars && spec.intervals && spec.objective == FitObjective::area_and_force) run_uncertainty(spec, pb, o);
   if (have_best && o.ok() && options.error_bars && !spec.error_bars.empty()) run_refits(spec, options, o, counts, stop);
   if (options.progress) {
     const std::string line = done_line(pb, o);

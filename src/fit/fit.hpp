@@ -11,7 +11,9 @@
 //
 // Failures: an exception (SolverError, InputError), a NaN objective, or a run without a
 // confirmed static friction peak (Observables::peak_found: its loading branch and Q_s are not
-// the peak's) inside an evaluation ends that optimization with NLopt's forced stop; the reason
+// the peak's; not with area_and_force, whose Q(t) term scores a run without a peak in the
+// measured window as the poor fit it is) inside an evaluation ends that optimization with
+// NLopt's forced stop; the reason
 // is kept in Optimization::failure (status "failed", `asperity fit` exits 1) and the best
 // evaluation so far is reported.
 //
@@ -32,6 +34,7 @@
 #include <vector>
 
 #include "fit/fit_spec.hpp"
+#include "fit/objective.hpp"
 #include "observe/observables.hpp"
 #include "solve/core/observer.hpp"
 
@@ -97,6 +100,9 @@ struct Evaluation {
 
 // The best run of one experiment (at the fitted values).
 struct ExperimentRun {
+  JointTerms terms;                 // area_and_force: the term by part (objective.hpp)
+  std::vector<Sample> series;       // area_and_force: the run's Q(t) samples
+  std::optional<MeasuredForce> force;
   std::size_t experiment = 0;       // index into FitSpec::experiments
   double residual = std::numeric_limits<double>::quiet_NaN();
   Observables obs;
@@ -111,6 +117,39 @@ struct ProfilePoint {
   double value = 0;                 // SI
   double objective = std::numeric_limits<double>::quiet_NaN();
   std::string status = "ok";
+};
+
+// The objective along one parameter, the others at the optimum (a slice through it), and where
+// it rises by s² (Uncertainty::reduced_chi2) on each side: the conditional interval (narrower
+// than the marginal one when parameters are correlated). NaN where the span does not reach it.
+struct ParameterProfile {
+  std::size_t parameter = 0;        // index into FitSpec::parameters
+  std::vector<ProfilePoint> points;
+  double lo = std::numeric_limits<double>::quiet_NaN(), hi = std::numeric_limits<double>::quiet_NaN();
+  // sqrt(s² / c) for the least-squares parabola J ≈ a + b d + c d² through the profile's points
+  // (d = value − optimum): a conditional standard deviation over the whole span, robust to
+  // roughness and jumps of J at scales below the points' spacing (where the Hessian is not);
+  // NaN when c ≤ 0 or fewer than 3 points.
+  double parabola_sigma = std::numeric_limits<double>::quiet_NaN();
+};
+
+// Statistical uncertainty of an area_and_force fit (a chi-square J): the Hessian H of J at the
+// optimum in the optimizer's scaled coordinates by central differences (journaled evaluations,
+// part "hessian": each parameter's step is first rescaled from hessian_step until its own rise
+// is 1–16 s², then 2n + 2n(n−1) points), the covariance 2 s² H⁻¹ mapped to SI, with s² = J_min/(N − n)
+// the reduced chi-square (N residuals, n free variables): 1 when the noise levels are right and
+// the model fits; larger when it does not, and the intervals widen accordingly.
+struct Uncertainty {
+  bool computed = false;
+  std::string failure;              // why not (at a bound, H not positive definite, ...)
+  int residuals = 0;                // N
+  double reduced_chi2 = std::numeric_limits<double>::quiet_NaN();
+  double step = 0;                  // the initial relative step of each parameter
+  std::vector<double> steps;        // the steps used, relative to each value
+  std::vector<double> sigma;        // SI, per free variable (marginal standard deviation)
+  std::vector<std::vector<double>> correlation;
+  int evaluations = 0;
+  double wall_s = 0;
 };
 
 struct ErrorBarRefit {
@@ -137,8 +176,10 @@ struct Optimization {
   double wall_s = 0;                     // the optimization itself
   std::vector<Evaluation> log;
   std::vector<ExperimentRun> best_runs;  // empty when no evaluation succeeded
-  std::vector<ProfilePoint> profile;
+  std::vector<ProfilePoint> profile;      // the first profiled parameter's (= profiles[0].points)
   std::size_t profile_parameter = 0;
+  std::vector<ParameterProfile> profiles; // every profiled parameter
+  Uncertainty uncertainty;
   std::vector<ErrorBarRefit> refits;
   double profile_wall_s = 0, refits_wall_s = 0;
   bool ok() const { return failure.empty(); }

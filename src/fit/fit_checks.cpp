@@ -18,6 +18,7 @@ const char* objective_name(FitObjective o) {
     case FitObjective::quadratic_alpha: return "quadratic_alpha";
     case FitObjective::area_curve: return "area_curve";
     case FitObjective::stick_slip: return "stick_slip";
+    case FitObjective::area_and_force: return "area_and_force";
     case FitObjective::user: return "user";
   }
   return "unknown";

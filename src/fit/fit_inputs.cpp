@@ -47,6 +47,7 @@ std::string fit_inputs_text(const FitSpec& spec, const std::vector<std::string>&
   for (const FitExperiment& e : spec.experiments) {
     const std::vector<DataFile> f = input_files(e.scene.build());
     files.insert(files.end(), f.begin(), f.end());
+    if (!e.force_file.empty()) files.push_back({"force", e.force_file});
   }
   const fs::path base = fs::absolute(spec.file).lexically_normal().parent_path();
   std::vector<std::string> seen;

@@ -1,5 +1,6 @@
 #include "fit/fit_load.hpp"
 #include "scene/load.hpp"
+#include "scene/csv.hpp"
 
 #include <nlopt.hpp>
 #include <yaml-cpp/yaml.h>
@@ -23,12 +24,15 @@ using namespace scene_io;
 namespace {
 
 const std::vector<std::string> kFitKeys{"name", "description", "objective", "separate", "experiments",
-                                        "parameters", "optimizer", "profile", "error_bars"};
-const std::vector<std::string> kExperimentKeys{"scene", "set", "target"};
+                                        "parameters", "optimizer", "profile", "error_bars", "noise", "intervals"};
+const std::vector<std::string> kExperimentKeys{"scene", "set", "target", "force"};
+const std::vector<std::string> kNoiseKeys{"area", "force", "stick_slip"};
+const std::vector<std::string> kIntervalKeys{"hessian_step"};
 const std::vector<std::string> kTargetKeys{"drop", "period"};
 const std::vector<std::string> kParameterKeys{"lo", "hi", "start", "scale", "per_experiment"};
 const std::vector<std::string> kOptimizerKeys{"algorithm", "xtol_rel", "ftol_rel", "ftol_abs",
-                                              "max_evaluations", "initial_step"};
+                                              "max_evaluations", "initial_step", "polish"};
+const std::vector<std::string> kPolishKeys{"algorithm", "max_evaluations"};
 const std::vector<std::string> kProfileKeys{"parameter", "span", "points"};
 
 std::string display_path(const fs::path& p) { return p.lexically_normal().string(); }
@@ -55,6 +59,8 @@ std::vector<std::pair<std::string, std::string>> forced_settings(FitObjective o,
   }
   if (o == FitObjective::stick_slip)
     return {{"output.series", "[]"}, {"stop.at_first_peak", "false"}, {"stop.cycles", "5"}};
+  if (o == FitObjective::area_and_force)  // stop.time and output.every follow the measured Q(t): read_experiment
+    return {{"output.series", "[Q]"}, {"stop.at_first_peak", "false"}, {"stop.cycles", "-1"}};
   return {{"output.series", "[]"}, {"stop.at_first_peak", "true"}};
 }
 
@@ -88,7 +94,8 @@ void read_fit_header(const MapView& root, const fs::path& path, const FitLoadOpt
     spec.objective = root.enumeration<FitObjective>(objective_node, "objective",
                                                     {{"quadratic_alpha", FitObjective::quadratic_alpha},
                                                      {"area_curve", FitObjective::area_curve},
-                                                     {"stick_slip", FitObjective::stick_slip}});
+                                                     {"stick_slip", FitObjective::stick_slip},
+                                                     {"area_and_force", FitObjective::area_and_force}});
   }
   if (auto n = root.find("separate")) spec.separate = root.boolean(*n, "separate");
 }
@@ -172,8 +179,8 @@ ExperimentEntry read_entry(const Source& src, const MapView& root, const YAML::N
     }
   }
   if (auto t = ev.find("target")) {
-    if (spec.objective != FitObjective::stick_slip)
-      ev.fail_at(*t, "target", std::string("stick-slip targets are used by the stick_slip objective only, not ") + objective_name(spec.objective));
+    if (spec.objective != FitObjective::stick_slip && spec.objective != FitObjective::area_and_force)
+      ev.fail_at(*t, "target", std::string("stick-slip targets are used by the stick_slip and area_and_force objectives only, not ") + objective_name(spec.objective));
     const MapView tv(src, *t, ev.key("target"), kTargetKeys);
     x.target.drop_N = positive(tv, tv.require("drop"), "drop", "N");
     x.target.period_s = positive(tv, tv.require("period"), "period", "s");
@@ -186,7 +193,8 @@ ExperimentEntry read_entry(const Source& src, const MapView& root, const YAML::N
 // file's `measured:` line, the key the user would fix.
 void check_measured(const Scene& scene, const std::string& name, const FitSpec& spec, const MapView& sv,
                     const YAML::Node& scene_node, const std::string& skey, const std::string& display) {
-  const bool needs_measured = spec.objective == FitObjective::quadratic_alpha || spec.objective == FitObjective::area_curve;
+  const bool needs_measured = spec.objective == FitObjective::quadratic_alpha || spec.objective == FitObjective::area_curve ||
+                              spec.objective == FitObjective::area_and_force;
   if (!needs_measured) return;
   if (!scene.experiment.measured)
     sv.fail_at(scene_node, skey, std::string("objective ") + objective_name(spec.objective) +
@@ -252,6 +260,23 @@ FitExperiment read_experiment(const ExperimentContext& cx, const YAML::Node& en,
   }
   if (spec.objective == FitObjective::stick_slip && !x.has_target)
     sv.fail_at(en[i], x.view ? "target" : skey, "the stick_slip objective needs target: {drop: N, period: s} for every experiment");
+  std::optional<MeasuredForce> force;
+  fs::path force_file;
+  if (const auto fn = x.view ? x.view->find("force") : std::nullopt) {
+    if (spec.objective != FitObjective::area_and_force)
+      x.view->fail_at(*fn, "force", std::string("a measured Q(t) is used by the area_and_force objective only, not ") +
+                                        objective_name(spec.objective));
+    const std::string frel = x.view->string(*fn, "force");
+    force_file = cx.base / fs::path(frel);
+    std::error_code e3;
+    const auto st = fs::status(force_file, e3);
+    if (!fs::exists(st)) x.view->fail_at(*fn, "force", "force CSV not found: " + quote(frel) + " (looked for " + display_path(force_file) + ")");
+    if (!fs::is_regular_file(st)) x.view->fail_at(*fn, "force", "force CSV is not a regular file: " + display_path(force_file));
+    force = scene_io::read_force_csv(force_file, display_path(force_file));
+  } else if (spec.objective == FitObjective::area_and_force) {
+    sv.fail_at(en[i], x.view ? "force" : skey,
+               "the area_and_force objective needs force: CSV of the measured Q(t) (columns t_s, Q_N) for every experiment");
+  }
   if (!cx.overrides.empty()) {  // before the objective's forced settings, which win
     (void)load_scene(scene_path, cx.overrides);  // each --set checked on this scene, with its message
     for (const std::string& o : cx.overrides) {
@@ -260,8 +285,22 @@ FitExperiment read_experiment(const ExperimentContext& cx, const YAML::Node& en,
     }
   }
   for (const auto& f : forced_settings(spec.objective, cx.options.user_series)) x.fixed.push_back(f);
+  if (force) {  // run to the last measured time, sampled at least as finely as the measured Q(t)
+    double dt_min = force->t_s.back() - force->t_s.front();
+    for (std::size_t k = 1; k < force->t_s.size(); ++k) dt_min = std::min(dt_min, force->t_s[k] - force->t_s[k - 1]);
+    double every = dt_min;
+    try {
+      every = std::min(dt_min, SceneTemplate::load(scene_path, x.fixed).build().output.every);
+    } catch (const InputError&) {
+      // reported with its location by the load below
+    }
+    x.fixed.emplace_back("stop.time", format_double(force->t_s.back()));
+    x.fixed.emplace_back("output.every", format_double(every));
+  }
   FitExperiment fe;
   fe.target = x.target;
+  fe.force = std::move(force);
+  fe.force_file = force_file;
   Scene base_scene;
   try {
     fe.scene = SceneTemplate::load(scene_path, x.fixed);
@@ -308,6 +347,18 @@ YAML::Node read_optimizer(const Source& src, const MapView& root, FitSpec& spec)
     spec.max_evaluations = o.integer(*n, "max_evaluations");
     if (spec.max_evaluations < 1) o.fail_at(*n, "max_evaluations", "must be >= 1, got " + std::to_string(spec.max_evaluations));
   }
+  if (auto pn = o.find("polish")) {
+    const MapView pv(src, *pn, "optimizer.polish", kPolishKeys);
+    const YAML::Node an = pv.require("algorithm");
+    spec.polish_algorithm = pv.string(an, "algorithm");
+    if (const std::string why = check_fit_algorithm(spec.polish_algorithm); !why.empty()) pv.fail_at(an, "algorithm", why);
+    if (spec.polish_algorithm.rfind("LN_", 0) != 0)
+      pv.fail_at(an, "algorithm", "the polish stage is local: use an LN_* algorithm, got " + quote(spec.polish_algorithm));
+    if (auto n = pv.find("max_evaluations")) {
+      spec.polish_max_evaluations = pv.integer(*n, "max_evaluations");
+      if (spec.polish_max_evaluations < 1) pv.fail_at(*n, "max_evaluations", "must be >= 1, got " + std::to_string(spec.polish_max_evaluations));
+    }
+  }
   if (auto n = o.find("initial_step")) {
     spec.initial_step = o.number(*n, "initial_step", nullptr);
     if (!(spec.initial_step > 0 && spec.initial_step <= 1))
@@ -352,15 +403,30 @@ void read_profile(const Source& src, const MapView& root, FitSpec& spec) {
     return;
   }
   const MapView p(src, *pn, "profile", kProfileKeys);
-  if (auto n = p.find("parameter")) {
-    const std::string k = p.string(*n, "parameter");
-    const auto it = std::find_if(spec.parameters.begin(), spec.parameters.end(), [&](const FitParameter& q) { return q.key == k; });
-    if (it == spec.parameters.end()) {
-      std::vector<std::string> keys;
-      for (const auto& q : spec.parameters) keys.push_back(q.key);
-      p.fail_at(*n, "parameter", "not a free parameter of this fit: " + quote(k) + did_you_mean(k, keys) + "; free: " + join(keys));
+  if (auto n = p.find("parameter")) {  // a key, a list of keys, or `all`
+    std::vector<std::string> wanted;
+    if (n->IsSequence()) {
+      wanted = p.string_list(*n, "parameter");
+    } else if (p.string(*n, "parameter") == "all") {
+      for (const auto& q : spec.parameters) wanted.push_back(q.key);
+    } else {
+      wanted.push_back(p.string(*n, "parameter"));
     }
-    spec.profile_settings.parameter = static_cast<std::size_t>(it - spec.parameters.begin());
+    if (wanted.empty()) p.fail_at(*n, "parameter", "expected a free parameter, a list of them, or all; got an empty list");
+    spec.profile_settings.parameters.clear();
+    for (const std::string& k : wanted) {
+      const auto it = std::find_if(spec.parameters.begin(), spec.parameters.end(), [&](const FitParameter& q) { return q.key == k; });
+      if (it == spec.parameters.end()) {
+        std::vector<std::string> keys;
+        for (const auto& q : spec.parameters) keys.push_back(q.key);
+        p.fail_at(*n, "parameter", "not a free parameter of this fit: " + quote(k) + did_you_mean(k, keys) + "; free: " + join(keys) + " (or all)");
+      }
+      const auto idx = static_cast<std::size_t>(it - spec.parameters.begin());
+      if (std::find(spec.profile_settings.parameters.begin(), spec.profile_settings.parameters.end(), idx) ==
+          spec.profile_settings.parameters.end())
+        spec.profile_settings.parameters.push_back(idx);
+    }
+    spec.profile_settings.parameter = spec.profile_settings.parameters.front();
   }
   if (auto n = p.find("span")) {
     spec.profile_settings.span = p.number(*n, "span", nullptr);
@@ -399,6 +465,37 @@ void read_error_bars(const Source& src, const MapView& root, FitSpec& spec) {
   }
 }
 
+// `noise:` (area_and_force only) and `intervals:` into spec.
+void read_noise_and_intervals(const Source& src, const MapView& root, FitSpec& spec) {
+  if (const auto nn = root.find("noise")) {
+    if (spec.objective != FitObjective::area_and_force)
+      root.fail_at(*nn, "noise", std::string("noise levels are used by the area_and_force objective only, not ") +
+                                     objective_name(spec.objective));
+    const MapView nv(src, *nn, "noise", kNoiseKeys);
+    if (!nn->IsMap()) root.fail_at(*nn, "noise", "expected a map {area: 0.002, force: 0.002, stick_slip: 0.05}, got " + node_kind(*nn));
+    if (auto n = nv.find("area")) spec.noise.area = positive(nv, *n, "area", nullptr);
+    if (auto n = nv.find("force")) spec.noise.force = positive(nv, *n, "force", nullptr);
+    if (auto n = nv.find("stick_slip")) spec.noise.stick_slip = positive(nv, *n, "stick_slip", nullptr);
+  }
+  spec.intervals = spec.objective == FitObjective::area_and_force;
+  if (const auto in = root.find("intervals")) {
+    if (in->IsScalar()) {
+      spec.intervals = root.boolean(*in, "intervals");
+    } else {
+      const MapView iv(src, *in, "intervals", kIntervalKeys);
+      spec.intervals = true;
+      if (auto n = iv.find("hessian_step")) {
+        spec.hessian_step = iv.number(*n, "hessian_step", nullptr);
+        if (!(spec.hessian_step > 0 && spec.hessian_step <= 0.2))
+          iv.fail_at(*n, "hessian_step", "must be in (0, 0.2] (relative step of each parameter), got " + format_double(spec.hessian_step));
+      }
+    }
+    if (spec.intervals && spec.objective != FitObjective::area_and_force)
+      root.fail_at(*in, "intervals", std::string("statistical intervals need a chi-square objective (area_and_force), not ") +
+                                         objective_name(spec.objective));
+  }
+}
+
 // The fit tree `root_node` (a file's, or one given in memory: `path` empty) → FitSpec; relative
 // scene paths resolve against `base`, errors name `display`. The keys are read in file-format
 // order, so the first error reported stays the same.
@@ -423,6 +520,7 @@ FitSpec fit_from_tree(const YAML::Node& root_node, const fs::path& path, const f
   check_algorithm_accepts(spec, root, algorithm_node, display);
   read_profile(src, root, spec);
   read_error_bars(src, root, spec);
+  read_noise_and_intervals(src, root, spec);
   return spec;
 }
 

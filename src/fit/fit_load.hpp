@@ -6,18 +6,22 @@
 // Format (SI units; paths relative to the fit file; only experiments, parameters required):
 //   name: paper_alpha_b            # output folder results/fits/<name>/ (default: file stem)
 //   description: "..."             # free text
-//   objective: quadratic_alpha     # quadratic_alpha | area_curve | stick_slip
+//   objective: quadratic_alpha     # quadratic_alpha | area_curve | stick_slip | area_and_force
 //   separate: true                 # one independent fit per experiment (default false: joint)
 //   experiments:                   # scene files; each runs one experiment
 //     - ../scenes/paper/P0.98N.yaml
 //     - scene: ../scenes/paper/P1.52N.yaml
 //       set: {model.eta: 50}       # fixed scene values for this experiment (dotted keys)
-//       target: {drop: 0.1, period: 0.13}   # N, s: stick_slip objective only (required there)
+//       target: {drop: 0.1, period: 0.13}   # N, s: stick_slip (required) or area_and_force (optional)
+//       force: Qt.csv              # measured Q(t) (t_s, Q_N): area_and_force only (required there)
 //   parameters:                    # free parameters, by numeric scene key
 //     model.alpha_b: {lo: 1e-16, hi: 3e-15, start: 0.725e-15, scale: log, per_experiment: false}
 //   optimizer: {algorithm: LN_BOBYQA, xtol_rel: 1e-4, ftol_rel: 0, ftol_abs: 0,
-//               max_evaluations: 60, initial_step: 0.1}
-//   profile: {parameter: model.alpha_b, span: 0.2, points: 11}   # or false
+//               max_evaluations: 60, initial_step: 0.1,
+//               polish: {algorithm: LN_SBPLX, max_evaluations: 100}}   # optional local 2nd stage
+//   noise: {area: 0.002, force: 0.002, stick_slip: 0.05}   # area_and_force: residual units
+//   intervals: true                # or {hessian_step: 0.01}; area_and_force only (default true)
+//   profile: {parameter: model.alpha_b, span: 0.2, points: 11}   # or false; parameter: a key, a list, or all
 //   error_bars: {experiment.E: 0.1e6, experiment.k_L: 200, ...}  # one-at-a-time ± refits
 //
 // The measured A(Q) of every experiment of a quadratic_alpha or area_curve fit must be what
@@ -31,7 +35,9 @@
 //     A(Q) with a 30 % decay shifts a by only 5.6 %).
 // Each experiment's scene is run with forced settings that the objective needs: output.series
 // = [] always; stop.at_first_peak = true for quadratic_alpha and area_curve (only the loading
-// branch matters); stop.at_first_peak = false and stop.cycles = 5 for stick_slip.
+// branch matters); stop.at_first_peak = false and stop.cycles = 5 for stick_slip; for
+// area_and_force output.series = [Q], stop.at_first_peak = false, no cycle stop, stop.time =
+// the last measured time and output.every = min(the measured spacing, the scene's every).
 #include <filesystem>
 #include <string>
 #include <vector>

@@ -1,12 +1,15 @@
 #pragma once
 // What to calibrate, against what, and how (plain data; src/fit/fit_load.cpp reads it from a
 // fit YAML file, tests may build it in code).
+#include <cmath>
 #include <cstddef>
+#include <optional>
 #include <filesystem>
 #include <limits>
 #include <string>
 #include <vector>
 
+#include "scene/csv.hpp"
 #include "scene/scene_template.hpp"
 
 namespace asperity {
@@ -15,6 +18,8 @@ enum class FitObjective {
   quadratic_alpha,  // Σ_e (α_model/α_measured − 1)²: the paper's calibration (MODEL.md §5)
   area_curve,       // Σ_e mean_j ((A_model(Q_j) − A_j)/A0)² over the measured samples
   stick_slip,       // Σ_e (drop/drop_target − 1)² + (period/period_target − 1)²
+  area_and_force,   // Σ_e χ²: A(Q) and Q(t) samples and (with a target) the stick-slip drop and
+                    // period, each residual in units of its noise level (FitNoise); objective.hpp
   user,             // Σ_e of the caller's own term per run (FitOptions::user_term; the Python
                     // module's callable); never read from a fit file
 };
@@ -38,7 +43,20 @@ struct StickSlipTarget {
 struct FitExperiment {
   std::string name;        // label in outputs (the experiment name of the scene)
   SceneTemplate scene;     // the scene with the fit's fixed settings applied
-  StickSlipTarget target;  // stick_slip objective only
+  StickSlipTarget target;  // stick_slip objective; optional with area_and_force
+  std::optional<MeasuredForce> force;   // measured Q(t): area_and_force objective (required there)
+  std::filesystem::path force_file;     // its CSV (provenance, inputs.txt)
+  bool has_target() const { return std::isfinite(target.drop_N) && std::isfinite(target.period_s); }
+};
+
+// Noise levels of the area_and_force objective: each residual is divided by its level, so a
+// term of n samples contributes about n at a fit within the noise (a chi-square), whatever its
+// units. Relative: area to the experiment's Σ A0, force to the largest measured Q, stick-slip
+// to the target drop and period.
+struct FitNoise {
+  double area = 0.002;       // the stand-ins' A(Q) noise (data/standin/recipe.yaml)
+  double force = 0.002;      // the stand-ins' Q(t) noise
+  double stick_slip = 0.05;  // drop and period known to 5 %
 };
 
 // A quantity measured with an error bar; the fit is repeated with it at nominal − bar and
@@ -49,7 +67,8 @@ struct ErrorBar {
 };
 
 struct ProfileSettings {
-  std::size_t parameter = 0;  // index into FitSpec::parameters
+  std::size_t parameter = 0;  // index into FitSpec::parameters: the first profiled one
+  std::vector<std::size_t> parameters;  // every profiled parameter (empty: just `parameter`)
   double span = 0.2;          // relative: values x*·(1 ± span)
   int points = 11;            // ≥ 2 (odd: includes the optimum)
 };
@@ -67,11 +86,22 @@ struct FitSpec {
   double xtol_rel = 1e-4;             // on each parameter (relative to its value)
   double ftol_rel = 0;                // on the objective; 0: off
   double ftol_abs = 0;                // on the objective; 0: off
-  int max_evaluations = 60;           // per optimization
+  int max_evaluations = 60;           // per optimization (the first stage when polishing)
+  // Optional second stage: a local algorithm started from the first stage's best point (e.g.
+  // GN_DIRECT_L to find the basin, then LN_BOBYQA to converge in it); "" = none. Error-bar
+  // refits, which start at the optimum, run this stage alone.
+  std::string polish_algorithm;
+  int polish_max_evaluations = 100;
   double initial_step = 0.1;          // first step, as a fraction of each scaled box [0, 1]
   bool profile = true;                // write profile.csv / profile.png
   ProfileSettings profile_settings;
   std::vector<ErrorBar> error_bars;   // empty: no error-bar refits
+  FitNoise noise;                     // area_and_force only
+  // Statistical intervals from the curvature of the objective at the optimum (area_and_force:
+  // a chi-square): central finite differences of relative step `hessian_step` per parameter,
+  // covariance 2 s² H⁻¹ with s² the reduced chi-square at the optimum (fit.hpp, Uncertainty).
+  bool intervals = false;             // default true for area_and_force
+  double hessian_step = 0.01;
 };
 
 }  // namespace asperity

@@ -19,6 +19,8 @@ std::uint64_t noise_seed(std::uint64_t experiment_seed) {
 
 std::uint64_t positions_seed(std::uint64_t experiment_seed) { return splitmix64(experiment_seed ^ 0x706f736974696f6eull); }
 
+std::uint64_t force_seed(std::uint64_t experiment_seed) { return splitmix64(experiment_seed ^ 0x666f726365ULL); }
+
 namespace {
 
 using scene_io::MapView;
@@ -142,7 +144,7 @@ StandinRecipe load_recipe(const std::filesystem::path& path) {
   r.file = path;
   MapView top(src, root, "",
               {"seed", "gravity", "masses_kg", "k_L", "v", "E", "nu", "sigma_exp", "junctions_per_newton",
-               "distribution", "positions", "measured", "model_run", "scenes"});
+               "distribution", "positions", "measured", "measured_force", "model_run", "scenes"});
   r.seed = seed_value(top, "seed");
   get_positive(top, "gravity", r.gravity, "m/s^2");
   {
@@ -195,6 +197,20 @@ StandinRecipe load_recipe(const std::filesystem::path& path) {
     if (auto n = m.find("noise_relative")) {
       r.noise_relative = m.number(*n, "noise_relative", nullptr);
       if (!(r.noise_relative >= 0.0 && r.noise_relative < 0.1))
+        m.fail_at(*n, "noise_relative", "must be in [0, 0.1)");
+    }
+  }
+
+  if (auto fn = top.find("measured_force")) {
+    MapView m(src, *fn, "measured_force", {"every", "after_peak", "noise_relative"});
+    r.force_every = positive(m, "every", "s");
+    if (auto n = m.find("after_peak")) {
+      r.force_after_peak = m.number(*n, "after_peak", nullptr);
+      if (!(r.force_after_peak > 0.0 && r.force_after_peak <= 10.0)) m.fail_at(*n, "after_peak", "must be in (0, 10]");
+    }
+    if (auto n = m.find("noise_relative")) {
+      r.force_noise_relative = m.number(*n, "noise_relative", nullptr);
+      if (!(r.force_noise_relative >= 0.0 && r.force_noise_relative < 0.1))
         m.fail_at(*n, "noise_relative", "must be in [0, 0.1)");
     }
   }

@@ -46,6 +46,14 @@ struct StandinRecipe {
   int points = 60;                   // samples, Q equally spaced from 0 to Q_s
   double noise_relative = 0.002;     // std of the Gaussian noise on A, in units of A0
 
+  // Stand-in "measured" Q(t) (optional section measured_force): the model's own Q(t) at the
+  // paper parameters and alpha_b above, from t = 0 to t_peak · (1 + force_after_peak), sampled
+  // every force_every, plus Gaussian noise of force_noise_relative · Q_s from the force seed
+  // splitmix64(area seed ^ 0x666f726365) ("force"). force_every = 0: no Q(t) files.
+  double force_every = 0.0;          // s
+  double force_after_peak = 0.5;     // window beyond the peak, as a fraction of t_peak
+  double force_noise_relative = 0.002;
+
   // The model run that gives Q_s (paper parameters otherwise; stops at the first peak).
   SolverSettings solver;
   double run_stop_time = 10.0;       // s, hard end when no peak is confirmed
@@ -61,6 +69,8 @@ std::uint64_t experiment_seed(const StandinRecipe& r, std::size_t i);
 std::uint64_t noise_seed(std::uint64_t experiment_seed);
 // splitmix64(area seed XOR 0x706f736974696f6e ("position")): the stream of the junction centres.
 std::uint64_t positions_seed(std::uint64_t experiment_seed);
+// splitmix64(area seed XOR 0x666f726365 ("force")): the noise of the stand-in Q(t).
+std::uint64_t force_seed(std::uint64_t experiment_seed);
 
 // Reads and validates a recipe. Throws InputError.
 StandinRecipe load_recipe(const std::filesystem::path& path);

@@ -10,6 +10,7 @@
 
 #include "generate/recipe.hpp"
 #include "observe/observables.hpp"
+#include "scene/csv.hpp"
 #include "scene/scene.hpp"
 
 namespace asperity {
@@ -26,7 +27,17 @@ struct StandinExperiment {
   Observables model;              // the model run that gave Q_s (recipe's solver)
   double area_drop_target = 0;    // (A0 − A)/A0 of the measured curve at Q_s
   double alpha_exp = 0;           // m²/N², A0 − α_exp Q² of the measured curve
+  // Stand-in "measured" Q(t) (recipe measured_force; empty without it) and its provenance lines.
+  MeasuredForce force;
+  std::uint64_t force_seed = 0;
+  double force_t_end = 0;         // s
+  std::vector<std::string> force_header;
 };
+
+// The stand-in Q(t): the model's samples (t, Q) of `series` with t <= t_end, each Q plus
+// Q_s · noise_relative · z, z standard normal from Uniform01(seed), in time order.
+MeasuredForce standin_measured_force(const std::vector<Sample>& series, double t_end, double Q_s,
+                                     double noise_relative, std::uint64_t seed);
 
 // Builds experiment i of the recipe in memory (runs the model once). Throws SolverError.
 StandinExperiment build_standin(const StandinRecipe& recipe, std::size_t i);
@@ -46,7 +57,8 @@ struct GenerateOptions {
   std::ostream* log = nullptr;       // progress lines (nullptr: silent)
 };
 
-// Writes out_dir/<name>/{experiment.yaml, junctions.csv, measured.csv} for every experiment,
+// Writes out_dir/<name>/{experiment.yaml, junctions.csv, measured.csv, and measured_Qt.csv when
+// the recipe has measured_force} for every experiment,
 // out_dir/README.md, and (if scenes_dir is set) scenes_dir/<name>.yaml referring to the
 // experiment files by relative path. Returns the experiments in recipe order.
 std::vector<StandinExperiment> generate_standins(const StandinRecipe& recipe, const GenerateOptions& opt);

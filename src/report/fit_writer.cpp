@@ -117,10 +117,10 @@ std::string evaluations_csv(const Optimization& o, const FitSpec& spec) {
   return c.str();
 }
 
-std::string profile_csv(const Optimization& o) {
+std::string profile_csv(const std::vector<ProfilePoint>& points) {
   std::ostringstream c;
   c << "factor,value,objective,status\n";
-  for (const auto& p : o.profile)
+  for (const auto& p : points)
     c << format_g17(p.factor) << "," << format_g17(p.value) << "," << format_g17(p.objective) << ","
       << csv_field(p.status) << "\n";
   return c.str();
@@ -131,7 +131,11 @@ void write_optimization(const fs::path& d, const FitSpec& spec, const Optimizati
                         const FigureFormats& figures) {
   fs::create_directories(d);
   scene_io::write_text_file(d / "evaluations.csv", evaluations_csv(o, spec));
-  if (!o.profile.empty()) scene_io::write_text_file(d / "profile.csv", profile_csv(o));
+  if (!o.profile.empty()) scene_io::write_text_file(d / "profile.csv", profile_csv(o.profile));
+  // Every further profiled parameter: profile_<key>.csv (the first one is profile.csv).
+  for (std::size_t q = 1; q < o.profiles.size(); ++q)
+    scene_io::write_text_file(d / ("profile_" + file_stem(spec.parameters[o.profiles[q].parameter].key) + ".csv"),
+                              profile_csv(o.profiles[q].points));
   for (const auto& r : o.best_runs) {
     const std::string stem = "AQ_" + file_stem(spec.experiments[r.experiment].name);
     std::ostringstream m;
@@ -144,6 +148,16 @@ void write_optimization(const fs::path& d, const FitSpec& spec, const Optimizati
       for (std::size_t j = 0; j < r.measured->Q_N.size(); ++j)
         x << format_g17(r.measured->Q_N[j]) << "," << format_g17(r.measured->A_m2[j]) << "\n";
       scene_io::write_text_file(d / (stem + "_measured.csv"), x.str());
+    }
+    if (r.force) {  // area_and_force: the model's Q(t) at the fit and the measured Q(t)
+      const std::string qstem = "Qt_" + file_stem(spec.experiments[r.experiment].name);
+      std::ostringstream mq, xq;
+      mq << "t_s,Q_N\n";
+      for (const auto& s : r.series) mq << format_g17(s.t) << "," << format_g17(s.Q) << "\n";
+      scene_io::write_text_file(d / (qstem + "_model.csv"), mq.str());
+      xq << "t_s,Q_N\n";
+      for (std::size_t k = 0; k < r.force->t_s.size(); ++k) xq << format_g17(r.force->t_s[k]) << "," << format_g17(r.force->Q_N[k]) << "\n";
+      scene_io::write_text_file(d / (qstem + "_measured.csv"), xq.str());
     }
   }
   if (!plots) return;
@@ -173,6 +187,28 @@ void write_optimization(const fs::path& d, const FitSpec& spec, const Optimizati
          << "set rmargin 6\n"  // room for the last x tic label (10^{-16}-style labels are wide)
          << "plot 'profile.csv' skip 1 using 2:($3 == $3 ? $3 : 1/0) with linespoints pt 7 lw 1.5\n"
          << "set rmargin -1\n";
+    }
+    for (std::size_t q = 1; q < o.profiles.size(); ++q) {
+      const std::string& key = spec.parameters[o.profiles[q].parameter].key;
+      const std::string stem = "profile_" + file_stem(key);
+      gp << "set output " << gnuplot_quote(stem + ext) << "\n"
+         << "set title " << gnuplot_text(o.label) << " . " << gnuplot_quote(": objective around the optimum, ")
+         << " . " << gnuplot_quote(column_symbol(key)) << " . " << gnuplot_quote(" varied (others fixed)")
+         << "\nset xlabel " << gnuplot_quote(axis_markup(key)) << "\nset ylabel 'objective [1] (dimensionless)'\nset key off\n"
+         << "set rmargin 6\n"
+         << "plot " << gnuplot_quote(stem + ".csv") << " skip 1 using 2:($3 == $3 ? $3 : 1/0) with linespoints pt 7 lw 1.5\n"
+         << "set rmargin -1\n";
+    }
+    for (const auto& r : o.best_runs) {
+      if (!r.force) continue;
+      const std::string name = spec.experiments[r.experiment].name;
+      const std::string qstem = "Qt_" + file_stem(name);
+      gp << "set output " << gnuplot_quote(qstem + ext) << "\n"
+         << "set title " << gnuplot_text(name + (r.stand_in ? " (STAND-IN data)" : "") + ": Q(t) at the fit")
+         << "\nset xlabel 't [s]'\nset ylabel 'Q [N]'\nset key top left\n"
+         << "plot " << gnuplot_quote(qstem + "_measured.csv") << " skip 1 using 1:2 with points pt 7 ps 0.3 title '"
+         << (r.stand_in ? "stand-in measurement" : "measurement") << "', "
+         << gnuplot_quote(qstem + "_model.csv") << " skip 1 using 1:2 with lines lw 1.5 title 'model (fitted)'\n";
     }
     for (const auto& r : o.best_runs) {
       const std::string name = spec.experiments[r.experiment].name;
@@ -219,6 +255,8 @@ std::string fit_yaml(const FitSpec& spec, const FitResult& result, const std::st
   y << "objective: " << objective_name(spec.objective) << "\n";
   y << "mode: " << (spec.separate ? "separate" : "joint") << "\n";
   y << "algorithm: " << spec.algorithm << "\n";
+  if (!spec.polish_algorithm.empty())
+    y << "polish: {algorithm: " << spec.polish_algorithm << ", max_evaluations: " << spec.polish_max_evaluations << "}\n";
   y << "xtol_rel: " << num(spec.xtol_rel) << "\nftol_rel: " << num(spec.ftol_rel) << "\nftol_abs: "
     << num(spec.ftol_abs) << "\n";
   y << "max_evaluations: " << spec.max_evaluations << "\ninitial_step: " << num(spec.initial_step) << "\n";
@@ -256,6 +294,10 @@ std::string fit_yaml(const FitSpec& spec, const FitResult& result, const std::st
       y << "        stand_in: " << (r.stand_in ? "true" : "false") << "\n";
       y << "        mass: " << num(r.mass_kg) << "\n";
       y << "        term: " << num(r.residual) << "\n";
+      if (spec.objective == FitObjective::area_and_force)
+        y << "        chi2: {area: " << num(r.terms.area) << ", n_area: " << r.terms.n_area << ", force: " << num(r.terms.force)
+          << ", n_force: " << r.terms.n_force << ", stick_slip: " << num(r.terms.stick_slip) << ", n_stick_slip: "
+          << r.terms.n_stick_slip << "}\n";
       for (const char* name : kFitYamlObservables) {
         const ObservableField& f = observable_field(name);
         y << "        " << f.name << ": " << observable_text(f, b, yaml_double) << "\n";
@@ -274,6 +316,45 @@ std::string fit_yaml(const FitSpec& spec, const FitResult& result, const std::st
       y << "      file: " << yaml_quoted(sub.empty() ? "profile.csv" : sub + "/profile.csv") << "\n";
       y << "      lowest_objective_at_factor: " << num(fmin_at) << "   # 1: the fit is the profile's minimum\n";
       y << "      wall_s: " << num(o.profile_wall_s) << "\n";
+    }
+    for (std::size_t q = 1; q < o.profiles.size(); ++q) {
+      if (q == 1) y << "    more_profiles:   # the further profiled parameters (same span and points)\n";
+      const std::string& key = spec.parameters[o.profiles[q].parameter].key;
+      const std::string sub = fit_subdir(spec, o);
+      const std::string file = "profile_" + file_stem(key) + ".csv";
+      y << "      - {parameter: " << key << ", file: " << yaml_quoted(sub.empty() ? file : sub + "/" + file) << "}\n";
+    }
+    if (spec.objective == FitObjective::area_and_force && spec.intervals) {
+      const Uncertainty& un = o.uncertainty;
+      y << "    uncertainty:\n";
+      y << "      method: \"chi-square: Hessian H of the objective at the optimum by central differences (relative steps from "
+        << num(un.step) << ", rescaled until each parameter's own rise is 1-16 s^2), covariance 2 s^2 H^-1, s^2 = objective / (residuals - free variables) (the reduced chi-square); "
+           "sigma: marginal standard deviation; interval95: value +- 1.96 sigma; profile_interval: where the one-parameter "
+           "profile (others at the optimum) rises by s^2 (conditional, narrower when correlated); profile_sigma: sqrt(s^2/c) "
+           "of the least-squares parabola through the profile's points (conditional; robust to jumps of the objective "
+           "below the points' spacing, where sigma is not)\"\n";
+      y << "      residuals: " << un.residuals << "\n      reduced_chi2: " << num(un.reduced_chi2) << "\n";
+      y << "      evaluations: " << un.evaluations << "\n      wall_s: " << num(un.wall_s) << "\n";
+      if (!un.computed) {
+        y << "      failure: " << yaml_quoted(un.failure) << "\n";
+      } else {
+        y << "      parameters:\n";
+        for (std::size_t i = 0; i < o.variables.size(); ++i) {
+          const double x = o.best[i], sg = un.sigma[i];
+          double plo = Observables::nan, phi = Observables::nan, psg = Observables::nan;
+          for (const ParameterProfile& pp : o.profiles)
+            if (pp.parameter == o.variables[i].parameter && o.variables[i].experiment < 0) plo = pp.lo, phi = pp.hi, psg = pp.parabola_sigma;
+          y << "        " << yaml_quoted(o.variables[i].label) << ": {value: " << num(x) << ", step: " << num(un.steps[i]) << ", sigma: " << num(sg)
+            << ", sigma_relative: " << num(sg / std::abs(x)) << ", interval95: [" << num(x - 1.96 * sg) << ", " << num(x + 1.96 * sg)
+            << "], profile_interval: [" << num(plo) << ", " << num(phi) << "], profile_sigma: " << num(psg) << "}\n";
+        }
+        y << "      correlation:\n";
+        for (std::size_t i = 0; i < o.variables.size(); ++i) {
+          y << "        - [";
+          for (std::size_t j = 0; j < o.variables.size(); ++j) y << (j ? ", " : "") << num(un.correlation[i][j]);
+          y << "]\n";
+        }
+      }
     }
     if (!o.refits.empty()) {
       y << "    error_bars:\n";

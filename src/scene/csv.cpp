@@ -70,7 +70,31 @@ MeasuredCurve read_measured_csv(const std::filesystem::path& csv, const std::str
   return m;
 }
 
+MeasuredForce read_force_csv(const std::filesystem::path& csv, const std::string& display) {
+  const CsvTable t = read_numeric_csv(csv, display, {"t_s", "Q_N"}, {"t_s", "Q_N"});
+  const int ct = t.column("t_s"), cq = t.column("Q_N");
+  MeasuredForce f;
+  for (std::size_t i = 0; i < t.rows.size(); ++i) {
+    const double time = t.rows[i][static_cast<std::size_t>(ct)], q = t.rows[i][static_cast<std::size_t>(cq)];
+    if (!(time >= 0)) throw InputError(display, t.lines[i], "t_s", "time must be >= 0, got " + format_double(time), ct + 1);
+    if (!f.t_s.empty() && !(time > f.t_s.back()))
+      throw InputError(display, t.lines[i], "t_s",
+                       "times must increase strictly: " + format_double(time) + " after " + format_double(f.t_s.back()) +
+                           " (line " + std::to_string(t.lines[i - 1]) + ")",
+                       ct + 1);
+    f.t_s.push_back(time);
+    f.Q_N.push_back(q);
+  }
+  if (f.t_s.size() < 2)
+    throw InputError(display, t.header_line, "t_s", "a force history needs at least 2 samples, got " + std::to_string(f.t_s.size()));
+  return f;
+}
+
 }  // namespace scene_io
+
+MeasuredForce read_force_csv(const std::filesystem::path& csv) {
+  return scene_io::read_force_csv(csv, csv.lexically_normal().string());
+}
 
 JunctionPopulation read_junctions_csv(const std::filesystem::path& csv) {
   return scene_io::read_junctions_csv(csv, csv.lexically_normal().string());
@@ -106,6 +130,20 @@ void write_measured_csv(const std::filesystem::path& csv, const MeasuredCurve& m
     s += csv_number(m.Q_N[i]);
     s += ',';
     s += csv_number(m.A_m2[i]);
+    s += '\n';
+  }
+  scene_io::write_text_file(csv, s);
+}
+
+void write_force_csv(const std::filesystem::path& csv, const MeasuredForce& f, const std::vector<std::string>& comment) {
+  if (f.t_s.size() != f.Q_N.size()) throw std::invalid_argument("write_force_csv: t_s and Q_N differ in length");
+  std::string s;
+  for (const std::string& line : comment) s += "# " + line + "\n";
+  s += "t_s,Q_N\n";
+  for (std::size_t i = 0; i < f.t_s.size(); ++i) {
+    s += csv_number(f.t_s[i]);
+    s += ',';
+    s += csv_number(f.Q_N[i]);
     s += '\n';
   }
   scene_io::write_text_file(csv, s);

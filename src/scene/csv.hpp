@@ -4,16 +4,25 @@
 // the header and at the end of the file only. Unknown or duplicate columns are errors.
 //   junctions: area_m2 (required, > 0), x_m and y_m (optional, together)
 //   measured:  Q_N (>= 0), A_m2 (> 0), both required
+//   force:     t_s (>= 0, strictly increasing), Q_N (any finite), both required, >= 2 rows
 // Errors are InputError naming file, line, column and column name.
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "scene/scene.hpp"
 
 namespace asperity {
 
+// A measured tangential force history Q(t) (optional; a fit names it per experiment with
+// `force:`, objective area_and_force): times strictly increasing from >= 0, forces finite.
+struct MeasuredForce {
+  std::vector<double> t_s, Q_N;
+};
+
 JunctionPopulation read_junctions_csv(const std::filesystem::path& csv);
 MeasuredCurve read_measured_csv(const std::filesystem::path& csv);
+MeasuredForce read_force_csv(const std::filesystem::path& csv);
 
 // Deterministic bytes: '\n' line endings, shortest round-trip numbers (reading back gives the
 // same doubles bit for bit). Written atomically (io/atomic_file.hpp, no fsync).
@@ -21,6 +30,9 @@ MeasuredCurve read_measured_csv(const std::filesystem::path& csv);
 // columns differ in length (x_m/y_m must be empty or as long as area_m2).
 void write_junctions_csv(const std::filesystem::path& csv, const JunctionPopulation& junctions);
 void write_measured_csv(const std::filesystem::path& csv, const MeasuredCurve& curve);
+// `comment`: lines written first, each prefixed with "# " (provenance); may be empty.
+void write_force_csv(const std::filesystem::path& csv, const MeasuredForce& force,
+                     const std::vector<std::string>& comment = {});
 
 namespace scene_io {
 // The one rule for a junction's values, whether from a CSV row or from columns given in memory
@@ -34,6 +46,7 @@ std::string measured_area_problem(double A_m2);  // > 0
 // Same readers, naming `display` in errors (the path as the referring file spells it).
 JunctionPopulation read_junctions_csv(const std::filesystem::path& csv, const std::string& display);
 MeasuredCurve read_measured_csv(const std::filesystem::path& csv, const std::string& display);
+MeasuredForce read_force_csv(const std::filesystem::path& csv, const std::string& display);
 }  // namespace scene_io
 
 }  // namespace asperity

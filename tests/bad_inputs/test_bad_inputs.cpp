@@ -165,6 +165,11 @@ TEST_CASE("bad-input corpus: each file is refused naming file, line and key, and
       write(work / "experiment.yaml", e.str());
       scene = work / "scene.yaml";
       write(scene, "experiment: experiment.yaml\n");
+    } else if (c.file.rfind("force_", 0) == 0) {  // a Q(t) CSV named by a fit
+      scene = work / "fit.yaml";
+      write(scene, "objective: area_and_force\nexperiments:\n  - {scene: " + q(src / "scenes/paper/P0.98N.yaml") +
+                       ", force: " + q(file) + "}\nparameters:\n  model.alpha_b: {lo: 1e-16, hi: 3e-15, start: 7.25e-16}\n");
+      command = "fit";
     } else if (c.file.rfind("topography_", 0) == 0) {
       scene = file;
       command = "generate --recipe";

@@ -41,6 +41,55 @@ TEST_CASE("stick_slip objective counts a run without stick-slip as zero drop and
   CHECK(experiment_residual(FitObjective::stick_slip, s, o, {}, {0.1, 0.2}) == Approx(0.25 + 0.25));
 }
 
+TEST_CASE("model_force_at interpolates Q(t) linearly; area_and_force terms are chi-squares in noise units",
+          "[fit][objective]") {
+  // Q(t) = 2 t + 1 sampled every 0.1 s on [0, 1]: linear interpolation is exact inside, the
+  // end samples hold outside.
+  std::vector<Sample> series;
+  for (int k = 0; k <= 10; ++k) {
+    Sample s;
+    s.t = 0.1 * k;
+    s.Q = 2 * s.t + 1;
+    series.push_back(s);
+  }
+  const std::vector<double> t{-0.5, 0.0, 0.05, 0.333, 1.0, 2.0};
+  const std::vector<double> Q = model_force_at(series, t);
+  CHECK(Q[0] == 1.0);
+  CHECK(Q[1] == 1.0);
+  CHECK(Q[2] == Approx(1.1).epsilon(1e-14));
+  CHECK(Q[3] == Approx(1.666).epsilon(1e-14));
+  CHECK(Q[4] == Approx(3.0).epsilon(1e-14));
+  CHECK(Q[5] == Approx(3.0).epsilon(1e-14));
+  // Force term: measured = model + d_k, noise level 0.01 of max Q (3.0): chi2 = Σ (d_k/0.03)².
+  FitExperiment fe;
+  fe.force = MeasuredForce{{0.0, 0.5, 1.0}, {1.0 + 0.03, 2.0 - 0.06, 3.0}};
+  Scene scene;
+  scene.experiment.measured = MeasuredCurve{{0.0, 1.0}, {1e-6 + 2e-9, 0.9e-6}};  // A0 = 1e-6
+  Observables obs;
+  obs.A0 = 1e-6;
+  obs.Q_s = 1.0;
+  obs.A_s = 0.9e-6;
+  std::vector<Sample> loading(2);
+  loading[0].Q = 0, loading[0].A = 1e-6;
+  loading[1].Q = 1, loading[1].A = 0.9e-6;
+  FitNoise noise;
+  noise.area = 0.001;   // 1e-9 m²
+  noise.force = 0.01;
+  fe.target = {0.1, 0.2};
+  obs.ss_cycles = 2, obs.ss_drop = 0.11, obs.ss_period = 0.2;
+  noise.stick_slip = 0.05;
+  const JointTerms j = area_and_force_terms(scene, obs, loading, series, fe, noise);
+  // force: largest measured Q 3.0, scale 0.03: (0.03/0.03)² + (0.06/0.03)² + 0 = 5
+  CHECK(j.force == Approx(5.0).epsilon(1e-12));
+  CHECK(j.n_force == 3);
+  CHECK(j.area == Approx(4.0).epsilon(1e-9));  // (2e-9 / 1e-9)², 0
+  CHECK(j.n_area == 2);
+  CHECK(j.stick_slip == Approx(4.0).epsilon(1e-9));  // ((0.11/0.1 − 1)/0.05)² + 0
+  CHECK(j.n_stick_slip == 2);
+  CHECK(j.total() == Approx(j.area + j.force + j.stick_slip));
+  CHECK(area_and_force_count(scene, fe) == 7);
+}
+
 TEST_CASE("Scaled coordinates map exactly onto the bounds", "[fit][objective]") {
   FitParameter lin{"model.p", 1.0, 2.0, 1.5, false, false};
   FitParameter lg{"model.alpha_b", 1e-16, 5e-15, 7e-16, true, false};
