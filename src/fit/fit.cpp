@@ -1,5 +1,6 @@
 #include "fit/fit.hpp"
 
+#include <Eigen/Dense>
 #include <nlopt.hpp>
 #include <omp.h>
 
@@ -440,104 +441,37 @@ void profile_interval(ParameterProfile& pp, double f0, double rise, double x0) {
   double a = crossing(left, -1), b = crossing(right, +1);
   if (a > b) std::swap(a, b);
   pp.lo = a, pp.hi = b;
-  // Least-squares parabola in d = value − x0 (normal equations, scaled by the span).
+  // Least-squares parabola in d = value − x0 (scaled by the span; Eigen's QR).
   double span = 0;
   for (const ProfilePoint& p : pts) span = std::max(span, std::abs(p.value - x0));
   if (!(span > 0)) return;
-  double S[5] = {0, 0, 0, 0, 0}, T[3] = {0, 0, 0};
-  int m = 0;
-  for (const ProfilePoint& p : pts) {
-    if (p.status != "ok" || !std::isfinite(p.objective)) continue;
-    const double d = (p.value - x0) / span;
-    double dk = 1;
-    for (int k = 0; k < 5; ++k, dk *= d) {
-      S[k] += dk;
-      if (k < 3) T[k] += dk * (p.objective - f0);
-    }
-    ++m;
+  std::vector<const ProfilePoint*> ok;
+  for (const ProfilePoint& p : pts)
+    if (p.status == "ok" && std::isfinite(p.objective)) ok.push_back(&p);
+  if (ok.size() < 3) return;
+  Eigen::MatrixXd V(static_cast<Eigen::Index>(ok.size()), 3);
+  Eigen::VectorXd y(static_cast<Eigen::Index>(ok.size()));
+  for (std::size_t r = 0; r < ok.size(); ++r) {
+    const double d = (ok[r]->value - x0) / span;
+    V.row(static_cast<Eigen::Index>(r)) << 1.0, d, d * d;
+    y[static_cast<Eigen::Index>(r)] = ok[r]->objective - f0;
   }
-  if (m < 3) return;
-  const double M[3][3] = {{S[0], S[1], S[2]}, {S[1], S[2], S[3]}, {S[2], S[3], S[4]}};
-  auto det3 = [](const double A[3][3]) {
-    return A[0][0] * (A[1][1] * A[2][2] - A[1][2] * A[2][1]) - A[0][1] * (A[1][0] * A[2][2] - A[1][2] * A[2][0]) +
-           A[0][2] * (A[1][0] * A[2][1] - A[1][1] * A[2][0]);
-  };
-  const double D = det3(M);
-  if (!(std::abs(D) > 0)) return;
-  double Mc[3][3];
-  for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c) Mc[r][c] = c == 2 ? T[r] : M[r][c];
-  const double c2 = det3(Mc) / D / (span * span);  // Cramer's rule, back to SI
+  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(V);
+  if (qr.rank() < 3) return;
+  const double c2 = qr.solve(y)[2] / (span * span);  // back to SI
   if (c2 > 0) pp.parabola_sigma = std::sqrt(rise / c2);
 }
 
-// Inverse of a symmetric positive definite matrix by Cholesky; false when not positive definite.
-bool spd_inverse(std::vector<std::vector<double>> a, std::vector<std::vector<double>>& inv) {
-  const std::size_t n = a.size();
-  std::vector<std::vector<double>> L(n, std::vector<double>(n, 0.0));
-  for (std::size_t j = 0; j < n; ++j) {
-    double d = a[j][j];
-    for (std::size_t k = 0; k < j; ++k) d -= L[j][k] * L[j][k];
-    if (!(d > 0) || !std::isfinite(d)) return false;
-    L[j][j] = std::sqrt(d);
-    for (std::size_t i = j + 1; i < n; ++i) {
-      double v = a[i][j];
-      for (std::size_t k = 0; k < j; ++k) v -= L[i][k] * L[j][k];
-      L[i][j] = v / L[j][j];
-    }
-  }
-  inv.assign(n, std::vector<double>(n, 0.0));
-  for (std::size_t c = 0; c < n; ++c) {  // solve L Lᵀ x = e_c
-    std::vector<double> y(n, 0.0), x(n, 0.0);
-    for (std::size_t i = 0; i < n; ++i) {
-      double v = i == c ? 1.0 : 0.0;
-      for (std::size_t k = 0; k < i; ++k) v -= L[i][k] * y[k];
-      y[i] = v / L[i][i];
-    }
-    for (std::size_t ii = n; ii-- > 0;) {
-      double v = y[ii];
-      for (std::size_t k = ii + 1; k < n; ++k) v -= L[k][ii] * x[k];
-      x[ii] = v / L[ii][ii];
-    }
-    for (std::size_t r = 0; r < n; ++r) inv[r][c] = x[r];
-  }
-  return true;
-}
+// The Hessian's evaluations: objective values at points of the scaled coordinates u ∈ [0, 1]ⁿ,
+// in parallel and journaled (part "hessian", numbered on).
+struct HessianPoints {
+  const FitSpec& spec;
+  const Problem& pb;
+  const Optimization& o;
+  int counter = 0;  // evaluations so far
 
-// The Hessian of the objective at the optimum by central differences in the scaled coordinates,
-// its covariance and the marginal standard deviations (fit.hpp, Uncertainty).
-void run_uncertainty(const FitSpec& spec, const Problem& pb, Optimization& o) {
-  const auto t0 = Clock::now();
-  Uncertainty& un = o.uncertainty;
-  un.step = spec.hessian_step;
-  const std::size_t n = o.variables.size();
-  for (const std::size_t e : o.experiments) un.residuals += area_and_force_count(spec.experiments[e].scene.build(), spec.experiments[e]);
-  const double f0 = o.objective;
-  if (un.residuals <= static_cast<int>(n)) {
-    un.failure = std::to_string(un.residuals) + " residuals for " + std::to_string(n) + " free variables";
-    return;
-  }
-  un.reduced_chi2 = f0 / static_cast<double>(un.residuals - static_cast<int>(n));
-  std::vector<double> u0(n), h(n), dxdu(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const FitParameter& p = spec.parameters[o.variables[i].parameter];
-    u0[i] = parameter_coordinate(p, o.best[i]);
-    if (p.log_scale) {
-      h[i] = spec.hessian_step / std::log(p.hi / p.lo);
-      dxdu[i] = o.best[i] * std::log(p.hi / p.lo);
-    } else {
-      h[i] = spec.hessian_step * std::max(std::abs(o.best[i]), 0.01 * (p.hi - p.lo)) / (p.hi - p.lo);
-      dxdu[i] = p.hi - p.lo;
-    }
-    if (u0[i] - h[i] < 0 || u0[i] + h[i] > 1) {
-      un.failure = o.variables[i].label + " = " + g6(o.best[i]) + " is within one step (" + g6(spec.hessian_step) +
-                   " relative) of its bound: no central difference";
-      return;
-    }
-  }
-  // Evaluations at scaled points, in parallel and journaled (part "hessian", numbered on).
-  int counter = 0;
-  auto eval_points = [&](const std::vector<std::vector<double>>& us, std::vector<double>& fv, std::vector<std::string>& st) {
+  void eval(const std::vector<std::vector<double>>& us, std::vector<double>& fv, std::vector<std::string>& st) {
+    const std::size_t n = o.variables.size();
     fv.assign(us.size(), Observables::nan);
     st.assign(us.size(), "");
     const int base = counter;
@@ -553,12 +487,39 @@ void run_uncertainty(const FitSpec& spec, const Problem& pb, Optimization& o) {
       fv[k] = ev->objective;
       st[k] = ev->status;
     });
-  };
-  // Steps: from hessian_step, rescaled (up to 4 rounds) until each parameter's own central
-  // rise (f(+h) + f(−h))/2 − f0 is within [1, 16] s² (target 4 s²: about two conditional
-  // standard deviations): large enough above rounding, small enough to stay quadratic where the
-  // objective is sharp (epsilon moves every stick-slip event).
-  const double target = 4 * un.reduced_chi2;
+  }
+};
+
+// The optimum in scaled coordinates u0, the first steps h (hessian_step relative) and dx/du; an
+// empty string, or why there is no central difference.
+std::string hessian_start(const FitSpec& spec, const Optimization& o, std::vector<double>& u0, std::vector<double>& h,
+                          std::vector<double>& dxdu) {
+  const std::size_t n = o.variables.size();
+  u0.resize(n), h.resize(n), dxdu.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const FitParameter& p = spec.parameters[o.variables[i].parameter];
+    u0[i] = parameter_coordinate(p, o.best[i]);
+    if (p.log_scale) {
+      h[i] = spec.hessian_step / std::log(p.hi / p.lo);
+      dxdu[i] = o.best[i] * std::log(p.hi / p.lo);
+    } else {
+      h[i] = spec.hessian_step * std::max(std::abs(o.best[i]), 0.01 * (p.hi - p.lo)) / (p.hi - p.lo);
+      dxdu[i] = p.hi - p.lo;
+    }
+    if (u0[i] - h[i] < 0 || u0[i] + h[i] > 1)
+      return o.variables[i].label + " = " + g6(o.best[i]) + " is within one step (" + g6(spec.hessian_step) +
+             " relative) of its bound: no central difference";
+  }
+  return "";
+}
+
+// Steps: from hessian_step, rescaled (up to 4 rounds) until each parameter's own central rise
+// (f(+h) + f(−h))/2 − f0 is within [1, 16] s² (target 4 s²: about two conditional standard
+// deviations): large enough above rounding, small enough to stay quadratic where the objective is
+// sharp (epsilon moves every stick-slip event). An empty string, or why not.
+std::string settle_steps(HessianPoints& hp, const std::vector<double>& u0, std::vector<double>& h, double f0, double s2) {
+  const std::size_t n = u0.size();
+  const double target = 4 * s2;
   std::vector<bool> settled(n, false);
   for (int round = 0; round < 5; ++round) {
     std::vector<std::vector<double>> us;
@@ -575,30 +536,29 @@ void run_uncertainty(const FitSpec& spec, const Problem& pb, Optimization& o) {
     if (who.empty()) break;
     std::vector<double> fv;
     std::vector<std::string> st;
-    eval_points(us, fv, st);
+    hp.eval(us, fv, st);
     for (std::size_t w = 0; w < who.size(); ++w) {
       const std::size_t i = who[w];
-      if (st[2 * w] != "ok" || st[2 * w + 1] != "ok") {
-        un.failure = "hessian evaluation along " + o.variables[i].label + ": " + (st[2 * w] != "ok" ? st[2 * w] : st[2 * w + 1]);
-        un.evaluations = counter;
-        return;
-      }
+      if (st[2 * w] != "ok" || st[2 * w + 1] != "ok")
+        return "hessian evaluation along " + hp.o.variables[i].label + ": " + (st[2 * w] != "ok" ? st[2 * w] : st[2 * w + 1]);
       const double rise = 0.5 * (fv[2 * w] + fv[2 * w + 1]) - f0;
       if (round == 4 || (rise >= target / 4 && rise <= target * 4)) {
         settled[i] = true;
         continue;
       }
       const double factor = rise > 0 ? std::clamp(std::sqrt(target / rise), 0.05, 20.0) : 10.0;
-      const double hmax = std::min(u0[i], 1 - u0[i]);
-      h[i] = std::min(h[i] * factor, hmax);
-      if (!(h[i] > 0)) {
-        un.failure = o.variables[i].label + " is at its bound: no central difference";
-        un.evaluations = counter;
-        return;
-      }
+      h[i] = std::min(h[i] * factor, std::min(u0[i], 1 - u0[i]));
+      if (!(h[i] > 0)) return hp.o.variables[i].label + " is at its bound: no central difference";
     }
   }
-  // The points: ±h_i, then (±h_i, ±h_j) for i < j.
+  return "";
+}
+
+// The Hessian in the scaled coordinates from ±h_i and (±h_i, ±h_j), i < j; an empty string, or
+// which evaluation failed.
+std::string hessian_at(HessianPoints& hp, const std::vector<double>& u0, const std::vector<double>& h, double f0,
+                       Eigen::MatrixXd& H) {
+  const std::size_t n = u0.size();
   struct Point { std::size_t i, j; int si, sj; };
   std::vector<Point> pts;
   for (std::size_t i = 0; i < n; ++i) for (const int si : {-1, +1}) pts.push_back({i, i, si, 0});
@@ -614,39 +574,61 @@ void run_uncertainty(const FitSpec& spec, const Problem& pb, Optimization& o) {
   }
   std::vector<double> f;
   std::vector<std::string> status;
-  eval_points(us, f, status);
-  un.evaluations = counter;
+  hp.eval(us, f, status);
   for (std::size_t k = 0; k < pts.size(); ++k)
-    if (status[k] != "ok") {
-      un.failure = "hessian evaluation " + std::to_string(k + 1) + ": " + status[k];
-      return;
-    }
-  std::vector<std::vector<double>> H(n, std::vector<double>(n, 0.0));
+    if (status[k] != "ok") return "hessian evaluation " + std::to_string(k + 1) + ": " + status[k];
+  const auto N = static_cast<Eigen::Index>(n);
+  H = Eigen::MatrixXd::Zero(N, N);
   std::size_t k = 0;
-  for (std::size_t i = 0; i < n; ++i, k += 2) H[i][i] = (f[k] - 2 * f0 + f[k + 1]) / (h[i] * h[i]);
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t j = i + 1; j < n; ++j, k += 4) {
-      // order: (−,−), (−,+), (+,−), (+,+)
-      H[i][j] = H[j][i] = (f[k + 3] - f[k + 2] - f[k + 1] + f[k]) / (4 * h[i] * h[j]);
-    }
-  std::vector<std::vector<double>> inv;
-  if (!spd_inverse(H, inv)) {
+  for (Eigen::Index i = 0; i < N; ++i, k += 2) H(i, i) = (f[k] - 2 * f0 + f[k + 1]) / (h[i] * h[i]);
+  for (Eigen::Index i = 0; i < N; ++i)
+    for (Eigen::Index j = i + 1; j < N; ++j, k += 4)  // order: (−,−), (−,+), (+,−), (+,+)
+      H(i, j) = H(j, i) = (f[k + 3] - f[k + 2] - f[k + 1] + f[k]) / (4 * h[i] * h[j]);
+  return "";
+}
+
+// The Hessian of the objective at the optimum by central differences in the scaled coordinates,
+// its covariance and the marginal standard deviations (fit.hpp, Uncertainty).
+void run_uncertainty(const FitSpec& spec, const Problem& pb, Optimization& o) {
+  const auto t0 = Clock::now();
+  Uncertainty& un = o.uncertainty;
+  un.step = spec.hessian_step;
+  const std::size_t n = o.variables.size();
+  for (const std::size_t e : o.experiments) un.residuals += area_and_force_count(spec.experiments[e].scene.build(), spec.experiments[e]);
+  const double f0 = o.objective;
+  if (un.residuals <= static_cast<int>(n)) {
+    un.failure = std::to_string(un.residuals) + " residuals for " + std::to_string(n) + " free variables";
+    return;
+  }
+  un.reduced_chi2 = f0 / static_cast<double>(un.residuals - static_cast<int>(n));
+  std::vector<double> u0, h, dxdu;
+  if (un.failure = hessian_start(spec, o, u0, h, dxdu); !un.failure.empty()) return;
+  HessianPoints hp{spec, pb, o};
+  Eigen::MatrixXd H;
+  un.failure = settle_steps(hp, u0, h, f0, un.reduced_chi2);
+  if (un.failure.empty()) un.failure = hessian_at(hp, u0, h, f0, H);
+  un.evaluations = hp.counter;
+  if (!un.failure.empty()) return;
+  const Eigen::LLT<Eigen::MatrixXd> llt(H);
+  if (llt.info() != Eigen::Success) {
     std::string rows;
-    for (std::size_t i = 0; i < n; ++i) {
+    for (Eigen::Index i = 0; i < H.rows(); ++i) {
       rows += i ? "; " : "";
-      for (std::size_t j = 0; j < n; ++j) rows += (j ? " " : "") + g6(H[i][j]);
+      for (Eigen::Index j = 0; j < H.cols(); ++j) rows += (j ? " " : "") + g6(H(i, j));
     }
     un.failure = "the Hessian of the objective at the optimum is not positive definite (a flat or unidentifiable direction, "
                  "or the optimum is not a minimum on the step's scale): H = [" + rows + "] in the scaled coordinates";
     return;
   }
+  const Eigen::MatrixXd inv = llt.solve(Eigen::MatrixXd::Identity(H.rows(), H.cols()));
   un.steps.resize(n);
   for (std::size_t i = 0; i < n; ++i) un.steps[i] = h[i] * std::abs(dxdu[i]) / std::abs(o.best[i]);
   un.sigma.resize(n);
   un.correlation.assign(n, std::vector<double>(n, 0.0));
-  for (std::size_t i = 0; i < n; ++i) un.sigma[i] = std::abs(dxdu[i]) * std::sqrt(2 * un.reduced_chi2 * inv[i][i]);
+  const auto I = [](std::size_t i) { return static_cast<Eigen::Index>(i); };
+  for (std::size_t i = 0; i < n; ++i) un.sigma[i] = std::abs(dxdu[i]) * std::sqrt(2 * un.reduced_chi2 * inv(I(i), I(i)));
   for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t j = 0; j < n; ++j) un.correlation[i][j] = inv[i][j] / std::sqrt(inv[i][i] * inv[j][j]);
+    for (std::size_t j = 0; j < n; ++j) un.correlation[i][j] = inv(I(i), I(j)) / std::sqrt(inv(I(i), I(i)) * inv(I(j), I(j)));
   un.computed = true;
   un.wall_s = seconds_since(t0);
   // The profiles' conditional intervals at the same rise s².
