@@ -235,6 +235,41 @@ const char* const kFitYamlObservables[] = {"alpha", "alpha_measured", "alpha_R2"
                                            "shape_exponent_measured", "A0", "Q_s", "A_s", "t_peak",
                                            "area_drop_fraction", "ss_cycles", "ss_drop", "ss_period"};
 
+// The fit's statistical uncertainty (area_and_force with intervals): method, s², σ, intervals, correlation.
+void write_uncertainty(std::ostream& y, const Optimization& o) {
+  auto num = [](double x) { return yaml_double(x); };
+  const Uncertainty& un = o.uncertainty;
+  y << "    uncertainty:\n";
+  y << "      method: \"chi-square: Hessian H of the objective at the optimum by central differences (relative steps from "
+    << num(un.step) << ", rescaled until each parameter's own rise is 1-16 s^2), covariance 2 s^2 H^-1, s^2 = objective / (residuals - free variables) (the reduced chi-square); "
+       "sigma: marginal standard deviation; interval95: value +- 1.96 sigma; profile_interval: where the one-parameter "
+       "profile (others at the optimum) rises by s^2 (conditional, narrower when correlated); profile_sigma: sqrt(s^2/c) "
+       "of the least-squares parabola through the profile's points (conditional; robust to jumps of the objective "
+       "below the points' spacing, where sigma is not)\"\n";
+  y << "      residuals: " << un.residuals << "\n      reduced_chi2: " << num(un.reduced_chi2) << "\n";
+  y << "      evaluations: " << un.evaluations << "\n      wall_s: " << num(un.wall_s) << "\n";
+  if (!un.computed) {
+    y << "      failure: " << yaml_quoted(un.failure) << "\n";
+  } else {
+    y << "      parameters:\n";
+    for (std::size_t i = 0; i < o.variables.size(); ++i) {
+      const double x = o.best[i], sg = un.sigma[i];
+      double plo = Observables::nan, phi = Observables::nan, psg = Observables::nan;
+      for (const ParameterProfile& pp : o.profiles)
+        if (pp.parameter == o.variables[i].parameter && o.variables[i].experiment < 0) plo = pp.lo, phi = pp.hi, psg = pp.parabola_sigma;
+      y << "        " << yaml_quoted(o.variables[i].label) << ": {value: " << num(x) << ", step: " << num(un.steps[i]) << ", sigma: " << num(sg)
+        << ", sigma_relative: " << num(sg / std::abs(x)) << ", interval95: [" << num(x - 1.96 * sg) << ", " << num(x + 1.96 * sg)
+        << "], profile_interval: [" << num(plo) << ", " << num(phi) << "], profile_sigma: " << num(psg) << "}\n";
+    }
+    y << "      correlation:\n";
+    for (std::size_t i = 0; i < o.variables.size(); ++i) {
+      y << "        - [";
+      for (std::size_t j = 0; j < o.variables.size(); ++j) y << (j ? ", " : "") << num(un.correlation[i][j]);
+      y << "]\n";
+    }
+  }
+}
+
 }  // namespace
 
 std::string fit_yaml(const FitSpec& spec, const FitResult& result, const std::string& command_line) {
@@ -324,38 +359,7 @@ std::string fit_yaml(const FitSpec& spec, const FitResult& result, const std::st
       const std::string file = "profile_" + file_stem(key) + ".csv";
       y << "      - {parameter: " << key << ", file: " << yaml_quoted(sub.empty() ? file : sub + "/" + file) << "}\n";
     }
-    if (spec.objective == FitObjective::area_and_force && spec.intervals) {
-      const Uncertainty& un = o.uncertainty;
-      y << "    uncertainty:\n";
-      y << "      method: \"chi-square: Hessian H of the objective at the optimum by central differences (relative steps from "
-        << num(un.step) << ", rescaled until each parameter's own rise is 1-16 s^2), covariance 2 s^2 H^-1, s^2 = objective / (residuals - free variables) (the reduced chi-square); "
-           "sigma: marginal standard deviation; interval95: value +- 1.96 sigma; profile_interval: where the one-parameter "
-           "profile (others at the optimum) rises by s^2 (conditional, narrower when correlated); profile_sigma: sqrt(s^2/c) "
-           "of the least-squares parabola through the profile's points (conditional; robust to jumps of the objective "
-           "below the points' spacing, where sigma is not)\"\n";
-      y << "      residuals: " << un.residuals << "\n      reduced_chi2: " << num(un.reduced_chi2) << "\n";
-      y << "      evaluations: " << un.evaluations << "\n      wall_s: " << num(un.wall_s) << "\n";
-      if (!un.computed) {
-        y << "      failure: " << yaml_quoted(un.failure) << "\n";
-      } else {
-        y << "      parameters:\n";
-        for (std::size_t i = 0; i < o.variables.size(); ++i) {
-          const double x = o.best[i], sg = un.sigma[i];
-          double plo = Observables::nan, phi = Observables::nan, psg = Observables::nan;
-          for (const ParameterProfile& pp : o.profiles)
-            if (pp.parameter == o.variables[i].parameter && o.variables[i].experiment < 0) plo = pp.lo, phi = pp.hi, psg = pp.parabola_sigma;
-          y << "        " << yaml_quoted(o.variables[i].label) << ": {value: " << num(x) << ", step: " << num(un.steps[i]) << ", sigma: " << num(sg)
-            << ", sigma_relative: " << num(sg / std::abs(x)) << ", interval95: [" << num(x - 1.96 * sg) << ", " << num(x + 1.96 * sg)
-            << "], profile_interval: [" << num(plo) << ", " << num(phi) << "], profile_sigma: " << num(psg) << "}\n";
-        }
-        y << "      correlation:\n";
-        for (std::size_t i = 0; i < o.variables.size(); ++i) {
-          y << "        - [";
-          for (std::size_t j = 0; j < o.variables.size(); ++j) y << (j ? ", " : "") << num(un.correlation[i][j]);
-          y << "]\n";
-        }
-      }
-    }
+    if (spec.objective == FitObjective::area_and_force && spec.intervals) write_uncertainty(y, o);
     if (!o.refits.empty()) {
       y << "    error_bars:\n";
       y << "      method: \"one at a time: refit (from the optimum) with each quantity at nominal - bar and nominal + bar, "
