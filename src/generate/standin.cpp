@@ -241,7 +241,7 @@ std::string standin_readme(const StandinRecipe& r, const std::vector<StandinExpe
          " s, plus Gaussian noise of standard deviation " + g6(100 * r.force_noise_relative) + " % of Q_s,\n";
     t += "   normal quantile of uniforms from `std::mt19937_64(force seed)`, force seed = splitmix64(area seed XOR 0x666f726365).\n";
     t += "   Unlike measured.csv (a prescribed parabola), it is the model's own Q(t) at the paper's parameters, so a fit of\n";
-    t += "   (alpha_b, epsilon, eta) to it alone would return those; its header repeats this. `experiment.yaml` does not name\n";
+    t += "   (alpha_b, epsilon, eta) to it alone would return those; its header gives them. `experiment.yaml` does not name\n";
     t += "   it (scene texts and store hashes stay as they were); a fit names it per experiment (`force:`, objective\n";
     t += "   `area_and_force`, docs/calibration.md).\n";
   }
