@@ -313,9 +313,7 @@ std::vector<double> refine(const std::vector<double>& pc, std::size_t n) {
   return p;
 }
 
-}  // namespace
-
-NormalContact solve_normal_contact(const HeightMap& map, const NormalContactSettings& s) {
+void check_inputs(const HeightMap& map, const NormalContactSettings& s) {
   const std::size_t n = map.n;
   if (n < 2 || map.h_m.size() != n * n || !(map.pixel_m > 0) || !std::isfinite(map.pixel_m))
     throw std::invalid_argument("normal contact: an n x n height map with n >= 2 and a positive pixel size is needed");
@@ -323,15 +321,14 @@ NormalContact solve_normal_contact(const HeightMap& map, const NormalContactSett
     throw std::invalid_argument("normal contact: E* and the load must be positive and finite");
   for (const double h : map.h_m)
     if (!std::isfinite(h)) throw std::invalid_argument("normal contact: a height is not finite");
-  Workers W(s.threads);
-  const double A = map.pixel_m * map.pixel_m, half = 0.5 * map.pixel_m;
-  const std::size_t nn = n * n;
+}
 
-  NormalContact out;
+// Start: the pressures of the same contact on the grid of half the width (coarse-to-fine: the
+// contact set and the pressures' shape come at a quarter of the cost per iteration), else uniform.
+void start_pressures(const HeightMap& map, const NormalContactSettings& s, NormalContact& out) {
+  const std::size_t n = map.n, nn = n * n;
+  const double A = map.pixel_m * map.pixel_m;
   std::vector<double>& p = out.pressure_Pa;
-  // Start: the pressures of the same contact on the grid of half the width (coarse-to-fine: the
-  // contact set and the pressures' shape come at a quarter of the cost per iteration), else uniform.
-  bool started = false;
   if (!s.periodic && s.coarse_start && n % 2 == 0 && n >= kCoarseStartFrom) {
     NormalContactSettings cs = s;
     cs.tolerance = std::max(s.tolerance, kCoarseTolerance);
@@ -343,64 +340,65 @@ NormalContact solve_normal_contact(const HeightMap& map, const NormalContactSett
     total *= A;
     if (total > 0) {
       for (double& x : p) x *= s.load_N / total;
-      started = true;
+      return;
     }
   }
-  if (!started) p.assign(nn, s.load_N / (A * static_cast<double>(nn)));
+  p.assign(nn, s.load_N / (A * static_cast<double>(nn)));
+}
 
-  std::unique_ptr<Convolution> convolution;
-  std::vector<double> influence;  // isolated: the kernel at offsets (|di|, |dj|), (n + 1)², row |di|
+// The convolution u = K p of the map's kind; for an isolated map also the kernel's values at the
+// offsets (influence), which the direct correction reads.
+std::unique_ptr<Convolution> make_convolution(const HeightMap& map, const NormalContactSettings& s, Workers& W,
+                                              std::vector<double>& influence) {
+  const std::size_t n = map.n;
   if (s.periodic) {
     // u(q) = 2 p(q) / (E* |q|); the mean (q = 0) displacement is the free approach.
     const double qL = 2 * std::numbers::pi / map.length_m();
-    convolution = std::make_unique<PeriodicConvolution>(n, W, [&](long ky, long kx) {
+    return std::make_unique<PeriodicConvolution>(n, W, [&](long ky, long kx) {
       const double q = qL * std::hypot(static_cast<double>(ky), static_cast<double>(kx));
       return q > 0 ? 2.0 / (s.E_star_Pa * q) : 0.0;
     });
-  } else {
-    // Influence of a unit pressure on one pixel, at every offset (wrapped on the 2n grid). Love's
-    // rectangle is even in both offsets: evaluated once per (|di|, |dj|).
-    influence.resize((n + 1) * (n + 1));
-    for_each_pixel((n + 1) * (n + 1), W, [&](std::size_t k) {
-      const double i = static_cast<double>(k / (n + 1)), j = static_cast<double>(k % (n + 1));
-      influence[k] = love_rectangle(j * map.pixel_m, i * map.pixel_m, half, half) / s.E_star_Pa;
-    });
-    convolution = std::make_unique<PaddedConvolution>(n, influence, W);
   }
-  Convolution& K = *convolution;
+  // Influence of a unit pressure on one pixel, at every offset (wrapped on the 2n grid). Love's
+  // rectangle is even in both offsets: evaluated once per (|di|, |dj|).
+  const double half = 0.5 * map.pixel_m;
+  influence.resize((n + 1) * (n + 1));
+  for_each_pixel((n + 1) * (n + 1), W, [&](std::size_t k) {
+    const double i = static_cast<double>(k / (n + 1)), j = static_cast<double>(k % (n + 1));
+    influence[k] = love_rectangle(j * map.pixel_m, i * map.pixel_m, half, half) / s.E_star_Pa;
+  });
+  return std::make_unique<PaddedConvolution>(n, influence, W);
+}
 
-  // Separation from the flat touching the highest summit.
-  const double top = *std::max_element(map.h_m.begin(), map.h_m.end());
-  std::vector<double> h0(nn);
-  for (std::size_t k = 0; k < nn; ++k) h0[k] = top - map.h_m[k];
+// u ← f (u − τ r + K δ), δ the pressure jumps (beyond p_old − τ t) of the points clipped (p_old − τ t
+// < 0 set to 0) or joining (p_old = 0 set to −τ g), in the order of their index; each row of u sums
+// them in that order, so the bits do not depend on the number of threads.
+class DirectCorrection {
+ public:
+  DirectCorrection(std::size_t n, const std::vector<double>& influence, Workers& w, bool periodic)
+      : n_(n), influence_(influence), w_(w), acc_(static_cast<std::size_t>(w.count()), std::vector<double>(periodic ? 0 : n)) {}
 
-  std::vector<double> u(nn), g(nn), t(nn, 0.0), r(nn), p_old(nn);
-  // u ← f (u − τ r + K δ), δ the pressure jumps (beyond p_old − τ t) of the points clipped (p_old − τ t
-  // < 0 set to 0) or joining (p_old = 0 set to −τ g), in the order of their index; each row of u sums
-  // them in that order, so the bits do not depend on the number of threads.
-  const double direct_max = std::max(2.0, static_cast<double>(std::bit_width(n)) * 4.0);
-  std::vector<std::pair<std::size_t, double>> jumps;
-  std::vector<std::vector<double>> acc(static_cast<std::size_t>(W.count()), std::vector<double>(s.periodic ? 0 : n));
-  auto direct_update = [&](const std::vector<double>& p0, const std::vector<double>& t0, const std::vector<double>& g0,
-                           double tau, double f) {
-    jumps.clear();
+  void update(const std::vector<double>& p0, const std::vector<double>& t0, const std::vector<double>& g0,
+              const std::vector<double>& r, double tau, double f, std::vector<double>& u) {
+    const std::size_t n = n_, nn = n * n;
+    jumps_.clear();
     for (std::size_t k = 0; k < nn; ++k) {
       if (p0[k] > 0) {
         const double lin = p0[k] - tau * t0[k];
-        if (lin < 0) jumps.emplace_back(k, -lin);
+        if (lin < 0) jumps_.emplace_back(k, -lin);
       } else if (g0[k] < 0) {
-        jumps.emplace_back(k, -tau * g0[k]);
+        jumps_.emplace_back(k, -tau * g0[k]);
       }
     }
-    // Rows in chunks of 8: each thread sums into its own row of `acc`.
+    // Rows in chunks of 8: each thread sums into its own row of `acc_`.
     constexpr std::size_t kRowChunk = 8;
-    W.run((n + kRowChunk - 1) / kRowChunk, nn >= kParallelFrom, [&](std::size_t c, std::size_t th) {
-      std::vector<double>& a = acc[th];
+    w_.run((n + kRowChunk - 1) / kRowChunk, nn >= kParallelFrom, [&](std::size_t c, std::size_t th) {
+      std::vector<double>& a = acc_[th];
       for (std::size_t i = c * kRowChunk; i < std::min(n, (c + 1) * kRowChunk); ++i) {
         std::fill(a.begin(), a.end(), 0.0);
-        for (const auto& [l, d] : jumps) {
+        for (const auto& [l, d] : jumps_) {
           const std::size_t r0 = l / n, b = l % n;
-          const double* row = &influence[(i > r0 ? i - r0 : r0 - i) * (n + 1)];
+          const double* row = &influence_[(i > r0 ? i - r0 : r0 - i) * (n + 1)];
           for (std::size_t j = 0; j < b; ++j) a[j] += d * row[b - j];
           for (std::size_t j = b; j < n; ++j) a[j] += d * row[j - b];
         }
@@ -409,7 +407,39 @@ NormalContact solve_normal_contact(const HeightMap& map, const NormalContactSett
         for (std::size_t j = 0; j < n; ++j) uk[j] = f * (uk[j] - tau * rk[j] + a[j]);
       }
     });
-  };
+  }
+
+ private:
+  std::size_t n_;
+  const std::vector<double>& influence_;
+  Workers& w_;
+  std::vector<std::pair<std::size_t, double>> jumps_;
+  std::vector<std::vector<double>> acc_;  // per thread: one row of K δ
+};
+
+}  // namespace
+
+NormalContact solve_normal_contact(const HeightMap& map, const NormalContactSettings& s) {
+  check_inputs(map, s);
+  const std::size_t n = map.n, nn = n * n;
+  Workers W(s.threads);
+  const double A = map.pixel_m * map.pixel_m;
+
+  NormalContact out;
+  std::vector<double>& p = out.pressure_Pa;
+  start_pressures(map, s, out);
+  std::vector<double> influence;  // isolated: the kernel at offsets (|di|, |dj|), (n + 1)², row |di|
+  const std::unique_ptr<Convolution> convolution = make_convolution(map, s, W, influence);
+  Convolution& K = *convolution;
+
+  // Separation from the flat touching the highest summit.
+  const double top = *std::max_element(map.h_m.begin(), map.h_m.end());
+  std::vector<double> h0(nn);
+  for (std::size_t k = 0; k < nn; ++k) h0[k] = top - map.h_m[k];
+
+  std::vector<double> u(nn), g(nn), t(nn, 0.0), r(nn), p_old(nn);
+  const double direct_max = std::max(2.0, static_cast<double>(std::bit_width(n)) * 4.0);
+  DirectCorrection direct(n, influence, W, s.periodic);
   K.apply(p, u);
   out.convolutions = 1;
   double G_old = 1.0;
@@ -493,7 +523,7 @@ NormalContact solve_normal_contact(const HeightMap& map, const NormalContactSett
     if (changed == 0 && !s.periodic)
       for_each_pixel(nn, W, [&](std::size_t k) { u[k] = f * (u[k] - tau * r[k]); });
     else if (!s.periodic && changed <= direct_max)
-      direct_update(p_old, t, g, tau, f);
+      direct.update(p_old, t, g, r, tau, f, u);
     else
       K.apply(p, u), ++out.convolutions;
   }
