@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "fit/fit.hpp"
+#include "fit/fit_load.hpp"
 #include "observe/simulate.hpp"
 #include "scene/csv.hpp"
 #include "scene/load.hpp"
@@ -16,6 +18,15 @@
 #include "support_scenes.hpp"
 
 namespace asperity::testing {
+
+// The fit file run on one thread, without profiles or error-bar refits (the failure tests: one
+// optimization, its stop reason read).
+inline FitResult run_fit_serial(const std::filesystem::path& fit_file) {
+  FitOptions options;
+  options.threads = 1;
+  options.profile = options.error_bars = false;
+  return run_fit(load_fit(fit_file), options);
+}
 
 struct FitCase {
   std::filesystem::path dir;  // holds experiment.yaml, junctions.csv, measured.csv, scene.yaml

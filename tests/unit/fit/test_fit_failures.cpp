@@ -83,10 +83,7 @@ TEST_CASE("A fit whose model runs end before the peak fails, with the reason", "
                                 "experiments: [{scene: scene.yaml, set: {stop.time: " + scene_io::format_double(t_stop) + "}}]\n"
                                 "parameters: {model.alpha_b: {lo: 1e-16, hi: 5e-15, start: 1e-15, scale: log}}\n"
                                 "profile: false\n");
-  FitOptions options;
-  options.threads = 1;
-  options.profile = options.error_bars = false;
-  const FitResult r = run_fit(load_fit(f), options);
+  const FitResult r = asperity::testing::run_fit_serial(f);
   const Optimization& o = r.fits[0];
   CHECK_FALSE(o.ok());
   CHECK(o.stop_reason == "FORCED_STOP");

@@ -110,10 +110,7 @@ TEST_CASE("A NaN objective ends the fit with a clear reason", "[fit][objective]"
                             "objective: quadratic_alpha\n"
                             "experiments: [{scene: scene.yaml, set: {stop.time: 1.0e-6}}]\n"
                             "parameters: {model.alpha_b: {lo: 1e-16, hi: 5e-15, start: 7e-16}}\n");
-  FitOptions options;
-  options.threads = 1;
-  options.profile = options.error_bars = false;
-  const FitResult r = run_fit(load_fit(f), options);
+  const FitResult r = asperity::testing::run_fit_serial(f);
   const Optimization& o = r.fits[0];
   CHECK_FALSE(o.ok());
   CHECK(o.stop_reason == "FORCED_STOP");
