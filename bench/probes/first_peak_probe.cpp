@@ -7,7 +7,7 @@
 //     $B/libasperity_surface.a $B/libasperity_physics.a $B/libasperity_io.a $B/libasperity_generate.a \
 //     $B/libasperity_batch.a -Wl,--end-group -lyaml-cpp -lcrypto -ltbb -lopenblas -lfftw3_threads -lfftw3 \
 //     -lfftw3_omp -fopenmp
-//   OMP_NUM_THREADS=1 build/first_peak 1200
+//   OMP_NUM_THREADS=1 build/first_peak 1200 [interaction_tolerance]
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -34,6 +34,7 @@ int main(int argc, char** argv) {
   const Positions p = place_in_contact_disc(s.experiment.junctions.area_m2, R, 20200318);
   s.experiment.junctions.x_m = p.x_m; s.experiment.junctions.y_m = p.y_m;
   s.model.interactions = Interactions::elastic; s.solver.method = SolverMethod::event;
+  if (argc > 2) s.solver.interaction_tolerance = std::atof(argv[2]);
   const Problem problem = make_problem(s);
   Recorder rec = make_recorder(s);
   auto t0 = std::chrono::steady_clock::now();
@@ -42,6 +43,6 @@ int main(int argc, char** argv) {
   double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const auto w = stepper.junctions().work();
   const FirstPeak fp = rec.first_peak();
-  std::printf("N %zu wall %.3f s  Q_s %.17g t_peak %.17g A_s %.17g steps %lld slips %lld solves %lld iters %lld rank1 %lld rebuilds %lld\n", N, wall, fp.max.Q, fp.max.t, fp.max.A,
+  std::printf("N %zu tol %g wall %.3f s  Q_s %.17g t_peak %.17g A_s %.17g steps %lld slips %lld solves %lld iters %lld rank1 %lld rebuilds %lld\n", N, s.solver.interaction_tolerance, wall, fp.max.Q, fp.max.t, fp.max.A,
     (long long)info.stats.steps, (long long)info.stats.slips, (long long)w.solves, (long long)w.iterations, (long long)w.rank_one, (long long)w.rebuilds);
 }

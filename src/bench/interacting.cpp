@@ -61,7 +61,9 @@ InteractingBenchRow timed(const std::string& what, const Scene& scene) {
   row.rebuilds = w.rebuilds;
   const FirstPeak fp = rec.first_peak();
   row.Q_s = fp.max.Q;
+  row.A_s = fp.max.A;
   row.t_peak = fp.max.t;
+  row.interaction_tolerance = scene.solver.interaction_tolerance;
   row.samples = static_cast<std::int64_t>(rec.series().size());
   row.max_rss_kB = max_rss_kB();
   row.bound_kB = 2.0 * static_cast<double>(row.N) * static_cast<double>(row.N) * 8.0 / 1024.0;
@@ -98,6 +100,11 @@ std::vector<InteractingBenchRow> run_interacting_bench(const InteractingBenchOpt
       rows.push_back(timed("first_peak_series", with_positions(s, R)));
     }
     s.output.series.clear();
+    if (opt.converged_tolerance > 0) {
+      Scene c = s;
+      c.solver.interaction_tolerance = opt.converged_tolerance;
+      rows.push_back(timed("first_peak_converged", with_positions(c, R)));
+    }
     rows.push_back(timed("first_peak", with_positions(s, R)));
     const auto& r = rows.back();
     if (opt.log) {
@@ -105,8 +112,15 @@ std::vector<InteractingBenchRow> run_interacting_bench(const InteractingBenchOpt
                << r.slips << " slips, " << r.solves << " solves, " << r.iterations << " chord iterations, "
                << r.rank_one << " rank-one updates, " << r.rebuilds << " rebuilds), peak RSS " << r.max_rss_kB / 1024
                << " MB vs 2N^2 doubles " << r.bound_kB / 1024 << " MB" << std::endl;
+      if (opt.converged_tolerance > 0) {
+        const auto& c = rows[rows.size() - 2];
+        *opt.log << "    converged solves (interaction tolerance " << c.interaction_tolerance << ", against "
+                 << r.interaction_tolerance << "): " << c.wall_s << " s wall, " << c.wall_s / r.wall_s
+                 << "x the time; relative differences Q_s " << std::abs(r.Q_s / c.Q_s - 1) << ", A_s "
+                 << std::abs(r.A_s / c.A_s - 1) << ", t_peak " << std::abs(r.t_peak / c.t_peak - 1) << std::endl;
+      }
       if (opt.recorded) {
-        const auto& w = rows[rows.size() - 2];
+        const auto& w = rows[rows.size() - (opt.converged_tolerance > 0 ? 3 : 2)];
         *opt.log << "    with the output series (" << w.samples << " samples): " << w.wall_s << " s wall, "
                  << 100.0 * (w.wall_s / r.wall_s - 1.0) << " % more, " << w.solves - r.solves << " extra exact solves"
                  << std::endl;
@@ -156,11 +170,12 @@ std::string fitted_exponent_text(const std::vector<InteractingBenchRow>& rows) {
 
 void write_interacting_bench(const fs::path& dir, const std::vector<InteractingBenchRow>& rows) {
   std::ostringstream o;
-  o << "what,N,wall_s,t_end_s,Q_s_N,t_peak_s,steps,slips,repins,solves,chord_iterations,rank_one_updates,"
-       "rebuilds,samples,max_rss_kB,two_N2_doubles_kB\n";
+  o << "what,N,interaction_tolerance,wall_s,t_end_s,Q_s_N,A_s_m2,t_peak_s,steps,slips,repins,solves,chord_iterations,"
+       "rank_one_updates,rebuilds,samples,max_rss_kB,two_N2_doubles_kB\n";
   for (const auto& r : rows)
-    o << r.what << ',' << r.N << ',' << csv_number(r.wall_s) << ',' << csv_number(r.t_end) << ','
-      << csv_number(r.Q_s) << ',' << csv_number(r.t_peak) << ',' << r.steps << ',' << r.slips << ',' << r.repins
+    o << r.what << ',' << r.N << ',' << csv_number(r.interaction_tolerance) << ',' << csv_number(r.wall_s) << ','
+      << csv_number(r.t_end) << ',' << csv_number(r.Q_s) << ',' << csv_number(r.A_s) << ',' << csv_number(r.t_peak)
+      << ',' << r.steps << ',' << r.slips << ',' << r.repins
       << ',' << r.solves << ',' << r.iterations << ',' << r.rank_one << ',' << r.rebuilds << ',' << r.samples << ','
       << r.max_rss_kB
       << ',' << csv_number(r.bound_kB) << '\n';
@@ -173,23 +188,25 @@ void write_interacting_bench(const fs::path& dir, const std::vector<InteractingB
 namespace asperity {
 
 std::vector<InteractingTradeoffRow> run_interacting_tradeoff(const InteractingTradeoffOptions& opt) {
-  auto scene_at = [&](double tol, double cutoff) {
+  auto scene_at = [&](double tol, double itol, double cutoff) {
     std::vector<std::string> o = opt.overrides;
     o.push_back(set_number("solver.tolerance", tol));
+    o.push_back(set_number("solver.interaction_tolerance", itol));
     if (cutoff > 0) o.push_back(set_number("model.interaction_cutoff", cutoff));
     return load_scene(opt.scene, o);
   };
   std::vector<InteractingTradeoffRow> rows;
-  auto add = [&](const std::string& knob, double tol, double cutoff, const Observables* conv) -> const Observables {
-    const TimedRun r = timed_run(scene_at(tol, cutoff), opt.repeats);
-    InteractingTradeoffRow row{knob, tol, cutoff, r.wall_s, r.cpu_s, {}, {}};
+  auto add = [&](const std::string& knob, double tol, double itol, double cutoff,
+                 const Observables* conv) -> const Observables {
+    const TimedRun r = timed_run(scene_at(tol, itol, cutoff), opt.repeats);
+    InteractingTradeoffRow row{knob, tol, itol, cutoff, r.wall_s, r.cpu_s, {}, {}};
     const auto v = robust_values(r.obs);
     row.value.assign(v.begin(), v.end());
     const auto e = conv ? relative_errors(r.obs, *conv) : std::array<double, n_robust>{};
     row.error.assign(e.begin(), e.end());
     rows.push_back(row);
     if (opt.log) {
-      *opt.log << "  interacting " << knob << " tol " << tol << " cutoff " << (cutoff > 0 ? std::to_string(cutoff * 1e3) + " mm" : "none")
+      *opt.log << "  interacting " << knob << " tol " << tol << " interaction tol " << itol << " cutoff " << (cutoff > 0 ? std::to_string(cutoff * 1e3) + " mm" : "none")
                << ": " << r.wall_s << " s wall";
       for (std::size_t i = 0; i < n_robust && conv; ++i)
         if (std::isfinite(row.error[i])) *opt.log << ", " << robust_names()[i] << " err " << row.error[i];
@@ -197,20 +214,22 @@ std::vector<InteractingTradeoffRow> run_interacting_tradeoff(const InteractingTr
     }
     return r.obs;
   };
-  const Observables conv = add("converged", opt.converged_tolerance, 0, nullptr);
-  for (double tol : opt.tolerances) add("tolerance", tol, 0, &conv);
-  const double tol0 = load_scene(opt.scene).solver.tolerance;
-  for (double c : opt.cutoffs_m) add("cutoff", tol0, c, &conv);
+  const Observables conv = add("converged", opt.converged_tolerance, opt.converged_tolerance, 0, nullptr);
+  const SolverSettings defaults = load_scene(opt.scene).solver;
+  for (double tol : opt.tolerances) add("tolerance", tol, defaults.interaction_tolerance, 0, &conv);
+  for (double itol : opt.interaction_tolerances) add("interaction_tolerance", defaults.tolerance, itol, 0, &conv);
+  for (double c : opt.cutoffs_m) add("cutoff", defaults.tolerance, defaults.interaction_tolerance, c, &conv);
   return rows;
 }
 
 void write_interacting_tradeoff(const fs::path& dir, const std::vector<InteractingTradeoffRow>& rows) {
   std::ostringstream o;
-  o << "knob,tolerance,cutoff_m,wall_s,cpu_s";
+  o << "knob,tolerance,interaction_tolerance,cutoff_m,wall_s,cpu_s";
   for (const auto& n : robust_names()) o << ',' << n << ',' << n << "_rel_error";
   o << '\n';
   for (const auto& r : rows) {
-    o << r.knob << ',' << csv_number(r.tolerance) << ',' << csv_number(r.cutoff_m) << ',' << csv_number(r.wall_s) << ','
+    o << r.knob << ',' << csv_number(r.tolerance) << ',' << csv_number(r.interaction_tolerance) << ','
+      << csv_number(r.cutoff_m) << ',' << csv_number(r.wall_s) << ','
       << csv_number(r.cpu_s);
     for (std::size_t i = 0; i < r.value.size(); ++i)
       o << ',' << csv_number(r.value[i]) << ',' << (r.knob == "converged" ? std::string() : csv_number(r.error[i]));

@@ -23,15 +23,20 @@ struct InteractingBenchOptions {
   double contact_radius_m = 4.5e-3;  // at the scene's own N
   bool whole_run = true;             // also the scene itself, peak + 5 cycles
   bool recorded = true;              // each size also with the scene's output series, side by side
+  // Each size also at this solver.interaction_tolerance (the dense exact solver as it was before
+  // the knob: converged solves), side by side with the scene's own setting; 0: not run.
+  double converged_tolerance = 1e-12;
   std::ostream* log = nullptr;
 };
 
 struct InteractingBenchRow {
   // "first_peak" (scaling, no output series), "first_peak_series" (the same run recording the
-  // scene's output series: the cost of recording) or "whole_run"
+  // scene's output series: the cost of recording), "first_peak_converged" (the same run at the
+  // converged tolerance) or "whole_run"
   std::string what;
   std::size_t N = 0;
-  double wall_s = 0, t_end = 0, Q_s = 0, t_peak = 0;
+  double interaction_tolerance = 0;
+  double wall_s = 0, t_end = 0, Q_s = 0, A_s = 0, t_peak = 0;
   std::int64_t steps = 0, slips = 0, repins = 0, solves = 0, iterations = 0, rank_one = 0, rebuilds = 0;
   std::int64_t samples = 0;  // of the output series
   long max_rss_kB = 0;   // of the whole process after this run (sizes run in increasing order)
@@ -51,14 +56,16 @@ void write_interacting_bench(const std::filesystem::path& dir, const std::vector
 
 namespace asperity {
 
-// The interacting solver's knobs for `bench tradeoff`: solver.tolerance (with the full kernel)
-// and model.interaction_cutoff (at the default tolerance), each run's wall time and the relative
-// error of the robust observables against the full kernel at tolerance 1e-12. The cut-off's
-// error is a model error (pairs dropped), the tolerance's a solver error.
+// The interacting solver's knobs for `bench tradeoff`: solver.tolerance and
+// solver.interaction_tolerance (with the full kernel, the other at its default) and
+// model.interaction_cutoff (at the default tolerances), each run's wall time and the relative
+// error of the robust observables against the full kernel with both tolerances at 1e-12. The
+// cut-off's error is a model error (pairs dropped), the tolerances' solver errors.
 struct InteractingTradeoffOptions {
   std::filesystem::path scene = "scenes/paper/P0.98N.yaml";
   std::vector<std::string> overrides{"model.interactions=elastic", "stop.time=4"};
   std::vector<double> tolerances{1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10};
+  std::vector<double> interaction_tolerances{1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-10};
   std::vector<double> cutoffs_m{2.5e-4, 5e-4, 1e-3, 2e-3, 4e-3};
   double converged_tolerance = 1e-12;
   int repeats = 5;
@@ -66,8 +73,8 @@ struct InteractingTradeoffOptions {
 };
 
 struct InteractingTradeoffRow {
-  std::string knob;  // "converged", "tolerance", "cutoff"
-  double tolerance = 0, cutoff_m = 0;  // cutoff 0: full kernel
+  std::string knob;  // "converged", "tolerance", "interaction_tolerance", "cutoff"
+  double tolerance = 0, interaction_tolerance = 0, cutoff_m = 0;  // cutoff 0: full kernel
   double wall_s = 0, cpu_s = 0;
   std::vector<double> value, error;  // robust observables (robust_names())
 };

@@ -45,7 +45,10 @@ std::vector<RegressResult> run_regress_suite(const RegressSuite& suite, bool tig
     s.output.series.clear();
     if (twin) {
       if (s.solver.method == SolverMethod::reference) s.solver.Ct *= 2;
-      else s.solver.tolerance = std::max(1e-13, s.solver.tolerance * 1e-2);
+      else {
+        s.solver.tolerance = std::max(1e-13, s.solver.tolerance * 1e-2);
+        s.solver.interaction_tolerance = std::max(1e-14, s.solver.interaction_tolerance * 1e-2);
+      }
     }
     try {
       const RunResult r = simulate(s);

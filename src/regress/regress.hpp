@@ -1,7 +1,7 @@
 #pragma once
 // Regression runs: a curated suite of scenes, run and compared with blessed golden values.
 // Tolerances are not guessed: each entry also runs with a tighter solver setting (event:
-// tolerance/100; reference: 2·C_t), and an observable may move by 10× the change that
+// tolerance/100 and interaction_tolerance/100; reference: 2·C_t), and an observable may move by 10× the change that
 // tightening causes, or by 10× the solver tolerance relative (whichever is larger; the
 // reference, first order in dt, by 1e-12 relative), since that is how far a change of
 // rounding (another compiler, another machine) can move it.

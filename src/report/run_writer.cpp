@@ -56,6 +56,8 @@ std::string summary_yaml(const Scene& scene, const Observables& o, const std::ve
   y << "method: " << method_name(scene.solver.method) << '\n';
   d("Ct", scene.solver.Ct);
   d("tolerance", scene.solver.tolerance);
+  // Only with interactions: the summaries of independent runs keep their keys.
+  if (scene.model.interactions != Interactions::none) d("interaction_tolerance", scene.solver.interaction_tolerance);
   for (const ObservableField& f : observable_fields()) {
     y << f.name << ": " << observable_text(f, o, yaml_double);
     if (f.kind == ObservableKind::label) y << "  # how the first peak was found (README: The static friction peak)";

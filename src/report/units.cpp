@@ -57,6 +57,7 @@ const std::pair<const char*, const char*> kSymbols[] = {
     {"model.position_scale", "position scale s"},
     {"solver.Ct", "C_t"},
     {"solver.tolerance", "tolerance"},
+    {"solver.interaction_tolerance", "interaction tolerance"},
     {"stop.time", "t_{stop}"},
     {"stop.cycles", "stop after cycles"},
     {"stop.wall_time", "wall-time limit"},

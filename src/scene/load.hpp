@@ -27,7 +27,7 @@
 //            junction_shape: elliptic|circular, area_law: until_first_slip|always,
 //            interactions: none|elastic, interaction_cutoff: 0, interaction_weighting: uniform|rigid,
 //            position_scale: 1}
-//   solver: {method: event|reference, Ct: 1e4, tolerance: 1e-9}
+//   solver: {method: event|reference, Ct: 1e4, tolerance: 1e-9, interaction_tolerance: 1e-8}
 //   stop:   {time: 1.0, at_first_peak: false, cycles: -1,
 //            wall_time: 3600, max_slips: 0}   # limits per run; max_slips 0: 10^6 + 10^4 N max(1, time/s)
 //   output: {every: 1e-3, series: [t, X, V, Q, A, n_slipping, n_intact], peak_min_drop: 0.02}

@@ -73,6 +73,10 @@ struct SolverSettings {
   SolverMethod method = SolverMethod::event;
   double Ct = 1e4;           // reference: dt = T0 / Ct
   double tolerance = 1e-9;   // event solver: relative local error per step
+  // Event solver with interactions: each exact solve of the coupled pinned junctions stops when
+  // its last correction is below this fraction of the junctions' slip forces, and slip positions
+  // are located to it (docs/interactions.md, "The interaction tolerance").
+  double interaction_tolerance = 1e-8;
 };
 
 struct StopSettings {

@@ -83,6 +83,9 @@ std::vector<SceneKey> make_table() {
              "relative error per step; below ~50 machine epsilons the error control only chases rounding and "
              "the steps shrink without bound",
              1e-9, false, s.solver.tolerance),
+      NUMBER("solver.interaction_tolerance", nullptr, "in [1e-14, 1e-3]", x >= 1e-14 && x <= 1e-3,
+             "fraction of the slip force to which each coupled solve converges; above 1e-3 the peak moves by more than 1e-5 relative",
+             1e-8, false, s.solver.interaction_tolerance),
       NUMBER("stop.time", "s", "> 0", x > 0, "", 1.0, false, s.stop.time),
       OTHER("stop.at_first_peak", KeyKind::boolean, s.stop.at_first_peak ? "true" : "false"),
       OTHER("stop.cycles", KeyKind::integer, std::to_string(s.stop.cycles)),
@@ -168,6 +171,13 @@ std::vector<SceneKey> make_table() {
     if (n == "model.interaction_weighting")
       k.written = [](const Scene& s) {
         return s.model.interactions != Interactions::none && s.model.interaction_weighting != TractionWeighting::uniform;
+      };
+    // Only when interactions are on and it differs from the default: scenes of before keep their
+    // text and store hash.
+    if (n == "solver.interaction_tolerance")
+      k.written = [](const Scene& s) {
+        return s.model.interactions != Interactions::none &&
+               s.solver.interaction_tolerance != SolverSettings{}.interaction_tolerance;
       };
     // A scene given in memory has no experiment file (its junctions are written inline instead).
     if (n == "experiment.file") k.written = [](const Scene& s) { return !s.experiment.file.empty(); };

@@ -85,8 +85,10 @@ class InteractingJunctions {
 
   // Own displacement u(f) [m] and du/df [m/N] of the junction at position q of P.
   void own(std::size_t q, double f, double& u, double& du) const;
-  // Exact solve at X by the chord iteration, warm-started from the cache: a new node.
-  ForceNode solve(double X) const;
+  // Exact solve at X by the chord iteration, warm-started from the cache: a new node, converged to
+  // `tol` of the slip forces (solver.interaction_tolerance unless given).
+  ForceNode solve(double X) const { return solve(X, tol_); }
+  ForceNode solve(double X, double tol) const;
   // One chord iteration's step on the active positions: damps it (returns the factor) or
   // replaces g by Anderson's accelerated iterate when that stays within the same bound.
   double chord_step(double X, const std::vector<std::size_t>& active, double a_scale, const std::vector<double>& y1,
@@ -111,6 +113,7 @@ class InteractingJunctions {
   const ContactLaw& law_;
   AreaLaw area_law_;
   bool nonlinear_law_;
+  double tol_;  // solver.interaction_tolerance: of the slip force, per solve and slip position
   std::size_t N_ = 0;
   JunctionState J_;
   Eq3Displacement eq3_;

@@ -20,4 +20,9 @@ struct InteractionMatrix {
 // farther apart than problem.interaction_cutoff when it is > 0. Needs problem.interacting().
 InteractionMatrix interaction_matrix(const Problem& problem);
 
+// The same C_ij, i > j only, written to buffer[i · ld + j] (row-major, the strict lower triangle;
+// nothing else is touched): the fast solver keeps C there, beside G in the upper triangle of the
+// same N × N buffer (N² doubles for both).
+void fill_interaction_lower(const Problem& problem, double* buffer, std::size_t ld);
+
 }  // namespace asperity

@@ -32,9 +32,9 @@ constexpr std::size_t kParallelLapack = 2000;
 PinnedCompliance::PinnedCompliance(const Problem& problem, std::vector<double> reference, bool nonlinear)
     : N_(problem.size()),
       n_(problem.size()),
-      C_(interaction_matrix(problem)),
       G_(problem.size() * problem.size(), 0.0),
       D_(std::move(reference)) {
+  fill_interaction_lower(problem, G_.data(), N_);
   idx_.resize(N_);
   pos_.resize(N_);
   h_.assign(N_, 0.0);
@@ -154,7 +154,7 @@ void PinnedCompliance::remove(std::size_t q, double f_sl) {
   for (std::size_t r = 0; r < n; ++r) {
     a0_[r] -= g[r] * a0q / gqq;
     b0_[r] += g[r] * (f_sl - b0q) / gqq;
-    h_[r] += C_(idx_[r], i) * f_sl;
+    h_[r] += coupling(idx_[r], i) * f_sl;
   }
   // The last position moves into q.
   const std::size_t last = n - 1;
@@ -198,7 +198,7 @@ void PinnedCompliance::rebuild() {
   double* G = G_.data();
   for (std::size_t r = 0; r < n; ++r) {
     const std::size_t i = idx_[r];
-    for (std::size_t s = r + 1; s < n; ++s) G[r * N + s] = C_(i, idx_[s]);
+    for (std::size_t s = r + 1; s < n; ++s) G[r * N + s] = coupling(i, idx_[s]);
     G[r * N + r] = D_[r];
   }
   // Column-major LAPACK on the row-major buffer sees the same symmetric matrix; 'L' there is

@@ -7,8 +7,11 @@
 // A slip removes one position (rank-one, O(N²)); a repin adds the slipping junctions back and a
 // change of D takes effect, both by a rebuild (LAPACK Cholesky inverse in place, O(N³)); after
 // about N rank-one updates G is rebuilt too (their rounding accumulates). G is symmetric: only its
-// upper triangle is kept up to date and read (half the memory traffic of every pass and update).
-// Memory: C and G, 2 N² doubles. Positions q = 0 .. size()−1 index P; junction(q) is the junction there.
+// upper triangle is kept up to date and read (half the memory traffic of every pass and update),
+// and C, symmetric with a zero diagonal, lives in the strict lower triangle of the same buffer
+// (LAPACK's Cholesky and inverse never touch it). Memory: N² doubles for C and G.
+// Positions q = 0 .. size()−1 index P; junction(q) is the junction there.
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -34,7 +37,9 @@ class PinnedCompliance {
   double reference(std::size_t q) const { return D_[q]; }  // m/N
   double a0(std::size_t q) const { return a0_[q]; }        // df_q/dX of the linear system [N/m]
   double b0(std::size_t q) const { return b0_[q]; }        // N
-  double coupling(std::size_t i, std::size_t j) const { return C_(i, j); }  // C_ij [m/N], junctions
+  double coupling(std::size_t i, std::size_t j) const {  // C_ij [m/N], junctions
+    return i == j ? 0.0 : G_[std::max(i, j) * N_ + std::min(i, j)];
+  }
 
   // y1 = G w1, y2 = G w2 over P with w1, w2 (size() entries) zero outside the positions
   // `columns` (one pass over the stored triangle of G). y1, y2 are overwritten.
@@ -62,13 +67,13 @@ class PinnedCompliance {
 
  private:
   std::size_t N_ = 0, n_ = 0;
-  InteractionMatrix C_;
   // y1 = G w1, y2 = G w2 over all of P (w1, w2: size() entries).
   void symmetric_product(const std::vector<double>& w1, const std::vector<double>& w2, std::vector<double>& y1,
                          std::vector<double>& y2) const;
 
-  // N × N, row-major over positions of P (leading dimension N); only the upper triangle
-  // (column ≥ row) is kept: G is symmetric, and every pass over it reads half as much.
+  // N × N, row-major. Upper triangle (column ≥ row): G over positions of P, leading n × n block
+  // (G is symmetric: every pass over it reads half as much). Strict lower triangle: C over
+  // junctions, C_ij at [max(i, j) · N + min(i, j)].
   std::vector<double> G_;
   mutable std::vector<double> partial_;  // the symmetric product's per-block sums (a workspace)
   std::vector<std::uint32_t> idx_;  // position → junction

@@ -52,23 +52,33 @@ TEST_CASE("event solver: junctions far apart reproduce the independent event sol
   inter.stop.time = 1.5;
   Scene indep = inter;
   indep.model.interactions = Interactions::none;
-  const RunResult a = simulate(inter), b = simulate(indep);
+  const RunResult b = simulate(indep);
   REQUIRE(std::isfinite(b.obs.Q_s));
   REQUIRE(b.info.stats.repins >= 1);  // the window holds slips and a repin
-  CHECK(a.info.stats.slips == b.info.stats.slips);
-  CHECK(a.info.stats.repins == b.info.stats.repins);
-  CHECK_THAT(a.obs.Q_s, WithinRel(b.obs.Q_s, 1e-9));
-  CHECK_THAT(a.obs.A_s, WithinRel(b.obs.A_s, 1e-9));
-  CHECK_THAT(a.obs.t_peak, WithinRel(b.obs.t_peak, 1e-9));
-  REQUIRE(a.recorder.series().size() == b.recorder.series().size());
-  double worst = 0;
-  for (std::size_t k = 0; k < a.recorder.series().size(); ++k) {
-    const Sample &u = a.recorder.series()[k], &v = b.recorder.series()[k];
-    worst = std::max({worst, std::abs(u.Q - v.Q) / (std::abs(v.Q) + 1e-3), std::abs(u.A - v.A) / v.A,
-                      std::abs(u.X - v.X) / (std::abs(v.X) + 1e-9)});
-    CHECK(u.n_slipping == v.n_slipping);
+  // Converged solves (interaction tolerance 1e-12): the limit to 1e-9. At the default (1e-8) the
+  // peak within 3e-9 and the series within 3e-8 (measured 2026-11-25: Q_s 5.0e-10, A_s 6.3e-11,
+  // t_peak 4.6e-11; the series 9.5e-9, the stick-slip after the peak carrying the solves' error).
+  const double tols[2] = {1e-12, inter.solver.interaction_tolerance};
+  const double peak_bound[2] = {1e-9, 3e-9}, series_bound[2] = {1e-9, 3e-8};
+  for (int k = 0; k < 2; ++k) {
+    INFO("interaction tolerance " << tols[k]);
+    inter.solver.interaction_tolerance = tols[k];
+    const RunResult a = simulate(inter);
+    CHECK(a.info.stats.slips == b.info.stats.slips);
+    CHECK(a.info.stats.repins == b.info.stats.repins);
+    CHECK_THAT(a.obs.Q_s, WithinRel(b.obs.Q_s, peak_bound[k]));
+    CHECK_THAT(a.obs.A_s, WithinRel(b.obs.A_s, peak_bound[k]));
+    CHECK_THAT(a.obs.t_peak, WithinRel(b.obs.t_peak, peak_bound[k]));
+    REQUIRE(a.recorder.series().size() == b.recorder.series().size());
+    double worst = 0;
+    for (std::size_t m = 0; m < a.recorder.series().size(); ++m) {
+      const Sample &u = a.recorder.series()[m], &v = b.recorder.series()[m];
+      worst = std::max({worst, std::abs(u.Q - v.Q) / (std::abs(v.Q) + 1e-3), std::abs(u.A - v.A) / v.A,
+                        std::abs(u.X - v.X) / (std::abs(v.X) + 1e-9)});
+      CHECK(u.n_slipping == v.n_slipping);
+    }
+    CHECK(worst < series_bound[k]);
   }
-  CHECK(worst < 1e-9);
 }
 
 TEST_CASE("event solver: a pair of linear junctions has the 2x2 closed-form stiffness and force sharing",
@@ -135,6 +145,8 @@ TEST_CASE("event solver: a repin carries every force over without a jump", "[sol
   std::vector<double> x, y;
   cluster(areas.size(), 2.2 * std::sqrt(3e-9 / M_PI) * 2, x, y);
   Scene s = interacting_event_scene(areas, x, y);
+  // Converged solves: the property is the repin's (its anchors), not the solves' tolerance.
+  s.solver.interaction_tolerance = 1e-12;
   const Problem p = make_problem(s);
   InteractingJunctions J(p);
   // Load to the first slip, let it happen, then repin everything at the same X.
@@ -186,4 +198,73 @@ TEST_CASE("event solver: a chain of three equal junctions slips in the closed-fo
       CHECK(J.slip_crossed(J.next_threshold()) == 1);
     }
   }
+}
+
+TEST_CASE("event solver: each coupled solve is within solver.interaction_tolerance of the converged one",
+          "[solve][interacting][event]") {
+  // 25 Eq. (3) junctions 1.6 diameters apart (strong coupling): the forces at half the first slip
+  // position and, after that slip, at the new set's next one, against solves converged to 1e-12,
+  // relative to each junction's slip force: below the knob (its contract), and falling faster
+  // than it.
+  const std::vector<double> areas = spread_areas(25, 1e-9, 4e-9);
+  std::vector<double> x, y;
+  cluster(areas.size(), 1.6 * 2 * std::sqrt(4e-9 / M_PI), x, y);
+  Scene s = interacting_event_scene(areas, x, y);
+  // Both at the converged run's positions (the same X for all): half its first slip position,
+  // and its second.
+  double X1 = 0, X2 = 0;
+  auto forces_at = [&](double tol) {
+    s.solver.interaction_tolerance = tol;
+    const Problem p = make_problem(s);
+    InteractingJunctions J(p);
+    if (X1 == 0) X1 = J.next_threshold();
+    std::vector<double> f = J.forces(0.5 * X1);
+    REQUIRE(J.slip_crossed(J.next_threshold()) >= 1);
+    if (X2 == 0) X2 = J.next_threshold();
+    const std::vector<double> g = J.forces(X2);
+    f.insert(f.end(), g.begin(), g.end());
+    return std::make_pair(f, J.state().f_s);
+  };
+  const auto [ref, fs] = forces_at(1e-12);
+  const double tols[3] = {1e-4, 1e-6, 1e-8};
+  double err[3];
+  for (int k = 0; k < 3; ++k) {
+    const auto [f, unused] = forces_at(tols[k]);
+    err[k] = 0;
+    for (std::size_t i = 0; i < f.size(); ++i) err[k] = std::max(err[k], std::abs(f[i] - ref[i]) / fs[i % fs.size()]);
+  }
+  // Measured (2026-11-25): 6.2e-6, 7.7e-9, 1.9e-12, i.e. 0.06, 0.008 and 0.0002 of the knob; the
+  // order in the knob log10(ratio)/2 = 1.45 and 1.80 (faster than the knob: the chord iteration
+  // contracts by 0.02-0.1 a pass and stops at its first change below the tolerance).
+  INFO("errors " << err[0] << " " << err[1] << " " << err[2]);
+  CHECK(err[0] < 0.2 * tols[0]);
+  CHECK(err[1] < 0.03 * tols[1]);
+  CHECK(err[2] < 1e-3 * tols[2]);
+  CHECK(err[0] / err[1] > 250);  // order > 1.2
+  CHECK(err[1] / err[2] > 250);
+}
+
+TEST_CASE("event solver: at the default interaction tolerance a stand-in's peak and stick-slip are within 5e-9",
+          "[solve][interacting][event][heavy]") {
+  // The stand-in P0.98N with its junctions 4 times farther apart (weakly coupled, avalanches at
+  // the peak, five stick-slip cycles; the interaction sweep's most sensitive point), at the
+  // default solver.interaction_tolerance and at 1e-12. Issue 26 asks 1e-7. Measured (2026-11-25),
+  // relative: Q_s 2.7e-11, A_s 8.1e-12, t_peak 8.6e-11, stick-slip period 3.8e-10, drop 1.3e-9; at
+  // 1e-7 Q_s would move by 7.6e-8 and the drop by 3.4e-7.
+  Scene s = load_scene(std::filesystem::path(ASPERITY_SOURCE_DIR) / "scenes/paper/P0.98N.yaml",
+                       {"model.interactions=elastic", "model.position_scale=4", "stop.time=20", "stop.cycles=5"});
+  s.output.series.clear();
+  REQUIRE(s.solver.interaction_tolerance == 1e-8);
+  Scene converged = s;
+  converged.solver.interaction_tolerance = 1e-12;
+  const RunResult a = simulate(s), b = simulate(converged);
+  REQUIRE(std::isfinite(b.obs.Q_s));
+  REQUIRE(b.obs.ss_cycles == 5);
+  CHECK(a.obs.ss_cycles == b.obs.ss_cycles);
+  CHECK(a.info.stats.slips == b.info.stats.slips);
+  CHECK_THAT(a.obs.Q_s, WithinRel(b.obs.Q_s, 5e-9));
+  CHECK_THAT(a.obs.A_s, WithinRel(b.obs.A_s, 5e-9));
+  CHECK_THAT(a.obs.t_peak, WithinRel(b.obs.t_peak, 5e-9));
+  CHECK_THAT(a.obs.ss_period, WithinRel(b.obs.ss_period, 5e-9));
+  CHECK_THAT(a.obs.ss_drop, WithinRel(b.obs.ss_drop, 5e-9));
 }

@@ -41,9 +41,9 @@ TEST_CASE("scene keys: number defaults are the struct defaults and the writer pr
       ++numbers;
     }
   }
-  // model 7 (eta, epsilon, c_min, p, alpha_b, interaction_cutoff, position_scale), solver 2,
-  // stop 3, output 2; experiment values are required.
-  CHECK(numbers == 14);
+  // model 7 (eta, epsilon, c_min, p, alpha_b, interaction_cutoff, position_scale), solver 3
+  // (Ct, tolerance, interaction_tolerance), stop 3, output 2; experiment values are required.
+  CHECK(numbers == 15);
   const Scene s = load_scene(kScene, {"stop.max_slips=7", "stop.wall_time=60"});
   const std::string text = scene_to_yaml(s);
   for (const SceneKey& k : scene_keys()) {
