@@ -4,7 +4,7 @@
 //    area distribution (its areas repeated), the slider mass ∝ N (same mean load per junction)
 //    and centres placed as the stand-ins' (Hertz density in a contact disc of radius
 //    4.5 mm · sqrt(N / 1201), same area fraction), each run through its first peak; the fitted
-//    exponent of time ∝ N^b; peak resident memory against the 2 N² doubles of C and G.
+//    exponent of time ∝ N^b; peak resident memory against the N² doubles of C and G (one buffer).
 //  - whole run: the stand-in P4.00N itself with the same positions, through the first peak and
 //    five stick-slip cycles (or stop.time when it glides).
 // STAND-IN data: the figures time the solver, not a property of the experiments.
@@ -40,7 +40,7 @@ struct InteractingBenchRow {
   std::int64_t steps = 0, slips = 0, repins = 0, solves = 0, iterations = 0, rank_one = 0, rebuilds = 0;
   std::int64_t samples = 0;  // of the output series
   long max_rss_kB = 0;   // of the whole process after this run (sizes run in increasing order)
-  double bound_kB = 0;   // 2 N² doubles
+  double bound_kB = 0;   // N² doubles
 };
 
 std::vector<InteractingBenchRow> run_interacting_bench(const InteractingBenchOptions& opt);

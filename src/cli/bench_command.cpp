@@ -260,7 +260,7 @@ Command add_bench_command(CLI::App& app) {
   CLI::App* s = sub->add_subcommand("savings", "Wall time saved by series=[], stop.at_first_peak, alpha_b=0");
   s->add_option("--scene", opt->scenes, "Scene(s) (default scenes/paper/P4.00N.yaml)");
   CLI::App* in = sub->add_subcommand("interacting", "Interacting event solver: time to the first peak vs N "
-                                                    "(fitted exponent), peak memory vs 2N^2 doubles, P4.00N whole run");
+                                                    "(fitted exponent), peak memory vs N^2 doubles, P4.00N whole run");
   in->add_option("--sizes", opt->interacting_sizes, "Junction counts (default 300 600 1200 2400 5000)")
       ->check(CLI::Range(2, 10000));
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "physics/interface_law.hpp"
 #include "solve/interacting/anderson.hpp"
@@ -40,7 +41,7 @@ InteractingJunctions::InteractingJunctions(const Problem& problem)
 }
 
 InteractingJunctions::Work InteractingJunctions::work() const {
-  return Work{solves_, iterations_, pinned_.rank_one_updates(), pinned_.rebuilds()};
+  return Work{solves_, iterations_, pinned_.rank_one_updates(), pinned_.rebuilds(), overloaded_};
 }
 
 bool InteractingJunctions::has_threshold() const { return std::isfinite(x_up_); }
@@ -161,6 +162,9 @@ ForceNode InteractingJunctions::solve(double X, double tol) const {
         g[nA + k] = (pinned_.a0(q) - y2[q]) / a_scale;
       }
       const double damp = chord_step(X, active, a_scale, y1, y2, z, g, aa);
+      // Long after a solve normally ends (2-9 passes), an iterate past φ = 1: a junction far over
+      // its threshold, which the iteration cannot follow (see Overloaded).
+      if (iter >= 30) overloaded_check(X, active, node.f);
       double change = 0;
       for (std::size_t q = 0; q < n; ++q) {
         if (pinned_.nonlinear(q)) continue;
@@ -226,6 +230,23 @@ ForceNode InteractingJunctions::solve(double X, double tol) const {
   }
   ++solves_;
   return node;
+}
+
+void InteractingJunctions::overloaded_check(double X, const std::vector<std::size_t>& active,
+                                            const std::vector<double>& f) const {
+  std::size_t worst = npos;
+  double ratio = 0, phi_max = 0;
+  for (std::size_t q : active) {
+    phi_max = std::max(phi_max, eq3_.force_scale(pinned_.junction(q)) * f[q]);
+    if (f[q] / threshold(q) > ratio) ratio = f[q] / threshold(q), worst = q;
+  }
+  if (phi_max < 1.0 || worst == npos) return;
+  char what[200];
+  std::snprintf(what, sizeof what,
+                "interacting event solver: a pinned junction is driven past its slip force to phi = %.3g, outside "
+                "an avalanche, at X = %.6g m",
+                phi_max, X);
+  throw Overloaded(what, worst);
 }
 
 double InteractingJunctions::chord_step(double X, const std::vector<std::size_t>& active, double a_scale,
@@ -435,7 +456,16 @@ std::int64_t InteractingJunctions::settle(double X, std::size_t k) {
         if (r >= worst) worst = r, k = pinned_.junction(q);
       }
     } else {
-      const ForceNode& m = cache_.at(X);
+      // A junction driven past φ = 1, far over its threshold: the most overloaded slips.
+      const ForceNode* solved = nullptr;
+      try {
+        solved = &cache_.at(X);
+      } catch (const Overloaded& o) {
+        k = pinned_.junction(o.q);
+        ++overloaded_;
+        continue;
+      }
+      const ForceNode& m = *solved;
       double worst = 1.0;
       for (std::size_t q = 0; q < pinned_.size(); ++q) {
         const double r = m.f[q] / threshold(q);

@@ -22,10 +22,12 @@
 // exactly. The slip positions are found by Newton in X on the exact solutions.
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "solve/core/junction_state.hpp"
 #include "solve/core/problem.hpp"
+#include "solve/core/run_info.hpp"
 #include "solve/interacting/anderson.hpp"
 #include "solve/interacting/eq3_displacement.hpp"
 #include "solve/interacting/force_cache.hpp"
@@ -74,14 +76,25 @@ class InteractingJunctions {
   // frozen area.
   std::vector<double> areas(const std::vector<double>& f) const;
 
-  // Work done, for benchmarks: exact solves, their chord iterations, rank-one updates, rebuilds.
+  // Work done, for benchmarks: exact solves, their chord iterations, rank-one updates, rebuilds;
+  // overloaded: junctions slipped in an avalanche because the chord iteration drove them past
+  // φ = 1 (see Overloaded).
   struct Work {
-    std::int64_t solves = 0, iterations = 0, rank_one = 0, rebuilds = 0;
+    std::int64_t solves = 0, iterations = 0, rank_one = 0, rebuilds = 0, overloaded = 0;
   };
   Work work() const;
 
  private:
   static constexpr std::size_t npos = static_cast<std::size_t>(-1);
+
+  // The chord iteration drove the junction at position q past φ = 1 (far over its slip force,
+  // where u' grows without bound and the iteration cannot follow it to the root just below 1).
+  // Such a junction is over its threshold: inside an avalanche settle() slips it (the most
+  // overloaded by the iterate); anywhere else it is the SolverError it derives from.
+  struct Overloaded : SolverError {
+    Overloaded(const std::string& what, std::size_t position) : SolverError(what), q(position) {}
+    std::size_t q;
+  };
 
   // Own displacement u(f) [m] and du/df [m/N] of the junction at position q of P.
   void own(std::size_t q, double f, double& u, double& du) const;
@@ -95,6 +108,8 @@ class InteractingJunctions {
                     const std::vector<double>& y2, const std::vector<double>& z, std::vector<double>& g,
                     Anderson& aa) const;
   void add_totals(ForceNode& node) const;  // F, dF/dX, A, dA/dX of a solved node
+  // Throws Overloaded when an iterate f (per position) puts a junction past φ = 1.
+  void overloaded_check(double X, const std::vector<std::size_t>& active, const std::vector<double>& f) const;
   // The iteration's start at X: f and df/dX per position of P (see the .cpp).
   void warm_start(double X, std::vector<double>& f, std::vector<double>& a) const;
   double threshold(std::size_t q) const;  // N, the slip force of position q
@@ -122,7 +137,7 @@ class InteractingJunctions {
   mutable PinnedCompliance pinned_;
   mutable ForceCache cache_;
   double sum_a0_ = 0, sum_b0_ = 0, F_slip_ = 0, A_fixed_ = 0;
-  std::int64_t n_intact_ = 0, slips_ = 0, repins_ = 0;
+  std::int64_t n_intact_ = 0, slips_ = 0, repins_ = 0, overloaded_ = 0;
   double x_up_ = 0, x_down_ = 0;
   std::size_t k_up_ = npos, k_down_ = npos;  // junctions of the next slips
   mutable std::vector<double> last_f_, last_a_;  // by junction: the last solve (warm start)

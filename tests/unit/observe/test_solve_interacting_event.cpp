@@ -7,10 +7,13 @@
 #include <filesystem>
 #include <vector>
 
+#include "observe/recorder.hpp"
 #include "observe/simulate.hpp"
 #include "physics/elastic_interaction.hpp"
 #include "scene/load.hpp"
 #include "solve/interacting/interacting_junctions.hpp"
+#include "solve/integrate.hpp"
+#include "solve/interacting/interacting_event_stepper.hpp"
 #include "solve/interacting/interaction_matrix.hpp"
 #include "support_scenes.hpp"
 
@@ -267,4 +270,38 @@ TEST_CASE("event solver: at the default interaction tolerance a stand-in's peak 
   CHECK_THAT(a.obs.t_peak, WithinRel(b.obs.t_peak, 5e-9));
   CHECK_THAT(a.obs.ss_period, WithinRel(b.obs.ss_period, 5e-9));
   CHECK_THAT(a.obs.ss_drop, WithinRel(b.obs.ss_drop, 5e-9));
+}
+
+TEST_CASE("event solver: a junction driven far past its slip force in an avalanche slips in it",
+          "[solve][interacting][event][heavy]") {
+  // The stand-in P3.09N at ε = 0.58 (a fit's trial point): a slip's large force drop drives a
+  // neighbour toward φ = 1, where its own compliance grows without bound and the chord iteration
+  // cannot follow; before, the run stopped there with a solver error (X = 2.37e-4 m). Now that
+  // junction slips in the avalanche. Truth: the same run at converged solves (1e-12), where the
+  // same junctions are caught the same way. Measured (2026-11-25): Q_s 3.4e-9, A_s 1.9e-12,
+  // t_peak 8.3e-11 relative apart, 2,558 slips each.
+  Scene s = load_scene(std::filesystem::path(ASPERITY_SOURCE_DIR) / "scenes/paper/P3.09N.yaml",
+                       {"model.interactions=elastic", "model.alpha_b=7.07107e-16", "model.epsilon=0.581667",
+                        "model.eta=94.8683", "stop.at_first_peak=true", "stop.time=13"});
+  s.output.series.clear();
+  auto run = [](const Scene& scene, std::int64_t& overloaded) {
+    const Problem problem = make_problem(scene);
+    Recorder rec = make_recorder(scene);
+    InteractingEventStepper stepper(problem);
+    const RunInfo info = integrate(stepper, problem, rec);
+    overloaded = stepper.junctions().work().overloaded;
+    return std::make_pair(rec.first_peak().max, info.stats.slips);
+  };
+  std::int64_t caught = 0, caught_converged = 0;
+  const auto [peak, slips] = run(s, caught);
+  Scene converged = s;
+  converged.solver.interaction_tolerance = 1e-12;
+  const auto [peak_c, slips_c] = run(converged, caught_converged);
+  INFO("junctions slipped as driven past phi = 1: " << caught << " and " << caught_converged);
+  CHECK(caught >= 1);
+  CHECK(caught_converged >= 1);
+  CHECK(slips == slips_c);
+  CHECK_THAT(peak.Q, WithinRel(peak_c.Q, 1e-8));
+  CHECK_THAT(peak.A, WithinRel(peak_c.A, 1e-8));
+  CHECK_THAT(peak.t, WithinRel(peak_c.t, 1e-8));
 }
