@@ -552,6 +552,10 @@ JointSide run_joint_side(const std::string& name, const std::map<std::string, Jo
   const auto it = fits.find(name);
   if (it == fits.end()) return s;
   s.fit = it->second;
+  if (s.fit.status != "ok") {
+    s.missing = "joint calibration " + s.fit.status + " (" + s.fit.fit_yaml.generic_string() + ": " + s.fit.failure + ")";
+    return s;
+  }
   const std::string key = s.fit.fit_file.generic_string();
   if (!specs.count(key)) {
     if (key.empty() || !fs::exists(s.fit.fit_file)) {
@@ -690,15 +694,17 @@ void write_joint_md(std::ostream& md, const InteractionStudyOptions& opt, const 
      << "Calibrated values per load and model, read from " << files(opt.joint_independent) << " (independent) and "
      << files(opt.joint_interacting) << " (interacting): objective `area_and_force`, a chi-square over the measured "
         "A(Q) and the measured Q(t) (docs/calibration.md, \"Joint calibration\"). 95 %: the Hessian's interval (±1.96 σ, "
-        "σ scaled by s²; n/a where the Hessian was not positive definite); profile σ: the parabola through each "
-        "one-parameter profile (conditional). Neither is a statistical error bar while s² ≫ 1.\n\n"
+        "σ scaled by s²; n/a where the fit gave none: a parameter at its bound, or H not positive definite, fit.yaml's "
+        "`uncertainty.failure`); profile σ: the parabola through each one-parameter profile (conditional). Neither is a "
+        "statistical error bar while s² ≫ 1. (bound): the value sits at its box's bound.\n\n"
      << "| experiment | model | α_b [1e-15] | 95 % | profile σ | ε | 95 % | profile σ | η [1/s] | 95 % | profile σ | s² |\n"
      << "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& r : rows)
     for (const auto* s : {&r.indep, &r.inter}) {
       const char* model = s == &r.indep ? "independent" : "interacting";
-      if (s->fit.label.empty()) {
-        md << "| " << r.name << " | " << model << " | no joint calibration: no evidence | | | | | | | | | |\n";
+      if (s->fit.label.empty() || s->fit.status != "ok") {
+        md << "| " << r.name << " | " << model << " | " << (s->fit.label.empty() ? "no joint calibration" : "joint calibration " + s->fit.status)
+           << ": no evidence | | | | | | | | | |\n";
         continue;
       }
       auto par = [&](const std::string& k) {

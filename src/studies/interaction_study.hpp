@@ -25,8 +25,9 @@ struct InteractionStudyOptions {
   // The joint calibrations of (α_b, ε, η) against A(Q) and Q(t) (issue 22), per model: fit.yaml
   // files read in order (a load found in an earlier file is not replaced); absent: no evidence.
   std::vector<std::filesystem::path> joint_independent = {"results/fits/joint_independent/fit.yaml"};
-  std::vector<std::filesystem::path> joint_interacting = {"results/fits/joint_interacting/fit.yaml",
-                                                          "results/fits/joint_interacting_P6.40N/fit.yaml"};
+  std::vector<std::filesystem::path> joint_interacting = {
+      "results/fits/joint_interacting/fit.yaml", "results/fits/joint_interacting_P3.09N/fit.yaml",
+      "results/fits/joint_interacting_P4.00N/fit.yaml", "results/fits/joint_interacting_P6.40N/fit.yaml"};
   std::filesystem::path sweep_store = "results/interactions_sweep";  // sweeps/interactions.yaml
   std::filesystem::path out = "results/interactions";
   std::string spread_experiment = "P4.00N";

@@ -65,10 +65,12 @@ std::map<std::string, JointFitEntry> read_joint_fits(const std::vector<fs::path>
       const YAML::Node root = scene_io::load_yaml_file(file, file.string());  // the hardened reader
       const std::string fit_file = root["fit_file"].as<std::string>("");
       for (const auto& f : root["fits"]) {
-        if (f["status"].as<std::string>("") != "ok") continue;
         JointFitEntry e;
         e.label = f["label"].as<std::string>();
-        if (out.count(e.label)) continue;
+        e.status = f["status"].as<std::string>("");
+        e.failure = f["failure"].as<std::string>("");
+        if (const auto have = out.find(e.label); have != out.end() && (have->second.status == "ok" || e.status != "ok"))
+          continue;
         e.fit_yaml = file;
         e.fit_file = fit_file;
         e.objective = number_or_nan(f["objective"]);
@@ -89,6 +91,7 @@ std::map<std::string, JointFitEntry> read_joint_fits(const std::vector<fs::path>
         }
         if (const YAML::Node u = f["uncertainty"]) {
           e.reduced_chi2 = number_or_nan(u["reduced_chi2"]);
+          if (e.failure.empty()) e.failure = u["failure"].as<std::string>("");
           for (const auto& p : u["parameters"]) {
             auto it = e.parameters.find(p.first.as<std::string>());
             if (it == e.parameters.end()) continue;

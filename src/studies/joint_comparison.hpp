@@ -52,6 +52,8 @@ struct JointParameter {
 };
 struct JointFitEntry {
   std::string label;
+  std::string status;               // "ok", or "failed" (then `failure` says why; no values to use)
+  std::string failure;              // the fit's failure, or its uncertainty's (Hessian) failure
   std::filesystem::path fit_yaml;   // where it was read
   std::filesystem::path fit_file;   // the fit file it names (fit_file:), as written
   std::map<std::string, JointParameter> parameters;  // by scene key (model.alpha_b, ...)
@@ -60,8 +62,9 @@ struct JointFitEntry {
   int n_area = 0, n_force = 0;
 };
 
-// label → entry for every fit of status ok in each file (later files do not replace a label of an
-// earlier one); absent files are skipped. A file that is not a fit.yaml: InputError.
+// label → entry for every fit in the files, in order: the first fit of status ok of a label is
+// kept; a failed one only while no file has an ok one. Absent files are skipped. A file that is
+// not a fit.yaml: InputError.
 std::map<std::string, JointFitEntry> read_joint_fits(const std::vector<std::filesystem::path>& fit_yamls);
 
 }  // namespace asperity

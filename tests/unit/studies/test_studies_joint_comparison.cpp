@@ -100,7 +100,7 @@ TEST_CASE("the rms misfit's spread matches a Monte Carlo over the noise", "[join
   CHECK_THAT(rms_spread(1.0, 1.0, 50), WithinRel(1.0 / std::sqrt(100.0), 1e-14));  // d = 0: σ / sqrt(2n)
 }
 
-TEST_CASE("joint fits are read from fit.yaml, the first file's load kept, absent files skipped", "[joint_comparison]") {
+TEST_CASE("joint fits are read from fit.yaml: the first ok fit of a load kept, a failed one only without it", "[joint_comparison]") {
   const auto dir = fresh_dir("joint_comparison");
   const auto a = write_text(dir / "a" / "fit.yaml", R"(fit_file: "fits/a.yaml"
 fits:
@@ -119,6 +119,10 @@ fits:
         "model.alpha_b": {value: 6.5e-16, sigma: 1e-18, interval95: [6.4804e-16, 6.5196e-16], profile_sigma: 2e-18}
   - label: "P2"
     status: failed
+    failure: "evaluation 4: solver stopped"
+  - label: "P4"
+    status: failed
+    failure: "evaluation 2: solver stopped"
 )");
   const auto b = write_text(dir / "b" / "fit.yaml", R"(fit_file: "fits/b.yaml"
 fits:
@@ -133,10 +137,16 @@ fits:
     uncertainty:
       reduced_chi2: 3
       failure: "not positive definite"
+  - label: "P4"
+    status: ok
+    objective: 4
+    parameters: {"model.alpha_b": {value: 4e-15}}
 )");
   const auto fits = read_joint_fits({a, dir / "absent" / "fit.yaml", b});
-  REQUIRE(fits.size() == 2);  // P1 (from a), P3 (from b); P2 failed
+  REQUIRE(fits.size() == 4);  // P1 (a's, not b's), P2 (failed, in a only), P3 (b), P4 (b's ok over a's failed)
   const JointFitEntry& p1 = fits.at("P1");
+  CHECK(p1.status == "ok");
+  CHECK(p1.failure.empty());
   CHECK(p1.fit_yaml == a);
   CHECK(p1.fit_file == "fits/a.yaml");
   CHECK(p1.objective == 500.5);
@@ -154,5 +164,10 @@ fits:
   CHECK(p3.reduced_chi2 == 3);
   CHECK(std::isnan(p3.parameters.at("model.alpha_b").lo95));
   CHECK(p3.n_force == 0);
+  CHECK(p3.failure == "not positive definite");  // the Hessian's
+  CHECK(fits.at("P2").status == "failed");
+  CHECK(fits.at("P2").failure == "evaluation 4: solver stopped");
+  CHECK(fits.at("P4").status == "ok");
+  CHECK(fits.at("P4").parameters.at("model.alpha_b").value == 4e-15);
   std::filesystem::remove_all(dir);
 }
