@@ -1976,7 +1976,7 @@ $p1nc << EOD
 4.179591035 0.7963615032 0.8848461146
 4.206908624 0.790968058 0.8848461146
 4.234226212 0.7963864811 0.8848461146
-4.261543801 0.7989867377 0.8848461146
+4.261543801 0.7989867376 0.8848461146
 4.288861389 0.8016305003 0.8848461146
 4.316178978 0.8051370377 0.8848461146
 4.343496566 0.8099916628 0.8848461146
@@ -2331,7 +2331,7 @@ $p1ns << EOD
 5.600105636 0.8179818364 0.8850403576
 5.627423224 0.8264912467 0.8850403576
 5.654740812 0.8351446891 0.8850403576
-5.682058401 0.8586047215 0.8850403576
+5.682058401 0.8586047216 0.8850403576
 5.709375989 0.7965363219 0.8850403576
 5.736693578 0.7921128584 0.8850403576
 5.764011166 0.7961294478 0.8850403576
@@ -3158,7 +3158,7 @@ $p2nc << EOD
 3.360063381 0.5536844007 0.9553589564
 3.38738097 0.5610992647 0.9541552972
 3.414698558 0.5692823479 0.9528083462
-3.442016147 0.5772130975 0.9514843207
+3.442016147 0.5772130974 0.9514843207
 3.469333735 0.5848029717 0.9502000503
 3.496651324 0.5933929039 0.9487263234
 3.523968912 0.6028160534 0.9470849293
@@ -3642,8 +3642,8 @@ set key outside right top font ',8'
 set grid
 set xlabel 't [s]'
 set ylabel 'f_i / (σ A_{0,i}) [1]'
-set arrow from 7.450251399858123, graph 0 to 7.450251399858123, graph 1 nohead dt 3 lc rgb 'black'
-set arrow from 4.1766795061594575, graph 0 to 4.1766795061594575, graph 1 nohead dt 3 lc rgb 'gray50'
+set arrow from 7.450251399858122, graph 0 to 7.450251399858122, graph 1 nohead dt 3 lc rgb 'black'
+set arrow from 4.176679506159414, graph 0 to 4.176679506159414, graph 1 nohead dt 3 lc rgb 'gray50'
 plot $p0ic using 1:2 with lines lw 2 dt 1 lc rgb '#1b6ca8' title 'interacting, crowded #422', $p0is using 1:2 with lines lw 2 dt 2 lc rgb '#1b6ca8' title 'interacting, sparse #513', $p0nc using 1:2 with lines lw 1 dt 1 lc rgb '#1b6ca8' title 'independent, crowded #422', $p0ns using 1:2 with lines lw 1 dt 2 lc rgb '#1b6ca8' title 'independent, sparse #513', $p1ic using 1:2 with lines lw 2 dt 1 lc rgb '#c0392b' title 'interacting, crowded #479', $p1is using 1:2 with lines lw 2 dt 2 lc rgb '#c0392b' title 'interacting, sparse #752', $p1nc using 1:2 with lines lw 1 dt 1 lc rgb '#c0392b' title 'independent, crowded #479', $p1ns using 1:2 with lines lw 1 dt 2 lc rgb '#c0392b' title 'independent, sparse #752', $p2ic using 1:2 with lines lw 2 dt 1 lc rgb '#27ae60' title 'interacting, crowded #77', $p2is using 1:2 with lines lw 2 dt 2 lc rgb '#27ae60' title 'interacting, sparse #568', $p2nc using 1:2 with lines lw 1 dt 1 lc rgb '#27ae60' title 'independent, crowded #77', $p2ns using 1:2 with lines lw 1 dt 2 lc rgb '#27ae60' title 'independent, sparse #568'
 set ylabel 'A_i / A_{0,i} [1]'
 plot $p0ic using 1:3 with lines lw 2 dt 1 lc rgb '#1b6ca8' title 'interacting, crowded #422', $p0is using 1:3 with lines lw 2 dt 2 lc rgb '#1b6ca8' title 'interacting, sparse #513', $p0nc using 1:3 with lines lw 1 dt 1 lc rgb '#1b6ca8' title 'independent, crowded #422', $p0ns using 1:3 with lines lw 1 dt 2 lc rgb '#1b6ca8' title 'independent, sparse #513', $p1ic using 1:3 with lines lw 2 dt 1 lc rgb '#c0392b' title 'interacting, crowded #479', $p1is using 1:3 with lines lw 2 dt 2 lc rgb '#c0392b' title 'interacting, sparse #752', $p1nc using 1:3 with lines lw 1 dt 1 lc rgb '#c0392b' title 'independent, crowded #479', $p1ns using 1:3 with lines lw 1 dt 2 lc rgb '#c0392b' title 'independent, sparse #752', $p2ic using 1:3 with lines lw 2 dt 1 lc rgb '#27ae60' title 'interacting, crowded #77', $p2is using 1:3 with lines lw 2 dt 2 lc rgb '#27ae60' title 'interacting, sparse #568', $p2nc using 1:3 with lines lw 1 dt 1 lc rgb '#27ae60' title 'independent, crowded #77', $p2ns using 1:3 with lines lw 1 dt 2 lc rgb '#27ae60' title 'independent, sparse #568'

@@ -1,5 +1,6 @@
 // asperity study interactions [SCENE.yaml...] [--out results/interactions] [--fit-independent F]
-//                             [--fit-interacting F] [--sweep STORE] [--spread EXPERIMENT] [--quiet]
+//                             [--fit-interacting F] [--joint-independent F...] [--joint-interacting F...]
+//                             [--sweep STORE] [--spread EXPERIMENT] [--quiet]
 #include <cstdio>
 #include <iostream>
 #include <string>
@@ -27,6 +28,10 @@ Command add_study_command(CLI::App& app) {
   in->add_option("-o,--out", *out, "Output folder (default results/interactions)");
   in->add_option("--fit-independent", opt->fit_independent, "fit.yaml of the independent calibration");
   in->add_option("--fit-interacting", opt->fit_interacting, "fit.yaml of the interacting calibration");
+  in->add_option("--joint-independent", opt->joint_independent,
+                 "fit.yaml file(s) of the joint (alpha_b, epsilon, eta) calibration, independent junctions");
+  in->add_option("--joint-interacting", opt->joint_interacting,
+                 "fit.yaml file(s) of the joint (alpha_b, epsilon, eta) calibration, interacting junctions");
   in->add_option("--sweep", opt->sweep_store, "Store of sweeps/interactions.yaml");
   in->add_option("--spread", opt->spread_experiment, "Experiment of the force-spread histogram (default P4.00N)");
   add_figures_option(in, opt->figures);

@@ -244,6 +244,10 @@ std::string standin_readme(const StandinRecipe& r, const std::vector<StandinExpe
     t += "   (alpha_b, epsilon, eta) to it alone would return those; its header gives them. `experiment.yaml` does not name\n";
     t += "   it (scene texts and store hashes stay as they were); a fit names it per experiment (`force:`, objective\n";
     t += "   `area_and_force`, docs/calibration.md).\n";
+    if (r.force_after_peak >= 1.0)  // the recipe's comment: past the interacting model's peak
+      t += "   The window reaches past the independent model's peak so that it holds the interacting model's first peak\n"
+           "   too (1.7-2.0 times later, results/interactions/REPORT.md); after its own peak it therefore holds the\n"
+           "   independent model's stick-slip cycles: intended, a model without them misses that part of Q(t).\n";
   }
   t += "5. `experiment.yaml`: k_L = " + g6(r.k_L) + " N/m, v = " + g6(r.v) + " m/s, E = " + g6(r.E) +
        " Pa, nu = " + g6(r.nu) + ", sigma_exp = " + g6(r.sigma_exp) + " Pa,\n";

@@ -4,7 +4,9 @@
 // calibrated α_b and the interacting model at its recalibrated α_b (the paper's method, per
 // load), side by side: shape exponent n of A0 − A ∝ Qⁿ, area decay, incipient slope, stick-slip;
 // the spread of f_i/(σA_i) at the first peak among junctions of equal area in crowded vs sparse
-// neighbourhoods (the paper's Figure 2 argument); the crowding and cut-off sweep's table. Every
+// neighbourhoods (the paper's Figure 2 argument); the crowding and cut-off sweep's table; each
+// model re-run at its joint calibration of (α_b, ε, η) (issue 22), its Q(t) and A(Q) against the
+// measured ones at their noise (studies/joint_comparison.hpp). Every
 // verdict is computed from the runs of the same command; missing inputs read "no evidence".
 // STAND-IN data: the report says so.
 #include <filesystem>
@@ -20,6 +22,12 @@ struct InteractionStudyOptions {
   std::vector<std::filesystem::path> scenes;            // the experiments (scenes/paper/P*.yaml)
   std::filesystem::path fit_independent = "results/fits/paper_alpha_b/fit.yaml";
   std::filesystem::path fit_interacting = "results/fits/interactions_alpha_b/fit.yaml";
+  // The joint calibrations of (α_b, ε, η) against A(Q) and Q(t) (issue 22), per model: fit.yaml
+  // files read in order (a load found in an earlier file is not replaced); absent: no evidence.
+  std::vector<std::filesystem::path> joint_independent = {"results/fits/joint_independent/fit.yaml"};
+  std::vector<std::filesystem::path> joint_interacting = {
+      "results/fits/joint_interacting/fit.yaml", "results/fits/joint_interacting_P3.09N/fit.yaml",
+      "results/fits/joint_interacting_P4.00N/fit.yaml", "results/fits/joint_interacting_P6.40N/fit.yaml"};
   std::filesystem::path sweep_store = "results/interactions_sweep";  // sweeps/interactions.yaml
   std::filesystem::path out = "results/interactions";
   std::string spread_experiment = "P4.00N";
