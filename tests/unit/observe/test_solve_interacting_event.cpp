@@ -37,6 +37,14 @@ void cluster(std::size_t n, double pitch_m, std::vector<double>& x, std::vector<
   }
 }
 
+// n junctions of 1e-9 to 4e-9 m² on a square lattice 1.6 largest diameters apart (strong coupling).
+Scene strong_cluster_scene(std::size_t n) {
+  const std::vector<double> areas = spread_areas(n, 1e-9, 4e-9);
+  std::vector<double> x, y;
+  cluster(areas.size(), 1.6 * 2 * std::sqrt(4e-9 / M_PI), x, y);
+  return interacting_event_scene(areas, x, y);
+}
+
 }  // namespace
 
 TEST_CASE("event solver: junctions far apart reproduce the independent event solver on every observable",
@@ -110,10 +118,7 @@ TEST_CASE("event solver: the step-by-step interacting reference converges to it 
   // 16 junctions 1.6 diameters apart (strong coupling), to the first peak. The measure is the
   // mean |Q_ref − Q_event| over the samples of the loading branch, relative to Q_s: the peak's
   // own time and height jitter with the sampling grid, the whole curve does not.
-  const std::vector<double> areas = spread_areas(16, 1e-9, 4e-9);
-  std::vector<double> x, y;
-  cluster(areas.size(), 1.6 * 2 * std::sqrt(4e-9 / M_PI), x, y);
-  Scene ev = interacting_event_scene(areas, x, y);
+  Scene ev = strong_cluster_scene(16);
   ev.stop.at_first_peak = true;
   ev.solver.tolerance = 1e-11;
   const RunResult e = simulate(ev);
@@ -209,10 +214,7 @@ TEST_CASE("event solver: each coupled solve is within solver.interaction_toleran
   // position and, after that slip, at the new set's next one, against solves converged to 1e-12,
   // relative to each junction's slip force: below the knob (its contract), and falling faster
   // than it.
-  const std::vector<double> areas = spread_areas(25, 1e-9, 4e-9);
-  std::vector<double> x, y;
-  cluster(areas.size(), 1.6 * 2 * std::sqrt(4e-9 / M_PI), x, y);
-  Scene s = interacting_event_scene(areas, x, y);
+  Scene s = strong_cluster_scene(25);
   // Both at the converged run's positions (the same X for all): half its first slip position,
   // and its second.
   double X1 = 0, X2 = 0;
