@@ -18,6 +18,7 @@
 #include "fit/fit_journal.hpp"
 #include "fit/objective.hpp"
 #include "io/input_error.hpp"
+#include "io/numbers.hpp"
 #include "io/provenance.hpp"
 #include "observe/simulate.hpp"
 
@@ -220,7 +221,10 @@ double nlopt_objective(unsigned n, const double* u, double* /*grad: derivative-f
   pb.log.push_back(ev);
   if (pb.on_evaluation && *pb.on_evaluation) (*pb.on_evaluation)(ev.objective);
   if (ev.status != "ok") {
-    pb.failure = "evaluation " + std::to_string(ev.index) + " (" + values_text(pb, x) + "): " + ev.status;
+    // Every digit: a solver failure may hang on the exact point (the 6-digit rounding ran through).
+    std::string exact;
+    for (std::size_t i = 0; i < x.size(); ++i) exact += (i ? ", " : "") + pb.vars[i].label + " = " + scene_io::format_double(x[i]);
+    pb.failure = "evaluation " + std::to_string(ev.index) + " (" + exact + "): " + ev.status;
     throw nlopt::forced_stop();  // caught by NLopt's C++ wrapper, rethrown by optimize()
   }
   return ev.objective;

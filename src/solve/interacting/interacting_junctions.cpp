@@ -193,13 +193,19 @@ ForceNode InteractingJunctions::solve(double X, double tol) const {
         const double rho = change / previous;
         if (change * rho / (1.0 - rho) <= tol) break;
       }
+      // Stalled at rounding: the change stops shrinking once it is of the order of the rounding
+      // of the sums (about 1e-11 of the slip force; at a looser tolerance the solve has stopped
+      // before, so this never ends one early).
+      if (iter >= 3 && change < std::min(10 * tol, 1e-11) && change > 0.5 * previous) break;
       // Slow contraction: the reference compliances drifted from the junctions' own. Take them
       // at the current forces and rebuild G (a Newton step's Jacobian): the solution is the
       // same, the iteration fast again.
       // A rebuild costs about n/8 passes over G (O(n³) against O(n²), measured at n = 1,200),
       // so the slow passes are paid until they add up to one (a rent-or-buy rule: at most twice
       // the better of the two), unless this solve stalls or grows.
-      const bool slow = iter >= 3 && change > 0.2 * previous && change > 10 * tol;
+      // Slow: contracting by more than 0.2 a pass, or by more than 0.5 within ten times the
+      // tolerance (where the estimate above cannot stop it yet).
+      const bool slow = iter >= 3 && ((change > 0.2 * previous && change > 10 * tol) || (change > 0.5 * previous && change > tol));
       if (pinned_.rebuilds() != slow_since_) slow_since_ = pinned_.rebuilds(), slow_passes_ = 0;
       if (slow) ++slow_passes_;
       const bool worth = slow_passes_ * 8 >= static_cast<std::int64_t>(n) || change > previous || iter >= 20;
@@ -215,9 +221,6 @@ ForceNode InteractingJunctions::solve(double X, double tol) const {
         previous = HUGE_VAL;
         continue;
       }
-      // Stalled at rounding: the change stops shrinking once it is of the order of the
-      // rounding of the sums.
-      if (iter >= 3 && change < 10 * tol && change > 0.5 * previous) break;
       if (iter >= 200) interacting_solver_failure("the chord iteration did not converge in 200 iterations", X);
       previous = change;
     }
