@@ -87,10 +87,12 @@ class InteractingJunctions {
  private:
   static constexpr std::size_t npos = static_cast<std::size_t>(-1);
 
-  // The chord iteration drove the junction at position q past φ = 1 (far over its slip force,
-  // where u' grows without bound and the iteration cannot follow it to the root just below 1).
-  // Such a junction is over its threshold: inside an avalanche settle() slips it (the most
-  // overloaded by the iterate); anywhere else it is the SolverError it derives from.
+  // The chord iteration drove the junction at position q far over its slip force: past φ = 1
+  // (where u' grows without bound and the iteration cannot follow it to the root just below 1),
+  // or over its threshold while the iteration, long past its usual passes, cannot settle (a
+  // step-limited cycle between two states over it). Such a junction is over its threshold:
+  // inside an avalanche settle() slips it (the most overloaded by the iterate); anywhere else it
+  // is the SolverError it derives from.
   struct Overloaded : SolverError {
     Overloaded(const std::string& what, std::size_t position) : SolverError(what), q(position) {}
     std::size_t q;
@@ -108,8 +110,10 @@ class InteractingJunctions {
                     const std::vector<double>& y2, const std::vector<double>& z, std::vector<double>& g,
                     Anderson& aa) const;
   void add_totals(ForceNode& node) const;  // F, dF/dX, A, dA/dX of a solved node
-  // Throws Overloaded when an iterate f (per position) puts a junction past φ = 1.
-  void overloaded_check(double X, const std::vector<std::size_t>& active, const std::vector<double>& f) const;
+  // Throws Overloaded when an iterate f (per position) puts a junction past φ = 1, or over its
+  // threshold while the iteration's last change is still above `stuck` (of the slip forces).
+  void overloaded_check(double X, const std::vector<std::size_t>& active, const std::vector<double>& f, double change,
+                        double stuck) const;
   // The iteration's start at X: f and df/dX per position of P (see the .cpp).
   void warm_start(double X, std::vector<double>& f, std::vector<double>& a) const;
   double threshold(std::size_t q) const;  // N, the slip force of position q
