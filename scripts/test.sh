@@ -1,13 +1,15 @@
 #!/usr/bin/env bash
 # Set-up, build and the whole test suite (what CI runs): once in the Release build, once more
-# under AddressSanitizer + UndefinedBehaviorSanitizer (build-san/, -O2 without debug information to keep the build short).
+# under AddressSanitizer + UndefinedBehaviorSanitizer (build-san/, -O1 without debug information to keep the build short:
+# it compiles in about 0.7 of -O2's time, measured on three of its heaviest files, and ASan's
+# documentation asks for -O1 or higher for reasonable speed).
 #   scripts/test.sh [--no-sanitizers]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh
 ctest --test-dir build --no-tests=error --output-on-failure -j "$(nproc)"
 [ "${1:-}" = "--no-sanitizers" ] && exit 0
-cmake -S . -B build-san -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -DNDEBUG" \
+cmake -S . -B build-san -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -DNDEBUG" \
   -DASPERITY_SANITIZE=ON >/dev/null
 ninja -C build-san -j "$(nproc)"
 # halt_on_error: any report fails the test that triggered it; leaks are reported too.
