@@ -1,6 +1,6 @@
 // asperity study interactions [SCENE.yaml...] [--out results/interactions] [--fit-independent F]
 //                             [--fit-interacting F] [--joint-independent F...] [--joint-interacting F...]
-//                             [--sweep STORE] [--spread EXPERIMENT] [--quiet]
+//                             [--sweep STORE] [--topography TABLE] [--spread EXPERIMENT] [--quiet]
 #include <cstdio>
 #include <iostream>
 #include <string>
@@ -33,6 +33,8 @@ Command add_study_command(CLI::App& app) {
   in->add_option("--joint-interacting", opt->joint_interacting,
                  "fit.yaml file(s) of the joint (alpha_b, epsilon, eta) calibration, interacting junctions");
   in->add_option("--sweep", opt->sweep_store, "Store of sweeps/interactions.yaml");
+  in->add_option("--topography", opt->topography_table,
+                 "table.csv of the topography study (default results/topography/table.csv)");
   in->add_option("--spread", opt->spread_experiment, "Experiment of the force-spread histogram (default P4.00N)");
   add_figures_option(in, opt->figures);
   in->add_flag("-q,--quiet", *quiet, "Print nothing on success");

@@ -25,6 +25,7 @@
 #include "fit/objective.hpp"
 #include "report/gnuplot.hpp"
 #include "studies/junction_pairs.hpp"
+#include "studies/topography_comparison.hpp"
 #include "scene/load.hpp"
 #include "solve/integrate.hpp"
 #include "solve/interacting/interaction_matrix.hpp"
@@ -527,6 +528,41 @@ void write_sweep_md(std::ostream& md, const InteractionStudyOptions& opt) {
 }
 
 
+// REPORT.md: both models on junctions from topography, from the topography study's own table
+// (not run here: it takes minutes per surface; its REPORT.md has the protocol).
+void write_topography_md(std::ostream& md, const InteractionStudyOptions& opt) {
+  const std::string table = opt.topography_table.generic_string();
+  md << "## Junctions from topography (SYNTHETIC surfaces)\n\n";
+  const std::vector<TopographyShapeRow> rows = read_topography_table(opt.topography_table);
+  if (rows.empty()) {
+    md << "No evidence: `" << table << "` is missing (run `results/topography/study.py`).\n\n";
+    return;
+  }
+  const TopographyTally t = tally_topography(rows);
+  md << "Read from `" << table << "` (the topography study, `results/topography/REPORT.md`: a generated "
+        "self-affine rough sphere pressed at each load, its contact clusters as junctions, α_b per load and model "
+        "so that the area drop at the first peak equals the stand-in one; roughness parameters assumed). Its "
+        "surfaces are synthetic and it has no measured Q(t), so no joint calibration is made there. ";
+  if (t.pairs > 0)
+    md << "Over the " << t.pairs << " loads (and surface realisations) where both models ran, interactions change "
+       << "the shape exponent n by " << scene_io::format_cell("%+.3f", t.mean_dn) << " on average (from "
+       << scene_io::format_cell("%+.3f", t.min_dn) << " to " << scene_io::format_cell("%+.3f", t.max_dn)
+       << "; lower at " << t.n_lower << " of " << t.pairs << ") and the endpoint residual (distance from a parabola "
+       << "through the same end points, in units of the drop) by at most " << scene_io::format_cell("%.3f", t.max_abs_dres)
+       << ". ";
+  md << t.within_noise << " of " << t.rows << " model curves are within the noise of a stand-in-like measured "
+     << "parabola (residual at most the noise's 95th percentile).\n\n"
+     << "| seed | load [N] | N | model | α_b [1e-15] | n | endpoint residual | residual [mm²] | noise 95 % [mm²] | "
+        "within noise |\n|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const TopographyShapeRow& r : rows)
+    md << "| " << r.seed << " | " << scene_io::format_cell("%.2f", r.load_N) << " | " << r.junctions << " | " << r.model
+       << " | " << scene_io::format_cell("%.4f", r.alpha_b * 1e15) << " | " << scene_io::format_cell("%.3f", r.shape_exponent)
+       << " | " << scene_io::format_cell("%.3f", r.endpoint_residual) << " | "
+       << scene_io::format_cell("%.4f", r.residual_rms_m2 * 1e6) << " | " << scene_io::format_cell("%.4f", r.noise_rms_p95_m2 * 1e6)
+       << " | " << (r.within_noise() ? "yes" : "no") << " |\n";
+  md << "\n";
+}
+
 // ---- The joint calibrations of (α_b, ε, η) against A(Q) and Q(t) (issue 22) ----
 
 // One model at its joint calibration on one load: the fit's best run done again (the fit file's
@@ -814,6 +850,7 @@ std::string run_interaction_study(const InteractionStudyOptions& opt) {
   write_joint_md(md, opt, joint);
   write_spread_md(md, opt, sp, fig_note, pairs_md);
   write_sweep_md(md, opt);
+  write_topography_md(md, opt);
   scene_io::write_text_file(opt.out / "REPORT.md", md.str());
   return verdict;
 }

@@ -6,7 +6,8 @@
 // the spread of f_i/(σA_i) at the first peak among junctions of equal area in crowded vs sparse
 // neighbourhoods (the paper's Figure 2 argument); the crowding and cut-off sweep's table; each
 // model re-run at its joint calibration of (α_b, ε, η) (issue 22), its Q(t) and A(Q) against the
-// measured ones at their noise (studies/joint_comparison.hpp). Every
+// measured ones at their noise (studies/joint_comparison.hpp); the topography study's table of
+// both models on junctions from contact mechanics (studies/topography_comparison.hpp). Every
 // verdict is computed from the runs of the same command; missing inputs read "no evidence".
 // STAND-IN data: the report says so.
 #include <filesystem>
@@ -29,6 +30,9 @@ struct InteractionStudyOptions {
       "results/fits/joint_interacting/fit.yaml", "results/fits/joint_interacting_P3.09N/fit.yaml",
       "results/fits/joint_interacting_P4.00N/fit.yaml", "results/fits/joint_interacting_P6.40N/fit.yaml"};
   std::filesystem::path sweep_store = "results/interactions_sweep";  // sweeps/interactions.yaml
+  // The topography study's table (results/topography/study.py; SYNTHETIC surfaces): both models
+  // on junctions from contact mechanics (studies/topography_comparison.hpp); absent: no evidence.
+  std::filesystem::path topography_table = "results/topography/table.csv";
   std::filesystem::path out = "results/interactions";
   std::string spread_experiment = "P4.00N";
   int threads = 2;
