@@ -3642,7 +3642,7 @@ set key outside right top font ',8'
 set grid
 set xlabel 't [s]'
 set ylabel 'f_i / (σ A_{0,i}) [1]'
-set arrow from 7.450251399868403, graph 0 to 7.450251399868403, graph 1 nohead dt 3 lc rgb 'black'
+set arrow from 7.4502513998683995, graph 0 to 7.4502513998683995, graph 1 nohead dt 3 lc rgb 'black'
 set arrow from 4.1766795052358505, graph 0 to 4.1766795052358505, graph 1 nohead dt 3 lc rgb 'gray50'
 plot $p0ic using 1:2 with lines lw 2 dt 1 lc rgb '#1b6ca8' title 'interacting, crowded #422', $p0is using 1:2 with lines lw 2 dt 2 lc rgb '#1b6ca8' title 'interacting, sparse #513', $p0nc using 1:2 with lines lw 1 dt 1 lc rgb '#1b6ca8' title 'independent, crowded #422', $p0ns using 1:2 with lines lw 1 dt 2 lc rgb '#1b6ca8' title 'independent, sparse #513', $p1ic using 1:2 with lines lw 2 dt 1 lc rgb '#c0392b' title 'interacting, crowded #479', $p1is using 1:2 with lines lw 2 dt 2 lc rgb '#c0392b' title 'interacting, sparse #752', $p1nc using 1:2 with lines lw 1 dt 1 lc rgb '#c0392b' title 'independent, crowded #479', $p1ns using 1:2 with lines lw 1 dt 2 lc rgb '#c0392b' title 'independent, sparse #752', $p2ic using 1:2 with lines lw 2 dt 1 lc rgb '#27ae60' title 'interacting, crowded #77', $p2is using 1:2 with lines lw 2 dt 2 lc rgb '#27ae60' title 'interacting, sparse #568', $p2nc using 1:2 with lines lw 1 dt 1 lc rgb '#27ae60' title 'independent, crowded #77', $p2ns using 1:2 with lines lw 1 dt 2 lc rgb '#27ae60' title 'independent, sparse #568'
 set ylabel 'A_i / A_{0,i} [1]'
