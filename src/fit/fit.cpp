@@ -163,9 +163,11 @@ Evaluation evaluate(const Problem& pb, const std::vector<double>& x, std::vector
   return ev;
 }
 
-std::string values_text(const Problem& pb, const std::vector<double>& x) {
+// every_digit: the shortest text that reads back exactly (a failure may hang on the exact point).
+std::string values_text(const Problem& pb, const std::vector<double>& x, bool every_digit = false) {
   std::string s;
-  for (std::size_t i = 0; i < x.size(); ++i) s += (i ? ", " : "") + pb.vars[i].label + " = " + g6(x[i]);
+  for (std::size_t i = 0; i < x.size(); ++i)
+    s += (i ? ", " : "") + pb.vars[i].label + " = " + (every_digit ? scene_io::format_double(x[i]) : g6(x[i]));
   return s;
 }
 
@@ -222,9 +224,7 @@ double nlopt_objective(unsigned n, const double* u, double* /*grad: derivative-f
   if (pb.on_evaluation && *pb.on_evaluation) (*pb.on_evaluation)(ev.objective);
   if (ev.status != "ok") {
     // Every digit: a solver failure may hang on the exact point (the 6-digit rounding ran through).
-    std::string exact;
-    for (std::size_t i = 0; i < x.size(); ++i) exact += (i ? ", " : "") + pb.vars[i].label + " = " + scene_io::format_double(x[i]);
-    pb.failure = "evaluation " + std::to_string(ev.index) + " (" + exact + "): " + ev.status;
+    pb.failure = "evaluation " + std::to_string(ev.index) + " (" + values_text(pb, x, true) + "): " + ev.status;
     throw nlopt::forced_stop();  // caught by NLopt's C++ wrapper, rethrown by optimize()
   }
   return ev.objective;
