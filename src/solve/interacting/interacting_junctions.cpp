@@ -144,7 +144,11 @@ ForceNode InteractingJunctions::solve(double X, double tol) const {
     int iter = 0, refreshes = 0;
     for (;;) {
       ++iter;
-      for (std::size_t q : active) {
+      // The junctions' own laws, each independent of the others (the same numbers on any
+      // number of threads): a tenth of a pass's time, worth splitting from a few hundred on.
+#pragma omp parallel for schedule(static) if (nA >= 512)
+      for (std::size_t k = 0; k < nA; ++k) {
+        const std::size_t q = active[k];
         double u, du;
         own(q, node.f[q], u, du);
         dl[q] = u - pinned_.reference(q) * node.f[q];

@@ -1,5 +1,6 @@
 #include "solve/interacting/interaction_matrix.hpp"
 
+#include <atomic>
 #include <cmath>
 #include <stdexcept>
 
@@ -14,13 +15,23 @@ void fill_interaction_lower(const Problem& p, double* buffer, std::size_t ld) {
   std::vector<double> radius(n);
   for (std::size_t i = 0; i < n; ++i) radius[i] = disc_radius(p.A0[i]);
   const double cutoff = p.interaction_cutoff;
+  // Rows in parallel (each entry written once: the same matrix on any number of threads). No
+  // exception may leave the parallel loop: an overlap (refused when the scene loads) is flagged
+  // there and thrown after it.
+  std::atomic<bool> overlap{false};
+#pragma omp parallel for schedule(dynamic, 16)
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = 0; j < i; ++j) {
-      const double dx = p.x[i] - p.x[j], dy = p.y[i] - p.y[j];
-      const bool dropped = cutoff > 0 && std::hypot(dx, dy) > cutoff;
+      const double dx = p.x[i] - p.x[j], dy = p.y[i] - p.y[j], d = std::hypot(dx, dy);
+      const bool dropped = cutoff > 0 && d > cutoff;
+      if (!dropped && !(d >= radius[i] + radius[j])) {
+        overlap = true;
+        continue;
+      }
       buffer[i * ld + j] =
           dropped ? 0.0 : disc_compliance(dx, dy, radius[i], radius[j], p.law.E, p.law.nu, p.interaction_weighting);
     }
+  if (overlap) throw std::invalid_argument("disc_compliance: discs overlap or radii are invalid");
 }
 
 InteractionMatrix interaction_matrix(const Problem& p) {
