@@ -1,0 +1,93 @@
+// Probe (not part of the build): the precorrected-FFT product of the coupling
+// (solve/interacting/fft_coupling.hpp) beside the dense product over the stored triangle of C, the
+// way the dense solver's passes read it, on `bench interacting`'s populations (the stand-in
+// P4.00N's areas repeated to N, placed in a disc of radius 4.5 mm · sqrt(N / 1201)). Prints CSV:
+// set-up and per-product times (median of R products, one thread), the exact pairs, the padded
+// grid, and the error max_i |ỹ_i − y_i| / max_i |y_i| against the dense product (N ≤ dense_max).
+// Build against a Release build in build/ and run from the repository root:
+//   B=build; g++ -O2 -std=c++20 -Isrc bench/probes/fft_coupling_probe.cpp -o build/fft_probe \
+//     -Wl,--start-group $B/libasperity_solve.a $B/libasperity_scene.a $B/libasperity_surface.a \
+//     $B/libasperity_physics.a $B/libasperity_io.a $B/libasperity_generate.a -Wl,--end-group \
+//     -lyaml-cpp -lcrypto -ltbb -lfftw3_threads -lfftw3 -fopenmp
+//   OMP_NUM_THREADS=1 build/fft_probe 1200 5000 20000
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <random>
+#include <vector>
+
+#include "generate/positions.hpp"
+#include "physics/contact_law.hpp"
+#include "physics/elastic_interaction.hpp"
+#include "scene/load.hpp"
+#include "solve/interacting/fft_coupling.hpp"
+using namespace asperity;
+using Clock = std::chrono::steady_clock;
+static double seconds(Clock::time_point a) { return std::chrono::duration<double>(Clock::now() - a).count(); }
+
+int main(int argc, char** argv) {
+  const Scene base = load_scene("scenes/paper/P4.00N.yaml");
+  const auto& areas = base.experiment.junctions.area_m2;
+  const double E = base.experiment.E, nu = base.experiment.nu;
+  std::printf("N,order,cell_per_spacing,near_cells,setup_s,product_ms,dense_product_ms,speedup,near_pairs_per_junction,grid_points,error\n");
+  for (int k = 1; k < argc; ++k) {
+    const std::size_t N = std::atoi(argv[k]);
+    std::vector<double> A(N), a(N);
+    for (std::size_t i = 0; i < N; ++i) A[i] = areas[i % areas.size()], a[i] = disc_radius(A[i]);
+    const Positions p = place_in_contact_disc(A, 4.5e-3 * std::sqrt(double(N) / double(areas.size())), 20200318);
+    std::vector<double> f(N);
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> u(0.2, 1.0);
+    for (auto& v : f) v = u(rng);
+    // Dense: the strict lower triangle, row-major packed, one pass reading each entry once.
+    std::vector<double> L(N * (N - 1) / 2), exact(N, 0.0);
+    for (std::size_t i = 0; i < N; ++i)
+      for (std::size_t j = 0; j < i; ++j)
+        L[i * (i - 1) / 2 + j] = disc_compliance(p.x_m[i] - p.x_m[j], p.y_m[i] - p.y_m[j], a[i], a[j], E, nu);
+    const auto dense = [&](std::vector<double>& y) {
+      std::fill(y.begin(), y.end(), 0.0);
+      for (std::size_t i = 1; i < N; ++i) {
+        const double* row = L.data() + i * (i - 1) / 2;
+        const double fi = f[i];
+        double t = 0;
+#pragma omp simd reduction(+ : t)
+        for (std::size_t j = 0; j < i; ++j) t += row[j] * f[j], y[j] += row[j] * fi;
+        y[i] += t;
+      }
+    };
+    const int R = N >= 20000 ? 5 : 20;
+    std::vector<double> times;
+    for (int r = 0; r < std::max(3, R / 4); ++r) {
+      const auto t0 = Clock::now();
+      dense(exact);
+      times.push_back(seconds(t0));
+    }
+    std::sort(times.begin(), times.end());
+    const double dense_s = times[times.size() / 2];
+    double ymax = 0;
+    for (double v : exact) ymax = std::max(ymax, std::abs(v));
+    struct Knob { int order; double cell, near; };
+    for (const Knob kn : {Knob{6, 1.0, 8}, Knob{6, 0.5, 16}, Knob{8, 0.5, 12}, Knob{8, 0.5, 16}, Knob{8, 0.35, 11.4}, Knob{8, 0.35, 17.1}}) {
+      FftCouplingSettings s{kn.order, kn.near, kn.cell};
+      auto t0 = Clock::now();
+      const FftCoupling c(p.x_m, p.y_m, a, E, nu, TractionWeighting::uniform, s);
+      const double setup = seconds(t0);
+      std::vector<double> y(N);
+      times.clear();
+      for (int r = 0; r < R; ++r) {
+        t0 = Clock::now();
+        c.apply(f.data(), y.data());
+        times.push_back(seconds(t0));
+      }
+      std::sort(times.begin(), times.end());
+      double e = 0;
+      for (std::size_t i = 0; i < N; ++i) e = std::max(e, std::abs(y[i] - exact[i]));
+      const double prod = times[times.size() / 2];
+      std::printf("%zu,%d,%.2f,%.1f,%.3f,%.3f,%.3f,%.1f,%.1f,%zu,%.2e\n", N, kn.order, kn.cell, kn.near, setup, 1e3 * prod, 1e3 * dense_s,
+                  dense_s / prod, 2.0 * c.near_pairs() / N, c.grid_points(), e / ymax);
+      std::fflush(stdout);
+    }
+  }
+}
