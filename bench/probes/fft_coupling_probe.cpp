@@ -11,32 +11,24 @@
 //     -lyaml-cpp -lcrypto -ltbb -lfftw3_threads -lfftw3 -fopenmp
 //   OMP_NUM_THREADS=1 build/fft_probe 1200 5000 20000
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <random>
 #include <vector>
 
-#include "generate/positions.hpp"
-#include "physics/contact_law.hpp"
 #include "physics/elastic_interaction.hpp"
-#include "scene/load.hpp"
+#include "probe_population.hpp"
 #include "solve/interacting/fft_coupling.hpp"
 using namespace asperity;
-using Clock = std::chrono::steady_clock;
-static double seconds(Clock::time_point a) { return std::chrono::duration<double>(Clock::now() - a).count(); }
 
 int main(int argc, char** argv) {
-  const Scene base = load_scene("scenes/paper/P4.00N.yaml");
-  const auto& areas = base.experiment.junctions.area_m2;
-  const double E = base.experiment.E, nu = base.experiment.nu;
   std::printf("N,order,cell_per_spacing,near_cells,setup_s,product_ms,dense_product_ms,speedup,near_pairs_per_junction,grid_points,error\n");
   for (int k = 1; k < argc; ++k) {
     const std::size_t N = std::atoi(argv[k]);
-    std::vector<double> A(N), a(N);
-    for (std::size_t i = 0; i < N; ++i) A[i] = areas[i % areas.size()], a[i] = disc_radius(A[i]);
-    const Positions p = place_in_contact_disc(A, 4.5e-3 * std::sqrt(double(N) / double(areas.size())), 20200318);
+    const ProbePopulation p = probe_population(N);
+    const std::vector<double>& a = p.radius_m;
+    const double E = p.E_pa, nu = p.nu;
     std::vector<double> f(N);
     std::mt19937 rng(5);
     std::uniform_real_distribution<double> u(0.2, 1.0);
@@ -60,9 +52,9 @@ int main(int argc, char** argv) {
     const int R = N >= 20000 ? 5 : 20;
     std::vector<double> times;
     for (int r = 0; r < std::max(3, R / 4); ++r) {
-      const auto t0 = Clock::now();
+      const auto t0 = ProbeClock::now();
       dense(exact);
-      times.push_back(seconds(t0));
+      times.push_back(seconds_since(t0));
     }
     std::sort(times.begin(), times.end());
     const double dense_s = times[times.size() / 2];
@@ -71,15 +63,15 @@ int main(int argc, char** argv) {
     struct Knob { int order; double cell, near; };
     for (const Knob kn : {Knob{6, 1.0, 8}, Knob{6, 0.5, 16}, Knob{8, 0.5, 12}, Knob{8, 0.5, 16}, Knob{8, 0.35, 11.4}, Knob{8, 0.35, 17.1}}) {
       FftCouplingSettings s{kn.order, kn.near, kn.cell};
-      auto t0 = Clock::now();
+      auto t0 = ProbeClock::now();
       const FftCoupling c(p.x_m, p.y_m, a, E, nu, TractionWeighting::uniform, s);
-      const double setup = seconds(t0);
+      const double setup = seconds_since(t0);
       std::vector<double> y(N);
       times.clear();
       for (int r = 0; r < R; ++r) {
-        t0 = Clock::now();
+        t0 = ProbeClock::now();
         c.apply(f.data(), y.data());
-        times.push_back(seconds(t0));
+        times.push_back(seconds_since(t0));
       }
       std::sort(times.begin(), times.end());
       double e = 0;

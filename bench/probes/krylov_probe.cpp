@@ -18,154 +18,146 @@
 #include <Eigen/Sparse>
 #include <Eigen/SparseCholesky>
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <functional>
 #include <vector>
 
-#include "generate/positions.hpp"
-#include "physics/contact_law.hpp"
 #include "physics/elastic_interaction.hpp"
-#include "scene/load.hpp"
+#include "probe_population.hpp"
 #include "solve/interacting/fft_coupling.hpp"
 using namespace asperity;
-using Clock = std::chrono::steady_clock;
-static double seconds(Clock::time_point a) { return std::chrono::duration<double>(Clock::now() - a).count(); }
+using Vector = Eigen::VectorXd;
+using Map = std::function<Vector(const Vector&)>;
+
+// Preconditioned CG on op x = b from zero to a residual of 1e-10 |b|; returns the iterations.
+int pcg(const Map& op, const Map& precondition, const Vector& b, Vector& x) {
+  x = Vector::Zero(b.size());
+  Vector r = b, z = precondition(r), d = z;
+  double rz = r.dot(z);
+  int it = 0;
+  for (const double stop = 1e-10 * b.norm(); it < 1000 && r.norm() > stop; ++it) {
+    const Vector q = op(d);
+    const double alpha = rz / d.dot(q);
+    x += alpha * d;
+    r -= alpha * q;
+    z = precondition(r);
+    const double rz2 = r.dot(z);
+    d = z + (rz2 / rz) * d;
+    rz = rz2;
+  }
+  return it;
+}
+
+// D + C over the pairs closer than `spacings` mean spacings (D alone at 0).
+Eigen::SparseMatrix<double> near_field(const ProbePopulation& p, const std::vector<double>& D, double spacings) {
+  const std::size_t N = D.size();
+  const double R = spacings * std::sqrt(M_PI * p.disc_radius_m * p.disc_radius_m / N);
+  std::vector<Eigen::Triplet<double>> trip;
+  for (std::size_t i = 0; i < N; ++i) {
+    trip.emplace_back(i, i, D[i]);
+    for (std::size_t j = 0; j < i && spacings > 0; ++j) {
+      const double dx = p.x_m[i] - p.x_m[j], dy = p.y_m[i] - p.y_m[j];
+      if (std::hypot(dx, dy) >= R) continue;
+      const double c = disc_compliance(dx, dy, p.radius_m[i], p.radius_m[j], p.E_pa, p.nu);
+      trip.emplace_back(i, j, c), trip.emplace_back(j, i, c);
+    }
+  }
+  Eigen::SparseMatrix<double> P(N, N);
+  P.setFromTriplets(trip.begin(), trip.end());
+  return P;
+}
 
 int main(int argc, char** argv) {
-  const Scene base = load_scene("scenes/paper/P4.00N.yaml");
-  const auto& areas = base.experiment.junctions.area_m2;
-  const double E = base.experiment.E, nu = base.experiment.nu;
   std::printf("N,preconditioner,near_spacings,rhs,setup_s,iterations,solve_ms,product_ms,error_vs_dense,factor_nnz_per_row\n");
+  const double near_s = std::getenv("NEAR") ? std::atof(std::getenv("NEAR")) : 0.0;
   for (int k = 1; k < argc; ++k) {
     const std::size_t N = std::atoi(argv[k]);
-    std::vector<double> A(N), a(N), D(N);
-    for (std::size_t i = 0; i < N; ++i) {
-      A[i] = areas[i % areas.size()], a[i] = disc_radius(A[i]);
-      D[i] = 1.0 / circle_stiffness(2 * a[i], E, nu);
-    }
-    const double Rdisc = 4.5e-3 * std::sqrt(double(N) / double(areas.size()));
-    const Positions p = place_in_contact_disc(A, Rdisc, 20200318);
+    const ProbePopulation p = probe_population(N);
+    const std::vector<double>& a = p.radius_m;
+    const double E = p.E_pa, nu = p.nu;
+    std::vector<double> D(N);
+    for (std::size_t i = 0; i < N; ++i) D[i] = 1.0 / circle_stiffness(2 * a[i], E, nu);
     const FftCoupling C(p.x_m, p.y_m, a, E, nu, TractionWeighting::uniform);
-    const auto apply = [&](const Eigen::VectorXd& x, Eigen::VectorXd& y) {
+    const Map apply = [&](const Vector& x) {
+      Vector y(N);
       C.apply(x.data(), y.data());
-      y += Eigen::Map<const Eigen::VectorXd>(D.data(), N).cwiseProduct(x);
+      return Vector(y + Eigen::Map<const Vector>(D.data(), N).cwiseProduct(x));
     };
-    auto t0 = Clock::now();
-    Eigen::VectorXd probe_x = Eigen::VectorXd::Ones(N), probe_y(N);
-    for (int r = 0; r < 5; ++r) apply(probe_x, probe_y);
-    const double product_ms = 1e3 * seconds(t0) / 5;
-    // Right-hand sides.
+    auto t0 = ProbeClock::now();
+    for (int r = 0; r < 5; ++r) apply(Vector::Ones(N));
+    const double product_ms = 1e3 * seconds_since(t0) / 5;
+    // Right-hand sides: 1, and the column of C of the junction nearest the centre.
     std::size_t centre = 0;
     for (std::size_t i = 0; i < N; ++i)
       if (std::hypot(p.x_m[i], p.y_m[i]) < std::hypot(p.x_m[centre], p.y_m[centre])) centre = i;
-    Eigen::VectorXd ones = Eigen::VectorXd::Ones(N), column(N);
+    Vector column(N);
     for (std::size_t i = 0; i < N; ++i)
       column[i] = i == centre ? 0.0 : disc_compliance(p.x_m[i] - p.x_m[centre], p.y_m[i] - p.y_m[centre], a[i], a[centre], E, nu);
+    const Vector rhs[2] = {Vector::Ones(N), column};
+    const char* rhs_name[2] = {"ones", "slip column"};
     // Dense reference.
-    Eigen::VectorXd ref_ones, ref_col;
+    Vector ref[2];
     if (N <= 5000) {
       Eigen::MatrixXd M(N, N);
       for (std::size_t i = 0; i < N; ++i)
         for (std::size_t j = 0; j < N; ++j)
           M(i, j) = i == j ? D[i] : disc_compliance(p.x_m[i] - p.x_m[j], p.y_m[i] - p.y_m[j], a[i], a[j], E, nu);
-      t0 = Clock::now();
+      t0 = ProbeClock::now();
       Eigen::LLT<Eigen::MatrixXd> llt(M);
-      const double f = seconds(t0);
-      t0 = Clock::now();
-      ref_ones = llt.solve(ones);
-      ref_col = llt.solve(column);
-      std::printf("%zu,dense LLT,all,both,%.3f,0,%.3f,0,0,%zu\n", N, f, 1e3 * seconds(t0) / 2, N / 2);
+      const double f = seconds_since(t0);
+      t0 = ProbeClock::now();
+      ref[0] = llt.solve(rhs[0]), ref[1] = llt.solve(rhs[1]);
+      std::printf("%zu,dense LLT,all,both,%.3f,0,%.3f,0,0,%zu\n", N, f, 1e3 * seconds_since(t0) / 2, N / 2);
       if (std::getenv("DECAY")) {  // a slip's redistribution, y = M⁻¹ C e_j, by distance from j
-        const double spacing = std::sqrt(M_PI * Rdisc * Rdisc / N);
+        const double spacing = std::sqrt(M_PI * p.disc_radius_m * p.disc_radius_m / N);
         std::vector<double> ring_max(64, 0.0), ring_sum(64, 0.0);
         double total = 0;
         for (std::size_t i = 0; i < N; ++i) {
           const std::size_t b = std::min<std::size_t>(63, std::hypot(p.x_m[i] - p.x_m[centre], p.y_m[i] - p.y_m[centre]) / spacing);
-          ring_max[b] = std::max(ring_max[b], std::abs(ref_col[i]));
-          ring_sum[b] += std::abs(ref_col[i]);
-          total += std::abs(ref_col[i]);
+          ring_max[b] = std::max(ring_max[b], std::abs(ref[1][i]));
+          ring_sum[b] += std::abs(ref[1][i]);
+          total += std::abs(ref[1][i]);
         }
         double beyond = total;
         for (std::size_t b = 0; b < 64; ++b) {
           beyond -= ring_sum[b];
-          if (ring_sum[b] > 0) std::fprintf(stderr, "N %zu ring %zu spacings: max |y| %.3e, share of sum |y| beyond %.3e\n", N, b, ring_max[b] / ref_col.cwiseAbs().maxCoeff(), beyond / total);
+          if (ring_sum[b] > 0) std::fprintf(stderr, "N %zu ring %zu spacings: max |y| %.3e, share of sum |y| beyond %.3e\n", N, b, ring_max[b] / ref[1].cwiseAbs().maxCoeff(), beyond / total);
         }
       }
     }
-    for (double near : {0.0, 2.0, 4.0, 8.0}) {  // 0: Jacobi
-      t0 = Clock::now();
-      const double R = near * std::sqrt(M_PI * Rdisc * Rdisc / N);
-      std::vector<Eigen::Triplet<double>> trip;
-      for (std::size_t i = 0; i < N; ++i) {
-        trip.emplace_back(i, i, D[i]);
-        if (near == 0) continue;
-        for (std::size_t j = 0; j < i; ++j) {
-          const double dx = p.x_m[i] - p.x_m[j], dy = p.y_m[i] - p.y_m[j];
-          if (std::hypot(dx, dy) >= R) continue;
-          const double c = disc_compliance(dx, dy, a[i], a[j], E, nu);
-          trip.emplace_back(i, j, c), trip.emplace_back(j, i, c);
-        }
-      }
-      Eigen::SparseMatrix<double> P(N, N);
-      P.setFromTriplets(trip.begin(), trip.end());
-      Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(P);
-      const double setup = seconds(t0);
+    const auto report = [&](const char* name, double near, int which, double setup, int it, double ms, const Vector& x, double nnz) {
+      const double err = ref[which].size() ? (x - ref[which]).cwiseAbs().maxCoeff() / ref[which].cwiseAbs().maxCoeff() : NAN;
+      std::printf("%zu,%s,%g,%s,%.3f,%d,%.2f,%.3f,%.2e,%.0f\n", N, name, near, rhs_name[which], setup, it, ms, product_ms, err, nnz);
+      std::fflush(stdout);
+    };
+    // One level: Jacobi (0) or the near field's sparse Cholesky.
+    for (double near : {0.0, 2.0, 4.0, 8.0}) {
+      t0 = ProbeClock::now();
+      const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(near_field(p, D, near));
+      const double setup = seconds_since(t0);
       if (ldlt.info() != Eigen::Success) { std::printf("%zu,near Cholesky,%g,-,factorisation failed\n", N, near); continue; }
       const double nnz = double(ldlt.matrixL().nestedExpression().nonZeros()) / N;
       for (int which = 0; which < 2; ++which) {
-        const Eigen::VectorXd& b = which == 0 ? ones : column;
-        t0 = Clock::now();
-        Eigen::VectorXd x = Eigen::VectorXd::Zero(N), r = b, z = ldlt.solve(r), d = z, q(N);
-        double rz = r.dot(z);
-        const double bn = b.norm();
-        int it = 0;
-        for (; it < 1000 && r.norm() > 1e-10 * bn; ++it) {
-          apply(d, q);
-          const double alpha = rz / d.dot(q);
-          x += alpha * d;
-          r -= alpha * q;
-          z = ldlt.solve(r);
-          const double rz2 = r.dot(z);
-          d = z + (rz2 / rz) * d;
-          rz = rz2;
-        }
-        const double ms = 1e3 * seconds(t0);
-        const Eigen::VectorXd& ref = which == 0 ? ref_ones : ref_col;
-        const double err = ref.size() ? (x - ref).cwiseAbs().maxCoeff() / ref.cwiseAbs().maxCoeff() : NAN;
-        std::printf("%zu,%s,%g,%s,%.3f,%d,%.2f,%.3f,%.2e,%.0f\n", N, near == 0 ? "Jacobi" : "near Cholesky", near,
-                    which == 0 ? "ones" : "slip column", setup, it, ms, product_ms, err, nnz);
-        std::fflush(stdout);
+        t0 = ProbeClock::now();
+        Vector x;
+        const int it = pcg(apply, [&](const Vector& r) { return Vector(ldlt.solve(r)); }, rhs[which], x);
+        report(near == 0 ? "Jacobi" : "near Cholesky", near, which, setup, it, 1e3 * seconds_since(t0), x, nnz);
       }
     }
-    // Two-level: Jacobi plus a coarse space of bilinear hats on a grid of spacing H (A-DEF2, Tang
-    // et al. 2009: P r = J (r − M Z E⁻¹ Zᵀ r) + Z E⁻¹ Zᵀ r, E = Zᵀ M Z; M Z kept, m products to build).
-    const double near_s = std::getenv("NEAR") ? std::atof(std::getenv("NEAR")) : 0.0;
-    Eigen::SparseMatrix<double> Pn(N, N);
-    {
-      const double R = near_s * std::sqrt(M_PI * Rdisc * Rdisc / N);
-      std::vector<Eigen::Triplet<double>> trip;
-      for (std::size_t i = 0; i < N; ++i) {
-        trip.emplace_back(i, i, D[i]);
-        if (near_s == 0) continue;
-        for (std::size_t j = 0; j < i; ++j) {
-          const double dx = p.x_m[i] - p.x_m[j], dy = p.y_m[i] - p.y_m[j];
-          if (std::hypot(dx, dy) >= R) continue;
-          const double c = disc_compliance(dx, dy, a[i], a[j], E, nu);
-          trip.emplace_back(i, j, c), trip.emplace_back(j, i, c);
-        }
-      }
-      Pn.setFromTriplets(trip.begin(), trip.end());
-    }
-    const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> smoother(Pn);
+    // Two levels: deflation by bilinear hats on a coarse grid of H spacings (the collective modes)
+    // around the near field's Cholesky of NEAR spacings as the smoother (the local ones). Deflated
+    // PCG (Frank & Vuik 2001): PCG on P A x̃ = P b, P = I − A Z E⁻¹ Zᵀ, E = Zᵀ A Z (P A is
+    // symmetric; A Z kept, m products to build), then x = Z E⁻¹ Zᵀ b + x̃ − Z E⁻¹ (A Z)ᵀ x̃.
+    const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> smoother(near_field(p, D, near_s));
     for (double Hs : {3.0, 5.0, 8.0}) {
-      t0 = Clock::now();
-      const double spacing = std::sqrt(M_PI * Rdisc * Rdisc / N), H = Hs * spacing;
-      const double x0 = -Rdisc - H, y0 = -Rdisc - H;
-      const int nx = static_cast<int>(2 * (Rdisc + H) / H) + 2;
+      t0 = ProbeClock::now();
+      const double R = p.disc_radius_m, H = Hs * std::sqrt(M_PI * R * R / N);
+      const double x0 = -R - H, y0 = -R - H;
+      const int nx = static_cast<int>(2 * (R + H) / H) + 2;
       std::vector<int> node_of(nx * nx, -1);
-      std::vector<std::vector<std::pair<int, double>>> rows(N);  // junction → (coarse index, weight)
+      std::vector<Eigen::Triplet<double>> hats;
       int m = 0;
       for (std::size_t i = 0; i < N; ++i) {
         const double tx = (p.x_m[i] - x0) / H, ty = (p.y_m[i] - y0) / H;
@@ -176,50 +168,27 @@ int main(int argc, char** argv) {
             if (w <= 0) continue;
             int& id = node_of[(I + di) * nx + (J + dj)];
             if (id < 0) id = m++;
-            rows[i].emplace_back(id, w);
+            hats.emplace_back(i, id, w);
           }
       }
-      Eigen::MatrixXd Z = Eigen::MatrixXd::Zero(N, m), MZ(N, m);
-      for (std::size_t i = 0; i < N; ++i)
-        for (auto [c, w] : rows[i]) Z(i, c) = w;
-      for (int c = 0; c < m; ++c) {
-        Eigen::VectorXd zc = Z.col(c), mc(N);
-        apply(zc, mc);
-        MZ.col(c) = mc;
-      }
-      const Eigen::MatrixXd Ec = Z.transpose() * MZ;
+      Eigen::SparseMatrix<double> Zs(N, m);
+      Zs.setFromTriplets(hats.begin(), hats.end());
+      const Eigen::MatrixXd Z(Zs);
+      Eigen::MatrixXd AZ(N, m);
+      for (int c = 0; c < m; ++c) AZ.col(c) = apply(Z.col(c));
+      const Eigen::MatrixXd Ec = Z.transpose() * AZ;
       const Eigen::LLT<Eigen::MatrixXd> Einv(0.5 * (Ec + Ec.transpose()));
-      const double setup = seconds(t0);
-      const Eigen::VectorXd Dinv = Eigen::Map<const Eigen::VectorXd>(D.data(), N).cwiseInverse();
-      // Deflated PCG (Frank & Vuik 2001): PCG with J on P A x̃ = P b, P = I − A Z E⁻¹ Zᵀ (P A is
-      // symmetric), then x = Z E⁻¹ Zᵀ b + x̃ − Z E⁻¹ (A Z)ᵀ x̃.
-      const auto deflate = [&](const Eigen::VectorXd& w) { return Eigen::VectorXd(w - MZ * Einv.solve(Z.transpose() * w)); };
+      const double setup = seconds_since(t0);
+      const Map deflate = [&](const Vector& w) { return Vector(w - AZ * Einv.solve(Z.transpose() * w)); };
+      char name[64];
+      std::snprintf(name, sizeof name, "two-level H=%g spacings (%d hats)", Hs, m);
       for (int which = 0; which < 2; ++which) {
-        const Eigen::VectorXd& b = which == 0 ? ones : column;
-        t0 = Clock::now();
-        Eigen::VectorXd xt = Eigen::VectorXd::Zero(N), q(N);
-        Eigen::VectorXd r = deflate(b), z = smoother.solve(r), d = z;
-        double rz = r.dot(z);
-        const double bn = r.norm();
-        int it = 0;
-        for (; it < 1000 && r.norm() > 1e-10 * bn; ++it) {
-          apply(d, q);
-          q = deflate(q);
-          const double alpha = rz / d.dot(q);
-          xt += alpha * d;
-          r -= alpha * q;
-          z = smoother.solve(r);
-          const double rz2 = r.dot(z);
-          d = z + (rz2 / rz) * d;
-          rz = rz2;
-        }
-        const Eigen::VectorXd x = Z * Einv.solve(Z.transpose() * b) + xt - Z * Einv.solve(MZ.transpose() * xt);
-        const double ms = 1e3 * seconds(t0);
-        const Eigen::VectorXd& ref = which == 0 ? ref_ones : ref_col;
-        const double err = ref.size() ? (x - ref).cwiseAbs().maxCoeff() / ref.cwiseAbs().maxCoeff() : NAN;
-        std::printf("%zu,two-level H=%g spacings (%d hats),%g,%s,%.3f,%d,%.2f,%.3f,%.2e,0\n", N, Hs, m, near_s,
-                    which == 0 ? "ones" : "slip column", setup, it, ms, product_ms, err);
-        std::fflush(stdout);
+        t0 = ProbeClock::now();
+        Vector xt;
+        const int it = pcg([&](const Vector& v) { return deflate(apply(v)); }, [&](const Vector& r) { return Vector(smoother.solve(r)); },
+                           deflate(rhs[which]), xt);
+        const Vector x = Z * Einv.solve(Z.transpose() * rhs[which]) + xt - Z * Einv.solve(AZ.transpose() * xt);
+        report(name, near_s, which, setup, it, 1e3 * seconds_since(t0), x, 0);
       }
     }
   }
