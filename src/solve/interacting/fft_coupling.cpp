@@ -83,14 +83,14 @@ struct FftCoupling::Fft {
 FftCoupling::FftCoupling(const Problem& problem, FftCouplingSettings settings)
     : FftCoupling(problem.x, problem.y,
                   [&] {
+                    // (Checked before anything is built.)
+                    if (problem.interaction_cutoff > 0)
+                      throw std::invalid_argument("FftCoupling: a cut-off kernel is not translation invariant (the full kernel only)");
                     std::vector<double> r(problem.size());
                     for (std::size_t i = 0; i < r.size(); ++i) r[i] = disc_radius(problem.A0[i]);
                     return r;
                   }(),
-                  problem.law.E, problem.law.nu, problem.interaction_weighting, settings) {
-  if (problem.interaction_cutoff > 0)
-    throw std::invalid_argument("FftCoupling: a cut-off kernel is not translation invariant (the full kernel only)");
-}
+                  problem.law.E, problem.law.nu, problem.interaction_weighting, settings) {}
 
 FftCoupling::~FftCoupling() = default;
 
