@@ -5,8 +5,9 @@
 // interacting`'s populations (stand-in P4.00N areas), D_i = 1/k_i (Mindlin, the initial areas).
 // Also two-level: deflation by bilinear hats on a coarse grid of H spacings (the collective modes)
 // around that sparse Cholesky as the smoother (the local ones).
-// Right-hand sides: b = 1 (a0 = G 1) and b = C e_j for a junction j near the centre (a slip's
-// redistribution). Prints iterations to a relative residual of 1e-10, times, and the error against
+// Right-hand sides: b = 1 (a0 = G 1), b = C e_j for a junction j near the centre (a slip's
+// redistribution), and e_j itself (the column an exact slip position needs; from zero and from
+// the dense solve on its patch of 12 spacings, to 1e-8 and 1e-10). Prints iterations to a relative residual of 1e-10, times, and the error against
 // a dense LLT (N ≤ 5,000). With DECAY set, also (to stderr) the dense solution y = M⁻¹ C e_j by
 // distance from j: how far a slip's redistribution reaches (results/bench/slip_response_decay.csv). Build against a Release build in build/ and run from the repository root:
 //   B=build; g++ -O2 -std=c++20 -Isrc -I/usr/include/eigen3 bench/probes/krylov_probe.cpp -o build/krylov_probe \
@@ -31,13 +32,14 @@ using namespace asperity;
 using Vector = Eigen::VectorXd;
 using Map = std::function<Vector(const Vector&)>;
 
-// Preconditioned CG on op x = b from zero to a residual of 1e-10 |b|; returns the iterations.
-int pcg(const Map& op, const Map& precondition, const Vector& b, Vector& x) {
-  x = Vector::Zero(b.size());
-  Vector r = b, z = precondition(r), d = z;
+// Preconditioned CG on op x = b to a residual of tol |b|, from x if it has b's size (else from
+// zero); returns the iterations.
+int pcg(const Map& op, const Map& precondition, const Vector& b, Vector& x, double tol = 1e-10) {
+  if (x.size() != b.size()) x = Vector::Zero(b.size());
+  Vector r = x.isZero() ? b : Vector(b - op(x)), z = precondition(r), d = z;
   double rz = r.dot(z);
   int it = 0;
-  for (const double stop = 1e-10 * b.norm(); it < 1000 && r.norm() > stop; ++it) {
+  for (const double stop = tol * b.norm(); it < 1000 && r.norm() > stop; ++it) {
     const Vector q = op(d);
     const double alpha = rz / d.dot(q);
     x += alpha * d;
@@ -95,10 +97,33 @@ int main(int argc, char** argv) {
     Vector column(N);
     for (std::size_t i = 0; i < N; ++i)
       column[i] = i == centre ? 0.0 : disc_compliance(p.x_m[i] - p.x_m[centre], p.y_m[i] - p.y_m[centre], a[i], a[centre], E, nu);
-    const Vector rhs[2] = {Vector::Ones(N), column};
-    const char* rhs_name[2] = {"ones", "slip column"};
+    // The slipping junction's own column, M⁻¹ e_j (exact slip positions need it, one a slip),
+    // from zero and from the solve on its patch alone (the pinned junctions within 12 spacings,
+    // dense), to 1e-8 and 1e-10.
+    const Vector unit = Vector::Unit(N, centre);
+    Vector local = Vector::Zero(N);
+    {
+      const double reach = 12 * std::sqrt(M_PI * p.disc_radius_m * p.disc_radius_m / N);
+      std::vector<std::size_t> patch;
+      for (std::size_t i = 0; i < N; ++i)
+        if (std::hypot(p.x_m[i] - p.x_m[centre], p.y_m[i] - p.y_m[centre]) < reach) patch.push_back(i);
+      Eigen::MatrixXd Mp(patch.size(), patch.size());
+      Vector ep = Vector::Zero(patch.size());
+      for (std::size_t r = 0; r < patch.size(); ++r) {
+        ep[r] = patch[r] == centre;
+        for (std::size_t c = 0; c < patch.size(); ++c) {
+          const std::size_t i = patch[r], j = patch[c];
+          Mp(r, c) = i == j ? D[i] : disc_compliance(p.x_m[i] - p.x_m[j], p.y_m[i] - p.y_m[j], a[i], a[j], E, nu);
+        }
+      }
+      const Vector zp = Eigen::LLT<Eigen::MatrixXd>(Mp).solve(ep);
+      for (std::size_t r = 0; r < patch.size(); ++r) local[patch[r]] = zp[r];
+      std::fprintf(stderr, "N %zu: patch of %zu junctions\n", N, patch.size());
+    }
+    const Vector rhs[3] = {Vector::Ones(N), column, unit};
+    const char* rhs_name[3] = {"ones", "slip column", "unit"};
     // Dense reference.
-    Vector ref[2];
+    Vector ref[3];
     if (N <= 5000) {
       Eigen::MatrixXd M(N, N);
       for (std::size_t i = 0; i < N; ++i)
@@ -108,7 +133,7 @@ int main(int argc, char** argv) {
       Eigen::LLT<Eigen::MatrixXd> llt(M);
       const double f = seconds_since(t0);
       t0 = ProbeClock::now();
-      ref[0] = llt.solve(rhs[0]), ref[1] = llt.solve(rhs[1]);
+      ref[0] = llt.solve(rhs[0]), ref[1] = llt.solve(rhs[1]), ref[2] = llt.solve(rhs[2]);
       std::printf("%zu,dense LLT,all,both,%.3f,0,%.3f,0,0,%zu\n", N, f, 1e3 * seconds_since(t0) / 2, N / 2);
       if (std::getenv("DECAY")) {  // a slip's redistribution, y = M⁻¹ C e_j, by distance from j
         const double spacing = std::sqrt(M_PI * p.disc_radius_m * p.disc_radius_m / N);
@@ -127,9 +152,10 @@ int main(int argc, char** argv) {
         }
       }
     }
-    const auto report = [&](const char* name, double near, int which, double setup, int it, double ms, const Vector& x, double nnz) {
+    const auto report = [&](const char* name, double near, int which, double setup, int it, double ms, const Vector& x, double nnz,
+                            const char* variant = "") {
       const double err = ref[which].size() ? (x - ref[which]).cwiseAbs().maxCoeff() / ref[which].cwiseAbs().maxCoeff() : NAN;
-      std::printf("%zu,%s,%g,%s,%.3f,%d,%.2f,%.3f,%.2e,%.0f\n", N, name, near, rhs_name[which], setup, it, ms, product_ms, err, nnz);
+      std::printf("%zu,%s,%g,%s%s,%.3f,%d,%.2f,%.3f,%.2e,%.0f\n", N, name, near, rhs_name[which], variant, setup, it, ms, product_ms, err, nnz);
       std::fflush(stdout);
     };
     // One level: Jacobi (0) or the near field's sparse Cholesky.
@@ -145,6 +171,14 @@ int main(int argc, char** argv) {
         const int it = pcg(apply, [&](const Vector& r) { return Vector(ldlt.solve(r)); }, rhs[which], x);
         report(near == 0 ? "Jacobi" : "near Cholesky", near, which, setup, it, 1e3 * seconds_since(t0), x, nnz);
       }
+      for (const double tol : {1e-8, 1e-10})
+        for (const bool from_patch : {false, true}) {
+          t0 = ProbeClock::now();
+          Vector x = from_patch ? local : Vector();
+          const int it = pcg(apply, [&](const Vector& r) { return Vector(ldlt.solve(r)); }, unit, x, tol);
+          report(near == 0 ? "Jacobi" : "near Cholesky", near, 2, setup, it, 1e3 * seconds_since(t0), x, nnz,
+                 tol == 1e-8 ? (from_patch ? " to 1e-8 from its patch" : " to 1e-8") : (from_patch ? " to 1e-10 from its patch" : " to 1e-10"));
+        }
     }
     // Two levels: deflation by bilinear hats on a coarse grid of H spacings (the collective modes)
     // around the near field's Cholesky of NEAR spacings as the smoother (the local ones). Deflated
@@ -190,6 +224,17 @@ int main(int argc, char** argv) {
         const Vector x = Z * Einv.solve(Z.transpose() * rhs[which]) + xt - Z * Einv.solve(AZ.transpose() * xt);
         report(name, near_s, which, setup, it, 1e3 * seconds_since(t0), x, 0);
       }
+      for (const double tol : {1e-8, 1e-10})
+        for (const bool from_patch : {false, true}) {
+          t0 = ProbeClock::now();
+          Vector xt = from_patch ? local : Vector();
+          const Vector b = deflate(unit);
+          const int it = pcg([&](const Vector& v) { return deflate(apply(v)); }, [&](const Vector& r) { return Vector(smoother.solve(r)); },
+                             b, xt, tol * unit.norm() / b.norm());
+          const Vector x = Z * Einv.solve(Z.transpose() * unit) + xt - Z * Einv.solve(AZ.transpose() * xt);
+          report(name, near_s, 2, setup, it, 1e3 * seconds_since(t0), x, 0,
+                 tol == 1e-8 ? (from_patch ? " to 1e-8 from its patch" : " to 1e-8") : (from_patch ? " to 1e-10 from its patch" : " to 1e-10"));
+        }
     }
   }
 }
