@@ -10,6 +10,15 @@ namespace {
 double prefactor(double E_pa, double nu) { return (1.0 + nu) / (2.0 * M_PI * E_pa); }
 }  // namespace
 
+double traction_radial_moment(int m, TractionWeighting weighting) {
+  // By the ratios μ_k/μ_(k−1) = k/(k+1) (uniform) or 2k/(2k+1) (rigid), as disc_compliance's
+  // recurrence uses them.
+  double mu = 1.0;
+  for (int k = 1; k <= m; ++k)
+    mu *= weighting == TractionWeighting::rigid ? 2.0 * k / (2.0 * k + 1.0) : static_cast<double>(k) / (k + 1.0);
+  return mu;
+}
+
 double cerruti_compliance(double dx_m, double dy_m, double E_pa, double nu) {
   const double r = std::hypot(dx_m, dy_m);
   return prefactor(E_pa, nu) * (2.0 * (1.0 - nu) / r + 2.0 * nu * dx_m * dx_m / (r * r * r));

@@ -14,6 +14,13 @@ namespace asperity {
 //    ~10 % at touching, along y).
 enum class TractionWeighting { uniform, rigid };
 
+// The radial moment μ_m = ⟨|ξ|^2m⟩ / a^2m of a junction's tangential traction over its disc of
+// radius a (ξ drawn with the traction's density): 1/(m + 1) uniform, 2^m m!/(2m + 1)!! rigid.
+// It sets the disc-averaging operator S_a = Σ_m a^2m μ_m / (4^m m!²) ∇^2m (for a function whose
+// mean over a circle is its Taylor series' isotropic part), whose pair product S_i S_j K is the
+// series of disc_compliance below.
+double traction_radial_moment(int m, TractionWeighting weighting);
+
 // Cerruti's point-force compliance [m/N] at offset (dx, dy) = (x_i − x_j, y_i − y_j), r > 0
 // (Johnson, Contact Mechanics §3.2): (1+ν)/(2πE) · [2(1−ν)/r + 2ν dx²/r³].
 double cerruti_compliance(double dx_m, double dy_m, double E_pa, double nu);

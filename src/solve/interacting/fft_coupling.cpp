@@ -64,12 +64,9 @@ double derivative(const std::vector<double>& c, int q, double u) {
 
 // s_m(a) / a^2m of the disc-averaging operator S_a = Σ_m s_m ∇^2m (see the header).
 double smoothing_coefficient(int m, TractionWeighting w) {
-  double mu = 1, fact = 1;
-  for (int k = 1; k <= m; ++k) {
-    mu *= w == TractionWeighting::rigid ? 2.0 * k / (2.0 * k + 1.0) : static_cast<double>(k) / (k + 1.0);
-    fact *= k;
-  }
-  return mu / (std::pow(4.0, m) * fact * fact);
+  double fact = 1;
+  for (int k = 1; k <= m; ++k) fact *= k;
+  return traction_radial_moment(m, w) / (std::pow(4.0, m) * fact * fact);
 }
 
 }  // namespace
@@ -111,7 +108,7 @@ FftCoupling::FftCoupling(const std::vector<double>& x, const std::vector<double>
   if (!(h_ > 0) || !std::isfinite(h_)) h_ = 1.0;  // one junction, or all at one point: the near table does it all
   const int half = p_ / 2;
   const double ox = *xmin - half * h_, oy = *ymin - half * h_;
-  const std::size_t side = static_cast<std::size_t>(std::max(wx, wy) / h_) + p_ + 2;
+  const std::size_t side = static_cast<std::size_t>(wide / h_) + p_ + 2;
   M_ = fft_size(2 * side - 1);
   const std::size_t M = M_;
 
@@ -122,14 +119,15 @@ FftCoupling::FftCoupling(const std::vector<double>& x, const std::vector<double>
   for (int m = 0; m <= m_max; ++m) coefficient[m] = smoothing_coefficient(m, weighting);
   const std::size_t pp = static_cast<std::size_t>(p_) * p_;
   bx_.resize(n_), by_.resize(n_), w_.assign(n_ * pp, 0.0);
-  std::vector<double> lx((m_max + 1) * p_), ly((m_max + 1) * p_);
+  std::vector<double> lx((m_max + 1) * p_), ly((m_max + 1) * p_), inverse_h2q(m_max + 1);
+  for (int q = 0; q <= m_max; ++q) inverse_h2q[q] = std::pow(h_, -2.0 * q);  // the 2q-th derivative's unit
   for (std::size_t j = 0; j < n_; ++j) {
     const double tx = (x[j] - ox) / h_, ty = (y[j] - oy) / h_;
     bx_[j] = static_cast<int>(std::floor(tx)) - (half - 1);
     by_[j] = static_cast<int>(std::floor(ty)) - (half - 1);
     for (int q = 0; q <= m_max; ++q)
       for (int a = 0; a < p_; ++a) {
-        const double scale = std::pow(h_, -2.0 * q);
+        const double scale = inverse_h2q[q];
         lx[q * p_ + a] = derivative(basis[a], 2 * q, tx - bx_[j]) * scale;
         ly[q * p_ + a] = derivative(basis[a], 2 * q, ty - by_[j]) * scale;
       }

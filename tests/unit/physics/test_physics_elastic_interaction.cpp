@@ -119,6 +119,17 @@ TEST_CASE("the disc average is symmetric and tends to the point kernel for small
   CHECK_THROWS_AS(disc_compliance(1.5e-5, 0, 1e-5, 1e-5, kE, kNu), std::invalid_argument);
 }
 
+TEST_CASE("the tractions' radial moments are the closed-form averages of |ξ|^2m over the disc", "[physics][interaction]") {
+  // Uniform: ∫ r^2m 2r dr / a² = a^2m/(m+1). Rigid punch: ∫ r^2m r dr / (a sqrt(a² − r²)) = a^2m
+  // 2^m m!/(2m+1)!!, here by Gauss–Legendre in r = a sin θ (smooth in θ).
+  using G = boost::math::quadrature::gauss<double, 40>;
+  for (int m = 0; m <= 8; ++m) {
+    CHECK_THAT(traction_radial_moment(m, TractionWeighting::uniform), WithinRel(1.0 / (m + 1), 1e-15));
+    const double rigid = G::integrate([m](double th) { return std::pow(std::sin(th), 2 * m + 1); }, 0.0, M_PI / 2);
+    CHECK_THAT(traction_radial_moment(m, TractionWeighting::rigid), WithinRel(rigid, 1e-13));
+  }
+}
+
 TEST_CASE("rigid weighting: the punch's traction displaces its own disc uniformly by Mindlin's compliance",
           "[physics][interaction]") {
   // Johnson §7.2: q = T/(2πa sqrt(a² − r²)) gives u_x = (2 − ν)/(8Ga) T all over the disc, so a
