@@ -3,6 +3,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <cstring>
 
 #include "solve/interacting/solver_failure.hpp"
 
@@ -26,6 +27,164 @@ constexpr std::size_t kProductBlocks = 16;
 constexpr std::size_t kFewColumns = 10;
 // Pinned sets below this size are factorised and inverted by LAPACK on one thread.
 constexpr std::size_t kParallelLapack = 2000;
+
+// Four doubles as one value (GCC's vector extensions): one AVX2 register, or two SSE2 / NEON
+// registers. The arithmetic is lane by lane and this file is compiled without fused multiply-add
+// (CMakeLists.txt), so both forms give the same bits.
+using Quad = double __attribute__((vector_size(32)));
+using Half = double __attribute__((vector_size(16)));
+struct HalfPair {
+  Half lo, hi;
+};
+inline HalfPair operator+(HalfPair a, HalfPair b) { return {a.lo + b.lo, a.hi + b.hi}; }
+inline HalfPair operator*(HalfPair a, HalfPair b) { return {a.lo * b.lo, a.hi * b.hi}; }
+inline HalfPair& operator+=(HalfPair& a, HalfPair b) { return a = a + b; }
+template <class V> inline V load(const double* p) {
+  V v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+template <class V> inline void store(double* p, V v) { std::memcpy(p, &v, sizeof v); }
+template <> inline HalfPair load<HalfPair>(const double* p) { return {load<Half>(p), load<Half>(p + 2)}; }
+template <> inline void store<HalfPair>(double* p, HalfPair v) {
+  store(p, v.lo);
+  store(p + 2, v.hi);
+}
+template <class V> inline V splat(double x) {
+  const double four[4] = {x, x, x, x};
+  return load<V>(four);
+}
+inline double sum(Quad v) { return (v[0] + v[1]) + (v[2] + v[3]); }
+inline double sum(HalfPair v) { return (v.lo[0] + v.lo[1]) + (v.hi[0] + v.hi[1]); }
+
+// Rows [r0, r1) of the stored triangle times (w1, w2): row r's own sums into p[r], its entries'
+// transposed products into p[c > r]. Two rows at a time: each load of w and each update of p
+// serves two rows of G (the loop is bound by loads and stores, not arithmetic). Every sum has one
+// fixed order (four lanes, combined pairwise): the same bits from either form, on any number of
+// threads. Each p[c] takes its rows' terms in row order, as a row-by-row loop would.
+template <class V>
+[[gnu::always_inline]] inline void product_rows(const double* __restrict G, std::size_t N, std::size_t n, std::size_t r0,
+                                                std::size_t r1, const double* __restrict w1, const double* __restrict w2,
+                                                double* __restrict p1, double* __restrict p2) {
+  std::size_t r = r0;
+  for (; r + 1 < r1; r += 2) {
+    const double* __restrict A = G + r * N;
+    const double* __restrict Bw = A + N;
+    const double a1 = w1[r], a2 = w2[r], b1 = w1[r + 1], b2 = w2[r + 1];
+    // Row r's diagonal and its entry at r + 1 (row r + 1 starts at its diagonal there).
+    const double g = A[r + 1];
+    const double tA1 = A[r] * a1 + g * w1[r + 1], tA2 = A[r] * a2 + g * w2[r + 1];
+    p1[r + 1] += g * a1;
+    p2[r + 1] += g * a2;
+    const double tB1 = Bw[r + 1] * b1, tB2 = Bw[r + 1] * b2;
+    const V va1 = splat<V>(a1), va2 = splat<V>(a2), vb1 = splat<V>(b1), vb2 = splat<V>(b2);
+    V sA1 = splat<V>(0.0), sA2 = sA1, sB1 = sA1, sB2 = sA1;
+    std::size_t c = r + 2;
+    for (; c + 4 <= n; c += 4) {
+      const V ga = load<V>(A + c), gb = load<V>(Bw + c), x1 = load<V>(w1 + c), x2 = load<V>(w2 + c);
+      sA1 += ga * x1;
+      sA2 += ga * x2;
+      sB1 += gb * x1;
+      sB2 += gb * x2;
+      store(p1 + c, (load<V>(p1 + c) + ga * va1) + gb * vb1);
+      store(p2 + c, (load<V>(p2 + c) + ga * va2) + gb * vb2);
+    }
+    double eA1 = 0, eA2 = 0, eB1 = 0, eB2 = 0;
+    for (; c < n; ++c) {
+      const double ga = A[c], gb = Bw[c];
+      eA1 += ga * w1[c];
+      eA2 += ga * w2[c];
+      eB1 += gb * w1[c];
+      eB2 += gb * w2[c];
+      p1[c] = (p1[c] + ga * a1) + gb * b1;
+      p2[c] = (p2[c] + ga * a2) + gb * b2;
+    }
+    p1[r] += tA1 + (sum(sA1) + eA1);
+    p2[r] += tA2 + (sum(sA2) + eA2);
+    p1[r + 1] += tB1 + (sum(sB1) + eB1);
+    p2[r + 1] += tB2 + (sum(sB2) + eB2);
+  }
+  if (r < r1) {  // an odd row left: alone, the same way
+    const double* __restrict A = G + r * N;
+    const double a1 = w1[r], a2 = w2[r];
+    const V va1 = splat<V>(a1), va2 = splat<V>(a2);
+    V sA1 = splat<V>(0.0), sA2 = sA1;
+    std::size_t c = r + 1;
+    for (; c + 4 <= n; c += 4) {
+      const V ga = load<V>(A + c);
+      sA1 += ga * load<V>(w1 + c);
+      sA2 += ga * load<V>(w2 + c);
+      store(p1 + c, load<V>(p1 + c) + ga * va1);
+      store(p2 + c, load<V>(p2 + c) + ga * va2);
+    }
+    double eA1 = 0, eA2 = 0;
+    for (; c < n; ++c) {
+      eA1 += A[c] * w1[c];
+      eA2 += A[c] * w2[c];
+      p1[c] += A[c] * a1;
+      p2[c] += A[c] * a2;
+    }
+    p1[r] += A[r] * a1 + (sum(sA1) + eA1);
+    p2[r] += A[r] * a2 + (sum(sA2) + eA2);
+  }
+}
+
+using ProductRows = void (*)(const double*, std::size_t, std::size_t, std::size_t, std::size_t, const double*,
+                             const double*, double*, double*);
+// The same rows one at a time, for CPUs with 16-byte vectors (SSE2, NEON), where two rows' sums
+// would not fit in the registers. Each row's sum is grouped exactly as in product_rows (a row
+// opening a pair takes its entry at r + 1 apart, as product_rows does), and each p[c] takes the
+// same terms in the same order: the same bits.
+void product_rows_portable(const double* __restrict G, std::size_t N, std::size_t n, std::size_t r0, std::size_t r1,
+                           const double* __restrict w1, const double* __restrict w2, double* __restrict p1,
+                           double* __restrict p2) {
+  for (std::size_t r = r0; r < r1; ++r) {
+    const double* __restrict A = G + r * N;
+    const double a1 = w1[r], a2 = w2[r];
+    const bool opens_pair = (r - r0) % 2 == 0 && r + 1 < r1;
+    double t1 = A[r] * a1, t2 = A[r] * a2;
+    std::size_t c = r + 1;
+    if (opens_pair) {
+      const double g = A[r + 1];
+      t1 = A[r] * a1 + g * w1[r + 1];
+      t2 = A[r] * a2 + g * w2[r + 1];
+      p1[r + 1] += g * a1;
+      p2[r + 1] += g * a2;
+      c = r + 2;
+    }
+    const HalfPair va1 = splat<HalfPair>(a1), va2 = splat<HalfPair>(a2);
+    HalfPair s1 = splat<HalfPair>(0.0), s2 = s1;
+    for (; c + 4 <= n; c += 4) {
+      const HalfPair ga = load<HalfPair>(A + c);
+      s1 += ga * load<HalfPair>(w1 + c);
+      s2 += ga * load<HalfPair>(w2 + c);
+      store(p1 + c, load<HalfPair>(p1 + c) + ga * va1);
+      store(p2 + c, load<HalfPair>(p2 + c) + ga * va2);
+    }
+    double e1 = 0, e2 = 0;
+    for (; c < n; ++c) {
+      e1 += A[c] * w1[c];
+      e2 += A[c] * w2[c];
+      p1[c] += A[c] * a1;
+      p2[c] += A[c] * a2;
+    }
+    p1[r] += t1 + (sum(s1) + e1);
+    p2[r] += t2 + (sum(s2) + e2);
+  }
+}
+#if defined(__x86_64__)
+// The same rows with AVX2 (x86-64-v3: every x86 CPU since about 2013), chosen at run time.
+__attribute__((target("arch=x86-64-v3"))) void product_rows_avx2(const double* G, std::size_t N, std::size_t n,
+                                                                   std::size_t r0, std::size_t r1, const double* w1,
+                                                                   const double* w2, double* p1, double* p2) {
+  product_rows<Quad>(G, N, n, r0, r1, w1, w2, p1, p2);
+}
+ProductRows product_rows_for_this_cpu() {
+  return __builtin_cpu_supports("x86-64-v3") ? product_rows_avx2 : product_rows_portable;
+}
+#else
+ProductRows product_rows_for_this_cpu() { return product_rows_portable; }
+#endif
 
 }  // namespace
 
@@ -97,28 +256,14 @@ void PinnedCompliance::symmetric_product(const std::vector<double>& w1, const st
   partial_.resize(2 * B * n);  // block b writes (and zeroes) only its entries from edge[b] on
   const double* G = G_.data();
   double* P = partial_.data();
+  static const ProductRows rows = product_rows_for_this_cpu();  // the CPU does not change
 #pragma omp parallel for schedule(dynamic, 1) if (n * n > 2 * kParallelWork)
   for (std::size_t b = 0; b < B; ++b) {
     double* p1 = P + 2 * b * n;
     double* p2 = p1 + n;
     std::fill(p1 + edge[b], p1 + n, 0.0);
     std::fill(p2 + edge[b], p2 + n, 0.0);
-    for (std::size_t r = edge[b]; r < edge[b + 1]; ++r) {
-      const double* row = G + r * N;
-      const double u1 = w1[r], u2 = w2[r];
-      double t1 = row[r] * u1, t2 = row[r] * u2;
-      // Vectorised (the sums of a row in SIMD lanes: one fixed order for a given build).
-#pragma omp simd reduction(+ : t1, t2)
-      for (std::size_t c = r + 1; c < n; ++c) {
-        const double g = row[c];
-        t1 += g * w1[c];
-        t2 += g * w2[c];
-        p1[c] += g * u1;
-        p2[c] += g * u2;
-      }
-      p1[r] += t1;
-      p2[r] += t2;
-    }
+    rows(G, N, n, edge[b], edge[b + 1], w1.data(), w2.data(), p1, p2);
   }
   for (std::size_t r = 0; r < n; ++r) {
     double s1 = 0, s2 = 0;
