@@ -27,6 +27,9 @@ constexpr std::size_t kProductBlocks = 16;
 constexpr std::size_t kFewColumns = 10;
 // Pinned sets below this size are factorised and inverted by LAPACK on one thread.
 constexpr std::size_t kParallelLapack = 2000;
+// Removals kept aside (as G − Σ u uᵀ/d) before they are folded into the stored triangle in one
+// pass: each fold reads and writes G once instead of once per removal.
+constexpr std::size_t kDeferredRemovals = 8;
 
 // Four doubles as one value (GCC's vector extensions): one AVX2 register, or two SSE2 / NEON
 // registers. The arithmetic is lane by lane and this file is compiled without fused multiply-add
@@ -233,6 +236,12 @@ void PinnedCompliance::apply(const std::vector<std::size_t>& columns, const std:
       y2[s] += row[s] * v2;
     }
   }
+  for (const Deferred& u : deferred_) {  // − Σ u (uᵀ w)/d, w zero outside the columns
+    double c1 = 0, c2 = 0;
+    for (std::size_t q : columns) c1 += u.u[q] * w1[q], c2 += u.u[q] * w2[q];
+    c1 /= u.d, c2 /= u.d;
+    for (std::size_t r = 0; r < n; ++r) y1[r] -= u.u[r] * c1, y2[r] -= u.u[r] * c2;
+  }
 }
 
 void PinnedCompliance::symmetric_product(const std::vector<double>& w1, const std::vector<double>& w2,
@@ -271,13 +280,40 @@ void PinnedCompliance::symmetric_product(const std::vector<double>& w1, const st
     y1[r] = s1;
     y2[r] = s2;
   }
+  for (const Deferred& u : deferred_) {  // − Σ u (uᵀ w)/d
+    double c1 = 0, c2 = 0;
+    for (std::size_t r = 0; r < n; ++r) c1 += u.u[r] * w1[r], c2 += u.u[r] * w2[r];
+    c1 /= u.d, c2 /= u.d;
+    for (std::size_t r = 0; r < n; ++r) y1[r] -= u.u[r] * c1, y2[r] -= u.u[r] * c2;
+  }
 }
 
 std::vector<double> PinnedCompliance::row(std::size_t q) const {
   std::vector<double> g(n_);
   for (std::size_t r = 0; r < q; ++r) g[r] = G_[r * N_ + q];  // column q of the triangle
   for (std::size_t s = q; s < n_; ++s) g[s] = G_[q * N_ + s];
+  // The removals not yet folded, in order: each entry takes the same operations as fold() would
+  // apply to it (the entry of the triangle of row min(r, q), column max(r, q)).
+  for (const Deferred& u : deferred_)
+    for (std::size_t r = 0; r < n_; ++r) g[r] -= (std::min(r, q) == r ? u.u[r] / u.d * u.u[q] : u.u[q] / u.d * u.u[r]);
   return g;
+}
+
+void PinnedCompliance::fold() {
+  if (deferred_.empty()) return;
+  const std::size_t n = n_, N = N_;
+  double* G = G_.data();
+  // Entry (r, s ≥ r) takes each removal in order, as the removals one by one would.
+#pragma omp parallel for schedule(dynamic, 64) if (n * n > 2 * kParallelWork)
+  for (std::size_t r = 0; r < n; ++r) {
+    double* row = G + r * N;
+    for (const Deferred& u : deferred_) {
+      const double w = u.u[r] / u.d;
+      const double* us = u.u.data();
+      for (std::size_t s = r; s < n; ++s) row[s] -= w * us[s];
+    }
+  }
+  deferred_.clear();
 }
 
 void PinnedCompliance::remove(std::size_t q, double f_sl) {
@@ -286,14 +322,9 @@ void PinnedCompliance::remove(std::size_t q, double f_sl) {
   const double gqq = g[q];
   if (nl_[q]) --n_nl_;
   double* G = G_.data();
-  // G' = G − g gᵀ/g_qq (the inverse of M without row and column q; they become 0), on the
-  // stored triangle.
-#pragma omp parallel for schedule(dynamic, 64) if (n * n > 2 * kParallelWork)
-  for (std::size_t r = 0; r < n; ++r) {
-    const double w = g[r] / gqq;
-    double* row = G + r * N;
-    for (std::size_t s = r; s < n; ++s) row[s] -= w * g[s];
-  }
+  // G' = G − g gᵀ/g_qq (the inverse of M without row and column q; they become 0), kept aside
+  // until kDeferredRemovals of them are folded into the stored triangle together.
+  deferred_.push_back(Deferred{g, gqq});
   // a0' = G'1, b0' = −G'h' with h' = h + C_{·i} f_sl; G'C_{·i} = −g/g_qq (from G M = I).
   const double a0q = a0_[q], b0q = b0_[q];
   for (std::size_t r = 0; r < n; ++r) {
@@ -316,15 +347,19 @@ void PinnedCompliance::remove(std::size_t q, double f_sl) {
     b0_[q] = b0_[last];
     nl_[q] = nl_[last];
     pos_[idx_[q]] = q;
+    for (Deferred& u : deferred_) u.u[q] = u.u[last];
   }
+  for (Deferred& u : deferred_) u.u.pop_back();
   pos_[i] = npos;
   n_ = last;
   ++rank_one_;
+  if (deferred_.size() >= kDeferredRemovals) fold();
   // Rank-one updates accumulate rounding: start afresh after about N of them.
   if (++updates_since_rebuild_ > static_cast<std::int64_t>(std::max<std::size_t>(N_, 64)) && n_ > 0) rebuild();
 }
 
 std::size_t PinnedCompliance::add(std::size_t i, bool nonlinear) {
+  deferred_.clear();  // G is stale until rebuild(), which starts from C and D
   const std::size_t q = n_++;
   idx_[q] = static_cast<std::uint32_t>(i);
   pos_[i] = q;
@@ -338,6 +373,7 @@ void PinnedCompliance::set_anchors(const std::vector<double>& anchor_m) {
 }
 
 void PinnedCompliance::rebuild() {
+  deferred_.clear();  // G starts afresh from C and D
   const std::size_t n = n_, N = N_;
   if (n == 0) return;
   double* G = G_.data();

@@ -4,7 +4,8 @@
 // junctions, a choice of the iteration for Eq. (3) ones) and h_i = x_i + Σ_{j slipping} C_ij f_j,
 // M = D + C_PP is kept as its explicit inverse G = M⁻¹, with a0 = G 1 and b0 = −G h, so that
 // the pinned forces are f = X a0 + b0 − G Δ(f) (Δ = 0 for linear junctions).
-// A slip removes one position (rank-one, O(N²)); a repin adds the slipping junctions back and a
+// A slip removes one position (rank-one: kept aside as G − g gᵀ/g_qq, O(N) a product, and
+// folded into the stored triangle eight at a time, one O(N²) pass for all eight); a repin adds the slipping junctions back and a
 // change of D takes effect, both by a rebuild (LAPACK Cholesky inverse in place, O(N³)); after
 // about N rank-one updates G is rebuilt too (their rounding accumulates). G is symmetric: only its
 // upper triangle is kept up to date and read (half the memory traffic of every pass and update),
@@ -75,6 +76,14 @@ class PinnedCompliance {
   // (G is symmetric: every pass over it reads half as much). Strict lower triangle: C over
   // junctions, C_ij at [max(i, j) · N + min(i, j)].
   std::vector<double> G_;
+  // Removals not yet applied to the stored triangle: G = triangle − Σ u uᵀ/d, in order (u over
+  // the current positions). fold() applies them in one pass over the triangle.
+  struct Deferred {
+    std::vector<double> u;
+    double d;
+  };
+  std::vector<Deferred> deferred_;
+  void fold();
   mutable std::vector<double> partial_;  // the symmetric product's per-block sums (a workspace)
   std::vector<std::uint32_t> idx_;  // position → junction
   std::vector<std::size_t> pos_;    // junction → position (npos: slipping)
