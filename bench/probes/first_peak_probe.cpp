@@ -7,7 +7,10 @@
 //     $B/libasperity_surface.a $B/libasperity_physics.a $B/libasperity_io.a $B/libasperity_generate.a \
 //     $B/libasperity_batch.a -Wl,--end-group -lyaml-cpp -lcrypto -ltbb -lopenblas -lfftw3_threads -lfftw3 \
 //     -lfftw3_omp -fopenmp
-//   OMP_NUM_THREADS=1 build/first_peak 1200 [interaction_tolerance]
+//   OMP_NUM_THREADS=1 build/first_peak 1200 [interaction_tolerance [wall_limit_s]]
+// With a wall limit the run stops there (stop.wall_time) and prints how far it got.
+#include <sys/resource.h>
+
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -35,6 +38,7 @@ int main(int argc, char** argv) {
   s.experiment.junctions.x_m = p.x_m; s.experiment.junctions.y_m = p.y_m;
   s.model.interactions = Interactions::elastic; s.solver.method = SolverMethod::event;
   if (argc > 2) s.solver.interaction_tolerance = std::atof(argv[2]);
+  if (argc > 3) s.stop.wall_time = std::atof(argv[3]);
   const Problem problem = make_problem(s);
   Recorder rec = make_recorder(s);
   auto t0 = std::chrono::steady_clock::now();
@@ -43,6 +47,10 @@ int main(int argc, char** argv) {
   double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const auto w = stepper.junctions().work();
   const FirstPeak fp = rec.first_peak();
+  rusage ru{};
+  getrusage(RUSAGE_SELF, &ru);
+  std::printf("max RSS %.0f MB, t_end %.6g s, stopped by a limit: %s\n", ru.ru_maxrss / 1024.0, info.t_end,
+              info.stopped_by == LimitHit::none ? "no" : "yes");
   std::printf("N %zu tol %g wall %.3f s  Q_s %.17g t_peak %.17g A_s %.17g steps %lld slips %lld solves %lld iters %lld rank1 %lld rebuilds %lld\n", N, s.solver.interaction_tolerance, wall, fp.max.Q, fp.max.t, fp.max.A,
     (long long)info.stats.steps, (long long)info.stats.slips, (long long)w.solves, (long long)w.iterations, (long long)w.rank_one, (long long)w.rebuilds);
 }
