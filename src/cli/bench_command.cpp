@@ -262,7 +262,7 @@ Command add_bench_command(CLI::App& app) {
   CLI::App* in = sub->add_subcommand("interacting", "Interacting event solver: time to the first peak vs N "
                                                     "(fitted exponent), peak memory vs N^2 doubles, P4.00N whole run");
   in->add_option("--sizes", opt->interacting_sizes, "Junction counts (default 300 600 1200 2400 5000)")
-      ->check(CLI::Range(2, 10000));
+      ->check(CLI::Range(2, 20000));
 
   CLI::App* ct = sub->add_subcommand("contact", "Rough-surface normal contact (FFT boundary elements): time and CG "
                                                 "iterations vs grid size, time per iteration vs two FFT pairs, peak memory");

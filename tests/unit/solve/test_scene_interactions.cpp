@@ -83,6 +83,28 @@ TEST_CASE("interactions are refused with one line for overlapping or unplaced ju
   fs::remove_all(dir);
 }
 
+TEST_CASE("interactions are refused with one line beyond 20,000 junctions (the dense matrix's memory)",
+          "[scene][interacting]") {
+  // N junctions of 1e-10 m² (radius 5.6 µm) on a 1 mm lattice: none overlap.
+  const auto lattice = [](std::size_t n) {
+    std::string csv = "area_m2,x_m,y_m\n";
+    for (std::size_t i = 0; i < n; ++i)
+      csv += "1e-10," + std::to_string(1e-3 * static_cast<double>(i % 150)) + "," +
+             std::to_string(1e-3 * static_cast<double>(i / 150)) + "\n";
+    return csv;
+  };
+  const fs::path dir = temp_path("scene_interactions_many");
+  fs::remove_all(dir);
+  experiment_with(dir / "most", lattice(20000));
+  experiment_with(dir / "over", lattice(20001));
+  const fs::path most = write_text(dir / "most.yaml", "experiment: most/experiment.yaml\nmodel: {interactions: elastic}\n");
+  const fs::path over = write_text(dir / "over.yaml", "experiment: over/experiment.yaml\nmodel: {interactions: elastic}\n");
+  CHECK(error_of(most).empty());
+  CHECK_THAT(error_of(over), Contains("over.yaml:2") && Contains("model.interactions") && Contains("N = 20001") &&
+                                 Contains("more than 20000"));
+  fs::remove_all(dir);
+}
+
 TEST_CASE("first_overlap finds the overlapping pair among many and none in a clean lattice", "[scene][interacting]") {
   JunctionPopulation J;
   for (int i = 0; i < 40; ++i)
