@@ -60,6 +60,33 @@ template <class V> inline V splat(double x) {
 inline double sum(Quad v) { return (v[0] + v[1]) + (v[2] + v[3]); }
 inline double sum(HalfPair v) { return (v.lo[0] + v.lo[1]) + (v.hi[0] + v.hi[1]); }
 
+// One row r of the stored triangle from column c on (the columns before, from r, already in
+// t1, t2): its sums in four lanes plus the tail, into p[r]; its transposed products into p[c..].
+template <class V>
+[[gnu::always_inline]] inline void one_row(const double* __restrict A, std::size_t r, std::size_t c, std::size_t n,
+                                           double t1, double t2, const double* __restrict w1,
+                                           const double* __restrict w2, double* __restrict p1, double* __restrict p2) {
+  const double a1 = w1[r], a2 = w2[r];
+  const V va1 = splat<V>(a1), va2 = splat<V>(a2);
+  V s1 = splat<V>(0.0), s2 = s1;
+  for (; c + 4 <= n; c += 4) {
+    const V ga = load<V>(A + c);
+    s1 += ga * load<V>(w1 + c);
+    s2 += ga * load<V>(w2 + c);
+    store(p1 + c, load<V>(p1 + c) + ga * va1);
+    store(p2 + c, load<V>(p2 + c) + ga * va2);
+  }
+  double e1 = 0, e2 = 0;
+  for (; c < n; ++c) {
+    e1 += A[c] * w1[c];
+    e2 += A[c] * w2[c];
+    p1[c] += A[c] * a1;
+    p2[c] += A[c] * a2;
+  }
+  p1[r] += t1 + (sum(s1) + e1);
+  p2[r] += t2 + (sum(s2) + e2);
+}
+
 // Rows [r0, r1) of the stored triangle times (w1, w2): row r's own sums into p[r], its entries'
 // transposed products into p[c > r]. Two rows at a time: each load of w and each update of p
 // serves two rows of G (the loop is bound by loads and stores, not arithmetic). Every sum has one
@@ -109,26 +136,7 @@ template <class V>
   }
   if (r < r1) {  // an odd row left: alone, the same way
     const double* __restrict A = G + r * N;
-    const double a1 = w1[r], a2 = w2[r];
-    const V va1 = splat<V>(a1), va2 = splat<V>(a2);
-    V sA1 = splat<V>(0.0), sA2 = sA1;
-    std::size_t c = r + 1;
-    for (; c + 4 <= n; c += 4) {
-      const V ga = load<V>(A + c);
-      sA1 += ga * load<V>(w1 + c);
-      sA2 += ga * load<V>(w2 + c);
-      store(p1 + c, load<V>(p1 + c) + ga * va1);
-      store(p2 + c, load<V>(p2 + c) + ga * va2);
-    }
-    double eA1 = 0, eA2 = 0;
-    for (; c < n; ++c) {
-      eA1 += A[c] * w1[c];
-      eA2 += A[c] * w2[c];
-      p1[c] += A[c] * a1;
-      p2[c] += A[c] * a2;
-    }
-    p1[r] += A[r] * a1 + (sum(sA1) + eA1);
-    p2[r] += A[r] * a2 + (sum(sA2) + eA2);
+    one_row<V>(A, r, r + 1, n, A[r] * w1[r], A[r] * w2[r], w1, w2, p1, p2);
   }
 }
 
@@ -144,35 +152,14 @@ void product_rows_portable(const double* __restrict G, std::size_t N, std::size_
   for (std::size_t r = r0; r < r1; ++r) {
     const double* __restrict A = G + r * N;
     const double a1 = w1[r], a2 = w2[r];
-    const bool opens_pair = (r - r0) % 2 == 0 && r + 1 < r1;
-    double t1 = A[r] * a1, t2 = A[r] * a2;
-    std::size_t c = r + 1;
-    if (opens_pair) {
+    if ((r - r0) % 2 == 0 && r + 1 < r1) {  // opens a pair
       const double g = A[r + 1];
-      t1 = A[r] * a1 + g * w1[r + 1];
-      t2 = A[r] * a2 + g * w2[r + 1];
       p1[r + 1] += g * a1;
       p2[r + 1] += g * a2;
-      c = r + 2;
+      one_row<HalfPair>(A, r, r + 2, n, A[r] * a1 + g * w1[r + 1], A[r] * a2 + g * w2[r + 1], w1, w2, p1, p2);
+    } else {
+      one_row<HalfPair>(A, r, r + 1, n, A[r] * a1, A[r] * a2, w1, w2, p1, p2);
     }
-    const HalfPair va1 = splat<HalfPair>(a1), va2 = splat<HalfPair>(a2);
-    HalfPair s1 = splat<HalfPair>(0.0), s2 = s1;
-    for (; c + 4 <= n; c += 4) {
-      const HalfPair ga = load<HalfPair>(A + c);
-      s1 += ga * load<HalfPair>(w1 + c);
-      s2 += ga * load<HalfPair>(w2 + c);
-      store(p1 + c, load<HalfPair>(p1 + c) + ga * va1);
-      store(p2 + c, load<HalfPair>(p2 + c) + ga * va2);
-    }
-    double e1 = 0, e2 = 0;
-    for (; c < n; ++c) {
-      e1 += A[c] * w1[c];
-      e2 += A[c] * w2[c];
-      p1[c] += A[c] * a1;
-      p2[c] += A[c] * a2;
-    }
-    p1[r] += t1 + (sum(s1) + e1);
-    p2[r] += t2 + (sum(s2) + e2);
   }
 }
 #if defined(__x86_64__)
