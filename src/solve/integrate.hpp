@@ -41,8 +41,8 @@ template <Stepper S, Observer O>
 RunInfo integrate(S& stepper, const Problem& problem, O& observer) {
   ObserverAdapter<O> out(observer);
   RunInfo info = initial_info(problem);
+  LimitGuard guard(problem.limits);  // the start's work counts too
   stepper.start(out);
-  LimitGuard guard(problem.limits);
   while (!stepper.finished() && !observer.done()) {
     if ((info.stopped_by = guard.check(stepper.slips())) != LimitHit::none) {
       stepper.stop_early();

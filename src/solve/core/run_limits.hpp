@@ -2,6 +2,7 @@
 // Resource limits of one run: stop.wall_time, stop.max_slips and a sweep's per-point
 // time_limit. Checked inside the solver loops (every step or event), so that no input can keep
 // a run going unseen; a solver that reaches one stops cleanly and says which (RunInfo).
+#include <algorithm>
 #include <chrono>
 #include <cstdint>
 #include <limits>
@@ -27,8 +28,11 @@ std::int64_t default_max_slips(const Scene& scene);
 // The scene's limits (stop.wall_time, stop.max_slips or its default).
 RunLimits run_limits(const Scene& scene);
 
-// Counts calls and looks at the clock every 64th (a clock read costs ~20 ns, a solver step
-// 0.1–10 µs), so the check is free in the loops and a limit is seen within microseconds.
+// Counts calls and reads the clock every stride-th: the stride doubles (up to 64) while the calls
+// between two reads take under a millisecond and halves (down to 1) otherwise. Fast loops (an
+// independent solver step takes 0.1–10 µs, a clock read ~20 ns) read it every 64th call, so the
+// check is free there; slow ones (an interacting step at N = 20,000 takes seconds) read it every
+// call. A limit is seen within about a millisecond or one call, whichever is longer.
 class LimitGuard {
  public:
   explicit LimitGuard(const RunLimits& limits)
@@ -37,18 +41,24 @@ class LimitGuard {
                       ? std::chrono::steady_clock::now() +
                             std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                                 std::chrono::duration<double>(limits.wall_time_s))
-                      : std::chrono::steady_clock::time_point::max()) {}
+                      : std::chrono::steady_clock::time_point::max()),
+        last_read_(std::chrono::steady_clock::now()) {}
 
   LimitHit check(std::int64_t slips) {
     if (slips >= max_slips_) return LimitHit::max_slips;
-    if ((++calls_ & 63) == 0 && std::chrono::steady_clock::now() >= deadline_) return LimitHit::wall_time;
-    return LimitHit::none;
+    if (++calls_ < next_read_) return LimitHit::none;
+    const auto now = std::chrono::steady_clock::now();
+    const bool quick = now - last_read_ < std::chrono::milliseconds(1);
+    stride_ = quick ? std::min<std::uint64_t>(2 * stride_, 64) : std::max<std::uint64_t>(stride_ / 2, 1);
+    next_read_ = calls_ + stride_;
+    last_read_ = now;
+    return now >= deadline_ ? LimitHit::wall_time : LimitHit::none;
   }
 
  private:
   std::int64_t max_slips_;
-  std::chrono::steady_clock::time_point deadline_;
-  std::uint64_t calls_ = 0;
+  std::chrono::steady_clock::time_point deadline_, last_read_;
+  std::uint64_t calls_ = 0, next_read_ = 1, stride_ = 1;
 };
 
 // One line for a run stopped by `hit` at simulated time t_end with `slips` slips, naming the
