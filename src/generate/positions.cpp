@@ -5,11 +5,11 @@
 #include <numeric>
 #include <stdexcept>
 #include <string>
-#include <unordered_map>
 
 #include "generate/distributions.hpp"
 #include "io/numbers.hpp"
 #include "physics/contact_law.hpp"
+#include "surface/neighbour_grid.hpp"
 
 namespace asperity {
 
@@ -23,14 +23,9 @@ Positions place_in_contact_disc(const std::vector<double>& areas, double R, std:
   std::iota(order.begin(), order.end(), std::size_t{0});
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return areas[a] > areas[b]; });
 
-  // Placed junctions in a grid of cells of the largest diameter: an overlap can only be with a
-  // junction of the 3 × 3 cells around a candidate.
-  const double cell = 2 * r_max;
-  std::unordered_map<std::uint64_t, std::vector<std::size_t>> cells;
-  const auto cell_of = [&](double v) { return static_cast<std::int64_t>(std::floor(v / cell)); };
-  const auto key = [](std::int64_t cx, std::int64_t cy) {
-    return (static_cast<std::uint64_t>(cx) << 32) ^ static_cast<std::uint32_t>(cy);
-  };
+  // Placed junctions in cells of the largest diameter: an overlap can only be with a junction of
+  // the 3 × 3 cells around a candidate.
+  NeighbourGrid grid(2 * r_max, R);
   Positions p{std::vector<double>(n), std::vector<double>(n)};
   Uniform01 u(seed);
   for (const std::size_t i : order) {
@@ -40,25 +35,16 @@ Positions place_in_contact_disc(const std::vector<double>& areas, double R, std:
       const double s2 = sx * sx + sy * sy;
       if (s2 >= 1 || keep * keep > 1 - s2) continue;  // outside the disc, or thinned to the Hertz density
       const double x = R * sx, y = R * sy;
-      bool free = true;
-      for (std::int64_t dx = -1; dx <= 1 && free; ++dx)
-        for (std::int64_t dy = -1; dy <= 1 && free; ++dy) {
-          const auto it = cells.find(key(cell_of(x) + dx, cell_of(y) + dy));
-          if (it == cells.end()) continue;
-          for (const std::size_t j : it->second) {
-            // A relative margin of 1e-12 keeps touching pairs clear of the loader's overlap test
-            // (which computes the distance with hypot).
-            const double ddx = x - p.x_m[j], ddy = y - p.y_m[j], reach = (radius[i] + radius[j]) * (1 + 1e-12);
-            if (ddx * ddx + ddy * ddy < reach * reach) {
-              free = false;
-              break;
-            }
-          }
-        }
+      // A relative margin of 1e-12 keeps touching pairs clear of the loader's overlap test
+      // (which computes the distance with hypot).
+      const bool free = grid.for_each_near(x, y, 1, [&](std::size_t j) {
+        const double ddx = x - p.x_m[j], ddy = y - p.y_m[j], reach = (radius[i] + radius[j]) * (1 + 1e-12);
+        return ddx * ddx + ddy * ddy >= reach * reach;
+      });
       if (!free) continue;
       p.x_m[i] = x;
       p.y_m[i] = y;
-      cells[key(cell_of(x), cell_of(y))].push_back(i);
+      grid.insert(i, x, y);
       placed = true;
     }
     if (!placed)

@@ -2,14 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <stdexcept>
-#include <unordered_map>
 #include <vector>
 
 #include "io/input_error.hpp"
 #include "io/numbers.hpp"
 #include "physics/contact_law.hpp"
+#include "surface/neighbour_grid.hpp"
 
 namespace asperity {
 
@@ -152,39 +151,25 @@ void check_interactions(const Scene& s, const KeyOrigins& o) {
 }  // namespace
 
 std::optional<std::pair<std::size_t, std::size_t>> first_overlap(const JunctionPopulation& J) {
-  // Uniform grid of cells of the largest diameter: a pair that overlaps lies in neighbouring
-  // cells, so each junction is compared with the 3 x 3 cells around it (O(N) for even sizes).
+  // Cells of the largest diameter: a pair that overlaps lies in neighbouring cells, so each
+  // junction is compared with the 3 x 3 cells around it (O(N) for even sizes).
   const std::size_t n = J.size();
   if (n < 2) return std::nullopt;
-  double r_max = 0;
+  double r_max = 0, extent = 0;
   for (const double A : J.area_m2) r_max = std::max(r_max, disc_radius(A));
-  // Cells no smaller than 1e-12 of the extent keep every cell index far inside int64 (a larger
-  // cell only adds candidates, it never misses a pair).
-  double extent = 0;
   for (std::size_t i = 0; i < n; ++i) extent = std::max({extent, std::abs(J.x_m[i]), std::abs(J.y_m[i])});
-  const double cell = std::max(2 * r_max, extent * 1e-12);
-  std::unordered_map<std::uint64_t, std::vector<std::size_t>> cells;
-  const auto key = [](std::int64_t cx, std::int64_t cy) {
-    return (static_cast<std::uint64_t>(cx) << 32) ^ static_cast<std::uint32_t>(cy);
-  };
-  std::vector<std::int64_t> cx(n), cy(n);
+  NeighbourGrid grid(2 * r_max, extent);
+  for (std::size_t i = 0; i < n; ++i) grid.insert(i, J.x_m[i], J.y_m[i]);
   for (std::size_t i = 0; i < n; ++i) {
-    cx[i] = static_cast<std::int64_t>(std::floor(J.x_m[i] / cell));
-    cy[i] = static_cast<std::int64_t>(std::floor(J.y_m[i] / cell));
-    cells[key(cx[i], cy[i])].push_back(i);
+    std::optional<std::pair<std::size_t, std::size_t>> pair;
+    grid.for_each_near(J.x_m[i], J.y_m[i], 1, [&](std::size_t j) {
+      if (j <= i) return true;
+      const double d = std::hypot(J.x_m[i] - J.x_m[j], J.y_m[i] - J.y_m[j]);
+      if (d < disc_radius(J.area_m2[i]) + disc_radius(J.area_m2[j])) pair = std::pair{i, j};
+      return !pair;
+    });
+    if (pair) return pair;
   }
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::int64_t dx = -1; dx <= 1; ++dx)
-      for (std::int64_t dy = -1; dy <= 1; ++dy) {
-        const auto it = cells.find(key(cx[i] + dx, cy[i] + dy));
-        if (it == cells.end()) continue;
-        for (const std::size_t j : it->second) {
-          if (j <= i) continue;
-          const double d = std::hypot(J.x_m[i] - J.x_m[j], J.y_m[i] - J.y_m[j]);
-          if (d < disc_radius(J.area_m2[i]) + disc_radius(J.area_m2[j]))
-            return std::pair{std::min(i, j), std::max(i, j)};
-        }
-      }
   return std::nullopt;
 }
 

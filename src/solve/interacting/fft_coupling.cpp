@@ -4,12 +4,14 @@
 #include <atomic>
 #include <cmath>
 #include <complex>
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 
 #include "physics/contact_law.hpp"
 #include "solve/core/problem.hpp"
 #include "surface/fft_planner.hpp"
+#include "surface/neighbour_grid.hpp"
 
 namespace asperity {
 
@@ -187,30 +189,16 @@ FftCoupling::FftCoupling(const std::vector<double>& x, const std::vector<double>
   const double R = s.near_cells * h_;
   const auto reach = [&](std::size_t i) { return R * std::max(1.0, radius[i] / h_); };
   const double widest = *std::max_element(radius.begin(), radius.end());
-  const std::size_t rings = static_cast<std::size_t>(std::ceil(std::max(1.0, widest / h_)));
-  const std::size_t ncx = static_cast<std::size_t>(wx / R) + 1, ncy = static_cast<std::size_t>(wy / R) + 1;
-  std::vector<std::size_t> cell(n_), start(ncx * ncy + 1, 0), member(n_);
-  for (std::size_t j = 0; j < n_; ++j) {
-    const std::size_t cx = std::min(ncx - 1, static_cast<std::size_t>((x[j] - *xmin) / R));
-    const std::size_t cy = std::min(ncy - 1, static_cast<std::size_t>((y[j] - *ymin) / R));
-    cell[j] = cx * ncy + cy;
-    ++start[cell[j] + 1];
-  }
-  for (std::size_t c = 0; c < ncx * ncy; ++c) start[c + 1] += start[c];
-  {
-    std::vector<std::size_t> fill(start.begin(), start.end() - 1);
-    for (std::size_t j = 0; j < n_; ++j) member[fill[cell[j]]++] = j;
-  }
+  const auto rings = static_cast<std::int64_t>(std::ceil(std::max(1.0, widest / h_)));
+  NeighbourGrid grid(R, std::max({std::abs(*xmin), std::abs(*xmax), std::abs(*ymin), std::abs(*ymax)}));
+  for (std::size_t j = 0; j < n_; ++j) grid.insert(j, x[j], y[j]);
   // Every j > i within the reach of i or j, in the cells around i.
   const auto for_near = [&](std::size_t i, auto&& visit) {
-    const std::size_t cx = cell[i] / ncy, cy = cell[i] % ncy;
-    for (std::size_t gx = cx > rings ? cx - rings : 0; gx <= std::min(ncx - 1, cx + rings); ++gx)
-      for (std::size_t gy = cy > rings ? cy - rings : 0; gy <= std::min(ncy - 1, cy + rings); ++gy)
-        for (std::size_t k = start[gx * ncy + gy]; k < start[gx * ncy + gy + 1]; ++k) {
-          const std::size_t j = member[k];
-          const double dx = x[i] - x[j], dy = y[i] - y[j];
-          if (j > i && std::hypot(dx, dy) < std::max(reach(i), reach(j))) visit(j, dx, dy);
-        }
+    grid.for_each_near(x[i], y[i], rings, [&](std::size_t j) {
+      const double dx = x[i] - x[j], dy = y[i] - y[j];
+      if (j > i && std::hypot(dx, dy) < std::max(reach(i), reach(j))) visit(j, dx, dy);
+      return true;
+    });
   };
   // Counted first: a table too large is refused before it is built.
   std::size_t pairs = 0;

@@ -282,7 +282,7 @@ std::vector<double> PinnedCompliance::row(std::size_t q) const {
   // The removals not yet folded, in order: each entry takes the same operations as fold() would
   // apply to it (the entry of the triangle of row min(r, q), column max(r, q)).
   for (const Deferred& u : deferred_)
-    for (std::size_t r = 0; r < n_; ++r) g[r] -= (std::min(r, q) == r ? u.u[r] / u.d * u.u[q] : u.u[q] / u.d * u.u[r]);
+    for (std::size_t r = 0; r < n_; ++r) g[r] -= (r <= q ? u.u[r] / u.d * u.u[q] : u.u[q] / u.d * u.u[r]);
   return g;
 }
 
