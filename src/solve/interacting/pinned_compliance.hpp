@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "solve/core/problem.hpp"
+#include "solve/interacting/huge_page_allocator.hpp"
 #include "solve/interacting/interaction_matrix.hpp"
 
 namespace asperity {
@@ -75,7 +76,7 @@ class PinnedCompliance {
   // N × N, row-major. Upper triangle (column ≥ row): G over positions of P, leading n × n block
   // (G is symmetric: every pass over it reads half as much). Strict lower triangle: C over
   // junctions, C_ij at [max(i, j) · N + min(i, j)].
-  std::vector<double> G_;
+  std::vector<double, HugePageAllocator<double>> G_;
   // Removals not yet applied to the stored triangle: G = triangle − Σ u uᵀ/d, in order (u over
   // the current positions). fold() applies them in one pass over the triangle.
   struct Deferred {
