@@ -42,13 +42,22 @@ RunInfo integrate(S& stepper, const Problem& problem, O& observer) {
   ObserverAdapter<O> out(observer);
   RunInfo info = initial_info(problem);
   LimitGuard guard(problem.limits);  // the start's work counts too
+  // A stepper whose single steps can run long (avalanches) watches the deadline inside them.
+  if constexpr (requires { stepper.set_deadline(guard.deadline()); }) stepper.set_deadline(guard.deadline());
   stepper.start(out);
   while (!stepper.finished() && !observer.done()) {
     if ((info.stopped_by = guard.check(stepper.slips())) != LimitHit::none) {
       stepper.stop_early();
       break;
     }
-    stepper.advance(out);
+    try {
+      stepper.advance(out);
+    } catch (const WallTimeReached&) {
+      // Stopped inside the step, at its event: the stepper's time is already there (no
+      // stop_early, which would move it to the step's end).
+      info.stopped_by = LimitHit::wall_time;
+      break;
+    }
   }
   stepper.finish(info);
   return info;

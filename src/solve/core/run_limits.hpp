@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cstdint>
 #include <limits>
+#include <stdexcept>
 #include <string>
 
 #include "scene/scene.hpp"
@@ -44,6 +45,8 @@ class LimitGuard {
                       : std::chrono::steady_clock::time_point::max()),
         last_read_(std::chrono::steady_clock::now()) {}
 
+  std::chrono::steady_clock::time_point deadline() const { return deadline_; }
+
   LimitHit check(std::int64_t slips) {
     if (slips >= max_slips_) return LimitHit::max_slips;
     if (++calls_ < next_read_) return LimitHit::none;
@@ -59,6 +62,15 @@ class LimitGuard {
   std::int64_t max_slips_;
   std::chrono::steady_clock::time_point deadline_, last_read_;
   std::uint64_t calls_ = 0, next_read_ = 1, stride_ = 1;
+};
+
+// Thrown from inside one long step of a solver once the wall-time deadline has passed: an
+// avalanche at fixed X is one step, and at N = 20,000 interacting junctions it can hold thousands
+// of slips, minutes to hours. integrate() ends the run there as its guard would between steps,
+// every sample before that step kept.
+class WallTimeReached : public std::runtime_error {
+ public:
+  WallTimeReached() : std::runtime_error("the wall-time limit was reached inside a step") {}
 };
 
 // One line for a run stopped by `hit` at simulated time t_end with `slips` slips, naming the

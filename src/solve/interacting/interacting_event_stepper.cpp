@@ -16,6 +16,9 @@ bool InteractingEventStepper::finished() const { return impl_->finished; }
 std::int64_t InteractingEventStepper::slips() const { return impl_->junctions.slips(); }
 void InteractingEventStepper::advance(RunObserver& out) { impl_->advance(out); }
 void InteractingEventStepper::stop_early() { impl_->stop_early(); }
+void InteractingEventStepper::set_deadline(std::chrono::steady_clock::time_point deadline) {
+  impl_->junctions.set_deadline(deadline);
+}
 void InteractingEventStepper::finish(RunInfo& info) const { impl_->finish(info); }
 const InteractingJunctions& InteractingEventStepper::junctions() const { return impl_->junctions; }
 double InteractingEventStepper::X() const { return impl_->y[0] * impl_->L; }

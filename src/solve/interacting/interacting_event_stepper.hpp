@@ -2,6 +2,7 @@
 // The event method for interacting junctions (solver.method: event with model.interactions:
 // elastic): EventIntegrator over InteractingJunctions. Same continuous model as
 // InteractingReferenceStepper (its dt → 0 limit).
+#include <chrono>
 #include <cstdint>
 #include <memory>
 
@@ -22,6 +23,8 @@ class InteractingEventStepper {
   std::int64_t slips() const;
   void advance(RunObserver& out);
   void stop_early();
+  // The run's wall-time deadline: an avalanche still going then stops (WallTimeReached).
+  void set_deadline(std::chrono::steady_clock::time_point deadline);
   void finish(RunInfo& info) const;
 
   const InteractingJunctions& junctions() const;

@@ -6,6 +6,7 @@
 
 #include "physics/interface_law.hpp"
 #include "solve/interacting/anderson.hpp"
+#include "solve/core/run_limits.hpp"
 #include "solve/interacting/solver_failure.hpp"
 
 namespace asperity {
@@ -452,6 +453,7 @@ std::int64_t InteractingJunctions::settle(double X, std::size_t k) {
     if (k != npos) {
       start_slip(k, X);
       ++n;
+      ++slips_;  // counted at once: a stop inside the avalanche keeps the count
     }
     if (pinned_.size() == 0) {
       after_change(X);
@@ -482,14 +484,16 @@ std::int64_t InteractingJunctions::settle(double X, std::size_t k) {
         if (r >= worst) worst = r, k = pinned_.junction(q);
       }
     }
-    if (k != npos) continue;
+    if (k != npos) {
+      if (n > 0 && std::chrono::steady_clock::now() >= deadline_) throw WallTimeReached();
+      continue;
+    }
     after_change(X);
     // A slip position at X itself (rounding): that junction slips now.
     if (x_up_ <= X) k = k_up_;
     else if (x_down_ >= X) k = k_down_;
     if (k == npos) break;
   }
-  slips_ += n;
   return n;
 }
 

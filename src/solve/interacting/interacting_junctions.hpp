@@ -20,6 +20,7 @@
 // system is solved exactly (with dF/dX from the differentiated system), refined until each
 // piece's estimated error is below the tolerance; linear-only populations have F = X Σa0 + Σb0 + F_slip
 // exactly. The slip positions are found by Newton in X on the exact solutions.
+#include <chrono>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -63,6 +64,9 @@ class InteractingJunctions {
   std::int64_t slip_crossed(double X);
   // All slipping junctions repin at X, with no force jump.
   void repin_all(double X);
+  // From `deadline` on, an avalanche that would slip one more junction throws WallTimeReached
+  // instead (after at least one slip of the event): at large N one avalanche can take hours.
+  void set_deadline(std::chrono::steady_clock::time_point deadline) { deadline_ = deadline; }
 
   // Every junction's force at X (N, by junction) for the current pinned set; for tests and
   // the force-spread study.
@@ -143,6 +147,7 @@ class InteractingJunctions {
   double sum_a0_ = 0, sum_b0_ = 0, F_slip_ = 0, A_fixed_ = 0;
   std::int64_t n_intact_ = 0, slips_ = 0, repins_ = 0, overloaded_ = 0;
   double x_up_ = 0, x_down_ = 0;
+  std::chrono::steady_clock::time_point deadline_ = std::chrono::steady_clock::time_point::max();
   std::size_t k_up_ = npos, k_down_ = npos;  // junctions of the next slips
   mutable std::vector<double> last_f_, last_a_;  // by junction: the last solve (warm start)
   // After a slip at seed_X_: the new set's forces and slopes there, predicted (warm start).

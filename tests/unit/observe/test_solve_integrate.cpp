@@ -1,6 +1,7 @@
 // solve/integrate.hpp and solve/core/observer.hpp: the loop every stepper shares, the observer
 // concept, and the two methods behind one integrate().
 #include <catch2/catch.hpp>
+#include <chrono>
 #include <cmath>
 #include <vector>
 
@@ -49,6 +50,19 @@ struct CountingStepper {
 };
 static_assert(Stepper<CountingStepper>);
 
+// The same, but its steps can run long: it takes the run's deadline and, at step `throw_at`,
+// stops inside the step (as an interacting avalanche does once the deadline has passed).
+struct LongStepper : CountingStepper {
+  std::int64_t throw_at = 4;
+  std::chrono::steady_clock::time_point deadline{};
+  void set_deadline(std::chrono::steady_clock::time_point d) { deadline = d; }
+  void advance(RunObserver& out) {
+    if (n + 1 == throw_at) throw WallTimeReached();
+    CountingStepper::advance(out);
+  }
+};
+static_assert(Stepper<LongStepper>);
+
 }  // namespace
 
 TEST_CASE("integrate: the shared loop stops at the end, on the observer's done() and on a limit", "[solve]") {
@@ -79,6 +93,25 @@ TEST_CASE("integrate: the shared loop stops at the end, on the observer's done()
     CHECK(st.stopped_early);
     CHECK(info.stats.steps == 5);
   }
+}
+
+TEST_CASE("integrate: a stop inside a step ends the run as a wall-time limit, with what came before", "[solve]") {
+  Scene s = paper_scene({1e-8});
+  s.solver.Ct = 1;
+  Problem p = make_problem(s);
+  p.limits.wall_time_s = 3600;
+  LongStepper st{{p}};
+  FirstSamples obs{p.dt, 100, {}};
+  const auto before = std::chrono::steady_clock::now();
+  const RunInfo info = integrate(st, p, obs);
+  CHECK(info.stopped_by == LimitHit::wall_time);
+  CHECK(info.stats.steps == 3);          // the three steps before the one that stopped
+  CHECK(obs.changes == 3);
+  CHECK_FALSE(st.stopped_early);         // its time stays at the event where it stopped
+  // The deadline handed to the stepper is the run's: an hour from the start.
+  const double ahead = std::chrono::duration<double>(st.deadline - before).count();
+  CHECK(ahead > 3599);
+  CHECK(ahead < 3601);
 }
 
 TEST_CASE("integrate: both methods feed any observer and agree before the first slip", "[solve]") {

@@ -3,6 +3,7 @@
 // the step-by-step interacting reference (first order in dt, its dt → 0 limit), no force jump
 // at a repin, and the closed-form avalanche of a chain.
 #include <catch2/catch.hpp>
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <vector>
@@ -204,6 +205,37 @@ TEST_CASE("event solver: a chain of three equal junctions slips in the closed-fo
       CHECK(second == 1);
       CHECK_THAT(J.next_threshold(), WithinRel(f_s * (a + 2 * c * eps), 1e-12));  // the middle alone
       CHECK(J.slip_crossed(J.next_threshold()) == 1);
+    }
+  }
+}
+
+TEST_CASE("event solver: an avalanche past the run's deadline stops after its first slip, counted",
+          "[solve][interacting][event]") {
+  // The chain above at ε = 0.3, where the second end's slip takes the middle with it (an avalanche
+  // of two at fixed X). With the deadline passed, the event's first slip happens and the avalanche
+  // stops before the next: WallTimeReached, two junctions slipping instead of three, and the state
+  // still solvable (the forces of the set as it stands).
+  const double A = 2e-9, d = 2.5 * 2 * std::sqrt(A / M_PI);
+  Scene s = interacting_event_scene({A, A, A}, {0, 0, 0}, {0, d, 2 * d});
+  s.model.alpha_b = 0;
+  s.model.epsilon = 0.3;
+  s.model.interaction_cutoff = 1.5 * d;
+  const Problem p = make_problem(s);
+  for (const bool passed : {false, true}) {
+    InteractingJunctions J(p);
+    REQUIRE(J.slip_crossed(J.next_threshold()) == 1);
+    if (passed) J.set_deadline(std::chrono::steady_clock::now());
+    const double X = J.next_threshold();
+    if (passed) {
+      CHECK_THROWS_AS(J.slip_crossed(X), WallTimeReached);
+      CHECK(J.n_slipping() == 2);
+      CHECK(J.slips() == 2);
+      const std::vector<double> f = J.forces(X);  // the middle, still pinned, over its slip force
+      CHECK(f[1] >= J.state().f_s[1]);
+    } else {
+      CHECK(J.slip_crossed(X) == 2);
+      CHECK(J.n_slipping() == 3);
+      CHECK(J.slips() == 3);
     }
   }
 }
