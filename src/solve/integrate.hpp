@@ -3,6 +3,7 @@
 // every method shares (resource limits, the observer's stop); the method is chosen in the one
 // switch of integrate(problem, observer) below. Adding a method = one stepper file (a type
 // meeting the Stepper concept) plus one case there.
+#include <chrono>
 #include <concepts>
 #include <cstdint>
 #include <stdexcept>
@@ -43,22 +44,24 @@ RunInfo integrate(S& stepper, const Problem& problem, O& observer) {
   RunInfo info = initial_info(problem);
   LimitGuard guard(problem.limits);  // the start's work counts too
   // A stepper whose single steps can run long (avalanches) watches the deadline inside them.
-  if constexpr (requires { stepper.set_deadline(guard.deadline()); }) stepper.set_deadline(guard.deadline());
-  stepper.start(out);
-  while (!stepper.finished() && !observer.done()) {
-    if ((info.stopped_by = guard.check(stepper.slips())) != LimitHit::none) {
-      stepper.stop_early();
-      break;
-    }
-    try {
+  // (Cleared after the run: the stepper's solves may serve a caller after the deadline.)
+  constexpr bool watches = requires { stepper.set_deadline(guard.deadline()); stepper.clear_deadline(); };
+  if constexpr (watches) stepper.set_deadline(guard.deadline());
+  try {
+    stepper.start(out);
+    while (!stepper.finished() && !observer.done()) {
+      if ((info.stopped_by = guard.check(stepper.slips())) != LimitHit::none) {
+        stepper.stop_early();
+        break;
+      }
       stepper.advance(out);
-    } catch (const WallTimeReached&) {
-      // Stopped inside the step, at its event: the stepper's time is already there (no
-      // stop_early, which would move it to the step's end).
-      info.stopped_by = LimitHit::wall_time;
-      break;
     }
+  } catch (const WallTimeReached&) {
+    // Stopped inside a step: the stepper's time is still that of the last step or event it
+    // completed (no stop_early, which would move it to the step's end).
+    info.stopped_by = LimitHit::wall_time;
   }
+  if constexpr (watches) stepper.clear_deadline();
   stepper.finish(info);
   return info;
 }
@@ -71,8 +74,14 @@ RunInfo integrate(const Problem& problem, O& observer) {
       InteractingReferenceStepper s(problem);
       return integrate(s, problem, observer);
     }
-    InteractingEventStepper s(problem);
-    return integrate(s, problem, observer);
+    try {
+      InteractingEventStepper s(problem);  // its first event search counts (see its deadline)
+      return integrate(s, problem, observer);
+    } catch (const WallTimeReached&) {  // in that search: stopped at t = 0
+      RunInfo info = initial_info(problem);
+      info.stopped_by = LimitHit::wall_time;
+      return info;
+    }
   }
   switch (problem.solver.method) {
     case SolverMethod::reference: { ReferenceStepper s(problem); return integrate(s, problem, observer); }

@@ -29,6 +29,13 @@ std::int64_t default_max_slips(const Scene& scene);
 // The scene's limits (stop.wall_time, stop.max_slips or its default).
 RunLimits run_limits(const Scene& scene);
 
+// The moment `limits.wall_time_s` from now runs out (time_point::max() for none).
+inline std::chrono::steady_clock::time_point wall_deadline(const RunLimits& limits) {
+  if (!(limits.wall_time_s < 1e9)) return std::chrono::steady_clock::time_point::max();
+  return std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                                std::chrono::duration<double>(limits.wall_time_s));
+}
+
 // Counts calls and reads the clock every stride-th: the stride doubles (up to 64) while the calls
 // between two reads take under a millisecond and halves (down to 1) otherwise. Fast loops (an
 // independent solver step takes 0.1–10 µs, a clock read ~20 ns) read it every 64th call, so the
@@ -38,11 +45,7 @@ class LimitGuard {
  public:
   explicit LimitGuard(const RunLimits& limits)
       : max_slips_(limits.max_slips),
-        deadline_(limits.wall_time_s < 1e9
-                      ? std::chrono::steady_clock::now() +
-                            std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                                std::chrono::duration<double>(limits.wall_time_s))
-                      : std::chrono::steady_clock::time_point::max()),
+        deadline_(wall_deadline(limits)),
         last_read_(std::chrono::steady_clock::now()) {}
 
   std::chrono::steady_clock::time_point deadline() const { return deadline_; }

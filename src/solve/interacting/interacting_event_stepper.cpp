@@ -19,6 +19,7 @@ void InteractingEventStepper::stop_early() { impl_->stop_early(); }
 void InteractingEventStepper::set_deadline(std::chrono::steady_clock::time_point deadline) {
   impl_->junctions.set_deadline(deadline);
 }
+void InteractingEventStepper::clear_deadline() { impl_->junctions.clear_deadline(); }
 void InteractingEventStepper::finish(RunInfo& info) const { impl_->finish(info); }
 const InteractingJunctions& InteractingEventStepper::junctions() const { return impl_->junctions; }
 double InteractingEventStepper::X() const { return impl_->y[0] * impl_->L; }

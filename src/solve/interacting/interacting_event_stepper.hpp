@@ -23,8 +23,10 @@ class InteractingEventStepper {
   std::int64_t slips() const;
   void advance(RunObserver& out);
   void stop_early();
-  // The run's wall-time deadline: an avalanche still going then stops (WallTimeReached).
+  // The run's wall-time deadline (see InteractingJunctions::set_deadline): a step still going
+  // then stops with WallTimeReached.
   void set_deadline(std::chrono::steady_clock::time_point deadline);
+  void clear_deadline();
   void finish(RunInfo& info) const;
 
   const InteractingJunctions& junctions() const;

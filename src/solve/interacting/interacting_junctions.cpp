@@ -38,6 +38,8 @@ InteractingJunctions::InteractingJunctions(const Problem& problem)
   n_intact_ = static_cast<std::int64_t>(N_);
   last_f_.assign(N_, 0.0);
   last_a_.assign(N_, 0.0);
+  // The first event search (solves, rebuilds: over eight minutes at N = 20,000) counts.
+  deadline_ = wall_deadline(problem.limits);
   after_change(0.0);
 }
 
@@ -145,6 +147,9 @@ ForceNode InteractingJunctions::solve(double X, double tol) const {
     int iter = 0, refreshes = 0;
     for (;;) {
       ++iter;
+      // The run's wall-time limit, read at every pass: at N = 20,000 one step's solves and their
+      // Newton refreshes (rebuilds of about 90 s) took over ten minutes past it.
+      if (std::chrono::steady_clock::now() >= deadline_) throw WallTimeReached();
       // The junctions' own laws, each independent of the others (the same numbers on any
       // number of threads): a tenth of a pass's time, worth splitting from a few hundred on.
 #pragma omp parallel for schedule(static) if (nA >= 512)

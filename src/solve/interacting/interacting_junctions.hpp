@@ -20,6 +20,7 @@
 // system is solved exactly (with dF/dX from the differentiated system), refined until each
 // piece's estimated error is below the tolerance; linear-only populations have F = X Σa0 + Σb0 + F_slip
 // exactly. The slip positions are found by Newton in X on the exact solutions.
+#include <algorithm>
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
@@ -64,9 +65,13 @@ class InteractingJunctions {
   std::int64_t slip_crossed(double X);
   // All slipping junctions repin at X, with no force jump.
   void repin_all(double X);
-  // From `deadline` on, an avalanche that would slip one more junction throws WallTimeReached
-  // instead (after at least one slip of the event): at large N one avalanche can take hours.
-  void set_deadline(std::chrono::steady_clock::time_point deadline) { deadline_ = deadline; }
+  // From the deadline on, a chord pass, or an avalanche that would slip one more junction (after
+  // at least one slip of the event), throws WallTimeReached instead: at large N one solver step
+  // (its solves, their rebuilds, an avalanche) can take minutes to hours, and so can the first
+  // event search in the constructor. The deadline starts as the problem's stop.wall_time from
+  // construction; set_deadline only brings it closer, clear_deadline removes it.
+  void set_deadline(std::chrono::steady_clock::time_point deadline) { deadline_ = std::min(deadline_, deadline); }
+  void clear_deadline() { deadline_ = std::chrono::steady_clock::time_point::max(); }
 
   // Every junction's force at X (N, by junction) for the current pinned set; for tests and
   // the force-spread study.

@@ -240,6 +240,29 @@ TEST_CASE("event solver: an avalanche past the run's deadline stops after its fi
   }
 }
 
+TEST_CASE("event solver: a chord pass past the run's deadline stops the solve, and the run as a wall-time limit",
+          "[solve][interacting][event]") {
+  // 25 Eq. (3) junctions, strongly coupled: every solve iterates. With the deadline passed, the
+  // next solve stops at its first pass; with none, the same forces as a population never given one.
+  const Problem p = make_problem(strong_cluster_scene(25));
+  InteractingJunctions J(p), fresh(p);
+  const double X = 0.5 * J.next_threshold();
+  J.set_deadline(std::chrono::steady_clock::now());
+  CHECK_THROWS_AS(J.forces(X), WallTimeReached);
+  J.clear_deadline();
+  const std::vector<double> f = J.forces(X), g = fresh.forces(X);
+  for (std::size_t i = 0; i < f.size(); ++i) CHECK_THAT(f[i], WithinRel(g[i], 1e-12));
+  // A run whose limit (1 ns) has passed by its first solve, in the stepper's set-up (the first
+  // event search): stopped there, as a wall-time limit, at t = 0.
+  Problem q = make_problem(strong_cluster_scene(25));
+  q.limits.wall_time_s = 1e-9;
+  Recorder rec = make_recorder(strong_cluster_scene(25));
+  const RunInfo info = integrate(q, rec);
+  CHECK(info.stopped_by == LimitHit::wall_time);
+  CHECK(info.t_end == 0.0);
+  CHECK(info.stats.slips == 0);
+}
+
 TEST_CASE("event solver: each coupled solve is within solver.interaction_tolerance of the converged one",
           "[solve][interacting][event]") {
   // 25 Eq. (3) junctions 1.6 diameters apart (strong coupling): the forces at half the first slip
