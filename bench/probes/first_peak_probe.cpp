@@ -62,6 +62,7 @@ int main(int argc, char** argv) {
   getrusage(RUSAGE_SELF, &ru);
   std::printf("set-up %.3f s, max RSS %.0f MB, t_end %.6g s, stopped by a limit: %s\n", setup, ru.ru_maxrss / 1024.0, info.t_end,
               info.stopped_by == LimitHit::none ? "no" : "yes");
-  std::printf("N %zu tol %g wall %.3f s  Q_s %.17g t_peak %.17g A_s %.17g steps %lld slips %lld solves %lld iters %lld rank1 %lld rebuilds %lld\n", N, s.solver.interaction_tolerance, wall, fp.max.Q, fp.max.t, fp.max.A,
-    (long long)info.stats.steps, (long long)info.stats.slips, (long long)w.solves, (long long)w.iterations, (long long)w.rank_one, (long long)w.rebuilds);
+  std::printf("N %zu tol %g wall %.3f s  Q_s %.17g t_peak %.17g A_s %.17g steps %lld slips %lld solves %lld iters %lld rank1 %lld rebuilds %lld single %lld refresh %lld\n", N, s.solver.interaction_tolerance, wall, fp.max.Q, fp.max.t, fp.max.A,
+    (long long)info.stats.steps, (long long)info.stats.slips, (long long)w.solves, (long long)w.iterations, (long long)w.rank_one, (long long)w.rebuilds,
+    (long long)w.single_passes, (long long)w.single_refreshes);
 }

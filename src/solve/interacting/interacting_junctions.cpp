@@ -22,7 +22,7 @@ std::vector<double> initial_reference(const JunctionState& J) {
 
 }  // namespace
 
-InteractingJunctions::InteractingJunctions(const Problem& problem)
+InteractingJunctions::InteractingJunctions(const Problem& problem, std::size_t single_from)
     : p_(problem),
       law_(problem.law),
       area_law_(problem.law.alpha_b > 0 ? problem.area_law : AreaLaw::until_first_slip),
@@ -31,7 +31,7 @@ InteractingJunctions::InteractingJunctions(const Problem& problem)
       N_(problem.size()),
       J_(problem.A0, problem.law),
       eq3_(nonlinear_law_ ? Eq3Displacement(problem.law, J_.A0) : Eq3Displacement()),
-      pinned_(problem, initial_reference(J_), nonlinear_law_),
+      pinned_(problem, initial_reference(J_), nonlinear_law_, single_from),
       cache_([this](double X) { return solve(X); }, 0.1 * problem.solver.tolerance) {
   if (!nonlinear_law_)
     for (std::size_t i = 0; i < N_; ++i) A_fixed_ += J_.A0[i];
@@ -44,7 +44,8 @@ InteractingJunctions::InteractingJunctions(const Problem& problem)
 }
 
 InteractingJunctions::Work InteractingJunctions::work() const {
-  return Work{solves_, iterations_, pinned_.rank_one_updates(), pinned_.rebuilds(), overloaded_};
+  return Work{solves_,          iterations_, pinned_.rank_one_updates(), pinned_.rebuilds(), overloaded_,
+              pinned_.single_passes(), pinned_.single_refreshes()};
 }
 
 bool InteractingJunctions::has_threshold() const { return std::isfinite(x_up_); }
@@ -143,6 +144,15 @@ ForceNode InteractingJunctions::solve(double X, double tol) const {
     a_scale = nA > 0 && a_scale > 0 ? a_scale / static_cast<double>(nA) : 1.0;
     Anderson aa(2 * nA);
     std::vector<double> z(2 * nA), g(2 * nA);
+    // A pass may read G's single-precision copy where its error stays within a tenth of the
+    // tolerance (forces: of each slip force; slopes: of their mean scale): the fixed point then
+    // moves by at most that over 1 − ρ, and the stopping rule is unchanged.
+    PinnedCompliance::PassBudget budget;
+    if (pinned_.single_kept()) {
+      budget.y1.resize(n);
+      for (std::size_t q = 0; q < n; ++q) budget.y1[q] = 0.1 * tol * threshold(q);
+      budget.y2 = tol * a_scale;
+    }
     double previous = HUGE_VAL;
     int iter = 0, refreshes = 0;
     for (;;) {
@@ -161,7 +171,10 @@ ForceNode InteractingJunctions::solve(double X, double tol) const {
         da[q] = (du - pinned_.reference(q)) * node.a[q];
       }
       // y = G [Δ, Δ'a]: one pass over the rows of the nonlinear positions.
-      pinned_.apply(active, dl, da, y1, y2);
+      if (pinned_.single_kept())
+        pinned_.apply(active, dl, da, y1, y2, budget);
+      else
+        pinned_.apply(active, dl, da, y1, y2);
       // The chord map's image g and the current iterate z, scaled, on the active positions.
       for (std::size_t k = 0; k < nA; ++k) {
         const std::size_t q = active[k];

@@ -44,7 +44,9 @@ namespace asperity {
 class InteractingJunctions {
  public:
   // Throws SolverError when the universal law's table cannot reach the needed accuracy.
-  explicit InteractingJunctions(const Problem& problem);
+  // single_from: N from which chord passes may read G's single-precision copy within a tenth of
+  // the interaction tolerance (PinnedCompliance; tests lower it).
+  explicit InteractingJunctions(const Problem& problem, std::size_t single_from = PinnedCompliance::kSingleFrom);
   InteractingJunctions(const InteractingJunctions&) = delete;
   InteractingJunctions& operator=(const InteractingJunctions&) = delete;
 
@@ -90,6 +92,7 @@ class InteractingJunctions {
   // φ = 1 (see Overloaded).
   struct Work {
     std::int64_t solves = 0, iterations = 0, rank_one = 0, rebuilds = 0, overloaded = 0;
+    std::int64_t single_passes = 0, single_refreshes = 0;  // chord passes on G's single-precision copy
   };
   Work work() const;
 

@@ -3,6 +3,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 
 #include "solve/interacting/solver_failure.hpp"
@@ -60,17 +61,42 @@ template <class V> inline V splat(double x) {
 inline double sum(Quad v) { return (v[0] + v[1]) + (v[2] + v[3]); }
 inline double sum(HalfPair v) { return (v.lo[0] + v.lo[1]) + (v.hi[0] + v.hi[1]); }
 
+// The stored triangle's entries as four doubles: read as they are, or widened from single
+// precision (the copy; AVX2 only).
+template <class V> inline V entries(const double* p) { return load<V>(p); }
+using Single4 = float __attribute__((vector_size(16)));
+template <class V> inline V entries(const float* p);
+template <> inline Quad entries<Quad>(const float* p) {
+  Single4 s;
+  std::memcpy(&s, p, sizeof s);
+  return __builtin_convertvector(s, Quad);
+}
+
+// Rows of a triangle: row r's entry at column c ≥ r is rows(r)[c]. The stored triangle has rows
+// N apart; the single-precision copy is packed (row r holds its N − r entries from the diagonal).
+struct DoubleRows {
+  const double* G;
+  std::size_t N;
+  const double* operator()(std::size_t r) const { return G + r * N; }
+};
+inline std::size_t packed_row(std::size_t r, std::size_t N) { return r * N - r * (r + 1) / 2; }
+struct SingleRows {
+  const float* S;
+  std::size_t N;
+  const float* operator()(std::size_t r) const { return S + packed_row(r, N); }
+};
+
 // One row r of the stored triangle from column c on (the columns before, from r, already in
 // t1, t2): its sums in four lanes plus the tail, into p[r]; its transposed products into p[c..].
-template <class V>
-[[gnu::always_inline]] inline void one_row(const double* __restrict A, std::size_t r, std::size_t c, std::size_t n,
+template <class V, class T>
+[[gnu::always_inline]] inline void one_row(const T* __restrict A, std::size_t r, std::size_t c, std::size_t n,
                                            double t1, double t2, const double* __restrict w1,
                                            const double* __restrict w2, double* __restrict p1, double* __restrict p2) {
   const double a1 = w1[r], a2 = w2[r];
   const V va1 = splat<V>(a1), va2 = splat<V>(a2);
   V s1 = splat<V>(0.0), s2 = s1;
   for (; c + 4 <= n; c += 4) {
-    const V ga = load<V>(A + c);
+    const V ga = entries<V>(A + c);
     s1 += ga * load<V>(w1 + c);
     s2 += ga * load<V>(w2 + c);
     store(p1 + c, load<V>(p1 + c) + ga * va1);
@@ -78,10 +104,11 @@ template <class V>
   }
   double e1 = 0, e2 = 0;
   for (; c < n; ++c) {
-    e1 += A[c] * w1[c];
-    e2 += A[c] * w2[c];
-    p1[c] += A[c] * a1;
-    p2[c] += A[c] * a2;
+    const double g = A[c];
+    e1 += g * w1[c];
+    e2 += g * w2[c];
+    p1[c] += g * a1;
+    p2[c] += g * a2;
   }
   p1[r] += t1 + (sum(s1) + e1);
   p2[r] += t2 + (sum(s2) + e2);
@@ -92,26 +119,26 @@ template <class V>
 // serves two rows of G (the loop is bound by loads and stores, not arithmetic). Every sum has one
 // fixed order (four lanes, combined pairwise): the same bits from either form, on any number of
 // threads. Each p[c] takes its rows' terms in row order, as a row-by-row loop would.
-template <class V>
-[[gnu::always_inline]] inline void product_rows(const double* __restrict G, std::size_t N, std::size_t n, std::size_t r0,
-                                                std::size_t r1, const double* __restrict w1, const double* __restrict w2,
+template <class V, class Rows>
+[[gnu::always_inline]] inline void product_rows(Rows rows, std::size_t n, std::size_t r0, std::size_t r1,
+                                                const double* __restrict w1, const double* __restrict w2,
                                                 double* __restrict p1, double* __restrict p2) {
   std::size_t r = r0;
   for (; r + 1 < r1; r += 2) {
-    const double* __restrict A = G + r * N;
-    const double* __restrict Bw = A + N;
+    const auto* __restrict A = rows(r);
+    const auto* __restrict Bw = rows(r + 1);
     const double a1 = w1[r], a2 = w2[r], b1 = w1[r + 1], b2 = w2[r + 1];
     // Row r's diagonal and its entry at r + 1 (row r + 1 starts at its diagonal there).
-    const double g = A[r + 1];
-    const double tA1 = A[r] * a1 + g * w1[r + 1], tA2 = A[r] * a2 + g * w2[r + 1];
+    const double g = A[r + 1], gd = A[r], gb1 = Bw[r + 1];
+    const double tA1 = gd * a1 + g * w1[r + 1], tA2 = gd * a2 + g * w2[r + 1];
     p1[r + 1] += g * a1;
     p2[r + 1] += g * a2;
-    const double tB1 = Bw[r + 1] * b1, tB2 = Bw[r + 1] * b2;
+    const double tB1 = gb1 * b1, tB2 = gb1 * b2;
     const V va1 = splat<V>(a1), va2 = splat<V>(a2), vb1 = splat<V>(b1), vb2 = splat<V>(b2);
     V sA1 = splat<V>(0.0), sA2 = sA1, sB1 = sA1, sB2 = sA1;
     std::size_t c = r + 2;
     for (; c + 4 <= n; c += 4) {
-      const V ga = load<V>(A + c), gb = load<V>(Bw + c), x1 = load<V>(w1 + c), x2 = load<V>(w2 + c);
+      const V ga = entries<V>(A + c), gb = entries<V>(Bw + c), x1 = load<V>(w1 + c), x2 = load<V>(w2 + c);
       sA1 += ga * x1;
       sA2 += ga * x2;
       sB1 += gb * x1;
@@ -135,13 +162,16 @@ template <class V>
     p2[r + 1] += tB2 + (sum(sB2) + eB2);
   }
   if (r < r1) {  // an odd row left: alone, the same way
-    const double* __restrict A = G + r * N;
-    one_row<V>(A, r, r + 1, n, A[r] * w1[r], A[r] * w2[r], w1, w2, p1, p2);
+    const auto* __restrict A = rows(r);
+    const double gd = A[r];
+    one_row<V>(A, r, r + 1, n, gd * w1[r], gd * w2[r], w1, w2, p1, p2);
   }
 }
 
 using ProductRows = void (*)(const double*, std::size_t, std::size_t, std::size_t, std::size_t, const double*,
                              const double*, double*, double*);
+using SingleProductRows = void (*)(const float*, std::size_t, std::size_t, std::size_t, std::size_t, const double*,
+                                   const double*, double*, double*);
 // The same rows one at a time, for CPUs with 16-byte vectors (SSE2, NEON), where two rows' sums
 // would not fit in the registers. Each row's sum is grouped exactly as in product_rows (a row
 // opening a pair takes its entry at r + 1 apart, as product_rows does), and each p[c] takes the
@@ -167,18 +197,60 @@ void product_rows_portable(const double* __restrict G, std::size_t N, std::size_
 __attribute__((target("arch=x86-64-v3"))) void product_rows_avx2(const double* G, std::size_t N, std::size_t n,
                                                                    std::size_t r0, std::size_t r1, const double* w1,
                                                                    const double* w2, double* p1, double* p2) {
-  product_rows<Quad>(G, N, n, r0, r1, w1, w2, p1, p2);
+  product_rows<Quad>(DoubleRows{G, N}, n, r0, r1, w1, w2, p1, p2);
 }
-ProductRows product_rows_for_this_cpu() {
-  return __builtin_cpu_supports("x86-64-v3") ? product_rows_avx2 : product_rows_portable;
+// From the single-precision copy (kept only where AVX2 is).
+__attribute__((target("arch=x86-64-v3"))) void product_rows_single_avx2(const float* S, std::size_t N, std::size_t n,
+                                                                          std::size_t r0, std::size_t r1,
+                                                                          const double* w1, const double* w2,
+                                                                          double* p1, double* p2) {
+  product_rows<Quad>(SingleRows{S, N}, n, r0, r1, w1, w2, p1, p2);
 }
+bool has_avx2() { return __builtin_cpu_supports("x86-64-v3"); }
+ProductRows product_rows_for_this_cpu() { return has_avx2() ? product_rows_avx2 : product_rows_portable; }
+SingleProductRows single_rows_for_this_cpu() { return has_avx2() ? product_rows_single_avx2 : nullptr; }
 #else
 ProductRows product_rows_for_this_cpu() { return product_rows_portable; }
+SingleProductRows single_rows_for_this_cpu() { return nullptr; }
 #endif
+
+// Rows [0, n) of a triangle times (w1, w2) into (y1, y2) over fixed row blocks (edges), each
+// summing into its own partial vectors, added in block order: the same sums in the same order
+// whatever the number of threads.
+template <class T, class Kernel>
+void triangle_product(Kernel rows, const T* base, std::size_t N, std::size_t n, const std::vector<std::size_t>& edge,
+                      std::vector<double>& partial, const std::vector<double>& w1, const std::vector<double>& w2,
+                      std::vector<double>& y1, std::vector<double>& y2) {
+  const std::size_t B = edge.size() - 1;
+  partial.resize(2 * B * n);  // block b writes (and zeroes) only its entries from edge[b] on
+  double* P = partial.data();
+#pragma omp parallel for schedule(dynamic, 1) if (n * n > 2 * kParallelWork)
+  for (std::size_t b = 0; b < B; ++b) {
+    double* p1 = P + 2 * b * n;
+    double* p2 = p1 + n;
+    std::fill(p1 + edge[b], p1 + n, 0.0);
+    std::fill(p2 + edge[b], p2 + n, 0.0);
+    rows(base, N, n, edge[b], edge[b + 1], w1.data(), w2.data(), p1, p2);
+  }
+  for (std::size_t r = 0; r < n; ++r) {
+    double s1 = 0, s2 = 0;
+    for (std::size_t b = 0; b < B && edge[b] <= r; ++b) s1 += P[2 * b * n + r], s2 += P[(2 * b + 1) * n + r];
+    y1[r] = s1;
+    y2[r] = s2;
+  }
+}
+
+// ‖v − ref‖₂ over the first n entries.
+double distance(const std::vector<double>& v, const std::vector<double>& ref, std::size_t n) {
+  double s = 0;
+  for (std::size_t r = 0; r < n; ++r) s += (v[r] - ref[r]) * (v[r] - ref[r]);
+  return std::sqrt(s);
+}
 
 }  // namespace
 
-PinnedCompliance::PinnedCompliance(const Problem& problem, std::vector<double> reference, bool nonlinear)
+PinnedCompliance::PinnedCompliance(const Problem& problem, std::vector<double> reference, bool nonlinear,
+                                   std::size_t single_from)
     : N_(problem.size()),
       n_(problem.size()),
       G_(problem.size() * problem.size(), 0.0),
@@ -195,6 +267,7 @@ PinnedCompliance::PinnedCompliance(const Problem& problem, std::vector<double> r
     pos_[i] = i;
   }
   n_nl_ = nonlinear ? N_ : 0;
+  if (N_ >= single_from && single_rows_for_this_cpu() != nullptr) single_.S.resize(N_ * (N_ + 1) / 2);
   rebuild();
 }
 
@@ -231,14 +304,10 @@ void PinnedCompliance::apply(const std::vector<std::size_t>& columns, const std:
   }
 }
 
-void PinnedCompliance::symmetric_product(const std::vector<double>& w1, const std::vector<double>& w2,
-                                         std::vector<double>& y1, std::vector<double>& y2) const {
-  const std::size_t n = n_, N = N_;
-  // Fixed row blocks of about equal work (row r holds n − r stored entries), each summing into
-  // its own partial vectors, added in block order: the same sums in the same order whatever the
-  // number of threads.
-  // (About 128 rows a block: fewer blocks for a small matrix, whose partial sums would cost as much
-  // as the product itself.)
+std::vector<std::size_t> PinnedCompliance::row_blocks() const {
+  const std::size_t n = n_;
+  // Blocks of about equal work (row r holds n − r stored entries), about 128 rows a block: fewer
+  // blocks for a small matrix, whose partial sums would cost as much as the product itself.
   const std::size_t B = std::clamp<std::size_t>(n / 128, 1, kProductBlocks);
   std::vector<std::size_t> edge(B + 1, n);
   edge[0] = 0;
@@ -249,30 +318,145 @@ void PinnedCompliance::symmetric_product(const std::vector<double>& w1, const st
     while (r < n && static_cast<double>(r) * static_cast<double>(n) - 0.5 * static_cast<double>(r) * (static_cast<double>(r) - 1.0) < want) ++r;
     edge[b] = r;
   }
-  partial_.resize(2 * B * n);  // block b writes (and zeroes) only its entries from edge[b] on
-  const double* G = G_.data();
-  double* P = partial_.data();
+  return edge;
+}
+
+void PinnedCompliance::symmetric_product(const std::vector<double>& w1, const std::vector<double>& w2,
+                                         std::vector<double>& y1, std::vector<double>& y2) const {
   static const ProductRows rows = product_rows_for_this_cpu();  // the CPU does not change
-#pragma omp parallel for schedule(dynamic, 1) if (n * n > 2 * kParallelWork)
-  for (std::size_t b = 0; b < B; ++b) {
-    double* p1 = P + 2 * b * n;
-    double* p2 = p1 + n;
-    std::fill(p1 + edge[b], p1 + n, 0.0);
-    std::fill(p2 + edge[b], p2 + n, 0.0);
-    rows(G, N, n, edge[b], edge[b + 1], w1.data(), w2.data(), p1, p2);
-  }
-  for (std::size_t r = 0; r < n; ++r) {
-    double s1 = 0, s2 = 0;
-    for (std::size_t b = 0; b < B && edge[b] <= r; ++b) s1 += P[2 * b * n + r], s2 += P[(2 * b + 1) * n + r];
-    y1[r] = s1;
-    y2[r] = s2;
-  }
+  triangle_product(rows, G_.data(), N_, n_, row_blocks(), partial_, w1, w2, y1, y2);
+  subtract_deferred(w1, w2, y1, y2);
+}
+
+void PinnedCompliance::subtract_deferred(const std::vector<double>& w1, const std::vector<double>& w2,
+                                         std::vector<double>& y1, std::vector<double>& y2) const {
+  const std::size_t n = n_;
   for (const Deferred& u : deferred_) {  // − Σ u (uᵀ w)/d
     double c1 = 0, c2 = 0;
     for (std::size_t r = 0; r < n; ++r) c1 += u.u[r] * w1[r], c2 += u.u[r] * w2[r];
     c1 /= u.d, c2 /= u.d;
     for (std::size_t r = 0; r < n; ++r) y1[r] -= u.u[r] * c1, y2[r] -= u.u[r] * c2;
   }
+}
+
+PinnedCompliance::Pass PinnedCompliance::apply(const std::vector<std::size_t>& columns, const std::vector<double>& w1,
+                                               const std::vector<double>& w2, std::vector<double>& y1,
+                                               std::vector<double>& y2, const PassBudget& budget) const {
+  const std::size_t n = n_;
+  if (!single_.usable || columns.size() * kFewColumns < n) {
+    apply(columns, w1, w2, y1, y2);
+    return Pass::exact;
+  }
+  static const SingleProductRows single_rows = single_rows_for_this_cpu();
+  // Row r's error is Σ_j (T_rj − S_rj)(w_j − ref_j), |T_rj − S_rj| ≤ 2⁻²⁴ |T_rj| (rounding to
+  // nearest; 2⁻¹⁵⁰ below the normal range), so by Cauchy–Schwarz at most
+  // (2⁻²⁴ ‖T_r‖₂ + 2⁻¹⁵⁰ √n) ‖w − ref‖₂: within the budget when ‖w − ref‖₂ is within
+  // 1/ratio1 (for y1) and 1/ratio2 (for y2).
+  const double tiny = std::ldexp(std::sqrt(static_cast<double>(n)), -150), unit = std::ldexp(1.0, -24);
+  double ratio1 = 0, largest = 0;
+  for (std::size_t r = 0; r < n; ++r) {
+    const double e = unit * single_.row_norm[r] + tiny;
+    ratio1 = std::max(ratio1, e / budget.y1[r]);
+    largest = std::max(largest, e);
+  }
+  const double ratio2 = largest / budget.y2;
+  const auto within = [&](const std::vector<double>& r1, const std::vector<double>& r2) {
+    return ratio1 * distance(w1, r1, n) <= 1.0 && ratio2 * distance(w2, r2, n) <= 1.0;
+  };
+  // A single pass; or an exact pass that becomes the new reference when the step from the last
+  // pass shows the next passes would be within the budget of it (else a plain exact pass: a
+  // reference costs half a pass more).
+  Pass kind = Pass::exact;
+  if (single_.valid && within(single_.ref1, single_.ref2))
+    kind = Pass::single;
+  else if (single_.has_last && within(single_.last1, single_.last2))
+    kind = Pass::refresh;
+  single_.last1.assign(w1.begin(), w1.begin() + static_cast<std::ptrdiff_t>(n));
+  single_.last2.assign(w2.begin(), w2.begin() + static_cast<std::ptrdiff_t>(n));
+  single_.has_last = true;
+  if (kind == Pass::exact) {
+    symmetric_product(w1, w2, y1, y2);
+    return kind;
+  }
+  if (kind == Pass::single) {
+    triangle_product(single_rows, single_.S.data(), N_, n, row_blocks(), partial_, w1, w2, y1, y2);
+    for (std::size_t r = 0; r < n; ++r) y1[r] += single_.c1[r], y2[r] += single_.c2[r];
+    subtract_deferred(w1, w2, y1, y2);
+    ++single_.passes;
+    return kind;
+  }
+  // Exact, and c = (T − S) w from the two products at this w: the new reference.
+  static const ProductRows rows = product_rows_for_this_cpu();
+  const std::vector<std::size_t> edge = row_blocks();
+  std::vector<double> s1(n), s2(n);
+  triangle_product(single_rows, single_.S.data(), N_, n, edge, partial_, w1, w2, s1, s2);
+  triangle_product(rows, G_.data(), N_, n, edge, partial_, w1, w2, y1, y2);
+  single_.c1.resize(n);
+  single_.c2.resize(n);
+  for (std::size_t r = 0; r < n; ++r) single_.c1[r] = y1[r] - s1[r], single_.c2[r] = y2[r] - s2[r];
+  single_.ref1 = single_.last1;
+  single_.ref2 = single_.last2;
+  single_.valid = true;
+  ++single_.refreshes;
+  subtract_deferred(w1, w2, y1, y2);
+  return kind;
+}
+
+namespace {
+
+// Row r of the triangle (row: its entries from the diagonal on, up to n) into its single-precision
+// copy srow, with its own squares' sum; the squares of its entries right of the diagonal go to
+// the rows they are in as columns (col: this block's sums); big: the largest |entry| so far.
+inline void copy_row(std::size_t r, std::size_t n, const double* row, float* srow, double* col, double& own,
+                     double& big) {
+  double sq = 0;
+  for (std::size_t c = r; c < n; ++c) {
+    const double g = row[c];
+    srow[c] = static_cast<float>(g);
+    sq += g * g;
+    if (c > r) col[c] += g * g;
+    big = std::max(big, std::abs(g));
+  }
+  own = sq;
+}
+
+}  // namespace
+
+void PinnedCompliance::finish_single(const std::vector<std::size_t>& edge, const std::vector<double>& own,
+                                     const std::vector<double>& biggest) {
+  const std::size_t n = n_;
+  const double* P = partial_.data();
+  single_.row_norm.resize(n);
+  for (std::size_t r = 0; r < n; ++r) {
+    double sq = own[r];
+    for (std::size_t b = 0; b + 1 < edge.size() && edge[b] <= r; ++b) sq += P[b * n + r];
+    // Each sum of n squares is rounded by at most n units of 2⁻⁵³ of itself.
+    single_.row_norm[r] = std::sqrt(sq * (1.0 + 2e-16 * static_cast<double>(n + 2)));
+  }
+  // An entry beyond single precision's range would be infinite in S: no single passes then.
+  single_.usable = *std::max_element(biggest.begin(), biggest.end()) < 1e38;
+}
+
+void PinnedCompliance::copy_single() {
+  single_.valid = false;
+  single_.usable = false;
+  if (single_.S.empty()) return;
+  const std::size_t n = n_, N = N_;
+  const std::vector<std::size_t> edge = row_blocks();
+  const std::size_t B = edge.size() - 1;
+  // Row norms of the symmetric T from the stored triangle: entry (r, s > r) counts in rows r and
+  // s; the column parts go into per-block sums, added in block order (the same bits on any
+  // number of threads).
+  partial_.resize(2 * B * n);
+  std::vector<double> own(n), biggest(B, 0.0);
+  double* P = partial_.data();
+#pragma omp parallel for schedule(dynamic, 1) if (n * n > 2 * kParallelWork)
+  for (std::size_t b = 0; b < B; ++b) {
+    std::fill(P + b * n + edge[b], P + (b + 1) * n, 0.0);
+    for (std::size_t r = edge[b]; r < edge[b + 1]; ++r)
+      copy_row(r, n, G_.data() + r * N, single_.S.data() + packed_row(r, N), P + b * n, own[r], biggest[b]);
+  }
+  finish_single(edge, own, biggest);
 }
 
 std::vector<double> PinnedCompliance::row(std::size_t q) const {
@@ -290,17 +474,30 @@ void PinnedCompliance::fold() {
   if (deferred_.empty()) return;
   const std::size_t n = n_, N = N_;
   double* G = G_.data();
+  // The single-precision copy is written as each row is done (one pass over the triangle, not two).
+  const bool copy = !single_.S.empty();
+  single_.valid = single_.usable = false;
+  const std::vector<std::size_t> edge = row_blocks();
+  const std::size_t B = edge.size() - 1;
+  std::vector<double> own(copy ? n : 0), biggest(B, 0.0);
+  if (copy) partial_.resize(2 * B * n);
+  double* P = partial_.data();
   // Entry (r, s ≥ r) takes each removal in order, as the removals one by one would.
-#pragma omp parallel for schedule(dynamic, 64) if (n * n > 2 * kParallelWork)
-  for (std::size_t r = 0; r < n; ++r) {
-    double* row = G + r * N;
-    for (const Deferred& u : deferred_) {
-      const double w = u.u[r] / u.d;
-      const double* us = u.u.data();
-      for (std::size_t s = r; s < n; ++s) row[s] -= w * us[s];
+#pragma omp parallel for schedule(dynamic, 1) if (n * n > 2 * kParallelWork)
+  for (std::size_t b = 0; b < B; ++b) {
+    if (copy) std::fill(P + b * n + edge[b], P + (b + 1) * n, 0.0);
+    for (std::size_t r = edge[b]; r < edge[b + 1]; ++r) {
+      double* row = G + r * N;
+      for (const Deferred& u : deferred_) {
+        const double w = u.u[r] / u.d;
+        const double* us = u.u.data();
+        for (std::size_t s = r; s < n; ++s) row[s] -= w * us[s];
+      }
+      if (copy) copy_row(r, n, row, single_.S.data() + packed_row(r, N), P + b * n, own[r], biggest[b]);
     }
   }
   deferred_.clear();
+  if (copy) finish_single(edge, own, biggest);
 }
 
 void PinnedCompliance::remove(std::size_t q, double f_sl) {
@@ -309,6 +506,40 @@ void PinnedCompliance::remove(std::size_t q, double f_sl) {
   const double gqq = g[q];
   if (nl_[q]) --n_nl_;
   double* G = G_.data();
+  const std::size_t last = n - 1;
+  if (single_.usable) {
+    float* S = single_.S.data();
+    // The reference product loses position q's column: c −= (T − S)_{·q} ref_q.
+    if (single_.valid) {
+      const double r1 = single_.ref1[q], r2 = single_.ref2[q];
+      for (std::size_t r = 0; r < n; ++r) {
+        const double t = r < q ? G[r * N + q] : G[q * N + r];
+        const double e = t - static_cast<double>(static_cast<float>(t));
+        single_.c1[r] -= e * r1;
+        single_.c2[r] -= e * r2;
+      }
+      for (auto* v : {&single_.c1, &single_.c2, &single_.ref1, &single_.ref2}) {
+        (*v)[q] = (*v)[last];
+        v->pop_back();
+      }
+    }
+    if (single_.has_last)
+      for (auto* v : {&single_.last1, &single_.last2}) {
+        (*v)[q] = (*v)[last];
+        v->pop_back();
+      }
+    // The copy follows the triangle (below): row q's norm bound becomes that of the row moved
+    // there; the others only lose an entry.
+    if (q != last) {
+      for (std::size_t r = 0; r < q; ++r) S[packed_row(r, N) + q] = S[packed_row(r, N) + last];
+      S[packed_row(q, N) + q] = S[packed_row(last, N) + last];
+      for (std::size_t s = q + 1; s < last; ++s) S[packed_row(q, N) + s] = S[packed_row(s, N) + last];
+      single_.row_norm[q] = single_.row_norm[last];
+    }
+    single_.row_norm.pop_back();
+  } else {
+    single_.valid = single_.has_last = false;
+  }
   // G' = G − g gᵀ/g_qq (the inverse of M without row and column q; they become 0), kept aside
   // until kDeferredRemovals of them are folded into the stored triangle together.
   deferred_.push_back(Deferred{g, gqq});
@@ -320,7 +551,6 @@ void PinnedCompliance::remove(std::size_t q, double f_sl) {
     h_[r] += coupling(idx_[r], i) * f_sl;
   }
   // The last position moves into q.
-  const std::size_t last = n - 1;
   if (q != last) {
     // Entry (q, ·) of the new matrix is entry (last, ·) of the old, all of them in the triangle's
     // column `last`: above q in column q, right of q in row q.
@@ -347,6 +577,7 @@ void PinnedCompliance::remove(std::size_t q, double f_sl) {
 
 std::size_t PinnedCompliance::add(std::size_t i, bool nonlinear) {
   deferred_.clear();  // G is stale until rebuild(), which starts from C and D
+  single_.valid = single_.usable = single_.has_last = false;
   const std::size_t q = n_++;
   idx_[q] = static_cast<std::uint32_t>(i);
   pos_[i] = q;
@@ -382,6 +613,7 @@ void PinnedCompliance::rebuild() {
   if (info == 0) dpotri_("L", &ni, G, &lda, &info);
   omp_set_num_threads(threads);
   if (info != 0) interacting_solver_failure("the pinned junctions' compliance matrix is not positive definite", 0.0);
+  copy_single();
   // a0 = G 1, b0 = −G h.
   const std::vector<double> ones(n, 1.0), h(h_.begin(), h_.begin() + static_cast<std::ptrdiff_t>(n));
   std::vector<double> a(n), b(n);

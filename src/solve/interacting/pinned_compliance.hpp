@@ -12,6 +12,11 @@
 // and C, symmetric with a zero diagonal, lives in the strict lower triangle of the same buffer
 // (LAPACK's Cholesky and inverse never touch it). Memory: N² doubles for C and G.
 // Positions q = 0 .. size()−1 index P; junction(q) is the junction there.
+// From N = kSingleFrom on, a single-precision copy S of the stored triangle (half the bytes of a
+// pass, 2 N² more bytes of memory) serves the passes whose error it provably keeps within a
+// budget: a pass reads S and adds c = (T − S) w_ref, kept from the last exact pass at w_ref, so
+// its error is (T − S)(w − w_ref), at most 2⁻²⁴ ‖T_i‖₂ ‖w − w_ref‖₂ on row i (‖T_i‖₂ bounded as
+// the triangle is written). Otherwise the pass is exact and becomes the new reference.
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
@@ -26,10 +31,15 @@ namespace asperity {
 class PinnedCompliance {
  public:
   static constexpr std::size_t npos = static_cast<std::size_t>(-1);
+  // The single-precision copy is kept from this many junctions on: there the stored triangle
+  // (16 MB) outgrows half of a typical last-level cache and a pass is bound by memory traffic.
+  static constexpr std::size_t kSingleFrom = 2048;
 
   // Every junction pinned at position q = i, with reference compliance reference[i] [m/N],
-  // nonlinear (Eq. 3) or not, h = 0; G built.
-  PinnedCompliance(const Problem& problem, std::vector<double> reference, bool nonlinear);
+  // nonlinear (Eq. 3) or not, h = 0; G built. single_from: N from which the single-precision
+  // copy is kept (tests lower it).
+  PinnedCompliance(const Problem& problem, std::vector<double> reference, bool nonlinear,
+                   std::size_t single_from = kSingleFrom);
 
   std::size_t size() const { return n_; }  // |P|
   std::size_t junction(std::size_t q) const { return idx_[q]; }
@@ -47,6 +57,20 @@ class PinnedCompliance {
   // `columns` (one pass over the stored triangle of G). y1, y2 are overwritten.
   void apply(const std::vector<std::size_t>& columns, const std::vector<double>& w1, const std::vector<double>& w2,
              std::vector<double>& y1, std::vector<double>& y2) const;
+  // The errors a pass may make on y1 (by position, absolute) and on y2 (absolute, every entry)
+  // by reading the single-precision copy.
+  struct PassBudget {
+    std::vector<double> y1;
+    double y2 = 0;
+  };
+  enum class Pass { exact, single, refresh };  // refresh: exact, and the copy's new reference
+  // The same product, from the single-precision copy when its error bound is within `budget`
+  // on every entry (a product over the whole triangle only, and with the copy kept).
+  Pass apply(const std::vector<std::size_t>& columns, const std::vector<double>& w1, const std::vector<double>& w2,
+             std::vector<double>& y1, std::vector<double>& y2, const PassBudget& budget) const;
+  bool single_kept() const { return !single_.S.empty(); }
+  std::int64_t single_passes() const { return single_.passes; }
+  std::int64_t single_refreshes() const { return single_.refreshes; }
   // G's row q (= column q), size() entries.
   std::vector<double> row(std::size_t q) const;
 
@@ -72,6 +96,11 @@ class PinnedCompliance {
   // y1 = G w1, y2 = G w2 over all of P (w1, w2: size() entries).
   void symmetric_product(const std::vector<double>& w1, const std::vector<double>& w2, std::vector<double>& y1,
                          std::vector<double>& y2) const;
+  // y −= Σ u (uᵀ w)/d over the removals not yet folded.
+  void subtract_deferred(const std::vector<double>& w1, const std::vector<double>& w2, std::vector<double>& y1,
+                         std::vector<double>& y2) const;
+  // The fixed row blocks of a product over the triangle (n + 1 edges).
+  std::vector<std::size_t> row_blocks() const;
 
   // N × N, row-major. Upper triangle (column ≥ row): G over positions of P, leading n × n block
   // (G is symmetric: every pass over it reads half as much). Strict lower triangle: C over
@@ -86,6 +115,23 @@ class PinnedCompliance {
   std::vector<Deferred> deferred_;
   void fold();
   mutable std::vector<double> partial_;  // the symmetric product's per-block sums (a workspace)
+  // The single-precision copy (empty: not kept): S packed by rows (row r from its diagonal,
+  // N − r entries), the rows' 2-norm bounds of the triangle T it copies, and the reference of
+  // the last exact pass.
+  struct Single {
+    std::vector<float, HugePageAllocator<float>> S;
+    std::vector<double> row_norm, c1, c2, ref1, ref2, last1, last2;  // last: the last pass's w
+    bool valid = false;  // c, ref hold for the current triangle
+    bool has_last = false;
+    bool usable = false;  // S and row_norm hold for the current triangle (and no entry overflowed)
+    std::int64_t passes = 0, refreshes = 0;
+  };
+  mutable Single single_;
+  // Rows [0, n) of T written into S, with their norms (after a rebuild or fold).
+  void copy_single();
+  // Row norms and usability from a copy's per-row and per-block sums.
+  void finish_single(const std::vector<std::size_t>& edge, const std::vector<double>& own,
+                     const std::vector<double>& biggest);
   std::vector<std::uint32_t> idx_;  // position → junction
   std::vector<std::size_t> pos_;    // junction → position (npos: slipping)
   std::vector<double> D_, h_, a0_, b0_;

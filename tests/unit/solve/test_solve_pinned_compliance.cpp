@@ -99,3 +99,94 @@ TEST_CASE("pinned compliance: G's products equal the dense inverse's, as junctio
     CHECK(relative_error(y2, llt.solve(v2)) < 4e-15);
   }
 }
+
+TEST_CASE("pinned compliance: a pass on the single-precision copy stays within its error bound, and the "
+          "reference follows removals",
+          "[solve][pinned]") {
+  // The stand-in P0.98N (STAND-IN data) with the copy kept at any size. Truth: the dense inverse
+  // of M by Eigen's LLT, whose rows' 2-norms give the bound 2⁻²⁴ ‖G_r‖₂ ‖w − ref‖₂ on row r.
+  const asperity::Scene scene = asperity::load_scene(std::filesystem::path(ASPERITY_SOURCE_DIR) / "scenes/paper/P0.98N.yaml",
+                                                     {"model.interactions=elastic"});
+  const asperity::Problem problem = asperity::make_problem(scene);
+  const std::size_t N = problem.size();
+  const asperity::JunctionState J(problem.A0, problem.law);
+  std::vector<double> D(N);
+  for (std::size_t i = 0; i < N; ++i) D[i] = 1.0 / J.k[i];
+  const asperity::InteractionMatrix C = asperity::interaction_matrix(problem);
+  PinnedCompliance P(problem, D, true, 0);
+  REQUIRE(P.single_kept());
+  using Pass = PinnedCompliance::Pass;
+
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<double> w1(N), w2(N), y1(N), y2(N), e1(N), e2(N);
+  for (std::size_t q = 0; q < N; ++q) w1[q] = u(rng), w2[q] = u(rng);
+  const std::vector<double> ref1 = w1, ref2 = w2;
+  PinnedCompliance::PassBudget loose{std::vector<double>(N, 1e300), 1e300};
+  auto all = [&] {
+    std::vector<std::size_t> a(P.size());
+    for (std::size_t q = 0; q < a.size(); ++q) a[q] = q;
+    return a;
+  };
+  // No pass before: exact. The same w again: exact and the copy's reference. Both equal the
+  // exact product bit for bit.
+  P.apply(all(), w1, w2, e1, e2);
+  CHECK(P.apply(all(), w1, w2, y1, y2, loose) == Pass::exact);
+  CHECK(y1 == e1);
+  CHECK(P.apply(all(), w1, w2, y1, y2, loose) == Pass::refresh);
+  CHECK(y1 == e1);
+  CHECK(y2 == e2);
+
+  // Moved by 1e-3 from the reference, through removals (kept aside, then folded): single passes
+  // within the bound, their error of single precision's order (not the double product's).
+  std::vector<std::size_t> removed;
+  for (const std::size_t leave : {std::size_t{0}, std::size_t{3}, std::size_t{11}}) {
+    while (removed.size() < leave) {
+      const std::size_t q = std::uniform_int_distribution<std::size_t>(0, P.size() - 1)(rng);
+      removed.push_back(P.junction(q));
+      // w and the reference follow the positions as remove() moves them (the last into q).
+      for (auto* v : {&w1, &w2}) (*v)[q] = v->at(P.size() - 1), v->pop_back();
+      P.remove(q, 0.0);
+    }
+    const std::size_t n = P.size();
+    CAPTURE(n);
+    if (leave == 11) {  // the eighth removal folded them into the triangle: a new reference first
+      P.apply(all(), w1, w2, e1, e2);
+      CHECK(P.apply(all(), w1, w2, y1, y2, loose) == Pass::refresh);
+      CHECK(std::equal(e1.begin(), e1.begin() + static_cast<std::ptrdiff_t>(n), y1.begin()));
+    }
+    std::vector<double> v1(n), v2(n);
+    for (std::size_t q = 0; q < n; ++q) v1[q] = w1[q] * (1 + 1e-3 * u(rng)), v2[q] = w2[q] * (1 + 1e-3 * u(rng));
+    REQUIRE(P.apply(all(), v1, v2, y1, y2, loose) == Pass::single);
+    Eigen::MatrixXd M(n, n);
+    for (std::size_t r = 0; r < n; ++r)
+      for (std::size_t s = 0; s < n; ++s) M(r, s) = r == s ? D[P.junction(r)] : C(P.junction(r), P.junction(s));
+    const Eigen::MatrixXd inv = M.llt().solve(Eigen::MatrixXd::Identity(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n)));
+    const Eigen::VectorXd x1 = inv * Eigen::Map<Eigen::VectorXd>(v1.data(), static_cast<Eigen::Index>(n));
+    double d1 = 0;
+    for (std::size_t q = 0; q < n; ++q) d1 += (v1[q] - w1[q]) * (v1[q] - w1[q]);
+    d1 = std::sqrt(d1);
+    double worst = 0, largest = 0;  // error / bound; error / |y|
+    for (std::size_t r = 0; r < n; ++r) {
+      const double bound = std::ldexp(1.0, -24) * inv.row(static_cast<Eigen::Index>(r)).norm() * d1;
+      const double err = std::abs(y1[r] - x1[static_cast<Eigen::Index>(r)]);
+      // The double product's own rounding is ~1e-15 of |y|: far below the bound here.
+      worst = std::max(worst, err / (bound + 4e-15 * x1.cwiseAbs().maxCoeff()));
+      largest = std::max(largest, err / x1.cwiseAbs().maxCoeff());
+    }
+    INFO("error / bound " << worst << ", error / max|y| " << largest);
+    // Measured 0.15, 0.098, 0.096 of the bound; 2.1e-11, 1.7e-11, 1.5e-11 of max |y|.
+    CHECK(worst <= 1.0);
+    CHECK(largest > 2e-12);  // single precision's, not the double product's ~1e-16
+  }
+  // A budget below the bound: an exact pass, bit for bit.
+  const std::size_t n = P.size();
+  std::vector<double> v1(w1.begin(), w1.begin() + static_cast<std::ptrdiff_t>(n)), v2 = v1;
+  for (double& x : v1) x *= 1.5;
+  PinnedCompliance::PassBudget tight{std::vector<double>(n, 1e-300), 1e-300};
+  P.apply(all(), v1, v2, e1, e2);
+  CHECK(P.apply(all(), v1, v2, y1, y2, tight) == Pass::exact);
+  CHECK(std::equal(e1.begin(), e1.begin() + static_cast<std::ptrdiff_t>(n), y1.begin()));
+  CHECK(P.single_passes() == 3);
+  CHECK(P.single_refreshes() == 2);
+}
