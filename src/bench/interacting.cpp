@@ -40,14 +40,15 @@ Scene with_positions(Scene s, double radius_m) {
   return s;
 }
 
-InteractingBenchRow timed(const std::string& what, const Scene& scene) {
+InteractingBenchRow timed(const std::string& what, const Scene& scene,
+                          std::size_t single_from = PinnedCompliance::kSingleFrom) {
   InteractingBenchRow row;
   row.what = what;
   row.N = scene.experiment.junctions.size();
   const Problem problem = make_problem(scene);
   Recorder rec = make_recorder(scene);
   const auto t0 = std::chrono::steady_clock::now();
-  InteractingEventStepper stepper(problem);
+  InteractingEventStepper stepper(problem, single_from);
   const RunInfo info = integrate(stepper, problem, rec);
   row.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const auto& w = stepper.junctions().work();
@@ -59,6 +60,8 @@ InteractingBenchRow timed(const std::string& what, const Scene& scene) {
   row.iterations = w.iterations;
   row.rank_one = w.rank_one;
   row.rebuilds = w.rebuilds;
+  row.single_passes = w.single_passes;
+  row.single_refreshes = w.single_refreshes;
   const FirstPeak fp = rec.first_peak();
   row.Q_s = fp.max.Q;
   row.A_s = fp.max.A;
@@ -105,6 +108,8 @@ std::vector<InteractingBenchRow> run_interacting_bench(const InteractingBenchOpt
       c.solver.interaction_tolerance = opt.converged_tolerance;
       rows.push_back(timed("first_peak_converged", with_positions(c, R)));
     }
+    const bool both = opt.double_only && N >= PinnedCompliance::kSingleFrom;
+    if (both) rows.push_back(timed("first_peak_double", with_positions(s, R), static_cast<std::size_t>(-1)));
     rows.push_back(timed("first_peak", with_positions(s, R)));
     const auto& r = rows.back();
     if (opt.log) {
@@ -112,15 +117,23 @@ std::vector<InteractingBenchRow> run_interacting_bench(const InteractingBenchOpt
                << r.slips << " slips, " << r.solves << " solves, " << r.iterations << " chord iterations, "
                << r.rank_one << " rank-one updates, " << r.rebuilds << " rebuilds), peak RSS " << r.max_rss_kB / 1024
                << " MB vs N^2 doubles " << r.bound_kB / 1024 << " MB" << std::endl;
+      if (both) {
+        const auto& d = rows[rows.size() - 2];
+        *opt.log << "    without G's single-precision copy: " << d.wall_s << " s wall, " << d.wall_s / r.wall_s
+                 << "x the time (" << r.single_passes << " of " << r.iterations << " chord passes on the copy, "
+                 << r.single_refreshes << " new references); relative differences Q_s " << std::abs(r.Q_s / d.Q_s - 1)
+                 << ", A_s " << std::abs(r.A_s / d.A_s - 1) << ", t_peak " << std::abs(r.t_peak / d.t_peak - 1)
+                 << std::endl;
+      }
       if (opt.converged_tolerance > 0) {
-        const auto& c = rows[rows.size() - 2];
+        const auto& c = rows[rows.size() - (both ? 3 : 2)];
         *opt.log << "    converged solves (interaction tolerance " << c.interaction_tolerance << ", against "
                  << r.interaction_tolerance << "): " << c.wall_s << " s wall, " << c.wall_s / r.wall_s
                  << "x the time; relative differences Q_s " << std::abs(r.Q_s / c.Q_s - 1) << ", A_s "
                  << std::abs(r.A_s / c.A_s - 1) << ", t_peak " << std::abs(r.t_peak / c.t_peak - 1) << std::endl;
       }
       if (opt.recorded) {
-        const auto& w = rows[rows.size() - (opt.converged_tolerance > 0 ? 3 : 2)];
+        const auto& w = rows[rows.size() - (opt.converged_tolerance > 0 ? 3 : 2) - (both ? 1 : 0)];
         *opt.log << "    with the output series (" << w.samples << " samples): " << w.wall_s << " s wall, "
                  << 100.0 * (w.wall_s / r.wall_s - 1.0) << " % more, " << w.solves - r.solves << " extra exact solves"
                  << std::endl;
@@ -171,14 +184,14 @@ std::string fitted_exponent_text(const std::vector<InteractingBenchRow>& rows) {
 void write_interacting_bench(const fs::path& dir, const std::vector<InteractingBenchRow>& rows) {
   std::ostringstream o;
   o << "what,N,interaction_tolerance,wall_s,t_end_s,Q_s_N,A_s_m2,t_peak_s,steps,slips,repins,solves,chord_iterations,"
-       "rank_one_updates,rebuilds,samples,max_rss_kB,N2_doubles_kB\n";
+       "rank_one_updates,rebuilds,samples,max_rss_kB,N2_doubles_kB,single_passes,single_refreshes\n";
   for (const auto& r : rows)
     o << r.what << ',' << r.N << ',' << csv_number(r.interaction_tolerance) << ',' << csv_number(r.wall_s) << ','
       << csv_number(r.t_end) << ',' << csv_number(r.Q_s) << ',' << csv_number(r.A_s) << ',' << csv_number(r.t_peak)
       << ',' << r.steps << ',' << r.slips << ',' << r.repins
       << ',' << r.solves << ',' << r.iterations << ',' << r.rank_one << ',' << r.rebuilds << ',' << r.samples << ','
       << r.max_rss_kB
-      << ',' << csv_number(r.bound_kB) << '\n';
+      << ',' << csv_number(r.bound_kB) << ',' << r.single_passes << ',' << r.single_refreshes << '\n';
   fs::create_directories(dir);
   scene_io::write_text_file(dir / "interacting.csv", o.str());
 }

@@ -26,19 +26,22 @@ struct InteractingBenchOptions {
   // Each size also at this solver.interaction_tolerance (the dense exact solver as it was before
   // the knob: converged solves), side by side with the scene's own setting; 0: not run.
   double converged_tolerance = 1e-12;
+  bool double_only = true;  // from N = 2,048 on, also without G's single-precision copy
   std::ostream* log = nullptr;
 };
 
 struct InteractingBenchRow {
   // "first_peak" (scaling, no output series), "first_peak_series" (the same run recording the
   // scene's output series: the cost of recording), "first_peak_converged" (the same run at the
-  // converged tolerance) or "whole_run"
+  // converged tolerance), "first_peak_double" (the same run without G's single-precision copy,
+  // from N = 2,048 on, where the solver keeps one) or "whole_run"
   std::string what;
   std::size_t N = 0;
   double interaction_tolerance = 0;
   double wall_s = 0, t_end = 0, Q_s = 0, A_s = 0, t_peak = 0;
   std::int64_t steps = 0, slips = 0, repins = 0, solves = 0, iterations = 0, rank_one = 0, rebuilds = 0;
   std::int64_t samples = 0;  // of the output series
+  std::int64_t single_passes = 0, single_refreshes = 0;  // chord passes on G's single-precision copy
   long max_rss_kB = 0;   // of the whole process after this run (sizes run in increasing order)
   double bound_kB = 0;   // N² doubles
 };

@@ -15,6 +15,7 @@
 #include <cstdio>
 #include <optional>
 #include <string>
+#include <utility>
 
 #include "solve/core/junction_model.hpp"
 #include "solve/core/observer.hpp"
@@ -46,10 +47,12 @@ struct EventIntegrator {
   using State = event_detail::State;
   using Dense = event_detail::Dense;
   using Kind = event_detail::Kind;
-  explicit EventIntegrator(const Problem& p)
+  // Any further arguments go to the junction model's constructor.
+  template <class... Args>
+  explicit EventIntegrator(const Problem& p, Args&&... junction_args)
       : p(p),
         L(p.slider.v * p.T0),
-        junctions(p),
+        junctions(p, std::forward<Args>(junction_args)...),
         stepper(boost::numeric::odeint::make_dense_output(p.solver.tolerance, p.solver.tolerance, boost::numeric::odeint::runge_kutta_dopri5<State>())) {}
 
   void rhs(const State& y, State& dy, double tt) const {

@@ -8,7 +8,8 @@ struct InteractingEventStepper::Impl : EventIntegrator<InteractingJunctions> {
   using EventIntegrator<InteractingJunctions>::EventIntegrator;
 };
 
-InteractingEventStepper::InteractingEventStepper(const Problem& problem) : impl_(std::make_unique<Impl>(problem)) {}
+InteractingEventStepper::InteractingEventStepper(const Problem& problem, std::size_t single_from)
+    : impl_(std::make_unique<Impl>(problem, single_from)) {}
 InteractingEventStepper::~InteractingEventStepper() = default;
 
 void InteractingEventStepper::start(RunObserver& out) { impl_->start(out); }

@@ -15,7 +15,8 @@ namespace asperity {
 
 class InteractingEventStepper {
  public:
-  explicit InteractingEventStepper(const Problem& problem);
+  // single_from: see InteractingJunctions (benchmarks run the double-only solver beside).
+  explicit InteractingEventStepper(const Problem& problem, std::size_t single_from = PinnedCompliance::kSingleFrom);
   ~InteractingEventStepper();
 
   void start(RunObserver& out);
