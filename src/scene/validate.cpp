@@ -23,7 +23,9 @@ constexpr double kMaxEtaTime = 1e6;      // η · stop.time: ≤ ~3·10^5 steps 
 constexpr double kMaxPeriods = 1e6;     // slider oscillations in stop.time (≥ 2·10^7 event steps)
 constexpr double kMaxReferenceSteps = 1e9;  // steps of the reference solver
 constexpr double kMinSlipAreaFraction = 1e-6;  // A_s/A0 at a junction's first slip
-constexpr std::size_t kMaxInteractingJunctions = 20000;  // 3.2 GB of compliance matrix and its inverse (N^2 doubles)
+// 4.0 GB at 20,000: the compliance matrix and its inverse (N^2 doubles) and the inverse's
+// single-precision copy (N^2/2 floats).
+constexpr std::size_t kMaxInteractingJunctions = 20000;
 
 // Each error names the key the user set (the first of the pair that was given).
 [[noreturn]] void blame(const KeyOrigins& o, const char* a, const char* b, const std::string& msg) {
@@ -112,7 +114,7 @@ void check_interactions(const Scene& s, const KeyOrigins& o) {
                                      (csv.empty() ? std::string("the junctions") : csv) +
                                      " has no x_m and y_m columns");
   if (J.size() > kMaxInteractingJunctions)
-    o.fail("model.interactions", "elastic interactions keep an N x N compliance matrix (N^2 doubles): N = " +
+    o.fail("model.interactions", "elastic interactions keep an N x N compliance matrix (N^2 doubles, 4 GB at 20,000): N = " +
                                      std::to_string(J.size()) + " junctions, more than " +
                                      std::to_string(kMaxInteractingJunctions));
   for (std::size_t i = 0; i < J.size(); ++i) {

@@ -145,10 +145,12 @@ ForceNode InteractingJunctions::solve(double X, double tol) const {
     Anderson aa(2 * nA);
     std::vector<double> z(2 * nA), g(2 * nA);
     // A pass may read G's single-precision copy where its error stays within a tenth of the
-    // tolerance (forces: of each slip force; slopes: of their mean scale): the fixed point then
-    // moves by at most that over 1 − ρ, and the stopping rule is unchanged.
+    // tolerance of each slip force (the fixed point then moves by at most that over 1 − ρ; the
+    // stopping rule is unchanged) and within the tolerance of the slopes' mean scale (the slopes
+    // only shape the interpolants and Newton's rate; a tenth held the copy back every other pass).
+    const bool single = pinned_.single_kept();
     PinnedCompliance::PassBudget budget;
-    if (pinned_.single_kept()) {
+    if (single) {
       budget.y1.resize(n);
       for (std::size_t q = 0; q < n; ++q) budget.y1[q] = 0.1 * tol * threshold(q);
       budget.y2 = tol * a_scale;
@@ -171,7 +173,7 @@ ForceNode InteractingJunctions::solve(double X, double tol) const {
         da[q] = (du - pinned_.reference(q)) * node.a[q];
       }
       // y = G [Δ, Δ'a]: one pass over the rows of the nonlinear positions.
-      if (pinned_.single_kept())
+      if (single)
         pinned_.apply(active, dl, da, y1, y2, budget);
       else
         pinned_.apply(active, dl, da, y1, y2);

@@ -12,8 +12,9 @@
 // (a chord iteration whose rate is the drift of u_i' from D_i; when it slows, D is reset to the
 // current u' and G rebuilt: a Newton step). G is kept explicitly and updated when one junction
 // changes state: a slip removes its row and column (rank-one, O(N²)); a repin, and every N
-// rank-one updates (rounding), rebuild G (LAPACK Cholesky inverse in place). Memory: C and G,
-// 2 N² doubles, plus O(N) vectors.
+// rank-one updates (rounding), rebuild G (LAPACK Cholesky inverse in place). Memory: C and G in
+// one buffer of N² doubles, from N = 2,048 G's single-precision copy (N²/2 floats: the passes
+// that can, read half the bytes), plus O(N) vectors.
 //
 // Between events the total force F(X) and area A(X) are smooth functions of X alone: while
 // nonlinear junctions remain, they are piecewise cubic Hermite interpolants on nodes where the

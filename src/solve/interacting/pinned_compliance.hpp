@@ -10,7 +10,8 @@
 // about N rank-one updates G is rebuilt too (their rounding accumulates). G is symmetric: only its
 // upper triangle is kept up to date and read (half the memory traffic of every pass and update),
 // and C, symmetric with a zero diagonal, lives in the strict lower triangle of the same buffer
-// (LAPACK's Cholesky and inverse never touch it). Memory: N² doubles for C and G.
+// (LAPACK's Cholesky and inverse never touch it). Memory: N² doubles for C and G, plus N²/2 floats
+// for the single-precision copy below.
 // Positions q = 0 .. size()−1 index P; junction(q) is the junction there.
 // From N = kSingleFrom on, a single-precision copy S of the stored triangle (half the bytes of a
 // pass, 2 N² more bytes of memory) serves the passes whose error it provably keeps within a
