@@ -102,7 +102,7 @@ TEST_CASE("integrate: a stop inside a step ends the run as a wall-time limit, wi
   s.solver.Ct = 1;
   Problem p = make_problem(s);
   p.limits.wall_time_s = 3600;
-  LongStepper st{{p}};
+  LongStepper st{{p}, 4, {}, false};
   FirstSamples obs{p.dt, 100, {}};
   const auto before = std::chrono::steady_clock::now();
   const RunInfo info = integrate(st, p, obs);

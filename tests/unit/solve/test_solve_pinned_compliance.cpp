@@ -30,19 +30,29 @@ double relative_error(const std::vector<double>& y, const Eigen::VectorXd& exact
   return e / exact.cwiseAbs().maxCoeff();
 }
 
+// The stand-in P0.98N (STAND-IN data) with interactions: its problem, D = 1/k_i, and C.
+struct StandIn {
+  asperity::Problem problem = asperity::make_problem(asperity::load_scene(
+      std::filesystem::path(ASPERITY_SOURCE_DIR) / "scenes/paper/P0.98N.yaml", {"model.interactions=elastic"}));
+  std::vector<double> D = reference(problem);
+  asperity::InteractionMatrix C = asperity::interaction_matrix(problem);
+  static std::vector<double> reference(const asperity::Problem& p) {
+    const asperity::JunctionState J(p.A0, p.law);
+    std::vector<double> D(p.size());
+    for (std::size_t i = 0; i < D.size(); ++i) D[i] = 1.0 / J.k[i];
+    return D;
+  }
+};
+
 }  // namespace
 
 TEST_CASE("pinned compliance: G's products equal the dense inverse's, as junctions leave the set", "[solve][pinned]") {
   // The stand-in P0.98N (STAND-IN data), every junction pinned, D = 1/k_i.
-  const asperity::Scene scene = asperity::load_scene(std::filesystem::path(ASPERITY_SOURCE_DIR) / "scenes/paper/P0.98N.yaml",
-                                                     {"model.interactions=elastic"});
-  const asperity::Problem problem = asperity::make_problem(scene);
-  const std::size_t N = problem.size();
-  const asperity::JunctionState J(problem.A0, problem.law);
-  std::vector<double> D(N);
-  for (std::size_t i = 0; i < N; ++i) D[i] = 1.0 / J.k[i];
-  const asperity::InteractionMatrix C = asperity::interaction_matrix(problem);
-  PinnedCompliance P(problem, D, true);
+  const StandIn t;
+  const std::vector<double>& D = t.D;
+  const asperity::InteractionMatrix& C = t.C;
+  const std::size_t N = t.problem.size();
+  PinnedCompliance P(t.problem, D, true);
 
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
@@ -105,15 +115,11 @@ TEST_CASE("pinned compliance: a pass on the single-precision copy stays within i
           "[solve][pinned]") {
   // The stand-in P0.98N (STAND-IN data) with the copy kept at any size. Truth: the dense inverse
   // of M by Eigen's LLT, whose rows' 2-norms give the bound 2⁻²⁴ ‖G_r‖₂ ‖w − ref‖₂ on row r.
-  const asperity::Scene scene = asperity::load_scene(std::filesystem::path(ASPERITY_SOURCE_DIR) / "scenes/paper/P0.98N.yaml",
-                                                     {"model.interactions=elastic"});
-  const asperity::Problem problem = asperity::make_problem(scene);
-  const std::size_t N = problem.size();
-  const asperity::JunctionState J(problem.A0, problem.law);
-  std::vector<double> D(N);
-  for (std::size_t i = 0; i < N; ++i) D[i] = 1.0 / J.k[i];
-  const asperity::InteractionMatrix C = asperity::interaction_matrix(problem);
-  PinnedCompliance P(problem, D, true, 0);
+  const StandIn t;
+  const std::vector<double>& D = t.D;
+  const asperity::InteractionMatrix& C = t.C;
+  const std::size_t N = t.problem.size();
+  PinnedCompliance P(t.problem, D, true, 0);
   REQUIRE(P.single_kept());
   using Pass = PinnedCompliance::Pass;
 
