@@ -7,6 +7,7 @@
 
 #include "physics/interface_law.hpp"
 #include "solve/core/run_info.hpp"
+#include "solve/core/run_limits.hpp"
 
 namespace asperity {
 
@@ -26,7 +27,8 @@ double follow_compliance_times_f(const ContactLaw& law, double A0, double f) {
 
 }  // namespace
 
-int CoupledForces::solve(JunctionState& J, const std::vector<std::uint8_t>& solve, double X) {
+int CoupledForces::solve(JunctionState& J, const std::vector<std::uint8_t>& solve, double X,
+                         std::chrono::steady_clock::time_point deadline) {
   const ContactLaw& law = p_.law;
   const std::size_t N = J.size();
   std::vector<std::size_t> set;
@@ -68,6 +70,7 @@ int CoupledForces::solve(JunctionState& J, const std::vector<std::uint8_t>& solv
   // central difference (it only sets the convergence rate, not the root).
   double previous = HUGE_VAL;
   for (int iter = 1; iter <= 100; ++iter) {
+    if (iter > 1 && std::chrono::steady_clock::now() >= deadline) throw WallTimeReached();
     Eigen::VectorXd g(n);
     for (std::size_t a = 0; a < n; ++a) {
       const std::size_t i = set[a];

@@ -7,6 +7,7 @@
 // system (LDLT), started from the current forces; a linear system whose set of junctions did
 // not change since the last call reuses its factorisation. For the step-by-step interacting
 // reference: O(n³) per factorisation.
+#include <chrono>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -26,8 +27,10 @@ class CoupledForces {
 
   // Solves the junctions with solve[i] != 0 at slider position X_m: writes J.force and, where
   // the area follows the force, J's contact. Returns the Newton iterations (SolverError when it
-  // does not converge in 100).
-  int solve(JunctionState& J, const std::vector<std::uint8_t>& solve, double X_m);
+  // does not converge in 100). From the deadline on, a further Newton iteration (each a dense
+  // factorisation, a minute at N = 20,000) throws WallTimeReached instead, J unchanged.
+  int solve(JunctionState& J, const std::vector<std::uint8_t>& solve, double X_m,
+            std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max());
 
  private:
   struct Factorisation;

@@ -5,11 +5,17 @@
 #include <vector>
 
 #include "physics/interface_law.hpp"
+#include "solve/core/run_limits.hpp"
 
 namespace asperity {
 
 InteractingReferenceStepper::InteractingReferenceStepper(const Problem& problem)
-    : p_(problem), scheme_(problem), C_(interaction_matrix(problem)), forces_(problem, C_), J_(problem.A0, problem.law) {}
+    : p_(problem),
+      scheme_(problem),
+      C_(interaction_matrix(problem)),
+      forces_(problem, C_),
+      J_(problem.A0, problem.law),
+      deadline_(wall_deadline(problem.limits)) {}
 
 void InteractingReferenceStepper::advance(RunObserver& out) {
   const ContactLaw& law = p_.law;
@@ -27,8 +33,9 @@ void InteractingReferenceStepper::advance(RunObserver& out) {
     solve[i] = J.pinned[i];
   }
   std::int64_t slips = 0, force_evals = 0;
-  for (;;) {
-    force_evals += forces_.solve(J, solve, X1);
+  for (int round = 0;; ++round) {
+    if (round > 0 && std::chrono::steady_clock::now() >= deadline_) throw WallTimeReached();
+    force_evals += forces_.solve(J, solve, X1, deadline_);
     std::int64_t new_slips = 0;
     for (std::size_t i = 0; i < N; ++i)
       if (solve[i] && starts_to_slip(J.force[i], J.f_s[i])) {

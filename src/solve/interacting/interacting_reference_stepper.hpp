@@ -10,6 +10,8 @@
 // state at most once per step, as in the paper's scan); (4) each repinned junction's anchor is
 // set so that its equation holds with the forces now known (no force jump). With C_ij = 0 this
 // is ReferenceStepper's step.
+#include <algorithm>
+#include <chrono>
 #include <cstdint>
 
 #include "solve/interacting/coupled_forces.hpp"
@@ -32,6 +34,11 @@ class InteractingReferenceStepper {
   std::int64_t slips() const { return scheme_.slips(); }
   void advance(RunObserver& out);
   void stop_early() {}
+  // The run's wall-time deadline (from stop.wall_time at construction; set_deadline only brings it
+  // closer): a further avalanche round, or Newton iteration of a coupled solve, throws
+  // WallTimeReached instead. Each is a dense O(N³) solve, and one step can hold many.
+  void set_deadline(std::chrono::steady_clock::time_point deadline) { deadline_ = std::min(deadline_, deadline); }
+  void clear_deadline() { deadline_ = std::chrono::steady_clock::time_point::max(); }
   void finish(RunInfo& info) const { scheme_.finish(info, max_ratio_); }
 
   const JunctionState& junctions() const { return J_; }
@@ -43,6 +50,7 @@ class InteractingReferenceStepper {
   CoupledForces forces_;
   JunctionState J_;
   double max_ratio_ = 0;
+  std::chrono::steady_clock::time_point deadline_;
 };
 
 }  // namespace asperity

@@ -15,6 +15,7 @@
 #include "solve/interacting/interacting_junctions.hpp"
 #include "solve/integrate.hpp"
 #include "solve/interacting/interacting_event_stepper.hpp"
+#include "solve/interacting/interacting_reference_stepper.hpp"
 #include "solve/interacting/interaction_matrix.hpp"
 #include "support_scenes.hpp"
 
@@ -261,6 +262,63 @@ TEST_CASE("event solver: a chord pass past the run's deadline stops the solve, a
   CHECK(info.stopped_by == LimitHit::wall_time);
   CHECK(info.t_end == 0.0);
   CHECK(info.stats.slips == 0);
+}
+
+TEST_CASE("interacting reference: a step past the run's deadline stops inside it, before its next dense solve",
+          "[solve][interacting][reference]") {
+  // The step-by-step interacting reference solves the coupled system densely, O(N³), once per
+  // Newton iteration and per avalanche round: a step can hold many. (1) 25 Eq. (3) junctions,
+  // strongly coupled: every coupled solve iterates. With the deadline passed the step throws at
+  // its second iteration, every force as it was; cleared, the step gives a fresh stepper's forces.
+  {
+    Scene sc = strong_cluster_scene(25);
+    sc.solver.method = SolverMethod::reference;
+    const Problem p = make_problem(sc);
+    Recorder rec1 = make_recorder(sc), rec2 = make_recorder(sc);
+    ObserverAdapter<Recorder> r1(rec1), r2(rec2);
+    InteractingReferenceStepper st(p), fresh(p);
+    st.start(r1);
+    fresh.start(r2);
+    for (int k = 0; k < 3; ++k) st.advance(r1), fresh.advance(r2);
+    const std::vector<double> before = st.junctions().force;
+    st.set_deadline(std::chrono::steady_clock::now());
+    CHECK_THROWS_AS(st.advance(r1), WallTimeReached);
+    CHECK(st.junctions().force == before);
+    st.clear_deadline();
+    st.advance(r1);
+    fresh.advance(r2);
+    for (std::size_t i = 0; i < before.size(); ++i) CHECK(st.junctions().force[i] == fresh.junctions().force[i]);
+  }
+  // (2) The closed-form chain at ε = 0.3 (linear junctions: one solve per round). Equal ends carry
+  // equal forces: in the step where they reach their slip force both slip in its first round, and
+  // the middle, loaded by them, in a second round (f_m ≥ f_s, see the event solver's chain test).
+  // With the deadline passed before that step, the second round is not solved: the middle stays
+  // pinned.
+  const double A = 2e-9, d = 2.5 * 2 * std::sqrt(A / M_PI);
+  Scene s = interacting_event_scene({A, A, A}, {0, 0, 0}, {0, d, 2 * d});
+  s.solver.method = SolverMethod::reference;
+  s.model.alpha_b = 0;
+  s.model.epsilon = 0.3;
+  s.model.interaction_cutoff = 1.5 * d;
+  const Problem p = make_problem(s);
+  auto pinned = [](const InteractingReferenceStepper& st) {
+    int n = 0;
+    for (auto b : st.junctions().pinned) n += b ? 1 : 0;
+    return n;
+  };
+  Recorder rec1 = make_recorder(s), rec2 = make_recorder(s);
+  ObserverAdapter<Recorder> r1(rec1), r2(rec2);
+  InteractingReferenceStepper ahead(p), st(p);  // ahead: one step further
+  ahead.start(r1);
+  st.start(r2);
+  ahead.advance(r1);
+  while (pinned(ahead) == 3 && !ahead.finished()) ahead.advance(r1), st.advance(r2);
+  REQUIRE(pinned(ahead) == 0);  // all three in one step
+  REQUIRE(pinned(st) == 3);     // st: the step before
+  st.set_deadline(std::chrono::steady_clock::now());
+  CHECK_THROWS_AS(st.advance(r2), WallTimeReached);
+  CHECK(pinned(st) == 1);
+  CHECK(st.junctions().pinned[1] != 0);  // the middle
 }
 
 TEST_CASE("event solver: each coupled solve is within solver.interaction_tolerance of the converged one",
