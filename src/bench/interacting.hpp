@@ -26,7 +26,6 @@ struct InteractingBenchOptions {
   // Each size also at this solver.interaction_tolerance (the dense exact solver as it was before
   // the knob: converged solves), side by side with the scene's own setting; 0: not run.
   double converged_tolerance = 1e-12;
-  bool double_only = true;  // from N = 2,048 on, also without G's single-precision copy
   std::ostream* log = nullptr;
 };
 
