@@ -214,6 +214,101 @@ ProductRows product_rows_for_this_cpu() { return product_rows_portable; }
 SingleProductRows single_rows_for_this_cpu() { return nullptr; }
 #endif
 
+// The removals kept aside, as fold() applies them: entry (r, s) of the triangle takes
+// −(u[r]/d) u[s] of each in order.
+struct Removals {
+  const double* const* u;  // K vectors over the positions
+  const double* d;         // their pivots
+  std::size_t K;
+};
+// What a pass writing the single-precision copy adds up, per row block: the column parts of the
+// rows' squares (col[c]) and the largest |entry|.
+struct CopySums {
+  float* S = nullptr;  // the packed copy (null: not written)
+  double* col = nullptr;
+  double big = 0;
+};
+
+// Rows [r0, r1) of the stored triangle (rows N apart) take the removals, each entry all of them
+// in order and in registers (one read and one write of the row, not one per removal; the same
+// operations as one at a time, so the same bits), and, with a copy, go into S with their own
+// squares' sums (own[r]: the diagonal's and the entries' right of it) and the column parts. The
+// squares are summed in four lanes: any order is within the norms' rounding allowance. Vector:
+// AVX2's four doubles a step (the copy is kept only there); else one entry at a time.
+template <bool Vector>
+[[gnu::always_inline]] inline void fold_rows(double* G, std::size_t N, std::size_t n, std::size_t r0, std::size_t r1,
+                                             Removals rm, CopySums& cs, double* own) {
+  double w[kDeferredRemovals];  // fold() runs as the kDeferredRemovals-th is kept aside
+  using V = Quad;
+  V big = splat<V>(0.0);
+  for (std::size_t r = r0; r < r1; ++r) {
+    double* __restrict row = G + r * N;
+    for (std::size_t k = 0; k < rm.K; ++k) w[k] = rm.u[k][r] / rm.d[k];
+    const auto entry = [&](std::size_t c) {
+      double v = row[c];
+      for (std::size_t k = 0; k < rm.K; ++k) v -= w[k] * rm.u[k][c];
+      row[c] = v;
+      return v;
+    };
+    if (!cs.S) {
+      std::size_t c = r;
+      if constexpr (Vector)
+        for (; c + 4 <= n; c += 4) {
+          V v = load<V>(row + c);
+          for (std::size_t k = 0; k < rm.K; ++k) v -= splat<V>(w[k]) * load<V>(rm.u[k] + c);
+          store(row + c, v);
+        }
+      for (; c < n; ++c) entry(c);
+      continue;
+    }
+    float* __restrict srow = cs.S + packed_row(r, N);  // srow[c]: column c (SingleRows)
+    double* __restrict col = cs.col;
+    const double g = entry(r);
+    srow[r] = static_cast<float>(g);
+    double tail = g * g, largest = std::abs(g);
+    V sq = splat<V>(0.0);
+    std::size_t c = r + 1;
+    if constexpr (Vector)
+    for (; c + 4 <= n; c += 4) {
+      V v = load<V>(row + c);
+      for (std::size_t k = 0; k < rm.K; ++k) v -= splat<V>(w[k]) * load<V>(rm.u[k] + c);
+      store(row + c, v);
+      const auto f = __builtin_convertvector(v, Single4);
+      std::memcpy(srow + c, &f, sizeof f);
+      const V v2 = v * v;
+      sq += v2;
+      store(col + c, load<V>(col + c) + v2);
+      const V a = v < 0 ? -v : v;
+      big = a > big ? a : big;
+    }
+    for (; c < n; ++c) {
+      const double e = entry(c);
+      srow[c] = static_cast<float>(e);
+      tail += e * e;
+      col[c] += e * e;
+      largest = std::max(largest, std::abs(e));
+    }
+    own[r] = tail + sum(sq);
+    cs.big = std::max(cs.big, largest);
+  }
+  cs.big = std::max({cs.big, big[0], big[1], big[2], big[3]});
+}
+
+using FoldRows = void (*)(double*, std::size_t, std::size_t, std::size_t, std::size_t, Removals, CopySums&, double*);
+void fold_rows_portable(double* G, std::size_t N, std::size_t n, std::size_t r0, std::size_t r1, Removals rm,
+                        CopySums& cs, double* own) {
+  fold_rows<false>(G, N, n, r0, r1, rm, cs, own);
+}
+#if defined(__x86_64__)
+__attribute__((target("arch=x86-64-v3"))) void fold_rows_avx2(double* G, std::size_t N, std::size_t n, std::size_t r0,
+                                                                std::size_t r1, Removals rm, CopySums& cs, double* own) {
+  fold_rows<true>(G, N, n, r0, r1, rm, cs, own);
+}
+FoldRows fold_rows_for_this_cpu() { return has_avx2() ? fold_rows_avx2 : fold_rows_portable; }
+#else
+FoldRows fold_rows_for_this_cpu() { return fold_rows_portable; }
+#endif
+
 // Rows [0, n) of a triangle times (w1, w2) into (y1, y2) over fixed row blocks (edges), each
 // summing into its own partial vectors, added in block order: the same sums in the same order
 // whatever the number of threads.
@@ -402,26 +497,6 @@ PinnedCompliance::Pass PinnedCompliance::apply(const std::vector<std::size_t>& c
   return kind;
 }
 
-namespace {
-
-// Row r of the triangle (row: its entries from the diagonal on, up to n) into its single-precision
-// copy srow, with its own squares' sum; the squares of its entries right of the diagonal go to
-// the rows they are in as columns (col: this block's sums); big: the largest |entry| so far.
-inline void copy_row(std::size_t r, std::size_t n, const double* row, float* srow, double* col, double& own,
-                     double& big) {
-  double sq = 0;
-  for (std::size_t c = r; c < n; ++c) {
-    const double g = row[c];
-    srow[c] = static_cast<float>(g);
-    sq += g * g;
-    if (c > r) col[c] += g * g;
-    big = std::max(big, std::abs(g));
-  }
-  own = sq;
-}
-
-}  // namespace
-
 void PinnedCompliance::finish_single(const std::vector<std::size_t>& edge, const std::vector<double>& own,
                                      const std::vector<double>& biggest) {
   const std::size_t n = n_;
@@ -441,22 +516,7 @@ void PinnedCompliance::copy_single() {
   single_.valid = false;
   single_.usable = false;
   if (single_.S.empty()) return;
-  const std::size_t n = n_, N = N_;
-  const std::vector<std::size_t> edge = row_blocks();
-  const std::size_t B = edge.size() - 1;
-  // Row norms of the symmetric T from the stored triangle: entry (r, s > r) counts in rows r and
-  // s; the column parts go into per-block sums, added in block order (the same bits on any
-  // number of threads).
-  partial_.resize(2 * B * n);
-  std::vector<double> own(n), biggest(B, 0.0);
-  double* P = partial_.data();
-#pragma omp parallel for schedule(dynamic, 1) if (n * n > 2 * kParallelWork)
-  for (std::size_t b = 0; b < B; ++b) {
-    std::fill(P + b * n + edge[b], P + (b + 1) * n, 0.0);
-    for (std::size_t r = edge[b]; r < edge[b + 1]; ++r)
-      copy_row(r, n, G_.data() + r * N, single_.S.data() + packed_row(r, N), P + b * n, own[r], biggest[b]);
-  }
-  finish_single(edge, own, biggest);
+  write_rows(false);
 }
 
 std::vector<double> PinnedCompliance::row(std::size_t q) const {
@@ -472,31 +532,40 @@ std::vector<double> PinnedCompliance::row(std::size_t q) const {
 
 void PinnedCompliance::fold() {
   if (deferred_.empty()) return;
+  write_rows(true);
+}
+
+void PinnedCompliance::write_rows(bool removals) {
   const std::size_t n = n_, N = N_;
-  double* G = G_.data();
   // The single-precision copy is written as each row is done (one pass over the triangle, not two).
   const bool copy = !single_.S.empty();
   single_.valid = single_.usable = false;
   const std::vector<std::size_t> edge = row_blocks();
   const std::size_t B = edge.size() - 1;
+  std::vector<const double*> u;
+  std::vector<double> d;
+  if (removals)
+    for (const Deferred& r : deferred_) u.push_back(r.u.data()), d.push_back(r.d);
+  const Removals rm{u.data(), d.data(), u.size()};
   std::vector<double> own(copy ? n : 0), biggest(B, 0.0);
   if (copy) partial_.resize(2 * B * n);
   double* P = partial_.data();
-  // Entry (r, s ≥ r) takes each removal in order, as the removals one by one would.
+  static const FoldRows rows = fold_rows_for_this_cpu();
+  // Entry (r, s ≥ r) takes each removal in order, as the removals one by one would. Row norms of
+  // the symmetric T: entry (r, s > r) counts in rows r and s; the column parts go into per-block
+  // sums, added in block order (the same bits on any number of threads).
 #pragma omp parallel for schedule(dynamic, 1) if (n * n > 2 * kParallelWork)
   for (std::size_t b = 0; b < B; ++b) {
-    if (copy) std::fill(P + b * n + edge[b], P + (b + 1) * n, 0.0);
-    for (std::size_t r = edge[b]; r < edge[b + 1]; ++r) {
-      double* row = G + r * N;
-      for (const Deferred& u : deferred_) {
-        const double w = u.u[r] / u.d;
-        const double* us = u.u.data();
-        for (std::size_t s = r; s < n; ++s) row[s] -= w * us[s];
-      }
-      if (copy) copy_row(r, n, row, single_.S.data() + packed_row(r, N), P + b * n, own[r], biggest[b]);
+    CopySums cs;
+    if (copy) {
+      std::fill(P + b * n + edge[b], P + (b + 1) * n, 0.0);
+      cs.S = single_.S.data();
+      cs.col = P + b * n;
     }
+    rows(G_.data(), N, n, edge[b], edge[b + 1], rm, cs, own.data());
+    biggest[b] = cs.big;
   }
-  deferred_.clear();
+  if (removals) deferred_.clear();
   if (copy) finish_single(edge, own, biggest);
 }
 

@@ -115,6 +115,9 @@ class PinnedCompliance {
   };
   std::vector<Deferred> deferred_;
   void fold();
+  // One pass over the triangle's rows: the removals kept aside folded in (when asked), and the
+  // single-precision copy with its row norms written (when kept).
+  void write_rows(bool removals);
   mutable std::vector<double> partial_;  // the symmetric product's per-block sums (a workspace)
   // The single-precision copy (empty: not kept): S packed by rows (row r from its diagonal,
   // N − r entries), the rows' 2-norm bounds of the triangle T it copies, and the reference of
