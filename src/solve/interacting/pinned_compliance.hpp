@@ -5,8 +5,8 @@
 // M = D + C_PP is kept as its explicit inverse G = M⁻¹, with a0 = G 1 and b0 = −G h, so that
 // the pinned forces are f = X a0 + b0 − G Δ(f) (Δ = 0 for linear junctions).
 // A slip removes one position (rank-one: kept aside as G − g gᵀ/g_qq, O(N) a product, and
-// folded into the stored triangle eight at a time, one O(N²) pass for all eight); a repin adds the slipping junctions back and a
-// change of D takes effect, both by a rebuild (LAPACK Cholesky inverse in place, O(N³)); after
+// folded into the stored triangle 8 or 16 at a time, one O(N²) pass for all of them, each entry
+// taking them in registers); a repin adds the slipping junctions back and a change of D takes effect, both by a rebuild (LAPACK Cholesky inverse in place, O(N³)); after
 // about N rank-one updates G is rebuilt too (their rounding accumulates). G is symmetric: only its
 // upper triangle is kept up to date and read (half the memory traffic of every pass and update),
 // and C, symmetric with a zero diagonal, lives in the strict lower triangle of the same buffer
