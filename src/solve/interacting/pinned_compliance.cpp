@@ -30,12 +30,12 @@ constexpr std::size_t kFewColumns = 10;
 constexpr std::size_t kParallelLapack = 2000;
 // Removals kept aside (as G − Σ u uᵀ/d) before they are folded into the stored triangle in one
 // pass: each fold reads and writes G once instead of once per removal, and every product pays
-// O(n) per removal kept aside. Sixteen from n = 2,048 on, where the triangle outgrows the cache and
-// a fold is bound by memory traffic (N = 2,400 to its first peak 1.05x faster than at eight);
-// eight below, where a fold is cheap and sixteen measured no faster.
+// O(n) per removal kept aside. Sixteen from n = kSingleFrom on (or the size the constructor is
+// given for the copy: tests lower it), where the triangle outgrows the cache and a fold is bound
+// by memory traffic (N = 2,400 to its first peak 1.05x faster than at eight); eight below, where a
+// fold is cheap and sixteen measured no faster.
 constexpr std::size_t kDeferredRemovals = 16;
 constexpr std::size_t kDeferredRemovalsSmall = 8;
-constexpr std::size_t kDeferredFrom = 2048;
 
 // Four doubles as one value (GCC's vector extensions): one AVX2 register, or two SSE2 / NEON
 // registers. The arithmetic is lane by lane and this file is compiled without fused multiply-add
@@ -353,6 +353,7 @@ PinnedCompliance::PinnedCompliance(const Problem& problem, std::vector<double> r
                                    std::size_t single_from)
     : N_(problem.size()),
       n_(problem.size()),
+      large_from_(single_from),
       G_(problem.size() * problem.size(), 0.0),
       D_(std::move(reference)) {
   fill_interaction_lower(problem, G_.data(), N_);
@@ -624,7 +625,7 @@ void PinnedCompliance::remove(std::size_t q, double f_sl) {
     single_.valid = single_.has_last = false;
   }
   // G' = G − g gᵀ/g_qq (the inverse of M without row and column q; they become 0), kept aside
-  // until kDeferredRemovals (below n = kDeferredFrom: kDeferredRemovalsSmall) of them are folded
+  // until kDeferredRemovals (below n = large_from_: kDeferredRemovalsSmall) of them are folded
   // into the stored triangle together.
   deferred_.push_back(Deferred{g, gqq});
   // a0' = G'1, b0' = −G'h' with h' = h + C_{·i} f_sl; G'C_{·i} = −g/g_qq (from G M = I).
@@ -654,7 +655,7 @@ void PinnedCompliance::remove(std::size_t q, double f_sl) {
   pos_[i] = npos;
   n_ = last;
   ++rank_one_;
-  if (deferred_.size() >= (n_ >= kDeferredFrom ? kDeferredRemovals : kDeferredRemovalsSmall)) fold();
+  if (deferred_.size() >= (n_ >= large_from_ ? kDeferredRemovals : kDeferredRemovalsSmall)) fold();
   // Rank-one updates accumulate rounding: start afresh after about N of them.
   if (++updates_since_rebuild_ > static_cast<std::int64_t>(std::max<std::size_t>(N_, 64)) && n_ > 0) rebuild();
 }

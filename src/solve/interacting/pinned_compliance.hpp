@@ -38,7 +38,8 @@ class PinnedCompliance {
 
   // Every junction pinned at position q = i, with reference compliance reference[i] [m/N],
   // nonlinear (Eq. 3) or not, h = 0; G built. single_from: N from which the single-precision
-  // copy is kept (tests lower it).
+  // copy is kept, and n from which sixteen removals wait for a fold instead of eight (tests lower
+  // it).
   PinnedCompliance(const Problem& problem, std::vector<double> reference, bool nonlinear,
                    std::size_t single_from = kSingleFrom);
 
@@ -94,6 +95,7 @@ class PinnedCompliance {
 
  private:
   std::size_t N_ = 0, n_ = 0;
+  std::size_t large_from_ = kSingleFrom;  // the constructor's single_from: removals wait 16 at a time from there
   // y1 = G w1, y2 = G w2 over all of P (w1, w2: size() entries).
   void symmetric_product(const std::vector<double>& w1, const std::vector<double>& w2, std::vector<double>& y1,
                          std::vector<double>& y2) const;

@@ -146,7 +146,9 @@ TEST_CASE("pinned compliance: a pass on the single-precision copy stays within i
   // Moved by 1e-3 from the reference, through removals (kept aside, then folded): single passes
   // within the bound, their error of single precision's order (not the double product's).
   std::vector<std::size_t> removed;
-  for (const std::size_t leave : {std::size_t{0}, std::size_t{3}, std::size_t{11}}) {
+  // Fifteen removals kept aside still leave the reference valid (a single pass at once); the
+  // sixteenth folds them all.
+  for (const std::size_t leave : {std::size_t{0}, std::size_t{3}, std::size_t{15}, std::size_t{19}}) {
     while (removed.size() < leave) {
       const std::size_t q = std::uniform_int_distribution<std::size_t>(0, P.size() - 1)(rng);
       removed.push_back(P.junction(q));
@@ -156,7 +158,8 @@ TEST_CASE("pinned compliance: a pass on the single-precision copy stays within i
     }
     const std::size_t n = P.size();
     CAPTURE(n);
-    if (leave == 11) {  // the eighth removal folded them into the triangle: a new reference first
+    if (leave == 19) {  // the sixteenth removal folded them into the triangle (sixteen wait for a fold
+                        // from single_from on): a new reference first
       P.apply(all(), w1, w2, e1, e2);
       CHECK(P.apply(all(), w1, w2, y1, y2, loose) == Pass::refresh);
       CHECK(std::equal(e1.begin(), e1.begin() + static_cast<std::ptrdiff_t>(n), y1.begin()));
@@ -181,7 +184,7 @@ TEST_CASE("pinned compliance: a pass on the single-precision copy stays within i
       largest = std::max(largest, err / x1.cwiseAbs().maxCoeff());
     }
     INFO("error / bound " << worst << ", error / max|y| " << largest);
-    // Measured 0.15, 0.098, 0.096 of the bound; 2.1e-11, 1.7e-11, 1.5e-11 of max |y|.
+    // Measured 0.15, 0.098, 0.12, 0.10 of the bound; 2.1e-11, 1.7e-11, 1.8e-11, 2.4e-11 of max |y|.
     CHECK(worst <= 1.0);
     CHECK(largest > 2e-12);  // single precision's, not the double product's ~1e-16
   }
@@ -193,6 +196,6 @@ TEST_CASE("pinned compliance: a pass on the single-precision copy stays within i
   P.apply(all(), v1, v2, e1, e2);
   CHECK(P.apply(all(), v1, v2, y1, y2, tight) == Pass::exact);
   CHECK(std::equal(e1.begin(), e1.begin() + static_cast<std::ptrdiff_t>(n), y1.begin()));
-  CHECK(P.single_passes() == 3);
+  CHECK(P.single_passes() == 4);
   CHECK(P.single_refreshes() == 2);
 }
