@@ -274,18 +274,18 @@ template <bool Vector>
     V sq = splat<V>(0.0);
     std::size_t c = r + 1;
     if constexpr (Vector)
-    for (; c + 4 <= n; c += 4) {
-      V v = load<V>(row + c);
-      for (std::size_t k = 0; k < rm.K; ++k) v -= splat<V>(w[k]) * load<V>(rm.u[k] + c);
-      store(row + c, v);
-      const auto f = __builtin_convertvector(v, Single4);
-      std::memcpy(srow + c, &f, sizeof f);
-      const V v2 = v * v;
-      sq += v2;
-      store(col + c, load<V>(col + c) + v2);
-      const V a = v < 0 ? -v : v;
-      big = a > big ? a : big;
-    }
+      for (; c + 4 <= n; c += 4) {
+        V v = load<V>(row + c);
+        for (std::size_t k = 0; k < rm.K; ++k) v -= splat<V>(w[k]) * load<V>(rm.u[k] + c);
+        store(row + c, v);
+        const auto f = __builtin_convertvector(v, Single4);
+        std::memcpy(srow + c, &f, sizeof f);
+        const V v2 = v * v;
+        sq += v2;
+        store(col + c, load<V>(col + c) + v2);
+        const V a = v < 0 ? -v : v;
+        big = a > big ? a : big;
+      }
     for (; c < n; ++c) {
       const double e = entry(c);
       srow[c] = static_cast<float>(e);

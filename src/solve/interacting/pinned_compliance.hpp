@@ -6,8 +6,9 @@
 // the pinned forces are f = X a0 + b0 − G Δ(f) (Δ = 0 for linear junctions).
 // A slip removes one position (rank-one: kept aside as G − g gᵀ/g_qq, O(N) a product, and
 // folded into the stored triangle 8 or 16 at a time, one O(N²) pass for all of them, each entry
-// taking them in registers); a repin adds the slipping junctions back and a change of D takes effect, both by a rebuild (LAPACK Cholesky inverse in place, O(N³)); after
-// about N rank-one updates G is rebuilt too (their rounding accumulates). G is symmetric: only its
+// taking them in registers); a repin adds the slipping junctions back and a change of D takes
+// effect, both by a rebuild (LAPACK Cholesky inverse in place, O(N³)); after about N rank-one
+// updates G is rebuilt too (their rounding accumulates). G is symmetric: only its
 // upper triangle is kept up to date and read (half the memory traffic of every pass and update),
 // and C, symmetric with a zero diagonal, lives in the strict lower triangle of the same buffer
 // (LAPACK's Cholesky and inverse never touch it). Memory: N² doubles for C and G, plus N²/2 floats
