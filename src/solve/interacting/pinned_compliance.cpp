@@ -32,9 +32,9 @@ constexpr std::size_t kParallelLapack = 2000;
 // pass: each fold reads and writes G once instead of once per removal, and every product pays
 // O(n) per removal kept aside. Sixteen from n = kSingleFrom on (or the size the constructor is
 // given for the copy: tests lower it), where the triangle outgrows the cache and a fold is bound
-// by memory traffic (N = 5,000 to its first peak on two threads, one run each: 74.9 s at eight,
-// 71.0 s at sixteen); eight below, where a fold is cheap and sixteen measured no faster (N = 1,200,
-// three rounds).
+// by memory traffic (one fold at n = 5,000 in a microbenchmark: 2.9 ms a removal at eight, 2.4 at
+// sixteen; whole runs could not separate the two within this machine's noise); eight below, where
+// a fold is cheap and sixteen measured no faster (N = 1,200, three rounds).
 constexpr std::size_t kDeferredRemovals = 16;
 constexpr std::size_t kDeferredRemovalsSmall = 8;
 
