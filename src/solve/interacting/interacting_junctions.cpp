@@ -146,14 +146,16 @@ ForceNode InteractingJunctions::solve(double X, double tol) const {
     std::vector<double> z(2 * nA), g(2 * nA);
     // A pass may read G's single-precision copy where its error stays within a tenth of the
     // tolerance of each slip force (the fixed point then moves by at most that over 1 − ρ; the
-    // stopping rule is unchanged) and within the tolerance of the slopes' mean scale (the slopes
-    // only shape the interpolants and Newton's rate; a tenth held the copy back every other pass).
+    // stopping rule is unchanged) and within ten times the tolerance of the slopes' mean scale
+    // (the slopes only shape the interpolants and Newton's rate: at N = 2,400, 711 more passes on
+    // the copy than with the tolerance itself, of 17,363, and the peak equal to 1e-15; a tenth
+    // held the copy back every other pass).
     const bool single = pinned_.single_kept();
     PinnedCompliance::PassBudget budget;
     if (single) {
       budget.y1.resize(n);
       for (std::size_t q = 0; q < n; ++q) budget.y1[q] = 0.1 * tol * threshold(q);
-      budget.y2 = tol * a_scale;
+      budget.y2 = 10 * tol * a_scale;
     }
     double previous = HUGE_VAL;
     int iter = 0, refreshes = 0;
@@ -388,13 +390,22 @@ void InteractingJunctions::find_thresholds(double X) {
   }
   for (int dir : {1, -1}) {
     const ForceNode& base = cache_.at(X);
-    // The earliest crossing by the first-order prediction from X.
+    // Right after a slip the new set's curvatures d²f/dX² at X are known (predicted from the old
+    // set's cubic, remove_pinned): the second-order prediction of each crossing puts Newton's
+    // first solve within the tolerance in 79 % (N = 1,200) and 90 % (2,400) of the slips, the
+    // first-order one in 8 % and 14 %: about one exact solve a slip fewer.
+    const bool curved = dir > 0 && seed_valid_ && seed_X_ == X && seed_c_.size() == n;
+    // The earliest crossing by that prediction from X.
     std::size_t k = npos;
     double best = HUGE_VAL;
     for (std::size_t q = 0; q < n; ++q) {
       const double a = base.a[q];
       if (dir * a <= 0) continue;
-      const double d = (threshold(q) - base.f[q]) / a;  // signed distance in X
+      const double r = threshold(q) - base.f[q];
+      double d = r / a;  // signed distance in X
+      // The root of r = a d + c d²/2 nearest X (none when it bends away first: first order).
+      const double disc = curved && r > 0 ? a * a + 2 * seed_c_[q] * r : -1.0;
+      if (disc > 0) d = 2 * r / (a + std::sqrt(disc));
       if (dir * d >= 0 && std::abs(d) < best) best = std::abs(d), k = q;
     }
     if (k == npos) continue;
