@@ -180,6 +180,10 @@ ForceNode InteractingJunctions::solve(double X, double tol) const {
       else
         pinned_.apply(active, dl, da, y1, y2);
       // The chord map's image g and the current iterate z, scaled, on the active positions.
+      // This loop and the update below are per junction (and a maximum), the same numbers on
+      // any number of threads; split like the laws above (on two threads the other thread
+      // otherwise waits through them).
+#pragma omp parallel for schedule(static) if (nA >= 512)
       for (std::size_t k = 0; k < nA; ++k) {
         const std::size_t q = active[k];
         const double thr = threshold(q);
@@ -197,6 +201,7 @@ ForceNode InteractingJunctions::solve(double X, double tol) const {
         node.f[q] = f;
         node.a[q] = pinned_.a0(q) - y2[q];
       }
+#pragma omp parallel for schedule(static) reduction(max : change) if (nA >= 512)
       for (std::size_t k = 0; k < nA; ++k) {
         const std::size_t q = active[k];
         const double thr = threshold(q);
