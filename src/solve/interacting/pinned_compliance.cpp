@@ -85,7 +85,6 @@ struct DoubleRows {
   std::size_t N;
   const double* operator()(std::size_t r) const { return G + r * N; }
 };
-inline std::size_t packed_row(std::size_t r, std::size_t N) { return r * N - r * (r + 1) / 2; }
 struct SingleRows {
   const float* S;
   std::size_t N;
@@ -430,6 +429,15 @@ double distance(const std::vector<double>& v, const std::vector<double>& ref, st
 }
 
 }  // namespace
+
+std::vector<ProductKernel> product_kernels() {
+  std::vector<ProductKernel> forms{{"portable", product_rows_portable, nullptr}};
+#if defined(__x86_64__)
+  if (has_avx2()) forms.push_back({"avx2", product_rows_avx2, product_rows_single_avx2});
+  if (has_avx512()) forms.push_back({"avx512", product_rows_avx512, product_rows_single_avx512});
+#endif
+  return forms;
+}
 
 PinnedCompliance::PinnedCompliance(const Problem& problem, std::vector<double> reference, bool nonlinear,
                                    std::size_t single_from)
