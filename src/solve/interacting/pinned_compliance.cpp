@@ -296,7 +296,7 @@ struct Removals {
   std::size_t K;
 };
 // What a pass writing the single-precision copy adds up, per row block: the column parts of the
-// rows' squares (col[c]) and the largest |entry|.
+// rows' squared rounding errors (col[c]) and the largest |entry|.
 struct CopySums {
   float* S = nullptr;  // the packed copy (null: not written)
   double* col = nullptr;
@@ -305,9 +305,10 @@ struct CopySums {
 
 // Rows [r0, r1) of the stored triangle (rows N apart) take the removals, each entry all of them
 // in order and in registers (one read and one write of the row, not one per removal; the same
-// operations as one at a time, so the same bits), and, with a copy, go into S with their own
-// squares' sums (own[r]: the diagonal's and the entries' right of it) and the column parts. The
-// squares are summed in four lanes: any order is within the norms' rounding allowance. Vector:
+// operations as one at a time, so the same bits), and, with a copy, go into S with the sums of
+// their rounding errors' squares (own[r]: the diagonal's and the entries' right of it; and the
+// column parts). The squares are summed in four lanes: any order is within the norms' rounding
+// allowance. Vector:
 // AVX2's four doubles a step (the copy is kept only there); else one entry at a time.
 template <bool Vector>
 [[gnu::always_inline]] inline void fold_rows(double* G, std::size_t N, std::size_t n, std::size_t r0, std::size_t r1,
@@ -339,7 +340,8 @@ template <bool Vector>
     double* __restrict col = cs.col;
     const double g = entry(r);
     srow[r] = static_cast<float>(g);
-    double tail = g * g, largest = std::abs(g);
+    const double dg = g - static_cast<double>(srow[r]);  // the copy's rounding error, exact in double
+    double tail = dg * dg, largest = std::abs(g);
     V sq = splat<V>(0.0);
     std::size_t c = r + 1;
     if constexpr (Vector)
@@ -349,17 +351,19 @@ template <bool Vector>
         store(row + c, v);
         const auto f = __builtin_convertvector(v, Single4);
         std::memcpy(srow + c, &f, sizeof f);
-        const V v2 = v * v;
-        sq += v2;
-        store(col + c, load<V>(col + c) + v2);
+        const V d = v - __builtin_convertvector(f, V);
+        const V d2 = d * d;
+        sq += d2;
+        store(col + c, load<V>(col + c) + d2);
         const V a = v < 0 ? -v : v;
         big = a > big ? a : big;
       }
     for (; c < n; ++c) {
       const double e = entry(c);
       srow[c] = static_cast<float>(e);
-      tail += e * e;
-      col[c] += e * e;
+      const double d = e - static_cast<double>(srow[c]);
+      tail += d * d;
+      col[c] += d * d;
       largest = std::max(largest, std::abs(e));
     }
     own[r] = tail + sum(sq);
@@ -549,14 +553,15 @@ PinnedCompliance::Pass PinnedCompliance::apply(const std::vector<std::size_t>& c
     return Pass::exact;
   }
   static const SingleProductRows single_rows = single_rows_for_this_cpu();
-  // Row r's error is Σ_j (T_rj − S_rj)(w_j − ref_j), |T_rj − S_rj| ≤ 2⁻²⁴ |T_rj| (rounding to
-  // nearest; 2⁻¹⁵⁰ below the normal range), so by Cauchy–Schwarz at most
-  // (2⁻²⁴ ‖T_r‖₂ + 2⁻¹⁵⁰ √n) ‖w − ref‖₂: within the budget when ‖w − ref‖₂ is within
-  // 1/ratio1 (for y1) and 1/ratio2 (for y2).
-  const double tiny = std::ldexp(std::sqrt(static_cast<double>(n)), -150), unit = std::ldexp(1.0, -24);
+  // Row r's error is Σ_j (T_rj − S_rj)(w_j − ref_j), so by Cauchy–Schwarz at most
+  // ‖T_r − S_r‖₂ ‖w − ref‖₂, the first factor bounded as the copy was written (the rounding
+  // errors themselves, exact in double: about 0.4 of the 2⁻²⁴ ‖T_r‖₂ that rounding to nearest
+  // allows; the 2⁻¹⁵⁰ √n covers squares below the normal range): within the budget when
+  // ‖w − ref‖₂ is within 1/ratio1 (for y1) and 1/ratio2 (for y2).
+  const double tiny = std::ldexp(std::sqrt(static_cast<double>(n)), -150);
   double ratio1 = 0, largest = 0;
   for (std::size_t r = 0; r < n; ++r) {
-    const double e = unit * single_.row_norm[r] + tiny;
+    const double e = single_.row_norm[r] + tiny;
     ratio1 = std::max(ratio1, e / budget.y1[r]);
     largest = std::max(largest, e);
   }
@@ -611,7 +616,7 @@ void PinnedCompliance::finish_single(const std::vector<std::size_t>& edge, const
   for (std::size_t r = 0; r < n; ++r) {
     double sq = own[r];
     for (std::size_t b = 0; b + 1 < edge.size() && edge[b] <= r; ++b) sq += P[b * n + r];
-    // Each sum of n squares is rounded by at most n units of 2⁻⁵³ of itself.
+    // ‖T_r − S_r‖₂: each sum of n squares is rounded by at most n units of 2⁻⁵³ of itself.
     single_.row_norm[r] = std::sqrt(sq * (1.0 + 2e-16 * static_cast<double>(n + 2)));
   }
   // An entry beyond single precision's range would be infinite in S: no single passes then.

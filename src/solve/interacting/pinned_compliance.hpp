@@ -17,8 +17,9 @@
 // From N = kSingleFrom on, a single-precision copy S of the stored triangle (half the bytes of a
 // pass, 2 N² more bytes of memory) serves the passes whose error it provably keeps within a
 // budget: a pass reads S and adds c = (T − S) w_ref, kept from the last exact pass at w_ref, so
-// its error is (T − S)(w − w_ref), at most 2⁻²⁴ ‖T_i‖₂ ‖w − w_ref‖₂ on row i (‖T_i‖₂ bounded as
-// the triangle is written). Otherwise the pass is exact and becomes the new reference.
+// its error is (T − S)(w − w_ref), at most ‖T_i − S_i‖₂ ‖w − w_ref‖₂ on row i (the rounding
+// errors' norm, bounded as the copy is written). Otherwise the pass is exact and becomes the new
+// reference.
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
@@ -145,7 +146,7 @@ class PinnedCompliance {
   // the last exact pass.
   struct Single {
     std::vector<float, HugePageAllocator<float>> S;
-    std::vector<double> row_norm, c1, c2, ref1, ref2, last1, last2;  // last: the last pass's w
+    std::vector<double> row_norm, c1, c2, ref1, ref2, last1, last2;  // row_norm: ‖T_r − S_r‖₂; last: the last pass's w
     bool valid = false;  // c, ref hold for the current triangle
     bool has_last = false;
     bool usable = false;  // S and row_norm hold for the current triangle (and no entry overflowed)
