@@ -125,7 +125,8 @@ template <class V, class T>
 // arithmetic; a throw-away microbenchmark, one thread, AVX2: 1.16x the two-row form at n = 1,200
 // in double, 1.2-1.4x at 3,500-5,000 on the single-precision copy). Every sum has one fixed order
 // (four lanes, combined pairwise; a row's entries left of the lanes, the quad's diagonal block,
-// first): the same bits from every form (AVX2, 16-byte vectors), on any number of threads. Each
+// first): the same bits from every form (AVX-512, AVX2, 16-byte vectors), on any number of
+// threads. Each
 // p[c] takes its rows' terms in row order, as a row-by-row loop would.
 template <class V, class Rows>
 [[gnu::always_inline]] inline void product_rows(Rows rows, std::size_t n, std::size_t r0, std::size_t r1,
@@ -309,7 +310,7 @@ struct CopySums {
 // their rounding errors' squares (own[r]: the diagonal's and the entries' right of it; and the
 // column parts). The squares are summed in four lanes: any order is within the norms' rounding
 // allowance. Vector:
-// AVX2's four doubles a step (the copy is kept only there); else one entry at a time.
+// four doubles a step (AVX2 or AVX-512; the copy is kept only there); else one entry at a time.
 template <bool Vector>
 [[gnu::always_inline]] inline void fold_rows(double* G, std::size_t N, std::size_t n, std::size_t r0, std::size_t r1,
                                              Removals rm, CopySums& cs, double* own) {
@@ -555,13 +556,13 @@ PinnedCompliance::Pass PinnedCompliance::apply(const std::vector<std::size_t>& c
   static const SingleProductRows single_rows = single_rows_for_this_cpu();
   // Row r's error is Σ_j (T_rj − S_rj)(w_j − ref_j), so by Cauchy–Schwarz at most
   // ‖T_r − S_r‖₂ ‖w − ref‖₂, the first factor bounded as the copy was written (the rounding
-  // errors themselves, exact in double: about 0.4 of the 2⁻²⁴ ‖T_r‖₂ that rounding to nearest
-  // allows; the 2⁻¹⁵⁰ √n covers squares below the normal range): within the budget when
+  // errors themselves, exact in double: 0.35–0.37 of the 2⁻²⁴ ‖T_r‖₂ that rounding to nearest
+  // allows at the median row of the stand-ins' G, 0.03–0.98 over the rows; the 2⁻¹⁵⁰ √n covers squares below the normal range): within the budget when
   // ‖w − ref‖₂ is within 1/ratio1 (for y1) and 1/ratio2 (for y2).
   const double tiny = std::ldexp(std::sqrt(static_cast<double>(n)), -150);
   double ratio1 = 0, largest = 0;
   for (std::size_t r = 0; r < n; ++r) {
-    const double e = single_.row_norm[r] + tiny;
+    const double e = single_.row_error[r] + tiny;
     ratio1 = std::max(ratio1, e / budget.y1[r]);
     largest = std::max(largest, e);
   }
@@ -612,12 +613,12 @@ void PinnedCompliance::finish_single(const std::vector<std::size_t>& edge, const
                                      const std::vector<double>& biggest) {
   const std::size_t n = n_;
   const double* P = partial_.data();
-  single_.row_norm.resize(n);
+  single_.row_error.resize(n);
   for (std::size_t r = 0; r < n; ++r) {
     double sq = own[r];
     for (std::size_t b = 0; b + 1 < edge.size() && edge[b] <= r; ++b) sq += P[b * n + r];
     // ‖T_r − S_r‖₂: each sum of n squares is rounded by at most n units of 2⁻⁵³ of itself.
-    single_.row_norm[r] = std::sqrt(sq * (1.0 + 2e-16 * static_cast<double>(n + 2)));
+    single_.row_error[r] = std::sqrt(sq * (1.0 + 2e-16 * static_cast<double>(n + 2)));
   }
   // An entry beyond single precision's range would be infinite in S: no single passes then.
   single_.usable = *std::max_element(biggest.begin(), biggest.end()) < 1e38;
@@ -714,9 +715,9 @@ void PinnedCompliance::remove(std::size_t q, double f_sl) {
       for (std::size_t r = 0; r < q; ++r) S[packed_row(r, N) + q] = S[packed_row(r, N) + last];
       S[packed_row(q, N) + q] = S[packed_row(last, N) + last];
       for (std::size_t s = q + 1; s < last; ++s) S[packed_row(q, N) + s] = S[packed_row(s, N) + last];
-      single_.row_norm[q] = single_.row_norm[last];
+      single_.row_error[q] = single_.row_error[last];
     }
-    single_.row_norm.pop_back();
+    single_.row_error.pop_back();
   } else {
     single_.valid = single_.has_last = false;
   }

@@ -146,10 +146,10 @@ class PinnedCompliance {
   // the last exact pass.
   struct Single {
     std::vector<float, HugePageAllocator<float>> S;
-    std::vector<double> row_norm, c1, c2, ref1, ref2, last1, last2;  // row_norm: ‖T_r − S_r‖₂; last: the last pass's w
+    std::vector<double> row_error, c1, c2, ref1, ref2, last1, last2;  // row_error: ‖T_r − S_r‖₂; last: the last pass's w
     bool valid = false;  // c, ref hold for the current triangle
     bool has_last = false;
-    bool usable = false;  // S and row_norm hold for the current triangle (and no entry overflowed)
+    bool usable = false;  // S and row_error hold for the current triangle (and no entry overflowed)
     std::int64_t passes = 0, refreshes = 0;
   };
   mutable Single single_;
