@@ -12,7 +12,9 @@ namespace asperity {
 // or after some cycles costs less; its estimate stays the whole-run one, an upper bound):
 //   independent event solver    ∝ N · t_stop            (events ∝ slips ∝ N per unit time)
 //   independent reference       ∝ N · t_stop / dt       (one pass over the junctions per step)
-//   interacting event solver    ∝ N³ · t_stop           (N slips per stick phase, O(N²) each)
+//   interacting event solver    ∝ (N² + c N) · t_stop   (fitted to `bench interacting`'s first-peak
+//                                                        rows: N slips, each a few passes over the
+//                                                        shrinking pinned block, plus O(N) work)
 //   interacting reference       ∝ N³ · t_stop / dt      (a dense solve per step)
 // plus a fixed cost per run (scene, observables, one row).
 double expected_run_seconds(const Problem& problem);
