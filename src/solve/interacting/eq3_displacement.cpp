@@ -12,7 +12,9 @@ Eq3Displacement::Eq3Displacement(const ContactLaw& law, const std::vector<double
   c_.assign(N, 0.0);
   s_.assign(N, 0.0);
   f_slip_.assign(N, 0.0);
-  psi_guess_.assign(N, 0.0);
+  phi_last_.assign(N, 0.0);
+  psi_last_.assign(N, 0.0);
+  dpsi_last_.assign(N, 0.0);
   double psi_hi = 0;
   for (std::size_t i = 0; i < N; ++i) {
     const double A0 = A0_m2[i];
@@ -28,10 +30,14 @@ Eq3Displacement::Eq3Displacement(const ContactLaw& law, const std::vector<double
 
 void Eq3Displacement::at(std::size_t i, double f, double& u, double& du) const {
   // Universal law: φ = s f = ψ g(ψ) (the tabulated inverse of ψ = φ/κ(1 − φ²)), u = ψ/c, so
-  // ψ by Newton on the table from the junction's last ψ; dψ/dφ = 1/(g + ψ g').
+  // ψ by Newton on the table, from the tangent at the junction's last call: successive calls
+  // move φ by little (a chord pass, a nearby X), so the start is within O(Δφ²) and Newton's
+  // first step usually already meets the stopping rule (one table evaluation instead of two or
+  // three from the last ψ itself).
   const double lim = 1.0 - 1e-12;
   const double phi = std::clamp(s_[i] * f, -lim, lim);
-  double psi = psi_guess_[i];
+  double psi = psi_last_[i] + (phi - phi_last_[i]) * dpsi_last_[i];
+  if (!(std::abs(psi) < table_->psi_max())) psi = psi_last_[i];  // never start outside the table
   double d[4];
   double dpsi = 0;
   bool ok = false;
@@ -53,7 +59,7 @@ void Eq3Displacement::at(std::size_t i, double f, double& u, double& du) const {
     const double p1 = std::min(phi + h, lim), p0 = std::max(phi - h, -lim);
     dpsi = (universal_psi(p1, law_->nu, law_->shape) - universal_psi(p0, law_->nu, law_->shape)) / (p1 - p0);
   }
-  psi_guess_[i] = psi;
+  phi_last_[i] = phi, psi_last_[i] = psi, dpsi_last_[i] = dpsi;
   u = psi / c_[i];
   du = dpsi * s_[i] / c_[i];
 }

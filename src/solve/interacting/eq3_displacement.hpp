@@ -28,7 +28,9 @@ class Eq3Displacement {
   std::shared_ptr<const UniversalForceLaw> table_;
   std::vector<double> c_, s_;  // per junction: ψ per metre c = ℓ0 E s, and s
   std::vector<double> f_slip_;
-  mutable std::vector<double> psi_guess_;  // per junction: the last ψ (a warm start only)
+  // Per junction, a warm start only: the last φ, ψ and dψ/dφ; the next call starts from the
+  // tangent's prediction ψ + (φ_new − φ) dψ/dφ.
+  mutable std::vector<double> phi_last_, psi_last_, dpsi_last_;
 };
 
 }  // namespace asperity
