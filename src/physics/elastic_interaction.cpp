@@ -52,7 +52,11 @@ double cerruti_compliance(double dx_m, double dy_m, double E_pa, double nu) {
 
 double disc_compliance(double dx_m, double dy_m, double a_i_m, double a_j_m, double E_pa, double nu,
                        TractionWeighting weighting) {
-  const double d = std::hypot(dx_m, dy_m);
+  return disc_compliance_at_distance(dx_m, dy_m, std::hypot(dx_m, dy_m), a_i_m, a_j_m, E_pa, nu, weighting);
+}
+
+double disc_compliance_at_distance(double dx_m, double dy_m, double d, double a_i_m, double a_j_m, double E_pa,
+                                   double nu, TractionWeighting weighting) {
   if (!(d >= a_i_m + a_j_m) || !(a_i_m >= 0) || !(a_j_m >= 0))
     throw std::invalid_argument("disc_compliance: discs overlap or radii are invalid");
   const bool rigid = weighting == TractionWeighting::rigid;
