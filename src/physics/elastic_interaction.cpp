@@ -13,11 +13,13 @@ double prefactor(double E_pa, double nu) { return (1.0 + nu) / (2.0 * M_PI * E_p
 constexpr int kMaxTerms = 2000;  // disc_compliance's series: at most this many terms
 
 // disc_compliance's pair-independent factors by term m (1..kMaxTerms), tabulated once by the
-// recurrences the series ran per pair before (the same values bit for bit):
+// expressions the series evaluated per pair before (the same values bit for bit):
 //   q_m = (2m−1)!! / (2^m m!) = C(2m, m) / 4^m,  ratio_m = Π_{k≤m} ((2k−1)² − 4) / (2k−1)²,
-//   mu_m = the rigid punch's radial moment μ_m (traction_radial_moment).
+//   mu_m = the rigid punch's radial moment μ_m (traction_radial_moment), and its recurrence's
+//   ratios μ_k/μ_(k−1) = 2k/(2k+1) (rigid_up) and μ_(k−1)/μ_k = (2k+1)/2k, as (2r+3)/(2r+2) at
+//   r = k − 1 (rigid_down).
 struct SeriesFactors {
-  std::array<double, kMaxTerms + 1> q{}, ratio{}, mu_rigid{};
+  std::array<double, kMaxTerms + 1> q{}, ratio{}, mu_rigid{}, rigid_up{}, rigid_down{};
   SeriesFactors() {
     double qm = 1.0, ratio_m = 1.0, mu_m = 1.0;
     q[0] = ratio[0] = mu_rigid[0] = 1.0;
@@ -28,7 +30,44 @@ struct SeriesFactors {
       mu_m *= (2.0 * m) / (2.0 * m + 1.0);
       q[m] = qm, ratio[m] = ratio_m, mu_rigid[m] = mu_m;
     }
+    for (int k = 0; k <= kMaxTerms; ++k) {
+      const double r = k;
+      rigid_up[k] = (2.0 * k) / (2.0 * k + 1.0);
+      rigid_down[k] = (2.0 * r + 3.0) / (2.0 * r + 2.0);
+    }
   }
+};
+
+// x^m for m = 1, 2, ... (0 ≤ x ≤ 1) as a running product carried in double-double (hi + lo, each
+// product's rounding error kept exactly: Dekker's product, or one FMA where the compiler has a
+// fast one), so that hi is x^m correctly rounded but within ~m·2^-104 of a tie; std::pow's is
+// within 0.52 ulp, so the two agree but in rare cases. A plain running product drifts by
+// ~sqrt(m) ulps: that moved C by one ulp on one pair of P3.09N's 430,000, which was enough to
+// change a sensitive test's chord iterations (tests/unit/observe/test_solve_interacting_event.cpp,
+// "driven far past its slip force"). Veltkamp's split below must not be contracted into FMAs (the
+// build is ISO C++, where GCC does not contract).
+class RunningPower {
+ public:
+  explicit RunningPower(double x) : x_(x) {
+    const double s = kSplit * x;
+    x_hi_ = s - (s - x), x_lo_ = x - x_hi_;
+  }
+  double next() {  // x^m, m one more than at the last call
+    const double p = hi_ * x_;
+#ifdef FP_FAST_FMA
+    const double e = std::fma(hi_, x_, -p);
+#else
+    const double s = kSplit * hi_, h1 = s - (s - hi_), h2 = hi_ - h1;
+    const double e = ((h1 * x_hi_ - p) + h1 * x_lo_ + h2 * x_hi_) + h2 * x_lo_;
+#endif
+    const double l = lo_ * x_ + e;
+    hi_ = p + l, lo_ = l - (hi_ - p);
+    return hi_;
+  }
+
+ private:
+  static constexpr double kSplit = 134217729.0;  // 2^27 + 1: Veltkamp's split into 26-bit halves
+  double x_, x_hi_, x_lo_, hi_ = 1.0, lo_ = 0.0;
 };
 const SeriesFactors& series_factors() {
   static const SeriesFactors factors;  // built on first use (thread-safe)
@@ -69,23 +108,23 @@ double disc_compliance_at_distance(double dx_m, double dy_m, double d, double a_
   const double a2 = (small / d) * (small / d), b2 = (large / d) * (large / d);
   const SeriesFactors& f = series_factors();
   double g = 1.0, h = 1.0;  // Σ of the 1/r and cos2θ/r series, times d
-  // β^2m as a running power (b2 ≤ 1: it only decreases; it drifts from std::pow's by a few ulps
-  // over many terms). Once it falls below 2^-900 it is std::pow's again, so where β^2m reaches
-  // the subnormal range (near-touching discs with β ≲ 0.7, after several hundred terms) the
-  // series is summed as it was with std::pow per term. With the single-rounding factors below,
-  // C moved by ≤ 5.1e-16 relative from the per-term std::pow and four-rounding factors of
-  // before (all pairs of the 5,000-junction stand-in population, both weightings), and stays
-  // symmetric bit for bit (everything depends on the radii only through the smaller and larger).
-  double b2m = 1.0;
+  // β^2m as a running power (b2 ≤ 1: it only decreases). Once it falls below 2^-900 it is
+  // std::pow's, so where β^2m reaches the subnormal range (near-touching discs with β ≲ 0.7,
+  // after several hundred terms) the series is summed as it was with std::pow per term.
+  // Against the per-term std::pow and the uniform factor's four roundings of before, C moved on
+  // 3 of the six stand-ins' 3.3 million pairs (both weightings; ≤ 2.8e-16 relative) and on 6 of
+  // the 12.5 million of `bench interacting`'s N = 5,000 population (uniform; ≤ 3.9e-16). It stays
+  // symmetric bit for bit: the radii enter only as the smaller and the larger.
+  RunningPower b2_power(b2);
   for (int m = 1; m <= kMaxTerms; ++m) {
     const double q = f.q[m];
-    b2m *= b2;
+    const double b2m = b2_power.next();
     const double b2_pow_m = b2m >= 0x1p-900 ? b2m : std::pow(b2, m);
     // ⟨|u|^2m⟩ / d^2m = Σ_p C(m,p)² α^2p β^2(m−p) μ_p μ_(m−p), its terms by recurrence from
-    // p = 0 (a zero radius leaves only one term). With μ_p/μ_(p−1) = p/(p+1) (uniform) or
-    // 2p/(2p+1) (rigid), the ratio of successive terms is (α/β)² times
-    //   uniform: (m−p+1)(m−p+2) / (p(p+1)),  rigid: (m−p+1)(2m−2p+3) / (p(2p+1)),
-    // integers exact in double, so each factor is rounded once.
+    // p = 0 (a zero radius leaves only one term); μ_p/μ_(p−1) = p/(p+1) (uniform) or
+    // 2p/(2p+1) (rigid). Uniform: the ratio of successive terms is (α/β)² (m−p+1)(m−p+2) /
+    // (p(p+1)), integers exact in double, so rounded once. Rigid: the same factors as before, in
+    // the same order (bit for bit).
     double moment = 0.0;
     if (a2 == 0.0 || b2 == 0.0) {
       moment = rigid ? std::pow(a2 + b2, m) * f.mu_rigid[m] : std::pow(a2 + b2, m) / (m + 1.0);
@@ -95,7 +134,8 @@ double disc_compliance_at_distance(double dx_m, double dy_m, double d, double a_
       moment = t;
       if (rigid) {
         for (int p = 1; p <= m; ++p) {
-          t *= x * ((static_cast<double>(m - p + 1) * (2 * (m - p) + 3)) / (static_cast<double>(p) * (2 * p + 1)));
+          const double c = static_cast<double>(m - p + 1) / p;  // C(m,p)/C(m,p−1)
+          t *= c * c * x * f.rigid_up[p] * f.rigid_down[m - p];
           moment += t;
         }
       } else {
