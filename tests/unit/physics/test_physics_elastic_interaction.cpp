@@ -105,6 +105,13 @@ TEST_CASE("the disc average is symmetric and tends to the point kernel for small
     CHECK_THAT(disc_compliance(ex, ey, ra, rb, kE, kNu), WithinRel(disc_compliance(-ex, -ey, rb, ra, kE, kNu), 1e-15));
     CHECK_THAT(disc_compliance(ex, ey, ra, rb, kE, kNu, TractionWeighting::rigid),
                WithinRel(disc_compliance(-ex, -ey, rb, ra, kE, kNu, TractionWeighting::rigid), 1e-15));
+    // The series sees the radii only as the smaller and the larger: symmetric bit for bit, and
+    // given the distance it is the same value.
+    for (const TractionWeighting w : {TractionWeighting::uniform, TractionWeighting::rigid}) {
+      const double c = disc_compliance(ex, ey, ra, rb, kE, kNu, w);
+      CHECK(c == disc_compliance(-ex, -ey, rb, ra, kE, kNu, w));
+      CHECK(c == disc_compliance_at_distance(ex, ey, std::hypot(ex, ey), ra, rb, kE, kNu, w));
+    }
   }
   // Point discs: exactly the point form.
   CHECK_THAT(disc_compliance(3e-5, 1e-5, 0, 0, kE, kNu), WithinRel(cerruti_compliance(3e-5, 1e-5, kE, kNu), 1e-15));
