@@ -4,7 +4,6 @@
 // run_cost.cpp has gone stale.
 #include <catch2/catch.hpp>
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -41,12 +40,10 @@ std::vector<std::map<std::string, std::string>> rows_of(const std::filesystem::p
 // A scene of n junctions of the stand-in P4.00N's mean size in a row 1 mm apart (the cost
 // model reads only N, the span, the solver and whether junctions interact).
 Scene row_scene(std::size_t n, double t_stop, bool interacting) {
-  Scene s = paper_scene(std::vector<double>(n, 1.4e-8));
-  if (interacting) {
-    std::vector<double> x(n), y(n, 0.0);
-    for (std::size_t i = 0; i < n; ++i) x[i] = 1e-3 * static_cast<double>(i);
-    s = interacting_scene(std::vector<double>(n, 1.4e-8), x, y, SolverMethod::event);
-  }
+  std::vector<double> x(n), y(n, 0.0);
+  for (std::size_t i = 0; i < n; ++i) x[i] = 1e-3 * static_cast<double>(i);
+  Scene s = interacting ? interacting_scene(std::vector<double>(n, 1.4e-8), x, y, SolverMethod::event)
+                        : paper_scene(std::vector<double>(n, 1.4e-8));
   s.stop.time = t_stop;
   return s;
 }
