@@ -30,16 +30,6 @@ long max_rss_kB() {
   return u.ru_maxrss;
 }
 
-// The scene with its junctions placed in a contact disc (seeded like the stand-ins' recipe).
-Scene with_positions(Scene s, double radius_m) {
-  const Positions p = place_in_contact_disc(s.experiment.junctions.area_m2, radius_m, 20200318);
-  s.experiment.junctions.x_m = p.x_m;
-  s.experiment.junctions.y_m = p.y_m;
-  s.model.interactions = Interactions::elastic;
-  s.solver.method = SolverMethod::event;
-  return s;
-}
-
 InteractingBenchRow timed(const std::string& what, const Scene& scene,
                           std::size_t single_from = PinnedCompliance::kSingleFrom) {
   InteractingBenchRow row;
@@ -75,21 +65,39 @@ InteractingBenchRow timed(const std::string& what, const Scene& scene,
 
 }  // namespace
 
-std::vector<InteractingBenchRow> run_interacting_bench(const InteractingBenchOptions& opt) {
-  const Scene base = load_scene(opt.scene);
+Scene bench_population(const Scene& base, std::size_t N) {
   const std::vector<double>& areas = base.experiment.junctions.area_m2;
   const std::size_t N0 = areas.size();
+  Scene s = base;
+  s.experiment.junctions.area_m2.resize(N);
+  for (std::size_t i = 0; i < N; ++i) s.experiment.junctions.area_m2[i] = areas[i % N0];
+  s.experiment.mass_kg = base.experiment.mass_kg * static_cast<double>(N) / static_cast<double>(N0);
+  s.stop.at_first_peak = true;
+  s.stop.time = 60.0;
+  s.stop.wall_time = 7200.0;
+  return s;
+}
+
+double population_radius(const Scene& base, std::size_t N, double contact_radius_m) {
+  return contact_radius_m * std::sqrt(static_cast<double>(N) / static_cast<double>(base.experiment.junctions.size()));
+}
+
+Scene with_positions(Scene s, double radius_m) {
+  const Positions p = place_in_contact_disc(s.experiment.junctions.area_m2, radius_m, 20200318);
+  s.experiment.junctions.x_m = p.x_m;
+  s.experiment.junctions.y_m = p.y_m;
+  s.model.interactions = Interactions::elastic;
+  s.solver.method = SolverMethod::event;
+  return s;
+}
+
+std::vector<InteractingBenchRow> run_interacting_bench(const InteractingBenchOptions& opt) {
+  const Scene base = load_scene(opt.scene);
   std::vector<InteractingBenchRow> rows;
   bool warm = false;
   for (std::size_t N : opt.sizes) {
-    Scene s = base;
-    s.experiment.junctions.area_m2.resize(N);
-    for (std::size_t i = 0; i < N; ++i) s.experiment.junctions.area_m2[i] = areas[i % N0];
-    s.experiment.mass_kg = base.experiment.mass_kg * static_cast<double>(N) / static_cast<double>(N0);
-    s.stop.at_first_peak = true;
-    s.stop.time = 60.0;
-    s.stop.wall_time = 7200.0;
-    const double R = opt.contact_radius_m * std::sqrt(static_cast<double>(N) / static_cast<double>(N0));
+    Scene s = bench_population(base, N);
+    const double R = population_radius(base, N, opt.contact_radius_m);
     // Side by side: the scene's own output series (what a user's run records), then none. The
     // first size is run once untimed before (tables, pages, caches), else the first timed run
     // would carry the process's warm-up.

@@ -15,6 +15,8 @@
 #include <string>
 #include <vector>
 
+#include "scene/scene.hpp"
+
 namespace asperity {
 
 struct InteractingBenchOptions {
@@ -46,6 +48,13 @@ struct InteractingBenchRow {
 };
 
 std::vector<InteractingBenchRow> run_interacting_bench(const InteractingBenchOptions& opt);
+// The bench's population of N junctions from `base` (its areas repeated, mass ∝ N, to the
+// first peak), the radius of its contact disc (contact_radius_m at the scene's own N, same area
+// fraction), and the scene with its junctions placed in that disc (seeded like the stand-ins'
+// recipe), elastic interactions, event solver.
+Scene bench_population(const Scene& base, std::size_t N);
+double population_radius(const Scene& base, std::size_t N, double contact_radius_m);
+Scene with_positions(Scene s, double radius_m);
 // Least-squares exponent b of wall_s ∝ N^b over the scaling rows; NaN unless they hold two
 // distinct N or more.
 double fitted_exponent(const std::vector<InteractingBenchRow>& rows);

@@ -16,6 +16,7 @@
 #include "bench/bench_scene.hpp"
 #include "bench/contact.hpp"
 #include "bench/interacting.hpp"
+#include "bench/interacting_threads.hpp"
 #include "bench/savings.hpp"
 #include "bench/speed_ratio.hpp"
 #include "bench/tradeoff.hpp"
@@ -23,6 +24,7 @@
 #include "cli/options.hpp"
 #include "io/progress.hpp"
 #include "report/output_dir.hpp"
+#include "solve/interacting/kernel_form.hpp"
 
 namespace asperity::cli {
 namespace {
@@ -47,6 +49,8 @@ struct BenchOptions {
   std::vector<double> tolerances;
   // interacting
   std::vector<std::size_t> interacting_sizes;
+  std::vector<int> threads_scan;  // --threads-scan: the per-phase thread table instead
+  bool busy = false;              // --busy: also with one core held by another process
   // contact
   std::vector<std::size_t> contact_sizes;
 };
@@ -61,7 +65,7 @@ std::string load_average() {
 // The files the benchmarks write: a folder holding only these (before markers existed) is ours.
 bool bench_folder(const std::filesystem::path& d) {
   static const char* const ours[] = {"accuracy.csv", "reference_order.csv", "savings.csv", "savings.png",
-                                     "speed_ratio.csv", "speed_runs.csv", "interacting.csv", "interacting_tradeoff.csv", "contact.csv", "work_precision.csv", "work_precision.png"};
+                                     "speed_ratio.csv", "speed_runs.csv", "interacting.csv", "interacting_threads.csv", "interacting_tradeoff.csv", "contact.csv", "work_precision.csv", "work_precision.png"};
   bool any = false;
   for (const auto& e : std::filesystem::directory_iterator(d)) {
     const std::string n = e.path().filename().string();
@@ -170,7 +174,29 @@ int accuracy(const BenchOptions& b) {
   return exit_ok;
 }
 
+// --threads-scan / --busy: each size at each thread count, by phase, quiet and with one core
+// held by another process.
+int interacting_threads(const BenchOptions& b) {
+  ThreadsBenchOptions o;
+  if (!b.interacting_sizes.empty()) o.sizes = b.interacting_sizes;
+  if (!b.threads_scan.empty()) o.threads = b.threads_scan;
+  else o.threads = {1, std::max(2, static_cast<int>(std::thread::hardware_concurrency()))};
+  if (o.threads.front() != 1) o.threads.insert(o.threads.begin(), 1);  // efficiencies need one thread
+  o.busy = b.busy;
+  o.log = &std::cout;
+  machine_line(b);
+  std::printf("interacting event solver by thread count%s (STAND-IN P4.00N areas; kernels %s)\n",
+              b.busy ? ", quiet and with one core busy" : "", kernel_form_name(kernel_form()));
+  const auto rows = run_threads_bench(o);
+  write_threads_bench(b.out, rows);
+  write_marker(b.out, "bench");
+  std::printf("%s", threads_bench_table(rows).c_str());
+  std::printf("-> %s/interacting_threads.csv\n", b.out.c_str());
+  return exit_ok;
+}
+
 int interacting(const BenchOptions& b) {
+  if (b.busy || !b.threads_scan.empty()) return interacting_threads(b);
   InteractingBenchOptions o;
   if (!b.interacting_sizes.empty()) o.sizes = b.interacting_sizes;
   if (b.quick) o.sizes = {300, 600}, o.whole_run = false;
@@ -263,6 +289,11 @@ Command add_bench_command(CLI::App& app) {
                                                     "(fitted exponent), peak memory vs N^2 doubles, P4.00N whole run");
   in->add_option("--sizes", opt->interacting_sizes, "Junction counts (default 300 600 1200 2400 5000)")
       ->check(CLI::Range(2, 20000));
+  in->add_option("--threads-scan", opt->threads_scan, "Instead: the first peak at each of these thread counts, "
+                                                      "wall time by phase and parallel efficiency (sizes default 1200 5000)")
+      ->check(CLI::Range(1, 1024));
+  in->add_flag("--busy", opt->busy, "Instead (or with --threads-scan): also with one core kept busy by another process, "
+                                    "at one thread and the widest count");
 
   CLI::App* ct = sub->add_subcommand("contact", "Rough-surface normal contact (FFT boundary elements): time and CG "
                                                 "iterations vs grid size, time per iteration vs two FFT pairs, peak memory");

@@ -1,5 +1,7 @@
 #include "solve/interacting/interacting_junctions.hpp"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -32,7 +34,8 @@ InteractingJunctions::InteractingJunctions(const Problem& problem, std::size_t s
       J_(problem.A0, problem.law),
       eq3_(nonlinear_law_ ? Eq3Displacement(problem.law, J_.A0) : Eq3Displacement()),
       pinned_(problem, initial_reference(J_), nonlinear_law_, single_from),
-      cache_([this](double X) { return solve(X); }, 0.1 * problem.solver.tolerance) {
+      cache_([this](double X) { return solve(X); }, 0.1 * problem.solver.tolerance),
+      teams_(omp_get_max_threads()) {
   if (!nonlinear_law_)
     for (std::size_t i = 0; i < N_; ++i) A_fixed_ += J_.A0[i];
   n_intact_ = static_cast<std::int64_t>(N_);
@@ -44,8 +47,16 @@ InteractingJunctions::InteractingJunctions(const Problem& problem, std::size_t s
 }
 
 InteractingJunctions::Work InteractingJunctions::work() const {
-  return Work{solves_,          iterations_, pinned_.rank_one_updates(), pinned_.rebuilds(), overloaded_,
-              pinned_.single_passes(), pinned_.single_refreshes()};
+  Work w{solves_,          iterations_, pinned_.rank_one_updates(), pinned_.rebuilds(), overloaded_,
+         pinned_.single_passes(), pinned_.single_refreshes()};
+  const PinnedCompliance::Timing t = pinned_.timing();
+  w.pass_s = t.exact_s + t.single_s + t.deferred_s;
+  w.fold_s = t.fold_s;
+  w.rebuild_s = t.rebuild_s;
+  w.remove_s = t.remove_s;
+  w.law_s = teams_.laws.seconds();
+  w.update_s = teams_.updates.seconds();
+  return w;
 }
 
 bool InteractingJunctions::has_threshold() const { return std::isfinite(x_up_); }
@@ -166,13 +177,17 @@ ForceNode InteractingJunctions::solve(double X, double tol) const {
       if (std::chrono::steady_clock::now() >= deadline_) throw WallTimeReached();
       // The junctions' own laws, each independent of the others (the same numbers on any
       // number of threads): a tenth of a pass's time, worth splitting from a few hundred on.
-#pragma omp parallel for schedule(static) if (nA >= 512)
+      {
+      const AdaptiveTeam::Region region(teams_.laws, static_cast<double>(nA));
+      const int threads = region.threads();
+#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
       for (std::size_t k = 0; k < nA; ++k) {
         const std::size_t q = active[k];
         double u, du;
         own(q, node.f[q], u, du);
         dl[q] = u - pinned_.reference(q) * node.f[q];
         da[q] = (du - pinned_.reference(q)) * node.a[q];
+      }
       }
       // y = G [Δ, Δ'a]: one pass over the rows of the nonlinear positions.
       if (single)
@@ -183,7 +198,10 @@ ForceNode InteractingJunctions::solve(double X, double tol) const {
       // This loop and the update below are per junction (and a maximum), the same numbers on
       // any number of threads; split like the laws above (on two threads the other thread
       // otherwise waits through them).
-#pragma omp parallel for schedule(static) if (nA >= 512)
+      {
+      const AdaptiveTeam::Region region(teams_.updates, static_cast<double>(nA));
+      const int threads = region.threads();
+#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
       for (std::size_t k = 0; k < nA; ++k) {
         const std::size_t q = active[k];
         const double thr = threshold(q);
@@ -191,6 +209,7 @@ ForceNode InteractingJunctions::solve(double X, double tol) const {
         g[k] = (X * pinned_.a0(q) + pinned_.b0(q) - y1[q]) / thr;
         z[nA + k] = node.a[q] / a_scale;
         g[nA + k] = (pinned_.a0(q) - y2[q]) / a_scale;
+      }
       }
       const double damp = chord_step(X, active, a_scale, y1, y2, z, g, aa);
       double change = 0;
@@ -201,7 +220,10 @@ ForceNode InteractingJunctions::solve(double X, double tol) const {
         node.f[q] = f;
         node.a[q] = pinned_.a0(q) - y2[q];
       }
-#pragma omp parallel for schedule(static) reduction(max : change) if (nA >= 512)
+      {
+      const AdaptiveTeam::Region region(teams_.updates, static_cast<double>(nA));
+      const int threads = region.threads();
+#pragma omp parallel for schedule(static) reduction(max : change) num_threads(threads) if (threads > 1)
       for (std::size_t k = 0; k < nA; ++k) {
         const std::size_t q = active[k];
         const double thr = threshold(q);
@@ -209,6 +231,7 @@ ForceNode InteractingJunctions::solve(double X, double tol) const {
         change = std::max(change, std::abs(f - node.f[q]) / thr);
         node.f[q] = f;
         node.a[q] = a_scale * g[nA + k];
+      }
       }
       // Long after a solve normally ends (2-9 passes, about 20 with refreshes), an iterate past
       // φ = 1, or over a threshold while still far from any fixed point (1e-2 of the slip forces,

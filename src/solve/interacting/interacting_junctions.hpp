@@ -28,6 +28,7 @@
 #include <string>
 #include <vector>
 
+#include "solve/core/adaptive_team.hpp"
 #include "solve/core/junction_state.hpp"
 #include "solve/core/problem.hpp"
 #include "solve/core/run_info.hpp"
@@ -94,6 +95,10 @@ class InteractingJunctions {
   struct Work {
     std::int64_t solves = 0, iterations = 0, rank_one = 0, rebuilds = 0, overloaded = 0;
     std::int64_t single_passes = 0, single_refreshes = 0;  // chord passes on G's single-precision copy
+    // Wall time by phase [s]: passes over G (exact and on the copy, with the removals kept
+    // aside), folds of removals into G (and the copy's rewrites), rebuilds (LAPACK), the rest of
+    // the removals, the junctions' own laws and the iterate's updates (per junction).
+    double pass_s = 0, fold_s = 0, rebuild_s = 0, remove_s = 0, law_s = 0, update_s = 0;
   };
   Work work() const;
 
@@ -167,6 +172,13 @@ class InteractingJunctions {
   mutable std::int64_t force_evals_ = 0, solves_ = 0, iterations_ = 0;
   // Chord passes that contracted slowly since G was last rebuilt (rebuild count slow_since_).
   mutable std::int64_t slow_passes_ = 0, slow_since_ = -1;
+  // The threads of the per-junction loops of a chord pass (the laws; the iterate's update), chosen
+  // by measuring them (adaptive_team.hpp); from 512 junctions on two threads pay on a quiet machine.
+  struct Teams {
+    explicit Teams(int threads) : laws(threads, 512), updates(threads, 512) {}
+    AdaptiveTeam laws, updates;
+  };
+  mutable Teams teams_;
 };
 
 }  // namespace asperity

@@ -3,6 +3,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 
@@ -19,8 +20,6 @@ namespace asperity {
 
 namespace {
 
-// Work below which a loop over G stays on one thread (thread start-up costs more).
-constexpr std::size_t kParallelWork = 200000;
 // Row blocks of the symmetric product: fixed, so its sums do not depend on the thread count.
 constexpr std::size_t kProductBlocks = 16;
 // Below n / kFewColumns weighted columns, the product reads those columns alone (strided above
@@ -68,7 +67,7 @@ inline double sum(Quad v) { return (v[0] + v[1]) + (v[2] + v[3]); }
 inline double sum(HalfPair v) { return (v.lo[0] + v.lo[1]) + (v.hi[0] + v.hi[1]); }
 
 // The stored triangle's entries as four doubles: read as they are, or widened from single
-// precision (the copy; AVX2 only).
+// precision (the copy; exact, so every form reads the same values).
 template <class V> inline V entries(const double* p) { return load<V>(p); }
 using Single4 = float __attribute__((vector_size(16)));
 template <class V> inline V entries(const float* p);
@@ -76,6 +75,10 @@ template <> inline Quad entries<Quad>(const float* p) {
   Single4 s;
   std::memcpy(&s, p, sizeof s);
   return __builtin_convertvector(s, Quad);
+}
+template <> inline HalfPair entries<HalfPair>(const float* p) {
+  return {Half{static_cast<double>(p[0]), static_cast<double>(p[1])},
+          Half{static_cast<double>(p[2]), static_cast<double>(p[3])}};
 }
 
 // Rows of a triangle: row r's entry at column c ≥ r is rows(r)[c]. The stored triangle has rows
@@ -247,6 +250,10 @@ void product_rows_portable(const double* G, std::size_t N, std::size_t n, std::s
                            const double* w1, const double* w2, double* p1, double* p2) {
   product_rows<HalfPair>(DoubleRows{G, N}, n, r0, r1, w1, w2, p1, p2);
 }
+void product_rows_single_portable(const float* S, std::size_t N, std::size_t n, std::size_t r0, std::size_t r1,
+                                  const double* w1, const double* w2, double* p1, double* p2) {
+  product_rows<HalfPair>(SingleRows{S, N}, n, r0, r1, w1, w2, p1, p2);
+}
 #if defined(__x86_64__)
 // The same rows with AVX2 (x86-64-v3: every x86 CPU since about 2013), chosen at run time.
 __attribute__((target("arch=x86-64-v3"))) void product_rows_avx2(const double* G, std::size_t N, std::size_t n,
@@ -254,7 +261,7 @@ __attribute__((target("arch=x86-64-v3"))) void product_rows_avx2(const double* G
                                                                    const double* w2, double* p1, double* p2) {
   product_rows<Quad>(DoubleRows{G, N}, n, r0, r1, w1, w2, p1, p2);
 }
-// From the single-precision copy (kept only where AVX2 is).
+// From the single-precision copy.
 __attribute__((target("arch=x86-64-v3"))) void product_rows_single_avx2(const float* S, std::size_t N, std::size_t n,
                                                                           std::size_t r0, std::size_t r1,
                                                                           const double* w1, const double* w2,
@@ -276,17 +283,17 @@ __attribute__((target("arch=x86-64-v4"))) void product_rows_single_avx512(const 
                                                                             const double* w2, double* p1, double* p2) {
   product_rows<Quad>(SingleRows{S, N}, n, r0, r1, w1, w2, p1, p2);
 }
-bool has_avx2() { return __builtin_cpu_supports("x86-64-v3"); }
-bool has_avx512() { return __builtin_cpu_supports("x86-64-v4"); }
-ProductRows product_rows_for_this_cpu() {
-  return has_avx512() ? product_rows_avx512 : has_avx2() ? product_rows_avx2 : product_rows_portable;
+ProductRows product_rows_for(KernelForm form) {
+  return form == KernelForm::avx512 ? product_rows_avx512 : form == KernelForm::avx2 ? product_rows_avx2 : product_rows_portable;
 }
-SingleProductRows single_rows_for_this_cpu() {
-  return has_avx512() ? product_rows_single_avx512 : has_avx2() ? product_rows_single_avx2 : nullptr;
+SingleProductRows single_rows_for(KernelForm form) {
+  return form == KernelForm::avx512 ? product_rows_single_avx512
+         : form == KernelForm::avx2 ? product_rows_single_avx2
+                                    : product_rows_single_portable;
 }
 #else
-ProductRows product_rows_for_this_cpu() { return product_rows_portable; }
-SingleProductRows single_rows_for_this_cpu() { return nullptr; }
+ProductRows product_rows_for(KernelForm) { return product_rows_portable; }
+SingleProductRows single_rows_for(KernelForm) { return product_rows_single_portable; }
 #endif
 
 // The removals kept aside, as fold() applies them: entry (r, s) of the triangle takes
@@ -310,7 +317,7 @@ struct CopySums {
 // their rounding errors' squares (own[r]: the diagonal's and the entries' right of it; and the
 // column parts). The squares are summed in four lanes: any order is within the norms' rounding
 // allowance. Vector:
-// four doubles a step (AVX2 or AVX-512; the copy is kept only there); else one entry at a time.
+// four doubles a step (AVX2 or AVX-512); else one entry at a time.
 template <bool Vector>
 [[gnu::always_inline]] inline void fold_rows(double* G, std::size_t N, std::size_t n, std::size_t r0, std::size_t r1,
                                              Removals rm, CopySums& cs, double* own) {
@@ -390,11 +397,11 @@ __attribute__((target("arch=x86-64-v4"))) void fold_rows_avx512(double* G, std::
                                                                   CopySums& cs, double* own) {
   fold_rows<true>(G, N, n, r0, r1, rm, cs, own);
 }
-FoldRows fold_rows_for_this_cpu() {
-  return has_avx512() ? fold_rows_avx512 : has_avx2() ? fold_rows_avx2 : fold_rows_portable;
+FoldRows fold_rows_for(KernelForm form) {
+  return form == KernelForm::avx512 ? fold_rows_avx512 : form == KernelForm::avx2 ? fold_rows_avx2 : fold_rows_portable;
 }
 #else
-FoldRows fold_rows_for_this_cpu() { return fold_rows_portable; }
+FoldRows fold_rows_for(KernelForm) { return fold_rows_portable; }
 #endif
 
 // Rows [0, n) of a triangle times (w1, w2) into (y1, y2) over fixed row blocks (edges), each
@@ -403,11 +410,13 @@ FoldRows fold_rows_for_this_cpu() { return fold_rows_portable; }
 template <class T, class Kernel>
 void triangle_product(Kernel rows, const T* base, std::size_t N, std::size_t n, const std::vector<std::size_t>& edge,
                       std::vector<double>& partial, const std::vector<double>& w1, const std::vector<double>& w2,
-                      std::vector<double>& y1, std::vector<double>& y2) {
+                      std::vector<double>& y1, std::vector<double>& y2, AdaptiveTeam& team) {
   const std::size_t B = edge.size() - 1;
+  const AdaptiveTeam::Region region(team, static_cast<double>(n) * static_cast<double>(n));
+  const int threads = region.threads();
   partial.resize(2 * B * n);  // block b writes (and zeroes) only its entries from edge[b] on
   double* P = partial.data();
-#pragma omp parallel for schedule(dynamic, 1) if (n * n > 2 * kParallelWork)
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1)
   for (std::size_t b = 0; b < B; ++b) {
     double* p1 = P + 2 * b * n;
     double* p2 = p1 + n;
@@ -417,7 +426,7 @@ void triangle_product(Kernel rows, const T* base, std::size_t N, std::size_t n, 
   }
   // Each entry's block sums in block order (in parallel too: a serial sweep of 2 B n adds took
   // 3 % of an N = 3,500 run on two threads, while the other thread waited).
-#pragma omp parallel for schedule(static) if (n * n > 2 * kParallelWork)
+#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
   for (std::size_t r = 0; r < n; ++r) {
     double s1 = 0, s2 = 0;
     for (std::size_t b = 0; b < B && edge[b] <= r; ++b) s1 += P[2 * b * n + r], s2 += P[(2 * b + 1) * n + r];
@@ -436,11 +445,9 @@ double distance(const std::vector<double>& v, const std::vector<double>& ref, st
 }  // namespace
 
 std::vector<ProductKernel> product_kernels() {
-  std::vector<ProductKernel> forms{{"portable", product_rows_portable, nullptr}};
-#if defined(__x86_64__)
-  if (has_avx2()) forms.push_back({"avx2", product_rows_avx2, product_rows_single_avx2});
-  if (has_avx512()) forms.push_back({"avx512", product_rows_avx512, product_rows_single_avx512});
-#endif
+  std::vector<ProductKernel> forms;
+  for (KernelForm f : kernel_forms_available())
+    forms.push_back({kernel_form_name(f), product_rows_for(f), single_rows_for(f)});
   return forms;
 }
 
@@ -449,6 +456,8 @@ PinnedCompliance::PinnedCompliance(const Problem& problem, std::vector<double> r
     : N_(problem.size()),
       n_(problem.size()),
       large_from_(single_from),
+      form_(kernel_form()),
+      teams_(omp_get_max_threads()),
       G_(problem.size() * problem.size(), 0.0),
       D_(std::move(reference)) {
   fill_interaction_lower(problem, G_.data(), N_);
@@ -463,7 +472,7 @@ PinnedCompliance::PinnedCompliance(const Problem& problem, std::vector<double> r
     pos_[i] = i;
   }
   n_nl_ = nonlinear ? N_ : 0;
-  if (N_ >= single_from && single_rows_for_this_cpu() != nullptr) single_.S.resize(N_ * (N_ + 1) / 2);
+  if (N_ >= single_from) single_.S.resize(N_ * (N_ + 1) / 2);
   rebuild();
 }
 
@@ -519,8 +528,8 @@ std::vector<std::size_t> PinnedCompliance::row_blocks() const {
 
 void PinnedCompliance::symmetric_product(const std::vector<double>& w1, const std::vector<double>& w2,
                                          std::vector<double>& y1, std::vector<double>& y2) const {
-  static const ProductRows rows = product_rows_for_this_cpu();  // the CPU does not change
-  triangle_product(rows, G_.data(), N_, n_, row_blocks(), partial_, w1, w2, y1, y2);
+  const ProductRows rows = product_rows_for(form_);
+  triangle_product(rows, G_.data(), N_, n_, row_blocks(), partial_, w1, w2, y1, y2, teams_.product);
   subtract_deferred(w1, w2, y1, y2);
 }
 
@@ -537,7 +546,9 @@ void PinnedCompliance::subtract_deferred(const std::vector<double>& w1, const st
   for (std::size_t r = 0; r < n; ++r)
     for (std::size_t k = 0; k < K; ++k) c1[k] += u[k][r] * w1[r], c2[k] += u[k][r] * w2[r];
   for (std::size_t k = 0; k < K; ++k) c1[k] /= deferred_[k].d, c2[k] /= deferred_[k].d;
-#pragma omp parallel for schedule(static) if (n * K > kParallelWork / 4)
+  const AdaptiveTeam::Region region(teams_.deferred, static_cast<double>(n) * static_cast<double>(K));
+  const int threads = region.threads();
+#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
   for (std::size_t r = 0; r < n; ++r) {
     double v1 = y1[r], v2 = y2[r];
     for (std::size_t k = 0; k < K; ++k) v1 -= u[k][r] * c1[k], v2 -= u[k][r] * c2[k];
@@ -553,7 +564,7 @@ PinnedCompliance::Pass PinnedCompliance::apply(const std::vector<std::size_t>& c
     apply(columns, w1, w2, y1, y2);
     return Pass::exact;
   }
-  static const SingleProductRows single_rows = single_rows_for_this_cpu();
+  const SingleProductRows single_rows = single_rows_for(form_);
   // Row r's error is Σ_j (T_rj − S_rj)(w_j − ref_j), so by Cauchy–Schwarz at most
   // ‖T_r − S_r‖₂ ‖w − ref‖₂, the first factor bounded as the copy was written (the rounding
   // errors themselves, exact in double: 0.35–0.37 of the 2⁻²⁴ ‖T_r‖₂ that rounding to nearest
@@ -586,18 +597,18 @@ PinnedCompliance::Pass PinnedCompliance::apply(const std::vector<std::size_t>& c
     return kind;
   }
   if (kind == Pass::single) {
-    triangle_product(single_rows, single_.S.data(), N_, n, row_blocks(), partial_, w1, w2, y1, y2);
+    triangle_product(single_rows, single_.S.data(), N_, n, row_blocks(), partial_, w1, w2, y1, y2, teams_.single);
     for (std::size_t r = 0; r < n; ++r) y1[r] += single_.c1[r], y2[r] += single_.c2[r];
     subtract_deferred(w1, w2, y1, y2);
     ++single_.passes;
     return kind;
   }
   // Exact, and c = (T − S) w from the two products at this w: the new reference.
-  static const ProductRows rows = product_rows_for_this_cpu();
+  const ProductRows rows = product_rows_for(form_);
   const std::vector<std::size_t> edge = row_blocks();
   std::vector<double> s1(n), s2(n);
-  triangle_product(single_rows, single_.S.data(), N_, n, edge, partial_, w1, w2, s1, s2);
-  triangle_product(rows, G_.data(), N_, n, edge, partial_, w1, w2, y1, y2);
+  triangle_product(single_rows, single_.S.data(), N_, n, edge, partial_, w1, w2, s1, s2, teams_.single);
+  triangle_product(rows, G_.data(), N_, n, edge, partial_, w1, w2, y1, y2, teams_.product);
   single_.c1.resize(n);
   single_.c2.resize(n);
   for (std::size_t r = 0; r < n; ++r) single_.c1[r] = y1[r] - s1[r], single_.c2[r] = y2[r] - s2[r];
@@ -662,11 +673,13 @@ void PinnedCompliance::write_rows(bool removals) {
   std::vector<double> own(copy ? n : 0), biggest(B, 0.0);
   if (copy) partial_.resize(2 * B * n);
   double* P = partial_.data();
-  static const FoldRows rows = fold_rows_for_this_cpu();
+  const FoldRows rows = fold_rows_for(form_);
   // Entry (r, s ≥ r) takes each removal in order, as the removals one by one would. Row norms of
   // the symmetric T: entry (r, s > r) counts in rows r and s; the column parts go into per-block
   // sums, added in block order (the same bits on any number of threads).
-#pragma omp parallel for schedule(dynamic, 1) if (n * n > 2 * kParallelWork)
+  const AdaptiveTeam::Region region(teams_.fold, static_cast<double>(n) * static_cast<double>(n));
+  const int threads = region.threads();
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1)
   for (std::size_t b = 0; b < B; ++b) {
     CopySums cs;
     if (copy) {
@@ -682,6 +695,7 @@ void PinnedCompliance::write_rows(bool removals) {
 }
 
 void PinnedCompliance::remove(std::size_t q, double f_sl) {
+  const auto start = std::chrono::steady_clock::now();
   const std::size_t n = n_, N = N_, i = idx_[q];
   const std::vector<double> g = row(q);
   const double gqq = g[q];
@@ -752,6 +766,7 @@ void PinnedCompliance::remove(std::size_t q, double f_sl) {
   pos_[i] = npos;
   n_ = last;
   ++rank_one_;
+  remove_s_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (deferred_.size() >= (n_ >= large_from_ ? kDeferredRemovals : kDeferredRemovalsSmall)) fold();
   // Rank-one updates accumulate rounding: start afresh after about N of them.
   if (++updates_since_rebuild_ > static_cast<std::int64_t>(std::max<std::size_t>(N_, 64)) && n_ > 0) rebuild();
@@ -776,6 +791,7 @@ void PinnedCompliance::rebuild() {
   deferred_.clear();  // G starts afresh from C and D
   const std::size_t n = n_, N = N_;
   if (n == 0) return;
+  const auto start = std::chrono::steady_clock::now();
   double* G = G_.data();
   for (std::size_t r = 0; r < n; ++r) {
     const std::size_t i = idx_[r];
@@ -794,6 +810,7 @@ void PinnedCompliance::rebuild() {
   dpotrf_("L", &ni, G, &lda, &info);
   if (info == 0) dpotri_("L", &ni, G, &lda, &info);
   omp_set_num_threads(threads);
+  rebuild_s_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (info != 0) interacting_solver_failure("the pinned junctions' compliance matrix is not positive definite", 0.0);
   copy_single();
   // a0 = G 1, b0 = −G h.

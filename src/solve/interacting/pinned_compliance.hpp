@@ -25,9 +25,11 @@
 #include <cstdint>
 #include <vector>
 
+#include "solve/core/adaptive_team.hpp"
 #include "solve/core/problem.hpp"
 #include "solve/interacting/huge_page_allocator.hpp"
 #include "solve/interacting/interaction_matrix.hpp"
+#include "solve/interacting/kernel_form.hpp"
 
 namespace asperity {
 
@@ -38,14 +40,14 @@ inline std::size_t packed_row(std::size_t r, std::size_t N) { return r * N - r *
 // One form of the chord pass's product kernel: rows [r0, r1) of an upper triangle (row r's entry
 // at column c ≥ r at G[r·N + c], or packed in single precision) times (w1, w2), row r's sums
 // added into p[r] and its entries' transposed products into p[c > r]. The forms this CPU can run
-// (portable always; AVX2, AVX-512 where present) are listed for tests: every form groups every
-// sum alike, so all give the same bits.
+// (kernel_forms_available()) are listed for tests: every form groups every sum alike, so all
+// give the same bits. A PinnedCompliance uses the form kernel_form() names (ASPERITY_KERNEL).
 struct ProductKernel {
   const char* name;
   void (*rows)(const double* G, std::size_t N, std::size_t n, std::size_t r0, std::size_t r1, const double* w1,
                const double* w2, double* p1, double* p2);
   void (*single_rows)(const float* S, std::size_t N, std::size_t n, std::size_t r0, std::size_t r1,
-                      const double* w1, const double* w2, double* p1, double* p2);  // null: no copy
+                      const double* w1, const double* w2, double* p1, double* p2);
 };
 std::vector<ProductKernel> product_kernels();
 
@@ -110,12 +112,35 @@ class PinnedCompliance {
   // h_q = anchor[junction(q)]: every junction pinned, nobody slips.
   void set_anchors(const std::vector<double>& anchor_m);
 
+  // Wall time by phase [s], for benchmarks: passes over G (exact, on the copy, the removals kept
+  // aside), folds of the removals into G, rebuilds (LAPACK), and the rest of each removal.
+  struct Timing {
+    double exact_s = 0, single_s = 0, deferred_s = 0, fold_s = 0, rebuild_s = 0, remove_s = 0;
+  };
+  Timing timing() const {
+    return {teams_.product.seconds(), teams_.single.seconds(), teams_.deferred.seconds(), teams_.fold.seconds(),
+            rebuild_s_, remove_s_};
+  }
   std::int64_t rank_one_updates() const { return rank_one_; }
   std::int64_t rebuilds() const { return rebuilds_; }
 
  private:
   std::size_t N_ = 0, n_ = 0;
   std::size_t large_from_ = kSingleFrom;  // the constructor's single_from: removals wait 16 at a time from there
+  KernelForm form_;  // the SIMD kernels' form (kernel_form.hpp), chosen at construction
+  // The threads of each kind of parallel pass, chosen by measuring them (adaptive_team.hpp): a
+  // loaded machine never makes a pass slower than one thread. Work: entries of the triangle
+  // (removals kept aside × positions for the deferred correction); the thresholds are where two
+  // threads start to pay on a quiet machine.
+  // Work below which a loop over G stays on one thread (thread start-up costs more).
+  static constexpr double kParallelWork = 200000;
+  struct Teams {
+    explicit Teams(int threads)
+        : product(threads, 2.0 * kParallelWork), single(threads, 2.0 * kParallelWork),
+          fold(threads, 2.0 * kParallelWork), deferred(threads, kParallelWork / 4.0) {}
+    AdaptiveTeam product, single, fold, deferred;
+  };
+  mutable Teams teams_;
   // y1 = G w1, y2 = G w2 over all of P (w1, w2: size() entries).
   void symmetric_product(const std::vector<double>& w1, const std::vector<double>& w2, std::vector<double>& y1,
                          std::vector<double>& y2) const;
@@ -164,6 +189,7 @@ class PinnedCompliance {
   std::vector<std::uint8_t> nl_;
   std::size_t n_nl_ = 0;
   std::int64_t updates_since_rebuild_ = 0, rank_one_ = 0, rebuilds_ = 0;
+  double rebuild_s_ = 0, remove_s_ = 0;  // LAPACK in rebuilds; removals outside their folds
 };
 
 }  // namespace asperity

@@ -2,6 +2,8 @@
 // as the paper's scan does.
 #include "solve/reference/reference_stepper.hpp"
 
+#include <omp.h>
+
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -11,7 +13,7 @@
 namespace asperity {
 
 ReferenceStepper::ReferenceStepper(const Problem& problem)
-    : p_(problem), scheme_(problem), J_(problem.A0, problem.law) {}
+    : p_(problem), scheme_(problem), J_(problem.A0, problem.law), team_(omp_get_max_threads(), 256) {}
 
 void ReferenceStepper::advance(RunObserver& out) {
   const ContactLaw& law = p_.law;
@@ -23,9 +25,9 @@ void ReferenceStepper::advance(RunObserver& out) {
   const bool slow = scheme_.slow();
   std::int64_t slips = 0;
   bool any_repin = false;
-  // Fork only when the junctions outweigh the fork-join cost (~µs per step): at N = 60 two
-  // threads were 8× slower than one (bench report).
-#pragma omp parallel for schedule(static) reduction(+ : slips) reduction(|| : any_repin) if (N >= 256)
+  const AdaptiveTeam::Region region(team_, static_cast<double>(N));
+  const int threads = region.threads();
+#pragma omp parallel for schedule(static) reduction(+ : slips) reduction(|| : any_repin) num_threads(threads) if (threads > 1)
   for (std::size_t i = 0; i < N; ++i) {
     double f;
     if (J.pinned[i]) {

@@ -4,6 +4,7 @@
 // forces at X(t+dt), never-slipped junctions by bisection, t = n·dt.
 #include <cstdint>
 
+#include "solve/core/adaptive_team.hpp"
 #include "solve/core/junction_state.hpp"
 #include "solve/core/observer.hpp"
 #include "solve/core/problem.hpp"
@@ -29,6 +30,9 @@ class ReferenceStepper {
   ReferenceScheme scheme_;
   JunctionState J_;
   double max_ratio_ = 0;  // max f_i / (σ A_i)
+  // The step's threads, chosen by measuring the steps (adaptive_team.hpp); from N = 256 on two
+  // threads pay on a quiet machine (at N = 60 two threads were 8x slower than one).
+  AdaptiveTeam team_;
 };
 
 }  // namespace asperity

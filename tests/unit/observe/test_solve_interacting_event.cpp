@@ -437,13 +437,82 @@ TEST_CASE("event solver: at the default interaction tolerance a stand-in's peak 
 }
 
 TEST_CASE("event solver: a junction driven far past its slip force in an avalanche slips in it",
+          "[solve][interacting][event]") {
+  // Two never-slipped junctions whose areas follow Eq. (3), a small one (a) beside a larger one
+  // (b), their centres 1.1 times the sum of their radii apart: a slips first, at X* where f_a = f_s,a and
+  //   u_a(f_s,a) + c f_b = X*,  u_b(f_b) + c f_s,a = X*,   u(f) = f / k(A(f)),
+  // a 1-D root in f_b. Slipping, a carries ε f_s,a, so b's own displacement jumps to
+  // D = X* − c ε f_s,a. b slips in the same avalanche iff D ≥ δ_s,b = u_b(f_s,b). The area of b
+  // is set (bisection) so that D = (1 + m) δ_s,b for a known margin m: far past (m = +0.05,
+  // about 1e10 times the rounding of any kernel's sums) it must slip with a; short of it
+  // (m = −0.05) it must not. Both sides follow from the closed form, not from the last bits of C.
+  const double Aa = 1e-9, eps = 0.5;
+  const auto pair_scene = [&](double Ab) {
+    const double d = 1.1 * (std::sqrt(Aa / M_PI) + std::sqrt(Ab / M_PI));
+    Scene s = interacting_event_scene({Aa, Ab}, {0, d}, {0, 0});
+    s.model.epsilon = eps;
+    return s;
+  };
+  struct ClosedForm {
+    double X, D, delta_sb, before;  // before: b's own displacement before a's slip, of δ_s,b
+  };
+  const auto closed_form = [&](double Ab) {
+    const Scene s = pair_scene(Ab);
+    const Problem p = make_problem(s);
+    const ContactLaw& law = p.law;
+    const double c = interaction_matrix(p)(0, 1);
+    const auto u = [&](double A0, double f) { return f / law.stiffness(A0, law.area(A0, f)); };
+    const double fsa = law.slip_phi(Aa) / law.force_scale(Aa), fsb = law.slip_phi(Ab) / law.force_scale(Ab);
+    // g(f_b) = u_b(f_b) − c f_b − (u_a(f_s,a) − c f_s,a): increasing (u_b' ≥ 1/k_b(A0) > c).
+    double lo = 0, hi = fsb;
+    for (int k = 0; k < 200; ++k) {
+      const double mid = 0.5 * (lo + hi);
+      (u(Ab, mid) - c * mid < u(Aa, fsa) - c * fsa ? lo : hi) = mid;
+    }
+    const double X = u(Aa, fsa) + c * lo;
+    return ClosedForm{X, X - c * eps * fsa, u(Ab, fsb), (X - c * fsa) / u(Ab, fsb)};
+  };
+  for (const double margin : {0.05, -0.05}) {
+    // D/δ_s,b falls as b grows (its slip displacement grows as √A0): bisect in log A_b.
+    double lo = std::log(1e-9), hi = std::log(4e-9);
+    REQUIRE(closed_form(std::exp(lo)).D / closed_form(std::exp(lo)).delta_sb > 1 + margin);
+    REQUIRE(closed_form(std::exp(hi)).D / closed_form(std::exp(hi)).delta_sb < 1 + margin);
+    for (int k = 0; k < 60; ++k) {
+      const double mid = 0.5 * (lo + hi);
+      const ClosedForm cf = closed_form(std::exp(mid));
+      (cf.D / cf.delta_sb > 1 + margin ? lo : hi) = mid;
+    }
+    const double Ab = std::exp(lo);
+    const ClosedForm cf = closed_form(Ab);
+    const Scene s = pair_scene(Ab);
+    const Problem p = make_problem(s);
+    InteractingJunctions J(p);
+    INFO("margin " << margin << ": A_b " << Ab << " m^2, b's displacement before a's slip " << cf.before
+                   << " of its slip displacement, after " << cf.D / cf.delta_sb);
+    REQUIRE(cf.before < 0.97);  // b is well short of its threshold until a slips
+    CHECK_THAT(J.next_threshold(), WithinRel(cf.X, 1e-9));
+    const std::int64_t slipped = J.slip_crossed(J.next_threshold());
+    INFO("junctions slipped as driven past phi = 1: " << J.work().overloaded);
+    if (margin > 0) {
+      CHECK(slipped == 2);  // b goes with a, at the same X
+      CHECK(J.n_slipping() == 2);
+    } else {
+      CHECK(slipped == 1);
+      CHECK(J.n_slipping() == 1);
+      CHECK(J.next_threshold() > cf.X);  // b slips later, alone
+    }
+  }
+}
+
+TEST_CASE("event solver: a stand-in whose slips overload a neighbour runs to its peak as at converged solves",
           "[solve][interacting][event][heavy]") {
   // The stand-in P3.09N at ε = 0.58 (a fit's trial point): a slip's large force drop drives a
   // neighbour toward φ = 1, where its own compliance grows without bound and the chord iteration
-  // cannot follow; before, the run stopped there with a solver error (X = 2.37e-4 m). Now that
-  // junction slips in the avalanche. Truth: the same run at converged solves (1e-12), where the
-  // same junctions are caught the same way. Measured (2026-11-25): Q_s 3.4e-9, A_s 1.9e-12,
-  // t_peak 8.3e-11 relative apart, 2,558 slips each.
+  // cannot follow; before, the run stopped there with a solver error (X = 2.37e-4 m). Truth: the
+  // same run at converged solves (1e-12). Whether the chord iteration overshoots past φ = 1 on
+  // the way (and the junction is then slipped as Overloaded) depends on the last bits of C and
+  // of the kernels, so it is reported, not asserted; the designed pair above asserts the slip.
+  // Measured (2026-11-25): Q_s 3.4e-9, A_s 1.9e-12, t_peak 8.3e-11 relative apart, 2,558 slips each.
   Scene s = load_scene(std::filesystem::path(ASPERITY_SOURCE_DIR) / "scenes/paper/P3.09N.yaml",
                        {"model.interactions=elastic", "model.alpha_b=7.07107e-16", "model.epsilon=0.581667",
                         "model.eta=94.8683", "stop.at_first_peak=true", "stop.time=13"});
@@ -462,8 +531,6 @@ TEST_CASE("event solver: a junction driven far past its slip force in an avalanc
   converged.solver.interaction_tolerance = 1e-12;
   const auto [peak_c, slips_c] = run(converged, caught_converged);
   INFO("junctions slipped as driven past phi = 1: " << caught << " and " << caught_converged);
-  CHECK(caught >= 1);
-  CHECK(caught_converged >= 1);
   CHECK(slips == slips_c);
   CHECK_THAT(peak.Q, WithinRel(peak_c.Q, 1e-8));
   CHECK_THAT(peak.A, WithinRel(peak_c.A, 1e-8));
