@@ -70,7 +70,8 @@ def main():
                 run(form, args, tmp)
                 for q, v in summary_values(os.path.join(d, name, "summary.yaml")).items():
                     values.setdefault((name, q), {})[form] = v
-            run(form, ["bench", "interacting", "--sizes", "2400", "-q", "-o", os.path.join(d, "bench")], tmp)
+            run(form, ["bench", "-j", str(os.cpu_count()), "interacting", "--sizes", "2400", "-q", "-o",
+                       os.path.join(d, "bench")], tmp)
             with open(os.path.join(d, "bench", "interacting.csv")) as f:
                 for row in csv.DictReader(f):
                     if row["what"] != "first_peak":

@@ -55,7 +55,7 @@ std::vector<ThreadsBenchRow> run_threads_bench(const ThreadsBenchOptions& opt) {
     Scene s = bench_population(base, N);
     s.output.series.clear();
     s = with_positions(s, population_radius(base, N, opt.contact_radius_m));
-    timed(s, opt.threads.front(), "warm-up");  // tables, pages, caches: not in the first timed row
+    timed(s, widest, "warm-up");  // tables, pages, caches: not in the first timed row
     for (int t : opt.threads) {
       rows.push_back(timed(s, t, "quiet"));
       if (opt.log) *opt.log << "  N " << N << ", quiet, " << t << " thread(s): " << rows.back().wall_s << " s" << std::endl;
@@ -89,12 +89,15 @@ void write_threads_bench(const fs::path& dir, const std::vector<ThreadsBenchRow>
 
 std::string threads_bench_table(const std::vector<ThreadsBenchRow>& rows) {
   std::ostringstream o;
-  char line[320];
-  std::snprintf(line, sizeof line, "  %-5s %6s %7s %9s %8s | parallel efficiency t1/(p tp) by phase: %6s %6s %6s %6s %6s %6s %6s\n",
-                "load", "N", "threads", "wall s", "x 1 thr", "pass", "fold", "rebld", "remove", "law", "update", "rest");
+  char line[400];
+  std::snprintf(line, sizeof line,
+                "  %-5s %5s %3s %8s %6s | seconds by phase: %7s %7s %7s %7s %7s %7s %7s | efficiency t1/(p tp): %5s %5s "
+                "%5s %5s %5s %5s %5s\n",
+                "load", "N", "thr", "wall s", "x 1thr", "pass", "fold", "rebuild", "remove", "law", "update", "rest", "pass",
+                "fold", "rebld", "remov", "law", "updat", "rest");
   o << line;
   for (const auto& r : rows) {
-    const ThreadsBenchRow* one = nullptr;       // the same load's one-thread row
+    const ThreadsBenchRow* one = nullptr;        // the same load's one-thread row
     const ThreadsBenchRow* quiet_one = nullptr;  // the quiet one-thread row
     for (const auto& q : rows) {
       if (q.N != r.N || q.threads != 1) continue;
@@ -104,11 +107,13 @@ std::string threads_bench_table(const std::vector<ThreadsBenchRow>& rows) {
     const double p = r.threads;
     const auto eff = [&](double t1, double tp) { return tp > 0 ? t1 / (p * tp) : 0.0; };
     const ThreadsBenchRow& b = quiet_one ? *quiet_one : r;
-    std::snprintf(line, sizeof line, "  %-5s %6zu %7d %9.4g %8.3g | %47s %6.2f %6.2f %6.2f %6.2f %6.2f %6.2f %6.2f\n",
-                  r.load.c_str(), r.N, r.threads, r.wall_s, one ? r.wall_s / one->wall_s : 0.0, "",
-                  eff(b.pass_s, r.pass_s), eff(b.fold_s, r.fold_s), eff(b.rebuild_s, r.rebuild_s),
-                  eff(b.remove_s, r.remove_s), eff(b.law_s, r.law_s), eff(b.update_s, r.update_s),
-                  eff(b.rest_s(), r.rest_s()));
+    std::snprintf(line, sizeof line,
+                  "  %-5s %5zu %3d %8.4g %6.3g | %17s %7.3g %7.3g %7.3g %7.3g %7.3g %7.3g %7.3g | %21s %5.2f %5.2f %5.2f %5.2f "
+                  "%5.2f %5.2f %5.2f\n",
+                  r.load.c_str(), r.N, r.threads, r.wall_s, one ? r.wall_s / one->wall_s : 0.0, "", r.pass_s, r.fold_s,
+                  r.rebuild_s, r.remove_s, r.law_s, r.update_s, r.rest_s(), "", eff(b.pass_s, r.pass_s),
+                  eff(b.fold_s, r.fold_s), eff(b.rebuild_s, r.rebuild_s), eff(b.remove_s, r.remove_s),
+                  eff(b.law_s, r.law_s), eff(b.update_s, r.update_s), eff(b.rest_s(), r.rest_s()));
     o << line;
   }
   return o.str();
