@@ -745,6 +745,9 @@ std::string done_line(const Problem& pb, const Optimization& o) {
   if (o.best.empty() || !std::isfinite(o.objective)) line += "no successful evaluation";
   else line += values_text(pb, o.best) + ", objective " + g6(o.objective);
   line += ", " + std::to_string(o.evaluations) + " evaluations, " + o.stop_reason + ", " + g6(o.wall_s) + " s";
+  if (o.starts.size() > 1)
+    line += ", converged: " + std::string(converged_name(o.converged)) + " (" + std::to_string(o.in_best_basin) + " of " +
+            std::to_string(o.starts.size()) + " starts in the best basin)";
   if (!o.failure.empty()) line += "; FAILED: " + o.failure;
   return line;
 }

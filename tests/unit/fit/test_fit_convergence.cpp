@@ -93,7 +93,7 @@ TEST_CASE("sobol_starts: deterministic points inside the box, without the centre
   CHECK(c.size() == 7);
 }
 
-TEST_CASE("judge_convergence: two starts in the best basin certify it; one start is unverified; a lone best is not converged",
+TEST_CASE("judge_convergence: two starts in the best basin certify it, one start is unverified, a lone best is not converged",
           "[fit][convergence]") {
   const BasinRule rule{1e-3, 1e-3};
   SECTION("by objective") {
@@ -126,7 +126,7 @@ TEST_CASE("judge_convergence: two starts in the best basin certify it; one start
   }
 }
 
-TEST_CASE("A two-well landscape: one local start stops in the wrong well; eight starts find the global minimum and certify it",
+TEST_CASE("A two-well landscape: one local start stops in the wrong well, eight starts find the global minimum and certify it",
           "[fit][convergence]") {
   const FitResult one = fit_wells("{algorithm: LN_BOBYQA, xtol_rel: 1e-6, max_evaluations: 200}");
   REQUIRE(one.fits.size() == 1);
