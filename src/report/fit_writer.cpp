@@ -276,7 +276,7 @@ void write_uncertainty(std::ostream& y, const Optimization& o) {
 }
 
 // The starts of one optimization and the verdict on them (fit/convergence.hpp).
-void write_convergence(std::ostream& y, const FitSpec& spec, const Optimization& o) {
+void write_convergence(std::ostream& y, const Optimization& o) {
   auto num = [](double x) { return yaml_double(x); };
   y << "    converged: " << converged_name(o.converged)
     << "   # yes: >= 2 starts in the best basin; no: only the best start; unverified: one start\n";
@@ -305,7 +305,6 @@ void write_convergence(std::ostream& y, const FitSpec& spec, const Optimization&
     if (!s.failure.empty()) y << ", failure: " << yaml_quoted(s.failure);
     y << "}\n";
   }
-  (void)spec;
 }
 
 }  // namespace
@@ -352,7 +351,7 @@ std::string fit_yaml(const FitSpec& spec, const FitResult& result, const std::st
     y << "    status: " << (o.ok() ? "ok" : "failed") << "\n";
     if (!o.ok()) y << "    failure: " << yaml_quoted(o.failure) << "\n";
     y << "    stop_reason: " << o.stop_reason << "   # NLopt result\n";
-    write_convergence(y, spec, o);
+    write_convergence(y, o);
     y << "    evaluations: " << o.evaluations << "\n";
     y << "    wall_s: " << num(o.wall_s) << "\n";
     y << "    objective: " << num(o.objective) << "\n";
