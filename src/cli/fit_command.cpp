@@ -154,20 +154,29 @@ class EvaluationProgress {
   double best_ = HUGE_VAL;
 };
 
-// The summary lines and the exit code of a finished fit (failed optimizations on stderr).
+// The summary lines and the exit code of a finished fit: a failed optimization, or one whose
+// best objective no second start reached (converged: no, as a drifted regression), is a failed
+// check, one line each on stderr. A single start (unverified) is said, not failed.
 int report_fit(const FitCliOptions& opt, const FitResult& result, const fs::path& written) {
-  int evaluations = 0;
+  int evaluations = 0, certified = 0, unverified = 0;
   bool ok = true;
   for (const auto& o : result.fits) {
     evaluations += o.evaluations;
-    ok = ok && o.ok();
+    ok = ok && o.ok() && o.converged != Converged::no;
+    certified += o.certified() ? 1 : 0;
+    unverified += o.converged == Converged::unverified ? 1 : 0;
   }
-  if (!opt.quiet)
-    std::printf("  %d evaluations in %zu fit(s); optimizations %.3f s (sum), total wall %.3f s (incl. profile, error-bar refits)\n  -> %s\n",
-                evaluations, result.fits.size(), result.fit_wall_s, result.wall_s, written.string().c_str());
+  if (!opt.quiet) {
+    std::printf("  %d evaluations in %zu fit(s); optimizations %.3f s (sum), total wall %.3f s (incl. profile, error-bar refits)\n",
+                evaluations, result.fits.size(), result.fit_wall_s, result.wall_s);
+    std::printf("  converged: %d of %zu certified (>= 2 starts in the best basin)%s\n  -> %s\n", certified, result.fits.size(),
+                unverified ? ", the others unverified (one start: set optimizer.starts >= 2)" : "", written.string().c_str());
+  }
   if (!ok) {
-    for (const auto& o : result.fits)
+    for (const auto& o : result.fits) {
       if (!o.ok()) std::cerr << "fit " << o.label << " failed: " << o.failure << '\n';
+      else if (o.converged == Converged::no) std::cerr << "fit " << o.label << " did not converge: " << o.convergence << '\n';
+    }
     return exit_failure;
   }
   return exit_ok;
@@ -212,7 +221,7 @@ int run(const FitCliOptions& opt, const Invocation& inv) {
     };
   }
   const std::size_t optimizations = sharded ? fo.only.size() : spec.separate ? spec.experiments.size() : 1;
-  EvaluationProgress progress(static_cast<double>(spec.max_evaluations) * static_cast<double>(optimizations), opt.quiet);
+  EvaluationProgress progress(static_cast<double>(evaluation_budget(spec)) * static_cast<double>(optimizations), opt.quiet);
   fo.on_evaluation = [&](double objective) { progress.evaluated(objective); };
   FitResult result;
   try {

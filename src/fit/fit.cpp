@@ -344,6 +344,68 @@ Problem fit_problem(const FitSpec& spec, const FitOptions& options, const Optimi
   return pb;
 }
 
+// The journal part of start k (0-based): the first keeps "fit", so journals of single-start fits
+// replay as they always did.
+std::string start_part(std::size_t k) { return k == 0 ? std::string("fit") : "fit start " + std::to_string(k + 1); }
+
+// The points every start begins from, SI: the file's start, then Sobol points of the scaled box.
+std::vector<std::vector<double>> start_points(const FitSpec& spec, const Optimization& o) {
+  const std::size_t n = o.variables.size();
+  std::vector<double> u0(n);
+  for (std::size_t i = 0; i < n; ++i) u0[i] = parameter_coordinate(spec.parameters[o.variables[i].parameter], o.start[i]);
+  std::vector<std::vector<double>> points{o.start};
+  const std::size_t more = static_cast<std::size_t>(std::max(spec.starts, 1) - 1);
+  for (const auto& u : sobol_starts(n, more, u0)) {
+    std::vector<double> x(n);
+    for (std::size_t i = 0; i < n; ++i) x[i] = parameter_value(spec.parameters[o.variables[i].parameter], u[i]);
+    points.push_back(std::move(x));
+  }
+  return points;
+}
+
+// Runs every start (in parallel, each its own Problem and journal part: the order of the
+// evaluations inside a start is NLopt's, deterministic, whatever runs beside it) and puts them
+// together into `o`: the best start's point, all evaluations numbered start after start, and
+// the verdict on convergence.
+void run_starts(const FitSpec& spec, const Problem& pb, Optimization& o) {
+  const auto t0 = Clock::now();
+  const std::vector<std::vector<double>> from = start_points(spec, o);
+  std::vector<OptimizeResult> results(from.size());
+  for_each_nested(from.size(), [&](std::size_t k) {
+    Problem q = pb;
+    q.part = start_part(k);
+    results[k] = k == 0 ? optimize(std::move(q), from[k], spec.initial_step)
+                        : optimize(std::move(q), from[k], spec.initial_step, /*polish_only=*/true);
+  });
+  std::vector<StartEnd> ends;
+  for (std::size_t k = 0; k < results.size(); ++k) {
+    OptimizeResult& r = results[k];
+    StartRun sr{start_part(k), from[k], r.best, r.objective, static_cast<int>(r.log.size()), r.stop_reason, r.failure, false};
+    if (o.failure.empty() && !r.failure.empty()) o.failure = (k == 0 ? "" : "start " + std::to_string(k + 1) + ": ") + r.failure;
+    StartEnd e{std::vector<double>(r.best.size()), r.objective};
+    for (std::size_t i = 0; i < r.best.size(); ++i) e.u[i] = parameter_coordinate(spec.parameters[o.variables[i].parameter], r.best[i]);
+    ends.push_back(std::move(e));
+    for (Evaluation& ev : r.log) {
+      ev.index = static_cast<int>(o.log.size()) + 1;
+      o.log.push_back(std::move(ev));
+    }
+    o.starts.push_back(std::move(sr));
+  }
+  const ConvergenceVerdict v = judge_convergence(ends, BasinRule{spec.basin_tolerance, spec.basin_distance});
+  for (std::size_t k = 0; k < o.starts.size(); ++k) o.starts[k].in_best_basin = v.in_best_basin[k];
+  const StartRun& best = o.starts[v.best];
+  o.best_start = v.best;
+  o.best = best.best;
+  o.objective = best.objective;
+  o.stop_reason = best.stop_reason;
+  o.evaluations = static_cast<int>(o.log.size());
+  o.converged = v.converged;
+  o.convergence = v.reason;
+  o.in_best_basin = v.in_basin;
+  o.spread = v.spread;
+  o.wall_s = seconds_since(t0);
+}
+
 // The best runs, kept for the report (deterministic: same objective as journaled).
 void keep_best_runs(const Problem& pb, Optimization& o) {
   std::vector<ExperimentEval> runs;
@@ -683,6 +745,9 @@ std::string done_line(const Problem& pb, const Optimization& o) {
   if (o.best.empty() || !std::isfinite(o.objective)) line += "no successful evaluation";
   else line += values_text(pb, o.best) + ", objective " + g6(o.objective);
   line += ", " + std::to_string(o.evaluations) + " evaluations, " + o.stop_reason + ", " + g6(o.wall_s) + " s";
+  if (o.starts.size() > 1)
+    line += ", converged: " + std::string(converged_name(o.converged)) + " (" + std::to_string(o.in_best_basin) + " of " +
+            std::to_string(o.starts.size()) + " starts in the best basin)";
   if (!o.failure.empty()) line += "; FAILED: " + o.failure;
   return line;
 }
@@ -692,18 +757,19 @@ std::string done_line(const Problem& pb, const Optimization& o) {
 void run_task(const FitSpec& spec, const FitOptions& options, Optimization& o, std::mutex& progress_mutex, Counts& counts,
               const StopFlag& stop) {
   const Problem pb = fit_problem(spec, options, o, counts, stop);
-  OptimizeResult r = optimize(pb, o.start, spec.initial_step);
-  o.best = r.best;
-  o.objective = r.objective;
-  o.stop_reason = r.stop_reason;
-  o.failure = r.failure;
-  o.evaluations = static_cast<int>(r.log.size());
-  o.wall_s = r.wall_s;
-  o.log = std::move(r.log);
+  run_starts(spec, pb, o);
   const bool have_best = std::isfinite(o.objective);
-  if (have_best) keep_best_runs(pb, o);
+  if (have_best) {
+    Problem best = pb;  // the best evaluation's journal line is where its start journaled it
+    best.part = o.starts[o.best_start].part;
+    keep_best_runs(best, o);
+  }
   if (have_best && o.ok() && options.profile && spec.profile) run_profile(spec, pb, o);
-  if (have_best && o.ok() && options.error_bars && spec.intervals && spec.objective == FitObjective::area_and_force) run_uncertainty(spec, pb, o);
+  if (have_best && o.ok() && options.error_bars && spec.intervals && spec.objective == FitObjective::area_and_force) {
+    // Intervals describe a minimum: around a point no second start confirms they describe a slope.
+    if (o.certified()) run_uncertainty(spec, pb, o);
+    else o.uncertainty.failure = std::string("not certified (converged: ") + converged_name(o.converged) + "): " + o.convergence;
+  }
   if (have_best && o.ok() && options.error_bars && !spec.error_bars.empty()) run_refits(spec, options, o, counts, stop);
   if (options.progress) {
     const std::string line = done_line(pb, o);
@@ -713,6 +779,12 @@ void run_task(const FitSpec& spec, const FitOptions& options, Optimization& o, s
 }
 
 }  // namespace
+
+int evaluation_budget(const FitSpec& spec) {
+  const bool polish = !spec.polish_algorithm.empty();
+  const int local = polish ? spec.polish_max_evaluations : spec.max_evaluations;
+  return spec.max_evaluations + (polish ? spec.polish_max_evaluations : 0) + (std::max(spec.starts, 1) - 1) * local;
+}
 
 std::string nlopt_result_name(int result) {
   const char* s = nlopt_result_to_string(static_cast<nlopt_result>(result));

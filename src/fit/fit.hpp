@@ -33,6 +33,7 @@
 #include <string>
 #include <vector>
 
+#include "fit/convergence.hpp"
 #include "fit/fit_spec.hpp"
 #include "fit/objective.hpp"
 #include "observe/observables.hpp"
@@ -163,6 +164,20 @@ struct ErrorBarRefit {
   std::string failure;
 };
 
+// One start of an optimization (FitSpec::starts): the first runs the algorithm (then the polish)
+// from the file's start, journaled as part "fit"; start K ≥ 2 runs the local stage from a Sobol
+// point, part "fit start K".
+struct StartRun {
+  std::string part;                      // its journal part
+  std::vector<double> from;              // SI
+  std::vector<double> best;              // SI (NaN before any successful evaluation)
+  double objective = std::numeric_limits<double>::quiet_NaN();
+  int evaluations = 0;
+  std::string stop_reason;
+  std::string failure;
+  bool in_best_basin = false;
+};
+
 struct Optimization {
   std::string label;                     // experiment name (separate) or "joint"
   std::vector<std::size_t> experiments;  // indices into FitSpec::experiments
@@ -174,7 +189,14 @@ struct Optimization {
   std::string failure;                   // empty when the fit ended normally
   int evaluations = 0;
   double wall_s = 0;                     // the optimization itself
-  std::vector<Evaluation> log;
+  std::vector<Evaluation> log;            // every start's evaluations, start after start
+  std::vector<StartRun> starts;
+  std::size_t best_start = 0;             // index into starts of the best one
+  Converged converged = Converged::unverified;
+  std::string convergence;                // why (ConvergenceVerdict::reason)
+  int in_best_basin = 0;                  // starts in the best basin (the best included)
+  double spread = 0;                      // their largest scaled distance from the best
+  bool certified() const { return converged == Converged::yes; }
   std::vector<ExperimentRun> best_runs;  // empty when no evaluation succeeded
   std::vector<ProfilePoint> profile;      // the first profiled parameter's (= profiles[0].points)
   std::size_t profile_parameter = 0;
@@ -196,6 +218,10 @@ struct FitResult {
 
 // NLopt's name of a result code (e.g. "XTOL_REACHED").
 std::string nlopt_result_name(int result);
+
+// The most evaluations the optimizations of one fit can take (the global stage once, then each
+// start's local stage): the progress line's budget.
+int evaluation_budget(const FitSpec& spec);
 
 // Minimises; never throws for a failing evaluation (see Optimization::failure). RunInterrupted
 // when FitOptions::stop cut it short.

@@ -31,7 +31,8 @@ const std::vector<std::string> kIntervalKeys{"hessian_step"};
 const std::vector<std::string> kTargetKeys{"drop", "period"};
 const std::vector<std::string> kParameterKeys{"lo", "hi", "start", "scale", "per_experiment"};
 const std::vector<std::string> kOptimizerKeys{"algorithm", "xtol_rel", "ftol_rel", "ftol_abs",
-                                              "max_evaluations", "initial_step", "polish"};
+                                              "max_evaluations", "initial_step", "polish", "starts",
+                                              "basin_tolerance", "basin_distance"};
 const std::vector<std::string> kPolishKeys{"algorithm", "max_evaluations"};
 const std::vector<std::string> kProfileKeys{"parameter", "span", "points"};
 
@@ -320,6 +321,30 @@ FitExperiment read_experiment(const ExperimentContext& cx, const YAML::Node& en,
   return fe;
 }
 
+// optimizer.{starts, basin_tolerance, basin_distance} into spec (after the algorithm and polish:
+// further starts need a local stage).
+void read_starts(const MapView& o, FitSpec& spec) {
+  if (auto n = o.find("starts")) {
+    spec.starts = o.integer(*n, "starts");
+    if (spec.starts < 1 || spec.starts > kMaxFitStarts)
+      o.fail_at(*n, "starts", "must be in [1, " + std::to_string(kMaxFitStarts) + "], got " + std::to_string(spec.starts));
+    if (spec.starts > 1 && spec.polish_algorithm.empty() && spec.algorithm.rfind("LN_", 0) != 0)
+      o.fail_at(*n, "starts", "every start after the first runs the local stage, and " + quote(spec.algorithm) +
+                                  " is global with no polish: add polish: {algorithm: LN_SBPLX} or use an LN_* algorithm");
+  }
+  if (auto n = o.find("basin_tolerance")) {
+    spec.basin_tolerance = o.number(*n, "basin_tolerance", nullptr);
+    if (!(spec.basin_tolerance >= 0 && spec.basin_tolerance < 1))
+      o.fail_at(*n, "basin_tolerance", "must be in [0, 1) (relative to the best objective), got " + format_double(spec.basin_tolerance));
+  }
+  if (auto n = o.find("basin_distance")) {
+    spec.basin_distance = o.number(*n, "basin_distance", nullptr);
+    if (!(spec.basin_distance >= 0 && spec.basin_distance < 1))
+      o.fail_at(*n, "basin_distance", "must be in [0, 1) (in the scaled coordinates, each parameter's range 1), got " +
+                                          format_double(spec.basin_distance));
+  }
+}
+
 // `optimizer:` into spec; the node that named the algorithm (undefined: none).
 YAML::Node read_optimizer(const Source& src, const MapView& root, FitSpec& spec) {
   YAML::Node algorithm_node;
@@ -364,6 +389,7 @@ YAML::Node read_optimizer(const Source& src, const MapView& root, FitSpec& spec)
     if (!(spec.initial_step > 0 && spec.initial_step <= 1))
       o.fail_at(*n, "initial_step", "must be in (0, 1] (a fraction of each parameter's scaled range), got " + format_double(spec.initial_step));
   }
+  read_starts(o, spec);
   return algorithm_node;
 }
 

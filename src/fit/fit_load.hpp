@@ -18,7 +18,8 @@
 //     model.alpha_b: {lo: 1e-16, hi: 3e-15, start: 0.725e-15, scale: log, per_experiment: false}
 //   optimizer: {algorithm: LN_BOBYQA, xtol_rel: 1e-4, ftol_rel: 0, ftol_abs: 0,
 //               max_evaluations: 60, initial_step: 0.1,
-//               polish: {algorithm: LN_SBPLX, max_evaluations: 100}}   # optional local 2nd stage
+//               polish: {algorithm: LN_SBPLX, max_evaluations: 100},   # optional local 2nd stage
+//               starts: 1, basin_tolerance: 1e-3, basin_distance: 1e-3}  # multi-start (fit/convergence.hpp)
 //   noise: {area: 0.002, force: 0.002, stick_slip: 0.05}   # area_and_force: residual units
 //   intervals: true                # or {hessian_step: 0.01}; area_and_force only (default true)
 //   profile: {parameter: model.alpha_b, span: 0.2, points: 11}   # or false; parameter: a key, a list, or all
@@ -71,6 +72,9 @@ FitSpec load_fit(const std::filesystem::path& fit_yaml, const std::vector<std::s
 // FitSpec::file stays empty, the name defaults to "fit", FitSpec::memory_text is the tree's YAML.
 FitSpec fit_from_memory(const YAML::Node& tree, const std::filesystem::path& base_dir, const std::string& display,
                         const std::vector<std::string>& overrides = {}, const FitLoadOptions& options = {});
+
+// optimizer.starts at most (each start costs up to a local stage's budget of model runs).
+inline constexpr int kMaxFitStarts = 256;
 
 // NLopt's name of an algorithm is accepted by load_fit (derivative-free, needs no subsidiary
 // optimizer); "" when it is, else the reason.

@@ -93,6 +93,13 @@ struct FitSpec {
   std::string polish_algorithm;
   int polish_max_evaluations = 100;
   double initial_step = 0.1;          // first step, as a fraction of each scaled box [0, 1]
+  // Starts (fit/convergence.hpp): the first is the algorithm (then the polish) from `start`; each
+  // further one is the local stage (the polish when there is one, else the algorithm) from a
+  // point of a Sobol design. ≥ 2 starts ending in the best basin certify the optimum; one start
+  // is `unverified` (today's single run).
+  int starts = 1;
+  double basin_tolerance = 1e-3;      // relative on the objective (BasinRule::relative)
+  double basin_distance = 1e-3;       // in the scaled coordinates (BasinRule::distance)
   bool profile = true;                // write profile.csv / profile.png
   ProfileSettings profile_settings;
   std::vector<ErrorBar> error_bars;   // empty: no error-bar refits

@@ -468,6 +468,10 @@ PYBIND11_MODULE(_asperity, m) {
       d["evaluations"] = o.evaluations;
       d["stop_reason"] = o.stop_reason;
       d["failure"] = o.failure;
+      d["converged"] = converged_name(o.converged);  // fit/convergence.hpp: yes, no, unverified
+      d["starts"] = o.starts.size();
+      d["in_best_basin"] = o.in_best_basin;
+      d["spread"] = o.spread;
       py::dict runs;
       for (const ExperimentRun& r : o.best_runs) runs[py::str(spec.experiments[r.experiment].name)] = summary_dict(r.obs);
       d["runs"] = runs;

@@ -240,6 +240,11 @@ void write_uncertainty(std::ostream& y, const Optimization& o) {
   auto num = [](double x) { return yaml_double(x); };
   const Uncertainty& un = o.uncertainty;
   y << "    uncertainty:\n";
+  if (!o.certified()) {  // no numbers around a point no second start confirms as the minimum
+    y << "      certified: false\n      failure: " << yaml_quoted(un.failure) << "\n";
+    return;
+  }
+  y << "      certified: true\n";
   y << "      method: \"chi-square: Hessian H of the objective at the optimum by central differences (relative steps from "
     << num(un.step) << ", rescaled until each parameter's own rise is 1-16 s^2), covariance 2 s^2 H^-1, s^2 = objective / (residuals - free variables) (the reduced chi-square); "
        "sigma: marginal standard deviation; interval95: value +- 1.96 sigma; profile_interval: where the one-parameter "
@@ -270,6 +275,38 @@ void write_uncertainty(std::ostream& y, const Optimization& o) {
   }
 }
 
+// The starts of one optimization and the verdict on them (fit/convergence.hpp).
+void write_convergence(std::ostream& y, const Optimization& o) {
+  auto num = [](double x) { return yaml_double(x); };
+  y << "    converged: " << converged_name(o.converged)
+    << "   # yes: >= 2 starts in the best basin; no: only the best start; unverified: one start\n";
+  y << "    convergence: " << yaml_quoted(o.convergence) << "\n";
+  y << "    starts: " << o.starts.size() << "\n";
+  y << "    best_start: " << o.best_start + 1 << "   # its stop_reason above\n";
+  y << "    in_best_basin: " << o.in_best_basin << "\n";
+  y << "    spread:   # of the optima of the starts in the best basin\n";
+  y << "      scaled: " << num(o.spread) << "   # largest distance from the best, scaled coordinates\n";
+  y << "      parameters:\n";
+  for (std::size_t i = 0; i < o.variables.size(); ++i) {
+    double lo = Observables::nan, hi = Observables::nan;
+    for (const StartRun& s : o.starts)
+      if (s.in_best_basin && i < s.best.size()) lo = std::fmin(lo, s.best[i]), hi = std::fmax(hi, s.best[i]);
+    y << "        " << yaml_quoted(o.variables[i].label) << ": [" << num(lo) << ", " << num(hi) << "]\n";
+  }
+  y << "    start_runs:\n";
+  for (std::size_t k = 0; k < o.starts.size(); ++k) {
+    const StartRun& s = o.starts[k];
+    y << "      - {start: " << k + 1 << ", from: [";
+    for (std::size_t i = 0; i < s.from.size(); ++i) y << (i ? ", " : "") << num(s.from[i]);
+    y << "], best: [";
+    for (std::size_t i = 0; i < s.best.size(); ++i) y << (i ? ", " : "") << num(s.best[i]);
+    y << "], objective: " << num(s.objective) << ", evaluations: " << s.evaluations << ", stop_reason: " << yaml_quoted(s.stop_reason)
+      << ", in_best_basin: " << (s.in_best_basin ? "true" : "false");
+    if (!s.failure.empty()) y << ", failure: " << yaml_quoted(s.failure);
+    y << "}\n";
+  }
+}
+
 }  // namespace
 
 std::string fit_yaml(const FitSpec& spec, const FitResult& result, const std::string& command_line) {
@@ -295,6 +332,9 @@ std::string fit_yaml(const FitSpec& spec, const FitResult& result, const std::st
   y << "xtol_rel: " << num(spec.xtol_rel) << "\nftol_rel: " << num(spec.ftol_rel) << "\nftol_abs: "
     << num(spec.ftol_abs) << "\n";
   y << "max_evaluations: " << spec.max_evaluations << "\ninitial_step: " << num(spec.initial_step) << "\n";
+  y << "starts: " << spec.starts << "   # the algorithm from the start, then the local stage from Sobol points\n";
+  y << "basin: {tolerance: " << num(spec.basin_tolerance) << ", distance: " << num(spec.basin_distance)
+    << "}   # a start is in the best basin within this relative objective or scaled distance\n";
   y << "threads: " << result.threads << "\n";
   y << "wall_s: " << num(result.wall_s) << "   # everything: fits, re-runs, profiles, error-bar refits\n";
   y << "fit_wall_s: " << num(result.fit_wall_s) << "   # sum of the optimizations alone\n";
@@ -311,6 +351,7 @@ std::string fit_yaml(const FitSpec& spec, const FitResult& result, const std::st
     y << "    status: " << (o.ok() ? "ok" : "failed") << "\n";
     if (!o.ok()) y << "    failure: " << yaml_quoted(o.failure) << "\n";
     y << "    stop_reason: " << o.stop_reason << "   # NLopt result\n";
+    write_convergence(y, o);
     y << "    evaluations: " << o.evaluations << "\n";
     y << "    wall_s: " << num(o.wall_s) << "\n";
     y << "    objective: " << num(o.objective) << "\n";
@@ -439,7 +480,7 @@ void write_fit(const fs::path& dir, const FitSpec& spec, const FitResult& result
         c << "," << format_g17(o.objective) << "," << format_g17(r.residual);
         for (const auto& [column, field] : kFittedObservables) c << "," << format_g17(observable_field(field).value(r.obs));
         c << "," << o.evaluations << ","
-          << format_g17(o.wall_s) << "," << o.stop_reason << "," << (o.ok() ? "ok" : "failed") << "\n";
+          << format_g17(o.wall_s) << "," << csv_field(o.stop_reason) << "," << (o.ok() ? "ok" : "failed") << "\n";
       }
     }
     scene_io::write_text_file(tmp / "fitted.csv", c.str());

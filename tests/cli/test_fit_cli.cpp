@@ -78,6 +78,38 @@ TEST_CASE("asperity fit writes the results directory", "[fit][cli]") {
   fs::remove_all(c.dir);
 }
 
+TEST_CASE("asperity fit certifies a multi-start optimum, and exits 1 on a mutant optimizer that stops at its first point",
+          "[fit][cli][convergence]") {
+  const FitCase c = make_fit_case("cli-conv", 0.7e-15, 1.5, 0.1, 40);
+  const std::string head = "objective: area_curve\nexperiments: [scene.yaml]\n"
+                           "parameters: {model.alpha_b: {lo: 1e-16, hi: 5e-15, start: 1e-15, scale: log}}\nprofile: false\n";
+  // Three LN_BOBYQA starts on a one-basin objective: all reach it.
+  write_text(c.dir / "good.yaml", head + "optimizer: {algorithm: LN_BOBYQA, starts: 3}\n");
+  std::string err;
+  REQUIRE(asperity_in(c.dir, "fit good.yaml --quiet --out good", &err) == 0);
+  const std::string y = slurp(c.dir / "good" / "fit.yaml");
+  CHECK(y.find("    converged: yes") != std::string::npos);
+  CHECK(y.find("    starts: 3\n") != std::string::npos);
+  CHECK(y.find("    in_best_basin: 3\n") != std::string::npos);
+  CHECK(y.find("      - {start: 3, from: [") != std::string::npos);
+  // The mutant: DIRECT stopped at its first lattice point (the centre), each start's polish at
+  // its start. The fit is written, says so, and fails the check: exit 1, one line.
+  write_text(c.dir / "mutant.yaml", head + "optimizer: {algorithm: GN_DIRECT_L, max_evaluations: 1, starts: 3, "
+                                           "polish: {algorithm: LN_BOBYQA, max_evaluations: 1}}\n");
+  CHECK(asperity_in(c.dir, "fit mutant.yaml --quiet --out mutant", &err) == 1);
+  CHECK(err == "fit fit-cli-conv did not converge: only 1 of 3 starts reached the best objective " +
+                   err.substr(err.find("objective ") + 10, err.find(" (within") - err.find("objective ") - 10) +
+                   " (within 0.001 relative, or 0.001 in the scaled coordinates): no other start confirms it\n");
+  const std::string m = slurp(c.dir / "mutant" / "fit.yaml");
+  CHECK(m.find("    converged: no") != std::string::npos);
+  CHECK(m.find("    in_best_basin: 1\n") != std::string::npos);
+  // A single start is unverified: said, not failed.
+  write_text(c.dir / "one.yaml", head + "optimizer: {algorithm: LN_BOBYQA}\n");
+  CHECK(asperity_in(c.dir, "fit one.yaml --quiet --out one") == 0);
+  CHECK(slurp(c.dir / "one" / "fit.yaml").find("    converged: unverified") != std::string::npos);
+  fs::remove_all(c.dir);
+}
+
 TEST_CASE("asperity fit on a bad fit file exits 2 naming file and line", "[fit][cli]") {
   const FitCase c = make_fit_case("clibad", 0.7e-15, 1.5, 0.1, 40);
   write_text(c.dir / "bad.yaml",
