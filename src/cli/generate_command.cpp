@@ -1,7 +1,9 @@
 // asperity generate [--recipe data/standin/recipe.yaml] [--out data/standin] [--scenes DIR] [--quiet]
 // Rebuilds the stand-in experiments (MODEL.md §7) from their recipe; same recipe, same bytes.
 // A recipe with a `topography:` section (generate/topography.hpp, docs/topography.md) instead
-// writes one experiment whose junctions are the contact clusters of a surface under a sphere.
+// writes one experiment whose junctions are the contact clusters of a surface under a sphere; one
+// with a `synthetic:` section (generate/synthetic.hpp) one experiment whose measured A(Q) and Q(t)
+// come from one run of a scene at known model settings, plus noise.
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -12,6 +14,7 @@
 #include "cli/options.hpp"
 #include "generate/recipe.hpp"
 #include "generate/standin.hpp"
+#include "generate/synthetic.hpp"
 #include "generate/topography.hpp"
 #include "io/input_error.hpp"
 #include "io/numbers.hpp"
@@ -68,8 +71,28 @@ int generate_topography(const GenerateCliOptions& o) {
   return exit_ok;
 }
 
+// Its own marker too: a synthetic experiment is never taken for a stand-in or topography output.
+constexpr const char* kSyntheticMarker = "generate synthetic";
+
+int generate_synthetic(const GenerateCliOptions& o) {
+  const SyntheticRecipe recipe = load_synthetic_recipe(o.recipe);
+  if (!o.scenes.empty())
+    throw InputError("--scenes", 0, "", "a synthetic recipe writes one experiment folder (with its scene.yaml); leave out --scenes");
+  check_ours(o.out, kSyntheticMarker, "--out");  // before the run: a refused folder costs no simulation
+  const SyntheticExperiment x = build_synthetic(recipe);
+  claim_dir(o.out, kSyntheticMarker, "--out");   // marked before any file: a rerun may replace a partial folder
+  write_synthetic_experiment(recipe, x, o.out);
+  if (!o.quiet)
+    std::cout << "wrote the SYNTHETIC experiment " << x.experiment.name << " (" << x.experiment.junctions.size()
+              << " junctions, Q_s = " << scene_io::format_short(x.model.Q_s) << " N at t = "
+              << scene_io::format_short(x.model.t_peak) << " s; " << x.experiment.measured->Q_N.size()
+              << " A(Q) and " << x.force.t_s.size() << " Q(t) samples) to " << o.out << "\n";
+  return exit_ok;
+}
+
 int generate(const GenerateCliOptions& o) {
   if (is_topography_recipe(o.recipe)) return generate_topography(o);
+  if (is_synthetic_recipe(o.recipe)) return generate_synthetic(o);
   const StandinRecipe recipe = load_recipe(o.recipe);
   check_ours(o.out, "generate", "--out", standin_folder);
   if (!o.scenes.empty()) check_ours(o.scenes, "generate", "--scenes", scenes_folder);
@@ -93,8 +116,9 @@ int generate(const GenerateCliOptions& o) {
 Command add_generate_command(CLI::App& app) {
   auto opt = std::make_shared<GenerateCliOptions>();
   CLI::App* sub = app.add_subcommand(
-      "generate", "Generate the stand-in experiments (junctions, stand-in measured A(Q), README) from a recipe, or with a "
-      "topography recipe one experiment whose junctions are the contact clusters of a surface under a sphere");
+      "generate", "Generate the stand-in experiments (junctions, stand-in measured A(Q), README) from a recipe, with a "
+      "topography recipe one experiment whose junctions are the contact clusters of a surface under a sphere, or with a "
+      "synthetic recipe one experiment whose A(Q) and Q(t) come from one run of a scene at known model settings");
   sub->add_option("--recipe,-r", opt->recipe, "Recipe YAML")->capture_default_str();
   sub->add_option("--out,-o", opt->out, "Output folder (one P<load>N/ subfolder per experiment)")
       ->capture_default_str();

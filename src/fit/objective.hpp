@@ -4,17 +4,11 @@
 #include <vector>
 
 #include "fit/fit_spec.hpp"
+#include "observe/area_at.hpp"  // model_area_at: the area_and_force objective's A(Q)
 #include "observe/observables.hpp"
 #include "solve/core/observer.hpp"
 
 namespace asperity {
-
-// Model area at the forces Q (N) from the loading branch: A(Q) along the samples whose Q
-// exceeds every earlier Q (the branch made monotone: ringing after single slips would make
-// A(Q) multivalued), linearly interpolated, the peak (Q_s, A_s) appended when beyond the last
-// sample. For Q above the peak force the model has slid: its area stays A_s there.
-std::vector<double> model_area_at(const std::vector<Sample>& loading, double Q_s, double A_s,
-                                  std::span<const double> Q);
 
 // Model force at the times t (s): the run's series (samples at k·every) linearly interpolated,
 // the first or last sample outside it. NaN everywhere without a series.
