@@ -125,10 +125,10 @@ namespace {
 
 // A CSV with the label as its first, comment line (the readers skip '#' lines), then `header`
 // and the columns, numbers that round-trip.
-std::string labelled_csv(const std::string& label, const std::string& header,
+std::string labelled_csv(const std::string& first_line, const std::string& header,
                          const std::vector<const std::vector<double>*>& columns) {
-  std::string s = "# ";  // appended piece by piece: GCC 12 warns (-Wrestrict, falsely) on "# " + label
-  s += label;
+  std::string s = "# ";  // appended piece by piece: GCC 12 warns (-Wrestrict, falsely) on "# " + first_line
+  s += first_line;
   s += '\n';
   s += header;
   s += '\n';
@@ -142,9 +142,9 @@ std::string labelled_csv(const std::string& label, const std::string& header,
   return s;
 }
 
-std::string junctions_text(const std::string& label, const JunctionPopulation& j) {
-  if (j.x_m.empty()) return labelled_csv(label, "area_m2", {&j.area_m2});
-  return labelled_csv(label, "area_m2,x_m,y_m", {&j.area_m2, &j.x_m, &j.y_m});
+std::string junctions_text(const std::string& first_line, const JunctionPopulation& j) {
+  if (j.x_m.empty()) return labelled_csv(first_line, "area_m2", {&j.area_m2});
+  return labelled_csv(first_line, "area_m2,x_m,y_m", {&j.area_m2, &j.x_m, &j.y_m});
 }
 
 std::string scene_text(const SyntheticRecipe& r) {
