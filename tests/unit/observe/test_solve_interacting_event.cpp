@@ -512,7 +512,7 @@ TEST_CASE("event solver: a stand-in whose slips overload a neighbour runs to its
   // same run at converged solves (1e-12). Whether the chord iteration overshoots past φ = 1 on
   // the way (and the junction is then slipped as Overloaded) depends on the last bits of C and
   // of the kernels, so it is reported, not asserted; the designed pair above asserts the slip.
-  // Measured (2026-11-25): Q_s 3.4e-9, A_s 1.9e-12, t_peak 8.3e-11 relative apart, 2,558 slips each.
+  // Measured: Q_s 3.4e-9, A_s 1.9e-12, t_peak 8.3e-11 relative apart, 2,558 slips each.
   Scene s = load_scene(std::filesystem::path(ASPERITY_SOURCE_DIR) / "scenes/paper/P3.09N.yaml",
                        {"model.interactions=elastic", "model.alpha_b=7.07107e-16", "model.epsilon=0.581667",
                         "model.eta=94.8683", "stop.at_first_peak=true", "stop.time=13"});

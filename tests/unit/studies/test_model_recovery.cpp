@@ -142,7 +142,7 @@ TEST_CASE("the interacting model's (alpha_b, epsilon, eta) are recovered from it
   check_recovery({"elastic-b-heavy", 0.25, 30, 4e-4, SyntheticTruth{1.5e-15, 0.75, 60, "elastic"}, 42});
 }
 
-// OPEN (hidden: fails as measured, 2026-11-28; CHANGELOG.md): truth b (1.5e-15, 0.75, 60) at the
+// OPEN (hidden: fails as measured; CHANGELOG.md): truth b (1.5e-15, 0.75, 60) at the
 // light load (M = 0.1 kg). Independent model, 12 starts: certified (2 of 12) and J_fit < J_truth,
 // but the truth lies outside 2 sigma (noise seed 21: alpha_b z = 2.56, epsilon z = -2.77; seed 23:
 // eta z = 5.46, sigma 0.5 % of eta, a third of the heavy load's). Interacting model, 16 starts:
