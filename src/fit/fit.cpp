@@ -66,7 +66,7 @@ ExperimentEval run_experiment(const FitSpec& spec, std::size_t e, const std::vec
       if (!user_term || !*user_term) throw std::invalid_argument("run_fit: the user objective needs FitOptions::user_term");
       out.residual = (*user_term)(fe, scene, r);
     } else if (spec.objective == FitObjective::area_and_force) {
-      out.terms = area_and_force_terms(scene, r.obs, r.recorder.loading_branch(), r.recorder.series(), fe, spec.noise);
+      out.terms = area_and_force_terms(scene, r.obs, r.recorder.loading_branch(), r.recorder.series(), fe, spec.noise, spec.force_score);
       out.residual = out.terms.total();
     } else {
       out.residual = experiment_residual(spec.objective, scene, r.obs, r.recorder.loading_branch(), fe.target);
@@ -660,7 +660,7 @@ void run_uncertainty(const FitSpec& spec, const Problem& pb, Optimization& o) {
   Uncertainty& un = o.uncertainty;
   un.step = spec.hessian_step;
   const std::size_t n = o.variables.size();
-  for (const std::size_t e : o.experiments) un.residuals += area_and_force_count(spec.experiments[e].scene.build(), spec.experiments[e]);
+  for (const std::size_t e : o.experiments) un.residuals += area_and_force_count(spec.experiments[e].scene.build(), spec.experiments[e], spec.noise, spec.force_score);
   const double f0 = o.objective;
   if (un.residuals <= static_cast<int>(n)) {
     un.failure = std::to_string(un.residuals) + " residuals for " + std::to_string(n) + " free variables";

@@ -24,6 +24,15 @@ const char* objective_name(FitObjective o) {
   return "unknown";
 }
 
+const char* force_score_name(ForceScore s) {
+  switch (s) {
+    case ForceScore::pointwise: return "pointwise";
+    case ForceScore::loading_and_cycles: return "loading_and_cycles";
+    case ForceScore::automatic: return "auto";
+  }
+  return "unknown";
+}
+
 namespace {
 std::string g4(double x) {  // message numbers: 4 significant digits
   char b[40];

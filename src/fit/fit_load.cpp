@@ -24,7 +24,8 @@ using namespace scene_io;
 namespace {
 
 const std::vector<std::string> kFitKeys{"name", "description", "objective", "separate", "experiments",
-                                        "parameters", "optimizer", "profile", "error_bars", "noise", "intervals"};
+                                        "parameters", "optimizer", "profile", "error_bars", "noise", "intervals",
+                                        "force_score"};
 const std::vector<std::string> kExperimentKeys{"scene", "set", "target", "force"};
 const std::vector<std::string> kNoiseKeys{"area", "force", "stick_slip"};
 const std::vector<std::string> kIntervalKeys{"hessian_step"};
@@ -75,7 +76,7 @@ struct ParamNodes {  // where each parameter's values were written (for errors f
   YAML::Node key, lo, hi, start;
 };
 
-// What the fit's top-level keys name: name, description, objective, separate.
+// What the fit's top-level keys name: name, description, objective, separate, force_score.
 void read_fit_header(const MapView& root, const fs::path& path, const FitLoadOptions& options, FitSpec& spec) {
   if (auto n = root.find("name")) {
     spec.name = root.string(*n, "name");
@@ -99,6 +100,14 @@ void read_fit_header(const MapView& root, const fs::path& path, const FitLoadOpt
                                                      {"area_and_force", FitObjective::area_and_force}});
   }
   if (auto n = root.find("separate")) spec.separate = root.boolean(*n, "separate");
+  if (auto n = root.find("force_score")) {
+    if (spec.objective != FitObjective::area_and_force)
+      root.fail_at(*n, "force_score", std::string("a Q(t) score is used by the area_and_force objective only, not ") +
+                                          objective_name(spec.objective));
+    spec.force_score = root.enumeration<ForceScore>(*n, "force_score", {{"pointwise", ForceScore::pointwise},
+                                                                        {"loading_and_cycles", ForceScore::loading_and_cycles},
+                                                                        {"auto", ForceScore::automatic}});
+  }
 }
 
 // One free parameter `key` from its map {lo:, hi:, start:, scale:, per_experiment:}.

@@ -49,6 +49,16 @@ struct FitExperiment {
   bool has_target() const { return std::isfinite(target.drop_N) && std::isfinite(target.period_s); }
 };
 
+// How an area_and_force objective scores the measured Q(t) (objective.hpp).
+enum class ForceScore {
+  pointwise,           // every sample against the model's Q at its instant
+  loading_and_cycles,  // samples to the measured first peak pointwise; the stick-slip after it by
+                       // its mean drop and period (read the same way from both curves)
+  automatic,           // per experiment: loading_and_cycles where the measured Q(t) shows two
+                       // complete stick-slip cycles or more, else pointwise (objective.hpp)
+};
+const char* force_score_name(ForceScore s);
+
 // Noise levels of the area_and_force objective: each residual is divided by its level, so a
 // term of n samples contributes about n at a fit within the noise (a chi-square), whatever its
 // units. Relative: area to the experiment's Σ A0, force to the largest measured Q, stick-slip
@@ -104,6 +114,7 @@ struct FitSpec {
   ProfileSettings profile_settings;
   std::vector<ErrorBar> error_bars;   // empty: no error-bar refits
   FitNoise noise;                     // area_and_force only
+  ForceScore force_score = ForceScore::automatic;  // area_and_force only (docs/calibration.md)
   // Statistical intervals from the curvature of the objective at the optimum (area_and_force:
   // a chi-square): central finite differences of relative step `hessian_step` per parameter,
   // covariance 2 s² H⁻¹ with s² the reduced chi-square at the optimum (fit.hpp, Uncertainty).

@@ -325,6 +325,8 @@ std::string fit_yaml(const FitSpec& spec, const FitResult& result, const std::st
   y << "description: " << yaml_quoted(spec.description) << "\n";
   y << "data: " << (stand_in ? "stand-in" : "measured") << "\n";
   y << "objective: " << objective_name(spec.objective) << "\n";
+  if (spec.objective == FitObjective::area_and_force)
+    y << "force_score: " << force_score_name(spec.force_score) << "\n";
   y << "mode: " << (spec.separate ? "separate" : "joint") << "\n";
   y << "algorithm: " << spec.algorithm << "\n";
   if (!spec.polish_algorithm.empty())
@@ -372,8 +374,8 @@ std::string fit_yaml(const FitSpec& spec, const FitResult& result, const std::st
       y << "        term: " << num(r.residual) << "\n";
       if (spec.objective == FitObjective::area_and_force)
         y << "        chi2: {area: " << num(r.terms.area) << ", n_area: " << r.terms.n_area << ", force: " << num(r.terms.force)
-          << ", n_force: " << r.terms.n_force << ", stick_slip: " << num(r.terms.stick_slip) << ", n_stick_slip: "
-          << r.terms.n_stick_slip << "}\n";
+          << ", n_force: " << r.terms.n_force << ", score: " << force_score_name(r.terms.score) << ", cycles: " << num(r.terms.cycles) << ", n_cycles: " << r.terms.n_cycles
+          << ", stick_slip: " << num(r.terms.stick_slip) << ", n_stick_slip: " << r.terms.n_stick_slip << "}\n";
       for (const char* name : kFitYamlObservables) {
         const ObservableField& f = observable_field(name);
         y << "        " << f.name << ": " << observable_text(f, b, yaml_double) << "\n";

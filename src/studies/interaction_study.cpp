@@ -615,7 +615,7 @@ JointSide run_joint_side(const std::string& name, const std::map<std::string, Jo
   s.missing.clear();
   s.obs = r.obs;
   s.wall_s = r.obs.wall_s;
-  s.objective = area_and_force_terms(scene, r.obs, r.recorder.loading_branch(), r.recorder.series(), *fe, spec.noise).total();
+  s.objective = area_and_force_terms(scene, r.obs, r.recorder.loading_branch(), r.recorder.series(), *fe, spec.noise, spec.force_score).total();
   s.force = force_misfit(r.recorder.series(), *fe->force, spec.noise.force);
   if (scene.experiment.measured) {
     const auto& a0 = scene.experiment.junctions.area_m2;

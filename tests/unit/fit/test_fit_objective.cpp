@@ -120,3 +120,79 @@ TEST_CASE("A NaN objective ends the fit with a clear reason", "[fit][objective]"
   CHECK(std::isnan(o.objective));
   std::filesystem::remove_all(c.dir);
 }
+
+TEST_CASE("loading_and_cycles scores the loading branch held at the peak, and the cycles by drop and period",
+          "[fit][objective]") {
+  // Measured: a sawtooth rising at 1 N/s from 0, dropping to 0 every 1 s, sampled every 0.01 s
+  // for 5.5 s. Its first peak is the sample t = 0.99 s: the loading branch is 100 samples.
+  FitExperiment fe;
+  MeasuredForce f;
+  for (int k = 0; k <= 550; ++k) {
+    f.t_s.push_back(0.01 * k);
+    f.Q_N.push_back(0.01 * (k % 100));
+  }
+  fe.force = f;
+  Scene scene;  // no measured A(Q); output.peak_min_drop 0.02
+  FitNoise noise;
+  noise.force = 0.01;  // residual unit: 0.01 · max Q (0.99)
+  noise.stick_slip = 0.05;
+  const double scale = 0.01 * 0.99;
+
+  // The model, every 0.001 s: the same loading to its static peak at t = 0.8 s, then drops of
+  // 0.5 N every 0.5 s (rising from 0.3 N at 1 N/s). Read at the measured instants its first
+  // peak is the sample t = 0.79 s, Q = 0.79 N (its Observables play no part).
+  std::vector<Sample> series;
+  for (int k = 0; k <= 5500; ++k) {
+    Sample s;
+    s.t = 0.001 * k;
+    s.Q = k < 800 ? 0.001 * k : 0.3 + 0.001 * ((k - 800) % 500);
+    series.push_back(s);
+  }
+  Observables obs;
+  obs.peak_found = true;
+  obs.t_peak = 0.7995;
+  obs.Q_s = 0.7995;
+  const JointTerms p = area_and_force_terms(scene, obs, {}, series, fe, noise, ForceScore::loading_and_cycles);
+  REQUIRE(p.n_force == 100);
+  REQUIRE(p.n_cycles == 2);
+  // Held at 0.79 N past t = 0.79 s: the samples t = 0.80 … 0.99 miss by t − 0.79 (closed form).
+  double expect = 0;
+  for (int k = 80; k <= 99; ++k) expect += std::pow((0.01 * k - 0.79) / scale, 2);
+  CHECK(p.force == Approx(expect).epsilon(1e-9));
+  // Cycles, both read at the measured instants over the measured 5 drops and 4 periods:
+  // measured drop 0.99 N and period 1 s; the model's sampled drop 0.79 − 0.3 = 0.49 N and
+  // period 0.5 s. Deviations (objective.hpp): σ_Q = 0.0099 N, reloading 0.99 N/s, dt 0.01 s.
+  const double sigma_Q = 0.0099, miss = 0.99 * 0.01;
+  const double sigma_drop = std::sqrt((2 * sigma_Q * sigma_Q + miss * miss / 6) / 5), sigma_period = 0.01 / (std::sqrt(3.0) * 4);
+  CHECK(p.cycles == Approx(std::pow(0.5 / sigma_drop, 2) + std::pow(0.5 / sigma_period, 2)).epsilon(1e-6));
+  CHECK(area_and_force_count(scene, fe, noise, ForceScore::loading_and_cycles) == 102);
+  // Pointwise scores all 551 samples; the measured curve scored against itself is 0 either way.
+  CHECK(area_and_force_terms(scene, obs, {}, series, fe, noise).n_force == 551);
+  std::vector<Sample> same;
+  for (std::size_t k = 0; k < f.t_s.size(); ++k) {
+    Sample s;
+    s.t = f.t_s[k];
+    s.Q = f.Q_N[k];
+    same.push_back(s);
+  }
+  obs.t_peak = 0.99, obs.Q_s = 0.99;
+  const JointTerms z = area_and_force_terms(scene, obs, {}, same, fe, noise, ForceScore::loading_and_cycles);
+  CHECK(z.force == Approx(0.0).margin(1e-20));
+  CHECK(z.cycles == Approx(0.0).margin(1e-20));
+  // auto: loading_and_cycles here (four complete cycles measured); pointwise on a window that
+  // ends before the third peak (one complete cycle).
+  CHECK(area_and_force_terms(scene, obs, {}, series, fe, noise, ForceScore::automatic).n_force == 100);
+  FitExperiment short_fe;
+  short_fe.force = MeasuredForce{std::vector<double>(f.t_s.begin(), f.t_s.begin() + 250),
+                                 std::vector<double>(f.Q_N.begin(), f.Q_N.begin() + 250)};
+  const JointTerms a = area_and_force_terms(scene, obs, {}, series, short_fe, noise, ForceScore::automatic);
+  CHECK(a.score == ForceScore::pointwise);
+  CHECK(a.n_force == 250);
+  CHECK(a.n_cycles == 0);
+  CHECK(area_and_force_count(scene, short_fe, noise, ForceScore::automatic) == 250);
+  // A model without stick-slip counts as drop = period = 0.
+  std::vector<Sample> flat = same;
+  for (Sample& s : flat) s.Q = std::min(s.t, 0.99);
+  CHECK(area_and_force_terms(scene, obs, {}, flat, fe, noise, ForceScore::loading_and_cycles).cycles ==
+        Approx(std::pow(0.99 / sigma_drop, 2) + std::pow(1.0 / sigma_period, 2)));
+}
