@@ -2,9 +2,10 @@
 # [sbatch options...]" and the submission of a job array followed by one job that starts once
 # every task of the array succeeded (--dependency=afterok).
 
-# check_submit_args NAME "$@": exits 2 with one line unless INPUT is a file and TASKS a whole
-# number in [1, 99999]; sets input, out (absolute), tasks, asperity (absolute: $ASPERITY or the
-# project's build/asperity) and sbatch_options (the rest).
+# check_submit_args NAME "$@": exits 2 with one line unless INPUT is a file, OUT not a symbolic
+# link (refused as asperity's --out refuses one) and TASKS a whole number in [1, 99999]; sets
+# input, out (absolute, links on its way kept as given, as asperity reads it), tasks, asperity
+# (absolute: $ASPERITY or the project's build/asperity) and sbatch_options (the rest).
 check_submit_args() {
   local name=$1
   shift
@@ -25,7 +26,12 @@ check_submit_args() {
   fi
   asperity=$(realpath "${ASPERITY:-$here/../../build/asperity}")
   input=$(realpath "$input")
-  out=$(realpath -m "$out")
+  # -s: resolving links would hand the jobs a link's target, a folder the user never named.
+  out=$(realpath -m -s "$out")
+  if [ -L "$out" ]; then
+    echo "$0: OUT: refusing to write there: $out is a symbolic link; choose a new or empty folder" >&2
+    exit 2
+  fi
 }
 
 # submit_array_then TASK_SCRIPT FINAL_NAME FINAL_SCRIPT [FINAL_ARGS...]: the array (requeued when

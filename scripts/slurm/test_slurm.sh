@@ -15,6 +15,23 @@ tasks=${2:-4}
 asperity=$(realpath "${ASPERITY:-$root/build/asperity}")
 export ASPERITY=$asperity
 
+# The submit scripts' argument checks need no cluster: an OUT that is a symbolic link (with or
+# without a trailing slash) is refused, exit 2 and one line, before anything is submitted.
+a=$(mktemp -d -t asperity-slurm-args.XXXXXX)
+mkdir "$a/real"
+ln -s "$a/real" "$a/out"
+for script in submit.sh fit_submit.sh; do
+  for out in "$a/out" "$a/out/"; do
+    rc=0
+    "$here/$script" "$campaign" "$out" 2 >"$a/stdout" 2>"$a/stderr" || rc=$?
+    if [ $rc != 2 ] || [ "$(wc -l < "$a/stderr")" != 1 ] || ! grep -q "OUT: .*symbolic link" "$a/stderr" ||
+       [ -s "$a/stdout" ] || [ -n "$(ls -A "$a/real")" ]; then
+      echo "FAIL: $script with OUT a symbolic link ($out): exit $rc, stderr: $(cat "$a/stderr")"; exit 1
+    fi
+  done
+done
+rm -rf "$a"
+
 for tool in munged slurmctld slurmd sbatch squeue sinfo; do
   if ! command -v "$tool" >/dev/null && [ ! -x "/usr/sbin/$tool" ]; then
     echo "SKIP: $tool not installed (apt-get install slurm-wlm munge)"

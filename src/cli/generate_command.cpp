@@ -5,7 +5,6 @@
 // with a `synthetic:` section (generate/synthetic.hpp) one experiment whose measured A(Q) and Q(t)
 // come from one run of a scene at known model settings, plus noise.
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -31,24 +30,6 @@ struct GenerateCliOptions {
   int threads = 0;  // -j: the topography contact solve's threads (0: every hardware thread)
 };
 
-// Folders written before markers existed: the stand-in README's first line, or scenes that all
-// say they were written by `asperity generate --scenes`.
-bool standin_folder(const std::filesystem::path& d) {
-  return first_line_is(d / "README.md", "# Stand-in experiments — NOT measurements");
-}
-bool scenes_folder(const std::filesystem::path& d) {
-  bool any = false;
-  for (const auto& e : std::filesystem::directory_iterator(d)) {
-    if (e.path().filename() == kMarkerFile) continue;
-    std::ifstream in(e.path());
-    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (e.path().extension() != ".yaml" || text.find("Written by `asperity generate --scenes`") == std::string::npos)
-      return false;
-    any = true;
-  }
-  return any;
-}
-
 // Its own marker: a stand-in folder is never taken for a topography output, nor the reverse.
 constexpr const char* kTopographyMarker = "generate topography";
 
@@ -56,10 +37,11 @@ int generate_topography(const GenerateCliOptions& o) {
   const TopographyRecipe recipe = load_topography_recipe(o.recipe);
   if (!o.scenes.empty())
     throw InputError("--scenes", 0, "", "a topography recipe writes one experiment and no scenes; leave out --scenes");
-  check_ours(o.out, kTopographyMarker, "--out");
+  check_publishable(o.out, kTopographyMarker, "--out");  // before the solve: a refused folder costs nothing
   const TopographyJunctions t = build_topography_junctions(recipe, threads_or_all(o.threads));
-  write_topography_experiment(recipe, t, o.out);
-  write_marker(o.out, kTopographyMarker);
+  publish_dir(o.out, kTopographyMarker, "--out", [&](const std::filesystem::path& tmp) {
+    write_topography_experiment(recipe, t, tmp);
+  });
   if (!o.quiet) {
     double total = 0;
     for (const double A : t.experiment.junctions.area_m2) total += A;
@@ -78,10 +60,11 @@ int generate_synthetic(const GenerateCliOptions& o) {
   const SyntheticRecipe recipe = load_synthetic_recipe(o.recipe);
   if (!o.scenes.empty())
     throw InputError("--scenes", 0, "", "a synthetic recipe writes one experiment folder (with its scene.yaml); leave out --scenes");
-  check_ours(o.out, kSyntheticMarker, "--out");  // before the run: a refused folder costs no simulation
+  check_publishable(o.out, kSyntheticMarker, "--out");  // before the run: a refused folder costs no simulation
   const SyntheticExperiment x = build_synthetic(recipe);
-  claim_dir(o.out, kSyntheticMarker, "--out");   // marked before any file: a rerun may replace a partial folder
-  write_synthetic_experiment(recipe, x, o.out);
+  publish_dir(o.out, kSyntheticMarker, "--out", [&](const std::filesystem::path& tmp) {
+    write_synthetic_experiment(recipe, x, tmp);
+  });
   if (!o.quiet)
     std::cout << "wrote the SYNTHETIC experiment " << x.experiment.name << " (" << x.experiment.junctions.size()
               << " junctions, Q_s = " << scene_io::format_short(x.model.Q_s) << " N at t = "
@@ -94,15 +77,20 @@ int generate(const GenerateCliOptions& o) {
   if (is_topography_recipe(o.recipe)) return generate_topography(o);
   if (is_synthetic_recipe(o.recipe)) return generate_synthetic(o);
   const StandinRecipe recipe = load_recipe(o.recipe);
-  check_ours(o.out, "generate", "--out", standin_folder);
-  if (!o.scenes.empty()) check_ours(o.scenes, "generate", "--scenes", scenes_folder);
-  GenerateOptions g;
-  g.out_dir = o.out;
-  g.scenes_dir = o.scenes;
-  g.log = o.quiet ? nullptr : &std::cout;
-  const auto xs = generate_standins(recipe, g);
-  write_marker(o.out, "generate");
-  if (!o.scenes.empty()) write_marker(o.scenes, "generate");
+  // Like run and fit: each file replaced only when this command wrote it there, unchanged since.
+  check_publishable(o.out, "generate", "--out");
+  if (!o.scenes.empty()) check_publishable(o.scenes, "generate", "--scenes");
+  const auto xs = build_standins(recipe, o.quiet ? nullptr : &std::cout);
+  const std::filesystem::path out = normal_dir(o.out), scenes = o.scenes.empty() ? out : normal_dir(o.scenes);
+  // One folder for both: one publish, else each would take the other's files for stale ones.
+  publish_dir(o.out, "generate", "--out", [&](const std::filesystem::path& tmp) {
+    write_standin_experiments(recipe, xs, tmp);
+    if (!o.scenes.empty() && scenes == out) write_standin_scenes(recipe, xs, tmp, out, out);
+  });
+  if (!o.scenes.empty() && scenes != out)
+    publish_dir(o.scenes, "generate", "--scenes", [&](const std::filesystem::path& tmp) {
+      write_standin_scenes(recipe, xs, tmp, scenes, out);
+    });
   if (!o.quiet) {
     std::cout << "wrote " << xs.size() << " stand-in experiments and README.md to " << o.out;
     if (!o.scenes.empty()) std::cout << ", scenes to " << o.scenes;

@@ -752,12 +752,29 @@ std::string done_line(const Problem& pb, const Optimization& o) {
   return line;
 }
 
+// Why an optimization whose every successful evaluation scored exactly 0 learnt nothing (empty
+// otherwise): a flat objective is minimised by any point, so its "optimum" is only where it
+// started (noise levels so large that every squared residual underflows, or a user term that
+// ignores the run). A non-finite objective already fails its evaluation.
+std::string degenerate_objective(const std::vector<Evaluation>& log) {
+  int zero = 0;
+  for (const Evaluation& ev : log) {
+    if (ev.status != "ok") continue;
+    if (ev.objective != 0) return "";
+    ++zero;
+  }
+  if (zero == 0) return "";
+  return "the objective is 0 at every one of its " + std::to_string(zero) +
+         " evaluations: a degenerate objective (residuals that underflow, or that do not depend on the parameters)";
+}
+
 // One optimization (a task of the runner): optimize, then the best runs, the profile and the
 // error-bar refits as asked.
 void run_task(const FitSpec& spec, const FitOptions& options, Optimization& o, std::mutex& progress_mutex, Counts& counts,
               const StopFlag& stop) {
   const Problem pb = fit_problem(spec, options, o, counts, stop);
   run_starts(spec, pb, o);
+  if (o.failure.empty()) o.failure = degenerate_objective(o.log);
   const bool have_best = std::isfinite(o.objective);
   if (have_best) {
     Problem best = pb;  // the best evaluation's journal line is where its start journaled it

@@ -15,7 +15,8 @@
 // measured window as the poor fit it is) inside an evaluation ends that optimization with
 // NLopt's forced stop; the reason
 // is kept in Optimization::failure (status "failed", `asperity fit` exits 1) and the best
-// evaluation so far is reported.
+// evaluation so far is reported. An optimization whose every evaluation scored exactly 0 fails
+// the same way (a degenerate objective: any point minimises it).
 //
 // Journal (FitOptions::journal, fit_journal.hpp): every evaluation is looked up first and
 // journaled when computed, so a killed fit rerun with the same journal replays what it had done

@@ -500,6 +500,15 @@ void read_error_bars(const Source& src, const MapView& root, FitSpec& spec) {
   }
 }
 
+// A relative noise level, in [kNoiseMin, kNoiseMax] (fit_load.hpp says why).
+double noise_level(const MapView& v, const YAML::Node& n, const std::string& k) {
+  const double x = v.number(n, k, nullptr);
+  if (!(x >= kNoiseMin && x <= kNoiseMax))
+    v.fail_at(n, k, "must be in [" + format_double(kNoiseMin) + ", " + format_double(kNoiseMax) +
+                        "] (relative), got " + format_double(x));
+  return x;
+}
+
 // `noise:` (area_and_force only) and `intervals:` into spec.
 void read_noise_and_intervals(const Source& src, const MapView& root, FitSpec& spec) {
   if (const auto nn = root.find("noise")) {
@@ -508,9 +517,9 @@ void read_noise_and_intervals(const Source& src, const MapView& root, FitSpec& s
                                      objective_name(spec.objective));
     const MapView nv(src, *nn, "noise", kNoiseKeys);
     if (!nn->IsMap()) root.fail_at(*nn, "noise", "expected a map {area: 0.002, force: 0.002, stick_slip: 0.05}, got " + node_kind(*nn));
-    if (auto n = nv.find("area")) spec.noise.area = positive(nv, *n, "area", nullptr);
-    if (auto n = nv.find("force")) spec.noise.force = positive(nv, *n, "force", nullptr);
-    if (auto n = nv.find("stick_slip")) spec.noise.stick_slip = positive(nv, *n, "stick_slip", nullptr);
+    if (auto n = nv.find("area")) spec.noise.area = noise_level(nv, *n, "area");
+    if (auto n = nv.find("force")) spec.noise.force = noise_level(nv, *n, "force");
+    if (auto n = nv.find("stick_slip")) spec.noise.stick_slip = noise_level(nv, *n, "stick_slip");
   }
   spec.intervals = spec.objective == FitObjective::area_and_force;
   if (const auto in = root.find("intervals")) {

@@ -20,7 +20,8 @@
 //               max_evaluations: 60, initial_step: 0.1,
 //               polish: {algorithm: LN_SBPLX, max_evaluations: 100},   # optional local 2nd stage
 //               starts: 1, basin_tolerance: 1e-3, basin_distance: 1e-3}  # multi-start (fit/convergence.hpp)
-//   noise: {area: 0.002, force: 0.002, stick_slip: 0.05}   # area_and_force: residual units
+//   noise: {area: 0.002, force: 0.002, stick_slip: 0.05}   # area_and_force: residual units, each
+//                                  # in [kNoiseMin, kNoiseMax] = [1e-12, 1e3] (below)
 //   force_score: auto              # or pointwise | loading_and_cycles; area_and_force only (objective.hpp)
 //   intervals: true                # or {hessian_step: 0.01}; area_and_force only (default true)
 //   profile: {parameter: model.alpha_b, span: 0.2, points: 11}   # or false; parameter: a key, a list, or all
@@ -51,6 +52,14 @@
 #include "scene/scene.hpp"
 
 namespace asperity {
+
+// The range of each relative noise level. Below 1e-12 (a hundred times the finest
+// solver.tolerance, 1e-14) the level is finer than the runs resolve and the residuals measure the
+// solve's own error. Above 1e3 a residual of the whole scale adds 1e-6 to J: the term carries no
+// weight, and far above it the squared residuals underflow to 0 (1e300 zeroes every one, a
+// degenerate objective that every parameter value minimises).
+inline constexpr double kNoiseMin = 1e-12;
+inline constexpr double kNoiseMax = 1e3;
 
 // How the runs are scored. By default, the file's `objective`. With user_objective (the Python
 // module's callable, FitOptions::user_term): FitObjective::user, the `objective` key must be

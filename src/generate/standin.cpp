@@ -277,37 +277,56 @@ std::string standin_readme(const StandinRecipe& r, const std::vector<StandinExpe
   return t;
 }
 
-std::vector<StandinExperiment> generate_standins(const StandinRecipe& r, const GenerateOptions& opt) {
-  namespace fs = std::filesystem;
+std::vector<StandinExperiment> build_standins(const StandinRecipe& r, std::ostream* log) {
   std::vector<StandinExperiment> xs;
   for (std::size_t i = 0; i < r.masses_kg.size(); ++i) {
     const auto t0 = std::chrono::steady_clock::now();
     StandinExperiment x = build_standin(r, i);
-    const fs::path dir = opt.out_dir / x.experiment.name;
+    if (log) {
+      const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      *log << x.experiment.name << ": N = " << x.experiment.junctions.size()
+           << ", A0 = " << fmt("%.4f", x.model.A0 * 1e6) << " mm^2, dt(Ct=1e4) = "
+           << fmt("%.4f", x.dt_Ct1e4 * 1e6) << " us, Q_s = " << fmt("%.4f", x.model.Q_s) << " N"
+           << (x.model.peak_found ? "" : " (no confirmed peak: highest Q)") << ", model drop "
+           << fmt("%.1f", 100 * x.model.area_drop_fraction) << " %, measured drop "
+           << fmt("%.1f", 100 * x.area_drop_target) << " %  [" << fmt("%.2f", wall) << " s]\n";
+    }
+    xs.push_back(std::move(x));
+  }
+  return xs;
+}
+
+void write_standin_experiments(const StandinRecipe& r, const std::vector<StandinExperiment>& xs,
+                               const std::filesystem::path& out_dir) {
+  namespace fs = std::filesystem;
+  for (const StandinExperiment& x : xs) {
+    const fs::path dir = out_dir / x.experiment.name;
     fs::create_directories(dir);
     write_junctions_csv(dir / "junctions.csv", x.experiment.junctions);
     write_measured_csv(dir / "measured.csv", *x.experiment.measured);
     if (!x.force.t_s.empty()) write_force_csv(dir / "measured_Qt.csv", x.force, x.force_header);
     scene_io::write_text_file(dir / "experiment.yaml",
                               experiment_to_yaml(x.experiment, "junctions.csv", "measured.csv"));
-    if (!opt.scenes_dir.empty()) {
-      fs::create_directories(opt.scenes_dir);
-      const std::string rel =
-          abs_norm(dir / "experiment.yaml").lexically_relative(abs_norm(opt.scenes_dir)).generic_string();
-      scene_io::write_text_file(opt.scenes_dir / (x.experiment.name + ".yaml"), standin_scene_yaml(r, x, rel));
-    }
-    if (opt.log) {
-      const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      *opt.log << x.experiment.name << ": N = " << x.experiment.junctions.size()
-               << ", A0 = " << fmt("%.4f", x.model.A0 * 1e6) << " mm^2, dt(Ct=1e4) = "
-               << fmt("%.4f", x.dt_Ct1e4 * 1e6) << " us, Q_s = " << fmt("%.4f", x.model.Q_s) << " N"
-               << (x.model.peak_found ? "" : " (no confirmed peak: highest Q)") << ", model drop "
-               << fmt("%.1f", 100 * x.model.area_drop_fraction) << " %, measured drop "
-               << fmt("%.1f", 100 * x.area_drop_target) << " %  [" << fmt("%.2f", wall) << " s]\n";
-    }
-    xs.push_back(std::move(x));
   }
-  scene_io::write_text_file(opt.out_dir / "README.md", standin_readme(r, xs));
+  scene_io::write_text_file(out_dir / "README.md", standin_readme(r, xs));
+}
+
+void write_standin_scenes(const StandinRecipe& r, const std::vector<StandinExperiment>& xs,
+                          const std::filesystem::path& scenes_dir, const std::filesystem::path& scenes_final,
+                          const std::filesystem::path& experiments_final) {
+  std::filesystem::create_directories(scenes_dir);
+  for (const StandinExperiment& x : xs) {
+    const std::string rel = abs_norm(experiments_final / x.experiment.name / "experiment.yaml")
+                                .lexically_relative(abs_norm(scenes_final))
+                                .generic_string();
+    scene_io::write_text_file(scenes_dir / (x.experiment.name + ".yaml"), standin_scene_yaml(r, x, rel));
+  }
+}
+
+std::vector<StandinExperiment> generate_standins(const StandinRecipe& r, const GenerateOptions& opt) {
+  std::vector<StandinExperiment> xs = build_standins(r, opt.log);
+  write_standin_experiments(r, xs, opt.out_dir);
+  if (!opt.scenes_dir.empty()) write_standin_scenes(r, xs, opt.scenes_dir, opt.scenes_dir, opt.out_dir);
   return xs;
 }
 

@@ -57,10 +57,23 @@ struct GenerateOptions {
   std::ostream* log = nullptr;       // progress lines (nullptr: silent)
 };
 
+// Builds every experiment of the recipe in recipe order (a progress line each on `log`, if set).
+std::vector<StandinExperiment> build_standins(const StandinRecipe& recipe, std::ostream* log);
+
 // Writes out_dir/<name>/{experiment.yaml, junctions.csv, measured.csv, and measured_Qt.csv when
-// the recipe has measured_force} for every experiment,
-// out_dir/README.md, and (if scenes_dir is set) scenes_dir/<name>.yaml referring to the
-// experiment files by relative path. Returns the experiments in recipe order.
+// the recipe has measured_force} for every experiment, and out_dir/README.md.
+void write_standin_experiments(const StandinRecipe& recipe, const std::vector<StandinExperiment>& xs,
+                               const std::filesystem::path& out_dir);
+
+// Writes scenes_dir/<name>.yaml for every experiment, naming its experiment.yaml by the path from
+// `scenes_final` to `experiments_final`/<name>/ (the folders the files end up in, which differ
+// from scenes_dir when it is a temporary folder published later).
+void write_standin_scenes(const StandinRecipe& recipe, const std::vector<StandinExperiment>& xs,
+                          const std::filesystem::path& scenes_dir, const std::filesystem::path& scenes_final,
+                          const std::filesystem::path& experiments_final);
+
+// build_standins, then write_standin_experiments into out_dir and (if scenes_dir is set)
+// write_standin_scenes into scenes_dir. Returns the experiments in recipe order.
 std::vector<StandinExperiment> generate_standins(const StandinRecipe& recipe, const GenerateOptions& opt);
 
 // Text of out_dir/README.md (deterministic).

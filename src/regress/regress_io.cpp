@@ -4,6 +4,7 @@
 #include <set>
 #include <sstream>
 
+#include "regress/regress.hpp"
 #include "scene/load.hpp"
 #include "io/yaml_util.hpp"
 
@@ -56,12 +57,20 @@ Golden load_golden(const fs::path& yaml) {
   }
   const YAML::Node entries = top.require("entries");
   if (!entries.IsMap()) top.fail_at(entries, "entries", "expected a map of entry name → observables");
-  for (const auto& kv : entries) {
-    const std::string name = kv.first.as<std::string>();
-    const YAML::Node obs = kv.second;
-    if (!obs.IsMap()) top.fail_at(obs, "entries." + name, "expected a map of observable → {value, tolerance}");
+  // Through MapView, so that a second value for one entry or observable is refused, not taken
+  // silently (the last would win), and an observable no run computes is refused, not ignored.
+  std::vector<std::string> names;
+  for (const auto& kv : entries)
+    if (kv.first.IsScalar()) names.push_back(kv.first.Scalar());
+  std::vector<std::string> observables;
+  for (const auto& [key, value] : regress_observables(Observables{})) observables.push_back(key);
+  const MapView ev(src, entries, "entries", names);
+  for (const std::string& name : names) {
+    const YAML::Node obs = ev.require(name);
+    if (!obs.IsMap()) ev.fail_at(obs, name, "expected a map of observable → {value, tolerance}");
+    const MapView ov(src, obs, "entries." + name, observables);
     for (const auto& o : obs) {
-      const std::string key = o.first.as<std::string>();
+      const std::string key = o.first.Scalar();
       const MapView v(src, o.second, "entries." + name + "." + key, {"value", "tolerance"});
       GoldenValue gv;
       // Non-finite values are legitimate observables (e.g. no stick-slip → drop NaN).

@@ -5,7 +5,9 @@
 //       - {name: P0.98N_stick_slip, scene: ../paper/P0.98N.yaml, set: [stop.cycles=5]}
 //     (scene paths relative to the suite file; `set` as `asperity run --set`)
 //   golden (results/regression/golden.yaml): what came out when last blessed, with a tolerance
-//     per observable, and the history of blessings (date, version, reason).
+//     per observable, and the history of blessings (date, version, reason). An entry or an
+//     observable given twice, or an observable regress_observables does not compute, is an
+//     InputError at its line.
 #include <filesystem>
 #include <map>
 #include <string>

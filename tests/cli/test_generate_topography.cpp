@@ -176,6 +176,14 @@ TEST_CASE("topography recipe: same bytes twice, measured map = synthetic heights
   // Again into the same folder (ours, by its marker): same bytes.
   REQUIRE(run_argv(d, {"generate", "--recipe", "topo.yaml", "--out", "one", "--quiet"}).status == 0);
   CHECK(slurp(d / "one/junctions.csv") == csv);
+  // An edited output is not replaced: refused by name, the edit kept.
+  const std::string experiment = slurp(d / "one/experiment.yaml");
+  write_text(d / "one/experiment.yaml", experiment + "# k_L edited by hand\n");
+  const auto edited = run_argv(d, {"generate", "--recipe", "topo.yaml", "--out", "one", "--quiet"});
+  CHECK(edited.status == 2);
+  CHECK(edited.err.rfind((d / "one/experiment.yaml").string() + ": --out: refusing to replace it", 0) == 0);
+  CHECK(slurp(d / "one/experiment.yaml") == experiment + "# k_L edited by hand\n");
+  write_text(d / "one/experiment.yaml", experiment);
 
   // The same heights as a measured map (CSV and float64) give the same junctions.
   const TopographyRecipe r = load_topography_recipe(d / "topo.yaml");

@@ -1,5 +1,5 @@
-// No command overwrites a file or folder it did not create: run, fit, reproduce, merge and plot
-// refuse (exit 2, one line "PATH: --out: ...") to write into a user's folder or over a user's
+// No command overwrites a file or folder it did not create: run, fit, generate, reproduce, merge
+// and plot refuse (exit 2, one line "PATH: --out: ...") to write into a user's folder or over a user's
 // file, which stay byte-identical; they replace what they wrote themselves (the .asperity
 // marker, or a PNG tagged by render_png). Also: reproduce leaves no stale REPORT.md, and the fit
 // outputs of experiments named "x y" and "x_y" do not collide.
@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "cli_spawn.hpp"
+#include "synthetic_support.hpp"
 #include "report/gnuplot.hpp"
 
 namespace fs = std::filesystem;
@@ -262,16 +263,47 @@ TEST_CASE("generate and bench write only into folders they created", "[cli][over
   // Its own folders are written again.
   for (int k = 0; k < 2; ++k)
     CHECK(run_argv(w, {"generate", "--recipe", recipe, "--out", "g", "--scenes", "gs", "--quiet"}).status == 0);
-  CHECK(slurp(w / "g" / ".asperity") == "created by asperity generate\n");
-  CHECK(slurp(w / "gs" / ".asperity") == "created by asperity generate\n");
-  // Folders written before markers existed are recognised: the committed stand-ins and bench results.
+  CHECK(slurp(w / "g" / ".asperity").rfind("created by asperity generate\nfiles v2\n", 0) == 0);
+  CHECK(slurp(w / "gs" / ".asperity").rfind("created by asperity generate\nfiles v2\n", 0) == 0);
+  // The committed stand-ins and bench inputs carry their file lists: written again in a copy; a
+  // copy without its marker (it might hold edits) is refused.
   const fs::path old = w / "old";
   fs::create_directories(old);
   fs::copy(src / "bench" / "data", old / "data", fs::copy_options::recursive);
   fs::copy(src / "bench" / "scenes", old / "scenes", fs::copy_options::recursive);
-  fs::remove(old / "data" / ".asperity");
-  fs::remove(old / "scenes" / ".asperity");
   CHECK(run_argv(w, {"generate", "--recipe", recipe, "--out", "old/data", "--scenes", "old/scenes", "--quiet"}).status == 0);
+  fs::remove(old / "data" / ".asperity");
+  check_refused(w, {"generate", "--recipe", recipe, "--out", "old/data", "--quiet"}, "old/data: --out: " + refused + "generate");
+  fs::remove_all(w);
+}
+
+TEST_CASE("a rerun of generate refuses to replace an output the user edited, and keeps the edit", "[cli][overwrite]") {
+  const fs::path w = make_case("gen-edit");
+  const std::string recipe = (fs::path(ASPERITY_SOURCE_DIR) / "bench" / "recipe.yaml").string();
+  const std::vector<std::string> gen = {"generate", "--recipe", recipe, "--out", "G", "--scenes", "S", "--quiet"};
+  REQUIRE(run_argv(w, gen).status == 0);
+  write_text(w / "G" / "notes.txt", "mine\n");
+  REQUIRE(run_argv(w, gen).status == 0);  // a file the user added stays
+  CHECK(slurp(w / "G" / "notes.txt") == "mine\n");
+  for (const fs::path& edited : {w / "G" / "P0.20N" / "experiment.yaml", w / "S" / "P0.20N.yaml"}) {
+    const std::string original = slurp(edited);
+    write_text(edited, original + "# k_L edited by hand\n");
+    const std::string option = edited.parent_path().filename() == "S" ? "--scenes" : "--out";
+    check_refused(w, gen, edited.string() + ": " + option + ": refusing to replace it");  // nothing changed
+    write_text(edited, original);
+  }
+  // Scenes written into the experiments' own folder: one write, which a rerun repeats.
+  for (int k = 0; k < 2; ++k)
+    CHECK(run_argv(w, {"generate", "--recipe", recipe, "--out", "B", "--scenes", "B", "--quiet"}).status == 0);
+  CHECK(slurp(w / "B" / "P0.20N.yaml").find("experiment: P0.20N/experiment.yaml") != std::string::npos);
+  // A synthetic experiment's folder likewise.
+  asperity::testing::write_base_scene(w, 0.1, 10);
+  write_text(w / "syn.yaml", asperity::testing::synthetic_recipe_text("base/scene.yaml", {}, 0.002, 7, 1.0));
+  const std::vector<std::string> syn = {"generate", "--recipe", "syn.yaml", "--out", "Y", "--quiet"};
+  REQUIRE(run_argv(w, syn).status == 0);
+  REQUIRE(run_argv(w, syn).status == 0);
+  write_text(w / "Y" / "experiment.yaml", slurp(w / "Y" / "experiment.yaml") + "# edited\n");
+  check_refused(w, syn, (w / "Y" / "experiment.yaml").string() + ": --out: refusing to replace it");
   fs::remove_all(w);
 }
 

@@ -64,6 +64,22 @@ def test_bad_input_raises_the_command_lines_line(source, binary, tmp_path):
         asperity.load_scene(tmp_path / "no-such.yaml")
 
 
+def test_override_values_are_data_never_yaml(source):
+    # A text value given from Python is that text, whatever YAML would make of it unquoted (a
+    # comment, an anchor, an alias, a map, a list, a bool, null); numbers, bools and lists too.
+    scene_file = source / "scenes" / "paper" / "P0.98N.yaml"
+    for name in ["lab #3", "&anchor lab", "*alias", "a: b", "[x, y]", "{z}", 'say "hi"', "back\\slash",
+                 "- item", "!tag x", "yes", "null", "~", "0x10", "1e3", "ünï #cödé", "'single'"]:
+        assert asperity.load_scene(scene_file, {"experiment.name": name}).experiment == name
+    scene = asperity.load_scene(scene_file, {"model.eta": 80, "model.epsilon": 0.5, "stop.at_first_peak": True,
+                                             "output.series": ["t", "Q"]})
+    y = yaml.safe_load(scene.to_yaml())
+    assert (y["model"]["eta"], y["model"]["epsilon"]) == (80, 0.5)
+    assert y["stop"]["at_first_peak"] is True and y["output"]["series"] == ["t", "Q"]
+    with pytest.raises(asperity.InputError, match="model.eta"):
+        asperity.load_scene(scene_file, {"model.eta": "80 # a comment"})  # text, not a number
+
+
 def test_sweep_and_read_store(source, tmp_path):
     store = tmp_path / "store"
     report = asperity.sweep(source / "tests" / "data" / "campaign" / "tiny.yaml", out=store, threads=1)

@@ -18,6 +18,8 @@ Arguments are checked as the command line's options (a thread count from 1 to 10
 a NUL byte), the message naming the argument: ``threads: Value 0 not in range 1 to 1024``.
 """
 # Imports under private names: a notebook's dir(asperity) and tab completion show the API only.
+import json as _json
+import numbers as _numbers
 import os as _os
 from dataclasses import dataclass as _dataclass, field as _field
 from typing import Any as _Any, Mapping as _Mapping, Optional as _Optional, Sequence as _Sequence, Union as _Union
@@ -76,15 +78,30 @@ def _progress(progress, what: str, unit: str):
     return update, bar
 
 
-def _override_text(key: str, value: _Any) -> str:
-    """One `--set key=value` as the command line spells it (YAML scalars and lists)."""
+def _yaml_value(value: _Any) -> str:
+    """A Python value as YAML text that reads back as that value: text is data, never YAML (a
+    double-quoted scalar, so "lab #3" keeps its "#3" and "&x" is no anchor)."""
+    if hasattr(value, "tolist") and not isinstance(value, (str, bytes)):
+        value = value.tolist()  # NumPy scalars and arrays: their Python values
     if isinstance(value, bool):
-        text = "true" if value else "false"
-    elif isinstance(value, (list, tuple)):
-        text = "[" + ", ".join(str(v) for v in value) + "]"
-    else:
-        text = repr(value) if isinstance(value, float) else str(value)
-    return f"{key}={text}"
+        return "true" if value else "false"
+    if isinstance(value, _numbers.Integral):
+        return str(int(value))
+    if isinstance(value, _numbers.Real):
+        return repr(float(value))
+    if isinstance(value, _Mapping):
+        return "{" + ", ".join(f"{_yaml_value(str(k))}: {_yaml_value(v)}" for k, v in value.items()) + "}"
+    if isinstance(value, (list, tuple)):
+        return "[" + ", ".join(_yaml_value(v) for v in value) + "]"
+    text = _os.fspath(value) if isinstance(value, _os.PathLike) else str(value)
+    if "\0" in text:
+        return text  # left as is: the engine refuses a NUL byte naming `overrides`
+    return _json.dumps(text, ensure_ascii=False)  # a JSON string is a YAML double-quoted scalar
+
+
+def _override_text(key: str, value: _Any) -> str:
+    """One `--set key=value` as the command line spells it, the value as data (_yaml_value)."""
+    return f"{key}={_yaml_value(value)}"
 
 
 def load_scene(path: _PathLike, overrides: _Union[_Mapping[str, _Any], _Sequence[str], None] = None) -> Scene:

@@ -1,6 +1,7 @@
-// Fits that cannot mean anything fail loudly: a model run without a confirmed peak (status
-// failed, exit 1), a measured A(Q) that does not decrease or is not anchored at Σ A0 (exit 2 at
-// the experiment file's `measured:` line, before any run).
+// Fits that cannot mean anything fail loudly: a model run without a confirmed peak or an
+// objective 0 at every evaluation (status failed, exit 1), a measured A(Q) that does not
+// decrease or is not anchored at Σ A0 (exit 2 at the experiment file's `measured:` line, before
+// any run).
 #include <sys/wait.h>
 
 #include <catch2/catch.hpp>
@@ -98,6 +99,33 @@ TEST_CASE("A fit whose model runs end before the peak fails, with the reason", "
   const std::string y = slurp(c.dir / "out" / "fit.yaml");
   CHECK(y.find("status: failed") != std::string::npos);
   CHECK(y.find("status: ok") == std::string::npos);
+  fs::remove_all(c.dir);
+}
+
+TEST_CASE("A fit whose objective is 0 at every evaluation fails: noise levels that underflow every residual",
+          "[fit][failures]") {
+  const FitCase c = make_fit_case("degenerate", 0.725e-15, 1.5, 0.1, 40);
+  MeasuredForce force;
+  for (int k = 1; k <= 5; ++k) {
+    force.t_s.push_back(0.01 * k);
+    force.Q_N.push_back(0.02 * k);
+  }
+  write_force_csv(c.dir / "force.csv", force, {"a short Q(t) (test_fit_failures.cpp)"});
+  const fs::path f = write_text(c.dir / "f.yaml",
+                                "objective: area_and_force\nexperiments: [{scene: scene.yaml, force: force.csv}]\n"
+                                "parameters: {model.alpha_b: {lo: 1e-16, hi: 5e-15, start: 1e-15, scale: log}}\n"
+                                "optimizer: {algorithm: LN_BOBYQA, max_evaluations: 4}\nprofile: false\nintervals: false\n");
+  FitSpec spec = load_fit(f);
+  FitOptions options;
+  options.threads = 1;
+  options.profile = false;
+  options.error_bars = false;
+  REQUIRE(run_fit(spec, options).fits[0].ok());  // at sane levels a fit
+  // The loader refuses such levels (tests/bad_inputs/fit_noise_1e300.yaml): the run's own guard.
+  spec.noise.area = spec.noise.force = 1e300;
+  const Optimization o = run_fit(spec, options).fits[0];
+  CHECK_FALSE(o.ok());
+  CHECK(o.failure.find("the objective is 0 at every one of its") != std::string::npos);
   fs::remove_all(c.dir);
 }
 

@@ -3,14 +3,18 @@
 
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "support_files.hpp"
+#include "io/input_error.hpp"
 #include "regress/regress.hpp"
 #include "scene/load.hpp"
 
@@ -81,4 +85,67 @@ TEST_CASE("asperity regress passes on the committed golden results and catches a
   CHECK(o.str().find("DRIFT") != std::string::npos);
   CHECK(o.str().find("P6.40N_stick_slip") == std::string::npos);  // untouched entries still pass
   fs::remove_all(work);
+}
+
+// A golden file is data someone may edit: a second value for one entry or observable (YAML keeps
+// the last) and an observable no run computes (never compared) would pass silently.
+TEST_CASE("a golden file with a duplicate entry or observable, or an unknown observable, is refused at its line",
+          "[regress]") {
+  const fs::path src(ASPERITY_SOURCE_DIR);
+  const std::string golden = asperity::testing::slurp(src / "results/regression/golden.yaml");
+  const std::string entry = "  P0.98N_linear:\n";
+  REQUIRE(golden.find(entry) != std::string::npos);
+  const auto line_at = [](const std::string& text, std::size_t pos) {
+    return 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(pos), '\n'));
+  };
+  const std::string forged_entry = entry + "    Q_s: {value: 1, tolerance: 1e9}\n";
+  struct Forgery {
+    std::string text, key, message;
+    int line;
+  };
+  std::vector<Forgery> forgeries;
+  {  // a forged copy of an entry before the real one
+    std::string t = golden;
+    t.insert(t.find("entries:\n") + 9, forged_entry);
+    forgeries.push_back({t, "entries.P0.98N_linear", "duplicate key (first given at line", line_at(t, t.rfind(entry))});
+  }
+  {  // a forged observable before the real one, inside the entry
+    std::string t = golden;
+    t.insert(t.find(entry) + entry.size(), "    Q_s: {value: 1, tolerance: 1e9}\n");
+    const std::size_t real = t.find("    Q_s: ", t.find(entry) + entry.size() + 1);
+    REQUIRE(real != std::string::npos);
+    forgeries.push_back({t, "entries.P0.98N_linear.Q_s", "duplicate key (first given at line", line_at(t, real)});
+  }
+  {  // an observable nothing computes
+    std::string t = golden;
+    t.insert(t.find(entry) + entry.size(), "    Q_static: {value: 1, tolerance: 0}\n");
+    forgeries.push_back({t, "entries.P0.98N_linear.Q_static", "unknown key 'Q_static'", line_at(t, t.find(entry)) + 1});
+  }
+  const fs::path f = asperity::testing::temp_path("asperity_test_golden_forged", ".yaml");
+  for (const Forgery& g : forgeries) {
+    INFO(g.key);
+    std::ofstream(f) << g.text;
+    try {
+      (void)load_golden(f);
+      FAIL("load_golden accepted it");
+    } catch (const InputError& e) {
+      CHECK(e.file == f.string());
+      CHECK(e.line == g.line);
+      CHECK(e.key == g.key);
+      CHECK(e.message.rfind(g.message, 0) == 0);
+    }
+    // The command: exit 2, one line naming file, line and key, before any run.
+    const fs::path err = asperity::testing::temp_path("asperity_test_golden_err", ".txt");
+    const std::string cmd = "cd '" + src.string() + "' && '" + ASPERITY_BINARY + "' regress --golden '" + f.string() +
+                            "' >/dev/null 2>'" + err.string() + "'";
+    const int rc = std::system(cmd.c_str());
+    const std::string text = asperity::testing::slurp(err);
+    INFO(text);
+    CHECK((WIFEXITED(rc) ? WEXITSTATUS(rc) : -1) == 2);
+    CHECK(text.rfind(f.string() + ":" + std::to_string(g.line) + ":", 0) == 0);
+    CHECK(text.find(": " + g.key + ": ") != std::string::npos);
+    CHECK(std::count(text.begin(), text.end(), '\n') == 1);
+    fs::remove(err);
+  }
+  fs::remove(f);
 }
