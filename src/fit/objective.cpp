@@ -69,7 +69,6 @@ double relative_square(double model, double measured, double noise) {
   return r * r;
 }
 
-
 // The score applied to an experiment: auto resolved by its measured Q(t).
 ForceScore applied_score(ForceScore score, const MeasuredShape& m) {
   if (score != ForceScore::automatic) return score;
@@ -81,6 +80,14 @@ double model_mean_drop(const SampledCycles& c, int n) {
   const std::size_t m = std::min(c.peaks.size(), static_cast<std::size_t>(n));
   double sum = 0;
   for (std::size_t j = 0; j < m; ++j) sum += c.peaks[j].Q_max - c.peaks[j].Q_min;
+  return m > 0 ? sum / static_cast<double>(m) : 0.0;
+}
+
+// Mean of the model's first n periods between peaks (0 without one), as sampled_cycles averages them.
+double model_mean_period(const SampledCycles& c, int n) {
+  const std::size_t m = c.peaks.empty() ? 0 : std::min(c.peaks.size() - 1, static_cast<std::size_t>(n));
+  double sum = 0;
+  for (std::size_t j = 0; j < m; ++j) sum += c.peaks[j + 1].t_cross - c.peaks[j].t_cross;
   return m > 0 ? sum / static_cast<double>(m) : 0.0;
 }
 
@@ -123,28 +130,25 @@ JointTerms area_and_force_terms(const Scene& scene, const Observables& obs, cons
     std::size_t end = Q.size();
     const MeasuredShape m = measured_shape(scene, f, noise);
     t.score = applied_score(score, m);
+    // loading_and_cycles: the model's curve read by the measured curve's estimator (its peaks do
+    // not depend on how many the means take), held at its first peak after that peak's instant
+    // (the same reading as the measured peak's, so the truth scores only the noise).
+    double t_hold = std::numeric_limits<double>::infinity(), Q_hold = 0;
     if (t.score == ForceScore::loading_and_cycles) {
       end = m.loading_end;
       const SampledCycles& mc = m.cycles;
-      if (mc.n_drops > 0) {  // the model read the same way, over as many drops and periods
-        const SampledCycles model = sampled_cycles(f.t_s, Q, m.min_drop, m.floor_N, mc.n_drops, m.min_peak_N);
+      const SampledCycles model = sampled_cycles(f.t_s, Q, m.min_drop, m.floor_N, 1, m.min_peak_N);
+      if (!model.peaks.empty()) t_hold = model.peaks.front().t_max, Q_hold = model.peaks.front().Q_max;
+      if (mc.n_drops > 0) {  // over as many drops and periods as the measured curve shows
         const double rd = (model_mean_drop(model, mc.n_drops) - mc.mean_drop) / m.sigma_drop_N;
         t.cycles += rd * rd;
         t.n_cycles = 1;
         if (mc.n_periods > 0) {
-          const SampledCycles model_p = sampled_cycles(f.t_s, Q, m.min_drop, m.floor_N, mc.n_periods, m.min_peak_N);
-          const double rp = ((model_p.n_periods > 0 ? model_p.mean_period : 0.0) - mc.mean_period) / m.sigma_period_s;
+          const double rp = (model_mean_period(model, mc.n_periods) - mc.mean_period) / m.sigma_period_s;
           t.cycles += rp * rp;
           t.n_cycles = 2;
         }
       }
-    }
-    // loading_and_cycles: the model's curve held at its first peak as read at the measured
-    // instants (the same reading as the measured peak's, so the truth scores only the noise).
-    double t_hold = std::numeric_limits<double>::infinity(), Q_hold = 0;
-    if (t.score == ForceScore::loading_and_cycles) {
-      const SampledCycles model = sampled_cycles(f.t_s, Q, m.min_drop, m.floor_N, 1, m.min_peak_N);
-      if (!model.peaks.empty()) t_hold = model.peaks.front().t_max, Q_hold = model.peaks.front().Q_max;
     }
     for (std::size_t k = 0; k < end; ++k) {
       const double q = f.t_s[k] > t_hold ? Q_hold : Q[k];

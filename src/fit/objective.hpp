@@ -56,11 +56,11 @@ struct JointTerms {
 };
 JointTerms area_and_force_terms(const Scene& scene, const Observables& obs, const std::vector<Sample>& loading,
                                 const std::vector<Sample>& series, const FitExperiment& experiment,
-                                const FitNoise& noise, ForceScore score = ForceScore::pointwise);
+                                const FitNoise& noise, ForceScore score);
 
 // The number of residuals behind one experiment's term of an area_and_force objective.
-int area_and_force_count(const Scene& scene, const FitExperiment& experiment, const FitNoise& noise = {},
-                         ForceScore score = ForceScore::pointwise);
+int area_and_force_count(const Scene& scene, const FitExperiment& experiment, const FitNoise& noise,
+                         ForceScore score);
 
 // One experiment's term of the objective. NaN when the run gives no value to compare (e.g. no
 // loading branch); a run without stick-slip counts as drop = period = 0 for stick_slip.

@@ -78,7 +78,7 @@ TEST_CASE("model_force_at interpolates Q(t) linearly; area_and_force terms are c
   fe.target = {0.1, 0.2};
   obs.ss_cycles = 2, obs.ss_drop = 0.11, obs.ss_period = 0.2;
   noise.stick_slip = 0.05;
-  const JointTerms j = area_and_force_terms(scene, obs, loading, series, fe, noise);
+  const JointTerms j = area_and_force_terms(scene, obs, loading, series, fe, noise, ForceScore::pointwise);
   // force: largest measured Q 3.0, scale 0.03: (0.03/0.03)² + (0.06/0.03)² + 0 = 5
   CHECK(j.force == Approx(5.0).epsilon(1e-12));
   CHECK(j.n_force == 3);
@@ -87,7 +87,7 @@ TEST_CASE("model_force_at interpolates Q(t) linearly; area_and_force terms are c
   CHECK(j.stick_slip == Approx(4.0).epsilon(1e-9));  // ((0.11/0.1 − 1)/0.05)² + 0
   CHECK(j.n_stick_slip == 2);
   CHECK(j.total() == Approx(j.area + j.force + j.stick_slip));
-  CHECK(area_and_force_count(scene, fe) == 7);
+  CHECK(area_and_force_count(scene, fe, {}, ForceScore::pointwise) == 7);
 }
 
 TEST_CASE("Scaled coordinates map exactly onto the bounds", "[fit][objective]") {
@@ -167,7 +167,7 @@ TEST_CASE("loading_and_cycles scores the loading branch held at the peak, and th
   CHECK(p.cycles == Approx(std::pow(0.5 / sigma_drop, 2) + std::pow(0.5 / sigma_period, 2)).epsilon(1e-6));
   CHECK(area_and_force_count(scene, fe, noise, ForceScore::loading_and_cycles) == 102);
   // Pointwise scores all 551 samples; the measured curve scored against itself is 0 either way.
-  CHECK(area_and_force_terms(scene, obs, {}, series, fe, noise).n_force == 551);
+  CHECK(area_and_force_terms(scene, obs, {}, series, fe, noise, ForceScore::pointwise).n_force == 551);
   std::vector<Sample> same;
   for (std::size_t k = 0; k < f.t_s.size(); ++k) {
     Sample s;
