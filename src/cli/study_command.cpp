@@ -1,6 +1,8 @@
 // asperity study interactions [SCENE.yaml...] [--out results/interactions] [--fit-independent F]
 //                             [--fit-interacting F] [--joint-independent F...] [--joint-interacting F...]
-//                             [--sweep STORE] [--topography TABLE] [--spread EXPERIMENT] [--quiet]
+//                             [--sweep STORE] [--topography TABLE] [--recovery MATRIX] [--spread EXPERIMENT]
+//                             [--quiet]
+// asperity study recovery [--recipes R.yaml...] [--out results/recovery] [-j N] [--quiet]
 #include <cstdio>
 #include <iostream>
 #include <string>
@@ -10,6 +12,7 @@
 #include "cli/commands.hpp"
 #include "cli/options.hpp"
 #include "studies/interaction_study.hpp"
+#include "studies/recovery_matrix.hpp"
 #include "report/output_dir.hpp"
 
 namespace asperity::cli {
@@ -35,10 +38,38 @@ Command add_study_command(CLI::App& app) {
   in->add_option("--sweep", opt->sweep_store, "Store of sweeps/interactions.yaml");
   in->add_option("--topography", opt->topography_table,
                  "table.csv of the topography study (default results/topography/table.csv)");
+  in->add_option("--recovery", opt->recovery_matrix,
+                 "matrix.csv of `asperity study recovery` (default results/recovery/matrix.csv)");
   in->add_option("--spread", opt->spread_experiment, "Experiment of the force-spread histogram (default P4.00N)");
   add_figures_option(in, opt->figures);
   in->add_flag("-q,--quiet", *quiet, "Print nothing on success");
-  return Command{sub, [opt, scenes, out, quiet](const Invocation&) {
+  auto rec = std::make_shared<RecoveryMatrixOptions>();
+  auto rec_out = std::make_shared<std::string>("results/recovery");
+  auto rec_recipes = std::make_shared<std::vector<std::string>>();
+  CLI::App* rc = sub->add_subcommand(
+      "recovery", "The recovery matrix: SYNTHETIC experiments made by each model at a known truth, each fitted by "
+                  "each model at equal budgets; whether the joint calibration tells the models apart, per load");
+  rc->add_option("--recipes", *rec_recipes, "Synthetic recipes, one per load and model (default examples/recovery/recipe_*.yaml)")
+      ->check(CLI::ExistingFile);
+  rc->add_option("-o,--out", *rec_out, "Output folder (default results/recovery)");
+  rc->add_option("-j,--threads", rec->threads, "Threads of each fit (default 2)")->check(CLI::Range(1, 1024));
+  rc->add_flag("-q,--quiet", *quiet, "Print nothing on success");
+  Command recovery{rc, [rec, rec_out, rec_recipes, quiet](const Invocation&) {
+    RecoveryMatrixOptions o = *rec;
+    o.out = *rec_out;
+    check_ours(o.out, "study recovery", "--out");
+    if (!rec_recipes->empty()) o.recipes.assign(rec_recipes->begin(), rec_recipes->end());
+    o.log = *quiet ? nullptr : &std::cout;
+    const std::vector<RecoveryCell> cells = run_recovery_matrix(o);
+    write_marker(o.out, "study recovery");
+    if (!*quiet) {
+      for (const LoadVerdict& v : judge_loads(cells)) std::printf("%s: %s\n", v.load.c_str(), v.verdict.c_str());
+      std::printf("-> %s/REPORT.md\n", o.out.string().c_str());
+    }
+    return exit_ok;
+  }};
+  return Command{sub, [opt, scenes, out, quiet, recovery](const Invocation& inv) {
+    if (recovery.sub->parsed()) return recovery.run(inv);
     InteractionStudyOptions o = *opt;
     o.out = *out;
     check_ours(o.out, "study interactions", "--out");

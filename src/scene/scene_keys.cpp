@@ -74,7 +74,7 @@ std::vector<SceneKey> make_table() {
              s.model.interaction_cutoff),
       OTHER("model.interaction_weighting", KeyKind::choice, name_of(s.model.interaction_weighting)),
       NUMBER("model.position_scale", nullptr, "in (0, 1e6]", x > 0 && x <= 1e6,
-             "multiplies every junction centre: an apparent contact s times as wide", 1.0, false,
+             "multiplies every junction centre: an apparent contact s times as wide", 1.0, true,
              s.model.position_scale),
       OTHER("solver.method", KeyKind::choice, name_of(s.solver.method)),
       NUMBER("solver.Ct", nullptr, ">= 1", x >= 1, "reference steps per T0; fewer is unstable for any scene", 1e4,

@@ -25,6 +25,7 @@
 #include "fit/objective.hpp"
 #include "report/gnuplot.hpp"
 #include "studies/junction_pairs.hpp"
+#include "studies/recovery_matrix.hpp"
 #include "studies/topography_comparison.hpp"
 #include "scene/load.hpp"
 #include "solve/integrate.hpp"
@@ -388,7 +389,7 @@ std::string verdict_of(const Tally& t) {
 
 // REPORT.md's title, provenance and verdict.
 void write_verdict_md(std::ostream& md, const InteractionStudyOptions& opt, const Tally& t, const std::string& verdict,
-                      const std::string& joint) {
+                      const std::string& joint, const std::string& recovery) {
   const std::string of = " of " + std::to_string(t.ran) + " loads";
   md << "# Elastic interactions between junctions: does A(Q) turn quadratic?\n\n"
      << "**STAND-IN DATA.** Every number here comes from the stand-in experiments of `data/standin/` (areas, "
@@ -398,8 +399,14 @@ void write_verdict_md(std::ostream& md, const InteractionStudyOptions& opt, cons
      << opt.fit_independent.generic_string() << "` and `" << opt.fit_interacting.generic_string()
      << "`, the joint calibrations from `" << (opt.joint_independent.empty() ? fs::path() : opt.joint_independent.front()).generic_string()
      << "` and `" << (opt.joint_interacting.empty() ? fs::path() : opt.joint_interacting.front()).generic_string()
-     << "` (and the further files the section names), the sweep from `" << opt.sweep_store.generic_string() << "/points.csv`).\n\n"
-     << "## Verdict\n\n**" << verdict << ".** ";
+     << "` (and the further files the section names), the sweep from `" << opt.sweep_store.generic_string()
+     << "/points.csv`, the recovery matrix from `" << opt.recovery_matrix.generic_string() << "`).\n\n"
+     << "## What the joint calibration can tell apart: the recovery matrix\n\n"
+     << "**SYNTHETIC DATA** (read from `" << opt.recovery_matrix.generic_string()
+     << "`, written by `asperity study recovery`): experiments made by each model at a known truth, each fitted by "
+        "each model at equal budgets. Only where the model that made the data wins its row can a joint fit between "
+        "the models decide anything.\n\n"
+     << recovery << "## Verdict on the stand-ins\n\n**" << verdict << ".** ";
   if (t.ran > 0)
     md << "The independent model is within the noise at " << t.indep_quadratic << of << ". Against the measured curve, "
        << "the interacting model is closer than the independent one at " << t.closer << of << ", farther at " << t.farther
@@ -771,6 +778,40 @@ void write_joint_md(std::ostream& md, const InteractionStudyOptions& opt, const 
   md << "\n";
 }
 
+// REPORT.md: at what noise each model would pass. The 95th percentile a noise of level σ leaves is
+// proportional to σ (A(Q): the bootstrap of the residuals about the parabola; Q(t): σ sqrt(χ²₀.₉₅(n)/n)),
+// while a model's misfit on the stand-ins is systematic: a model passes at k times the stand-ins'
+// noise for k ≥ misfit / (95 % at their noise).
+void write_noise_md(std::ostream& md, const std::vector<StudyRow>& rows, const std::vector<JointRow>& joint) {
+  md << "## At what noise each model would pass\n\n"
+        "A model's misfit here is systematic, while the 95th percentile that noise alone leaves grows in proportion to "
+        "the noise level: the table gives k = misfit / (noise 95 %), the factor by which the stand-ins' noise would "
+        "have to grow for the model to pass (k ≤ 1: it passes at their noise). A(Q) at the calibrated α_b (the "
+        "first table below) and, for the joint calibrations, Q(t) and A(Q) at the jointly fitted values.\n\n"
+     << "| experiment | A(Q) independent | A(Q) interacting | joint: Q(t) independent | joint: Q(t) interacting | "
+        "joint: A(Q) independent | joint: A(Q) interacting |\n|---|---|---|---|---|---|---|\n";
+  auto k = [](double misfit, double p95) {
+    return std::isfinite(misfit) && std::isfinite(p95) && p95 > 0 ? scene_io::format_cell("%.1f", misfit / p95)
+                                                                   : std::string("no evidence");
+  };
+  for (const StudyRow& r : rows) {
+    md << "| " << r.name << " | " << (r.indep.ran ? k(r.indep.shape.residual_rms, r.indep.shape.noise_rms_p95) : "no evidence")
+       << " | " << (r.inter.ran ? k(r.inter.shape.residual_rms, r.inter.shape.noise_rms_p95) : "no evidence");
+    const JointRow* j = nullptr;
+    for (const JointRow& x : joint)
+      if (x.name == r.name) j = &x;
+    for (int part = 0; part < 2; ++part)
+      for (int model = 0; model < 2; ++model) {
+        const JointSide* s = j ? (model == 0 ? &j->indep : &j->inter) : nullptr;
+        md << " | "
+           << (s && s->ran ? (part == 0 ? k(s->force.rms, s->force.noise_p95) : k(s->shape.residual_rms, s->shape.noise_rms_p95))
+                           : std::string("no evidence"));
+      }
+    md << " |\n";
+  }
+  md << "\n";
+}
+
 // joint.csv: one row per model and load with a joint calibration that ran.
 void write_joint_csv(const fs::path& out, const std::vector<JointRow>& rows) {
   std::ostringstream t;
@@ -824,7 +865,10 @@ std::string run_interaction_study(const InteractionStudyOptions& opt) {
   const std::vector<JointRow> joint = run_joint_rows(opt, rows);
   write_joint_csv(opt.out, joint);
   std::ostringstream md;
-  write_verdict_md(md, opt, t, verdict, joint_verdict(tally_joint(joint), rows.size()));
+  std::ostringstream recovery;
+  write_recovery_matrix_md(recovery, read_recovery_matrix(opt.recovery_matrix));
+  write_verdict_md(md, opt, t, verdict, joint_verdict(tally_joint(joint), rows.size()), recovery.str());
+  write_noise_md(md, rows, joint);
   write_loads_md(md, rows);
   write_shape_md(md, rows);
   write_joint_md(md, opt, joint);

@@ -33,6 +33,9 @@ struct InteractionStudyOptions {
   // The topography study's table (results/topography/study.py; SYNTHETIC surfaces): both models
   // on junctions from contact mechanics (studies/topography_comparison.hpp); absent: no evidence.
   std::filesystem::path topography_table = "results/topography/table.csv";
+  // The recovery matrix (`asperity study recovery`; SYNTHETIC experiments): what the joint
+  // method can tell apart, which the report leads with; absent: no evidence.
+  std::filesystem::path recovery_matrix = "results/recovery/matrix.csv";
   std::filesystem::path out = "results/interactions";
   std::string spread_experiment = "P4.00N";
   int threads = 2;

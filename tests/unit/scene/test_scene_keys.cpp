@@ -63,7 +63,7 @@ TEST_CASE("scene keys: number defaults are the struct defaults and the writer pr
   CHECK(scene_value_text(s, "stop.max_slips") == "7");
   CHECK(scene_value_text(load_scene(kScene), "stop.max_slips").empty());  // not written at its default
   CHECK(scene_value_text(s, "output.series").empty());
-  CHECK(numeric_scene_keys().size() == 11);
+  CHECK(numeric_scene_keys().size() == 12);
   CHECK_THROWS_AS(scene_value(s, "solver.Ct"), std::invalid_argument);  // not a fit parameter
 }
 
