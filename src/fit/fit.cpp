@@ -263,6 +263,12 @@ std::string nlopt_stage(Problem& pb, const std::string& algorithm, int max_evalu
   double f = 0;
   std::string reason;
   try {
+    // One evaluation is the objective at the start: NLopt's BOBYQA would first move a start
+    // that lies within its initial step of a bound, and evaluate there instead.
+    if (max_evaluations == 1) {
+      nlopt_objective(n, u.data(), nullptr, &pb);
+      return nlopt_result_name(nlopt::MAXEVAL_REACHED);
+    }
     reason = nlopt_result_name(opt.optimize(u, f));
   } catch (const nlopt::forced_stop&) {
     reason = "FORCED_STOP";

@@ -151,8 +151,7 @@ RecoveryCell fit_cell(const FitSpec& spec, const SyntheticRecipe& recipe, const 
 // J at the truth: the same spec, one evaluation started at the generating values.
 double objective_at_truth(FitSpec spec, const SyntheticRecipe& recipe, int threads) {
   for (FitParameter& p : spec.parameters) p.start = scene_value(recipe.scene, p.key);
-  spec.algorithm = "LN_BOBYQA";
-  spec.max_evaluations = 1;
+  spec.max_evaluations = 1;  // one evaluation: at the start, whatever the algorithm (fit.cpp)
   spec.polish_algorithm.clear();
   spec.starts = 1;
   spec.intervals = false;

@@ -174,6 +174,31 @@ TEST_CASE("area_and_force recovers (alpha_b, epsilon, eta) of a noise-free model
 }
 
 
+// "J at a point" is a fit of one evaluation from that point. NLopt's BOBYQA first moves a start
+// that lies within its initial step (0.1 of the scaled box) of a bound: eta = 31 on [30, 300]
+// (log scale: 0.014 of the box) became 37.77 = 30 · 10^0.1 before one evaluation meant the start.
+TEST_CASE("a fit of one evaluation scores its start, even within the initial step of a bound", "[fit][joint]") {
+  const JointCase c = make_joint_case("joint-one-evaluation", 0.7e-15, 0.9, 100, 0.002, 7);
+  const std::string head = "objective: area_and_force\nexperiments: [{scene: scene.yaml, force: force.csv}]\n"
+                           "parameters:\n"
+                           "  model.alpha_b: {lo: 1e-16, hi: 5e-15, start: 0.7e-15, scale: log}\n"
+                           "  model.epsilon: {lo: 0.5, hi: 0.99, start: 0.9}\n"
+                           "  model.eta: {lo: 30, hi: 300, start: 31, scale: log}\n"
+                           "profile: false\nintervals: false\n";
+  const FitResult b = fit_text(c, head + "optimizer: {algorithm: LN_BOBYQA, max_evaluations: 1}\n", false);
+  const FitResult nm = fit_text(c, head + "optimizer: {algorithm: LN_NELDERMEAD, max_evaluations: 1}\n", false);
+  for (const FitResult* r : {&b, &nm}) {
+    const Optimization& o = r->fits.at(0);
+    REQUIRE(o.ok());
+    CHECK(o.evaluations == 1);
+    CHECK(o.best[0] == Approx(0.7e-15).epsilon(1e-12));
+    CHECK(o.best[1] == Approx(0.9).epsilon(1e-12));
+    CHECK(o.best[2] == Approx(31).epsilon(1e-12));
+  }
+  CHECK(b.fits[0].objective == nm.fits[0].objective);  // the same point, the same run
+  std::filesystem::remove_all(c.base.dir);
+}
+
 // The measurement behind optimizer.starts in the joint fit files (docs/calibration.md, "Convergence:
 // several starts"): the noisy case above, J at the truth against the fit's J for the global
 // phase alone and with 4 and 8 starts, and 8 Subplex starts without it. Hidden (minutes):
