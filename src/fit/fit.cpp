@@ -263,9 +263,10 @@ std::string nlopt_stage(Problem& pb, const std::string& algorithm, int max_evalu
   double f = 0;
   std::string reason;
   try {
-    // One evaluation is the objective at the start: NLopt's BOBYQA would first move a start
-    // that lies within its initial step of a bound, and evaluate there instead.
-    if (max_evaluations == 1) {
+    // One evaluation of a local algorithm is the objective at the start: NLopt's BOBYQA would
+    // first move a start lying within its initial step of a bound, and evaluate there instead.
+    // (A global one, DIRECT, keeps its own first point: the box's centre.)
+    if (max_evaluations == 1 && algorithm.rfind("LN_", 0) == 0) {
       nlopt_objective(n, u.data(), nullptr, &pb);
       return nlopt_result_name(nlopt::MAXEVAL_REACHED);
     }
