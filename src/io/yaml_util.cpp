@@ -82,6 +82,22 @@ std::string did_you_mean(const std::string& word, const std::vector<std::string>
   return pick ? " (did you mean '" + *pick + "'?)" : "";
 }
 
+std::string misplaced_key_hint(const std::string& path, const std::string& key, const std::vector<std::string>& layout) {
+  const std::string here = join_key(path, key);
+  std::vector<std::string> homes;
+  for (const std::string& d : layout) {
+    if (d == here) return "";
+    const std::size_t dot = d.rfind('.');
+    const std::string leaf = dot == std::string::npos ? d : d.substr(dot + 1);
+    const std::string section = d.substr(0, d.find('.'));
+    if (leaf == key && std::find(homes.begin(), homes.end(), d) == homes.end()) homes.push_back(d);
+    if (section == key && !path.empty() && std::find(homes.begin(), homes.end(), section) == homes.end())
+      homes.push_back(section);
+  }
+  if (homes.empty()) return "";
+  return " (" + quote(key) + " is " + join(homes, " or ") + ": check its indentation)";
+}
+
 std::string join(const std::vector<std::string>& v, const char* sep) {
   std::string s;
   for (std::size_t i = 0; i < v.size(); ++i) s += (i ? sep : "") + v[i];
@@ -263,6 +279,23 @@ struct DocumentCounter : YAML::EventHandler {
   }
 };
 
+// The 1-based line of the first line whose indentation holds a tab (0: none).
+int first_tab_indented_line(const std::string& text) {
+  int line = 1;
+  bool indent = true;
+  for (const char c : text) {
+    if (c == '\n') {
+      ++line;
+      indent = true;
+    } else if (indent && c == '\t') {
+      return line;
+    } else if (c != ' ') {
+      indent = false;
+    }
+  }
+  return 0;
+}
+
 // The one document of `text` (Null when empty); parse errors and extra documents → InputError.
 YAML::Node load_one_document(const std::string& text, const std::string& display, const std::string& key) {
   const int line_of = key.empty() ? 1 : 0;  // a --set value has no file line
@@ -286,6 +319,11 @@ YAML::Node load_one_document(const std::string& text, const std::string& display
     }
     return YAML::Load(text);
   } catch (const YAML::Exception& e) {
+    // YAML indents with spaces only; a tab there is the usual cause, and yaml-cpp names it
+    // only as the map or value it then cannot read.
+    if (const int tab = first_tab_indented_line(text); tab > 0 && (e.mark.is_null() || tab <= e.mark.line + 1))
+      throw InputError(display, line_of * tab, key,
+                       "malformed YAML: this line is indented with a tab; YAML indents with spaces only");
     throw InputError(display, line_of * (e.mark.is_null() ? 0 : e.mark.line + 1), key,
                      (key.empty() ? "malformed YAML: " : "malformed YAML value: ") + e.msg);
   }
@@ -347,7 +385,9 @@ MapView::MapView(Source src, const YAML::Node& node, std::string path, std::vect
              fallback_line_);
     if (std::find(allowed.begin(), allowed.end(), k) == allowed.end())
       fail(src_, kn, key(k),
-           "unknown key " + quote(k) + did_you_mean(k, allowed) + "; valid keys here: " + join(allowed),
+           "unknown key " + quote(k) + did_you_mean(k, allowed) +
+               (src_.layout ? misplaced_key_hint(path_, k, *src_.layout) : std::string()) +
+               "; valid keys here: " + join(allowed),
            fallback_line_);
     entries_.push_back({k, {kn, it->second}});
   }

@@ -28,7 +28,14 @@ struct SetRecord {
 struct Source {
   std::string file;                              // display path
   const std::vector<SetRecord>* sets = nullptr;  // overrides applied to this tree, in order
+  // Every dotted key of this kind of file ("solver.tolerance", ...), when known: an unknown key
+  // that is valid at another depth is named with where it belongs (an indentation slip).
+  const std::vector<std::string>* layout = nullptr;
 };
+
+// " ('tolerance' is solver.tolerance: check its indentation)" when `key` at `path` is the last
+// part of a dotted key of `layout` that sits elsewhere, or a section of it; else "".
+std::string misplaced_key_hint(const std::string& path, const std::string& key, const std::vector<std::string>& layout);
 
 [[noreturn]] void fail(const Source& src, const YAML::Node& at, const std::string& key,
                        const std::string& message, int fallback_line = 0);

@@ -292,7 +292,7 @@ void read_topography(const MapView& root, const YAML::Node& tn, const fs::path& 
 
 Scene scene_from_tree_impl(const YAML::Node& tree, const fs::path& origin, const fs::path& base_dir,
                            const std::string& display, const std::vector<SetRecord>* sets, TopographyCache* cache) {
-  const Source src{display, sets};
+  const Source src{display, sets, &scene_key_names()};
   const MapView root(src, tree, "", kSceneKeys, origin.empty() ? 0 : 1);  // a tree in memory has no lines
   Scene s;
   if (!origin.empty()) s.file = resolved(origin);

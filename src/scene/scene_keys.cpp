@@ -227,6 +227,15 @@ const std::vector<std::string>& numeric_scene_keys() {
   return keys;
 }
 
+const std::vector<std::string>& scene_key_names() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> out;
+    for (const SceneKey& k : scene_keys()) out.emplace_back(k.name);
+    return out;
+  }();
+  return names;
+}
+
 double scene_value(const Scene& scene, const std::string& key) {
   const SceneKey* k = find_scene_key(key);
   if (!k || !k->fittable) throw std::invalid_argument("not a numeric scene key: " + key);

@@ -37,6 +37,8 @@ const SceneKey* find_scene_key(std::string_view dotted);  // nullptr: not a key 
 
 // Dotted keys holding one number that a fit may vary (experiment.mass, model.alpha_b, ...).
 const std::vector<std::string>& numeric_scene_keys();
+// Every key's dotted name, in table order (where an unknown key of a scene file belongs).
+const std::vector<std::string>& scene_key_names();
 // The value of a fittable numeric key (std::invalid_argument for any other key).
 double scene_value(const Scene& scene, const std::string& key);
 
