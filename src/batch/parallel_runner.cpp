@@ -65,7 +65,14 @@ void ParallelRunner::run_pipeline(const std::function<std::shared_ptr<void>()>& 
 }
 
 void for_each_nested(std::size_t n, const std::function<void(std::size_t)>& body, Nesting nesting) {
-  auto loop = [&] { tbb::parallel_for(std::size_t{0}, n, body); };
+  // An isolated context: when a sibling task of the enclosing loop throws (a stop's
+  // RunInterrupted), TBB cancels that loop's context and, through it, every bound child context,
+  // whose bodies would then be skipped without a word: an evaluation whose runs never ran,
+  // scored as NaN and journaled as a failure. Isolated, this loop runs every body or throws.
+  auto loop = [&] {
+    tbb::task_group_context context(tbb::task_group_context::isolated);
+    tbb::parallel_for(std::size_t{0}, n, body, context);
+  };
   if (nesting == Nesting::isolated) tbb::this_task_arena::isolate(loop);
   else loop();
 }

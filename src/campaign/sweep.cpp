@@ -671,8 +671,9 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
   // Stopped: the journal (synced above) keeps what ran; points.csv and inputs.txt are written by
   // the run that completes the shard (inputs.txt is absent now, so it checks every stored point).
   if (stages.cut_short())
-    throw RunInterrupted("sweep interrupted: " + std::to_string(rep.ran) + " point(s) run now, kept in " +
-                         (rep.store / "journal.csv").string() + "; run it again to resume");
+    throw RunInterrupted("interrupted; " + std::to_string(rep.skipped + rep.ran) + " of " + std::to_string(rep.points) +
+                         " point(s) of this shard kept in " + rep.store.string() + " (" +
+                         std::to_string(rep.ran) + " run now); rerun the same command to resume");
 
   auto mine = [&](std::uint64_t index) { return index < c.size() && shard.contains(index); };
   const bool unchanged = points_current(rep, points_digest);

@@ -13,12 +13,14 @@
 #include <string>
 
 #include "cli/commands.hpp"
+#include "cli/interrupt.hpp"
 #include "cli/options.hpp"
 #include "fit/fit.hpp"
 #include "fit/fit_inputs.hpp"
 #include "fit/fit_journal.hpp"
 #include "fit/fit_load.hpp"
 #include "fit/fit_tasks.hpp"
+#include "observe/run_monitor.hpp"
 #include "io/atomic_file.hpp"
 #include "io/dir_lock.hpp"
 #include "io/input_error.hpp"
@@ -225,7 +227,14 @@ int run(const FitCliOptions& opt, const Invocation& inv) {
   fo.on_evaluation = [&](double objective) { progress.evaluated(objective); };
   FitResult result;
   try {
+    const InterruptRequest ctrl_c;  // Ctrl-C: the evaluations in flight stop, the journal keeps the rest
+    fo.stop = ctrl_c.flag();
     result = run_fit(spec, fo);
+  } catch (const RunInterrupted&) {
+    const std::filesystem::path journal_file = (sharded ? task_dir(out, task) : out) / "journal.csv";
+    std::fprintf(stderr, "%sfit: interrupted; %zu evaluation(s) kept in %s; rerun the same command to resume\n",
+                 opt.quiet ? "" : "\n", journal.size(), journal_file.string().c_str());
+    return exit_interrupted;
   } catch (const NotJournaled& e) {
     throw InputError((out / "tasks").string(), 0, "--collect",
                      std::string(e.what()) + ": a task has not finished (run it again: it resumes) or ran with other "

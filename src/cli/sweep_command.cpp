@@ -8,8 +8,10 @@
 
 #include "campaign/sweep.hpp"
 #include "cli/commands.hpp"
+#include "cli/interrupt.hpp"
 #include "cli/options.hpp"
 #include "io/numbers.hpp"
+#include "observe/run_monitor.hpp"
 #include "scene/load.hpp"
 #include "report/output_dir.hpp"
 #include "campaign/campaign_load.hpp"
@@ -65,7 +67,15 @@ int sweep(const SweepArgs& a, const Invocation& inv) {
   opt.quiet = a.quiet;
   opt.retry_failed = a.retry_failed;
   opt.sync = a.sync;
-  const SweepReport r = run_sweep(c, opt);
+  SweepReport r;
+  try {
+    const InterruptRequest ctrl_c;  // Ctrl-C: the points in flight stop, the journal keeps the rest
+    opt.stop = ctrl_c.flag();
+    r = run_sweep(c, opt);
+  } catch (const RunInterrupted& e) {
+    std::fprintf(stderr, "%s%s: %s\n", a.quiet ? "" : "\n", c.name.c_str(), e.what());
+    return exit_interrupted;
+  }
   if (!a.quiet || r.failed > 0) {
     std::fprintf(stderr, "%s: %llu points in shard %s; %llu already stored, %llu run now (%llu failed) in %.1f s",
                  c.name.c_str(), static_cast<unsigned long long>(r.points),
