@@ -367,3 +367,30 @@ TEST_CASE("links and FIFOs planted inside a store or fit folder are refused; not
   CHECK(snapshot(w / "outside") == outside);
   fs::remove_all(w);
 }
+
+TEST_CASE("outputs named with 250 or 255 bytes (legal names) are written by run, fit, sweep and export",
+          "[cli][overwrite][names]") {
+  const fs::path w = make_case("long_names");
+  // The temporaries beside them add a prefix and a suffix; they must stay within NAME_MAX too.
+  for (const std::size_t n : {250, 255}) {
+    INFO(n << "-byte names");
+    const std::string run_dir(n, 'r'), fit_dir(n, 'f'), store(n, 's'), db(n - 3, 'd');
+    const CliResult run = run_argv(w, {"run", "s1.yaml", "--out", run_dir, "--quiet"});
+    INFO(run.err);
+    CHECK(run.status == 0);
+    CHECK(fs::exists(w / run_dir / "summary.yaml"));
+    const CliResult fit = run_argv(w, {"fit", "fit.yaml", "--out", fit_dir, "--quiet", "--no-profile", "--no-error-bars"});
+    INFO(fit.err);
+    CHECK(fit.status == 0);
+    CHECK(fs::exists(w / fit_dir / "fit.yaml"));
+    REQUIRE(run_argv(w, {"sweep", "camp.yaml", "--out", store, "--quiet", "-j", "1"}).status == 0);
+    const CliResult exp = run_argv(w, {"export", store, "--sqlite", db + ".db"});
+    INFO(exp.err);
+    CHECK(exp.status == 0);
+    CHECK_THAT(exp.out, Catch::Contains("exported 4 points"));
+    CHECK(fs::file_size(w / (db + ".db")) > 0);
+    // Nothing left behind but the outputs.
+    for (const auto& e : fs::directory_iterator(w)) CHECK(e.path().filename().string().find(".tmp-") == std::string::npos);
+  }
+  fs::remove_all(w);
+}
