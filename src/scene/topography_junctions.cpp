@@ -9,6 +9,7 @@
 #include "io/digest.hpp"
 #include "io/input_error.hpp"
 #include "io/numbers.hpp"
+#include "scene/csv.hpp"
 #include "scene/validate.hpp"
 #include "surface/height_map_io.hpp"
 #include "surface/normal_contact.hpp"
@@ -168,6 +169,19 @@ TopographyContact solve_topography_contact(const TopographyRecipe& r, int thread
     t.junctions.y_m.push_back(k.y_m);
   }
   t.merges = merge_overlapping_junctions(t.junctions);
+  // The junctions must pass what a junctions file's rows pass (what generate writes is read back
+  // as one): a pixel of 1e-11 m or a map of 1e5 m pixels makes areas no command accepts.
+  const JunctionPopulation& J = t.junctions;
+  for (std::size_t i = 0; i < J.size(); ++i) {
+    std::string why = scene_io::junction_area_problem(J.area_m2[i]);
+    for (const double v : {J.x_m[i], J.y_m[i]})
+      if (why.empty()) why = scene_io::junction_coordinate_problem(v);
+    if (!why.empty())
+      throw InputError(r.display, r.topography_line, "topography",
+                       "junction " + std::to_string(i + 1) + " of the " + std::to_string(J.size()) +
+                           " this surface makes: " + why + " (the map's pixel size, load_N and sphere_radius_m " +
+                           "set the junctions' sizes)");
+  }
   return t;
 }
 

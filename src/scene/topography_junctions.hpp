@@ -38,7 +38,8 @@ struct TopographyContact {
 };
 
 // Surface → sphere → contact → clusters → merged junctions. InputError when the contact solve
-// does not converge within max_iterations or reaches the map's edge. `threads`: the contact
+// does not converge within max_iterations, reaches the map's edge, or makes a junction that a
+// junctions file could not hold (scene/csv.hpp's rules: generate writes one). `threads`: the contact
 // solve's FFTW and loop threads (the numbers do not depend on it).
 TopographyContact solve_topography_contact(const TopographyRecipe& recipe, int threads = 1);
 
