@@ -148,6 +148,19 @@ TEST_CASE("topography recipes: bad values refused at their line", "[generate][to
         (d / "bad.yaml").string() +
             ":3: topography: the contact reaches the edge of the 32 x 32 map: enlarge the map (or lower load_N, or "
             "the sphere_radius_m)");
+  // A float64 map with a spike of 1e308 m (or a pit): refused at its header's data key, naming
+  // the height, before the contact solve (which broke down on it: exit 1).
+  for (const double spike : {1e308, -1e308}) {
+    HeightMap m;
+    m.n = 16;
+    m.pixel_m = 3e-4;
+    m.h_m.assign(m.n * m.n, 0.0);
+    m.h_m[3 * m.n + 5] = spike;
+    write_height_map_binary(d / "spike.yaml", "spike.f64", m);
+    const std::string expected = (d / "spike.yaml").string() + ":3: data: row 4, column 6 of " + (d / "spike.f64").string() +
+                                 ": height " + scene_io::format_double(spike) + " m: the heights span 1e+308 m";
+    CHECK(build_error(recipe_text("  file: spike.yaml\n")).rfind(expected, 0) == 0);
+  }
   std::string once = recipe_text("  smooth:\n    n: 64\n    size_m: 5e-3\n");
   once.replace(once.find("max_iterations: 2000"), 20, "max_iterations: 1");
   CHECK(build_error(once).rfind((d / "bad.yaml").string() +
