@@ -241,6 +241,9 @@ SqliteExportReport export_sqlite(const fs::path& store, const fs::path& file) {
   const StoreReader s(store);
   const ExportColumns x = export_columns(s, store);
   const fs::path tmp = file.parent_path() / temp_name(file.filename().string());
+  // An export killed before it could remove its temporary (kill -9, a lost node) left it here.
+  remove_stale_temporaries(file.parent_path().empty() ? fs::path(".") : file.parent_path(),
+                           temp_prefix(file.filename().string()));
   TempFile guard{tmp};
   const TempGuard on_signal(tmp);
   SqliteExportReport rep;
