@@ -227,7 +227,8 @@ bool merge_remnant(const fs::path& dir) {
   static const std::string_view written[] = {"provenance.yaml", "campaign.yaml", "series", "series.csv", "points.csv"};
   for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
     const std::string n = it->path().filename().string();
-    const bool temporary = n[0] == '.' && (n.find(".tmp-") != std::string::npos || n.find(".old-") != std::string::npos);
+    const bool temporary =
+        n[0] == '.' && (n.find(".tmp-") != std::string::npos || n.find(".old-") != std::string::npos);
     if (n == ".lock" || temporary) continue;
     if (provenance && std::find(std::begin(written), std::end(written), n) != std::end(written)) continue;
     return false;

@@ -253,7 +253,8 @@ TopographyContact solve_topography_contact(const TopographyRecipe& r, int thread
     t.merges = merge_overlapping_junctions(t.junctions);
   } catch (const std::length_error&) {
     throw InputError(r.display, r.topography_line, "topography",
-                     "merging the overlapping discs of the " + std::to_string(t.clusters) + " contact clusters needs more than " +
+                     "merging the overlapping discs of the " + std::to_string(t.clusters) +
+                         " contact clusters needs more than " +
                          scene_io::format_short(static_cast<double>(kMaxMergeWork)) +
                          " disc comparisons: use contact.connectivity 8 or a coarser map");
   }

@@ -21,8 +21,8 @@ using scene_io::Source;
 
 std::string pixel_size_problem(double pixel_m) {
   if (pixel_m >= kMinPixel_m && pixel_m <= kMaxPixel_m) return "";
-  return "pixel size must be in [" + scene_io::format_double(kMinPixel_m) + ", " + scene_io::format_double(kMaxPixel_m) +
-         "] m, got " + scene_io::format_double(pixel_m);
+  return "pixel size must be in [" + scene_io::format_double(kMinPixel_m) + ", " +
+         scene_io::format_double(kMaxPixel_m) + "] m, got " + scene_io::format_double(pixel_m);
 }
 
 std::optional<HeightRangeProblem> height_range_problem(const HeightMap& map) {
