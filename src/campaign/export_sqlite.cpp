@@ -240,11 +240,10 @@ SqliteExportReport export_sqlite(const fs::path& store, const fs::path& file) {
   check_export_target(file);
   const StoreReader s(store);
   const ExportColumns x = export_columns(s, store);
-  std::string tmp_name = ".";
-  tmp_name += file.filename().string();
-  tmp_name += ".tmp-";
-  tmp_name += unique_tmp_suffix();
-  const fs::path tmp = file.parent_path() / tmp_name;
+  const fs::path tmp = file.parent_path() / temp_name(file.filename().string());
+  // An export killed before it could remove its temporary (kill -9, a lost node) left it here.
+  remove_stale_temporaries(file.parent_path().empty() ? fs::path(".") : file.parent_path(),
+                           temp_prefix(file.filename().string()));
   TempFile guard{tmp};
   const TempGuard on_signal(tmp);
   SqliteExportReport rep;

@@ -1,6 +1,7 @@
 #include "campaign/merge.hpp"
 
 #include <algorithm>
+#include <fstream>
 #include <functional>
 #include <map>
 #include <memory>
@@ -10,6 +11,7 @@
 #include <vector>
 
 #include "campaign/store.hpp"
+#include "campaign/sweep.hpp"  // kStoreProvenanceFirstLine
 #include "io/journal_line.hpp"
 #include "scene/load.hpp"
 
@@ -178,6 +180,7 @@ MergeReport merge_stores(const std::vector<fs::path>& inputs, const fs::path& ou
   const std::map<std::uint64_t, std::size_t> chosen = choose_duplicates(stores, inputs, header, rep);
   fs::create_directories(out);
   StoreLock lock(out);
+  remove_stale_temporaries(out);  // of a merge stopped by kill -9 or a lost node
   AtomicFileWriter journal(out / "journal.csv", Durability::synced), points(out / "points.csv", Durability::synced);
   journal.write(journal_header(header) + "\n");
   points.write(header + "\n");
@@ -201,13 +204,36 @@ MergeReport merge_stores(const std::vector<fs::path>& inputs, const fs::path& ou
     ++rep.rows;
     if (csv_split(row).at(status_col) != "ok") ++rep.failed;
   });
-  write_file_durably(out / "campaign.yaml", read_file_text(inputs[0] / "campaign.yaml"));
+  // provenance.yaml first (merge_remnant knows the folder by it), journal.csv last (the merge is
+  // done when it is there).
   write_file_durably(out / "provenance.yaml", merged_provenance(provenance, inputs));
+  write_file_durably(out / "campaign.yaml", read_file_text(inputs[0] / "campaign.yaml"));
   copy_legacy_series(inputs, out);
   if (series_out) series_out->commit();
-  journal.commit();
   points.commit();
+  journal.commit();
   return rep;
+}
+
+bool merge_remnant(const fs::path& dir) {
+  std::error_code ec;
+  if (fs::exists(fs::symlink_status(dir / "journal.csv", ec))) return false;  // a store, merged or swept
+  bool provenance = false;
+  if (fs::is_regular_file(fs::symlink_status(dir / "provenance.yaml", ec))) {
+    std::ifstream in(dir / "provenance.yaml");
+    std::string first;
+    provenance = std::getline(in, first) && first == kStoreProvenanceFirstLine;
+  }
+  static const std::string_view written[] = {"provenance.yaml", "campaign.yaml", "series", "series.csv", "points.csv"};
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string n = it->path().filename().string();
+    const bool temporary =
+        n[0] == '.' && (n.find(".tmp-") != std::string::npos || n.find(".old-") != std::string::npos);
+    if (n == ".lock" || temporary) continue;
+    if (provenance && std::find(std::begin(written), std::end(written), n) != std::end(written)) continue;
+    return false;
+  }
+  return !ec;
 }
 
 }  // namespace asperity

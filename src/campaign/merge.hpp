@@ -18,7 +18,15 @@ struct MergeReport {
 // a mismatch, on one point stored with two different scene hashes (the hash covers the bytes of
 // the junctions and measured CSVs: one store is stale) or with two different values, or when
 // `out` already holds a store. A point that failed in one input and ran in another keeps the
-// row that ran. The merged store can be resumed by `asperity sweep --out OUT` to fill gaps.
+// row that ran. journal.csv is written last: until it is there the merge is not done (and a rerun
+// may write `out` again, merge_remnant). The merged store can be resumed by `asperity sweep --out OUT` to fill gaps.
 MergeReport merge_stores(const std::vector<std::filesystem::path>& inputs, const std::filesystem::path& out);
+
+// Whether `dir` holds only what a stopped or failed merge (a signal, a full disk) leaves there: its
+// lock, asperity's temporaries (".NAME.tmp-*"), and the files a merge writes before the journal
+// that completes it (provenance.yaml first, with a store's first line, then campaign.yaml,
+// series/, series.csv, points.csv). A rerun writes there: merge_stores removes the temporaries
+// and replaces the rest.
+bool merge_remnant(const std::filesystem::path& dir);
 
 }  // namespace asperity

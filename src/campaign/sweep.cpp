@@ -119,7 +119,7 @@ bool uses_stand_ins(const Campaign& c) {
 std::string store_provenance_yaml(const Campaign& c, const std::string& campaign_text, const SweepOptions& opt,
                                   ShardBalance balance) {
   std::ostringstream y;
-  y << "# asperity sweep store: written once, when the store was started\n";
+  y << kStoreProvenanceFirstLine << '\n';
   y << "campaign: " << yaml_quoted(c.name) << '\n';
   y << "campaign_file: " << yaml_quoted(display_path(c.file)) << '\n';
   y << "campaign_fnv1a64: " << yaml_quoted(hex16(fnv1a64(campaign_text))) << '\n';

@@ -37,6 +37,10 @@
 
 namespace asperity {
 
+// The first line of a store's provenance.yaml, by which a store's folder is known as asperity's.
+inline constexpr const char* kStoreProvenanceFirstLine =
+    "# asperity sweep store: written once, when the store was started";
+
 // Most points one sweep process may hold (its shard of the campaign): the journal's index keeps
 // 16 bytes a point, reserved up front (1.6 GB at this size); larger campaigns run as shards.
 inline constexpr std::uint64_t kMaxShardPoints = 100'000'000;

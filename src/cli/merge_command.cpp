@@ -25,9 +25,10 @@ Command add_merge_command(CLI::App& app) {
   add_quiet_flag(sub, a->quiet);
   return Command{sub, [a](const Invocation&) {
                    const std::vector<std::filesystem::path> in(a->in.begin(), a->in.end());
-                   // Only into a new or empty folder: the result is a store (no marker, so that
-                   // sweep can resume it), and merge never adds to an existing one.
-                   check_ours(a->out, "merge", "--out");
+                   // Only into a new or empty folder, or one a stopped merge left: the result is a
+                   // store (no marker, so that sweep can resume it), and merge never adds to an
+                   // existing one.
+                   check_ours(a->out, "merge", "--out", merge_remnant);
                    const MergeReport r = merge_stores(in, a->out);
                    if (!a->quiet)
                      std::printf("merged %zu stores: %llu points (%llu failed, %llu in more than one store) -> %s\n",

@@ -54,7 +54,7 @@ int sweep(const SweepArgs& a, const Invocation& inv) {
   // very start leaves): never among a user's files.
   const std::filesystem::path store = a.out.empty() ? std::filesystem::path("results") / c.name : std::filesystem::path(a.out);
   check_ours(store, "sweep", "--out", [](const std::filesystem::path& d) {
-    if (first_line_is(d / "provenance.yaml", "# asperity sweep store: written once, when the store was started"))
+    if (first_line_is(d / "provenance.yaml", kStoreProvenanceFirstLine))
       return true;
     for (const auto& e : std::filesystem::directory_iterator(d)) {
       const std::string n = e.path().filename().string();

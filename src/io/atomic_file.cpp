@@ -47,9 +47,7 @@ bool write_fully(int fd, std::string_view bytes) {
 
 
 AtomicFileWriter::AtomicFileWriter(const fs::path& path, Durability durability) : path_(path), durability_(durability) {
-  std::string name = ".";  // (built by append: GCC 12 warns falsely on "." + std::string)
-  name.append(path.filename().string()).append(".tmp-").append(unique_tmp_suffix());
-  tmp_ = path.parent_path() / name;
+  tmp_ = path.parent_path() / temp_name(path.filename().string());
   // O_EXCL | O_NOFOLLOW: a name planted in advance (a link to elsewhere) is never written through.
   fd_ = ::open(tmp_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
   if (fd_ < 0) sys_fail("cannot create", tmp_, errno);

@@ -1,7 +1,7 @@
 #pragma once
-// The one way the project writes a file: the text goes to a hidden temporary sibling
-// (".NAME.tmp-PID-N", a name no user file has and that the store and output folders recognise as
-// ours) that is renamed over `path`, so a reader sees the old file or the new one, never half of
+// The one way the project writes a file: the text goes to a hidden temporary sibling (temp_name:
+// ".NAME.tmp-HOST-PID-N", a name no user file has and that the store and output folders recognise
+// as ours) that is renamed over `path`, so a reader sees the old file or the new one, never half of
 // one. Durability::synced also fsyncs the file before the rename and the folder after it, so the
 // new file survives a power cut (the campaign store needs that; a run folder or a CSV a command
 // writes once does not, and skips the cost).

@@ -193,6 +193,7 @@ CsvMatrix read_numeric_matrix_csv(const std::filesystem::path& path, const std::
       throw InputError(display, line_no, name, "more than the " + std::to_string(max_rows) + " rows allowed");
     for (std::size_t c = 0; c < fields.size(); ++c)
       m.values.push_back(field_number(fields[c], display, line_no, name, static_cast<int>(c) + 1));
+    m.lines.push_back(line_no);
     ++m.rows;
   }
   if (!m.rows) throw InputError(display, std::max(line_no, 1), name, "no rows of numbers");

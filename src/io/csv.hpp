@@ -48,6 +48,7 @@ struct CsvMatrix {
   std::size_t rows = 0, columns = 0;
   std::vector<double> values;  // row-major, rows × columns
   int first_line = 0;          // 1-based line of the first row
+  std::vector<int> lines;      // 1-based line of each row ('#' comments may come between rows)
 };
 
 // Reads `path` like read_numeric_csv (same caps, comments, blank lines and number rules) as a

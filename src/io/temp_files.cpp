@@ -6,17 +6,24 @@
 #include <sys/syscall.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <chrono>
 #include <csignal>
 #include <cstring>
 
+#include "io/hash.hpp"
+
 namespace asperity {
 namespace fs = std::filesystem;
 namespace {
 
 constexpr int kSlots = 64;
+// The longest "HOST-PID-N": a host of 64 bytes, a PID and a counter of 10 digits each.
+constexpr std::size_t kHostMax = 64;
+constexpr std::size_t kSuffixMax = kHostMax + 1 + 10 + 1 + 10;
+constexpr std::size_t kNameMax = 255;
 struct Slot {
   std::atomic<int> state{0};  // 0 free, 1 being filled, 2 live
   char path[4096];
@@ -27,6 +34,7 @@ std::string host_name() {
   char h[256] = {};
   if (::gethostname(h, sizeof h - 1) != 0 || !h[0]) return "host";
   std::string s(h);
+  s.resize(std::min<std::size_t>(s.size(), kHostMax));  // bounds the temporaries' names (temp_prefix)
   for (char& c : s)
     if (c == '/' || c == '-' || static_cast<unsigned char>(c) < 0x21) c = '_';  // '-' separates fields
   return s;
@@ -102,6 +110,23 @@ std::string unique_tmp_suffix() {
   static std::atomic<unsigned> counter{0};  // several threads may write files of one folder
   return this_host() + "-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
 }
+
+std::string temp_prefix(std::string_view name) {
+  // "." NAME "." "tmp-" SUFFIX must fit in kNameMax.
+  constexpr std::size_t kFits = kNameMax - 2 - 4 - kSuffixMax;
+  constexpr std::size_t kKept = kFits - 1 - 16;  // the first bytes, "~" and 16 hex digits
+  std::string p = ".";
+  if (name.size() <= kFits) {
+    p.append(name);
+  } else {
+    std::size_t keep = kKept;
+    while (keep > 0 && (static_cast<unsigned char>(name[keep]) & 0xC0) == 0x80) --keep;  // whole UTF-8 characters
+    p.append(name.substr(0, keep)).append("~").append(hex16(fnv1a64(name)));
+  }
+  return p.append(".");
+}
+
+std::string temp_name(std::string_view name) { return temp_prefix(name) + "tmp-" + unique_tmp_suffix(); }
 
 TempGuard::TempGuard(const fs::path& path) {
   const std::string p = fs::absolute(path).string();

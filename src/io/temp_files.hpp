@@ -15,6 +15,15 @@ namespace asperity {
 // process made a temporary (a cluster's nodes share folders).
 std::string unique_tmp_suffix();
 
+// ".NAME." (what every temporary of NAME starts with): NAME itself when NAME's temporaries fit in
+// a file name's 255 bytes (NAME_MAX), else NAME's first bytes and a hash of all of it, so that a
+// legal name of 250 bytes still has temporaries (the same NAME always gets the same prefix).
+std::string temp_prefix(std::string_view name);
+
+// temp_prefix(name) + "tmp-" + unique_tmp_suffix(): a temporary sibling of the file or folder
+// NAME, within NAME_MAX whatever NAME's length.
+std::string temp_name(std::string_view name);
+
 // Registers `path` (a file or a folder) for removal if SIGINT, SIGTERM or SIGHUP stops the
 // process while the guard lives (install_signal_cleanup() must have been called).
 class TempGuard {

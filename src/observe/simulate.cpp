@@ -4,6 +4,7 @@
 #include <cstdint>
 
 #include "io/numbers.hpp"
+#include "solve/core/openmp_fork.hpp"
 #include <utility>
 
 namespace asperity {
@@ -53,6 +54,7 @@ class MonitoredRecorder {
 }  // namespace
 
 RunResult simulate(const Scene& scene, double wall_limit_s, const RunMonitor* monitor) {
+  guard_openmp_against_fork();  // a process forked after this run keeps working (Python's os.fork)
   Recorder rec = make_recorder(scene);
   RunLimits limits = run_limits(scene);
   const bool sweep_limit = wall_limit_s > 0 && wall_limit_s < limits.wall_time_s;

@@ -113,8 +113,8 @@ void claim_dir(const fs::path& dir, const std::string& command, const std::strin
   }
   fs::create_directories(target.parent_path(), ec);
   const std::string name = target.filename().string();
-  const fs::path tmp = target.parent_path() / ("." + name + ".tmp-" + unique_tmp_suffix());
-  remove_stale_temporaries(target.parent_path(), "." + name + ".");
+  const fs::path tmp = target.parent_path() / temp_name(name);
+  remove_stale_temporaries(target.parent_path(), temp_prefix(name));
   if (!fs::create_directory(tmp, ec) || ec) throw std::runtime_error("cannot create " + tmp.string() + ": " + ec.message());
   const TempGuard on_signal(tmp);
   write_marker(tmp, command, file_list);
@@ -151,10 +151,8 @@ void publish_dir(const fs::path& dir, const std::string& command, const std::str
   std::error_code ec;
   fs::create_directories(parent, ec);
   if (ec) throw std::runtime_error("cannot create " + parent.string() + ": " + ec.message());
-  std::string own = ".";  // ".NAME." starts our temporaries (built in steps: GCC 12 warns falsely on "." + string)
-  own.append(target.filename().string()).append(".");
-  const std::string tmp_name = own + "tmp-" + unique_tmp_suffix();
-  const fs::path tmp = parent / tmp_name;
+  const std::string own = temp_prefix(target.filename().string());  // starts our temporaries
+  const fs::path tmp = parent / (own + "tmp-" + unique_tmp_suffix());
   // Temporaries of earlier writes whose process died (kill -9, a lost node): beside the folder
   // and inside it (it is ours: checked above).
   remove_stale_temporaries(parent, own);

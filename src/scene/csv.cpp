@@ -30,7 +30,14 @@ std::string measured_force_problem(double q) { return q >= 0 ? "" : "force must 
 std::string measured_area_problem(double a) { return a > 0 ? "" : "area must be > 0, got " + format_double(a); }
 
 JunctionPopulation read_junctions_csv(const std::filesystem::path& csv, const std::string& display) {
+  std::vector<int> lines;
+  return read_junctions_csv(csv, display, lines);
+}
+
+JunctionPopulation read_junctions_csv(const std::filesystem::path& csv, const std::string& display,
+                                      std::vector<int>& lines) {
   const CsvTable t = read_numeric_csv(csv, display, {"area_m2", "x_m", "y_m"}, {"area_m2"});
+  lines = t.lines;
   const int ca = t.column("area_m2"), cx = t.column("x_m"), cy = t.column("y_m");
   if ((cx < 0) != (cy < 0)) {
     const std::string missing = cx < 0 ? "x_m" : "y_m";

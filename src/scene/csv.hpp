@@ -45,6 +45,9 @@ std::string measured_area_problem(double A_m2);  // > 0
 
 // Same readers, naming `display` in errors (the path as the referring file spells it).
 JunctionPopulation read_junctions_csv(const std::filesystem::path& csv, const std::string& display);
+// The same, with the line of each junction's row in `lines` (for errors found later: overlaps).
+JunctionPopulation read_junctions_csv(const std::filesystem::path& csv, const std::string& display,
+                                      std::vector<int>& lines);
 MeasuredCurve read_measured_csv(const std::filesystem::path& csv, const std::string& display);
 MeasuredForce read_force_csv(const std::filesystem::path& csv, const std::string& display);
 }  // namespace scene_io

@@ -198,11 +198,16 @@ Experiment load_experiment_impl(const fs::path& path, const std::string& display
   return std::move(e);
 }
 
-// Where the values of a tree's model, solver, stop and output keys come from (validate.hpp).
+// Where the values of a tree's model, solver, stop and output keys come from (validate.hpp), and
+// of an inline experiment's (a key of a section the tree lacks is not given).
 class TreeOrigins final : public KeyOrigins {
  public:
   explicit TreeOrigins(const std::vector<MapView>& sections) : sections_(sections) {}
-  bool given(const std::string& dotted) const override { return node(dotted).has_value(); }
+  bool given(const std::string& dotted) const override {
+    for (const MapView& v : sections_)
+      if (dotted.compare(0, v.path().size() + 1, v.path() + ".") == 0) return node(dotted).has_value();
+    return false;
+  }
   bool overridden(const std::string& dotted) const override {
     const auto n = node(dotted);
     return n && n->Mark().is_null();
@@ -285,7 +290,16 @@ void read_topography(const MapView& root, const YAML::Node& tn, const fs::path& 
   } else {
     root.fail_at(tn, "topography", "expected the path of a topography recipe or a map of its keys, got " + node_kind(tn));
   }
-  const auto contact = topography_contact(r, cache);
+  std::shared_ptr<const TopographyContact> contact;
+  try {
+    contact = topography_contact(r, cache);
+  } catch (const InputError& e) {
+    // What the solve finds in the scene's own section (the contact at the map's edge, a junction
+    // out of range) may come of a value a --set gave: named as a key's own check names it (the
+    // --set, or the section's line), not as the scene without a line.
+    if (e.file != root.source().file || e.column != 0) throw;
+    scene_io::fail(root.source(), tn, e.key, e.message, e.line);
+  }
   s.experiment = topography_experiment(r, *contact, scene_made_by(r));
   s.topography = std::move(r);
 }
@@ -297,6 +311,7 @@ Scene scene_from_tree_impl(const YAML::Node& tree, const fs::path& origin, const
   Scene s;
   if (!origin.empty()) s.file = resolved(origin);
 
+  std::optional<MapView> inline_experiment;  // a scene's experiment with its junctions inline
   if (const auto tn = root.find("topography")) {
     read_topography(root, *tn, base_dir, cache, s);
   } else {  // experiment: a path, or a map {file: path, value overrides...}
@@ -322,6 +337,7 @@ Scene scene_from_tree_impl(const YAML::Node& tree, const fs::path& origin, const
     }
     if (inline_junctions) {
       s.experiment = load_experiment_impl({}, display, &*ov, &*inline_junctions);
+      inline_experiment = ov;
     } else {
       const fs::path p = referenced_file(*fv, fn, fk, base_dir, "experiment file", kMaxYamlBytes);
       s.experiment_ref = fn.Scalar();
@@ -347,6 +363,7 @@ Scene scene_from_tree_impl(const YAML::Node& tree, const fs::path& origin, const
       k.set(s, x);
     }
   }
+  if (inline_experiment) views.push_back(*inline_experiment);  // its junctions' overlaps name experiment.junctions
   validate_scene(s, TreeOrigins(views));
   return s;
 }

@@ -2,15 +2,23 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
 #include <cstdint>
 #include <numeric>
+#include <optional>
+#include <set>
 #include <stdexcept>
+#include <tuple>
+#include <vector>
 
 #include "io/digest.hpp"
 #include "io/input_error.hpp"
 #include "io/numbers.hpp"
+#include "physics/contact_law.hpp"  // disc_radius
+#include "scene/csv.hpp"
 #include "scene/validate.hpp"
 #include "surface/height_map_io.hpp"
+#include "surface/neighbour_grid.hpp"
 #include "surface/normal_contact.hpp"
 #include "surface/segmentation.hpp"
 
@@ -81,26 +89,100 @@ HeightMap topography_surface(const TopographyRecipe& r) {
   throw std::logic_error("topography_surface: unknown kind");
 }
 
-std::size_t merge_overlapping_junctions(JunctionPopulation& J) {
+std::size_t merge_overlapping_junctions(JunctionPopulation& J, std::uint64_t max_work) {
   if (J.x_m.size() != J.size() || J.y_m.size() != J.size())
     throw std::invalid_argument("merge_overlapping_junctions: junctions need positions");
+  const std::size_t n = J.size();
   std::size_t merges = 0;
-  // Each pass is O(N) (first_overlap's cell grid) and removes one junction: O(N²) at worst, in
-  // practice a few merges per cluster of touching spots.
-  while (const auto pair = first_overlap(J)) {
-    const auto [i, j] = *pair;
-    const double A = J.area_m2[i] + J.area_m2[j];
-    J.x_m[i] = (J.area_m2[i] * J.x_m[i] + J.area_m2[j] * J.x_m[j]) / A;
-    J.y_m[i] = (J.area_m2[i] * J.y_m[i] + J.area_m2[j] * J.y_m[j]) / A;
-    J.area_m2[i] = A;
-    const auto at = static_cast<std::ptrdiff_t>(j);
-    J.area_m2.erase(J.area_m2.begin() + at);
-    J.x_m.erase(J.x_m.begin() + at);
-    J.y_m.erase(J.y_m.begin() + at);
-    ++merges;
+  std::vector<unsigned char> alive(n, 1);
+  if (n >= 2) {
+    // The pair merged next is the one a full scan would find first (scene/validate.cpp
+    // first_overlap: the lowest index with an overlapping disc of a higher index, and of those
+    // discs the first in its grid's cell order), so the result is that of merging one pair per
+    // scan; only the discs a merge changed are looked at again. A junction keeps its index (the
+    // lower of a pair lives on, as the erase of the other kept it), so index order is the scan's.
+    std::vector<double> r(n);
+    for (std::size_t k = 0; k < n; ++k) r[k] = disc_radius(J.area_m2[k]);
+    const auto reach_of = [&](std::size_t k) { return std::max(std::abs(J.x_m[k]), std::abs(J.y_m[k])); };
+    std::multiset<double> reach;  // of the living discs: the scan's grid extent
+    for (std::size_t k = 0; k < n; ++k) reach.insert(reach_of(k));
+    double r_max = *std::max_element(r.begin(), r.end());
+    // Discs of up to half a cell (twice the median radius) in a grid, searched in the cells
+    // their radius reaches; the few larger ones (a merge grows them) apart, checked one by one.
+    std::vector<double> by_size = r;
+    std::nth_element(by_size.begin(), by_size.begin() + static_cast<std::ptrdiff_t>(n / 2), by_size.end());
+    NeighbourGrid grid(2 * by_size[n / 2], *reach.rbegin());
+    const double h = grid.cell();
+    std::vector<std::size_t> big;
+    const auto place = [&](std::size_t k) {
+      if (2 * r[k] > h) big.push_back(k);
+      else grid.insert(k, J.x_m[k], J.y_m[k]);
+    };
+    const auto unplace = [&](std::size_t k) {
+      if (2 * r[k] > h) big.erase(std::find(big.begin(), big.end(), k));
+      else grid.erase(k, J.x_m[k], J.y_m[k]);
+    };
+    for (std::size_t k = 0; k < n; ++k) place(k);
+    std::uint64_t work = 0;
+    // visit(b) for each living disc b that overlaps disc k, as first_overlap tests it.
+    const auto for_each_overlap = [&](std::size_t k, auto&& visit) {
+      const auto test = [&](std::size_t b) {
+        ++work;
+        if (b != k && alive[b] && std::hypot(J.x_m[k] - J.x_m[b], J.y_m[k] - J.y_m[b]) < r[k] + r[b]) visit(b);
+        return true;
+      };
+      const double rings = std::floor((r[k] + 0.5 * h) / h) + 1;
+      grid.for_each_near(J.x_m[k], J.y_m[k], static_cast<std::int64_t>(std::min(rings, 1e9)), test);
+      for (const std::size_t b : big) test(b);
+      if (work > max_work) throw std::length_error("merge_overlapping_junctions: more than the work allowed");
+    };
+    std::set<std::size_t> pending;  // discs that may overlap one of a higher index
+    for (std::size_t k = 0; k < n; ++k)
+      for_each_overlap(k, [&](std::size_t b) {
+        if (b > k) pending.insert(k);
+      });
+    using CellKey = std::tuple<std::int64_t, std::int64_t, std::size_t>;
+    while (!pending.empty()) {
+      const std::size_t i = *pending.begin();
+      // The scan's grid: cells of the largest diameter (no smaller than 1e-12 of the extent).
+      const double cell = std::max(2 * r_max, *reach.rbegin() * 1e-12);
+      const auto cell_of = [&](double v) { return static_cast<std::int64_t>(std::floor(v / cell)); };
+      std::optional<CellKey> first;
+      for_each_overlap(i, [&](std::size_t b) {
+        if (b < i) return;
+        const CellKey key{cell_of(J.x_m[b]), cell_of(J.y_m[b]), b};
+        if (!first || key < *first) first = key;
+      });
+      if (!first) {
+        pending.erase(pending.begin());
+        continue;
+      }
+      const std::size_t j = std::get<2>(*first);
+      unplace(i), unplace(j);
+      reach.erase(reach.find(reach_of(i))), reach.erase(reach.find(reach_of(j)));
+      const double A = J.area_m2[i] + J.area_m2[j];
+      J.x_m[i] = (J.area_m2[i] * J.x_m[i] + J.area_m2[j] * J.x_m[j]) / A;
+      J.y_m[i] = (J.area_m2[i] * J.y_m[i] + J.area_m2[j] * J.y_m[j]) / A;
+      J.area_m2[i] = A;
+      r[i] = disc_radius(A);
+      r_max = std::max(r_max, r[i]);
+      alive[j] = 0;
+      pending.erase(j);
+      reach.insert(reach_of(i));
+      place(i);
+      ++merges;
+      // The grown disc may overlap discs of lower index (now pending) and of higher.
+      bool higher = false;
+      for_each_overlap(i, [&](std::size_t b) {
+        if (b < i) pending.insert(b);
+        else higher = true;
+      });
+      if (!higher) pending.erase(i);
+    }
   }
-  std::vector<std::size_t> order(J.size());
-  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::vector<std::size_t> order;
+  for (std::size_t k = 0; k < n; ++k)
+    if (alive[k]) order.push_back(k);
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
     if (J.area_m2[a] != J.area_m2[b]) return J.area_m2[a] > J.area_m2[b];
     return J.x_m[a] != J.x_m[b] ? J.x_m[a] < J.x_m[b] : J.y_m[a] < J.y_m[b];
@@ -167,7 +249,28 @@ TopographyContact solve_topography_contact(const TopographyRecipe& r, int thread
     t.junctions.x_m.push_back(k.x_m);
     t.junctions.y_m.push_back(k.y_m);
   }
-  t.merges = merge_overlapping_junctions(t.junctions);
+  try {
+    t.merges = merge_overlapping_junctions(t.junctions);
+  } catch (const std::length_error&) {
+    throw InputError(r.display, r.topography_line, "topography",
+                     "merging the overlapping discs of the " + std::to_string(t.clusters) +
+                         " contact clusters needs more than " +
+                         scene_io::format_short(static_cast<double>(kMaxMergeWork)) +
+                         " disc comparisons: use contact.connectivity 8 or a coarser map");
+  }
+  // The junctions must pass what a junctions file's rows pass (what generate writes is read back
+  // as one): a pixel of 1e-11 m or a map of 1e5 m pixels makes areas no command accepts.
+  const JunctionPopulation& J = t.junctions;
+  for (std::size_t i = 0; i < J.size(); ++i) {
+    std::string why = scene_io::junction_area_problem(J.area_m2[i]);
+    for (const double v : {J.x_m[i], J.y_m[i]})
+      if (why.empty()) why = scene_io::junction_coordinate_problem(v);
+    if (!why.empty())
+      throw InputError(r.display, r.topography_line, "topography",
+                       "junction " + std::to_string(i + 1) + " of the " + std::to_string(J.size()) +
+                           " this surface makes: " + why + " (the map's pixel size, load_N and sphere_radius_m " +
+                           "set the junctions' sizes)");
+  }
   return t;
 }
 

@@ -4,6 +4,7 @@
 // until their equivalent discs are disjoint, and the experiment they make. Same recipe, same
 // numbers (the thread count does not change them).
 #include <cstddef>
+#include <cstdint>
 #include <string>
 
 #include "scene/scene.hpp"
@@ -20,8 +21,12 @@ HeightMap topography_surface(const TopographyRecipe& recipe);
 // first such pair found is replaced by one junction of their summed area at their area-weighted
 // centroid (the contact area is conserved; a merged disc may then overlap a third, which is
 // merged in turn). Deterministic; the result is sorted by area, largest first (ties by x, then
-// y). Returns the number of merges.
-std::size_t merge_overlapping_junctions(JunctionPopulation& junctions);
+// y). Returns the number of merges. O(N log N) for discs of similar sizes (a grid of cells and
+// the set of discs that may still overlap: only the discs a merge changed are looked at again);
+// std::length_error past `max_work` disc comparisons, which bounds the phase on a map whose
+// clusters are many and overlap a few large discs.
+inline constexpr std::uint64_t kMaxMergeWork = 2'000'000'000;
+std::size_t merge_overlapping_junctions(JunctionPopulation& junctions, std::uint64_t max_work = kMaxMergeWork);
 
 // What the contact solve gives: depends on the surface, R, E, ν, P and the contact settings only
 // (the slider and the name do not enter), so one solve serves every scene that shares them.
@@ -38,7 +43,8 @@ struct TopographyContact {
 };
 
 // Surface → sphere → contact → clusters → merged junctions. InputError when the contact solve
-// does not converge within max_iterations or reaches the map's edge. `threads`: the contact
+// does not converge within max_iterations, reaches the map's edge, or makes a junction that a
+// junctions file could not hold (scene/csv.hpp's rules: generate writes one). `threads`: the contact
 // solve's FFTW and loop threads (the numbers do not depend on it).
 TopographyContact solve_topography_contact(const TopographyRecipe& recipe, int threads = 1);
 

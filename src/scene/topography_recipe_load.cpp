@@ -40,12 +40,21 @@ std::size_t side(const MapView& m, bool even) {
   return static_cast<std::size_t>(v);
 }
 
+// A pixel size within what a contact solve accepts (surface/height_map_io.hpp), at key `k`.
+double pixel_checked(const MapView& m, const std::string& k, double pixel_m, const std::string& what = "") {
+  if (const std::string why = pixel_size_problem(pixel_m); !why.empty()) m.fail_at(*m.find(k), k, what + why);
+  return pixel_m;
+}
+
 // The pixel size, from pixel_m or size_m (the side of the map), exactly one of them.
 double pixel_of(const MapView& m, std::size_t n) {
   const auto p = m.find("pixel_m"), s = m.find("size_m");
   if (p.has_value() == s.has_value())
     m.fail_at(p ? *p : m.node(), "pixel_m", "give exactly one of pixel_m and size_m");
-  return p ? positive(m, "pixel_m", "m") : positive(m, "size_m", "m") / static_cast<double>(n);
+  if (p) return pixel_checked(m, "pixel_m", positive(m, "pixel_m", "m"));
+  const double size = positive(m, "size_m", "m");
+  return pixel_checked(m, "size_m", size / static_cast<double>(n),
+                       "gives pixels of " + num(size / static_cast<double>(n)) + " m (size_m / n): ");
 }
 
 const std::vector<std::string> kSurfaceKeys{"smooth", "self_affine", "file", "pixel_m"};
@@ -104,7 +113,7 @@ void read_surface(const MapView& t, const YAML::Node& tn, const fs::path& base_d
       t.fail_at(*fi, "file", "height map not found: " + scene_io::quote(rel) + " (looked for " +
                                  display_of(r.map_file) + ")");
     if (!why.empty()) t.fail_at(*fi, "file", "height map " + why + ": " + display_of(r.map_file));
-    if (csv) r.pixel_m = positive(t, "pixel_m", "m");
+    if (csv) r.pixel_m = pixel_checked(t, "pixel_m", positive(t, "pixel_m", "m"));
     else if (const auto p = t.find("pixel_m"))
       t.fail_at(*p, "pixel_m", "a binary height map gives its pixel size in its header");
   }

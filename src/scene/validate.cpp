@@ -8,6 +8,7 @@
 #include "io/input_error.hpp"
 #include "io/numbers.hpp"
 #include "physics/contact_law.hpp"
+#include "scene/csv.hpp"
 #include "surface/neighbour_grid.hpp"
 
 namespace asperity {
@@ -139,15 +140,24 @@ void check_interactions(const Scene& s, const KeyOrigins& o) {
                                          std::to_string(pair->second + 1) + " of " + csv + " overlap at scale " +
                                          format_short(s.model.position_scale));
   }
-  if (const auto pair = first_overlap(J))
-    throw InputError(csv, 0, "x_m",
-                     "junctions " + std::to_string(pair->first + 1) + " and " + std::to_string(pair->second + 1) +
-                         " overlap (centres " +
-                         format_short(std::hypot(J.x_m[pair->first] - J.x_m[pair->second],
-                                                 J.y_m[pair->first] - J.y_m[pair->second])) +
-                         " m apart, radii sqrt(A0/pi) = " + format_short(disc_radius(J.area_m2[pair->first])) +
-                         " and " + format_short(disc_radius(J.area_m2[pair->second])) +
-                         " m); elastic interactions need separate junctions");
+  if (const auto pair = first_overlap(J)) {
+    const auto [i, j] = *pair;
+    const std::string msg =
+        "junctions " + std::to_string(i + 1) + " and " + std::to_string(j + 1) + " overlap (centres " +
+        format_short(std::hypot(J.x_m[i] - J.x_m[j], J.y_m[i] - J.y_m[j])) + " m apart, radii sqrt(A0/pi) = " +
+        format_short(disc_radius(J.area_m2[i])) + " and " + format_short(disc_radius(J.area_m2[j])) +
+        " m); elastic interactions need separate junctions";
+    if (csv.empty() && o.given("experiment.junctions")) o.fail("experiment.junctions", msg);  // inline
+    if (csv.empty()) throw InputError("", 0, "x_m", msg);
+    // The CSV's row of the second junction (read again: only on this error path).
+    std::vector<int> lines;
+    try {
+      (void)scene_io::read_junctions_csv(s.experiment.junctions_file, csv, lines);
+    } catch (const std::exception&) {  // changed since it was read: no line then
+      lines.clear();
+    }
+    throw InputError(csv, j < lines.size() ? lines[j] : 0, "x_m", msg);
+  }
 }
 
 }  // namespace

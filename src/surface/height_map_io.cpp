@@ -1,9 +1,11 @@
 #include "surface/height_map_io.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <vector>
 
 #include "io/atomic_file.hpp"
 #include "io/csv.hpp"
@@ -17,9 +19,33 @@ namespace fs = std::filesystem;
 using scene_io::MapView;
 using scene_io::Source;
 
+std::string pixel_size_problem(double pixel_m) {
+  if (pixel_m >= kMinPixel_m && pixel_m <= kMaxPixel_m) return "";
+  return "pixel size must be in [" + scene_io::format_double(kMinPixel_m) + ", " +
+         scene_io::format_double(kMaxPixel_m) + "] m, got " + scene_io::format_double(pixel_m);
+}
+
+std::optional<HeightRangeProblem> height_range_problem(const HeightMap& map) {
+  if (map.h_m.empty()) return std::nullopt;
+  const auto [lo, hi] = std::minmax_element(map.h_m.begin(), map.h_m.end());
+  const double side = map.pixel_m * static_cast<double>(map.n);
+  if (*hi - *lo <= side) return std::nullopt;  // (an overflow to inf is refused too)
+  std::vector<double> sorted = map.h_m;
+  auto mid = sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2);
+  std::nth_element(sorted.begin(), mid, sorted.end());
+  const double median = *mid;
+  const auto far = median - *lo > *hi - median ? lo : hi;  // (differences of finite doubles: no NaN)
+  HeightRangeProblem p;
+  p.index = static_cast<std::size_t>(far - map.h_m.begin());
+  p.message = "height " + scene_io::format_double(*far) + " m: the heights span " + scene_io::format_short(*hi - *lo) +
+              " m (from " + scene_io::format_short(*lo) + " to " + scene_io::format_short(*hi) +
+              "), more than the map's side n x pixel_m = " + scene_io::format_short(side) +
+              " m; a contact solve needs heights within the map's size";
+  return p;
+}
+
 HeightMap read_height_map_csv(const fs::path& csv, const std::string& display, double pixel_m) {
-  if (!(pixel_m > 0) || !std::isfinite(pixel_m))
-    throw InputError(display, 0, "", "pixel size must be a positive finite number of metres");
+  if (const std::string why = pixel_size_problem(pixel_m); !why.empty()) throw InputError(display, 0, "", why);
   const CsvMatrix m = read_numeric_matrix_csv(csv, display, "h_m", kMaxHeightMapSide, kMaxHeightMapSide);
   if (m.rows != m.columns)
     throw InputError(display, m.first_line, "h_m",
@@ -30,6 +56,8 @@ HeightMap read_height_map_csv(const fs::path& csv, const std::string& display, d
   map.n = m.rows;
   map.pixel_m = pixel_m;
   map.h_m = m.values;
+  if (const auto p = height_range_problem(map))
+    throw InputError(display, m.lines[p->index / map.n], "h_m", p->message, static_cast<int>(p->index % map.n) + 1);
   return map;
 }
 
@@ -45,7 +73,7 @@ HeightMap read_height_map_binary(const fs::path& header_yaml, const std::string&
   const auto n = static_cast<std::size_t>(n_int);
   const YAML::Node pn = v.require("pixel_m");
   const double pixel_m = v.number(pn, "pixel_m", "m");
-  if (!(pixel_m > 0)) v.fail_at(pn, "pixel_m", "must be > 0, got " + scene_io::format_double(pixel_m));
+  if (const std::string why = pixel_size_problem(pixel_m); !why.empty()) v.fail_at(pn, "pixel_m", why);
 
   const YAML::Node dn = v.require("data");
   const std::string rel = v.string(dn, "data");
@@ -78,6 +106,9 @@ HeightMap read_height_map_binary(const fs::path& header_yaml, const std::string&
                                 "; every height must be finite");
     map.h_m[k] = h;
   }
+  if (const auto p = height_range_problem(map))
+    v.fail_at(dn, "data", "row " + std::to_string(p->index / n + 1) + ", column " + std::to_string(p->index % n + 1) +
+                              " of " + data.lexically_normal().string() + ": " + p->message);
   return map;
 }
 

@@ -16,4 +16,11 @@ void NeighbourGrid::insert(std::size_t i, double x_m, double y_m) {
   cells_[key(cx, cy)].push_back(i);
 }
 
+void NeighbourGrid::erase(std::size_t i, double x_m, double y_m) {
+  const auto it = cells_.find(key(index(x_m), index(y_m)));
+  if (it == cells_.end()) return;
+  std::vector<std::size_t>& v = it->second;
+  if (const auto at = std::find(v.begin(), v.end(), i); at != v.end()) v.erase(at);
+}
+
 }  // namespace asperity

@@ -2,8 +2,9 @@
 // Points of the plane binned in square cells (a cell list): every point within `rings` cells of a
 // place lies in the (2 rings + 1)² cells around it, so a search for near neighbours costs O(1) per
 // point at an even density instead of O(N). The one cell list of the project: overlap checks of
-// junction discs (scene/validate.cpp, generate/positions.cpp) and the near pairs of the FFT
-// coupling (solve/interacting/fft_coupling.cpp).
+// junction discs (scene/validate.cpp, generate/positions.cpp), the merge of overlapping discs
+// (scene/topography_junctions.cpp) and the near pairs of the FFT coupling
+// (solve/interacting/fft_coupling.cpp).
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -23,6 +24,9 @@ class NeighbourGrid {
 
   double cell() const { return cell_; }  // m, as used
   void insert(std::size_t i, double x_m, double y_m);
+  // Removes point i, inserted at (x, y) (the same coordinates); absent: nothing. The other points
+  // of its cell keep their order; the occupied cells' box is kept (it only bounds the search).
+  void erase(std::size_t i, double x_m, double y_m);
 
   // visit(j) for every point j inserted in the (2 rings + 1)² cells around the cell of (x, y),
   // cell by cell in a fixed order, each cell's points in insertion order, until visit returns

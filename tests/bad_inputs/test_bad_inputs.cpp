@@ -254,3 +254,29 @@ TEST_CASE("inputs that are not regular files, or too large, are refused before r
   }
   fs::remove_all(work);
 }
+
+TEST_CASE("errors found once a scene is whole name the --set, or the file and line, that gave the value",
+          "[scene][bad_inputs]") {
+  const fs::path work = asperity::testing::temp_path("asperity_test_bad_later");
+  fs::remove_all(work);
+  fs::create_directories(work);
+  // The contact at the map's edge because a --set raised the load: the --set is named.
+  write(work / "topo.yaml",
+        "# a smooth sphere whose contact fits the map at 1 N\ntopography:\n  smooth: {n: 32, size_m: 5e-3}\n"
+        "  sphere_radius_m: 0.01\n  E: 1.6e6\n  nu: 0.5\n  load_N: 1\nstop: {time: 0.1}\n");
+  check_refused(work, {work}, "run --set topography.load_N=1e6", work / "topo.yaml",
+                "--set topography.load_N=1e6: topography: the contact reaches the edge of the 32 x 32 map");
+  // Overlapping junctions given inline in a scene: the scene's line of experiment.junctions.
+  write(work / "inline.yaml",
+        "experiment:\n  name: x\n  mass: 0.1\n  k_L: 9200\n  v: 1e-4\n  E: 1.6e6\n  nu: 0.5\n  sigma_exp: 230000\n"
+        "  junctions: {area_m2: [1e-8, 1e-8], x_m: [0, 1e-5], y_m: [0, 0]}\nmodel: {interactions: elastic}\n");
+  check_refused(work, {work}, "run", work / "inline.yaml",
+                (work / "inline.yaml").string() + ":9: experiment.junctions: junctions 1 and 2 overlap (centres 1e-05 m apart");
+  // ... and in a junctions CSV: the file and the line of the second junction's row.
+  write(work / "overlap.csv", "# two junctions 10 um apart, radii 56 um\narea_m2,x_m,y_m\n1e-8,0,0\n# the second\n1e-8,1e-5,0\n");
+  write(work / "experiment.yaml", std::string(kExperiment) + "junctions: overlap.csv\n");
+  write(work / "csv.yaml", "experiment: experiment.yaml\nmodel: {interactions: elastic}\n");
+  check_refused(work, {work}, "run", work / "csv.yaml",
+                (work / "overlap.csv").string() + ":5: x_m: junctions 1 and 2 overlap (centres 1e-05 m apart");
+  fs::remove_all(work);
+}

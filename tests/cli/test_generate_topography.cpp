@@ -2,11 +2,17 @@
 // (area conserved, area-weighted centroid, cascades), a smooth sphere gives Hertz's contact as one
 // junction, the recipe gives the same bytes twice (synthetic or the same heights read from a
 // measured map), bad recipes are refused at their line, and the experiment written runs.
+#include <algorithm>
 #include <catch2/catch.hpp>
+#include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <numbers>
+#include <numeric>
+#include <random>
 #include <string>
+#include <vector>
 
 #include "cli_spawn.hpp"
 #include "generate/topography.hpp"
@@ -14,6 +20,7 @@
 #include "io/numbers.hpp"
 #include "scene/validate.hpp"
 #include "surface/height_map_io.hpp"
+#include "surface/segmentation.hpp"
 #include "support_files.hpp"
 
 using namespace asperity;
@@ -90,6 +97,109 @@ TEST_CASE("overlapping junction discs are merged, area conserved, until none ove
   CHECK(T.size() == 2);
 }
 
+namespace {
+
+// The merge as first written, one pair per full scan (O(N^2)): the reference the indexed merge
+// must equal bit for bit.
+std::size_t merge_one_pair_per_scan(JunctionPopulation& J) {
+  std::size_t merges = 0;
+  while (const auto pair = first_overlap(J)) {
+    const auto [i, j] = *pair;
+    const double A = J.area_m2[i] + J.area_m2[j];
+    J.x_m[i] = (J.area_m2[i] * J.x_m[i] + J.area_m2[j] * J.x_m[j]) / A;
+    J.y_m[i] = (J.area_m2[i] * J.y_m[i] + J.area_m2[j] * J.y_m[j]) / A;
+    J.area_m2[i] = A;
+    const auto at = static_cast<std::ptrdiff_t>(j);
+    J.area_m2.erase(J.area_m2.begin() + at);
+    J.x_m.erase(J.x_m.begin() + at);
+    J.y_m.erase(J.y_m.begin() + at);
+    ++merges;
+  }
+  std::vector<std::size_t> order(J.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    if (J.area_m2[a] != J.area_m2[b]) return J.area_m2[a] > J.area_m2[b];
+    return J.x_m[a] != J.x_m[b] ? J.x_m[a] < J.x_m[b] : J.y_m[a] < J.y_m[b];
+  });
+  JunctionPopulation sorted;
+  for (const std::size_t k : order) {
+    sorted.area_m2.push_back(J.area_m2[k]);
+    sorted.x_m.push_back(J.x_m[k]);
+    sorted.y_m.push_back(J.y_m[k]);
+  }
+  J = std::move(sorted);
+  return merges;
+}
+
+// The clusters (4-connectivity) of an n x n map: a square ring one pixel in from the edge around
+// a checkerboard of single pixels filling the middle half, the ring's disc overlapping many.
+JunctionPopulation ring_and_checkerboard(std::size_t n) {
+  std::vector<unsigned char> mask(n * n, 0);
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = 0; j < n; ++j) {
+      const std::size_t edge = std::min({i, j, n - 1 - i, n - 1 - j});
+      const bool middle = i >= n / 4 && i < 3 * n / 4 && j >= n / 4 && j < 3 * n / 4;
+      mask[i * n + j] = edge == 1 || (middle && (i + j) % 2 == 0);
+    }
+  JunctionPopulation J;
+  for (const ContactCluster& c : contact_clusters(mask, n, 1e-6, Connectivity::four)) {
+    J.area_m2.push_back(c.area_m2);
+    J.x_m.push_back(c.x_m);
+    J.y_m.push_back(c.y_m);
+  }
+  return J;
+}
+
+}  // namespace
+
+TEST_CASE("the indexed merge of overlapping discs equals the one-pair-per-scan merge, bit for bit",
+          "[generate][topography]") {
+  // Random discs of sizes over two decades, dense enough for cascades, and a map's clusters.
+  std::mt19937_64 rng(20260428);
+  std::vector<JunctionPopulation> cases;
+  for (const std::size_t n : {2, 40, 400, 3000}) {
+    JunctionPopulation J;
+    std::uniform_real_distribution<double> at(-1.0, 1.0), log_r(std::log(0.002), std::log(0.2));
+    for (std::size_t k = 0; k < n; ++k) {
+      const double r = std::exp(log_r(rng)) * 10 / std::sqrt(static_cast<double>(n));
+      J.area_m2.push_back(std::numbers::pi * r * r);
+      J.x_m.push_back(at(rng));
+      J.y_m.push_back(at(rng));
+    }
+    cases.push_back(J);
+  }
+  cases.push_back(ring_and_checkerboard(64));
+  std::size_t total_merges = 0;
+  for (const JunctionPopulation& start : cases) {
+    INFO(start.size() << " discs");
+    JunctionPopulation fast = start, slow = start;
+    const std::size_t m = merge_overlapping_junctions(fast);
+    CHECK(m == merge_one_pair_per_scan(slow));
+    CHECK(fast.area_m2 == slow.area_m2);  // exactly: the same merges in the same order
+    CHECK(fast.x_m == slow.x_m);
+    CHECK(fast.y_m == slow.y_m);
+    CHECK_FALSE(first_overlap(fast));
+    total_merges += m;
+  }
+  CHECK(cases.back().size() == 1 + 32 * 32 / 2);  // the ring and 512 single pixels
+  CHECK(total_merges > 500);                       // cascades happened
+  // The phase is bounded: past the work allowed, std::length_error.
+  JunctionPopulation J = cases.back();
+  CHECK_THROWS_AS(merge_overlapping_junctions(J, 1000), std::length_error);
+}
+
+TEST_CASE("bench: merging the discs of a 1024^2 ring around a checkerboard (prints the time)",
+          "[.][bench][topography]") {
+  JunctionPopulation J = ring_and_checkerboard(1024);
+  const std::size_t clusters = J.size();
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::size_t merges = merge_overlapping_junctions(J);
+  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::printf("1024^2 ring + checkerboard (4-connectivity): %zu clusters, %zu merges, %zu junctions, %.3f s\n",
+              clusters, merges, J.size(), s);
+  CHECK(J.size() + merges == clusters);
+}
+
 TEST_CASE("a smooth sphere gives one junction of Hertz's area", "[generate][topography]") {
   const fs::path d = fresh_dir("asperity-topo-hertz");
   write_text(d / "smooth.yaml", recipe_text("  smooth:\n    n: 128\n    size_m: 5e-3\n"));
@@ -148,6 +258,19 @@ TEST_CASE("topography recipes: bad values refused at their line", "[generate][to
         (d / "bad.yaml").string() +
             ":3: topography: the contact reaches the edge of the 32 x 32 map: enlarge the map (or lower load_N, or "
             "the sphere_radius_m)");
+  // A float64 map with a spike of 1e308 m (or a pit): refused at its header's data key, naming
+  // the height, before the contact solve (which broke down on it: exit 1).
+  for (const double spike : {1e308, -1e308}) {
+    HeightMap m;
+    m.n = 16;
+    m.pixel_m = 3e-4;
+    m.h_m.assign(m.n * m.n, 0.0);
+    m.h_m[3 * m.n + 5] = spike;
+    write_height_map_binary(d / "spike.yaml", "spike.f64", m);
+    const std::string expected = (d / "spike.yaml").string() + ":3: data: row 4, column 6 of " + (d / "spike.f64").string() +
+                                 ": height " + scene_io::format_double(spike) + " m: the heights span 1e+308 m";
+    CHECK(build_error(recipe_text("  file: spike.yaml\n")).rfind(expected, 0) == 0);
+  }
   std::string once = recipe_text("  smooth:\n    n: 64\n    size_m: 5e-3\n");
   once.replace(once.find("max_iterations: 2000"), 20, "max_iterations: 1");
   CHECK(build_error(once).rfind((d / "bad.yaml").string() +

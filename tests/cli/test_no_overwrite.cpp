@@ -367,3 +367,78 @@ TEST_CASE("links and FIFOs planted inside a store or fit folder are refused; not
   CHECK(snapshot(w / "outside") == outside);
   fs::remove_all(w);
 }
+
+TEST_CASE("a folder a stopped or failed merge left is merged into again; an export's stale temporary goes",
+          "[cli][overwrite][campaign]") {
+  const fs::path w = make_case("merge_rerun");
+  REQUIRE(run_argv(w, {"sweep", "camp.yaml", "--quiet", "-j", "1"}).status == 0);
+  const std::string points = slurp(w / "results" / "camp" / "points.csv");
+  // A temporary a dead process left (a day old: stale whatever its host).
+  const auto stale = [&](const fs::path& p) {
+    write_text(p, "half written\n");
+    fs::last_write_time(p, fs::file_time_type::clock::now() - std::chrono::hours(48));
+  };
+  // Stopped by a signal: its lock and a temporary (kill -9 leaves one; SIGTERM removes its own).
+  fs::create_directories(w / "m_stopped");
+  write_text(w / "m_stopped" / ".lock", "");
+  stale(w / "m_stopped" / ".journal.csv.tmp-host-1-0");
+  // Failed on a full disk while writing the journal, the last file: all but journal.csv.
+  REQUIRE(run_argv(w, {"merge", "results/camp", "--out", "m_full", "--quiet"}).status == 0);
+  fs::remove(w / "m_full" / "journal.csv");
+  stale(w / "m_full" / ".journal.csv.tmp-host-1-0");
+  for (const char* out : {"m_stopped", "m_full"}) {
+    INFO(out);
+    const CliResult r = run_argv(w, {"merge", "results/camp", "--out", out, "--quiet"});
+    INFO(r.err);
+    CHECK(r.status == 0);
+    CHECK(slurp(w / out / "points.csv") == points);
+    CHECK(fs::exists(w / out / "journal.csv"));
+    CHECK_FALSE(fs::exists(w / out / ".journal.csv.tmp-host-1-0"));
+    // Done: merge never adds to a store.
+    CHECK(run_argv(w, {"merge", "results/camp", "--out", out, "--quiet"}).status == 2);
+  }
+  // Still refused: a user's file beside a lock, or a provenance.yaml that is not a store's.
+  fs::create_directories(w / "m_user");
+  write_text(w / "m_user" / ".lock", "");
+  write_text(w / "m_user" / "notes.txt", "mine\n");
+  check_refused(w, {"merge", "results/camp", "--out", "m_user", "--quiet"},
+                "m_user: --out: refusing to write there: it is not empty and was not written by asperity merge");
+  write_text(w / "m_prov" / "provenance.yaml", "# my own provenance\n");
+  write_text(w / "m_prov" / "campaign.yaml", "name: mine\n");
+  check_refused(w, {"merge", "results/camp", "--out", "m_prov", "--quiet"},
+                "m_prov: --out: refusing to write there: it is not empty and was not written by asperity merge");
+  // export --sqlite: a stale temporary of the same name is removed when the file is written.
+  stale(w / ".e.db.tmp-host-1-0");
+  stale(w / ".other.db.tmp-host-1-0");
+  CHECK(run_argv(w, {"export", "results/camp", "--sqlite", "e.db"}).status == 0);
+  CHECK_FALSE(fs::exists(w / ".e.db.tmp-host-1-0"));
+  CHECK(fs::exists(w / ".other.db.tmp-host-1-0"));  // another file's: not this export's to remove
+  fs::remove_all(w);
+}
+
+TEST_CASE("outputs named with 250 or 255 bytes (legal names) are written by run, fit, sweep and export",
+          "[cli][overwrite][names]") {
+  const fs::path w = make_case("long_names");
+  // The temporaries beside them add a prefix and a suffix; they must stay within NAME_MAX too.
+  for (const std::size_t n : {250, 255}) {
+    INFO(n << "-byte names");
+    const std::string run_dir(n, 'r'), fit_dir(n, 'f'), store(n, 's'), db(n - 3, 'd');
+    const CliResult run = run_argv(w, {"run", "s1.yaml", "--out", run_dir, "--quiet"});
+    INFO(run.err);
+    CHECK(run.status == 0);
+    CHECK(fs::exists(w / run_dir / "summary.yaml"));
+    const CliResult fit = run_argv(w, {"fit", "fit.yaml", "--out", fit_dir, "--quiet", "--no-profile", "--no-error-bars"});
+    INFO(fit.err);
+    CHECK(fit.status == 0);
+    CHECK(fs::exists(w / fit_dir / "fit.yaml"));
+    REQUIRE(run_argv(w, {"sweep", "camp.yaml", "--out", store, "--quiet", "-j", "1"}).status == 0);
+    const CliResult exp = run_argv(w, {"export", store, "--sqlite", db + ".db"});
+    INFO(exp.err);
+    CHECK(exp.status == 0);
+    CHECK_THAT(exp.out, Catch::Contains("exported 4 points"));
+    CHECK(fs::file_size(w / (db + ".db")) > 0);
+    // Nothing left behind but the outputs.
+    for (const auto& e : fs::directory_iterator(w)) CHECK(e.path().filename().string().find(".tmp-") == std::string::npos);
+  }
+  fs::remove_all(w);
+}

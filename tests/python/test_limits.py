@@ -164,3 +164,35 @@ def test_ctrl_c_stops_a_fit_within_a_second_and_the_same_call_resumes(source, tm
         assert (a["label"], a["best"], a["objective"], a["evaluations"]) == (b["label"], b["best"], b["objective"],
                                                                            b["evaluations"])
     assert len(journal_rows(out / "journal.csv")) == len(journal_rows(tmp_path / "whole" / "journal.csv"))
+
+
+def test_a_run_in_a_child_forked_after_an_openmp_run_completes(source):
+    """libgomp's pool does not survive fork(): the child of a process whose run used an OpenMP team
+    (two threads, 294 junctions on the reference solver) runs single-threaded instead of hanging,
+    to the same numbers."""
+    scene = str(source / "scenes" / "paper" / "P0.98N.yaml")
+    code = (
+        "import os, sys, asperity\n"
+        "scene = asperity.load_scene(%r, ['solver.method=reference', 'solver.Ct=200', 'stop.time=0.01'])\n"
+        "parent = asperity.run(scene).series['Q']\n"
+        "r, w = os.pipe()\n"
+        "pid = os.fork()\n"
+        "if pid == 0:\n"
+        "    os.close(r)\n"
+        "    q = asperity.run(scene).series['Q']\n"
+        "    os.write(w, repr([float(x) for x in q]).encode())\n"
+        "    os._exit(0)\n"
+        "os.close(w)\n"
+        "data = b''\n"
+        "while chunk := os.read(r, 1 << 20):\n"
+        "    data += chunk\n"
+        "_, status = os.waitpid(pid, 0)\n"
+        "print(os.waitstatus_to_exitcode(status), len(parent), eval(data.decode()) == [float(x) for x in parent],\n"
+        "      float(parent[-1]))\n" % scene)
+    r = python(code, env=dict(os.environ, OMP_NUM_THREADS="2"))  # a team even on a one-core machine
+    assert r.returncode == 0, r.stderr
+    status, samples, same, last_q = r.stdout.split()
+    assert status == "0"
+    assert int(samples) > 5
+    assert same == "True"  # the child's Q(t), sample for sample
+    assert float(last_q) > 0

@@ -243,3 +243,12 @@ def test_tqdm_bar_when_importable_and_nothing_without(source, tmp_path, capfd, m
     monkeypatch.setitem(sys.modules, "tqdm.auto", None)
     assert asperity.sweep(campaign, out=tmp_path / "b", threads=1)["ok"] == 11
     assert capfd.readouterr().err == ""
+
+
+def test_overlapping_junctions_from_arrays_name_the_key(source):
+    """An overlap is found once the scene is whole: named as Scene.from_dict's experiment.junctions."""
+    d, _, _ = small(source)
+    d["model"] = dict(d.get("model") or {}, interactions="elastic")
+    with pytest.raises(asperity.InputError) as e:
+        asperity.Scene.from_dict(d, areas=[1e-8, 1e-8], x=[0.0, 1e-5], y=[0.0, 0.0])
+    assert str(e.value).startswith("Scene.from_dict: experiment.junctions: junctions 1 and 2 overlap (centres 1e-05 m")

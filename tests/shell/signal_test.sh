@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Interrupted writes leave nothing behind (issue 21, item 5): SIGTERM (what SLURM's preemption
-# sends) and SIGINT at random moments of `fit`, `run --plot` and `sweep`, and SIGXFSZ (a file-size
+# sends) and SIGINT at random moments of `fit`, `run --plot`, `sweep`, `merge` and `export
+# --sqlite`, and SIGXFSZ (a file-size
 # limit hit while points.csv is written). After each interruption: no temporary (".NAME.tmp-*")
 # beside or inside the output folders, and nothing outside them changed (the working folder's
 # other files snapshotted by name, size and content hash); at the end the resumed results equal an
@@ -18,7 +19,10 @@ cd "$work/data"
 fail() { echo "FAIL: $*" >&2; exit 1; }
 
 # Everything but the output folders: names, sizes and SHA-256.
-outside() { find . -path ./f -prune -o -path ./r -prune -o -path ./s -prune -o -type f -print0 | sort -z | xargs -0 sha256sum; }
+outside() {
+  find . -path ./f -prune -o -path ./r -prune -o -path ./s -prune -o -path ./m -prune -o -name e.db -prune -o -type f -print0 |
+    sort -z | xargs -0 sha256sum
+}
 debris() { find . -name '.*.tmp-*' -o -name '.*.old-*' | grep -v '^$' || true; }
 before=$(outside)
 
@@ -66,5 +70,23 @@ diff <(strip s/points.csv) <(strip s_ref/points.csv) >/dev/null || fail "the res
 diff <(grep -vE 'wall_s|command_line' f/fit.yaml) <(grep -vE 'wall_s|command_line' f_ref/fit.yaml) >/dev/null ||
   fail "the resumed fit differs from a clean run"
 rm -rf f_ref s_ref
+# merge and export --sqlite of the finished store, stopped at random moments: no temporaries, and
+# a stopped merge's folder (its lock, what it wrote before its journal) is merged into again.
+for ((i = 1; i <= rounds; i++)); do
+  for sig in TERM INT; do
+    [[ ! -f m/journal.csv ]] || rm -rf m  # done: merge never adds to a store
+    rc=$(interrupt "$sig" 60 merge s --out m)
+    [[ $rc == 0 || $rc == 143 || $rc == 130 ]] || fail "merge after SIG$sig: exit $rc"
+    [[ -z $(debris) ]] || fail "merge after SIG$sig left $(debris)"
+    rm -f e.db
+    rc=$(interrupt "$sig" 60 export s --sqlite e.db)
+    [[ $rc == 0 || $rc == 143 || $rc == 130 ]] || fail "export after SIG$sig: exit $rc"
+    [[ -z $(debris) ]] || fail "export after SIG$sig left $(debris)"
+  done
+done
+[[ ! -f m/journal.csv ]] || rm -rf m
+"$bin" merge s --out m --quiet || fail "merge into a stopped merge's folder refused"
+diff s/points.csv m/points.csv >/dev/null || fail "the merged store differs from its input"
+rm -rf m e.db
 [[ $(outside) == "$before" ]] || fail "files outside the output folders changed"
-echo "signal test: OK ($rounds rounds of SIGTERM and SIGINT on fit, run --plot and sweep; SIGXFSZ on a store)"
+echo "signal test: OK ($rounds rounds of SIGTERM and SIGINT on fit, run --plot, sweep, merge and export; SIGXFSZ on a store)"

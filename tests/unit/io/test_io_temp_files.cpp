@@ -8,6 +8,7 @@
 #include <chrono>
 #include <csignal>
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 #include "io/atomic_file.hpp"
@@ -120,5 +121,36 @@ TEST_CASE("past the file-size limit a write fails (EFBIG) and leaves no temporar
   CHECK(WIFEXITED(st));
   CHECK(WEXITSTATUS(st) == 0);
   CHECK(fs::is_empty(d));
+  fs::remove_all(d);
+}
+
+TEST_CASE("temporaries of names up to 255 bytes stay within NAME_MAX and are found again as stale", "[io][temp]") {
+  const fs::path d = temp_path("asperity_temp_long_names");
+  fs::remove_all(d);
+  fs::create_directories(d);
+  // Short names keep their name; long ones (ASCII and 2-byte UTF-8) a cut at a character and a hash.
+  CHECK(temp_prefix("points.csv") == ".points.csv.");
+  std::string utf8;
+  while (utf8.size() < 250) utf8 += "é";
+  for (const std::string& name : {std::string(250, 'a'), std::string(255, 'b'), utf8}) {
+    const std::string p = temp_prefix(name), t = temp_name(name);
+    CHECK(t.rfind(p + "tmp-", 0) == 0);
+    CHECK(t.size() <= 255);
+    CHECK(p == temp_prefix(name));                                 // the same name, the same prefix
+    CHECK(p != temp_prefix(name.substr(0, name.size() - 2) + "zz"));  // another name, another one
+    const std::string kept = p.substr(1, p.find('~') - 1);
+    CHECK(kept.size() >= 140);
+    CHECK(name.rfind(kept, 0) == 0);
+    CHECK((static_cast<unsigned char>(name[kept.size()]) & 0xC0) != 0x80);  // cut between characters
+    // The file is made, written and published, and a dead process's temporary is found again.
+    write_file_atomically(d / name, "x\n", Durability::unsynced);
+    CHECK(read_file_text(d / name) == "x\n");
+    std::string stale = p + "tmp-" + host_of_suffix() + "-" + std::to_string(dead_pid()) + "-0";
+    CHECK(stale.size() <= 255);
+    { std::ofstream(d / stale) << "half"; }
+    REQUIRE(fs::exists(d / stale));
+    CHECK(remove_stale_temporaries(d, p) == 1);
+    CHECK_FALSE(fs::exists(d / stale));
+  }
   fs::remove_all(d);
 }

@@ -19,11 +19,12 @@ using asperity::testing::write_text;
 
 namespace {
 
-// Heights that exercise the shortest round-trip text: signs, tiny and huge exponents, subnormals.
+// Heights that exercise the shortest round-trip text: signs, tiny and huge exponents, subnormals
+// (spanning up to 2e-3 m, within the map's side as a reader requires).
 HeightMap awkward_map(std::size_t n) {
   HeightMap m;
   m.n = n;
-  m.pixel_m = 1.0 / 3.0 * 1e-6;
+  m.pixel_m = 1.0 / 3.0 * 1e-2;
   for (std::size_t k = 0; k < n * n; ++k) {
     const double x = std::sin(1.7 * static_cast<double>(k) + 0.3) * std::pow(10.0, static_cast<double>(k % 7) - 9);
     m.h_m.push_back(k == 5 ? std::numeric_limits<double>::denorm_min() : k == 6 ? -0.0 : x);
@@ -106,7 +107,9 @@ TEST_CASE("height maps: bad float64 maps and headers are refused at the header's
             .rfind("h.yaml:3: data: height file " + (d / "ok.f64").string() + " has 128 bytes, expected n^2 x 8 = 200", 0) == 0);
   CHECK(header_error("n: 3\npixel_m: 1e-6\ndata: ok.f64\n")
             .rfind("h.yaml:3: data: height file is larger than expected: ", 0) == 0);
-  CHECK(header_error("n: 4\npixel_m: 0\ndata: ok.f64\n") == "h.yaml:2: pixel_m: must be > 0, got 0");
+  CHECK(header_error("n: 4\npixel_m: 0\ndata: ok.f64\n") == "h.yaml:2: pixel_m: pixel size must be in [1e-10, 1] m, got 0");
+  CHECK(header_error("n: 4\npixel_m: 1e-200\ndata: ok.f64\n") ==
+        "h.yaml:2: pixel_m: pixel size must be in [1e-10, 1] m, got 1e-200");
   CHECK(header_error("n: 4\npixel_m: 1e-6\ndata: missing.f64\n").rfind("h.yaml:3: data: height file file not found", 0) == 0);
   CHECK(header_error("n: 4\npixel_m: 1e-6\ndata: ok.f64\nformat: float32\n")
             .rfind("h.yaml:4: format: unknown value 'float32'", 0) == 0);

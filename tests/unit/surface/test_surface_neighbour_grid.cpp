@@ -89,4 +89,19 @@ TEST_CASE("the neighbour grid keeps far-apart points apart and refuses a cell of
   CHECK_THROWS_AS(NeighbourGrid(std::nan("")), std::invalid_argument);
 }
 
+TEST_CASE("points erased from the neighbour grid are no longer found; the others keep their order", "[surface]") {
+  NeighbourGrid g(1.0);
+  for (std::size_t j = 0; j < 5; ++j) g.insert(j, 0.5, 0.5);  // one cell
+  g.insert(5, 2.5, 0.5);
+  g.erase(2, 0.5, 0.5);
+  g.erase(5, 2.5, 0.5);
+  g.erase(7, 0.5, 0.5);  // never inserted: nothing
+  std::vector<std::size_t> seen;
+  g.for_each_near(0.5, 0.5, 2, [&](std::size_t j) {
+    seen.push_back(j);
+    return true;
+  });
+  CHECK(seen == std::vector<std::size_t>{0, 1, 3, 4});
+}
+
 }  // namespace asperity
