@@ -1,6 +1,7 @@
 #include "io/csv.hpp"
 
 #include <algorithm>
+#include <filesystem>
 #include <sstream>
 #include <stdexcept>
 
@@ -198,6 +199,43 @@ CsvMatrix read_numeric_matrix_csv(const std::filesystem::path& path, const std::
   }
   if (!m.rows) throw InputError(display, std::max(line_no, 1), name, "no rows of numbers");
   return m;
+}
+
+std::size_t TextTable::column(const std::string& name) const {
+  const auto it = std::find(columns.begin(), columns.end(), name);
+  if (it == columns.end()) throw InputError(display, header_line, name, "column missing");
+  return static_cast<std::size_t>(it - columns.begin());
+}
+
+TextTable read_text_table(const std::filesystem::path& path, const std::string& display, std::size_t max_rows) {
+  TextTable t;
+  t.display = display;
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) return t;
+  std::istringstream in(read_input_file(path, display, kMaxCsvBytes));
+  std::string line;
+  for (int n = 1; std::getline(in, line); ++n) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.empty() || line[0] == '#') continue;
+    std::vector<std::string> f;
+    try {
+      f = csv_split(line);
+    } catch (const std::runtime_error& e) {
+      throw InputError(display, n, "", e.what());
+    }
+    if (t.columns.empty()) {
+      t.columns = std::move(f);
+      t.header_line = n;
+      continue;
+    }
+    if (t.rows.size() >= max_rows) throw InputError(display, n, "", "more than " + std::to_string(max_rows) + " rows");
+    if (f.size() != t.columns.size())
+      throw InputError(display, n, "",
+                       std::to_string(f.size()) + " fields where the header has " + std::to_string(t.columns.size()));
+    t.rows.push_back(std::move(f));
+    t.lines.push_back(n);
+  }
+  return t;
 }
 
 }  // namespace asperity

@@ -58,4 +58,20 @@ struct CsvMatrix {
 CsvMatrix read_numeric_matrix_csv(const std::filesystem::path& path, const std::string& display,
                                   const std::string& name, std::size_t max_rows, std::size_t max_columns);
 
+// --- text tables we write and read back (results tables: a study's table.csv, matrix.csv) ----
+struct TextTable {
+  std::vector<std::string> columns;           // the header's names
+  std::vector<int> lines;                     // 1-based line of each row
+  std::vector<std::vector<std::string>> rows; // each as wide as the header
+  // Index of `name`; InputError "DISPLAY:LINE: NAME: column missing" (line: the header's) when absent.
+  std::size_t column(const std::string& name) const;
+  std::string display;
+  int header_line = 0;
+};
+
+// Reads `path` (at most kMaxCsvBytes): '#' lines and blank lines skipped, the first other line the
+// header, fields split by csv_split. No file: an empty table. A row of another width than the
+// header, an unterminated quote, or more than max_rows rows: InputError at its line.
+TextTable read_text_table(const std::filesystem::path& path, const std::string& display, std::size_t max_rows);
+
 }  // namespace asperity

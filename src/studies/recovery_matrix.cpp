@@ -316,57 +316,32 @@ void write_recovery_matrix_md(std::ostream& md, const std::vector<RecoveryCell>&
 }
 
 std::vector<RecoveryCell> read_recovery_matrix(const fs::path& file) {
+  // A matrix is a few dozen cells; a wrong file stops at this many rows.
+  const TextTable t = read_text_table(file, file.generic_string(), 10000);
   std::vector<RecoveryCell> cells;
-  std::ifstream in(file);
-  if (!in) return cells;
-  const std::string display = file.generic_string();
-  std::string line;
-  std::vector<std::string> header;
-  int line_no = 0;
-  constexpr std::size_t kMaxRows = 10000;  // a matrix is a few dozen cells; a wrong file stops here
-  while (std::getline(in, line)) {
-    ++line_no;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (line.empty() || line[0] == '#') continue;
-    if (header.empty()) {
-      header = csv_split(line);
-      continue;
-    }
-    if (cells.size() >= kMaxRows) throw InputError(display, line_no, "", "more than 10000 rows");
-    std::vector<std::string> f;
-    try {
-      f = csv_split(line);
-    } catch (const std::runtime_error& e) {
-      throw InputError(display, line_no, "", e.what());
-    }
-    if (f.size() != header.size())
-      throw InputError(display, line_no, "",
-                       std::to_string(f.size()) + " fields where the header has " + std::to_string(header.size()));
-    auto column = [&](const std::string& name) {
-      const auto it = std::find(header.begin(), header.end(), name);
-      if (it == header.end()) throw InputError(display, line_no, name, "column missing");
-      return static_cast<std::size_t>(it - header.begin());
-    };
+  for (std::size_t r = 0; r < t.rows.size(); ++r) {
+    const std::vector<std::string>& f = t.rows[r];
+    auto text = [&](const std::string& name) { return f[t.column(name)]; };
     auto number = [&](const std::string& name) {
-      const std::size_t c = column(name);
+      const std::size_t c = t.column(name);
       double x = 0;
       if (f[c] == "nan") return std::numeric_limits<double>::quiet_NaN();
       if (scene_io::parse_double(f[c], x) != scene_io::NumberParse::ok)
-        throw InputError(display, line_no, name, "not a number: '" + f[c] + "'", static_cast<int>(c) + 1);
+        throw InputError(t.display, t.lines[r], name, "not a number: '" + f[c] + "'", static_cast<int>(c) + 1);
       return x;
     };
     RecoveryCell c;
-    c.load = f[column("load")];
+    c.load = text("load");
     c.mass_kg = number("mass_kg");
     c.junctions = static_cast<int>(number("junctions"));
-    c.data_model = f[column("data_model")];
-    c.fit_model = f[column("fit_model")];
-    c.status = f[column("status")];
+    c.data_model = text("data_model");
+    c.fit_model = text("fit_model");
+    c.status = text("status");
     c.objective = number("objective");
     c.objective_at_truth = number("objective_at_truth");
     c.residuals = static_cast<int>(number("residuals"));
     c.free_parameters = static_cast<int>(number("free_parameters"));
-    c.converged = f[column("converged")];
+    c.converged = text("converged");
     c.in_best_basin = static_cast<int>(number("in_best_basin"));
     c.starts = static_cast<int>(number("starts"));
     c.evaluations = static_cast<int>(number("evaluations"));

@@ -13,42 +13,20 @@
 namespace asperity {
 
 std::vector<TopographyShapeRow> read_topography_table(const std::filesystem::path& file) {
-  std::vector<TopographyShapeRow> rows;
-  std::ifstream in(file);
-  if (!in) return rows;
-  const std::string display = file.generic_string();
-  std::string line;
-  std::vector<std::string> header;
-  int line_no = 0;
-  auto column = [&](const std::string& name) {
-    const auto it = std::find(header.begin(), header.end(), name);
-    if (it == header.end()) throw InputError(display, line_no, name, "column missing");
-    return static_cast<std::size_t>(it - header.begin());
-  };
-  std::size_t c_seed = 0, c_load = 0, c_n_junctions = 0, c_model = 0, c_alpha = 0, c_n = 0, c_end = 0, c_res = 0,
-              c_noise = 0;
   // A results table: far below this; the cap keeps a wrong file from exhausting memory.
-  constexpr std::size_t kMaxRows = 100000;
-  while (std::getline(in, line)) {
-    ++line_no;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (line.empty() || line[0] == '#') continue;
-    if (header.empty()) {
-      header = csv_split(line);
-      c_seed = column("seed"), c_load = column("P_N"), c_n_junctions = column("N"), c_model = column("model");
-      c_alpha = column("alpha_b"), c_n = column("n"), c_end = column("endpoint_residual");
-      c_res = column("residual_rms_m2"), c_noise = column("noise_rms_p95_m2");
-      continue;
-    }
-    if (rows.size() >= kMaxRows) throw InputError(display, line_no, "", "more than 100000 rows");
-    const auto f = csv_split(line);
-    if (f.size() != header.size())
-      throw InputError(display, line_no, "", std::to_string(f.size()) + " fields where the header has " +
-                                                 std::to_string(header.size()));
+  const TextTable t = read_text_table(file, file.generic_string(), 100000);
+  std::vector<TopographyShapeRow> rows;
+  if (t.columns.empty()) return rows;
+  const std::size_t c_seed = t.column("seed"), c_load = t.column("P_N"), c_n_junctions = t.column("N"),
+                    c_model = t.column("model"), c_alpha = t.column("alpha_b"), c_n = t.column("n"),
+                    c_end = t.column("endpoint_residual"), c_res = t.column("residual_rms_m2"),
+                    c_noise = t.column("noise_rms_p95_m2");
+  for (std::size_t i = 0; i < t.rows.size(); ++i) {
+    const std::vector<std::string>& f = t.rows[i];
     auto number = [&](std::size_t c) {
       double x = 0;
       if (scene_io::parse_double(f[c], x) != scene_io::NumberParse::ok || !std::isfinite(x))
-        throw InputError(display, line_no, header[c], "not a finite number: '" + f[c] + "'", static_cast<int>(c) + 1);
+        throw InputError(t.display, t.lines[i], t.columns[c], "not a finite number: '" + f[c] + "'", static_cast<int>(c) + 1);
       return x;
     };
     TopographyShapeRow r;
@@ -57,7 +35,7 @@ std::vector<TopographyShapeRow> read_topography_table(const std::filesystem::pat
     r.junctions = static_cast<int>(number(c_n_junctions));
     r.model = f[c_model];
     if (r.model != "independent" && r.model != "interacting")
-      throw InputError(display, line_no, "model", "'" + r.model + "' is neither independent nor interacting",
+      throw InputError(t.display, t.lines[i], "model", "'" + r.model + "' is neither independent nor interacting",
                        static_cast<int>(c_model) + 1);
     r.alpha_b = number(c_alpha);
     r.shape_exponent = number(c_n);

@@ -126,3 +126,37 @@ TEST_CASE("numeric matrices: rows without a header, comments, caps and located e
   CHECK(matrix_error_of("# nothing\n") == "m.csv:1: h_m: no rows of numbers");
   CHECK(matrix_error_of("1,2 um\n").rfind("m.csv:1:2: h_m: expected a plain number in SI units", 0) == 0);
 }
+
+TEST_CASE("read_text_table: comments and blanks skipped, quoted fields kept, bad rows at their line", "[io][csv]") {
+  using asperity::testing::fresh_dir;
+  using asperity::testing::write_text;
+  const std::filesystem::path dir = fresh_dir("asperity-text-table");
+  CHECK(read_text_table(dir / "absent.csv", "absent.csv", 10).columns.empty());
+  const TextTable t = read_text_table(
+      write_text(dir / "t.csv", "# a table we wrote\n\na,b,c\n1,\"x, y\",3\n# between\n4,5,6\r\n"), "t.csv", 10);
+  REQUIRE(t.columns == std::vector<std::string>{"a", "b", "c"});
+  CHECK(t.header_line == 3);
+  REQUIRE(t.rows.size() == 2);
+  CHECK(t.rows[0][1] == "x, y");
+  CHECK(t.rows[1][2] == "6");  // the CR of a CRLF line dropped
+  CHECK(t.lines == std::vector<int>{4, 6});
+  CHECK(t.column("c") == 2);
+  auto error = [&](const std::string& text, std::size_t max_rows) {
+    try {
+      read_text_table(write_text(dir / "bad.csv", text), "bad.csv", max_rows);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  CHECK(error("a,b\n1,2\n3\n", 10).rfind("bad.csv:3: 1 fields where the header has 2", 0) == 0);
+  CHECK(error("a,b\n1,2\n3,4\n", 1).rfind("bad.csv:3: more than 1 rows", 0) == 0);
+  CHECK(error("a,b\n\"1,2\n", 10).rfind("bad.csv:2: ", 0) == 0);
+  try {
+    (void)t.column("d");
+    FAIL("no error");
+  } catch (const InputError& e) {
+    CHECK(std::string(e.what()).rfind("t.csv:3: d: column missing", 0) == 0);
+  }
+  std::filesystem::remove_all(dir);
+}
