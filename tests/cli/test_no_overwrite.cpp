@@ -442,3 +442,22 @@ TEST_CASE("outputs named with 250 or 255 bytes (legal names) are written by run,
   }
   fs::remove_all(w);
 }
+
+TEST_CASE("study and regress write only what they created", "[cli][overwrite]") {
+  const fs::path w = make_case("study");
+  const fs::path src(ASPERITY_SOURCE_DIR);
+  const std::string refused = "refusing to write there: it is not empty and was not written by asperity ";
+  check_refused(w, {"study", "recovery", "--out", "user", "--quiet"}, "user: --out: " + refused + "study recovery");
+  check_refused(w, {"study", "interactions", "--out", "user", "--quiet"}, "user: --out: " + refused + "study interactions");
+  // regress --update writes its golden file only over a golden file: a user's file named as the
+  // golden is read first, refused at its line, and left as it was.
+  const auto before = snapshot(w);
+  const CliResult r = run_argv(w, {"regress", "--update", "--reason", "test", "--suite",
+                                   (src / "scenes" / "regression" / "suite.yaml").string(), "--golden", "user/table.csv"});
+  INFO(r.err);
+  CHECK(r.status == 2);
+  CHECK(r.err.rfind("user/table.csv", 0) == 0);
+  CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+  CHECK(snapshot(w) == before);
+  fs::remove_all(w);
+}
