@@ -48,10 +48,11 @@ bool write_fully(int fd, std::string_view bytes) {
 
 AtomicFileWriter::AtomicFileWriter(const fs::path& path, Durability durability) : path_(path), durability_(durability) {
   tmp_ = path.parent_path() / temp_name(path.filename().string());
+  // Guarded before it exists: a signal between its creation and the guard would leave it behind.
+  guard_.emplace(tmp_);
   // O_EXCL | O_NOFOLLOW: a name planted in advance (a link to elsewhere) is never written through.
   fd_ = ::open(tmp_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
   if (fd_ < 0) sys_fail("cannot create", tmp_, errno);
-  guard_.emplace(tmp_);
 }
 
 AtomicFileWriter::~AtomicFileWriter() {

@@ -115,8 +115,8 @@ void claim_dir(const fs::path& dir, const std::string& command, const std::strin
   const std::string name = target.filename().string();
   const fs::path tmp = target.parent_path() / temp_name(name);
   remove_stale_temporaries(target.parent_path(), temp_prefix(name));
+  const TempGuard on_signal(tmp);  // before it exists: a signal in between would leave it behind
   if (!fs::create_directory(tmp, ec) || ec) throw std::runtime_error("cannot create " + tmp.string() + ": " + ec.message());
-  const TempGuard on_signal(tmp);
   write_marker(tmp, command, file_list);
   fs::rename(tmp, target, ec);
   if (ec) {  // another process made it first: it must be ours too
@@ -157,8 +157,8 @@ void publish_dir(const fs::path& dir, const std::string& command, const std::str
   // and inside it (it is ours: checked above).
   remove_stale_temporaries(parent, own);
   if (kind_of(target) == Kind::dir) remove_stale_temporaries(target);
+  const TempGuard on_signal(tmp);  // before it exists: a signal in between would leave it behind
   if (!fs::create_directory(tmp, ec) || ec) throw std::runtime_error("cannot create " + tmp.string() + ": " + ec.message());
-  const TempGuard on_signal(tmp);
   struct Cleanup {  // the temporary folder goes whatever happens (renamed into place: nothing to do)
     fs::path p;
     ~Cleanup() {
