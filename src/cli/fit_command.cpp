@@ -157,31 +157,34 @@ class EvaluationProgress {
 };
 
 // The summary lines and the exit code of a finished fit: a failed optimization, or one whose
-// best objective no second start reached (converged: no, as a drifted regression), is a failed
-// check, one line each on stderr. A single start (unverified) is said, not failed.
-int report_fit(const FitCliOptions& opt, const FitResult& result, const fs::path& written) {
-  int evaluations = 0, certified = 0, unverified = 0;
+// best objective no second start confirmed (converged no or unverified, as a drifted regression),
+// is a failed check, one line each on stderr; with optimizer.certify false an unconfirmed
+// optimum is said, not failed.
+int report_fit(const FitCliOptions& opt, const FitSpec& spec, const FitResult& result, const fs::path& written) {
+  int evaluations = 0, certified = 0;
   bool ok = true;
   for (const auto& o : result.fits) {
     evaluations += o.evaluations;
-    ok = ok && o.ok() && o.converged != Converged::no;
+    ok = ok && o.ok() && (!spec.certify || o.converged == Converged::yes);
     certified += o.certified() ? 1 : 0;
-    unverified += o.converged == Converged::unverified ? 1 : 0;
   }
   if (!opt.quiet) {
     std::printf("  %d evaluations in %zu fit(s); optimizations %.3f s (sum), total wall %.3f s (incl. profile, error-bar refits)\n",
                 evaluations, result.fits.size(), result.fit_wall_s, result.wall_s);
-    std::printf("  converged: %d of %zu certified (>= 2 starts in the best basin)%s\n  -> %s\n", certified, result.fits.size(),
-                unverified ? ", the others unverified (one start: set optimizer.starts >= 2)" : "", written.string().c_str());
+    std::printf("  converged: %d of %zu certified (>= 2 starts in the best basin)\n  -> %s\n", certified, result.fits.size(),
+                written.string().c_str());
   }
-  if (!ok) {
-    for (const auto& o : result.fits) {
-      if (!o.ok()) std::cerr << "fit " << o.label << " failed: " << o.failure << '\n';
-      else if (o.converged == Converged::no) std::cerr << "fit " << o.label << " did not converge: " << o.convergence << '\n';
-    }
-    return exit_failure;
+  for (const auto& o : result.fits) {
+    if (!o.ok()) std::cerr << "fit " << o.label << " failed: " << o.failure << '\n';
+    else if (o.converged == Converged::yes) continue;
+    else if (spec.certify)
+      std::cerr << "fit " << o.label << (o.converged == Converged::no ? " did not converge: " : " is not certified: ")
+                << o.convergence
+                << (o.converged == Converged::unverified ? ", or optimizer.certify: false to accept it unconfirmed" : "") << '\n';
+    else if (!opt.quiet)
+      std::cerr << "fit " << o.label << " not certified (optimizer.certify: false): " << o.convergence << '\n';
   }
-  return exit_ok;
+  return ok ? exit_ok : exit_failure;
 }
 
 int run(const FitCliOptions& opt, const Invocation& inv) {
@@ -245,7 +248,7 @@ int run(const FitCliOptions& opt, const Invocation& inv) {
     std::fflush(stdout);
   }
   if (!sharded) write_fit(out, spec, result, inv.command_line, opt.figures);
-  return report_fit(opt, result, sharded ? task_dir(out, task) / "journal.csv" : out);
+  return report_fit(opt, spec, result, sharded ? task_dir(out, task) / "journal.csv" : out);
 }
 
 }  // namespace

@@ -76,7 +76,7 @@ ConvergenceVerdict judge_convergence(const std::vector<StartEnd>& ends, const Ba
                               scene_io::format_double(rule.distance) + " in the scaled coordinates)";
   if (ends.size() < 2) {
     v.converged = Converged::unverified;
-    v.reason = "one start: nothing to compare its optimum with (set optimizer.starts >= 2 to certify it)";
+    v.reason = "one start: nothing to compare its optimum with; set optimizer.starts >= 2 to certify it";
   } else if (v.in_basin >= 2) {
     v.converged = Converged::yes;
     v.reason = counted;

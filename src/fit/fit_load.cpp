@@ -33,7 +33,7 @@ const std::vector<std::string> kTargetKeys{"drop", "period"};
 const std::vector<std::string> kParameterKeys{"lo", "hi", "start", "scale", "per_experiment"};
 const std::vector<std::string> kOptimizerKeys{"algorithm", "xtol_rel", "ftol_rel", "ftol_abs",
                                               "max_evaluations", "initial_step", "polish", "starts",
-                                              "basin_tolerance", "basin_distance"};
+                                              "basin_tolerance", "basin_distance", "certify"};
 const std::vector<std::string> kPolishKeys{"algorithm", "max_evaluations"};
 const std::vector<std::string> kProfileKeys{"parameter", "span", "points"};
 
@@ -330,7 +330,7 @@ FitExperiment read_experiment(const ExperimentContext& cx, const YAML::Node& en,
   return fe;
 }
 
-// optimizer.{starts, basin_tolerance, basin_distance} into spec (after the algorithm and polish:
+// optimizer.{starts, basin_tolerance, basin_distance, certify} into spec (after the algorithm and polish:
 // further starts need a local stage).
 void read_starts(const MapView& o, FitSpec& spec) {
   if (auto n = o.find("starts")) {
@@ -341,6 +341,7 @@ void read_starts(const MapView& o, FitSpec& spec) {
       o.fail_at(*n, "starts", "every start after the first runs the local stage, and " + quote(spec.algorithm) +
                                   " is global with no polish: add polish: {algorithm: LN_SBPLX} or use an LN_* algorithm");
   }
+  if (auto n = o.find("certify")) spec.certify = o.boolean(*n, "certify");
   if (auto n = o.find("basin_tolerance")) {
     spec.basin_tolerance = o.number(*n, "basin_tolerance", nullptr);
     if (!(spec.basin_tolerance >= 0 && spec.basin_tolerance < 1))

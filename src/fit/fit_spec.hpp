@@ -106,8 +106,12 @@ struct FitSpec {
   // Starts (fit/convergence.hpp): the first is the algorithm (then the polish) from `start`; each
   // further one is the local stage (the polish when there is one, else the algorithm) from a
   // point of a Sobol design. ≥ 2 starts ending in the best basin certify the optimum; one start
-  // is `unverified` (today's single run).
+  // is `unverified`.
   int starts = 1;
+  // A fit whose optimum no second start confirms (converged no or unverified) is a failed check:
+  // `asperity fit` exits 1. false accepts an unconfirmed optimum (a point evaluation, a costly
+  // one-start fit): said on stderr and in fit.yaml, exit 0.
+  bool certify = true;
   double basin_tolerance = 1e-3;      // relative on the objective (BasinRule::relative)
   double basin_distance = 1e-3;       // in the scaled coordinates (BasinRule::distance)
   bool profile = true;                // write profile.csv / profile.png

@@ -337,6 +337,8 @@ std::string fit_yaml(const FitSpec& spec, const FitResult& result, const std::st
   y << "starts: " << spec.starts << "   # the algorithm from the start, then the local stage from Sobol points\n";
   y << "basin: {tolerance: " << num(spec.basin_tolerance) << ", distance: " << num(spec.basin_distance)
     << "}   # a start is in the best basin within this relative objective or scaled distance\n";
+  y << "certify: " << (spec.certify ? "true" : "false")
+    << "   # true: a fit no second start confirms is a failed check (exit 1)\n";
   y << "threads: " << result.threads << "\n";
   y << "wall_s: " << num(result.wall_s) << "   # everything: fits, re-runs, profiles, error-bar refits\n";
   y << "fit_wall_s: " << num(result.fit_wall_s) << "   # sum of the optimizations alone\n";

@@ -92,9 +92,9 @@ TEST_CASE("sweep --set equals the value in the campaign and fit --set equals it 
 
   const std::string scene = (kSource / "tests" / "data" / "scene" / "small_scene.yaml").string();
   write_text(w / "f1.yaml", "name: f1\nobjective: area_curve\nexperiments: [" + scene +
-                                "]\nparameters: {model.alpha_b: {lo: 1e-16, hi: 5e-15, start: 1e-15, scale: log}}\n");
+                                "]\nparameters: {model.alpha_b: {lo: 1e-16, hi: 5e-15, start: 1e-15, scale: log}}\noptimizer: {certify: false}\n");
   write_text(w / "f2.yaml", "name: f2\nobjective: area_curve\nexperiments: [{scene: " + scene +
-                                ", set: {model.eta: 60}}]\nparameters: {model.alpha_b: {lo: 1e-16, hi: 5e-15, start: 1e-15, scale: log}}\n");
+                                ", set: {model.eta: 60}}]\nparameters: {model.alpha_b: {lo: 1e-16, hi: 5e-15, start: 1e-15, scale: log}}\noptimizer: {certify: false}\n");
   REQUIRE(run_argv(w, {"fit", "f1.yaml", "--out", "o1", "-j", "1", "-q", "--no-profile", "--set", "model.eta=60"}).status == 0);
   REQUIRE(run_argv(w, {"fit", "f2.yaml", "--out", "o2", "-j", "1", "-q", "--no-profile"}).status == 0);
   const auto best = [](const std::string& y) {

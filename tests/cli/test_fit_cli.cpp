@@ -39,7 +39,7 @@ TEST_CASE("asperity fit writes the results directory", "[fit][cli]") {
   write_text(c.dir / "f.yaml",
              "name: small\nobjective: area_curve\nexperiments: [scene.yaml]\n"
              "parameters: {model.alpha_b: {lo: 1e-16, hi: 5e-15, start: 1e-15, scale: log}}\n"
-             "profile: {span: 0.1, points: 3}\nerror_bars: {experiment.E: 0.1e6}\n");
+             "optimizer: {starts: 2}\nprofile: {span: 0.1, points: 3}\nerror_bars: {experiment.E: 0.1e6}\n");
   REQUIRE(asperity_in(c.dir, "fit f.yaml --quiet --threads 2") == 0);
   const fs::path out = c.dir / "results" / "fits" / "small";
   const std::string y = slurp(out / "fit.yaml");
@@ -103,10 +103,19 @@ TEST_CASE("asperity fit certifies a multi-start optimum, and exits 1 on a mutant
   const std::string m = slurp(c.dir / "mutant" / "fit.yaml");
   CHECK(m.find("    converged: no") != std::string::npos);
   CHECK(m.find("    in_best_basin: 1\n") != std::string::npos);
-  // A single start is unverified: said, not failed.
+  // A single start is unverified: nothing confirms it, a failed check as well, said in one line;
+  // optimizer.certify: false accepts it (exit 0, said unless --quiet).
   write_text(c.dir / "one.yaml", head + "optimizer: {algorithm: LN_BOBYQA}\n");
-  CHECK(asperity_in(c.dir, "fit one.yaml --quiet --out one") == 0);
+  CHECK(asperity_in(c.dir, "fit one.yaml --quiet --out one", &err) == 1);
+  CHECK(err == "fit fit-cli-conv is not certified: one start: nothing to compare its optimum with; set optimizer.starts "
+               ">= 2 to certify it, or optimizer.certify: false to accept it unconfirmed\n");
   CHECK(slurp(c.dir / "one" / "fit.yaml").find("    converged: unverified") != std::string::npos);
+  write_text(c.dir / "accepted.yaml", head + "optimizer: {algorithm: LN_BOBYQA, certify: false}\n");
+  CHECK(asperity_in(c.dir, "fit accepted.yaml --quiet --out accepted", &err) == 0);
+  CHECK(err.empty());
+  const std::string a = slurp(c.dir / "accepted" / "fit.yaml");
+  CHECK(a.find("    converged: unverified") != std::string::npos);
+  CHECK(a.find("\ncertify: false") != std::string::npos);
   fs::remove_all(c.dir);
 }
 

@@ -159,7 +159,7 @@ TEST_CASE("hostile names and paths through run --plot, reproduce, fit, sweep and
     std::string fit = "name: hostile\nobjective: quadratic_alpha\nseparate: true\nexperiments: [";
     for (std::size_t i = 0; i < n; ++i) fit += (i ? ", s" : "s") + std::to_string(i) + ".yaml";
     fit += "]\nparameters:\n  model.alpha_b: {lo: 0.1e-15, hi: 5.0e-15, start: 0.725e-15, scale: log}\n"
-           "optimizer: {algorithm: LN_BOBYQA, max_evaluations: 3}\n";
+           "optimizer: {algorithm: LN_BOBYQA, max_evaluations: 3, certify: false}\n";
     write_text(w / "fit.yaml", fit);
     const std::string out = "fit \"'$(touch PWNED)";
     const auto r = run_argv(w, {"fit", "fit.yaml", "--out", out, "--no-profile", "--no-error-bars", "--quiet"});

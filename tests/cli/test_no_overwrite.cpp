@@ -56,7 +56,7 @@ fs::path make_case(const std::string& tag) {
   write_text(w / "fit.yaml",
         "name: xy\nobjective: quadratic_alpha\nseparate: true\nexperiments: [s1.yaml, s2.yaml]\n"
         "parameters:\n  model.alpha_b: {lo: 0.1e-15, hi: 5.0e-15, start: 0.725e-15, scale: log}\n"
-        "optimizer: {algorithm: LN_BOBYQA, max_evaluations: 3}\n");
+        "optimizer: {algorithm: LN_BOBYQA, max_evaluations: 3, certify: false}\n");
   write_text(w / "camp.yaml", "name: camp\nscenes: [s1.yaml]\naxes:\n  model.eta: [0, 100]\n  model.epsilon: [0.5, 0.9]\n");
   for (const char* f : {"thesis.tex", "table.csv", "points.csv", "summary.yaml", "scene.yaml", "REPORT.md"})
     write_text(w / "user" / f, std::string("the user's own ") + f + "\n");
