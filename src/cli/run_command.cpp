@@ -1,6 +1,5 @@
 // asperity run SCENE.yaml [--out DIR] [--set key=value]... [--quiet] [--plot]
 #include <omp.h>
-#include <csignal>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -10,6 +9,7 @@
 #include <vector>
 
 #include "cli/commands.hpp"
+#include "cli/interrupt.hpp"
 #include "cli/options.hpp"
 #include "io/progress.hpp"
 #include "observe/simulate.hpp"
@@ -55,12 +55,6 @@ void print_summary(const Scene& scene, const Observables& o, const std::filesyst
   std::printf("  -> %s\n", out.string().c_str());
 }
 
-// Ctrl-C during a run: the handler only raises a flag (async-signal-safe); the run's monitor
-// sees it within 0.1 s and the run stops without writing anything. The one piece of
-// process-wide state here, as a signal handler needs.
-volatile std::sig_atomic_t g_interrupted = 0;
-extern "C" void on_sigint(int) { g_interrupted = 1; }
-
 int run(const RunOptions& opt, const Invocation& inv) {
   const Scene scene = load_scene(opt.scene, opt.overrides);
   if (opt.threads > 0) omp_set_num_threads(opt.threads);
@@ -69,26 +63,22 @@ int run(const RunOptions& opt, const Invocation& inv) {
                             std::filesystem::path(opt.scene).stem()
                       : std::filesystem::path(opt.out);
   check_run_dir(out);  // fail before the run, not after it
-  struct sigaction sa {}, previous {};
-  sa.sa_handler = on_sigint;
-  sigemptyset(&sa.sa_mask);
-  ::sigaction(SIGINT, &sa, &previous);
   ProgressLine progress("run", "s simulated", scene.stop.time, opt.quiet);
   RunMonitor monitor;
   monitor.period_s = 0.1;
-  monitor.poll = [&](double t, double) {
-    progress.update(t);
-    return g_interrupted == 0;
-  };
   std::optional<RunResult> result;
   try {
+    // Ctrl-C: the run's monitor sees the request within 0.1 s and the run stops, writing nothing.
+    const InterruptRequest ctrl_c;
+    monitor.poll = [&](double t, double) {
+      progress.update(t);
+      return !ctrl_c.requested();
+    };
     result.emplace(simulate(scene, 0, &monitor));
   } catch (const RunInterrupted& e) {
-    ::sigaction(SIGINT, &previous, nullptr);
     std::fprintf(stderr, "%s: %s; nothing written\n", opt.scene.c_str(), e.what());
     return exit_interrupted;
   }
-  ::sigaction(SIGINT, &previous, nullptr);
   const RunResult& r = *result;
   write_run(out, scene, r.obs, r.recorder, RunWriteOptions{opt.plot, inv.command_line, opt.figures});
   if (!opt.quiet) print_summary(scene, r.obs, out);

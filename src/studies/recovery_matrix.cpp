@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <fstream>
 #include <map>
 #include <sstream>
 
@@ -15,6 +14,7 @@
 #include "io/csv.hpp"
 #include "io/input_error.hpp"
 #include "io/numbers.hpp"
+#include "io/yaml_util.hpp"
 #include "scene/scene_keys.hpp"
 
 namespace asperity {
@@ -77,14 +77,6 @@ std::vector<LoadVerdict> judge_loads(const std::vector<RecoveryCell>& cells) {
 }
 
 namespace {
-
-std::string read_text(const fs::path& file, const std::string& key) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw InputError(file.generic_string(), 0, key, "cannot read the file");
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 // The 1-based line of a top-level key in YAML text (0 when absent), for messages about it.
 int line_of_key(const std::string& text, const std::string& key) {
@@ -213,7 +205,7 @@ std::string cell_number(const char* format, double x) {
 std::vector<RecoveryCell> run_recovery_matrix(const RecoveryMatrixOptions& opt) {
   // Templates first (a bad one fails before any run), with equal budgets.
   std::vector<std::string> templates;
-  for (const RecoveryModel& m : opt.models) templates.push_back(read_text(m.fit_template, "fit template"));
+  for (const RecoveryModel& m : opt.models) templates.push_back(scene_io::read_input_file(m.fit_template, m.fit_template.generic_string(), scene_io::kMaxYamlBytes));
   fs::create_directories(opt.out / "data");
   fs::create_directories(opt.out / "fits");
   std::vector<RecoveryCell> cells;
