@@ -714,35 +714,51 @@ void write_joint_md(std::ostream& md, const InteractionStudyOptions& opt, const 
     for (const auto& f : v) s += (s.empty() ? "`" : ", `") + f.generic_string() + "`" + (fs::exists(f) ? "" : " (absent)");
     return s;
   };
-  md << "## Joint calibration of (α_b, ε, η) against A(Q) and Q(t) (issue 22)\n\n"
+  md << "## Joint calibration of (α_b, ε, η) against A(Q) and Q(t)\n\n"
      << "Calibrated values per load and model, read from " << files(opt.joint_independent) << " (independent) and "
      << files(opt.joint_interacting) << " (interacting): objective `area_and_force`, a chi-square over the measured "
         "A(Q) and the measured Q(t) (docs/calibration.md, \"Joint calibration\"). 95 %: the Hessian's interval (±1.96 σ, "
         "σ scaled by s²; n/a where the fit gave none: a parameter at its bound, or H not positive definite, fit.yaml's "
         "`uncertainty.failure`); profile σ: the parabola through each one-parameter profile (conditional). Neither is a "
-        "statistical error bar while s² ≫ 1. (bound): the value sits at its box's bound.\n\n"
-     << "| experiment | model | α_b [1e-15] | 95 % | profile σ | ε | 95 % | profile σ | η [1/s] | 95 % | profile σ | s² |\n"
-     << "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+        "statistical error bar while s² ≫ 1. (bound): the value sits at its box's bound. Position scale: the "
+        "interacting fit's free junction spacing (1: the stand-ins' positions). Converged: yes where at least two of "
+        "the fit's starts reached its best objective (docs/calibration.md, \"Convergence: several starts\"); "
+        "intervals only then, and s² = J/(N − p) in brackets where not.\n\n"
+     << "| experiment | model | α_b [1e-15] | 95 % | profile σ | ε | 95 % | profile σ | η [1/s] | 95 % | profile σ | "
+        "position scale | s² | converged |\n"
+     << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& r : rows)
     for (const auto* s : {&r.indep, &r.inter}) {
       const char* model = s == &r.indep ? "independent" : "interacting";
       if (s->fit.label.empty() || s->fit.status != "ok") {
         md << "| " << r.name << " | " << model << " | " << (s->fit.label.empty() ? "no joint calibration" : "joint calibration " + s->fit.status)
-           << ": no evidence | | | | | | | | | |\n";
+           << ": no evidence | | | | | | | | | | | |\n";
         continue;
       }
       auto par = [&](const std::string& k) {
         const auto it = s->fit.parameters.find(k);
         return it == s->fit.parameters.end() ? JointParameter{} : it->second;
       };
-      const JointParameter a = par("model.alpha_b"), e = par("model.epsilon"), h = par("model.eta");
+      const JointParameter a = par("model.alpha_b"), e = par("model.epsilon"), h = par("model.eta"),
+                           ps = par("model.position_scale");
       auto bound = [](const JointParameter& p) { return p.at_bound ? " (bound)" : ""; };
+      // An older fit.yaml says nothing of convergence: its s² is shown as it was.
+      const bool certified = s->fit.converged.empty() || s->fit.converged == "yes";
+      const int dof = s->fit.n_residuals - static_cast<int>(s->fit.parameters.size());
+      const double s2_value = std::isfinite(s->fit.reduced_chi2) ? s->fit.reduced_chi2
+                              : dof > 0 ? s->fit.objective / dof : ForceMisfit::nan;
+      const std::string s2 = scene_io::format_cell("%.1f", s2_value);
       md << "| " << r.name << " | " << model << " | " << scene_io::format_cell("%.4f", a.value * 1e15) << bound(a) << " | "
          << interval_cell(a, 1e15, "%.4f") << " | " << scene_io::format_cell("%.4f", a.profile_sigma * 1e15) << " | "
          << scene_io::format_cell("%.4f", e.value) << bound(e) << " | " << interval_cell(e, 1, "%.4f") << " | "
          << scene_io::format_cell("%.4f", e.profile_sigma) << " | " << scene_io::format_cell("%.2f", h.value) << bound(h) << " | "
          << interval_cell(h, 1, "%.2f") << " | " << scene_io::format_cell("%.2f", h.profile_sigma) << " | "
-         << scene_io::format_cell("%.1f", s->fit.reduced_chi2) << " |\n";
+         << (std::isfinite(ps.value) ? scene_io::format_cell("%.4f", ps.value) + bound(ps) : std::string("–")) << " | "
+         << (certified ? s2 : "(" + s2 + ")") << " | "
+         << (s->fit.converged.empty() ? std::string("–")
+                                      : s->fit.converged + " (" + std::to_string(s->fit.in_best_basin) + " of " +
+                                            std::to_string(s->fit.starts) + ")")
+         << " |\n";
     }
   md << "\nEach model re-run here at its calibrated values, with the fit file's own settings (to the last measured "
         "time of the Q(t), no stop at the peak): Q(t) misfit = rms of Q_model − Q_measured at the measured samples; "

@@ -23,12 +23,10 @@ struct InteractionStudyOptions {
   std::vector<std::filesystem::path> scenes;            // the experiments (scenes/paper/P*.yaml)
   std::filesystem::path fit_independent = "results/fits/paper_alpha_b/fit.yaml";
   std::filesystem::path fit_interacting = "results/fits/interactions_alpha_b/fit.yaml";
-  // The joint calibrations of (α_b, ε, η) against A(Q) and Q(t) (issue 22), per model: fit.yaml
-  // files read in order (a load found in an earlier file is not replaced); absent: no evidence.
+  // The joint calibrations of (α_b, ε, η) against A(Q) and Q(t), per model: fit.yaml files read
+  // in order (a load found in an earlier file is not replaced); absent: no evidence.
   std::vector<std::filesystem::path> joint_independent = {"results/fits/joint_independent/fit.yaml"};
-  std::vector<std::filesystem::path> joint_interacting = {
-      "results/fits/joint_interacting/fit.yaml", "results/fits/joint_interacting_P3.09N/fit.yaml",
-      "results/fits/joint_interacting_P4.00N/fit.yaml", "results/fits/joint_interacting_P6.40N/fit.yaml"};
+  std::vector<std::filesystem::path> joint_interacting = {"results/fits/joint_interacting/fit.yaml"};
   std::filesystem::path sweep_store = "results/interactions_sweep";  // sweeps/interactions.yaml
   // The topography study's table (results/topography/study.py; SYNTHETIC surfaces): both models
   // on junctions from contact mechanics (studies/topography_comparison.hpp); absent: no evidence.

@@ -73,6 +73,9 @@ std::map<std::string, JointFitEntry> read_joint_fits(const std::vector<fs::path>
         e.fit_yaml = file;
         e.fit_file = fit_file;
         e.objective = number_or_nan(f["objective"]);
+        e.converged = f["converged"].as<std::string>("");
+        e.in_best_basin = f["in_best_basin"].as<int>(0);
+        e.starts = f["starts"].as<int>(0);
         for (const auto& p : f["parameters"]) {
           JointParameter jp;
           jp.value = number_or_nan(p.second["value"]);
@@ -87,6 +90,7 @@ std::map<std::string, JointFitEntry> read_joint_fits(const std::vector<fs::path>
           e.chi2_force = number_or_nan(c["force"]);
           e.n_area = c["n_area"].as<int>(0);
           e.n_force = c["n_force"].as<int>(0);
+          e.n_residuals = e.n_area + e.n_force + c["n_cycles"].as<int>(0) + c["n_stick_slip"].as<int>(0);
         }
         if (const YAML::Node u = f["uncertainty"]) {
           e.reduced_chi2 = number_or_nan(u["reduced_chi2"]);

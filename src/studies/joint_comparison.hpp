@@ -59,6 +59,9 @@ struct JointFitEntry {
   double objective = ForceMisfit::nan, reduced_chi2 = ForceMisfit::nan;
   double chi2_area = ForceMisfit::nan, chi2_force = ForceMisfit::nan;
   int n_area = 0, n_force = 0;
+  int n_residuals = 0;  // every residual of the objective (A(Q), Q(t), cycle features)
+  std::string converged;            // fit.yaml's: yes, no, unverified ("" from an older file)
+  int in_best_basin = 0, starts = 0;
 };
 
 // label → entry for every fit in the files, in order: the first fit of status ok of a label is
