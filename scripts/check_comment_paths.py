@@ -5,7 +5,9 @@ Usage: scripts/check_comment_paths.py [ROOT]
 Every "src/LAYER/NAME.hpp|cpp" and every "LAYER/NAME.hpp|cpp" whose LAYER is a folder of src/ (in
 comments, strings or includes of src/ and tests/) must name a file of ROOT/src. Prints each
 offence as 'FILE:LINE: names PATH, which does not exist', then a count; exit status 1 when there is
-any, else 0. (A comment pointing at a moved header sends the reader nowhere.)
+any, else 0. (A comment pointing at a moved header sends the reader nowhere.) Likewise every
+"docs/NAME.md §N" must name a file of ROOT/docs with a heading "## N.", and a comment cites the
+model as docs/model.md, not as "MODEL.md".
 """
 import os
 import re
@@ -16,9 +18,22 @@ def main(argv):
     root = argv[0] if argv else "."
     src = os.path.join(root, "src")
     layers = sorted(d for d in os.listdir(src) if os.path.isdir(os.path.join(src, d)))
+    section = re.compile(r'(?<![\w/.-])docs/([A-Za-z0-9_-]+\.md) §(\d+)')
+    bare_model = re.compile(r'(?<![\w/.-])MODEL\.md')
+    headings = {}
+
+    def has_section(doc, number):
+        if doc not in headings:
+            try:
+                with open(os.path.join(root, "docs", doc), encoding="utf-8") as f:
+                    headings[doc] = {m.group(1) for m in re.finditer(r'^## (\d+)\.', f.read(), re.M)}
+            except OSError:
+                headings[doc] = None
+        return headings[doc] is not None and number in headings[doc]
+
     pattern = re.compile(r'(?<![\w/.-])(?:src/)?((?:%s)/[A-Za-z0-9_]+\.(?:hpp|cpp))\b' % "|".join(map(re.escape, layers)))
     bad = 0
-    for top in ("src", "tests"):
+    for top in ("src", "tests", "bench"):
         for folder, _, files in os.walk(os.path.join(root, top)):
             for name in sorted(files):
                 if not name.endswith((".hpp", ".cpp")):
@@ -30,6 +45,14 @@ def main(argv):
                             if not os.path.exists(os.path.join(src, m.group(1))):
                                 print(f"{os.path.relpath(path, root)}:{lineno}: names {m.group(0)}, which does not exist")
                                 bad += 1
+                        for m in section.finditer(line):
+                            if not has_section(m.group(1), m.group(2)):
+                                print(f"{os.path.relpath(path, root)}:{lineno}: names {m.group(0)}, which does not exist")
+                                bad += 1
+                        comment = line[line.index("//"):] if "//" in line else ""
+                        if bare_model.search(comment):  # (outputs' texts keep theirs: their files are hashed inputs)
+                            print(f"{os.path.relpath(path, root)}:{lineno}: cites MODEL.md; cite docs/model.md §N")
+                            bad += 1
     print(f"{bad} path(s) named that do not exist")
     return 1 if bad else 0
 

@@ -1,5 +1,5 @@
 #pragma once
-// The robust observables a solver is judged on (MODEL.md §4: not late-time pointwise
+// The robust observables a solver is judged on (docs/model.md §4: not late-time pointwise
 // trajectories) and their relative errors against a converged run.
 #include <array>
 #include <string>

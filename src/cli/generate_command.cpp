@@ -1,5 +1,5 @@
 // asperity generate [--recipe data/standin/recipe.yaml] [--out data/standin] [--scenes DIR] [--quiet]
-// Rebuilds the stand-in experiments (MODEL.md §7) from their recipe; same recipe, same bytes.
+// Rebuilds the stand-in experiments (docs/model.md §7) from their recipe; same recipe, same bytes.
 // A recipe with a `topography:` section (generate/topography.hpp, docs/topography.md) instead
 // writes one experiment whose junctions are the contact clusters of a surface under a sphere; one
 // with a `synthetic:` section (generate/synthetic.hpp) one experiment whose measured A(Q) and Q(t)

@@ -15,7 +15,7 @@
 namespace asperity {
 
 enum class FitObjective {
-  quadratic_alpha,  // Σ_e (α_model/α_measured − 1)²: the paper's calibration (MODEL.md §5)
+  quadratic_alpha,  // Σ_e (α_model/α_measured − 1)²: the paper's calibration (docs/model.md §5)
   area_curve,       // Σ_e mean_j ((A_model(Q_j) − A_j)/A0)² over the measured samples
   stick_slip,       // Σ_e (drop/drop_target − 1)² + (period/period_target − 1)²
   area_and_force,   // Σ_e χ²: A(Q) and Q(t) samples and (with a target) the stick-slip drop and

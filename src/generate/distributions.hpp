@@ -1,5 +1,5 @@
 #pragma once
-// Junction-area distributions for the stand-in generator (MODEL.md §7).
+// Junction-area distributions for the stand-in generator (docs/model.md §7).
 //
 // Every family is a small value type with an explicit inverse CDF, so a draw is
 // quantile(uniform) and the bytes of a generated population depend only on
@@ -63,7 +63,7 @@ struct LogNormal {
   double cdf(double a) const;
 };
 
-// Point mass: every junction has the same area (the equal-area limit, MODEL.md §6 claim 6).
+// Point mass: every junction has the same area (the equal-area limit, docs/model.md §6 claim 6).
 struct Fixed {
   double area = 1e-8;  // m²
   double quantile(double) const { return area; }

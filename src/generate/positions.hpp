@@ -1,5 +1,5 @@
 #pragma once
-// Junction centres for the stand-ins (MODEL.md §8 needs positions): non-overlapping discs (radius
+// Junction centres for the stand-ins (docs/model.md §8 needs positions): non-overlapping discs (radius
 // sqrt(A0/π)) inside an apparent contact disc of radius R, with a number density that follows
 // the pressure of a sphere-on-plane (Hertz) contact, ∝ sqrt(1 − r²/R²): where the pressure is
 // higher, more asperities touch. Seeded, and byte-reproducible on any IEEE machine (only +, ×,

@@ -1,6 +1,6 @@
 #pragma once
 // The stand-in recipe (data/standin/recipe.yaml): everything `asperity generate` needs to
-// rebuild the six stand-in experiments byte for byte (MODEL.md §7). Plain data + a strict
+// rebuild the six stand-in experiments byte for byte (docs/model.md §7). Plain data + a strict
 // reader (unknown keys, wrong types and bad values are InputError "FILE:LINE: KEY: message").
 #include <cstdint>
 #include <filesystem>
@@ -20,7 +20,7 @@ struct StandinRecipe {
   //   noise seed = splitmix64(area seed ^ 0x6e6f697365)   ("noise": measured-curve noise)
   std::uint64_t seed = 0;
 
-  // Experiments (MODEL.md §2).
+  // Experiments (docs/model.md §2).
   double gravity = 9.81;             // m/s², P = M g
   std::vector<double> masses_kg;     // slider masses M, one experiment each
   double k_L = 9200.0;               // N/m

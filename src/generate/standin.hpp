@@ -1,5 +1,5 @@
 #pragma once
-// Builds the stand-in experiments of MODEL.md §7 from a recipe: junction populations, the
+// Builds the stand-in experiments of docs/model.md §7 from a recipe: junction populations, the
 // model's static friction peak Q_s, and a stand-in "measured" A(Q). Deterministic: the same
 // recipe (and the same solver code) gives the same bytes.
 #include <cstdint>

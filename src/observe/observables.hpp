@@ -1,5 +1,5 @@
 #pragma once
-// The robust observables of one run (MODEL.md §4-§6), computed from what the Recorder kept and
+// The robust observables of one run (docs/model.md §4-§6), computed from what the Recorder kept and
 // what the solver reported. Plain data; src/report writes it as summary.yaml.
 #include <cstddef>
 #include <cstdint>

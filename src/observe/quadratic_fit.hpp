@@ -1,5 +1,5 @@
 #pragma once
-// Shape of the area-vs-force curve A(Q) on the loading branch (MODEL.md §5):
+// Shape of the area-vs-force curve A(Q) on the loading branch (docs/model.md §5):
 //  - the paper's quadratic fit A = A0 − α Q² with A0 fixed (least squares in α only);
 //  - a quasi-linearity index: the best exponent n of A0 − A = c Qⁿ (n ≈ 1 quasi-linear,
 //    n ≈ 2 quadratic), fitted by least squares in log space.

@@ -3,7 +3,7 @@
 // population) and decides where the static friction peak is and when the run may stop.
 // Solver-independent: both solvers feed it the same way.
 //
-// The first macroscopic peak (MODEL.md §5, README "The static friction peak") ends the first
+// The first macroscopic peak (docs/model.md §5, README "The static friction peak") ends the first
 // macroscopic slip, the one in which the whole interface gives way: it is the highest maximum of
 // Q from the first junction slip until, after every junction has slipped at least once, either
 // the next maximum of Q (included) or a stick (every slipping junction repins). Earlier sticks and

@@ -1,5 +1,5 @@
 #pragma once
-// Stick-slip statistics from the confirmed peaks of Q (MODEL.md §5: "amplitude and period of
+// Stick-slip statistics from the confirmed peaks of Q (docs/model.md §5: "amplitude and period of
 // the drops"). Cycle j (j = 0 is the static peak Q_s) is complete once peak j + 1 is confirmed:
 // its drop is Q_max,j − Q_min,j and its period t_max,j+1 − t_max,j. This is the same count the
 // Recorder's stop.cycles uses (n cycles need n + 1 peaks).

@@ -1,5 +1,5 @@
 #pragma once
-// Single-junction contact law of the paper (MODEL.md §1): Mindlin stiffness (Eq. 2),
+// Single-junction contact law of the paper (docs/model.md §1): Mindlin stiffness (Eq. 2),
 // shear-induced area reduction (Eq. 3), static threshold. Pure functions, SI units.
 #include <cmath>
 

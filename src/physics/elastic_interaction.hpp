@@ -1,6 +1,6 @@
 #pragma once
 // Tangential elastic interaction of junctions through the elastomer half-space (E, ν), shear
-// along x (MODEL.md §8): the tangential surface displacement at junction i per unit tangential
+// along x (docs/model.md §8): the tangential surface displacement at junction i per unit tangential
 // force at junction j. Pure functions, SI units; the kernel of the interacting model.
 namespace asperity {
 

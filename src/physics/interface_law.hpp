@@ -1,5 +1,5 @@
 #pragma once
-// The junction interface law (MODEL.md §1): when a pinned junction starts to slip, the force
+// The junction interface law (docs/model.md §1): when a pinned junction starts to slip, the force
 // it carries while slipping, where it repins, and how its area, stiffness and static threshold
 // follow the force under both area laws and both shapes (the shape enters through
 // ContactLaw::stiffness). Both solvers call these; pure functions, SI units.

@@ -1,5 +1,5 @@
 #pragma once
-// The universal dimensionless force law of a never-slipped junction (MODEL.md §4).
+// The universal dimensionless force law of a never-slipped junction (docs/model.md §4).
 // With φ = s f, s = sqrt(α_b / A0^(p+1)) (so A/A0 = 1 − φ²) and ψ = s ℓ0 E δ, Eq. (2)+(3)
 // reduce to ψ = φ / κ(1 − φ²): one increasing function per (ν, shape) for every junction,
 // p, α_b and E. Its inverse gives the force at any displacement without a per-junction

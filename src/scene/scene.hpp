@@ -55,7 +55,7 @@ struct ModelSettings {
   double alpha_b = 0.725e-15;  // m^(2p+2)/N² (m⁵/N² for p = 1.5)
   JunctionShape junction_shape = JunctionShape::elliptic;
   AreaLaw area_law = AreaLaw::until_first_slip;
-  // Tangential elastic interactions between junctions (MODEL.md §8): none (the paper's
+  // Tangential elastic interactions between junctions (docs/model.md §8): none (the paper's
   // independent junctions) or elastic (needs junction positions x_m, y_m).
   Interactions interactions = Interactions::none;
   double interaction_cutoff = 0;  // m; pairs farther apart are dropped; 0: every pair
@@ -117,7 +117,7 @@ struct Scene {
   OutputSettings output;
 };
 
-// Contact law implied by an experiment and model settings (σ = σ_exp/ε, MODEL.md §2).
+// Contact law implied by an experiment and model settings (σ = σ_exp/ε, docs/model.md §2).
 inline ContactLaw make_contact_law(const Experiment& e, const ModelSettings& m) {
   ContactLaw c;
   c.E = e.E;

@@ -37,7 +37,7 @@ struct TopographyRecipe {
   int max_iterations = 5000;
   Connectivity connectivity = Connectivity::eight;
 
-  // The slider of the experiment; defaults are the paper's (MODEL.md §2): M = P/g, k_L, v, σ_exp.
+  // The slider of the experiment; defaults are the paper's (docs/model.md §2): M = P/g, k_L, v, σ_exp.
   double gravity = 9.81;            // m/s²
   double mass_kg = 0;               // 0: load_N / gravity
   double k_L = 9200.0;              // N/m

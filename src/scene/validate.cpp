@@ -103,7 +103,7 @@ void check_area_law_domain(const Scene& s, const KeyOrigins& o) {
   }
 }
 
-// Elastic interactions (MODEL.md §8): the junctions need finite, non-overlapping positions
+// Elastic interactions (docs/model.md §8): the junctions need finite, non-overlapping positions
 // (each a disc of its initial area) and a dense N × N compliance
 // that fits in memory.
 void check_interactions(const Scene& s, const KeyOrigins& o) {

@@ -1,5 +1,5 @@
 #pragma once
-// The runs the paper's claims need beyond the base runs (MODEL.md §6): an η scan, c_min, equal
+// The runs the paper's claims need beyond the base runs (docs/model.md §6): an η scan, c_min, equal
 // areas, the circular junction shape, the other area law and a window of the reference solver,
 // each a change to a copy of a base scene, run in parallel.
 #include <functional>
@@ -23,7 +23,7 @@ struct VariantRun {
   std::string error;                   // non-empty when the run failed
 };
 
-// The variants MODEL.md §6 needs beyond the base runs.
+// The variants docs/model.md §6 needs beyond the base runs.
 std::vector<ClaimVariant> paper_claim_variants();
 
 // Runs every variant on the base scenes (TBB, `threads` workers). Failures are recorded.

@@ -1,5 +1,5 @@
 #pragma once
-// The verdict on each claim of MODEL.md §6, as pure functions of plain observables (what the
+// The verdict on each claim of docs/model.md §6, as pure functions of plain observables (what the
 // runs of one `asperity reproduce` measured; claims.cpp fills them, tests make them up).
 // Every verdict is one of three:
 //   reproduced      the runs it needs exist and meet the rule;

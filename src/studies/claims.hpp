@@ -1,5 +1,5 @@
 #pragma once
-// Evidence for the paper's claims (MODEL.md §6) on a set of experiments: from the base runs,
+// Evidence for the paper's claims (docs/model.md §6) on a set of experiments: from the base runs,
 // the variants (studies/claim_variants.hpp) and the calibration, the REPORT.md that states,
 // claim by claim, what was measured and whether it reproduces.
 #include <filesystem>

@@ -1,5 +1,5 @@
 #pragma once
-// `asperity study interactions`: does elastic coupling between junctions (MODEL.md §8) make A(Q)
+// `asperity study interactions`: does elastic coupling between junctions (docs/model.md §8) make A(Q)
 // quadratic? (issue 12, the study). For each experiment, the independent model at its own
 // calibrated α_b and the interacting model at its recalibrated α_b (the paper's method, per
 // load), side by side: shape exponent n of A0 − A ∝ Qⁿ, area decay, incipient slope, stick-slip;

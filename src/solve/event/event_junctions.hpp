@@ -1,5 +1,5 @@
 #pragma once
-// The junctions as the event method sees them (MODEL.md §4): the shared JunctionState plus the
+// The junctions as the event method sees them (docs/model.md §4): the shared JunctionState plus the
 // structures that make a force evaluation cheap. Slip thresholds are positions in X, kept in one
 // min-heap; linear pinned junctions enter the force through two aggregate sums (Σk, Σk·x),
 // slipping ones through one (Σ f); only never-slipped junctions (or, with area_law: always,

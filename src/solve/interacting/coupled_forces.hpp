@@ -1,5 +1,5 @@
 #pragma once
-// Forces of the pinned junctions of an interacting population at slider position X (MODEL.md
+// Forces of the pinned junctions of an interacting population at slider position X (docs/model.md
 // §8): for every junction i being solved,
 //   g_i(f_i) + Σ_{j≠i} C_ij f_j = X − x_i,
 // with g_i(f) = f / k_i(A_i(f)) when the junction's area follows its force (Eq. 3), f / k_i

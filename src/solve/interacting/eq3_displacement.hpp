@@ -1,6 +1,6 @@
 #pragma once
 // A junction's own tangential displacement u(f) and du/df while its area follows its force
-// (Eq. 3 with Mindlin's Eq. 2: the universal law ψ(φ), MODEL.md §8's nonlinear junctions), for
+// (Eq. 3 with Mindlin's Eq. 2: the universal law ψ(φ), docs/model.md §8's nonlinear junctions), for
 // every junction of a population, by Newton on the universal law's table (two or three cubic
 // evaluations instead of the elliptic integrals), warm-started from the junction's last ψ.
 #include <cstddef>

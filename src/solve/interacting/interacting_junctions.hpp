@@ -1,5 +1,5 @@
 #pragma once
-// Interacting junctions as the event method sees them (MODEL.md §8, the fast solver): the same
+// Interacting junctions as the event method sees them (docs/model.md §8, the fast solver): the same
 // interface as EventJunctions (force(X), area(X), slip positions above and below X,
 // slip_crossed, repin_all), so EventIntegrator runs them unchanged.
 //

@@ -1,6 +1,6 @@
 #pragma once
 // The paper's step-by-step scheme (Appendix 1, as ReferenceStepper) for interacting junctions
-// (MODEL.md §8), with the coupled system solved at every step: the reference the fast
+// (docs/model.md §8), with the coupled system solved at every step: the reference the fast
 // interacting solver is checked against, for small N (a dense solve per step, O(N³)).
 //
 // One step at X(t+dt): (1) if |Ẋ(t)| < c_min v, every slipping junction repins, holding its

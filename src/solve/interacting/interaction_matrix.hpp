@@ -1,5 +1,5 @@
 #pragma once
-// The coupling of junctions through the half-space (MODEL.md §8): C_ij for i ≠ j, the mean
+// The coupling of junctions through the half-space (docs/model.md §8): C_ij for i ≠ j, the mean
 // x-displacement over junction i per unit x-force on junction j, each junction a disc of its
 // initial area (radius sqrt(A0/π); the area lost under shear is second order in radius/distance
 // and is neglected here). Dense and symmetric: N² doubles.

@@ -1,6 +1,6 @@
 #pragma once
 // The pinned set P of an interacting population and the linear algebra the fast solver keeps for
-// it (MODEL.md §8). With D a diagonal reference compliance (u_i' at some force: exact for linear
+// it (docs/model.md §8). With D a diagonal reference compliance (u_i' at some force: exact for linear
 // junctions, a choice of the iteration for Eq. (3) ones) and h_i = x_i + Σ_{j slipping} C_ij f_j,
 // M = D + C_PP is kept as its explicit inverse G = M⁻¹, with a0 = G 1 and b0 = −G h, so that
 // the pinned forces are f = X a0 + b0 − G Δ(f) (Δ = 0 for linear junctions).

@@ -1,5 +1,5 @@
 #pragma once
-// The paper's Appendix 1 (`solver.method: reference`), exactly (MODEL.md §3): velocity Verlet
+// The paper's Appendix 1 (`solver.method: reference`), exactly (docs/model.md §3): velocity Verlet
 // at fixed dt = T0/C_t, the damping term of γ(t+dt) taken at Ẋ(t) (the latest known velocity),
 // forces at X(t+dt), never-slipped junctions by bisection, t = n·dt.
 #include <cstdint>

@@ -13,7 +13,7 @@ using namespace asperity;
 namespace {
 
 // A stand-in-like measured curve: 60 points, Q from 0 to Q_s, A = A0 − α Q² plus Gaussian noise
-// of 0.2 % of A0 (MODEL.md §7's recipe).
+// of 0.2 % of A0 (docs/model.md §7's recipe).
 constexpr double kA0 = 1.4e-5, kAlpha = 3.1e-7, kQs = 3.3, kSigma = 0.002 * kA0;
 constexpr int kPoints = 60;
 

@@ -1,4 +1,4 @@
-// Interacting junctions (MODEL.md §8): the coupled pinned forces, the step-by-step interacting
+// Interacting junctions (docs/model.md §8): the coupled pinned forces, the step-by-step interacting
 // reference, and the limits the model must reach (two junctions in closed form, far apart =
 // independent, cut-off → ∞ = full kernel, a dense lattice → Mindlin's disc).
 #include <catch2/catch.hpp>

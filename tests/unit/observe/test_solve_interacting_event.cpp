@@ -1,4 +1,4 @@
-// The fast (event) solver for interacting junctions (MODEL.md §8) against independent truths:
+// The fast (event) solver for interacting junctions (docs/model.md §8) against independent truths:
 // the independent event solver when the junctions are far apart, the 2x2 closed form of a pair,
 // the step-by-step interacting reference (first order in dt, its dt → 0 limit), no force jump
 // at a repin, and the closed-form avalanche of a chain.

@@ -1,5 +1,5 @@
 // physics/interface_law.hpp: slip condition, slipping force, repinning and the contact of a
-// junction under both area laws and both shapes, checked against Eq. (2), (3) and MODEL.md §1.
+// junction under both area laws and both shapes, checked against Eq. (2), (3) and docs/model.md §1.
 #include <catch2/catch.hpp>
 #include <cmath>
 
