@@ -11,6 +11,7 @@
 #include <optional>
 #include <system_error>
 
+#include "io/input_error.hpp"
 #include "io/numbers.hpp"
 #include "io/yaml_util.hpp"
 #include "scene/scene_keys.hpp"
@@ -36,8 +37,6 @@ const std::vector<std::string> kOptimizerKeys{"algorithm", "xtol_rel", "ftol_rel
                                               "basin_tolerance", "basin_distance", "certify"};
 const std::vector<std::string> kPolishKeys{"algorithm", "max_evaluations"};
 const std::vector<std::string> kProfileKeys{"parameter", "span", "points"};
-
-std::string display_path(const fs::path& p) { return p.lexically_normal().string(); }
 
 // Units of the numeric scene keys, for messages ("1.6 MPa" → "expected a plain number in Pa").
 const char* unit_of(const std::string& key) {
@@ -209,13 +208,13 @@ void check_measured(const Scene& scene, const std::string& name, const FitSpec& 
   if (!scene.experiment.measured)
     sv.fail_at(scene_node, skey, std::string("objective ") + objective_name(spec.objective) +
                                      " needs a measured A(Q) curve, and experiment " + quote(name) + " (" +
-                                     display_path(scene.experiment.file) + ") has none (key `measured`)");
+                                     input_path(scene.experiment.file) + ") has none (key `measured`)");
   double A0_sum = 0;
   for (const double a : scene.experiment.junctions.area_m2) A0_sum += a;
   const std::string why = measured_curve_problem(*scene.experiment.measured, A0_sum);
   if (why.empty()) return;
   const fs::path& ef = scene.experiment.file;
-  const std::string edisplay = display_path(ef);
+  const std::string edisplay = input_path(ef);
   int line = 0;
   try {
     const YAML::Node m = load_yaml_file(ef, edisplay)["measured"];
@@ -224,7 +223,7 @@ void check_measured(const Scene& scene, const std::string& name, const FitSpec& 
     // the file was read a moment ago; without it the message keeps no line
   }
   throw InputError(edisplay, line, "measured",
-                   why + " (" + display_path(scene.experiment.measured_file) + ", experiment " + quote(name) + " of " +
+                   why + " (" + input_path(scene.experiment.measured_file) + ", experiment " + quote(name) + " of " +
                        display + ")");
 }
 
@@ -265,8 +264,8 @@ FitExperiment read_experiment(const ExperimentContext& cx, const YAML::Node& en,
   {
     std::error_code e2;
     const auto st = fs::status(scene_path, e2);
-    if (!fs::exists(st)) sv.fail_at(x.scene_node, skey, "scene file not found: " + quote(rel) + " (looked for " + display_path(scene_path) + ")");
-    if (fs::is_directory(st)) sv.fail_at(x.scene_node, skey, "scene file is a directory: " + display_path(scene_path));
+    if (!fs::exists(st)) sv.fail_at(x.scene_node, skey, "scene file not found: " + quote(rel) + " (looked for " + input_path(scene_path) + ")");
+    if (fs::is_directory(st)) sv.fail_at(x.scene_node, skey, "scene file is a directory: " + input_path(scene_path));
   }
   if (spec.objective == FitObjective::stick_slip && !x.has_target)
     sv.fail_at(en[i], x.view ? "target" : skey, "the stick_slip objective needs target: {drop: N, period: s} for every experiment");
@@ -280,9 +279,9 @@ FitExperiment read_experiment(const ExperimentContext& cx, const YAML::Node& en,
     force_file = cx.base / fs::path(frel);
     std::error_code e3;
     const auto st = fs::status(force_file, e3);
-    if (!fs::exists(st)) x.view->fail_at(*fn, "force", "force CSV not found: " + quote(frel) + " (looked for " + display_path(force_file) + ")");
-    if (!fs::is_regular_file(st)) x.view->fail_at(*fn, "force", "force CSV is not a regular file: " + display_path(force_file));
-    force = scene_io::read_force_csv(force_file, display_path(force_file));
+    if (!fs::exists(st)) x.view->fail_at(*fn, "force", "force CSV not found: " + quote(frel) + " (looked for " + input_path(force_file) + ")");
+    if (!fs::is_regular_file(st)) x.view->fail_at(*fn, "force", "force CSV is not a regular file: " + input_path(force_file));
+    force = scene_io::read_force_csv(force_file, input_path(force_file));
   } else if (spec.objective == FitObjective::area_and_force) {
     sv.fail_at(en[i], x.view ? "force" : skey,
                "the area_and_force objective needs force: CSV of the measured Q(t) (columns t_s, Q_N) for every experiment");
@@ -572,7 +571,7 @@ FitSpec fit_from_tree(const YAML::Node& root_node, const fs::path& path, const f
 }  // namespace
 
 FitSpec load_fit(const fs::path& path, const std::vector<std::string>& overrides, const FitLoadOptions& options) {
-  const std::string display = display_path(path);
+  const std::string display = input_path(path);
   return fit_from_tree(load_yaml_file(path, display), path, path.parent_path(), display, overrides, options);
 }
 

@@ -27,4 +27,6 @@ std::string InputError::format(const std::string& file, int line, int column, co
   return s;
 }
 
+std::string input_path(const std::filesystem::path& file) { return file.lexically_normal().string(); }
+
 }  // namespace asperity

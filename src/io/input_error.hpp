@@ -2,6 +2,7 @@
 // The one exception every bad input becomes: a scene or experiment YAML, a junction or measured
 // CSV, or a command-line override. what() is one line: "FILE:LINE: KEY: message" (YAML),
 // "FILE:LINE:COL: COLUMN: message" (CSV), "--set k=v: KEY: message" (override).
+#include <filesystem>
 #include <stdexcept>
 #include <string>
 
@@ -20,5 +21,10 @@ struct InputError : std::runtime_error {
   static std::string format(const std::string& file, int line, int column, const std::string& key,
                             const std::string& message);
 };
+
+// A file as InputError::file and the loaders' messages name it: as the user gave it, lexically
+// normalised (display_path of io/provenance.hpp is the other meaning: relative to the working
+// directory, for results).
+std::string input_path(const std::filesystem::path& file);
 
 }  // namespace asperity

@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <system_error>
 
+#include "io/input_error.hpp"
 #include "io/numbers.hpp"
 #include "io/yaml_util.hpp"
 #include "scene/override.hpp"
@@ -45,8 +46,6 @@ const std::vector<std::string> kExperimentInlineKeys = [] {
   return k;
 }();
 
-std::string display_path(const fs::path& p) { return p.lexically_normal().string(); }
-
 fs::path resolved(const fs::path& p) {
   std::error_code ec;
   fs::path r = fs::weakly_canonical(fs::absolute(p), ec);
@@ -67,8 +66,8 @@ fs::path referenced_file(const MapView& v, const YAML::Node& n, const std::strin
   const fs::path p = base_dir / fs::path(rel);
   const std::string why = input_file_problem(p, max_bytes);
   if (why == "file not found")
-    v.fail_at(n, k, std::string(what) + " not found: " + quote(rel) + " (looked for " + display_path(p) + ")");
-  if (!why.empty()) v.fail_at(n, k, std::string(what) + " " + why + ": " + display_path(p));
+    v.fail_at(n, k, std::string(what) + " not found: " + quote(rel) + " (looked for " + input_path(p) + ")");
+  if (!why.empty()) v.fail_at(n, k, std::string(what) + " " + why + ": " + input_path(p));
   return p;
 }
 
@@ -188,12 +187,12 @@ Experiment load_experiment_impl(const fs::path& path, const std::string& display
     const YAML::Node n = f.require("junctions");
     const fs::path csv = referenced_file(f, n, "junctions", base, "junctions CSV", kMaxCsvBytes);
     e.junctions_file = resolved(csv);
-    e.junctions = scene_io::read_junctions_csv(csv, display_path(csv));
+    e.junctions = scene_io::read_junctions_csv(csv, input_path(csv));
   }
   if (auto n = f.find("measured")) {
     const fs::path csv = referenced_file(f, *n, "measured", base, "measured CSV", kMaxCsvBytes);
     e.measured_file = resolved(csv);
-    e.measured = scene_io::read_measured_csv(csv, display_path(csv));
+    e.measured = scene_io::read_measured_csv(csv, input_path(csv));
   }
   return std::move(e);
 }
@@ -341,7 +340,7 @@ Scene scene_from_tree_impl(const YAML::Node& tree, const fs::path& origin, const
     } else {
       const fs::path p = referenced_file(*fv, fn, fk, base_dir, "experiment file", kMaxYamlBytes);
       s.experiment_ref = fn.Scalar();
-      s.experiment = load_experiment_impl(p, display_path(p), ov ? &*ov : nullptr);
+      s.experiment = load_experiment_impl(p, input_path(p), ov ? &*ov : nullptr);
     }
   }
 
@@ -371,16 +370,16 @@ Scene scene_from_tree_impl(const YAML::Node& tree, const fs::path& origin, const
 }  // namespace
 
 Experiment load_experiment(const fs::path& yaml, const YAML::Node* overrides) {
-  const std::string display = display_path(yaml);
+  const std::string display = input_path(yaml);
   if (!overrides) return load_experiment_impl(yaml, display, nullptr);
   const MapView ov(Source{"overrides of " + display, nullptr}, *overrides, "experiment", kExperimentMapKeys);
   return load_experiment_impl(yaml, display, &ov);
 }
 
-YAML::Node load_scene_tree(const fs::path& yaml) { return load_yaml_file(yaml, display_path(yaml)); }
+YAML::Node load_scene_tree(const fs::path& yaml) { return load_yaml_file(yaml, input_path(yaml)); }
 
 Scene scene_from_tree(const YAML::Node& tree, const fs::path& origin_file, TopographyCache* topography) {
-  return scene_from_tree_impl(tree, origin_file, origin_file.parent_path(), display_path(origin_file), nullptr,
+  return scene_from_tree_impl(tree, origin_file, origin_file.parent_path(), input_path(origin_file), nullptr,
                               topography);
 }
 
@@ -402,11 +401,11 @@ TypedScene typed_scene_from_tree(const YAML::Node& tree, const fs::path& origin_
         lines[std::string(sec) + "." + it->first.Scalar()] =
             it->second.IsDefined() && !it->second.IsNull() ? line_of(it->second) : line_of(it->first);
   }
-  return TypedScene(std::move(s), display_path(origin_file), std::move(lines), std::move(topography));
+  return TypedScene(std::move(s), input_path(origin_file), std::move(lines), std::move(topography));
 }
 
 Scene load_scene(const fs::path& yaml, const std::vector<std::string>& overrides) {
-  const std::string display = display_path(yaml);
+  const std::string display = input_path(yaml);
   YAML::Node tree = load_yaml_file(yaml, display);
   std::vector<SetRecord> sets;
   for (const std::string& o : overrides) {
