@@ -13,13 +13,8 @@ last="${3:-8}"
 if ! [[ "$first" =~ ^[0-9]{1,6}$ && "$last" =~ ^[0-9]{1,6}$ ]] || [ "$first" -gt "$last" ]; then
   echo "coverage.sh: seeds: give two whole numbers FIRST <= LAST" >&2; exit 2
 fi
-if [ -L "$out" ]; then echo "coverage.sh: $out: a symbolic link; give a plain folder" >&2; exit 2; fi
-if [ -e "$out" ] && [ ! -e "$out/.coverage" ]; then
-  echo "coverage.sh: $out: exists and was not made by this script; give a new folder" >&2
-  exit 2
-fi
-mkdir -p "$out"
-touch "$out/.coverage"
+source scripts/own_folder.sh
+claim_folder coverage.sh "$out" .coverage
 work="$out/work"
 rm -rf "$work"
 mkdir "$work"

@@ -6,13 +6,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out="${1:-results/landscape}"
-if [ -L "$out" ]; then echo "landscape.sh: $out: a symbolic link; give a plain folder" >&2; exit 2; fi
-if [ -e "$out" ] && [ ! -e "$out/.landscape" ]; then
-  echo "landscape.sh: $out: exists and was not made by this script; give a new folder" >&2
-  exit 2
-fi
-mkdir -p "$out"
-touch "$out/.landscape"
+source scripts/own_folder.sh
+claim_folder landscape.sh "$out" .landscape
 rm -rf "$out/fits"
 build/asperity generate --recipe examples/landscape/recipe.yaml --out "$out/fits/syn"
 for score in pointwise loading_and_cycles; do
