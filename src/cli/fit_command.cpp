@@ -3,7 +3,6 @@
 // Every evaluation is journaled as it finishes (fit/fit_journal.hpp); rerunning into the same
 // folder replays them. --task runs one array task's share of a separate fit into
 // DIR/tasks/I-of-N/; --collect writes the results folder from the tasks' journals.
-#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <mutex>
@@ -11,6 +10,7 @@
 #include <iostream>
 #include <memory>
 #include <string>
+#include <string_view>
 
 #include "cli/commands.hpp"
 #include "cli/interrupt.hpp"
@@ -24,6 +24,7 @@
 #include "io/atomic_file.hpp"
 #include "io/dir_lock.hpp"
 #include "io/input_error.hpp"
+#include "io/numbers.hpp"
 #include "io/progress.hpp"
 #include "io/safe_open.hpp"
 #include "io/provenance.hpp"
@@ -132,27 +133,40 @@ JournalLocks open_journals(FitJournal& journal, const FitCliOptions& opt, const 
   return locks;
 }
 
-// The progress line of a fit: evaluations against the budget (an optimization may stop earlier:
-// the ETA is an upper bound) and the best objective so far.
+// The progress line of a fit: every evaluation it makes (optimizations, best re-runs, profiles,
+// Hessians, error-bar refits) against their budget, which a finished optimization gives back
+// what it left unused (until then the ETA is an upper bound); the finished fits; and, for one
+// optimization, its best objective so far (of several, each has its own: their lines say it).
 class EvaluationProgress {
  public:
-  EvaluationProgress(double budget, bool quiet) : line_("fit", "evaluations (budget)", budget, quiet) {}
-  void evaluated(double objective) {  // thread-safe
-    double b;
+  EvaluationProgress(double budget, std::size_t fits, bool quiet)
+      : line_("fit", "evaluations (at most)", budget, quiet), fits_(fits) {}
+  void tick(const FitTick& t) {  // thread-safe
+    std::string extra;
+    double done;
     {
       const std::lock_guard<std::mutex> lock(mutex_);
-      if (objective < best_) best_ = objective;
-      b = best_;
+      if (std::string_view(t.part) == "done") {
+        done_ += t.unused;
+        ++finished_;
+      } else {
+        ++done_;
+        if (std::string_view(t.part) == "fit" && t.objective < best_) best_ = t.objective;
+      }
+      done = done_;
+      if (fits_ > 1) extra = std::to_string(finished_) + " of " + std::to_string(fits_) + " fits done";
+      else if (best_ < HUGE_VAL) extra = "best J so far " + scene_io::format_printf("%.4g", best_);
     }
-    char text[64];
-    std::snprintf(text, sizeof text, "best objective %.4g", b);
-    line_.update(++count_, text);
+    line_.update(done, extra);
   }
+  void close() { line_.close(); }
 
  private:
   ProgressLine line_;
-  std::atomic<int> count_{0};
+  std::size_t fits_;
   std::mutex mutex_;
+  double done_ = 0;
+  std::size_t finished_ = 0;
   double best_ = HUGE_VAL;
 };
 
@@ -220,14 +234,11 @@ int run(const FitCliOptions& opt, const Invocation& inv) {
                 spec.experiments.size(), spec.separate ? " fitted separately" : " fitted jointly", spec.algorithm.c_str(),
                 threads_or_all(opt.threads));
     std::fflush(stdout);
-    fo.progress = [](const std::string& line) {
-      std::printf("  %s\n", line.c_str());
-      std::fflush(stdout);
-    };
+    fo.progress = [](const std::string& line) { print_line(stdout, "  " + line); };  // never glued onto the progress line
   }
   const std::size_t optimizations = sharded ? fo.only.size() : spec.separate ? spec.experiments.size() : 1;
-  EvaluationProgress progress(static_cast<double>(evaluation_budget(spec)) * static_cast<double>(optimizations), opt.quiet);
-  fo.on_evaluation = [&](double objective) { progress.evaluated(objective); };
+  EvaluationProgress progress(static_cast<double>(fit_run_budget(spec, fo)), optimizations, opt.quiet);
+  fo.on_evaluation = [&](const FitTick& t) { progress.tick(t); };
   FitResult result;
   try {
     const InterruptRequest ctrl_c;  // Ctrl-C: the evaluations in flight stop, the journal keeps the rest
@@ -235,14 +246,15 @@ int run(const FitCliOptions& opt, const Invocation& inv) {
     result = run_fit(spec, fo);
   } catch (const RunInterrupted&) {
     const std::filesystem::path journal_file = (sharded ? task_dir(out, task) : out) / "journal.csv";
-    std::fprintf(stderr, "%sfit: interrupted; %zu evaluation(s) kept in %s; rerun the same command to resume\n",
-                 opt.quiet ? "" : "\n", journal.size(), journal_file.string().c_str());
+    print_line(stderr, "fit: interrupted; " + std::to_string(journal.size()) + " evaluation(s) kept in " +
+                           journal_file.string() + "; rerun the same command to resume");
     return exit_interrupted;
   } catch (const NotJournaled& e) {
     throw InputError((out / "tasks").string(), 0, "--collect",
                      std::string(e.what()) + ": a task has not finished (run it again: it resumes) or ran with other "
                                              "--no-profile/--no-error-bars/--set options than this collect");
   }
+  progress.close();  // what follows starts on a line of its own
   if (!opt.quiet) {
     std::printf("  evaluations: %d replayed from the journal, %d computed\n", result.replayed, result.computed);
     std::fflush(stdout);

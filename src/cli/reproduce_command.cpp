@@ -10,6 +10,7 @@
 #include <memory>
 #include <numeric>
 #include <string>
+#include <string_view>
 #include <thread>
 #include <vector>
 
@@ -106,9 +107,11 @@ Calibration calibrate(const FitSpec& spec, const std::string& fit_file, int thre
   fo.threads = threads;
   fo.profile = false;
   fo.error_bars = false;
-  ProgressLine fp("reproduce", "calibration evaluations (at most)", static_cast<double>(spec.max_evaluations) * static_cast<double>(spec.experiments.size()), quiet);
-  std::atomic<int> evaluations{0};
-  fo.on_evaluation = [&](double) { fp.update(++evaluations); };
+  ProgressLine fp("reproduce", "calibration evaluations (at most)", static_cast<double>(fit_run_budget(spec, fo)), quiet);
+  std::atomic<int> evaluations{0};  // a finished calibration adds what it left of its budget
+  fo.on_evaluation = [&](const FitTick& t) {
+    fp.update(evaluations += std::string_view(t.part) == "done" ? t.unused : 1);
+  };
   const FitResult fr = run_fit(spec, fo);
   for (const Optimization& f : fr.fits) {
     // A failed calibration stays in the report as failed: claim 5 then has no evidence at that load.

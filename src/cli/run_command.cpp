@@ -11,6 +11,7 @@
 #include "cli/commands.hpp"
 #include "cli/interrupt.hpp"
 #include "cli/options.hpp"
+#include "io/numbers.hpp"
 #include "io/progress.hpp"
 #include "observe/simulate.hpp"
 #include "report/run_writer.hpp"
@@ -55,6 +56,18 @@ void print_summary(const Scene& scene, const Observables& o, const std::filesyst
   std::printf("  -> %s\n", out.string().c_str());
 }
 
+// Why a run has no static friction peak to report (Q_s = nan), in one line; "" when it has one.
+// Q_s is the highest Q after the first slip (recorder.hpp): NaN means no junction slipped.
+std::string missing_peak_reason(const Scene& scene, const Observables& o) {
+  if (!std::isnan(o.Q_s)) return "";
+  const auto g = [](double x) { return scene_io::format_printf("%.6g", x); };
+  const std::string head = scene.file.string() + ": Q_s = nan: ";
+  if (o.slips == 0)
+    return head + "no junction slipped before the run ended at t = " + g(o.t_end) + " s (stop.time " +
+           g(scene.stop.time) + " s); raise stop.time, or check the scene's values and their units";
+  return head + "no peak found (" + std::to_string(o.slips) + " slips) before the run ended at t = " + g(o.t_end) + " s";
+}
+
 int run(const RunOptions& opt, const Invocation& inv) {
   const Scene scene = load_scene(opt.scene, opt.overrides);
   if (opt.threads > 0) omp_set_num_threads(opt.threads);
@@ -81,7 +94,10 @@ int run(const RunOptions& opt, const Invocation& inv) {
   }
   const RunResult& r = *result;
   write_run(out, scene, r.obs, r.recorder, RunWriteOptions{opt.plot, inv.command_line, opt.figures});
-  if (!opt.quiet) print_summary(scene, r.obs, out);
+  if (!opt.quiet) {
+    print_summary(scene, r.obs, out);
+    if (const std::string why = missing_peak_reason(scene, r.obs); !why.empty()) print_line(stderr, why);
+  }
   return exit_ok;
 }
 

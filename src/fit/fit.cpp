@@ -118,7 +118,8 @@ struct Problem {
   std::vector<Evaluation> log;
   std::string failure;
   Clock::time_point t0;
-  const std::function<void(double)>* on_evaluation = nullptr;  // FitOptions::on_evaluation
+  const std::function<void(const FitTick&)>* on_evaluation = nullptr;  // FitOptions::on_evaluation
+  std::atomic<int>* ticked = nullptr;  // evaluations told to on_evaluation for this optimization
   FitJournal* journal = nullptr;                               // FitOptions::journal
   bool replay_only = false;                                    // FitOptions::replay_only
   Counts* counts = nullptr;
@@ -127,6 +128,12 @@ struct Problem {
   const UserTerm* user_term = nullptr;  // FitOptions::user_term
   bool interrupted = false;           // the stop ended the optimization
 };
+
+// Tells FitOptions::on_evaluation that an evaluation of the optimization is done.
+void tick(const Problem& pb, const char* part, double objective) {
+  if (pb.ticked) ++*pb.ticked;
+  if (pb.on_evaluation && *pb.on_evaluation) (*pb.on_evaluation)(FitTick{&pb.label, part, objective, 0});
+}
 
 std::vector<SceneSetting> settings_for(const Problem& pb, std::size_t k, const std::vector<double>& x) {
   std::vector<SceneSetting> s = pb.extra[k];
@@ -221,7 +228,7 @@ double nlopt_objective(unsigned n, const double* u, double* /*grad: derivative-f
   }
   const Evaluation& ev = *journaled;
   pb.log.push_back(ev);
-  if (pb.on_evaluation && *pb.on_evaluation) (*pb.on_evaluation)(ev.objective);
+  tick(pb, pb.part.rfind("refit", 0) == 0 ? "refit" : "fit", ev.objective);
   if (ev.status != "ok") {
     // Every digit: a solver failure may hang on the exact point (the 6-digit rounding ran through).
     pb.failure = "evaluation " + std::to_string(ev.index) + " (" + values_text(pb, x, true) + "): " + ev.status;
@@ -417,6 +424,7 @@ void run_starts(const FitSpec& spec, const Problem& pb, Optimization& o) {
 void keep_best_runs(const Problem& pb, Optimization& o) {
   std::vector<ExperimentEval> runs;
   const Evaluation ev = evaluate(pb, o.best, &runs);
+  tick(pb, "best", ev.objective);
   for (std::size_t k = 0; k < runs.size(); ++k) {
     ExperimentRun er;
     er.experiment = o.experiments[k];
@@ -483,6 +491,7 @@ void run_profile(const FitSpec& spec, const Problem& pb, Optimization& o) {
     const int index = static_cast<int>(flat) + 1;
     const std::optional<Evaluation> ev = evaluate_journaled(qb, index, x);
     if (!ev) throw NotJournaled(not_journaled_text(qb, index, x));
+    tick(qb, "profile", ev->objective);
     pt.objective = ev->objective;
     pt.status = ev->status;
   });
@@ -557,6 +566,7 @@ struct HessianPoints {
       const int index = base + static_cast<int>(k) + 1;
       const std::optional<Evaluation> ev = evaluate_journaled(qb, index, x);
       if (!ev) throw NotJournaled(not_journaled_text(qb, index, x));
+      tick(qb, "hessian", ev->objective);
       fv[k] = ev->objective;
       st[k] = ev->status;
     });
@@ -712,7 +722,8 @@ void run_uncertainty(const FitSpec& spec, const Problem& pb, Optimization& o) {
 }
 
 // The refits with each error-bar key shifted by -bar and +bar (in parallel, journaled).
-void run_refits(const FitSpec& spec, const FitOptions& options, Optimization& o, Counts& counts, const StopFlag& stop) {
+void run_refits(const FitSpec& spec, const FitOptions& options, Optimization& o, Counts& counts, const StopFlag& stop,
+                std::atomic<int>& ticked) {
   const auto t0 = Clock::now();
   std::vector<ErrorBarRefit> refits;
   for (const auto& eb : spec.error_bars)
@@ -728,6 +739,8 @@ void run_refits(const FitSpec& spec, const FitOptions& options, Optimization& o,
     q.counts = &counts;
     q.stop = &stop;
     q.user_term = &options.user_term;
+    q.on_evaluation = &options.on_evaluation;
+    q.ticked = &ticked;
     q.exps = o.experiments;
     q.vars = o.variables;
     for (const std::size_t e : o.experiments) {
@@ -746,17 +759,34 @@ void run_refits(const FitSpec& spec, const FitOptions& options, Optimization& o,
   o.refits_wall_s = seconds_since(t0);
 }
 
-// The line FitOptions::progress gets when an optimization is done.
+// The line FitOptions::progress gets when an optimization is done, its profile and refits too:
+// its own best objective and whether starts confirmed it first, then how it got there.
 std::string done_line(const Problem& pb, const Optimization& o) {
   std::string line = o.label + ": ";
   if (o.best.empty() || !std::isfinite(o.objective)) line += "no successful evaluation";
-  else line += values_text(pb, o.best) + ", objective " + g6(o.objective);
-  line += ", " + std::to_string(o.evaluations) + " evaluations, " + o.stop_reason + ", " + g6(o.wall_s) + " s";
-  if (o.starts.size() > 1)
-    line += ", converged: " + std::string(converged_name(o.converged)) + " (" + std::to_string(o.in_best_basin) + " of " +
-            std::to_string(o.starts.size()) + " starts in the best basin)";
+  else line += "best J = " + g6(o.objective) + " at " + values_text(pb, o.best);
+  line += ", converged: " + std::string(converged_name(o.converged)) + " (" + std::to_string(o.in_best_basin) + " of " +
+          std::to_string(o.starts.size()) + " start(s) in the best basin), " + std::to_string(o.evaluations) +
+          " evaluations, " + o.stop_reason + ", " + g6(o.wall_s) + " s";
   if (!o.failure.empty()) line += "; FAILED: " + o.failure;
   return line;
+}
+
+// The most evaluations one optimization with n free variables makes (fit_run_budget).
+long long optimization_budget(const FitSpec& spec, const FitOptions& options, std::size_t n) {
+  long long b = evaluation_budget(spec) + 1;  // the starts, the best point's re-run
+  if (options.profile && spec.profile) {
+    const ProfileSettings& ps = spec.profile_settings;
+    b += static_cast<long long>(std::max<std::size_t>(ps.parameters.size(), 1)) * ps.points;
+  }
+  if (options.error_bars && spec.intervals && spec.objective == FitObjective::area_and_force) {
+    const auto v = static_cast<long long>(n);
+    b += 10 * v + 2 * v + 2 * v * (v - 1);  // settle_steps: <= 5 rounds of +-h_i; hessian_at
+  }
+  if (options.error_bars && !spec.error_bars.empty())  // a refit runs the local stage alone
+    b += 2LL * static_cast<long long>(spec.error_bars.size()) *
+         (spec.polish_algorithm.empty() ? spec.max_evaluations : spec.polish_max_evaluations);
+  return b;
 }
 
 // Why an optimization whose every successful evaluation scored exactly 0 learnt nothing (empty
@@ -779,7 +809,9 @@ std::string degenerate_objective(const std::vector<Evaluation>& log) {
 // error-bar refits as asked.
 void run_task(const FitSpec& spec, const FitOptions& options, Optimization& o, std::mutex& progress_mutex, Counts& counts,
               const StopFlag& stop) {
-  const Problem pb = fit_problem(spec, options, o, counts, stop);
+  std::atomic<int> ticked{0};
+  Problem pb = fit_problem(spec, options, o, counts, stop);
+  pb.ticked = &ticked;
   run_starts(spec, pb, o);
   if (o.failure.empty()) o.failure = degenerate_objective(o.log);
   const bool have_best = std::isfinite(o.objective);
@@ -794,7 +826,11 @@ void run_task(const FitSpec& spec, const FitOptions& options, Optimization& o, s
     if (o.certified()) run_uncertainty(spec, pb, o);
     else o.uncertainty.failure = std::string("not certified (converged: ") + converged_name(o.converged) + "): " + o.convergence;
   }
-  if (have_best && o.ok() && options.error_bars && !spec.error_bars.empty()) run_refits(spec, options, o, counts, stop);
+  if (have_best && o.ok() && options.error_bars && !spec.error_bars.empty()) run_refits(spec, options, o, counts, stop, ticked);
+  // What it did not use of its budget (early convergence, no profile around a failure, ...).
+  const long long unused = optimization_budget(spec, options, o.variables.size()) - ticked.load();
+  if (options.on_evaluation)
+    options.on_evaluation(FitTick{&o.label, "done", Observables::nan, static_cast<int>(std::max(unused, 0LL))});
   if (options.progress) {
     const std::string line = done_line(pb, o);
     std::lock_guard<std::mutex> lock(progress_mutex);
@@ -829,13 +865,11 @@ double parameter_coordinate(const FitParameter& p, double x) {
   return std::clamp(u, 0.0, 1.0);
 }
 
-FitResult run_fit(const FitSpec& spec, const FitOptions& options) {
-  if (spec.parameters.empty() || spec.experiments.empty())
-    throw std::invalid_argument("run_fit: a fit needs at least one parameter and one experiment");
-  const auto t0 = Clock::now();
-  FitResult result;
-  result.threads = std::max(1, options.threads);
+namespace {
 
+// The optimizations run_fit runs (FitOptions::only), each with its variables and start.
+std::vector<Optimization> optimizations(const FitSpec& spec, const FitOptions& options) {
+  std::vector<Optimization> fits;
   auto make = [&](std::vector<std::size_t> exps, std::string label) {
     Optimization o;
     o.label = std::move(label);
@@ -855,21 +889,36 @@ FitResult run_fit(const FitSpec& spec, const FitOptions& options) {
     return o;
   };
   if (spec.separate) {
-    for (std::size_t e = 0; e < spec.experiments.size(); ++e) result.fits.push_back(make({e}, spec.experiments[e].name));
+    for (std::size_t e = 0; e < spec.experiments.size(); ++e) fits.push_back(make({e}, spec.experiments[e].name));
   } else {
     std::vector<std::size_t> all(spec.experiments.size());
     for (std::size_t e = 0; e < all.size(); ++e) all[e] = e;
-    result.fits.push_back(make(all, all.size() == 1 ? spec.experiments[0].name : std::string("joint")));
+    fits.push_back(make(all, all.size() == 1 ? spec.experiments[0].name : std::string("joint")));
   }
+  if (options.only.empty()) return fits;
+  std::vector<Optimization> chosen;
+  for (const std::size_t i : options.only) {
+    if (i >= fits.size()) throw std::invalid_argument("run_fit: FitOptions::only names optimization " + std::to_string(i));
+    chosen.push_back(std::move(fits[i]));
+  }
+  return chosen;
+}
 
-  if (!options.only.empty()) {
-    std::vector<Optimization> chosen;
-    for (const std::size_t i : options.only) {
-      if (i >= result.fits.size()) throw std::invalid_argument("run_fit: FitOptions::only names optimization " + std::to_string(i));
-      chosen.push_back(std::move(result.fits[i]));
-    }
-    result.fits = std::move(chosen);
-  }
+}  // namespace
+
+long long fit_run_budget(const FitSpec& spec, const FitOptions& options) {
+  long long total = 0;
+  for (const Optimization& o : optimizations(spec, options)) total += optimization_budget(spec, options, o.variables.size());
+  return total;
+}
+
+FitResult run_fit(const FitSpec& spec, const FitOptions& options) {
+  if (spec.parameters.empty() || spec.experiments.empty())
+    throw std::invalid_argument("run_fit: a fit needs at least one parameter and one experiment");
+  const auto t0 = Clock::now();
+  FitResult result;
+  result.threads = std::max(1, options.threads);
+  result.fits = optimizations(spec, options);
 
   std::mutex progress_mutex;
   Counts counts;

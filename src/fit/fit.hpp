@@ -45,15 +45,29 @@ namespace asperity {
 class FitJournal;  // fit/fit_journal.hpp
 struct RunResult;  // observe/simulate.hpp
 
+// What FitOptions::on_evaluation hears: one evaluation done (the runs of an optimization's
+// experiments at one point), or (part "done") an optimization finished, profile and refits
+// included, with `unused` of its share of fit_run_budget left: counting `unused` for each "done"
+// and 1 for every other tick ends exactly at the budget.
+struct FitTick {
+  const std::string* label = nullptr;  // the optimization's (Optimization::label)
+  const char* part = "";  // "fit" (its starts), "best" (re-run), "profile", "hessian", "refit"; "done"
+  double objective = std::numeric_limits<double>::quiet_NaN();  // the evaluation's; NaN: failed
+  int unused = 0;                                               // "done" only
+};
+
 struct FitOptions {
   int threads = 2;          // TBB workers
   bool profile = true;      // and spec.profile
   bool error_bars = true;   // and spec.error_bars non-empty
-  // Called (serialised) with one line after each finished optimization; may be empty.
+  // Called (serialised) with one line after each finished optimization, its profile and refits
+  // included: its label, best objective J and convergence; may be empty.
   std::function<void(const std::string&)> progress;
-  // Called after every evaluation of the optimizations (from worker threads: must be
-  // thread-safe), with its objective; may be empty. For progress lines.
-  std::function<void(double objective)> on_evaluation;
+  // Called after every evaluation the fit makes, the optimizations', the best point's re-run,
+  // the profiles', the Hessian's and the error-bar refits' (from worker threads: must be
+  // thread-safe), and once per finished optimization with its unused budget; may be empty. For
+  // progress lines against fit_run_budget.
+  std::function<void(const FitTick&)> on_evaluation;
   // Every evaluation (optimizations, profile points, error-bar refits) goes through it: one
   // journaled at exactly the same values is replayed (no model run), a new one is appended as
   // soon as it finishes. May be null.
@@ -221,8 +235,13 @@ struct FitResult {
 std::string nlopt_result_name(int result);
 
 // The most evaluations the optimizations of one fit can take (the global stage once, then each
-// start's local stage): the progress line's budget.
+// start's local stage).
 int evaluation_budget(const FitSpec& spec);
+
+// The most evaluations run_fit makes with these options: per optimization its starts
+// (evaluation_budget), the best point's re-run, the profiles, the Hessian and the error-bar
+// refits, over the optimizations FitOptions::only names: the progress line's total.
+long long fit_run_budget(const FitSpec& spec, const FitOptions& options);
 
 // Minimises; never throws for a failing evaluation (see Optimization::failure). RunInterrupted
 // when FitOptions::stop cut it short.

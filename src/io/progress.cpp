@@ -4,8 +4,35 @@
 
 #include <cmath>
 #include <cstdio>
+#include <mutex>
 
 namespace asperity {
+
+namespace {
+
+// One terminal: every progress line and print_line take this lock, and `drawn_in_place` is the
+// line standing unfinished on it (nullptr: none), which the next other line must erase.
+std::mutex& terminal_mutex() {
+  static std::mutex m;
+  return m;
+}
+ProgressLine* drawn_in_place = nullptr;
+
+}  // namespace
+
+void print_line(std::FILE* to, const std::string& line) {
+  const std::lock_guard<std::mutex> lock(terminal_mutex());
+  if (drawn_in_place) {
+    std::fputs("\r\033[K", stderr);
+    std::fflush(stderr);
+    drawn_in_place->drawn_ = false;  // redrawn at its next update, whatever its rate limit
+    drawn_in_place = nullptr;
+  }
+  if (to != stdout) std::fflush(stdout);  // what a command printed before comes first
+  std::fputs(line.c_str(), to);
+  std::fputc('\n', to);
+  std::fflush(to);
+}
 
 std::string duration_text(double s) {
   if (!std::isfinite(s)) return "?";
@@ -30,13 +57,14 @@ ProgressLine::ProgressLine(std::string what, std::string unit, double total, boo
 ProgressLine::~ProgressLine() { close(); }
 
 void ProgressLine::close() {
-  const std::lock_guard<std::mutex> lock(mutex_);
+  const std::lock_guard<std::mutex> lock(terminal_mutex());
   if (drawn_ && tty_) std::fputc('\n', stderr);
   drawn_ = false;
+  if (drawn_in_place == this) drawn_in_place = nullptr;
 }
 
 void ProgressLine::set_total(double total) {
-  const std::lock_guard<std::mutex> lock(mutex_);
+  const std::lock_guard<std::mutex> lock(terminal_mutex());
   total_ = total;
 }
 
@@ -53,7 +81,7 @@ std::string ProgressLine::text(double done, double elapsed_s, const std::string&
 
 void ProgressLine::update(double done, const std::string& extra) {
   if (quiet_) return;
-  const std::lock_guard<std::mutex> lock(mutex_);
+  const std::lock_guard<std::mutex> lock(terminal_mutex());
   const auto now = Clock::now();
   const double elapsed = std::chrono::duration<double>(now - start_).count();
   if (elapsed < delay_s_) return;
@@ -62,8 +90,12 @@ void ProgressLine::update(double done, const std::string& extra) {
   last_ = now;
   drawn_ = true;
   const std::string line = text(done, elapsed, extra);
-  if (tty_) std::fprintf(stderr, "\r%s\033[K", line.c_str());
-  else std::fprintf(stderr, "%s\n", line.c_str());
+  if (tty_) {
+    std::fprintf(stderr, "\r%s\033[K", line.c_str());
+    drawn_in_place = this;
+  } else {
+    std::fprintf(stderr, "%s\n", line.c_str());
+  }
   std::fflush(stderr);
 }
 

@@ -4,8 +4,10 @@
 // redrawn in place at most 5 times a second. Otherwise (a log file, a cluster job): one plain
 // line every `log_period_s`, so a log shows life without filling up. Nothing when quiet, and
 // nothing before `delay_s` has passed, so short commands stay silent. Thread-safe.
+// Any other line goes through print_line, which erases a line drawn in place first (else the
+// two would be glued on one terminal line); the progress line is redrawn at its next update.
 #include <chrono>
-#include <mutex>
+#include <cstdio>
 #include <string>
 
 namespace asperity {
@@ -15,6 +17,10 @@ std::string duration_text(double seconds);
 
 // Remaining time by the rate so far: elapsed × (total − done) / done; NaN before any progress.
 double eta_seconds(double elapsed_s, double done, double total);
+
+// `line` and a newline on `to` (stdout or stderr), flushed, after erasing a progress line drawn
+// in place on the terminal. Thread-safe, one whole line at a time.
+void print_line(std::FILE* to, const std::string& line);
 
 class ProgressLine {
  public:
@@ -33,8 +39,8 @@ class ProgressLine {
   std::string text(double done, double elapsed_s, const std::string& extra) const;
 
  private:
+  friend void print_line(std::FILE* to, const std::string& line);
   using Clock = std::chrono::steady_clock;
-  std::mutex mutex_;
   std::string what_, unit_;
   double total_;
   bool quiet_, tty_;

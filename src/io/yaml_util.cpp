@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "io/numbers.hpp"
+#include "io/warnings.hpp"
 
 namespace asperity::scene_io {
 
@@ -37,15 +38,19 @@ bool under(const std::string& key, const std::string& prefix) {
 
 }  // namespace
 
-void fail(const Source& src, const YAML::Node& at, const std::string& key, const std::string& message,
-          int fallback_line) {
-  if (const int line = mark_line(at); line > 0) throw InputError(src.file, line, key, message);
+std::pair<std::string, int> value_origin(const Source& src, const YAML::Node& at, const std::string& key, int fallback_line) {
+  if (const int line = mark_line(at); line > 0) return {src.file, line};
   if (src.sets) {
     for (auto it = src.sets->rbegin(); it != src.sets->rend(); ++it)
-      if (key == it->key || under(key, it->key) || under(it->key, key))
-        throw InputError(it->text, 0, key, message);
+      if (key == it->key || under(key, it->key) || under(it->key, key)) return {it->text, 0};
   }
-  throw InputError(src.file, fallback_line, key, message);
+  return {src.file, fallback_line};
+}
+
+void fail(const Source& src, const YAML::Node& at, const std::string& key, const std::string& message,
+          int fallback_line) {
+  const auto [file, line] = value_origin(src, at, key, fallback_line);
+  throw InputError(file, line, key, message);
 }
 
 std::string join_key(const std::string& path, const std::string& key) {
@@ -402,6 +407,11 @@ std::optional<YAML::Node> MapView::find(const std::string& k) const {
 YAML::Node MapView::require(const std::string& k) const {
   if (auto n = find(k)) return *n;
   fail(src_, node_, key(k), "missing required key", fallback_line_);
+}
+
+void MapView::warn_at(const YAML::Node& at, const std::string& k, const std::string& msg) const {
+  const auto [file, line] = value_origin(src_, at, key(k), fallback_line_);
+  warn(InputError::format(file, line, 0, "", msg));
 }
 
 void MapView::fail_at(const YAML::Node& at, const std::string& k, const std::string& msg) const {

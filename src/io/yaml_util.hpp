@@ -37,6 +37,10 @@ struct Source {
 // part of a dotted key of `layout` that sits elsewhere, or a section of it; else "".
 std::string misplaced_key_hint(const std::string& path, const std::string& key, const std::vector<std::string>& layout);
 
+// Where the value at `at` came from, as a message names it: {file, line}, or {"--set k=v", 0}
+// for a node an override put there, or {file, fallback_line}.
+std::pair<std::string, int> value_origin(const Source& src, const YAML::Node& at, const std::string& key,
+                                         int fallback_line = 0);
 [[noreturn]] void fail(const Source& src, const YAML::Node& at, const std::string& key,
                        const std::string& message, int fallback_line = 0);
 
@@ -95,6 +99,8 @@ class MapView {
   std::optional<YAML::Node> find(const std::string& k) const;
   YAML::Node require(const std::string& k) const;  // missing → InputError
   [[noreturn]] void fail_at(const YAML::Node& at, const std::string& k, const std::string& msg) const;
+  // A warning (io/warnings.hpp) "FILE:LINE: msg" (or "--set k=v: msg") about the value at `at`.
+  void warn_at(const YAML::Node& at, const std::string& k, const std::string& msg) const;
 
   // Typed values. `unit` names the SI unit for the "1.6 MPa" message (nullptr: dimensionless).
   double number(const YAML::Node& n, const std::string& k, const char* unit) const;

@@ -20,6 +20,7 @@
 #include <map>
 #include <mutex>
 #include <string>
+#include <string_view>
 #include <thread>
 #include <vector>
 
@@ -443,15 +444,18 @@ PYBIND11_MODULE(_asperity, m) {
     fo.profile = profile;
     fo.error_bars = error_bars;
     fo.stop = &stop;
-    std::atomic<long long> evaluations{0};  // of the optimizations (profiles and error bars not counted)
-    fo.on_evaluation = [&](double) { ++evaluations; };
+    // Every evaluation the fit makes (profiles and refits too) against the most it can make; a
+    // finished optimization adds what it left unused, so the count ends at the total.
+    const long long budget = fit_run_budget(spec, fo);
+    std::atomic<long long> evaluations{0};
+    fo.on_evaluation = [&](const FitTick& t) { evaluations += std::string_view(t.part) == "done" ? t.unused : 1; };
     FitResult result;
     try {
       result = interruptible(stop, [&] {
         FitResult r = run_fit(spec, fo);
         if (!out.empty()) write_fit(out, spec, r, command_line);
         return r;
-      }, progress_tick(progress, [&] { return std::pair<long long, long long>(evaluations.load(), 0); }));
+      }, progress_tick(progress, [&] { return std::pair<long long, long long>(evaluations.load(), budget); }));
     } catch (const RunInterrupted&) {
       if (user_error) std::rethrow_exception(user_error);  // the objective's own exception
       throw;

@@ -26,6 +26,13 @@ std::string cell(std::string s) {
   return s;
 }
 
+// "1e+05 to 1e+08 (an elastomer's)", or "" when the key has no plausible range.
+std::string plausible_text(const SceneKey& k) {
+  const PlausibleRange& p = k.plausible;
+  if (!(p.lo < p.hi)) return "";
+  return scene_io::format_short(p.lo) + " to " + scene_io::format_short(p.hi) + " (" + p.of + ")";
+}
+
 }  // namespace
 
 std::string scene_keys_markdown() {
@@ -38,7 +45,12 @@ std::string scene_keys_markdown() {
       "the experiment file must give it. Units are SI (`1`: dimensionless). Checks that involve\n"
       "several keys (time scales, area-law domain, sample count) are in `src/scene/validate.cpp`; the\n"
       "choices of each choice key and what the keys mean: [commands.md](commands.md).\n\n"
-      "| key | kind | unit | allowed | default | fit parameter | why the limit |\n|---|---|---|---|---|---|---|\n";
+      "A value allowed but outside its key's `plausible` range (where a real slider on an elastomer\n"
+      "puts it) is run, with one warning on stderr naming the file and line (or the `--set`) and the\n"
+      "unit slip that would explain it, e.g. `warning: --set experiment.E=1.6: experiment.E = 1.6 Pa is\n"
+      "far below an elastomer's 1e+05 to 1e+08 Pa; was it meant in MPa (1.6e+06 Pa)?`; `-q` silences it.\n\n"
+      "| key | kind | unit | allowed | plausible | default | fit parameter | why the limit |\n"
+      "|---|---|---|---|---|---|---|---|\n";
   const Scene defaults{};
   for (const SceneKey& k : scene_keys()) {
     const bool numeric = k.kind == KeyKind::number;
@@ -49,7 +61,7 @@ std::string scene_keys_markdown() {
     if (std::string(k.name).rfind("experiment.", 0) == 0 && !numeric) def = "(from the experiment file)";
     if (std::string(k.name).rfind("topography.", 0) == 0) def = "(from the recipe)";  // only in topography scenes
     md += "| `" + std::string(k.name) + "` | " + kind_name(k.kind) + " | " + cell(unit) + " | " +
-          cell(k.range ? k.range : "") + " | " + (def.empty() ? "" : "`" + cell(def) + "`") + " | " +
+          cell(k.range ? k.range : "") + " | " + plausible_text(k) + " | " + (def.empty() ? "" : "`" + cell(def) + "`") + " | " +
           (k.fittable ? "yes" : "") + " | " + cell(k.why ? k.why : "") + " |\n";
   }
   return md;

@@ -10,6 +10,7 @@
 
 #include "io/input_error.hpp"
 #include "io/numbers.hpp"
+#include "io/warnings.hpp"
 #include "io/yaml_util.hpp"
 #include "scene/override.hpp"
 #include "scene/scene_keys.hpp"
@@ -52,9 +53,11 @@ fs::path resolved(const fs::path& p) {
   return ec ? fs::absolute(p).lexically_normal() : r;
 }
 
-// "must be RANGE, got X (WHY)" when x is outside the key's range.
+// "must be RANGE, got X (WHY)" when x is outside the key's range; a warning when it is allowed
+// but outside the plausible range (the one place, for files and --set alike).
 void check(const SceneKey& key, double x, const MapView& v, const YAML::Node& n, const std::string& k) {
   if (!key.allowed(x)) v.fail_at(n, k, out_of_range_message(key, x));
+  if (const std::string why = implausible_message(key, x); !why.empty()) v.warn_at(n, k, why);
 }
 
 // A file named by `k` (value node n, read by view v), relative to base_dir; must be a regular
@@ -305,6 +308,7 @@ void read_topography(const MapView& root, const YAML::Node& tn, const fs::path& 
 
 Scene scene_from_tree_impl(const YAML::Node& tree, const fs::path& origin, const fs::path& base_dir,
                            const std::string& display, const std::vector<SetRecord>* sets, TopographyCache* cache) {
+  HeldWarnings warnings;  // said once the scene is accepted: a refused one says its error alone
   const Source src{display, sets, &scene_key_names()};
   const MapView root(src, tree, "", kSceneKeys, origin.empty() ? 0 : 1);  // a tree in memory has no lines
   Scene s;
@@ -364,6 +368,7 @@ Scene scene_from_tree_impl(const YAML::Node& tree, const fs::path& origin, const
   }
   if (inline_experiment) views.push_back(*inline_experiment);  // its junctions' overlaps name experiment.junctions
   validate_scene(s, TreeOrigins(views));
+  warnings.release();
   return s;
 }
 
@@ -371,9 +376,12 @@ Scene scene_from_tree_impl(const YAML::Node& tree, const fs::path& origin, const
 
 Experiment load_experiment(const fs::path& yaml, const YAML::Node* overrides) {
   const std::string display = input_path(yaml);
-  if (!overrides) return load_experiment_impl(yaml, display, nullptr);
-  const MapView ov(Source{"overrides of " + display, nullptr}, *overrides, "experiment", kExperimentMapKeys);
-  return load_experiment_impl(yaml, display, &ov);
+  HeldWarnings warnings;  // said once the experiment is accepted
+  std::optional<MapView> ov;
+  if (overrides) ov.emplace(Source{"overrides of " + display, nullptr}, *overrides, "experiment", kExperimentMapKeys);
+  Experiment e = load_experiment_impl(yaml, display, ov ? &*ov : nullptr);
+  warnings.release();
+  return e;
 }
 
 YAML::Node load_scene_tree(const fs::path& yaml) { return load_yaml_file(yaml, input_path(yaml)); }

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <string_view>
+#include <utility>
 
 #include "io/numbers.hpp"
 #include "scene/load.hpp"
@@ -39,13 +41,14 @@ const char* name_of(SolverMethod m) { return m == SolverMethod::reference ? "ref
   SceneKey {                                                                                 \
     NAME, KeyKind::number, UNIT, RANGE, [](double x) { return CHECK; }, WHY, DEFAULT, FIT,   \
         [](const Scene& s) { return static_cast<double>(FIELD); },                           \
-        [](Scene& s, double x) { FIELD = x; }, [](const Scene& s) { return num(FIELD); }, nullptr \
+        [](Scene& s, double x) { FIELD = x; }, [](const Scene& s) { return num(FIELD); }, nullptr, \
+        PlausibleRange{}                                                                     \
   }
 // Any other row: TEXT is a std::string expression of `s`.
 #define OTHER(NAME, KIND, TEXT)                                                          \
   SceneKey {                                                                             \
     NAME, KIND, nullptr, nullptr, nullptr, "", kRequired, false, nullptr, nullptr,       \
-        [](const Scene& s) { return std::string(TEXT); }, nullptr                        \
+        [](const Scene& s) { return std::string(TEXT); }, nullptr, PlausibleRange{}      \
   }
 
 std::vector<SceneKey> make_table() {
@@ -116,6 +119,23 @@ std::vector<SceneKey> make_table() {
       NUMBER("topography.nu", nullptr, "in [0, 0.5]", x >= 0 && x <= 0.5, "", kRequired, false, recipe_of(s).nu),
       NUMBER("topography.load_N", "N", "> 0", x > 0, "", kRequired, false, recipe_of(s).load_N),
   };
+  // Plausible ranges: only where a unit slip or a typo gives a value the model accepts and no
+  // experiment has. Not alpha_b (its unit changes with p; validate.hpp bounds its effect) nor the
+  // solver's, stop's and output's settings (choices of the run, not measurements).
+  const std::vector<std::pair<const char*, PlausibleRange>> plausible{
+      {"experiment.mass", {1e-3, 10, 0.2, "a slider's"}},
+      {"experiment.k_L", {50, 1e7, 9200, "a loading spring's"}},
+      {"experiment.v", {1e-8, 0.1, 1e-4, "a driving speed's"}},
+      {"experiment.E", {1e5, 1e8, 1.6e6, "an elastomer's"}},
+      {"experiment.nu", {0.3, 0.5, 0.5, "an elastomer's"}},
+      {"experiment.sigma_exp", {1e4, 1e8, 0.23e6, "an elastomer contact's"}},
+      {"model.eta", {0, 1e4, 100, "a damping rate's"}},
+      {"model.epsilon", {0.1, 1, 0.9, "a dynamic-to-static friction ratio's"}},
+      {"model.interaction_cutoff", {0, 0.1, 1e-3, "a contact's"}},
+  };
+  for (const auto& [name, range] : plausible)
+    for (SceneKey& k : t)
+      if (std::string_view(k.name) == name) k.plausible = range;
   for (SceneKey& k : t) {
     const std::string n = k.name;
     // Topography keys: only in a topography scene (its own section, written by the writer).
@@ -245,6 +265,30 @@ double scene_value(const Scene& scene, const std::string& key) {
 std::string out_of_range_message(const SceneKey& key, double x) {
   const std::string why = key.why ? key.why : "";
   return "must be " + std::string(key.range) + ", got " + scene_io::format_double(x) + (why.empty() ? "" : " (" + why + ")");
+}
+
+std::string implausible_message(const SceneKey& key, double x) {
+  const PlausibleRange& p = key.plausible;
+  if (!(p.lo < p.hi) || (x >= p.lo && x <= p.hi)) return "";
+  using scene_io::format_short;
+  const std::string unit = key.unit ? std::string(" ") + key.unit : "";
+  std::string m = std::string(key.name) + " = " + scene_io::format_double(x) + unit + " is far " +
+                  (x < p.lo ? "below " : "above ") + p.of + " " + format_short(p.lo) + " to " + format_short(p.hi) + unit;
+  // The units a value of this SI unit is often written in by mistake, and their factor to SI.
+  struct Slip { const char* unit; const char* in; double factor; };
+  static const Slip slips[] = {{"Pa", "MPa", 1e6}, {"Pa", "kPa", 1e3}, {"Pa", "GPa", 1e9}, {"kg", "g", 1e-3},
+                               {"N/m", "N/mm", 1e3}, {"m/s", "mm/s", 1e-3}, {"m/s", "um/s", 1e-6},
+                               {"m", "mm", 1e-3},   {"m", "um", 1e-6}};
+  const Slip* best = nullptr;
+  double best_distance = 0;
+  for (const Slip& s : slips) {
+    const double si = x * s.factor;
+    if (!key.unit || std::string_view(key.unit) != s.unit || !(si >= p.lo && si <= p.hi)) continue;
+    const double distance = std::abs(std::log(si / p.typical));
+    if (!best || distance < best_distance) best = &s, best_distance = distance;
+  }
+  if (best) m += std::string("; was it meant in ") + best->in + " (" + format_short(x * best->factor) + unit + ")?";
+  return m;
 }
 
 std::string scene_value_text(const Scene& scene, const std::string& key) {

@@ -13,6 +13,15 @@ namespace asperity {
 
 enum class KeyKind { number, integer, boolean, choice, text, list };
 
+// Where a number of a real experiment lies (a slider on an elastomer, wide margins around the
+// paper's values, docs/model.md#2-parameter-values-the-papers); lo == hi: no such range. A value
+// outside is accepted (the model runs it) but warned about, naming the unit slip that explains it.
+struct PlausibleRange {
+  double lo = 0, hi = 0;
+  double typical = 0;      // the paper's value: of two unit slips, the one landing nearer wins
+  const char* of = "";     // whose range, e.g. "an elastomer's"
+};
+
 struct SceneKey {
   const char* name;   // dotted key, e.g. "model.eta"
   KeyKind kind;
@@ -28,6 +37,7 @@ struct SceneKey {
   void (*set)(Scene&, double);      // numbers only
   std::string (*text)(const Scene&);   // the value as scene_to_yaml writes it (YAML text)
   bool (*written)(const Scene&);    // nullptr: always written; else written when this is true
+  PlausibleRange plausible{};       // numbers only
   std::string leaf() const;         // "eta" of "model.eta"
   std::string section() const;      // "model" of "model.eta"
 };
@@ -44,6 +54,10 @@ double scene_value(const Scene& scene, const std::string& key);
 
 // "must be RANGE, got X" (+ " (WHY)"): the loader's message for a number out of its range.
 std::string out_of_range_message(const SceneKey& key, double x);
+
+// "KEY = X UNIT is far below OF LO to HI UNIT; was it meant in MPa (1.6e+06 Pa)?" when x lies
+// outside the key's plausible range ("" inside it, or when it has none): the loader's warning.
+std::string implausible_message(const SceneKey& key, double x);
 
 // The text of a scalar value as written (`model.eta` → "100", a name unquoted); empty when
 // `key` names a map (experiment), a list (output.series), nothing, or a value not written.

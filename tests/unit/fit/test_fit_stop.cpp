@@ -10,6 +10,7 @@
 #include <chrono>
 #include <cmath>
 #include <string>
+#include <string_view>
 #include <thread>
 
 #include "fit/fit.hpp"
@@ -30,9 +31,9 @@ TEST_CASE("a fit stopped mid-way scores no evaluation it abandoned", "[fit][stop
     o.only = {0};
     o.stop = &flag;
     std::atomic<int> evaluations{0}, not_finite{0};
-    o.on_evaluation = [&](double j) {
+    o.on_evaluation = [&](const FitTick& t) {
       ++evaluations;
-      if (!std::isfinite(j)) ++not_finite;
+      if (std::string_view(t.part) != "done" && !std::isfinite(t.objective)) ++not_finite;
     };
     std::thread stopper([&] {
       std::this_thread::sleep_for(std::chrono::milliseconds(ms));
