@@ -11,7 +11,6 @@
 #include "cli/commands.hpp"
 #include "io/provenance.hpp"
 #include "io/temp_files.hpp"
-#include "io/warnings.hpp"
 #include "scene/load.hpp"
 #include "solve/integrate.hpp"
 
@@ -44,15 +43,6 @@ std::string command_line_text(int argc, char** argv) {
     line += '\'';
   }
   return line;
-}
-
-// Whether the command given (or its subcommand: study recovery) has -q/--quiet set.
-bool quiet_given(const CLI::App& app) {
-  for (const CLI::App* sub : app.get_subcommands()) {
-    const CLI::Option* q = sub->get_option_no_throw("--quiet");
-    if ((q && q->count() > 0) || quiet_given(*sub)) return true;
-  }
-  return false;
 }
 
 int run_cli(int argc, char** argv) {
@@ -90,9 +80,6 @@ int run_cli(int argc, char** argv) {
     print_line("asperity: ", what + " (asperity --help)");
     return cli::exit_input;
   }
-
-  // -q/--quiet: nothing on stdout or stderr on success, so no warnings either.
-  if (quiet_given(app)) asperity::set_warning_sink({});
 
   // Dispatch.
   const cli::Invocation invocation{command_line_text(argc, argv)};

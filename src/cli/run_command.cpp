@@ -13,6 +13,7 @@
 #include "cli/options.hpp"
 #include "io/numbers.hpp"
 #include "io/progress.hpp"
+#include "io/warnings.hpp"
 #include "observe/simulate.hpp"
 #include "report/run_writer.hpp"
 #include "scene/load.hpp"
@@ -94,10 +95,9 @@ int run(const RunOptions& opt, const Invocation& inv) {
   }
   const RunResult& r = *result;
   write_run(out, scene, r.obs, r.recorder, RunWriteOptions{opt.plot, inv.command_line, opt.figures});
-  if (!opt.quiet) {
-    print_summary(scene, r.obs, out);
-    if (const std::string why = missing_peak_reason(scene, r.obs); !why.empty()) print_line(stderr, why);
-  }
+  if (!opt.quiet) print_summary(scene, r.obs, out);
+  // A warning, which -q keeps: a result without its peak is one a quiet script must hear of.
+  if (const std::string why = missing_peak_reason(scene, r.obs); !why.empty()) warn(why);
   return exit_ok;
 }
 

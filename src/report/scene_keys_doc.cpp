@@ -48,7 +48,7 @@ std::string scene_keys_markdown() {
       "A value allowed but outside its key's `plausible` range (where a real slider on an elastomer\n"
       "puts it) is run, with one warning on stderr naming the file and line (or the `--set`) and the\n"
       "unit slip that would explain it, e.g. `warning: --set experiment.E=1.6: experiment.E = 1.6 Pa is\n"
-      "far below an elastomer's 1e+05 to 1e+08 Pa; was it meant in MPa (1.6e+06 Pa)?`; `-q` silences it.\n\n"
+      "far below an elastomer's 1e+05 to 1e+08 Pa; was it meant in MPa (1.6e+06 Pa)?`; `-q` keeps it (a warning is not a success's chatter).\n\n"
       "| key | kind | unit | allowed | plausible | default | fit parameter | why the limit |\n"
       "|---|---|---|---|---|---|---|---|\n";
   const Scene defaults{};
