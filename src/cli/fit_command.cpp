@@ -146,13 +146,9 @@ class EvaluationProgress {
     double done;
     {
       const std::lock_guard<std::mutex> lock(mutex_);
-      if (std::string_view(t.part) == "done") {
-        done_ += t.unused;
-        ++finished_;
-      } else {
-        ++done_;
-        if (std::string_view(t.part) == "fit" && t.objective < best_) best_ = t.objective;
-      }
+      done_ += t.counted();
+      if (t.done()) ++finished_;
+      else if (std::string_view(t.part) == "fit" && t.objective < best_) best_ = t.objective;
       done = done_;
       if (fits_ > 1) extra = std::to_string(finished_) + " of " + std::to_string(fits_) + " fits done";
       else if (best_ < HUGE_VAL) extra = "best J so far " + scene_io::format_printf("%.4g", best_);

@@ -10,7 +10,6 @@
 #include <memory>
 #include <numeric>
 #include <string>
-#include <string_view>
 #include <thread>
 #include <vector>
 
@@ -110,7 +109,7 @@ Calibration calibrate(const FitSpec& spec, const std::string& fit_file, int thre
   ProgressLine fp("reproduce", "calibration evaluations (at most)", static_cast<double>(fit_run_budget(spec, fo)), quiet);
   std::atomic<int> evaluations{0};  // a finished calibration adds what it left of its budget
   fo.on_evaluation = [&](const FitTick& t) {
-    fp.update(evaluations += std::string_view(t.part) == "done" ? t.unused : 1);
+    fp.update(evaluations += t.counted());
   };
   const FitResult fr = run_fit(spec, fo);
   for (const Optimization& f : fr.fits) {

@@ -32,6 +32,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "fit/convergence.hpp"
@@ -54,6 +55,9 @@ struct FitTick {
   const char* part = "";  // "fit" (its starts), "best" (re-run), "profile", "hessian", "refit"; "done"
   double objective = std::numeric_limits<double>::quiet_NaN();  // the evaluation's; NaN: failed
   int unused = 0;                                               // "done" only
+  bool done() const { return std::string_view(part) == "done"; }
+  // What this tick adds to a count that ends at fit_run_budget: one run, or a finished one's rest.
+  int counted() const { return done() ? unused : 1; }
 };
 
 struct FitOptions {

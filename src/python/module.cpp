@@ -20,7 +20,6 @@
 #include <map>
 #include <mutex>
 #include <string>
-#include <string_view>
 #include <thread>
 #include <vector>
 
@@ -448,7 +447,7 @@ PYBIND11_MODULE(_asperity, m) {
     // finished optimization adds what it left unused, so the count ends at the total.
     const long long budget = fit_run_budget(spec, fo);
     std::atomic<long long> evaluations{0};
-    fo.on_evaluation = [&](const FitTick& t) { evaluations += std::string_view(t.part) == "done" ? t.unused : 1; };
+    fo.on_evaluation = [&](const FitTick& t) { evaluations += t.counted(); };
     FitResult result;
     try {
       result = interruptible(stop, [&] {
