@@ -12,6 +12,7 @@
 #include "surface/fft_planner.hpp"
 #include "surface/normal_contact.hpp"
 #include "surface/self_affine.hpp"
+#include "surface/tangential_contact.hpp"
 
 namespace asperity {
 namespace fs = std::filesystem;
@@ -53,6 +54,14 @@ NormalContactSettings contact_bench_settings(double tolerance) {
   return c;
 }
 
+TangentialContactSettings tangential_bench_settings(double tolerance) {
+  TangentialContactSettings t;
+  t.nu = 0.5;
+  t.E_Pa = contact_bench_settings(tolerance).E_star_Pa * (1 - t.nu * t.nu);
+  t.tolerance = tolerance;
+  return t;
+}
+
 std::vector<ContactBenchRow> run_contact_bench(const ContactBenchOptions& opt) {
   std::vector<std::size_t> sizes = opt.sizes;
   std::sort(sizes.begin(), sizes.end());
@@ -74,6 +83,17 @@ std::vector<ContactBenchRow> run_contact_bench(const ContactBenchOptions& opt) {
     r.per_iteration_s = r.wall_s / std::max(1, res.iterations);
     r.area_m2 = res.area_m2;
     {
+      TangentialContactSettings ts = tangential_bench_settings(opt.tolerance);
+      ts.threads = opt.threads;
+      const auto t2 = Clock::now();
+      TangentialContact t(n, m.pixel_m, coulomb_bound(res, 0.5), ts);
+      const TangentialState st = t.solve(0.5 * t.full_sliding_displacement_m());
+      r.tangential_wall_s = seconds_since(t2);
+      r.tangential_iterations = st.iterations;
+      r.tangential_convolutions = st.convolutions;
+      r.tangential_converged = st.converged;
+    }
+    {
       FftBuffers f(2 * n, opt.threads);
       for (std::size_t k = 0; k < 4 * n * n; ++k) f.real()[k] = std::sin(1e-3 * static_cast<double>(k));
       std::vector<double> times;
@@ -92,7 +112,10 @@ std::vector<ContactBenchRow> run_contact_bench(const ContactBenchOptions& opt) {
                << " CG iterations (+ " << r.coarse_iterations << " on coarser grids), " << r.convolutions
                << " FFT pairs" << (r.converged ? "" : " (NOT converged)") << ", " << r.wall_s << " s, " << r.per_iteration_s * 1e3
                << " ms per iteration = " << r.per_iteration_s / (2 * r.fft_pair_s) << " x two FFT pairs ("
-               << r.fft_pair_s * 1e3 << " ms each), peak RSS " << r.max_rss_kB / 1024 << " MB" << std::endl;
+               << r.fft_pair_s * 1e3 << " ms each); tangential solve " << r.tangential_wall_s << " s = "
+               << r.tangential_wall_s / r.wall_s << " x the normal solve, " << r.tangential_iterations << " iterations, "
+               << r.tangential_convolutions << " FFT pairs" << (r.tangential_converged ? "" : " (NOT converged)")
+               << ", peak RSS " << r.max_rss_kB / 1024 << " MB" << std::endl;
     rows.push_back(r);
   }
   return rows;
@@ -100,12 +123,14 @@ std::vector<ContactBenchRow> run_contact_bench(const ContactBenchOptions& opt) {
 
 void write_contact_bench(const fs::path& dir, const std::vector<ContactBenchRow>& rows) {
   std::ostringstream o;
-  o << "n,padded,threads,iterations,coarse_iterations,convolutions,converged,wall_s,per_iteration_s,fft_pair_s,per_iteration_over_two_fft_pairs,area_m2,max_rss_kB\n";
+  o << "n,padded,threads,iterations,coarse_iterations,convolutions,converged,wall_s,per_iteration_s,fft_pair_s,per_iteration_over_two_fft_pairs,area_m2,tangential_wall_s,tangential_over_normal,tangential_iterations,tangential_convolutions,tangential_converged,max_rss_kB\n";
   for (const auto& r : rows)
     o << r.n << ',' << 2 * r.n << ',' << r.threads << ',' << r.iterations << ',' << r.coarse_iterations << ','
       << r.convolutions << ',' << (r.converged ? "true" : "false") << ','
       << csv_number(r.wall_s) << ',' << csv_number(r.per_iteration_s) << ',' << csv_number(r.fft_pair_s) << ','
-      << csv_number(r.per_iteration_s / (2 * r.fft_pair_s)) << ',' << csv_number(r.area_m2) << ',' << r.max_rss_kB << '\n';
+      << csv_number(r.per_iteration_s / (2 * r.fft_pair_s)) << ',' << csv_number(r.area_m2) << ','
+      << csv_number(r.tangential_wall_s) << ',' << csv_number(r.tangential_wall_s / r.wall_s) << ',' << r.tangential_iterations
+      << ',' << r.tangential_convolutions << ',' << (r.tangential_converged ? "true" : "false") << ',' << r.max_rss_kB << '\n';
   fs::create_directories(dir);
   scene_io::write_text_file(dir / "contact.csv", o.str());
 }

@@ -3,7 +3,8 @@
 // of a sphere carrying a self-affine surface, at several grid sizes: wall time, CG iterations,
 // time per iteration beside the time of two FFT pairs (FFTW's 2-D r2c + c2r on the padded grid, the
 // work of one Polonsky–Keer iteration done plainly), timed in the same run with the same threads,
-// and peak memory.
+// and peak memory; beside it the tangential solve on the same contact map
+// (surface/tangential_contact.hpp: Coulomb μ 0.5, from rest to half the full-sliding displacement).
 #include <cstddef>
 #include <filesystem>
 #include <ostream>
@@ -11,6 +12,7 @@
 
 #include "surface/height_map.hpp"
 #include "surface/normal_contact.hpp"
+#include "surface/tangential_contact.hpp"
 
 namespace asperity {
 
@@ -25,6 +27,11 @@ struct ContactBenchRow {
   double per_iteration_s = 0;      // wall_s / iterations
   double fft_pair_s = 0;           // one forward + inverse FFT on 2n × 2n, median of several
   double area_m2 = 0;
+  // The tangential solve (kernel, one solve from q = 0) and its iterations and FFT pairs.
+  double tangential_wall_s = 0;
+  int tangential_iterations = 0;
+  int tangential_convolutions = 0;
+  bool tangential_converged = false;
   long max_rss_kB = 0;             // of the process after this size (sizes in increasing order)
 };
 
@@ -39,6 +46,8 @@ struct ContactBenchOptions {
 // box, and its settings (E* 2.13 MPa, 4 N, the tolerance given); the tests solve the same one.
 HeightMap contact_bench_surface(std::size_t n);
 NormalContactSettings contact_bench_settings(double tolerance);
+// The tangential solve's settings for that workload (E = E*(1 − ν²), ν 0.5, the tolerance given).
+TangentialContactSettings tangential_bench_settings(double tolerance);
 
 std::vector<ContactBenchRow> run_contact_bench(const ContactBenchOptions& opt);
 void write_contact_bench(const std::filesystem::path& dir, const std::vector<ContactBenchRow>& rows);  // DIR/contact.csv

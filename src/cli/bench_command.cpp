@@ -218,7 +218,7 @@ int contact(const BenchOptions& b) {
   o.threads = b.threads;
   o.log = &std::cout;
   machine_line(b);
-  std::printf("normal contact, FFT boundary elements (a sphere with a self-affine surface, 4 N; %d thread(s))\n", b.threads);
+  std::printf("normal and tangential contact, FFT boundary elements (a sphere with a self-affine surface, 4 N, Coulomb mu 0.5; %d thread(s))\n", b.threads);
   const auto rows = run_contact_bench(o);
   write_contact_bench(b.out, rows);
   write_marker(b.out, "bench");
