@@ -6,12 +6,11 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "surface/bounded_cg.hpp"
 #include "surface/fft_convolution.hpp"
 #include "surface/pixel_loops.hpp"
 
 namespace asperity {
-using pixel_loops::block_sums;
-using pixel_loops::for_each_pixel;
 using pixel_loops::Workers;
 
 namespace {
@@ -90,66 +89,19 @@ TangentialContact::TangentialContact(std::size_t n, double pixel_m, std::vector<
 
 TangentialContact::~TangentialContact() = default;
 
-// Bound-constrained conjugate gradient on the pixels marked free (the others keep q): minimises
-// ½ qᵀKq − δ Σ q with |q| ≤ bound when `bounded`. A pixel at its bound whose gradient u − δ pushes
-// it outward satisfies its slip condition and is left out of the step; the others (the free set F)
-// take the conjugate step, clipped back to their bounds. As in the normal solve the directions are
-// not restarted when F changes. Converged when max_F |u − δ| ≤ tolerance · δ.
 int TangentialContact::iterate(double delta, const std::vector<unsigned char>& free, bool bounded,
                                std::vector<double>& q, TangentialState& st) {
-  const std::size_t nn = n_ * n_;
-  Workers& W = op_->workers;
+  BoundedCgSettings cs;
+  cs.tolerance = settings_.tolerance;
+  cs.max_iterations = settings_.max_iterations;
   PaddedConvolution& K = op_->K;
-  std::vector<double> u(nn), g(nn, 0.0), d(nn, 0.0), w(nn);
-  std::vector<unsigned char> in_F(nn, 0);
-  K.apply(q, u);
-  ++st.convolutions;
-  double G_old = 1.0;
-  bool conjugate = false;
-  for (int it = 1; it <= settings_.max_iterations; ++it) {
-    double worst = 0;
-    for (std::size_t k = 0; k < nn; ++k) {
-      in_F[k] = 0;
-      if (!free[k]) continue;
-      g[k] = u[k] - delta;
-      const bool held = bounded && ((q[k] >= bound_[k] && g[k] <= 0) || (q[k] <= -bound_[k] && g[k] >= 0));
-      if (held) continue;
-      in_F[k] = 1;
-      worst = std::max(worst, std::abs(g[k]));
-    }
-    st.residual = worst / delta;
-    if (worst <= settings_.tolerance * delta) {
-      st.converged = true;
-      return it - 1;
-    }
-    const double G = block_sums<1>(nn, W, [&](std::size_t k, auto& a) {
-      if (in_F[k]) a[0] += g[k] * g[k];
-    })[0];
-    const double beta = conjugate && G_old > 0 ? G / G_old : 0.0;
-    for_each_pixel(nn, W, [&](std::size_t k) { d[k] = in_F[k] ? g[k] + beta * d[k] : 0.0; });
-    G_old = G;
-    K.apply(d, w);
-    ++st.convolutions;
-    const auto [gd, dw] = block_sums<2>(nn, W, [&](std::size_t k, auto& a) {
-      if (in_F[k]) a[0] += g[k] * d[k], a[1] += d[k] * w[k];
-    });
-    if (!(dw > 0)) break;  // rounding: no descent left
-    const double alpha = gd / dw;
-    const double clipped = block_sums<1>(nn, W, [&](std::size_t k, auto& a) {
-      if (!in_F[k]) return;
-      double x = q[k] - alpha * d[k];
-      if (bounded && std::abs(x) > bound_[k]) x = std::copysign(bound_[k], x), a[0] += 1;
-      q[k] = x;
-    })[0];
-    conjugate = true;
-    // u = K q: updated by linearity where no pixel was clipped (within rounding), else convolved.
-    if (clipped == 0)
-      for_each_pixel(nn, W, [&](std::size_t k) { u[k] -= alpha * w[k]; });
-    else
-      K.apply(q, u), ++st.convolutions;
-    st.iterations = it;
-  }
-  return st.iterations;
+  const BoundedCgResult r = bounded_cg([&](const std::vector<double>& in, std::vector<double>& out) { K.apply(in, out); },
+                                       delta, free, bounded ? &bound_ : nullptr, q, cs, op_->workers);
+  st.iterations = r.iterations;
+  st.convolutions = r.products;
+  st.residual = r.residual;
+  st.converged = r.converged;
+  return r.iterations;
 }
 
 TangentialState TangentialContact::solve(double delta) {

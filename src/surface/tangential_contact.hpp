@@ -17,10 +17,9 @@
 //
 // Under monotonic loading from δ = 0 with no pixel's slip reversing, the state at δ does not
 // depend on the path: it is the minimiser of ½ qᵀKq − δ Σ q over the tractions |q| ≤ bound (the
-// Karush–Kuhn–Tucker conditions are the stick and slip conditions), found here by a
-// bound-constrained conjugate gradient (Polonsky & Keer's scheme, Wear 231, 1999, with a two-sided
-// bound; Vollebregt, J. Optim. Theory Appl. 162, 2014). tangential_curve checks that no pixel's
-// slip reverses between its points.
+// Karush–Kuhn–Tucker conditions are the stick and slip conditions), found by the bound-constrained
+// conjugate gradient of surface/bounded_cg.hpp. tangential_curve checks that no pixel's slip
+// reverses between its points.
 #include <cstddef>
 #include <memory>
 #include <vector>
