@@ -17,6 +17,7 @@
 #include "observe/simulate.hpp"
 #include "report/run_writer.hpp"
 #include "scene/load.hpp"
+#include "studies/continuum_rule.hpp"
 
 namespace asperity::cli {
 namespace {
@@ -30,6 +31,25 @@ struct RunOptions {
   bool plot = false;
   FigureFormats figures;  // of plot.png (--figures)
 };
+
+// For independent junctions that have positions: the stiffness error the continuum study's rule
+// (studies/continuum_rule.hpp) estimates for this population, and where interactions are
+// recommended; "" otherwise.
+std::string interaction_advice(const Scene& scene) {
+  const JunctionPopulation& J = scene.experiment.junctions;
+  if (scene.model.interactions != Interactions::none || J.x_m.size() != J.size()) return "";
+  std::vector<double> x = J.x_m, y = J.y_m;
+  for (double& v : x) v *= scene.model.position_scale;
+  for (double& v : y) v *= scene.model.position_scale;
+  const PopulationMeasures m = population_measures(J.area_m2, x, y);
+  if (!std::isfinite(m.stiffness_ratio)) return "";
+  const StiffnessRule rule = independent_stiffness_rule();
+  const auto g = [](const char* f, double x) { return scene_io::format_printf(f, x); };
+  return "independent junctions: estimated stiffness error " + g("%.2g", 100 * rule.error_at(m.stiffness_ratio)) +
+         " % at stiffness ratio " + g("%.3g", m.stiffness_ratio) + " (coverage " + g("%.3g", m.coverage) +
+         "; docs/continuum.md, SYNTHETIC surfaces); interactions recommended above ratio " +
+         g("%.2g", rule.ratio_for(0.05)) + " (error 5 %)";
+}
 
 void print_summary(const Scene& scene, const Observables& o, const std::filesystem::path& out) {
   const char* method = scene.solver.method == SolverMethod::reference ? "reference" : "event";
@@ -52,6 +72,7 @@ void print_summary(const Scene& scene, const Observables& o, const std::filesyst
                 o.ss_drop, o.ss_period);
   else
     std::printf("  stick-slip: no complete cycle (%zu confirmed peaks)\n", o.n_peaks);
+  if (const std::string line = interaction_advice(scene); !line.empty()) std::printf("  %s\n", line.c_str());
   std::printf("  max f/(sigma A) = %.6g, t_end = %.6g s, %lld steps, wall %.3f s\n",
               o.max_f_over_sigmaA, o.t_end, static_cast<long long>(o.steps), o.wall_s);
   std::printf("  -> %s\n", out.string().c_str());

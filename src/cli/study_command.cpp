@@ -3,6 +3,8 @@
 //                             [--sweep STORE] [--topography TABLE] [--recovery MATRIX] [--spread EXPERIMENT]
 //                             [--quiet]
 // asperity study recovery [--recipes R.yaml...] [--out results/recovery] [-j N] [--quiet]
+// asperity study continuum [--recipe R.yaml] [--loads P...] [--out results/continuum] [--points N] [-j N]
+//                          [--figures F] [--quiet]
 #include <cstdio>
 #include <iostream>
 #include <string>
@@ -11,6 +13,7 @@
 #include "bench/bench_scene.hpp"
 #include "cli/commands.hpp"
 #include "cli/options.hpp"
+#include "studies/continuum_comparison.hpp"
 #include "studies/interaction_study.hpp"
 #include "studies/recovery_matrix.hpp"
 #include "report/output_dir.hpp"
@@ -68,8 +71,34 @@ Command add_study_command(CLI::App& app) {
     }
     return exit_ok;
   }};
-  return Command{sub, [opt, scenes, out, quiet, recovery](const Invocation& inv) {
+  auto con = std::make_shared<ContinuumStudyOptions>();
+  con->recipe = "results/topography/recipe.yaml";
+  // The paper's six loads (docs/model.md §2) and three lighter ones, where the junctions are fewer,
+  // sparser and smaller (3 to 7 pixels each on the default recipe's map).
+  con->loads_N = {0.02, 0.1, 0.3, 0.98, 1.52, 2.07, 3.09, 4.00, 6.40};
+  con->out = "results/continuum";
+  CLI::App* cn = sub->add_subcommand(
+      "continuum", "Junction models (independent, interacting) against the continuum tangential contact on the same "
+                   "contact map, per load (SYNTHETIC surfaces): stiffness and Q(delta) errors against coverage, the rule");
+  cn->add_option("--recipe", con->recipe, "Topography recipe (default results/topography/recipe.yaml)")->check(CLI::ExistingFile);
+  cn->add_option("--loads", con->loads_N, "Normal loads [N] (default 0.02, 0.1, 0.3 and the paper's six)")->check(CLI::Range(1e-6, 1e6));
+  cn->add_option("-o,--out", con->out, "Output folder (default results/continuum)");
+  cn->add_option("--points", con->points, "Displacements of each Q(delta) (default 32)")->check(CLI::Range(2, 10000));
+  cn->add_option("-j,--threads", con->threads, "Threads of the contact solves (default 1)")->check(CLI::Range(1, 1024));
+  add_figures_option(cn, con->figures);
+  cn->add_flag("-q,--quiet", *quiet, "Print nothing on success");
+  Command continuum{cn, [con, quiet](const Invocation&) {
+    ContinuumStudyOptions o = *con;
+    check_ours(o.out, "study continuum", "--out");
+    o.log = *quiet ? nullptr : &std::cout;
+    run_continuum_study(o);
+    write_marker(o.out, "study continuum");
+    if (!*quiet) std::printf("-> %s/REPORT.md\n", o.out.string().c_str());
+    return exit_ok;
+  }};
+  return Command{sub, [opt, scenes, out, quiet, recovery, continuum](const Invocation& inv) {
     if (recovery.sub->parsed()) return recovery.run(inv);
+    if (continuum.sub->parsed()) return continuum.run(inv);
     InteractionStudyOptions o = *opt;
     o.out = *out;
     check_ours(o.out, "study interactions", "--out");

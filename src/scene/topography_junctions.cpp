@@ -9,6 +9,7 @@
 #include <set>
 #include <stdexcept>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include "io/digest.hpp"
@@ -197,7 +198,7 @@ std::size_t merge_overlapping_junctions(JunctionPopulation& J, std::uint64_t max
   return merges;
 }
 
-TopographyContact solve_topography_contact(const TopographyRecipe& r, int threads) {
+TopographyContact solve_topography_contact(const TopographyRecipe& r, int threads, NormalContact* normal) {
   TopographyContact t;
   HeightMap map = topography_surface(r);
   t.n = map.n;
@@ -271,6 +272,7 @@ TopographyContact solve_topography_contact(const TopographyRecipe& r, int thread
                            " this surface makes: " + why + " (the map's pixel size, load_N and sphere_radius_m " +
                            "set the junctions' sizes)");
   }
+  if (normal) *normal = std::move(c);
   return t;
 }
 

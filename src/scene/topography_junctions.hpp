@@ -10,6 +10,7 @@
 #include "scene/scene.hpp"
 #include "scene/topography_recipe.hpp"
 #include "surface/height_map.hpp"
+#include "surface/normal_contact.hpp"
 
 namespace asperity {
 
@@ -45,8 +46,11 @@ struct TopographyContact {
 // Surface → sphere → contact → clusters → merged junctions. InputError when the contact solve
 // does not converge within max_iterations, reaches the map's edge, or makes a junction that a
 // junctions file could not hold (scene/csv.hpp's rules: generate writes one). `threads`: the contact
-// solve's FFTW and loop threads (the numbers do not depend on it).
-TopographyContact solve_topography_contact(const TopographyRecipe& recipe, int threads = 1);
+// solve's FFTW and loop threads (the numbers do not depend on it). `normal`, when given, receives
+// the normal solve itself (pressures and gaps per pixel: the contact map the tangential solve
+// takes).
+TopographyContact solve_topography_contact(const TopographyRecipe& recipe, int threads = 1,
+                                           NormalContact* normal = nullptr);
 
 // The experiment of a recipe and its contact: name, slider, E, ν, σ_exp, junctions; the
 // description says where it came from (`made_by`, e.g. "Written by `asperity generate` from x.yaml").
