@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
-# ctest python_pip_install: `pip install .` and `pip install -e .` from a copy of the source tree (the files git tracks or
-# would track) into a fresh venv (Debian's python3 with its site packages, no index, no isolation),
-# reusing the CMake build BUILD_DIR for the compiled module; then imports it from outside the tree.
+# ctest python_pip_install: docs/python.md's install, as a user runs it. `pip install .` and
+# `pip install -e .` from a copy of the source tree (the files git tracks or would track) into a
+# fresh venv (Debian's python3 with its site packages, no index, no isolation), reusing the CMake
+# build BUILD_DIR for the compiled module and the command line; then, from outside the tree: the
+# package imports and the venv's `asperity` command is build/asperity (output and exit status).
 #   [PYTHON=/usr/bin/python3] tests/shell/test_pip_install.sh BUILD_DIR
 set -euo pipefail
 src=$(cd "$(dirname "$0")/../.." && pwd)
@@ -14,8 +16,26 @@ mkdir "$tmp/clone"
 python=${PYTHON:-/usr/bin/python3}
 # Without its own pip (ensurepip takes seconds): the system's pip installs into it (--python).
 "$python" -m venv --without-pip --system-site-packages "$tmp/venv"
-ASPERITY_CMAKE_BUILD_DIR="$build" "$python" -m pip --python "$tmp/venv/bin/python" install -q \
+# The clone's build/ is BUILD_DIR (a link), as a developer's clone with its build: a Release build
+# for this interpreter is reused without being named, and pip -v shows the line that says so.
+if grep -qx 'CMAKE_BUILD_TYPE:STRING=Release' "$build/CMakeCache.txt"; then
+  ln -s "$build" "$tmp/clone/build"
+  reuse="setup.py: reusing the build folder $tmp/clone/build (Release, for this interpreter)"
+else  # another build type is not reused (it would build build/pip from scratch): name it
+  export ASPERITY_CMAKE_BUILD_DIR="$build"
+  reuse="setup.py: building in $build (ASPERITY_CMAKE_BUILD_DIR)"
+fi
+"$python" -m pip --python "$tmp/venv/bin/python" install -v \
   --no-build-isolation --no-deps --no-index "$tmp/clone" >"$tmp/pip.log" 2>&1 || { cat "$tmp/pip.log"; exit 1; }
+grep -qF "$reuse" "$tmp/pip.log" || { cat "$tmp/pip.log"; echo "no line '$reuse'"; exit 1; }
+unset ASPERITY_CMAKE_BUILD_DIR
+# An interpreter without setuptools and wheel (a venv without the system's packages): pip stops
+# before any build at the backend's one line, which names the interpreter and what it lacks.
+"$python" -m venv --without-pip "$tmp/bare"
+rc=0; "$python" -m pip --python "$tmp/bare/bin/python" install --no-build-isolation --no-deps --no-index \
+  "$tmp/clone" >"$tmp/bare.log" 2>&1 || rc=$?
+grep -qF "asperity: $tmp/bare/bin/python cannot build the package: it lacks the Python packages 'setuptools' and 'wheel' (Debian: apt install python3-setuptools python3-wheel" "$tmp/bare.log" \
+  && [ "$rc" != 0 ] || { cat "$tmp/bare.log"; echo "no one-line error naming the interpreter (exit $rc)"; exit 1; }
 cd "$tmp"
 env -u PYTHONPATH "$tmp/venv/bin/python" - "$tmp/venv" "$("$build/asperity" --version)" <<'PY'
 import pathlib, sys
@@ -28,6 +48,14 @@ assert (where.parent / "__init__.pyi").exists() and (where.parent / "py.typed").
 assert asperity.units("Q_s") == "N"
 print("installed", asperity.__version__, "at", where.parent)
 PY
+# The venv's `asperity` command: the same output and exit status as build/asperity.
+[ "$(env -u PYTHONPATH "$tmp/venv/bin/asperity" --version)" = "$("$build/asperity" --version)" ] \
+  || { echo "venv asperity --version differs from build/asperity's"; exit 1; }
+rc=0; env -u PYTHONPATH "$tmp/venv/bin/asperity" run "$tmp/nonexistent.yaml" 2>"$tmp/venv.err" || rc=$?
+want=0; "$build/asperity" run "$tmp/nonexistent.yaml" 2>"$tmp/build.err" || want=$?
+[ "$rc" = 2 ] && [ "$want" = 2 ] || { echo "asperity run of a missing scene: exit $rc (venv), $want (build), not 2"; exit 1; }
+cmp "$tmp/venv.err" "$tmp/build.err" || { echo "stderr differs"; cat "$tmp/venv.err" "$tmp/build.err"; exit 1; }
+echo "venv asperity: $(cat "$tmp/venv.err")"
 # `pip install -e .`: the package imported from the clone's source folder, the compiled module
 # beside it, so an edit of a .py file shows at the next import.
 "$python" -m venv --without-pip --system-site-packages "$tmp/venv-e"
