@@ -3,7 +3,9 @@
 # `pip install -e .` from a copy of the source tree (the files git tracks or would track) into a
 # fresh venv (Debian's python3 with its site packages, no index, no isolation), reusing the CMake
 # build BUILD_DIR for the compiled module and the command line; then, from outside the tree: the
-# package imports and the venv's `asperity` command is build/asperity (output and exit status).
+# package imports, the venv's `asperity` command is build/asperity (output and exit status), and
+# after the documented `python -m ipykernel install --sys-prefix` nbclient runs
+# examples/calibrate_one_load.ipynb in the notebook's own kernel (python3), which must be the venv's.
 #   [PYTHON=/usr/bin/python3] tests/shell/test_pip_install.sh BUILD_DIR
 set -euo pipefail
 src=$(cd "$(dirname "$0")/../.." && pwd)
@@ -56,6 +58,28 @@ want=0; "$build/asperity" run "$tmp/nonexistent.yaml" 2>"$tmp/build.err" || want
 [ "$rc" = 2 ] && [ "$want" = 2 ] || { echo "asperity run of a missing scene: exit $rc (venv), $want (build), not 2"; exit 1; }
 cmp "$tmp/venv.err" "$tmp/build.err" || { echo "stderr differs"; cat "$tmp/venv.err" "$tmp/build.err"; exit 1; }
 echo "venv asperity: $(cat "$tmp/venv.err")"
+# The notebook in the venv's kernel: the documented command, then the notebook's own kernel name
+# (python3), found as Jupyter started by the venv's interpreter finds it (JUPYTER_DATA_DIR: no
+# kernel of this user's in the way). Debian's python3 kernel (/usr/bin/python3) has no asperity.
+export JUPYTER_DATA_DIR="$tmp/jupyter" JUPYTER_RUNTIME_DIR="$tmp/jupyter/runtime" IPYTHONDIR="$tmp/ipython"
+export MPLBACKEND=Agg PYDEVD_DISABLE_FILE_VALIDATION=1
+env -u PYTHONPATH "$tmp/venv/bin/python" -m ipykernel install --sys-prefix >"$tmp/kernel.log" 2>&1 \
+  || { cat "$tmp/kernel.log"; exit 1; }
+env -u PYTHONPATH "$tmp/venv/bin/python" - "$tmp/venv" "$tmp/clone/examples/calibrate_one_load.ipynb" <<'PY'
+import pathlib, sys
+import nbclient, nbformat
+venv, path = pathlib.Path(sys.argv[1]).resolve(), pathlib.Path(sys.argv[2])
+nb = nbformat.read(path, as_version=4)
+assert nb.metadata.kernelspec.name == "python3"
+nb.cells.append(nbformat.v4.new_code_cell("import sys, asperity\nprint('kernel:', sys.prefix, asperity.__file__)"))
+nbclient.NotebookClient(nb, timeout=120, resources={"metadata": {"path": str(path.parent)}}).execute()
+text = "".join(o.get("text", "") for c in nb.cells if c.cell_type == "code" for o in c.outputs)
+assert "fitted alpha_b = " in text, text
+prefix, module = text.split("kernel: ")[1].split()
+assert pathlib.Path(prefix).resolve() == venv, (prefix, venv)  # the venv's interpreter
+assert pathlib.Path(module).resolve().is_relative_to(venv), module  # and its installed package
+print("notebook ran in the venv's kernel:", prefix)
+PY
 # `pip install -e .`: the package imported from the clone's source folder, the compiled module
 # beside it, so an edit of a .py file shows at the next import.
 "$python" -m venv --without-pip --system-site-packages "$tmp/venv-e"
