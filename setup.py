@@ -110,6 +110,7 @@ setup(
     cmdclass={"build_py": CMakeBuildPy},
     distclass=BinaryDistribution,
     # Out of the source tree's top: CMake's build/ is where setuptools would write otherwise.
-    options={"build": {"build_base": str(ROOT / "build" / "setuptools")},
-             "egg_info": {"egg_base": str(ROOT / "build")}},
+    # Relative to this folder (pip runs setup.py in it), so that SOURCES.txt of the egg-info lists
+    # relative paths: absolute ones from another clone sharing build/ would fail its check.
+    options={"build": {"build_base": "build/setuptools"}, "egg_info": {"egg_base": "build"}},
 )

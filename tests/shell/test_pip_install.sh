@@ -95,3 +95,5 @@ assert asperity.plot.EDITED == "yes"  # the source itself, not a copy
 assert asperity.units("Q_s") == "N" and asperity.run  # the compiled module loads
 print("editable install at", where.parent)
 PY
+[ "$(env -u PYTHONPATH "$tmp/venv-e/bin/asperity" --version)" = "$("$build/asperity" --version)" ] \
+  || { echo "editable install: asperity --version differs from build/asperity's"; exit 1; }
