@@ -9,7 +9,7 @@ cd "$(dirname "$0")/.."
 pkgs=(cmake g++ ninja-build libboost-dev libeigen3-dev libtbb-dev libnlopt-cxx-dev
       libyaml-cpp-dev catch2 libcli11-dev gnuplot-nox python3
       python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pandas python3-matplotlib
-      python3-pytest python3-tqdm python3-nbclient python3-nbformat python3-ipykernel python3-pip python3-setuptools python3-venv slurm-wlm munge libopenblas-openmp-dev
+      python3-pytest python3-tqdm python3-nbclient python3-nbformat python3-ipykernel python3-pip python3-setuptools python3-wheel python3-venv slurm-wlm munge libopenblas-openmp-dev
       libsqlite3-dev libssl-dev libfftw3-dev pkg-config
 )
 missing=()
