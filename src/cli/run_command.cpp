@@ -45,8 +45,10 @@ std::string interaction_advice(const Scene& scene) {
   if (!std::isfinite(m.stiffness_ratio)) return "";
   const StiffnessRule rule = independent_stiffness_rule();
   const auto g = [](const char* f, double x) { return scene_io::format_printf(f, x); };
-  return "independent junctions: estimated stiffness error " + g("%.2g", 100 * rule.error_at(m.stiffness_ratio)) +
-         " % at stiffness ratio " + g("%.3g", m.stiffness_ratio) + " (coverage " + g("%.3g", m.coverage) +
+  const double percent = 100 * rule.error_at(m.stiffness_ratio);
+  const bool outside = m.stiffness_ratio < rule.ratio_min || m.stiffness_ratio > rule.ratio_max;
+  return "independent junctions: estimated stiffness error " + g(percent < 10 ? "%.2g" : "%.0f", percent) + " %" +
+         (outside ? " (extrapolated)" : "") + " at stiffness ratio " + g("%.3g", m.stiffness_ratio) + " (coverage " + g("%.3g", m.coverage) +
          "; docs/continuum.md, SYNTHETIC surfaces); interactions recommended above ratio " +
          g("%.2g", rule.ratio_for(0.05)) + " (error 5 %)";
 }

@@ -11,11 +11,13 @@
 #include <numbers>
 #include <numeric>
 #include <random>
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include "cli_spawn.hpp"
 #include "generate/topography.hpp"
+#include "studies/continuum_rule.hpp"
 #include "io/input_error.hpp"
 #include "io/numbers.hpp"
 #include "scene/validate.hpp"
@@ -341,5 +343,44 @@ TEST_CASE("the committed topography example regenerates byte for byte", "[genera
   REQUIRE(r.status == 0);
   CHECK(slurp(d / "generated/junctions.csv") == slurp(src / "examples/topography/generated/junctions.csv"));
   CHECK(slurp(d / "generated/experiment.yaml") == slurp(src / "examples/topography/generated/experiment.yaml"));
+  fs::remove_all(d);
+}
+
+TEST_CASE("run: independent junctions with positions get the continuum rule's estimate, interacting ones none",
+          "[generate][topography][cli]") {
+  // The estimate is the committed rule (studies/continuum_rule.hpp) at the population's stiffness
+  // ratio, computed here from the junctions file independently of the command.
+  const fs::path src(ASPERITY_SOURCE_DIR);
+  const fs::path d = fresh_dir("asperity-run-advice");
+  const std::string scene = (src / "examples/topography/scene.yaml").string();
+  const auto indep = run_argv(d, {"run", scene, "--set", "model.interactions=none", "--out", "a"});
+  INFO(indep.err);
+  REQUIRE(indep.status == 0);
+  std::vector<double> A, x, y;
+  {
+    std::istringstream in(slurp(src / "examples/topography/generated/junctions.csv"));
+    for (std::string line; std::getline(in, line);) {
+      if (line.empty() || line[0] == '#' || line[0] == 'a') continue;
+      double a = 0, px = 0, py = 0;
+      char c1 = 0, c2 = 0;
+      std::istringstream(line) >> a >> c1 >> px >> c2 >> py;
+      A.push_back(a), x.push_back(px), y.push_back(py);
+    }
+  }
+  double S = 0, cx = 0, cy = 0, radii = 0, rg2 = 0;
+  for (std::size_t i = 0; i < A.size(); ++i) S += A[i], cx += A[i] * x[i], cy += A[i] * y[i];
+  cx /= S, cy /= S;
+  for (std::size_t i = 0; i < A.size(); ++i)
+    rg2 += A[i] * ((x[i] - cx) * (x[i] - cx) + (y[i] - cy) * (y[i] - cy)), radii += std::sqrt(A[i] / M_PI);
+  const double ratio = radii / std::sqrt(2 * rg2 / S);
+  const StiffnessRule rule = independent_stiffness_rule();
+  char expected[160];
+  std::snprintf(expected, sizeof expected, "estimated stiffness error %.0f %% at stiffness ratio %.3g",
+                100 * rule.error_at(ratio), ratio);
+  INFO(indep.out);
+  CHECK(indep.out.find(expected) != std::string::npos);
+  const auto inter = run_argv(d, {"run", scene, "--out", "b"});
+  REQUIRE(inter.status == 0);
+  CHECK(inter.out.find("independent junctions:") == std::string::npos);
   fs::remove_all(d);
 }
