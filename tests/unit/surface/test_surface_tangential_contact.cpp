@@ -1,7 +1,7 @@
 // surface/tangential_contact.hpp: the FFT boundary-element tangential contact against closed forms:
 // the pixel kernel against Love's rectangle and Cerruti's point force, Mindlin's stiffness of a
 // circular patch, two distant patches against their point-force coupling, full sliding, and a
-// sphere with Coulomb friction against Cattaneo–Mindlin.
+// sphere with Coulomb friction against Cattaneo–Mindlin (force, stick radius, tangent stiffness).
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <numbers>
@@ -151,6 +151,7 @@ namespace {
 
 struct MindlinCase {
   double q_err = 0, c_err = 0;  // worst |Q/μP − CM| and |c/a − CM| over the points
+  double k_err = 0;             // worst |dQ/dδ / (8Gc/(2 − ν)) − 1|: the stick zone is a rigid punch
 };
 
 // A smooth sphere (R 10 mm, P 1 N, E 1.6 MPa, ν 0.5) with Coulomb friction μ = 0.5, the grid
@@ -173,7 +174,7 @@ MindlinCase mindlin(std::size_t n) {
   const double d_star = 3 * mu * P * (2 - kNu) / (16 * kG * a);
   std::vector<double> deltas;
   for (const double f : {0.2, 0.4, 0.6, 0.8, 0.95}) deltas.push_back(f * d_star);
-  const TangentialCurve curve = tangential_curve(t, deltas, false);
+  const TangentialCurve curve = tangential_curve(t, deltas, true);
   MindlinCase out;
   for (std::size_t i = 0; i < deltas.size(); ++i) {
     const auto& p = curve.points[i];
@@ -182,6 +183,9 @@ MindlinCase mindlin(std::size_t n) {
     out.q_err = std::max(out.q_err, std::abs(p.force_N / (mu * P) - q));
     const double stick = (1 - p.slip_area_fraction) * normal.area_m2;
     out.c_err = std::max(out.c_err, std::abs(std::sqrt(stick / std::numbers::pi) / a - std::cbrt(1 - q)));
+    // dQ/dδ = (3/2)(μP/δ*)(1 − δ/δ*)^(1/2) = 8Gc/(2 − ν): Mindlin's stiffness of the stick circle.
+    const double k_cm = 8 * kG * a * std::cbrt(1 - q) / (2 - kNu);
+    out.k_err = std::max(out.k_err, std::abs(p.tangent_stiffness_N_per_m / k_cm - 1));
   }
   CHECK(curve.monotone);
   CHECK_THAT(curve.full_sliding_force_N, Catch::Matchers::WithinRel(mu * P, 1e-10));
@@ -193,6 +197,10 @@ MindlinCase mindlin(std::size_t n) {
 TEST_CASE("a sphere with Coulomb friction follows Cattaneo-Mindlin", "[surface][tangential]") {
   const MindlinCase c64 = mindlin(64), c128 = mindlin(128);
   const double q_order = std::log2(c64.q_err / c128.q_err), c_order = std::log2(c64.c_err / c128.c_err);
+  INFO("worst |dQ/dδ / (8Gc/(2 − ν)) − 1| " << c64.k_err << " / " << c128.k_err);
+  // Measured 1.2e-2 / 3.6e-3: the tangent stiffness is the stick circle's, a staircase of pixels.
+  CHECK(c64.k_err < 0.03);
+  CHECK(c128.k_err < 0.01);
   INFO("worst |Q/μP − CM| at 64² / 128²: " << c64.q_err << " / " << c128.q_err << " (order " << q_order
        << "); |c/a − CM| " << c64.c_err << " / " << c128.c_err << " (order " << c_order << ")");
   // Measured: Q 3.1e-5 / 3.2e-6, order 3.3; the stick radius (from the stick zone's pixel count, a
