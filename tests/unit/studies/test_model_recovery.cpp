@@ -167,3 +167,43 @@ TEST_CASE("open: recovery of truth b at the light load, both models", "[.][recov
     check_recovery({"elastic-b-light", 0.1, 30, 4e-4, SyntheticTruth{1.5e-15, 0.75, 60, "elastic"}, 41, 16});
   }
 }
+
+// OPEN (hidden: fails as measured): the cycle term at the truth when noise can change the peaks
+// found. Truth b at the light load: its window holds small precursor falls near the estimator's
+// threshold, so a noise realization finds a peak more or fewer than the noise-free curve, and the
+// i-th peaks of model and data are then different events (docs/calibration.md, "The open
+// light-load case"). The closed-form deviations of fit/objective.hpp assume the peaks stay.
+//   build/asperity_tests_studies "[cycle_open]" -s
+TEST_CASE("open: the cycle term at the truth stays a chi-square when noise changes the peaks found",
+          "[.][cycle_open]") {
+  const fs::path dir = fresh_dir("asperity-cycle-chi2");
+  const fs::path base = write_base_scene(dir, 0.1, 30, 0);
+  const SyntheticTruth b{1.5e-15, 0.75, 60, "none"};
+  const RunResult peak = simulate(load_scene(base, {"model.alpha_b=1.5e-15", "model.epsilon=0.75", "model.eta=60",
+                                                    "stop.at_first_peak=true", "output.series=[]"}));
+  REQUIRE(peak.obs.peak_found);
+  const double end = std::ceil(1.15 * peak.obs.t_peak / 0.005) * 0.005;
+  FitNoise noise;  // 0.002 on both curves, as generated
+  double sum = 0, worst = 0;
+  int n = 0;
+  for (std::uint64_t seed = 21; seed <= 30; ++seed) {
+    const fs::path sub = dir / std::to_string(seed);
+    const SyntheticRecipe recipe = load_synthetic_recipe(
+        write_text(sub / "recipe.yaml", synthetic_recipe_text("../base/scene.yaml", b, 0.002, seed, end)));
+    const SyntheticExperiment x = build_synthetic(recipe);
+    write_synthetic_experiment(recipe, x, sub / "syn");
+    const Scene scene = load_scene(sub / "syn" / "scene.yaml");
+    const RunResult r = simulate(scene);
+    FitExperiment fe;
+    fe.force = x.force;
+    const JointTerms t = area_and_force_terms(scene, r.obs, r.recorder.loading_branch(), r.recorder.series(), fe,
+                                              noise, ForceScore::automatic);
+    if (t.score != ForceScore::loading_and_cycles) continue;  // fewer than two cycles: pointwise
+    sum += t.cycles, worst = std::max(worst, t.cycles), ++n;
+    std::printf("seed %d: cycle term %.3g over %d\n", static_cast<int>(seed), t.cycles, t.n_cycles);
+  }
+  INFO(n << " seeds scored by cycles: mean cycle term " << sum / n << ", largest " << worst);
+  REQUIRE(n >= 5);
+  CHECK(sum / n < 6);  // a chi-square over its 2 residuals has mean 2
+  fs::remove_all(dir);
+}
