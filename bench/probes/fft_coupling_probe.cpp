@@ -1,4 +1,4 @@
-// Probe (not part of the build): the precorrected-FFT product of the coupling
+// Probe (built, not run, with cmake -DASPERITY_PROBES=ON: ninja -C build fft_coupling_probe): the precorrected-FFT product of the coupling
 // (solve/interacting/fft_coupling.hpp) beside the dense product over the stored triangle of C, the
 // way the dense solver's passes read it, on `bench interacting`'s populations (the stand-in
 // P4.00N's areas repeated to N, placed in a disc of radius 4.5 mm · sqrt(N / 1201)). Prints CSV:

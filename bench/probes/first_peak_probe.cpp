@@ -1,4 +1,4 @@
-// Probe (not part of the build): one `bench interacting` first-peak row (the stand-in P4.00N's
+// Probe (built, not run, with cmake -DASPERITY_PROBES=ON: ninja -C build first_peak_probe): one `bench interacting` first-peak row (the stand-in P4.00N's
 // areas repeated to N, placed as the bench places them, no output series) with the solver's work
 // counters, for side-by-side runs of two builds of the solver (issue 26). Build against a Release
 // build in build/ and run from the repository root:

@@ -1,4 +1,4 @@
-// Probe (not part of the build): is a hierarchical (H-matrix) representation of the pinned
+// Probe (built, not run, with cmake -DASPERITY_PROBES=ON: ninja -C build hmat_probe): is a hierarchical (H-matrix) representation of the pinned
 // junctions' compliance M = D + C a faster route than the dense one, at the accuracy the
 // interacting solver needs? Issue 26, docs/interactions.md ("Routes measured").
 // It assembles M for the bench's synthetic populations (the stand-in P4.00N's areas repeated,

@@ -1,4 +1,4 @@
-// Probe (not part of the build; issue 26): how many coupling products a matrix-free solve of the
+// Probe (built, not run, with cmake -DASPERITY_PROBES=ON: ninja -C build krylov_probe): how many coupling products a matrix-free solve of the
 // pinned system (D + C) y = b needs. Preconditioned CG with the product of
 // solve/interacting/fft_coupling.hpp, preconditioned by Jacobi or by the sparse Cholesky of
 // D + C_near (C's exact entries within R_p, Eigen's SimplicialLDLT, AMD ordering), on `bench

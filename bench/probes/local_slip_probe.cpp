@@ -1,4 +1,4 @@
-// Probe (not part of the build; issue 26): how far the local-slip design of docs/interactions.md
+// Probe (built, not run, with cmake -DASPERITY_PROBES=ON: ninja -C build local_slip_probe): how far the local-slip design of docs/interactions.md
 // moves the loading branch when each slip's redistribution is applied only on the slipping
 // junction's patch and the rest waits for a global refresh every K slips.
 // A linear quasi-static model of `bench interacting`'s populations (STAND-IN P4.00N areas): every

@@ -1,4 +1,4 @@
-// Probe (not part of the build; issue 26): how close the pinned junctions are to their slip
+// Probe (built, not run, with cmake -DASPERITY_PROBES=ON: ninja -C build margin_probe): how close the pinned junctions are to their slip
 // thresholds on the way to the first peak, the premise of a solver that needs exact forces only
 // near a threshold. On `bench interacting`'s first-peak row (the stand-in P4.00N's areas repeated
 // to N), at every output sample (`every` seconds) the load ratios f_i / f_s,i of the pinned

@@ -1,4 +1,4 @@
-// Probe (not part of the build; issue 26): the floor of the dense exact solver at large N. One
+// Probe (built, not run, with cmake -DASPERITY_PROBES=ON: ninja -C build pass_probe): the floor of the dense exact solver at large N. One
 // chord pass reads the pinned set's triangle of G once, in its single-precision copy from N =
 // 2,048 on: this times one such pass over a full packed float triangle (synthetic entries; the
 // time depends only on the bytes read) with the solver's own product kernel (the CPU's fastest

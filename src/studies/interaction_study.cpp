@@ -542,7 +542,7 @@ void write_topography_md(std::ostream& md, const InteractionStudyOptions& opt) {
   md << "## Junctions from topography (SYNTHETIC surfaces)\n\n";
   const std::vector<TopographyShapeRow> rows = read_topography_table(opt.topography_table);
   if (rows.empty()) {
-    md << "No evidence: `" << table << "` is missing (run `results/topography/study.py`).\n\n";
+    md << "No evidence: `" << table << "` is missing (run `scripts/topography_study.py`).\n\n";
     return;
   }
   const TopographyTally t = tally_topography(rows);

@@ -28,7 +28,7 @@ struct InteractionStudyOptions {
   std::vector<std::filesystem::path> joint_independent = {"results/fits/joint_independent/fit.yaml"};
   std::vector<std::filesystem::path> joint_interacting = {"results/fits/joint_interacting/fit.yaml"};
   std::filesystem::path sweep_store = "results/interactions_sweep";  // sweeps/interactions.yaml
-  // The topography study's table (results/topography/study.py; SYNTHETIC surfaces): both models
+  // The topography study's table (scripts/topography_study.py; SYNTHETIC surfaces): both models
   // on junctions from contact mechanics (studies/topography_comparison.hpp); absent: no evidence.
   std::filesystem::path topography_table = "results/topography/table.csv";
   // The recovery matrix (`asperity study recovery`; SYNTHETIC experiments): what the joint

@@ -2,7 +2,7 @@
 """Study "junctions from topography" (issue 23 item 5). SYNTHETIC SURFACES ONLY.
 
 Run from the repository root after a build:
-    PYTHONPATH=build/python nice -n 5 /usr/bin/python3 results/topography/study.py
+    PYTHONPATH=build/python nice -n 5 /usr/bin/python3 scripts/topography_study.py
 Writes results/topography/{table.csv, stand_ins.csv, ccdf.csv, AQ.csv, fig_ccdf.png, fig_AQ.png}
 and regenerates the junctions under results/topography/generated/ (byte-identical per recipe).
 
