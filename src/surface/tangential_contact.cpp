@@ -89,8 +89,8 @@ TangentialContact::TangentialContact(std::size_t n, double pixel_m, std::vector<
 
 TangentialContact::~TangentialContact() = default;
 
-int TangentialContact::iterate(double delta, const std::vector<unsigned char>& free, bool bounded,
-                               std::vector<double>& q, TangentialState& st) {
+void TangentialContact::iterate(double delta, const std::vector<unsigned char>& free, bool bounded,
+                                std::vector<double>& q, TangentialState& st) {
   BoundedCgSettings cs;
   cs.tolerance = settings_.tolerance;
   cs.max_iterations = settings_.max_iterations;
@@ -101,7 +101,6 @@ int TangentialContact::iterate(double delta, const std::vector<unsigned char>& f
   st.convolutions = r.products;
   st.residual = r.residual;
   st.converged = r.converged;
-  return r.iterations;
 }
 
 TangentialState TangentialContact::solve(double delta) {
@@ -130,33 +129,29 @@ TangentialState TangentialContact::solve(double delta) {
   return st;
 }
 
-double TangentialContact::tangent_stiffness_N_per_m() {
-  const std::size_t nn = n_ * n_;
-  std::vector<unsigned char> stick(nn);
-  std::size_t count = 0;
-  for (std::size_t k = 0; k < nn; ++k) stick[k] = bound_[k] > 0 && std::abs(q_[k]) < bound_[k], count += stick[k];
-  if (count == 0) return 0.0;
-  // dq solves K dq = 1 on the stick zone with dq = 0 on the slipping pixels (held at their bounds).
-  std::vector<double> dq(nn, 0.0);
+// dq solves K dq = 1 on the sticking pixels, dq = 0 elsewhere (slipping pixels held at their
+// bounds): the stiffness Σ dq A of those pixels moving together.
+double TangentialContact::sticking_stiffness(const std::vector<unsigned char>& sticking) {
+  if (std::find(sticking.begin(), sticking.end(), 1) == sticking.end()) return 0.0;
+  std::vector<double> dq(n_ * n_, 0.0);
   TangentialState st;
-  iterate(1.0, stick, false, dq, st);
+  iterate(1.0, sticking, false, dq, st);
   if (!st.converged) return std::numeric_limits<double>::quiet_NaN();
   double sum = 0;
   for (const double x : dq) sum += x;
   return sum * pixel_m_ * pixel_m_;
 }
 
+double TangentialContact::tangent_stiffness_N_per_m() {
+  std::vector<unsigned char> stick(n_ * n_);
+  for (std::size_t k = 0; k < stick.size(); ++k) stick[k] = bound_[k] > 0 && std::abs(q_[k]) < bound_[k];
+  return sticking_stiffness(stick);
+}
+
 double TangentialContact::initial_stiffness_N_per_m() {
-  const std::size_t nn = n_ * n_;
-  std::vector<unsigned char> contact(nn);
-  for (std::size_t k = 0; k < nn; ++k) contact[k] = bound_[k] > 0;
-  std::vector<double> dq(nn, 0.0);
-  TangentialState st;
-  iterate(1.0, contact, false, dq, st);
-  if (!st.converged) return std::numeric_limits<double>::quiet_NaN();
-  double sum = 0;
-  for (const double x : dq) sum += x;
-  return sum * pixel_m_ * pixel_m_;
+  std::vector<unsigned char> contact(n_ * n_);
+  for (std::size_t k = 0; k < contact.size(); ++k) contact[k] = bound_[k] > 0;
+  return sticking_stiffness(contact);
 }
 
 double TangentialContact::full_sliding_force_N() const {

@@ -88,8 +88,9 @@ class TangentialContact {
 
  private:
   struct Operator;
-  int iterate(double delta, const std::vector<unsigned char>& free, bool bounded, std::vector<double>& q,
-              TangentialState& st);
+  void iterate(double delta, const std::vector<unsigned char>& free, bool bounded, std::vector<double>& q,
+               TangentialState& st);
+  double sticking_stiffness(const std::vector<unsigned char>& sticking);
 
   std::size_t n_;
   double pixel_m_;
