@@ -40,6 +40,8 @@
 #include "report/units.hpp"
 #include "scene/load.hpp"
 #include "scene/scene_keys.hpp"
+#include "scene/topography_junctions.hpp"
+#include "surface/height_map_io.hpp"
 
 namespace py = pybind11;
 using namespace asperity;
@@ -154,6 +156,66 @@ YAML::Node yaml_node(const py::handle& v, const std::string& key) {
   if (py::hasattr(v, "__float__")) return YAML::Node(scene_io::format_double(v.cast<double>()));  // numpy floats
   throw py::type_error(key + ": expected a number, text, bool, list or dict, got " +
                        std::string(py::str(v.get_type().attr("__name__"))));
+}
+
+// asperity.generate_junctions: heights from NumPy (n × n, metres, without the sphere) → what
+// `asperity generate` makes of a recipe with that measured map: the same checks (square, side,
+// pixel, finite heights, their span) and the same solve (scene/topography_junctions.hpp).
+py::dict generate_junctions(const py::object& heights, double pixel_m, double sphere_radius_m, double load_N, double E,
+                            double nu, double tolerance, int max_iterations, int connectivity, int threads) {
+  const std::string where = "generate_junctions";
+  using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
+  Array a = Array::ensure(heights);
+  if (!a) {
+    PyErr_Clear();
+    throw py::type_error("heights: expected a 2-D array of numbers, got " +
+                         std::string(py::str(heights.get_type().attr("__name__"))));
+  }
+  if (a.ndim() != 2 || a.shape(0) != a.shape(1) || a.shape(0) < 2)
+    throw InputError(where, 0, "heights", "expected a square n x n array with n >= 2");
+  const auto n = static_cast<std::size_t>(a.shape(0));
+  if (n > kMaxHeightMapSide)
+    throw InputError(where, 0, "heights", std::to_string(n) + " pixels a side: at most " + std::to_string(kMaxHeightMapSide));
+  if (const std::string why = pixel_size_problem(pixel_m); !why.empty()) throw InputError(where, 0, "pixel_m", why);
+  const auto positive = [&](double v, const char* key) {
+    if (!(v > 0) || !std::isfinite(v)) throw InputError(where, 0, key, "must be positive and finite, got " + scene_io::format_double(v));
+  };
+  positive(sphere_radius_m, "sphere_radius_m"), positive(load_N, "load_N"), positive(E, "E"), positive(tolerance, "tolerance");
+  if (!(nu > 0 && nu <= 0.5)) throw InputError(where, 0, "nu", "must lie in (0, 0.5], got " + scene_io::format_double(nu));
+  if (max_iterations < 1) throw InputError(where, 0, "max_iterations", "must be at least 1");
+  if (connectivity != 4 && connectivity != 8) throw InputError(where, 0, "connectivity", "must be 4 or 8");
+  HeightMap map;
+  map.n = n;
+  map.pixel_m = pixel_m;
+  map.h_m.assign(a.data(), a.data() + n * n);
+  for (std::size_t k = 0; k < n * n; ++k)
+    if (!std::isfinite(map.h_m[k]))
+      throw InputError(where, 0, "heights", "heights[" + std::to_string(k / n) + ", " + std::to_string(k % n) + "] is not finite");
+  if (const auto p = height_range_problem(map)) throw InputError(where, 0, "heights", p->message);
+  TopographyRecipe r;
+  r.name = "numpy";
+  r.display = where;
+  r.kind = TopographyKind::measured;
+  r.n = n, r.pixel_m = pixel_m, r.sphere_radius_m = sphere_radius_m, r.E_Pa = E, r.nu = nu, r.load_N = load_N;
+  r.tolerance = tolerance, r.max_iterations = max_iterations;
+  r.connectivity = connectivity == 4 ? Connectivity::four : Connectivity::eight;
+  TopographyContact t;
+  {
+    py::gil_scoped_release release;
+    t = solve_surface_contact(std::move(map), r, std::max(1, threads));
+  }
+  const auto array = [](const std::vector<double>& v) { return py::array_t<double>(static_cast<py::ssize_t>(v.size()), v.data()); };
+  py::dict d;
+  d["area_m2"] = array(t.junctions.area_m2);
+  d["x_m"] = array(t.junctions.x_m);
+  d["y_m"] = array(t.junctions.y_m);
+  d["contact_area_m2"] = t.contact_area_m2;
+  d["clusters"] = t.clusters;
+  d["merges"] = t.merges;
+  d["iterations"] = t.iterations;
+  d["rms_height_m"] = t.rms_height_m;
+  d["rms_slope"] = t.rms_slope;
+  return d;
 }
 
 // One junction column (array, list, pandas Series) as the inline list the loader checks value by
@@ -329,6 +391,9 @@ PYBIND11_MODULE(_asperity, m) {
     return load_scene(path, overrides);
   }, py::arg("path"), py::arg("overrides") = std::vector<std::string>{});
   m.def("run", &run_scene, py::arg("scene"));
+  m.def("generate_junctions", &generate_junctions, py::arg("heights"), py::arg("pixel_m"), py::arg("sphere_radius_m"),
+        py::arg("load_N"), py::arg("E"), py::arg("nu"), py::arg("tolerance"), py::arg("max_iterations"),
+        py::arg("connectivity"), py::arg("threads"));
   m.def("measured", [](const Scene& s) -> py::object {
     if (!s.experiment.measured) return py::none();
     py::dict d;

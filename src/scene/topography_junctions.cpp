@@ -199,8 +199,11 @@ std::size_t merge_overlapping_junctions(JunctionPopulation& J, std::uint64_t max
 }
 
 TopographyContact solve_topography_contact(const TopographyRecipe& r, int threads, NormalContact* normal) {
+  return solve_surface_contact(topography_surface(r), r, threads, normal);
+}
+
+TopographyContact solve_surface_contact(HeightMap map, const TopographyRecipe& r, int threads, NormalContact* normal) {
   TopographyContact t;
-  HeightMap map = topography_surface(r);
   t.n = map.n;
   t.pixel_m = map.pixel_m;
   t.heights_sha256 = heights_sha256(map);

@@ -51,6 +51,10 @@ struct TopographyContact {
 // takes).
 TopographyContact solve_topography_contact(const TopographyRecipe& recipe, int threads = 1,
                                            NormalContact* normal = nullptr);
+// The same from a surface given as heights (without the sphere, which the recipe's radius adds):
+// the recipe's sphere, elastomer, load and contact settings apply, its surface keys do not.
+TopographyContact solve_surface_contact(HeightMap surface, const TopographyRecipe& recipe, int threads = 1,
+                                        NormalContact* normal = nullptr);
 
 // The experiment of a recipe and its contact: name, slider, E, ν, σ_exp, junctions; the
 // description says where it came from (`made_by`, e.g. "Written by `asperity generate` from x.yaml").

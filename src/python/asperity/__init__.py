@@ -31,7 +31,7 @@ from . import plot  # figures with matplotlib (imported when a function draws)
 __version__: str = _asperity.__version__  # the number `asperity --version` prints
 
 __all__ = ["InputError", "SolverError", "Scene", "Result", "load_scene", "run", "measured", "sweep",
-           "fit", "read_store", "read_series", "units", "version", "plot"]
+           "fit", "read_store", "read_series", "generate_junctions", "units", "version", "plot"]
 
 _PathLike = _Union[str, _os.PathLike]
 
@@ -145,6 +145,22 @@ def run(scene: _Union[Scene, str, _os.PathLike], overrides=None) -> Result:
     units_ = _units_of(r["summary"], "observables")
     units_.update(_units_of(r["series"], "series"))
     return Result(r["summary"], r["series"], r["peaks"], r["summary_yaml"], units_)
+
+
+def generate_junctions(heights, pixel_m: float, *, sphere_radius_m: float, load_N: float, E: float = 1.6e6,
+                       nu: float = 0.5, tolerance: float = 1e-10, max_iterations: int = 5000,
+                       connectivity: int = 8, threads: int = 1) -> dict:
+    """Junctions from a height map given as a NumPy array, as `asperity generate` makes them from a
+    recipe with a measured map (docs/topography.md): `heights` n x n [m] (row i at y = i·pixel_m,
+    column j at x = j·pixel_m; larger is closer to the flat), without the sphere of radius
+    `sphere_radius_m` [m] that is added; pressed with `load_N` [N] into the elastomer (E [Pa], nu).
+    Returns {"area_m2", "x_m", "y_m": NumPy arrays (from the map's centre, largest first),
+    "contact_area_m2", "clusters", "merges", "iterations", "rms_height_m", "rms_slope"}.
+    Bad input raises InputError naming the argument; a contact that does not converge or reaches
+    the map's edge raises InputError too."""
+    return _asperity.generate_junctions(heights, float(pixel_m), float(sphere_radius_m), float(load_N), float(E),
+                                        float(nu), float(tolerance), int(max_iterations), int(connectivity),
+                                        int(threads))
 
 
 def measured(scene: Scene):
