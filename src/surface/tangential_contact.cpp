@@ -177,7 +177,7 @@ std::vector<unsigned char> TangentialContact::slip_map() const {
 }
 
 TangentialCurve tangential_curve(TangentialContact& contact, const std::vector<double>& displacements_m,
-                                 bool tangent_stiffness) {
+                                 bool tangent_stiffness, bool keep_slip_maps) {
   TangentialCurve c;
   c.initial_stiffness_N_per_m = contact.initial_stiffness_N_per_m();
   c.full_sliding_force_N = contact.full_sliding_force_N();
@@ -192,6 +192,7 @@ TangentialCurve tangential_curve(TangentialContact& contact, const std::vector<d
     std::vector<unsigned char> now = contact.slip_map();
     for (std::size_t k = 0; k < now.size(); ++k)
       if (before[k] == 2 && now[k] != 2) c.monotone = false;
+    if (keep_slip_maps) c.slip_maps.push_back(now);
     before.swap(now);
     TangentialCurvePoint p;
     p.displacement_m = delta;

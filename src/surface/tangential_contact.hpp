@@ -116,10 +116,11 @@ struct TangentialCurve {
   double full_sliding_force_N = 0;
   double full_sliding_displacement_m = 0;
   bool monotone = true;  // no pixel's slip reversed (slip → stick) between two points
+  std::vector<std::vector<unsigned char>> slip_maps;  // per point (slip_map()), when asked
 };
 
 // Q(δ) along the increasing displacements given (each ≥ 0), from the contact's state at δ = 0.
 TangentialCurve tangential_curve(TangentialContact& contact, const std::vector<double>& displacements_m,
-                                 bool tangent_stiffness = true);
+                                 bool tangent_stiffness = true, bool keep_slip_maps = false);
 
 }  // namespace asperity

@@ -195,3 +195,30 @@ def test_generate_junctions_from_numpy(binary, tmp_path):
     bad[3, 5] = np.inf
     with pytest.raises(asperity.InputError, match=r"heights\[3, 5\]"):
         asperity.generate_junctions(bad, pixel, sphere_radius_m=0.01, load_N=1.0)
+
+
+def test_tangential_contact_follows_cattaneo_mindlin():
+    """A smooth sphere with Coulomb friction through the Python call: Q(δ) against
+    Cattaneo–Mindlin, Q/μP = 1 − (1 − δ/δ*)^(3/2), δ* = 3μP(2 − ν)/(16Ga), and its slip maps."""
+    n, R, P, mu, E = 64, 0.01, 1.0, 0.5, 1.6e6
+    a = (3 * P * R / (4 * E / 0.75)) ** (1 / 3)
+    G = E / 3
+    d_star = 3 * mu * P * 1.5 / (16 * G * a)
+    fractions = [0.2, 0.5, 0.8]
+    c = asperity.tangential_contact(np.zeros((n, n)), 2.6 * a / n, sphere_radius_m=R, load_N=P,
+                                    displacements_m=[f * d_star for f in fractions], friction_coefficient=mu,
+                                    slip_maps=True)
+    assert c["converged"] and c["monotone"]
+    assert math.isclose(c["full_sliding_force_N"], mu * P, rel_tol=1e-10)
+    q = c["force_N"] / (mu * P)
+    exact = 1 - (1 - np.array(fractions)) ** 1.5
+    assert np.max(np.abs(q - exact)) < 1e-4   # 3.1e-5 at 64² in the C++ test of the same case
+    for m, s in zip(c["slip_maps"], c["slip_area_fraction"]):
+        assert m.shape == (n, n) and m.dtype == np.uint8
+        assert math.isclose((m == 2).sum() / (m > 0).sum(), s, rel_tol=1e-12)
+    with pytest.raises(asperity.InputError, match="shear_strength_Pa"):
+        asperity.tangential_contact(np.zeros((n, n)), 2.6 * a / n, sphere_radius_m=R, load_N=P,
+                                    displacements_m=[1e-6], friction_coefficient=mu, shear_strength_Pa=1e5)
+    with pytest.raises(asperity.InputError, match="displacements_m"):
+        asperity.tangential_contact(np.zeros((n, n)), 2.6 * a / n, sphere_radius_m=R, load_N=P,
+                                    displacements_m=[2e-6, 1e-6], friction_coefficient=mu)

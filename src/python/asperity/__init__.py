@@ -31,7 +31,7 @@ from . import plot  # figures with matplotlib (imported when a function draws)
 __version__: str = _asperity.__version__  # the number `asperity --version` prints
 
 __all__ = ["InputError", "SolverError", "Scene", "Result", "load_scene", "run", "measured", "sweep",
-           "fit", "read_store", "read_series", "generate_junctions", "units", "version", "plot"]
+           "fit", "read_store", "read_series", "generate_junctions", "tangential_contact", "units", "version", "plot"]
 
 _PathLike = _Union[str, _os.PathLike]
 
@@ -161,6 +161,27 @@ def generate_junctions(heights, pixel_m: float, *, sphere_radius_m: float, load_
     return _asperity.generate_junctions(heights, float(pixel_m), float(sphere_radius_m), float(load_N), float(E),
                                         float(nu), float(tolerance), int(max_iterations), int(connectivity),
                                         int(threads))
+
+
+def tangential_contact(heights, pixel_m: float, *, sphere_radius_m: float, load_N: float, displacements_m,
+                       shear_strength_Pa: _Optional[float] = None, friction_coefficient: _Optional[float] = None,
+                       E: float = 1.6e6, nu: float = 0.5, tolerance: float = 1e-10, max_iterations: int = 5000,
+                       tangential_tolerance: float = 1e-8, slip_maps: bool = False, threads: int = 1) -> dict:
+    """The continuum reference of the junction models (docs/continuum.md): the normal contact of a
+    height map as in `generate_junctions`, then the quasi-static tangential contact on its contact
+    map under the slider's displacements `displacements_m` [m] (increasing from 0), each pixel in
+    contact sticking until its shear traction reaches `shear_strength_Pa` (a constant) or
+    `friction_coefficient` · p (Coulomb), then slipping. nu = 0.5 only. Returns
+    {"displacement_m", "force_N", "tangent_stiffness_N_per_m", "slip_area_fraction": NumPy arrays,
+    "initial_stiffness_N_per_m", "full_sliding_force_N", "full_sliding_displacement_m",
+    "contact_area_m2", "converged", "monotone"} and, with `slip_maps`, "slip_maps": one n x n
+    uint8 array per displacement (0 outside the contact, 1 sticking, 2 slipping)."""
+    return _asperity.tangential_contact(heights, float(pixel_m), float(sphere_radius_m), float(load_N),
+                                        [float(d) for d in displacements_m],
+                                        0.0 if shear_strength_Pa is None else float(shear_strength_Pa),
+                                        0.0 if friction_coefficient is None else float(friction_coefficient),
+                                        float(E), float(nu), float(tolerance), int(max_iterations),
+                                        float(tangential_tolerance), bool(slip_maps), int(threads))
 
 
 def measured(scene: Scene):
