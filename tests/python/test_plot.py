@@ -79,6 +79,14 @@ def test_heatmap_of_a_store(source, tmp_path):
     assert ax.get_xlabel() == r"damping $\eta$ [1/s]" and ax.get_ylabel() == r"$\epsilon$"
     colorbar = ax.figure.axes[-1]
     assert colorbar.get_ylabel() == "static friction force $Q_s$ [N]"
+    # where= picks the same slice from the whole store, as a dict or as --where strings.
+    for where in ({"grid": "eta_eps"}, ["grid=eta_eps"]):
+        picked = asperity.plot.heatmap(store, "model.eta", "model.epsilon", "Q_s", where=where)
+        assert (picked.collections[0].get_array().reshape(3, 3) == cells).all()
+    with pytest.raises(KeyError, match="where: no column 'model.mass'"):
+        asperity.plot.heatmap(store, "model.eta", "model.epsilon", "Q_s", where={"model.mass": 1})
+    with pytest.raises(ValueError, match="where: no point matches"):
+        asperity.plot.heatmap(store, "model.eta", "model.epsilon", "Q_s", where={"grid": "none"})
     plt.close("all")
 
 

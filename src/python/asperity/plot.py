@@ -96,12 +96,32 @@ def force_vs_time(result, ax=None):
     return ax
 
 
-def heatmap(store, x_key, y_key, field, ax=None):
+def _where(store, where):
+    """The rows of `store` matching every `column=value` of `where` (a dict, or strings as the
+    command line's --where); numbers compare to 1e-12 relative."""
+    import numpy as np
+    items = where.items() if hasattr(where, "items") else (w.split("=", 1) for w in where)
+    for key, value in items:
+        key = key.strip()
+        if key not in store.columns:
+            raise KeyError(f"where: no column {key!r} in the store (columns: {', '.join(store.columns)})")
+        column = store[key]
+        if np.issubdtype(column.dtype, np.number):
+            keep = np.isclose(column.to_numpy(dtype=float), float(value), rtol=1e-12, atol=0)
+        else:
+            keep = (column.astype(str) == str(value).strip()).to_numpy()
+        store = store[keep]
+    if store.empty:
+        raise ValueError(f"where: no point matches {dict(where) if hasattr(where, 'items') else list(where)}")
+    return store
+
+
+def heatmap(store, x_key, y_key, field, ax=None, where=None):
     """`field` (an observable of the store's points.csv, e.g. "Q_s") over the grid of two swept
     keys, one cell per (x, y) point, a colour bar labelled with the field's quantity and unit;
-    failed points are blank. `store`: a store folder or asperity.read_store's DataFrame (select
-    its rows first when the store varies other keys too: a cell must hold one point). Returns
-    the Axes."""
+    failed points are blank. `store`: a store folder or asperity.read_store's DataFrame. When the
+    store varies other keys too, `where` picks one slice, as the command line's --where: a dict
+    {"model.eta": 100} or strings ["model.eta=100"]. Returns the Axes."""
     import numpy as np
     if not hasattr(store, "columns"):
         from . import read_store
@@ -109,10 +129,12 @@ def heatmap(store, x_key, y_key, field, ax=None):
     for key in (x_key, y_key, field):
         if key not in store.columns:
             raise KeyError(f"heatmap: no column {key!r} in the store (columns: {', '.join(store.columns)})")
+    if where:
+        store = _where(store, where)
     cells = store.groupby([y_key, x_key]).size()
     if (cells > 1).any():
         raise ValueError(f"heatmap: {int(cells.max())} points share one ({x_key}, {y_key}) cell: the store varies "
-                         "other keys too; select its rows first (a DataFrame from asperity.read_store)")
+                         "other keys too; pick one slice with where={key: value}")
     grid = store.pivot(index=y_key, columns=x_key, values=field)
     xs, ys = list(grid.columns), list(grid.index)
     ax = _axes(ax)
