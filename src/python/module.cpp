@@ -466,7 +466,7 @@ PYBIND11_MODULE(_asperity, m) {
   m.def("load_scene", [](const std::string& path, const std::vector<std::string>& overrides) {
     check_no_nul(path, "path");
     for (const std::string& o : overrides) check_no_nul(o, "overrides");
-    return load_scene(path, overrides);
+    return load_scene(path, overrides, "overrides:");
   }, py::arg("path"), py::arg("overrides") = std::vector<std::string>{});
   m.def("run", &run_scene, py::arg("scene"));
   m.def("generate_junctions", &generate_junctions, py::arg("heights"), py::arg("pixel_m"), py::arg("sphere_radius_m"),

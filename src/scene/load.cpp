@@ -412,14 +412,15 @@ TypedScene typed_scene_from_tree(const YAML::Node& tree, const fs::path& origin_
   return TypedScene(std::move(s), input_path(origin_file), std::move(lines), std::move(topography));
 }
 
-Scene load_scene(const fs::path& yaml, const std::vector<std::string>& overrides) {
+Scene load_scene(const fs::path& yaml, const std::vector<std::string>& overrides, const std::string& override_label) {
   const std::string display = input_path(yaml);
   YAML::Node tree = load_yaml_file(yaml, display);
   std::vector<SetRecord> sets;
   for (const std::string& o : overrides) {
-    const std::string where = "--set " + o;
+    const std::string where = override_label + " " + o;
     const std::size_t eq = o.find('=');
-    if (eq == std::string::npos) throw InputError(where, 0, "", "expected key=value, e.g. --set model.eta=50");
+    if (eq == std::string::npos)
+      throw InputError(where, 0, "", "expected key=value, e.g. " + override_label + " model.eta=50");
     const std::string key(trim(std::string_view(o).substr(0, eq)));
     const YAML::Node value = load_yaml_text(o.substr(eq + 1), where, key);
     if (value.IsNull()) throw InputError(where, 0, key, "missing value after '=' (write \"\" for empty text)");

@@ -65,8 +65,10 @@ Experiment load_experiment(const std::filesystem::path& yaml, const YAML::Node* 
 // Reads a scene, applies `overrides` ("dotted.key=value", value parsed as YAML, e.g.
 // "model.eta=50", "output.series=[t,Q,A]", "experiment=../other.yaml", "experiment.mass=0.2")
 // to the tree in order, then validates. Paths in overrides are relative to the scene file.
-// Setting a section (e.g. "model={eta: 50}") replaces the whole section.
-Scene load_scene(const std::filesystem::path& yaml, const std::vector<std::string>& overrides = {});
+// Setting a section (e.g. "model={eta: 50}") replaces the whole section. An error or warning about
+// an override names it as "LABEL KEY=VALUE" (the command line's "--set"; Python's "overrides:").
+Scene load_scene(const std::filesystem::path& yaml, const std::vector<std::string>& overrides = {},
+                 const std::string& override_label = "--set");
 
 // --- Building scenes from modified trees (sweeps, fits) -----------------------------------
 // The parsed scene file (parse errors → InputError). Keep it and derive variants from it.
