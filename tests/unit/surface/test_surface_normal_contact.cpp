@@ -8,6 +8,7 @@
 #include "surface/height_map.hpp"
 #include "surface/normal_contact.hpp"
 #include "surface/self_affine.hpp"
+#include "hertz_support.hpp"
 
 using namespace asperity;
 
@@ -22,17 +23,9 @@ struct HertzCase {
 // a = (3PR/4E*)^(1/3) ≈ 1.52 mm. The grid spans 2.6 a.
 HertzCase hertz(std::size_t n) {
   const double R = 0.01, P = 1.0, Es = 2.13e6;
-  const double a = std::cbrt(3 * P * R / (4 * Es));
+  const double a = testing::hertz_radius(P, R, Es);
   HeightMap m;
-  m.n = n;
-  m.pixel_m = 2.6 * a / static_cast<double>(n);
-  m.h_m.assign(n * n, 0.0);
-  add_sphere(m, R);
-  NormalContactSettings s;
-  s.E_star_Pa = Es;
-  s.load_N = P;
-  s.tolerance = 1e-12;
-  const NormalContact c = solve_normal_contact(m, s);
+  const NormalContact c = testing::hertz_contact(n, R, P, Es, 2.6, &m);
   REQUIRE(c.converged);
   double total = 0, pmax = 0;
   for (const double p : c.pressure_Pa) total += p * m.pixel_m * m.pixel_m, pmax = std::max(pmax, p);

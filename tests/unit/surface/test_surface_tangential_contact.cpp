@@ -11,6 +11,7 @@
 #include "surface/height_map.hpp"
 #include "surface/normal_contact.hpp"
 #include "surface/tangential_contact.hpp"
+#include "hertz_support.hpp"
 
 using namespace asperity;
 
@@ -159,17 +160,10 @@ struct MindlinCase {
 // Q/μP = 1 − (1 − δ/δ*)^(3/2), δ* = 3μP(2 − ν)/(16Ga), c = a (1 − Q/μP)^(1/3).
 MindlinCase mindlin(std::size_t n) {
   const double R = 0.01, P = 1.0, Es = kE / (1 - kNu * kNu), mu = 0.5;
-  const double a = std::cbrt(3 * P * R / (4 * Es));
+  const double a = testing::hertz_radius(P, R, Es);
   HeightMap m;
-  m.n = n;
-  m.pixel_m = 2.6 * a / static_cast<double>(n);
-  m.h_m.assign(n * n, 0.0);
-  add_sphere(m, R);
-  NormalContactSettings ns;
-  ns.E_star_Pa = Es;
-  ns.load_N = P;
-  ns.tolerance = 1e-12;
-  const NormalContact normal = solve_normal_contact(m, ns);
+  const NormalContact normal = testing::hertz_contact(n, R, P, Es, 2.6, &m);
+  REQUIRE(normal.converged);
   TangentialContact t(n, m.pixel_m, coulomb_bound(normal, mu), settings());
   const double d_star = 3 * mu * P * (2 - kNu) / (16 * kG * a);
   std::vector<double> deltas;
