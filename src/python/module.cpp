@@ -247,8 +247,10 @@ py::dict tangential_contact(const py::object& heights, double pixel_m, double sp
   if (nu != 0.5) throw InputError(where, 0, "nu", "the tangential contact is solved at nu = 0.5 only (docs/continuum.md)");
   if ((shear_strength_Pa > 0) == (friction_coefficient > 0))
     throw InputError(where, 0, "shear_strength_Pa", "give one bound: shear_strength_Pa or friction_coefficient");
-  for (const double v : {shear_strength_Pa, friction_coefficient})
-    if (!std::isfinite(v) || v < 0) throw InputError(where, 0, "shear_strength_Pa", "the bound must be finite and positive");
+  if (!std::isfinite(shear_strength_Pa) || shear_strength_Pa < 0)
+    throw InputError(where, 0, "shear_strength_Pa", "must be finite and positive");
+  if (!std::isfinite(friction_coefficient) || friction_coefficient < 0)
+    throw InputError(where, 0, "friction_coefficient", "must be finite and positive");
   if (!(tangential_tolerance > 0)) throw InputError(where, 0, "tangential_tolerance", "must be positive");
   double last = 0;
   for (const double d : displacements_m) {

@@ -39,19 +39,12 @@ double force_at_slip(const Curve& c, double fraction) {
   return std::nan("");
 }
 
-Curve continuum_curve(std::size_t n, double pixel_m, const NormalContact& normal, double E, double sigma,
-                      const std::vector<double>& deltas, const ContinuumStudyOptions& o, double& full_delta) {
-  TangentialContactSettings ts;
-  ts.E_Pa = E;
-  ts.nu = 0.5;
-  ts.tolerance = o.tolerance;
-  ts.threads = o.threads;
-  TangentialContact t(n, pixel_m, shear_strength_bound(normal, sigma), ts);
+Curve continuum_curve(TangentialContact& t, const std::vector<double>& deltas) {
   Curve c;
   c.model = "continuum";
   c.k0 = t.initial_stiffness_N_per_m();
   c.full_force = t.full_sliding_force_N();
-  c.full_delta = full_delta = t.full_sliding_displacement_m();
+  c.full_delta = t.full_sliding_displacement_m();
   c.delta = {0}, c.force = {0}, c.slip = {0};
   std::vector<double> before;
   for (const double d : deltas) {
@@ -103,15 +96,19 @@ ContinuumStudy run_continuum_study(const ContinuumStudyOptions& o) {
     const TopographyContact tc = solve_topography_contact(recipe, o.threads, &normal);
     const double Es = E / (1 - recipe.nu * recipe.nu);
     const double aH = std::cbrt(3 * P * recipe.sphere_radius_m / (4 * Es));
-    // The displacements: up to 1.25 × the continuum's full sliding (computed first, cheaply).
-    TangentialContactSettings probe;
-    probe.E_Pa = E;
-    double cont_full = TangentialContact(tc.n, tc.pixel_m, shear_strength_bound(normal, sigma), probe).full_sliding_displacement_m();
+    TangentialContactSettings ts;
+    ts.E_Pa = E;
+    ts.nu = 0.5;
+    ts.tolerance = o.tolerance;
+    ts.threads = o.threads;
+    TangentialContact continuum(tc.n, tc.pixel_m, shear_strength_bound(normal, sigma), ts);
+    // The displacements: up to 1.25 × the continuum's full sliding.
+    const double cont_full = continuum.full_sliding_displacement_m();
     std::vector<double> deltas;
     for (int i = 1; i <= o.points; ++i) deltas.push_back(1.25 * cont_full * i / o.points);
     if (o.log) *o.log << "  " << P << " N: " << tc.junctions.size() << " junctions, contact " << tc.contact_area_m2 * 1e6 << " mm^2" << std::flush;
     std::vector<Curve> curves;
-    curves.push_back(continuum_curve(tc.n, tc.pixel_m, normal, E, sigma, deltas, o, cont_full));
+    curves.push_back(continuum_curve(continuum, deltas));
     curves.push_back(junction_curve(tc.junctions, E, sigma, false, TractionWeighting::uniform, "independent", deltas, o.tolerance));
     curves.push_back(junction_curve(tc.junctions, E, sigma, true, TractionWeighting::uniform, "interacting-uniform", deltas, o.tolerance));
     curves.push_back(junction_curve(tc.junctions, E, sigma, true, TractionWeighting::rigid, "interacting-rigid", deltas, o.tolerance));

@@ -59,7 +59,7 @@ def test_bad_input_raises_the_command_lines_line(source, binary, tmp_path):
     assert isinstance(e.value, ValueError)
     out = cli(binary, "run", str(scene_file), "--out", str(tmp_path / "x"), "--set", "model.epsilon=1.5")
     assert out.returncode == 2
-    # The same line, naming the override as Python gives it (issue 43: not as `--set`).
+    # The same line, naming the override as Python gives it, not as the command line's `--set`.
     assert str(e.value).startswith("overrides: model.epsilon=1.5: model.epsilon:")
     assert out.stderr.strip() == str(e.value).replace("overrides: ", "--set ", 1)
     with pytest.raises(asperity.InputError, match="no-such.yaml"):
