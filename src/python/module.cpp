@@ -35,14 +35,12 @@
 #include "io/temp_files.hpp"
 #include "io/numbers.hpp"
 #include "observe/simulate.hpp"
+#include "python/topography_bindings.hpp"
 #include "report/fit_writer.hpp"
 #include "report/run_writer.hpp"
 #include "report/units.hpp"
 #include "scene/load.hpp"
 #include "scene/scene_keys.hpp"
-#include "scene/topography_junctions.hpp"
-#include "surface/height_map_io.hpp"
-#include "surface/tangential_contact.hpp"
 
 namespace py = pybind11;
 using namespace asperity;
@@ -157,145 +155,6 @@ YAML::Node yaml_node(const py::handle& v, const std::string& key) {
   if (py::hasattr(v, "__float__")) return YAML::Node(scene_io::format_double(v.cast<double>()));  // numpy floats
   throw py::type_error(key + ": expected a number, text, bool, list or dict, got " +
                        std::string(py::str(v.get_type().attr("__name__"))));
-}
-
-// A height map from NumPy (n × n, metres, without the sphere) and the recipe of its contact, checked
-// as `asperity generate` checks a measured map (square, side, pixel, finite heights, their span) and
-// a recipe's numbers; errors name the argument (`where`: the Python function).
-struct SurfaceContactInput {
-  HeightMap map;
-  TopographyRecipe recipe;
-};
-SurfaceContactInput surface_contact_input(const std::string& where, const py::object& heights, double pixel_m,
-                                          double sphere_radius_m, double load_N, double E, double nu, double tolerance,
-                                          int max_iterations, int connectivity) {
-  using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
-  Array a = Array::ensure(heights);
-  if (!a) {
-    PyErr_Clear();
-    throw py::type_error("heights: expected a 2-D array of numbers, got " +
-                         std::string(py::str(heights.get_type().attr("__name__"))));
-  }
-  if (a.ndim() != 2 || a.shape(0) != a.shape(1) || a.shape(0) < 2)
-    throw InputError(where, 0, "heights", "expected a square n x n array with n >= 2");
-  const auto n = static_cast<std::size_t>(a.shape(0));
-  if (n > kMaxHeightMapSide)
-    throw InputError(where, 0, "heights", std::to_string(n) + " pixels a side: at most " + std::to_string(kMaxHeightMapSide));
-  if (const std::string why = pixel_size_problem(pixel_m); !why.empty()) throw InputError(where, 0, "pixel_m", why);
-  const auto positive = [&](double v, const char* key) {
-    if (!(v > 0) || !std::isfinite(v)) throw InputError(where, 0, key, "must be positive and finite, got " + scene_io::format_double(v));
-  };
-  positive(sphere_radius_m, "sphere_radius_m"), positive(load_N, "load_N"), positive(E, "E"), positive(tolerance, "tolerance");
-  if (!(nu > 0 && nu <= 0.5)) throw InputError(where, 0, "nu", "must lie in (0, 0.5], got " + scene_io::format_double(nu));
-  if (max_iterations < 1) throw InputError(where, 0, "max_iterations", "must be at least 1");
-  if (connectivity != 4 && connectivity != 8) throw InputError(where, 0, "connectivity", "must be 4 or 8");
-  SurfaceContactInput in;
-  HeightMap& map = in.map;
-  map.n = n;
-  map.pixel_m = pixel_m;
-  map.h_m.assign(a.data(), a.data() + n * n);
-  for (std::size_t k = 0; k < n * n; ++k)
-    if (!std::isfinite(map.h_m[k]))
-      throw InputError(where, 0, "heights", "heights[" + std::to_string(k / n) + ", " + std::to_string(k % n) + "] is not finite");
-  if (const auto p = height_range_problem(map)) throw InputError(where, 0, "heights", p->message);
-  TopographyRecipe& r = in.recipe;
-  r.name = "numpy";
-  r.display = where;
-  r.kind = TopographyKind::measured;
-  r.n = n, r.pixel_m = pixel_m, r.sphere_radius_m = sphere_radius_m, r.E_Pa = E, r.nu = nu, r.load_N = load_N;
-  r.tolerance = tolerance, r.max_iterations = max_iterations;
-  r.connectivity = connectivity == 4 ? Connectivity::four : Connectivity::eight;
-  return in;
-}
-
-py::array_t<double> double_array(const std::vector<double>& v) {
-  return py::array_t<double>(static_cast<py::ssize_t>(v.size()), v.data());
-}
-
-// asperity.generate_junctions: the junctions `asperity generate` makes of a measured map.
-py::dict generate_junctions(const py::object& heights, double pixel_m, double sphere_radius_m, double load_N, double E,
-                            double nu, double tolerance, int max_iterations, int connectivity, int threads) {
-  SurfaceContactInput in = surface_contact_input("generate_junctions", heights, pixel_m, sphere_radius_m, load_N, E, nu,
-                                                 tolerance, max_iterations, connectivity);
-  TopographyContact t;
-  {
-    py::gil_scoped_release release;
-    t = solve_surface_contact(std::move(in.map), in.recipe, std::max(1, threads));
-  }
-  py::dict d;
-  d["area_m2"] = double_array(t.junctions.area_m2);
-  d["x_m"] = double_array(t.junctions.x_m);
-  d["y_m"] = double_array(t.junctions.y_m);
-  d["contact_area_m2"] = t.contact_area_m2;
-  d["clusters"] = t.clusters;
-  d["merges"] = t.merges;
-  d["iterations"] = t.iterations;
-  d["rms_height_m"] = t.rms_height_m;
-  d["rms_slope"] = t.rms_slope;
-  return d;
-}
-
-// asperity.tangential_contact: the normal contact of a NumPy map (as generate_junctions) and the
-// tangential contact on its contact map (surface/tangential_contact.hpp), Q(δ) at the displacements.
-py::dict tangential_contact(const py::object& heights, double pixel_m, double sphere_radius_m, double load_N,
-                            const std::vector<double>& displacements_m, double shear_strength_Pa,
-                            double friction_coefficient, double E, double nu, double tolerance, int max_iterations,
-                            double tangential_tolerance, bool slip_maps, int threads) {
-  const std::string where = "tangential_contact";
-  SurfaceContactInput in = surface_contact_input(where, heights, pixel_m, sphere_radius_m, load_N, E, nu, tolerance,
-                                                 max_iterations, 8);
-  if (nu != 0.5) throw InputError(where, 0, "nu", "the tangential contact is solved at nu = 0.5 only (docs/continuum.md)");
-  if ((shear_strength_Pa > 0) == (friction_coefficient > 0))
-    throw InputError(where, 0, "shear_strength_Pa", "give one bound: shear_strength_Pa or friction_coefficient");
-  if (!std::isfinite(shear_strength_Pa) || shear_strength_Pa < 0)
-    throw InputError(where, 0, "shear_strength_Pa", "must be finite and positive");
-  if (!std::isfinite(friction_coefficient) || friction_coefficient < 0)
-    throw InputError(where, 0, "friction_coefficient", "must be finite and positive");
-  if (!(tangential_tolerance > 0)) throw InputError(where, 0, "tangential_tolerance", "must be positive");
-  double last = 0;
-  for (const double d : displacements_m) {
-    if (!(d >= last) || !std::isfinite(d))
-      throw InputError(where, 0, "displacements_m", "must be finite and increase from 0");
-    last = d;
-  }
-  if (displacements_m.size() > 100000) throw InputError(where, 0, "displacements_m", "at most 100,000 points");
-  TangentialCurve c;
-  TopographyContact t;
-  {
-    py::gil_scoped_release release;
-    NormalContact normal;
-    t = solve_surface_contact(std::move(in.map), in.recipe, std::max(1, threads), &normal);
-    TangentialContactSettings s;
-    s.E_Pa = E, s.nu = nu, s.tolerance = tangential_tolerance, s.threads = std::max(1, threads);
-    TangentialContact tc(t.n, t.pixel_m,
-                         shear_strength_Pa > 0 ? shear_strength_bound(normal, shear_strength_Pa)
-                                               : coulomb_bound(normal, friction_coefficient),
-                         s);
-    c = tangential_curve(tc, displacements_m, true, slip_maps);
-  }
-  std::vector<double> Q, k, slip;
-  bool converged = true;
-  for (const TangentialCurvePoint& p : c.points)
-    Q.push_back(p.force_N), k.push_back(p.tangent_stiffness_N_per_m), slip.push_back(p.slip_area_fraction),
-        converged = converged && p.converged;
-  py::dict d;
-  d["displacement_m"] = double_array(displacements_m);
-  d["force_N"] = double_array(Q);
-  d["tangent_stiffness_N_per_m"] = double_array(k);
-  d["slip_area_fraction"] = double_array(slip);
-  d["initial_stiffness_N_per_m"] = c.initial_stiffness_N_per_m;
-  d["full_sliding_force_N"] = c.full_sliding_force_N;
-  d["full_sliding_displacement_m"] = c.full_sliding_displacement_m;
-  d["contact_area_m2"] = t.contact_area_m2;
-  d["converged"] = converged;
-  d["monotone"] = c.monotone;
-  if (slip_maps) {
-    py::list maps;
-    const auto n = static_cast<py::ssize_t>(t.n);
-    for (const auto& m : c.slip_maps) maps.append(py::array_t<std::uint8_t>({n, n}, m.data()));
-    d["slip_maps"] = maps;
-  }
-  return d;
 }
 
 // One junction column (array, list, pandas Series) as the inline list the loader checks value by
@@ -471,13 +330,7 @@ PYBIND11_MODULE(_asperity, m) {
     return load_scene(path, overrides, "overrides:");
   }, py::arg("path"), py::arg("overrides") = std::vector<std::string>{});
   m.def("run", &run_scene, py::arg("scene"));
-  m.def("generate_junctions", &generate_junctions, py::arg("heights"), py::arg("pixel_m"), py::arg("sphere_radius_m"),
-        py::arg("load_N"), py::arg("E"), py::arg("nu"), py::arg("tolerance"), py::arg("max_iterations"),
-        py::arg("connectivity"), py::arg("threads"));
-  m.def("tangential_contact", &tangential_contact, py::arg("heights"), py::arg("pixel_m"), py::arg("sphere_radius_m"),
-        py::arg("load_N"), py::arg("displacements_m"), py::arg("shear_strength_Pa"), py::arg("friction_coefficient"),
-        py::arg("E"), py::arg("nu"), py::arg("tolerance"), py::arg("max_iterations"), py::arg("tangential_tolerance"),
-        py::arg("slip_maps"), py::arg("threads"));
+  asperity::python::bind_topography(m);  // generate_junctions, tangential_contact (topography_bindings.cpp)
   m.def("measured", [](const Scene& s) -> py::object {
     if (!s.experiment.measured) return py::none();
     py::dict d;
