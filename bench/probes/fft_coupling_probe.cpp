@@ -1,15 +1,12 @@
-// Probe (built, not run, with cmake -DASPERITY_PROBES=ON: ninja -C build fft_coupling_probe): the precorrected-FFT product of the coupling
+// Probe (ASPERITY_PROBES builds it): the precorrected-FFT product of the coupling
 // (solve/interacting/fft_coupling.hpp) beside the dense product over the stored triangle of C, the
 // way the dense solver's passes read it, on `bench interacting`'s populations (the stand-in
 // P4.00N's areas repeated to N, placed in a disc of radius 4.5 mm · sqrt(N / 1201)). Prints CSV:
 // set-up and per-product times (median of R products, one thread), the exact pairs, the padded
 // grid, and the error max_i |ỹ_i − y_i| / max_i |y_i| against the dense product (N ≤ dense_max).
 // Build against a Release build in build/ and run from the repository root:
-//   B=build; g++ -O2 -std=c++20 -Isrc bench/probes/fft_coupling_probe.cpp -o build/fft_probe \
-//     -Wl,--start-group $B/libasperity_solve.a $B/libasperity_scene.a $B/libasperity_surface.a \
-//     $B/libasperity_physics.a $B/libasperity_io.a $B/libasperity_generate.a -Wl,--end-group \
-//     -lyaml-cpp -lcrypto -ltbb -lfftw3_threads -lfftw3 -fopenmp
-//   OMP_NUM_THREADS=1 build/fft_probe 1200 5000 20000
+//   cmake -S . -B build -DASPERITY_PROBES=ON && ninja -C build fft_coupling_probe
+//   OMP_NUM_THREADS=1 build/fft_coupling_probe 1200 5000 20000
 #include <algorithm>
 #include <cmath>
 #include <cstdio>

@@ -1,13 +1,9 @@
-// Probe (built, not run, with cmake -DASPERITY_PROBES=ON: ninja -C build first_peak_probe): one `bench interacting` first-peak row (the stand-in P4.00N's
+// Probe (ASPERITY_PROBES builds it): one `bench interacting` first-peak row (the stand-in P4.00N's
 // areas repeated to N, placed as the bench places them, no output series) with the solver's work
 // counters, for side-by-side runs of two builds of the solver (issue 26). Build against a Release
 // build in build/ and run from the repository root:
-//   B=build; g++ -O2 -std=c++20 -Isrc bench/probes/first_peak_probe.cpp -o build/first_peak \
-//     -Wl,--start-group $B/libasperity_observe.a $B/libasperity_solve.a $B/libasperity_scene.a \
-//     $B/libasperity_surface.a $B/libasperity_physics.a $B/libasperity_io.a $B/libasperity_generate.a \
-//     $B/libasperity_batch.a -Wl,--end-group -lyaml-cpp -lcrypto -ltbb -lopenblas -lfftw3_threads -lfftw3 \
-//     -lfftw3_omp -fopenmp
-//   OMP_NUM_THREADS=1 build/first_peak 1200 [interaction_tolerance [wall_limit_s]]
+//   cmake -S . -B build -DASPERITY_PROBES=ON && ninja -C build first_peak_probe
+//   OMP_NUM_THREADS=1 build/first_peak_probe 1200 [interaction_tolerance [wall_limit_s]]
 // With a wall limit the run stops there (stop.wall_time, counted after the set-up: the coupling
 // matrix and its first factorisation, whose time it prints) and prints how far it got.
 #include <sys/resource.h>

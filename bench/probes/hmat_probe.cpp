@@ -1,4 +1,4 @@
-// Probe (built, not run, with cmake -DASPERITY_PROBES=ON: ninja -C build hmat_probe): is a hierarchical (H-matrix) representation of the pinned
+// Probe (ASPERITY_PROBES builds it): is a hierarchical (H-matrix) representation of the pinned
 // junctions' compliance M = D + C a faster route than the dense one, at the accuracy the
 // interacting solver needs? Issue 26, docs/interactions.md ("Routes measured").
 // It assembles M for the bench's synthetic populations (the stand-in P4.00N's areas repeated,
@@ -6,9 +6,7 @@
 // leaves of `leaf` junctions, admissibility eta), factorises it (LLT), and times a two-column
 // solve and product against Eigen's dense LLT, with the relative errors against it.
 // Needs Debian's libhmat-oss-dev (not a dependency of asperity) and a Release build in build/:
-//   g++ -O2 -std=c++20 -Isrc -I/usr/include/eigen3 bench/probes/hmat_probe.cpp -o build/hmat_probe \
-//     -Wl,--start-group build/libasperity_generate.a build/libasperity_physics.a build/libasperity_io.a \
-//     -Wl,--end-group -lhmat -fopenmp
+//   cmake -S . -B build -DASPERITY_PROBES=ON && ninja -C build hmat_probe
 //   OMP_NUM_THREADS=1 build/hmat_probe N eps [leaf [eta]]      (from the repository root)
 #include <hmat/hmat.h>
 #include <chrono>

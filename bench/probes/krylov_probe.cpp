@@ -1,4 +1,4 @@
-// Probe (built, not run, with cmake -DASPERITY_PROBES=ON: ninja -C build krylov_probe): how many coupling products a matrix-free solve of the
+// Probe (ASPERITY_PROBES builds it): how many coupling products a matrix-free solve of the
 // pinned system (D + C) y = b needs. Preconditioned CG with the product of
 // solve/interacting/fft_coupling.hpp, preconditioned by Jacobi or by the sparse Cholesky of
 // D + C_near (C's exact entries within R_p, Eigen's SimplicialLDLT, AMD ordering), on `bench
@@ -10,10 +10,7 @@
 // the dense solve on its patch of 12 spacings, to 1e-8 and 1e-10). Prints iterations to a relative residual of 1e-10, times, and the error against
 // a dense LLT (N ≤ 5,000). With DECAY set, also (to stderr) the dense solution y = M⁻¹ C e_j by
 // distance from j: how far a slip's redistribution reaches (results/bench/slip_response_decay.csv). Build against a Release build in build/ and run from the repository root:
-//   B=build; g++ -O2 -std=c++20 -Isrc -I/usr/include/eigen3 bench/probes/krylov_probe.cpp -o build/krylov_probe \
-//     -Wl,--start-group $B/libasperity_solve.a $B/libasperity_scene.a $B/libasperity_surface.a \
-//     $B/libasperity_physics.a $B/libasperity_io.a $B/libasperity_generate.a -Wl,--end-group \
-//     -lyaml-cpp -lcrypto -ltbb -lfftw3_threads -lfftw3 -fopenmp
+//   cmake -S . -B build -DASPERITY_PROBES=ON && ninja -C build krylov_probe
 //   NEAR=4 OMP_NUM_THREADS=1 build/krylov_probe 1200 5000 20000   (NEAR: the two-level smoother's exact radius, spacings)
 #include <Eigen/Dense>
 #include <Eigen/Sparse>

@@ -1,4 +1,4 @@
-// Probe (built, not run, with cmake -DASPERITY_PROBES=ON: ninja -C build local_slip_probe): how far the local-slip design of docs/interactions.md
+// Probe (ASPERITY_PROBES builds it): how far the local-slip design of docs/interactions.md
 // moves the loading branch when each slip's redistribution is applied only on the slipping
 // junction's patch and the rest waits for a global refresh every K slips.
 // A linear quasi-static model of `bench interacting`'s populations (STAND-IN P4.00N areas): every
@@ -10,10 +10,7 @@
 // set, kept aside). Prints the peak force, its position and every junction's slip position against the
 // exact run (in units of the exact run's last slip position), and how many slips came in another order.
 // Build against a Release build in build/ and run from the repository root:
-//   B=build; g++ -O2 -march=native -std=c++20 -Isrc -I/usr/include/eigen3 bench/probes/local_slip_probe.cpp \
-//     -o build/local_slip_probe -Wl,--start-group $B/libasperity_scene.a $B/libasperity_surface.a \
-//     $B/libasperity_physics.a $B/libasperity_io.a $B/libasperity_generate.a -Wl,--end-group \
-//     -lyaml-cpp -lcrypto -ltbb -lfftw3_threads -lfftw3 -fopenmp
+//   cmake -S . -B build -DASPERITY_PROBES=ON && ninja -C build local_slip_probe
 //   OMP_NUM_THREADS=1 build/local_slip_probe N
 #include <Eigen/Dense>
 #include <algorithm>

@@ -1,4 +1,4 @@
-// Probe (built, not run, with cmake -DASPERITY_PROBES=ON: ninja -C build margin_probe): how close the pinned junctions are to their slip
+// Probe (ASPERITY_PROBES builds it): how close the pinned junctions are to their slip
 // thresholds on the way to the first peak, the premise of a solver that needs exact forces only
 // near a threshold. On `bench interacting`'s first-peak row (the stand-in P4.00N's areas repeated
 // to N), at every output sample (`every` seconds) the load ratios f_i / f_s,i of the pinned
@@ -6,10 +6,7 @@
 // margin bound δ, the mean and largest number of pinned junctions within δ of their threshold,
 // and the mean number pinned. Build against a Release build in build/ and run from the
 // repository root:
-//   B=build; g++ -O2 -std=c++20 -Isrc bench/probes/margin_probe.cpp -o build/margin_probe \
-//     -Wl,--start-group $B/libasperity_observe.a $B/libasperity_solve.a $B/libasperity_scene.a \
-//     $B/libasperity_surface.a $B/libasperity_physics.a $B/libasperity_io.a $B/libasperity_generate.a \
-//     -Wl,--end-group -lyaml-cpp -lcrypto -ltbb -lopenblas -lfftw3_threads -lfftw3 -fopenmp
+//   cmake -S . -B build -DASPERITY_PROBES=ON && ninja -C build margin_probe
 //   build/margin_probe 1200 0.005
 #include <algorithm>
 #include <cmath>

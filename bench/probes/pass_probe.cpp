@@ -1,12 +1,11 @@
-// Probe (built, not run, with cmake -DASPERITY_PROBES=ON: ninja -C build pass_probe): the floor of the dense exact solver at large N. One
+// Probe (ASPERITY_PROBES builds it): the floor of the dense exact solver at large N. One
 // chord pass reads the pinned set's triangle of G once, in its single-precision copy from N =
 // 2,048 on: this times one such pass over a full packed float triangle (synthetic entries; the
 // time depends only on the bytes read) with the solver's own product kernel (the CPU's fastest
 // form), the rows split in blocks of equal entries over the OpenMP threads, best of 5.
 // At N = 20,000 issue 26's 20 minutes leave 60 ms per slip (about N slips to the first peak).
 // Build against a Release build in build/ and run from the repository root:
-//   g++ -O2 -std=c++20 -Isrc bench/probes/pass_probe.cpp -o build/pass_probe build/libasperity_solve.a \
-//     build/libasperity_physics.a -lopenblas -fopenmp
+//   cmake -S . -B build -DASPERITY_PROBES=ON && ninja -C build pass_probe
 //   OMP_NUM_THREADS=2 build/pass_probe 5000 20000
 #include <omp.h>
 
