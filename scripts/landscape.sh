@@ -10,9 +10,9 @@ source scripts/own_folder.sh
 claim_folder landscape.sh "$out" .landscape
 rm -rf "$out/fits"
 build/asperity generate --recipe examples/landscape/recipe.yaml --out "$out/fits/syn"
-for score in pointwise loading_and_cycles; do
+for score in pointwise loading_and_cycles loading_and_peaks; do
   cp "examples/landscape/$score.yaml" "$out/fits/syn/"
-  build/asperity fit "$out/fits/syn/$score.yaml" --out "$out/fits/$score" -j 2
+  build/asperity fit "$out/fits/syn/$score.yaml" --out "$out/fits/$score" -j "${JOBS:-2}"
 done
 python3 bench/scripts/landscape_table.py "$out/fits" "$out/landscape.csv"
 repo="$(pwd)"

@@ -13,6 +13,7 @@ set grid
 do for [p in "model.alpha_b model.epsilon model.eta"] {
   set title p noenhanced
   plot "landscape.csv" using ((strcol(1) eq p) ? $2 : 1/0):4 with linespoints pt 7 ps 0.5 title "pointwise", \
-       "" using ((strcol(1) eq p) ? $2 : 1/0):5 with linespoints pt 7 ps 0.5 title "loading and cycles"
+       "" using ((strcol(1) eq p) ? $2 : 1/0):5 with linespoints pt 7 ps 0.5 title "cycles: mean drop and period", \
+       "" using ((strcol(1) eq p) ? $2 : 1/0):6 with linespoints pt 7 ps 0.5 title "peaks paired by time"
 }
 unset multiplot

@@ -6,7 +6,7 @@ import csv
 import sys
 from pathlib import Path
 
-SCORES = ["pointwise", "loading_and_cycles"]
+SCORES = ["pointwise", "loading_and_cycles", "loading_and_peaks"]
 PROFILES = {"model.alpha_b": "profile.csv", "model.epsilon": "profile_model.epsilon.csv",
             "model.eta": "profile_model.eta.csv"}
 

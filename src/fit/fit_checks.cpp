@@ -28,6 +28,7 @@ const char* force_score_name(ForceScore s) {
   switch (s) {
     case ForceScore::pointwise: return "pointwise";
     case ForceScore::loading_and_cycles: return "loading_and_cycles";
+    case ForceScore::loading_and_peaks: return "loading_and_peaks";
     case ForceScore::automatic: return "auto";
   }
   return "unknown";

@@ -105,6 +105,7 @@ void read_fit_header(const MapView& root, const fs::path& path, const FitLoadOpt
                                           objective_name(spec.objective));
     spec.force_score = root.enumeration<ForceScore>(*n, "force_score", {{"pointwise", ForceScore::pointwise},
                                                                         {"loading_and_cycles", ForceScore::loading_and_cycles},
+                                                                        {"loading_and_peaks", ForceScore::loading_and_peaks},
                                                                         {"auto", ForceScore::automatic}});
   }
 }

@@ -22,7 +22,7 @@
 //               starts: 1, basin_tolerance: 1e-3, basin_distance: 1e-3}  # multi-start (fit/convergence.hpp)
 //   noise: {area: 0.002, force: 0.002, stick_slip: 0.05}   # area_and_force: residual units, each
 //                                  # in [kNoiseMin, kNoiseMax] = [1e-12, 1e3] (below)
-//   force_score: auto              # or pointwise | loading_and_cycles; area_and_force only (objective.hpp)
+//   force_score: auto              # or pointwise | loading_and_cycles | loading_and_peaks; area_and_force only (objective.hpp)
 //   intervals: true                # or {hessian_step: 0.01}; area_and_force only (default true)
 //   profile: {parameter: model.alpha_b, span: 0.2, points: 11}   # or false; parameter: a key, a list, or all
 //   error_bars: {experiment.E: 0.1e6, experiment.k_L: 200, ...}  # one-at-a-time ± refits

@@ -54,6 +54,8 @@ enum class ForceScore {
   pointwise,           // every sample against the model's Q at its instant
   loading_and_cycles,  // samples to the measured first peak pointwise; the stick-slip after it by
                        // its mean drop and period (read the same way from both curves)
+  loading_and_peaks,   // the loading branch as loading_and_cycles; the peaks after it each paired
+                       // by time with the model's (observe/peak_pairing.hpp)
   automatic,           // per experiment: loading_and_cycles where the measured Q(t) shows two
                        // complete stick-slip cycles or more, else pointwise (objective.hpp)
 };

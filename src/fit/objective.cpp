@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "observe/peak_pairing.hpp"
 #include "observe/sampled_cycles.hpp"
 
 namespace asperity {
@@ -37,6 +38,10 @@ struct MeasuredShape {
   SampledCycles cycles;
   double min_drop = 0, floor_N = 0, min_peak_N = 0;  // the estimator's settings, for the model's curve
   double sigma_drop_N = 0, sigma_period_s = 0;
+  // loading_and_peaks: the measured peaks compared (the first six: five cycles) and the scale of
+  // their pairing with the model's.
+  std::size_t peaks_compared = 0;
+  PeakPairingScale pairing;
 };
 
 MeasuredShape measured_shape(const Scene& scene, const MeasuredForce& f, const FitNoise& noise) {
@@ -60,6 +65,17 @@ MeasuredShape measured_shape(const Scene& scene, const MeasuredForce& f, const F
     const double miss = rise * dt;  // how far a sampled maximum may sit below the true one
     m.sigma_drop_N = std::sqrt((2.0 * sigma_Q * sigma_Q + miss * miss / 6.0) / c.n_drops);
     if (c.n_periods > 0) m.sigma_period_s = dt / (std::sqrt(3.0) * c.n_periods);
+    // One peak each: its drop as one of the means' n_d, its t_cross uniform within its sampling
+    // interval on either curve (σ = dt/√12 each, dt/√6 their difference). Compared up to midway
+    // to the first peak left out (else the window's end), faded over half a measured period.
+    constexpr std::size_t compared = 6;
+    m.peaks_compared = std::min(c.peaks.size(), compared);
+    m.pairing.sigma_t_s = dt / std::sqrt(6.0);
+    m.pairing.sigma_drop_N = std::sqrt(2.0 * sigma_Q * sigma_Q + miss * miss / 6.0);
+    m.pairing.t_window_s = c.peaks.size() > compared
+                               ? 0.5 * (c.peaks[compared - 1].t_cross + c.peaks[compared].t_cross)
+                               : f.t_s.back();
+    m.pairing.taper_s = c.n_periods > 0 ? 0.5 * c.mean_period : dt;
   }
   return m;
 }
@@ -101,7 +117,12 @@ int area_and_force_count(const Scene& scene, const FitExperiment& fe, const FitN
     if (applied_score(score, m) == ForceScore::pointwise) {
       n += static_cast<int>(fe.force->t_s.size());
     } else {
-      n += static_cast<int>(m.loading_end) + (m.cycles.n_drops > 0 ? 1 : 0) + (m.cycles.n_periods > 0 ? 1 : 0);
+      n += static_cast<int>(m.loading_end);
+      if (applied_score(score, m) == ForceScore::loading_and_peaks) {
+        n += 2 * static_cast<int>(m.peaks_compared);
+      } else {
+        n += (m.cycles.n_drops > 0 ? 1 : 0) + (m.cycles.n_periods > 0 ? 1 : 0);
+      }
     }
   }
   if (fe.has_target()) n += 2;
@@ -134,12 +155,17 @@ JointTerms area_and_force_terms(const Scene& scene, const Observables& obs, cons
     // not depend on how many the means take), held at its first peak after that peak's instant
     // (the same reading as the measured peak's, so the truth scores only the noise).
     double t_hold = std::numeric_limits<double>::infinity(), Q_hold = 0;
-    if (t.score == ForceScore::loading_and_cycles) {
+    if (t.score == ForceScore::loading_and_cycles || t.score == ForceScore::loading_and_peaks) {
       end = m.loading_end;
       const SampledCycles& mc = m.cycles;
       const SampledCycles model = sampled_cycles(f.t_s, Q, m.min_drop, m.floor_N, 1, m.min_peak_N);
       if (!model.peaks.empty()) t_hold = model.peaks.front().t_max, Q_hold = model.peaks.front().Q_max;
-      if (mc.n_drops > 0) {  // over as many drops and periods as the measured curve shows
+      if (t.score == ForceScore::loading_and_peaks) {
+        if (m.peaks_compared > 0) {
+          t.cycles = pair_peaks(std::span(mc.peaks).first(m.peaks_compared), model.peaks, m.pairing).chi2;
+          t.n_cycles = 2 * static_cast<int>(m.peaks_compared);
+        }
+      } else if (mc.n_drops > 0) {  // over as many drops and periods as the measured curve shows
         const double rd = (model_mean_drop(model, mc.n_drops) - mc.mean_drop) / m.sigma_drop_N;
         t.cycles += rd * rd;
         t.n_cycles = 1;

@@ -37,6 +37,15 @@ std::vector<double> model_force_at(const std::vector<Sample>& series, std::span<
 //            The model's drops are taken at its first n_d peaks, each to its lowest Q so far (a
 //            measured trough seen only by grace of the noise at the window's end must not
 //            cost the model its drop); a model without peaks (periods) counts as drop (period) = 0.
+//            loading_and_peaks: the measured curve's first six peaks (five cycles) each paired by
+//            time with the model's peaks (observe/peak_pairing.hpp), two residuals per measured
+//            peak: a pair costs its t_cross difference over σ_t = dt/√6 (each timed within its
+//            interval) plus its drop difference over one peak's σ_drop (n_d = 1 above); a peak
+//            left unpaired costs its drop's excess over its threshold in σ_drop, faded over half
+//            a measured period before the compared span ends (midway to the seventh measured
+//            peak, else the window's end). A precursor near the threshold that noise finds in
+//            one curve and not the other then costs about nothing, where pairing by order
+//            compares every later peak with the wrong one.
 //            auto: loading_and_cycles where the measured Q(t) shows two complete cycles or more
 //            (n_p ≥ 2), else pointwise: through the first cycle the phase has had no time to
 //            drift, the samples after the peak still inform, and pointwise recovers the truth

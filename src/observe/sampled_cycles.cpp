@@ -22,7 +22,7 @@ SampledCycles sampled_cycles(std::span<const double> t, std::span<const double> 
       } else if (const double level = Q[top] - fall_of(Q[top]); Q[k] < level && Q[top] >= min_peak_N) {
         // Q[k - 1] ≥ level > Q[k]: the crossing lies in this interval.
         const double w = (Q[k - 1] - level) / (Q[k - 1] - Q[k]);
-        out.peaks.push_back({t[top], Q[top], t[k - 1] + w * (t[k] - t[k - 1]), Q[k]});
+        out.peaks.push_back({t[top], Q[top], t[k - 1] + w * (t[k] - t[k - 1]), Q[k], false, fall_of(Q[top])});
         seeking_max = false;
         trough = k;
       }

@@ -20,6 +20,7 @@ struct SampledPeak {
   double t_cross = 0;           // s: when Q fell through Q_max − the fall
   double Q_min = 0;             // N: the trough so far
   bool trough_seen = false;     // Q rose again by the fall after it: Q_min is the trough
+  double fall_N = 0;            // N: the fall that made it a peak (Q_max − Q_min ≥ fall_N)
 };
 
 struct SampledCycles {

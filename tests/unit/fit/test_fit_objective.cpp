@@ -195,4 +195,19 @@ TEST_CASE("loading_and_cycles scores the loading branch held at the peak, and th
   for (Sample& s : flat) s.Q = std::min(s.t, 0.99);
   CHECK(area_and_force_terms(scene, obs, {}, flat, fe, noise, ForceScore::loading_and_cycles).cycles ==
         Approx(std::pow(0.99 / sigma_drop, 2) + std::pow(1.0 / sigma_period, 2)));
+
+  // loading_and_peaks: the same loading branch; the five measured peaks (t_cross 0.9905 … 4.9905 s,
+  // where Q crosses 0.99 − 0.0495) paired by time with the model's (observe/peak_pairing.hpp),
+  // two residuals each. Itself: 0. Without a peak: each measured one unpaired at its drop's excess
+  // over the fall 5 σ_Q = 0.0495 N, in units of one peak's σ_drop, at full weight (the window's
+  // end lies 0.51 s after the last, beyond the taper of half a period).
+  CHECK(area_and_force_count(scene, fe, noise, ForceScore::loading_and_peaks) == 110);
+  const JointTerms zp = area_and_force_terms(scene, obs, {}, same, fe, noise, ForceScore::loading_and_peaks);
+  CHECK(zp.n_force == 100);
+  CHECK(zp.n_cycles == 10);
+  CHECK(zp.cycles == Approx(0.0).margin(1e-20));
+  const double sigma_peak = std::sqrt(2 * sigma_Q * sigma_Q + miss * miss / 6);
+  const JointTerms fp = area_and_force_terms(scene, obs, {}, flat, fe, noise, ForceScore::loading_and_peaks);
+  CHECK(fp.cycles == Approx(5 * std::pow((0.99 - 0.0495) / sigma_peak, 2)).epsilon(1e-9));
+  CHECK(fp.force == Approx(z.force).margin(1e-12));
 }

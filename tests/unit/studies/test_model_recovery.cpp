@@ -5,6 +5,7 @@
 // (studies) because it runs the generator and the fit, two layers side by side (src/layers.txt).
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -13,6 +14,7 @@
 
 #include "fit/fit.hpp"
 #include "fit/fit_load.hpp"
+#include "fit/objective.hpp"
 #include "generate/synthetic.hpp"
 #include "generate/synthetic_recipe.hpp"
 #include "observe/simulate.hpp"
@@ -34,6 +36,7 @@ struct RecoveryCase {
   std::uint64_t seed = 1;
   int starts = 8;
   double window = 1.15;       // the Q(t) window, in units of the truth's t_peak
+  std::string score = "auto";  // force_score
 };
 
 const char* kParameters =
@@ -70,7 +73,7 @@ void check_recovery(const RecoveryCase& c) {
   write_synthetic_experiment(recipe, x, dir / "syn");
 
   const std::string head = "objective: area_and_force\nexperiments: [{scene: scene.yaml, force: measured_Qt.csv}]\n"
-                           "noise: {area: 0.002, force: 0.002}\nprofile: false\n";
+                           "noise: {area: 0.002, force: 0.002}\nprofile: false\nforce_score: " + c.score + "\n";
   const double truth[3] = {c.truth.alpha_b, c.truth.epsilon, c.truth.eta};
   // J at the truth: one evaluation started there.
   const FitResult at_truth = fit_text(dir / "syn" / "truth.yaml",
@@ -153,29 +156,32 @@ TEST_CASE("the interacting model's (alpha_b, epsilon, eta) are recovered from it
   check_recovery({"elastic-b-heavy", 0.25, 30, 4e-4, SyntheticTruth{1.5e-15, 0.75, 60, "elastic"}, 42});
 }
 
-// OPEN (hidden: fails as measured; CHANGELOG.md): truth b (1.5e-15, 0.75, 60) at the
-// light load (M = 0.1 kg). Independent model, 12 starts: certified (2 of 12) and J_fit < J_truth,
-// but the truth lies outside 2 sigma (noise seed 21: alpha_b z = 2.56, epsilon z = -2.77; seed 23:
-// eta z = 5.46, sigma 0.5 % of eta, a third of the heavy load's). Interacting model, 16 starts:
-// 1 of 16 in the best basin (J 353.3 < J_truth 364.2), not certified.
+// OPEN (hidden: fails as measured; docs/calibration.md, "The open light-load case"): truth b
+// (1.5e-15, 0.75, 60) at the light load (M = 0.1 kg), scored with the peaks paired by time.
+// Independent model, 16 starts, noise seed 23: certified (2 of 16), J_fit 196.50 < J_truth
+// 202.09, epsilon and eta within 1 sigma, alpha_b at z = -2.49 (sigma 0.14 %). Interacting
+// model, 16 starts, seed 41: certified (2 of 16), J_fit 281.55 < J_truth 287.53, alpha_b and eta
+// within 1.2 sigma, epsilon at z = 2.27. With 8 starts neither certifies (1 of 8).
 //   build/asperity_tests_studies "[recovery_open]" -s
 TEST_CASE("open: recovery of truth b at the light load, both models", "[.][recovery_open]") {
   SECTION("independent") {
-    check_recovery({"b-light", 0.1, 30, 0, SyntheticTruth{1.5e-15, 0.75, 60, "none"}, 23, 12});
+    check_recovery({"b-light", 0.1, 30, 0, SyntheticTruth{1.5e-15, 0.75, 60, "none"}, 23, 16, 1.15, "loading_and_peaks"});
   }
   SECTION("interacting") {
-    check_recovery({"elastic-b-light", 0.1, 30, 4e-4, SyntheticTruth{1.5e-15, 0.75, 60, "elastic"}, 41, 16});
+    check_recovery({"elastic-b-light", 0.1, 30, 4e-4, SyntheticTruth{1.5e-15, 0.75, 60, "elastic"}, 41, 16, 1.15, "loading_and_peaks"});
   }
 }
 
-// OPEN (hidden: fails as measured): the cycle term at the truth when noise can change the peaks
-// found. Truth b at the light load: its window holds small precursor falls near the estimator's
-// threshold, so a noise realization finds a peak more or fewer than the noise-free curve, and the
-// i-th peaks of model and data are then different events (docs/calibration.md, "The open
-// light-load case"). The closed-form deviations of fit/objective.hpp assume the peaks stay.
-//   build/asperity_tests_studies "[cycle_open]" -s
-TEST_CASE("open: the cycle term at the truth stays a chi-square when noise changes the peaks found",
-          "[.][cycle_open]") {
+// The Q(t) score at the truth when noise can change the peaks found. Truth b at the light load:
+// its window holds small precursor falls near the estimator's threshold, so a noise realization
+// finds a peak more or fewer than the noise-free curve (docs/calibration.md, "The open light-load
+// case"). Read by mean drop and period (peaks paired by order) the i-th peaks of model and data
+// are then different events, and the cycle term at the truth is 31-49 over its 2 residuals at six
+// of the ten seeds (measured). Paired by time, the term stays at most its residual count: 0.5-3.4
+// over 8-10 (the deviations are the sampling's, wider than the noise alone; measured
+// 2026-11-29 with this test and -s).
+TEST_CASE("the peaks paired by time keep the Q(t) score at the truth a chi-square when noise changes the peaks found",
+          "[recovery][pairing]") {
   const fs::path dir = fresh_dir("asperity-cycle-chi2");
   const fs::path base = write_base_scene(dir, 0.1, 30, 0);
   const SyntheticTruth b{1.5e-15, 0.75, 60, "none"};
@@ -184,8 +190,8 @@ TEST_CASE("open: the cycle term at the truth stays a chi-square when noise chang
   REQUIRE(peak.obs.peak_found);
   const double end = std::ceil(1.15 * peak.obs.t_peak / 0.005) * 0.005;
   FitNoise noise;  // 0.002 on both curves, as generated
-  double sum = 0, worst = 0;
-  int n = 0;
+  double by_order = 0, by_time = 0, worst_by_time = 0;
+  int n = 0, changed = 0;
   for (std::uint64_t seed = 21; seed <= 30; ++seed) {
     const fs::path sub = dir / std::to_string(seed);
     const SyntheticRecipe recipe = load_synthetic_recipe(
@@ -196,14 +202,22 @@ TEST_CASE("open: the cycle term at the truth stays a chi-square when noise chang
     const RunResult r = simulate(scene);
     FitExperiment fe;
     fe.force = x.force;
-    const JointTerms t = area_and_force_terms(scene, r.obs, r.recorder.loading_branch(), r.recorder.series(), fe,
-                                              noise, ForceScore::automatic);
-    if (t.score != ForceScore::loading_and_cycles) continue;  // fewer than two cycles: pointwise
-    sum += t.cycles, worst = std::max(worst, t.cycles), ++n;
-    std::printf("seed %d: cycle term %.3g over %d\n", static_cast<int>(seed), t.cycles, t.n_cycles);
+    const auto terms = [&](ForceScore score) {
+      return area_and_force_terms(scene, r.obs, r.recorder.loading_branch(), r.recorder.series(), fe, noise, score);
+    };
+    const JointTerms cycles = terms(ForceScore::loading_and_cycles), peaks = terms(ForceScore::loading_and_peaks);
+    REQUIRE(peaks.n_cycles >= 8);  // four peaks or more compared, two residuals each
+    by_order = std::max(by_order, cycles.cycles);
+    by_time += peaks.cycles / peaks.n_cycles, worst_by_time = std::max(worst_by_time, peaks.cycles / peaks.n_cycles);
+    changed += cycles.cycles > 10 ? 1 : 0;
+    ++n;
+    std::printf("seed %d: by order %.3g over %d, by time %.3g over %d\n", static_cast<int>(seed), cycles.cycles,
+                cycles.n_cycles, peaks.cycles, peaks.n_cycles);
   }
-  INFO(n << " seeds scored by cycles: mean cycle term " << sum / n << ", largest " << worst);
-  REQUIRE(n >= 5);
-  CHECK(sum / n < 6);  // a chi-square over its 2 residuals has mean 2
+  INFO("by time, per residual: mean " << by_time / n << ", largest " << worst_by_time << "; by order, largest "
+                                      << by_order << " (" << changed << " seeds above 10)");
+  CHECK(changed >= 3);             // the case does change the peaks found (6 of 10 measured)
+  CHECK(by_time / n < 0.5);        // a chi-square per residual: at most 1 on average (0.17 measured)
+  CHECK(worst_by_time < 1.0);      // 0.34 measured
   fs::remove_all(dir);
 }
