@@ -12,6 +12,7 @@
 #include "io/input_error.hpp"
 #include "io/numbers.hpp"
 #include "scene/topography_junctions.hpp"
+#include "scene/topography_recipe.hpp"
 #include "surface/height_map_io.hpp"
 #include "surface/tangential_contact.hpp"
 
@@ -43,13 +44,14 @@ SurfaceContactInput surface_contact_input(const std::string& where, const py::ob
   if (n > kMaxHeightMapSide)
     throw InputError(where, 0, "heights", std::to_string(n) + " pixels a side: at most " + std::to_string(kMaxHeightMapSide));
   if (const std::string why = pixel_size_problem(pixel_m); !why.empty()) throw InputError(where, 0, "pixel_m", why);
-  const auto positive = [&](double v, const char* key) {
-    if (!(v > 0) || !std::isfinite(v)) throw InputError(where, 0, key, "must be positive and finite, got " + scene_io::format_double(v));
+  // The recipe's own ranges (scene/topography_recipe.hpp), named by the argument.
+  const auto in_range = [&](const char* argument, const char* key, double v) {
+    if (const std::string why = topography_number_problem(key, v); !why.empty()) throw InputError(where, 0, argument, why);
   };
-  positive(sphere_radius_m, "sphere_radius_m"), positive(load_N, "load_N"), positive(E, "E"), positive(tolerance, "tolerance");
-  if (!(nu > 0 && nu <= 0.5)) throw InputError(where, 0, "nu", "must lie in (0, 0.5], got " + scene_io::format_double(nu));
-  if (max_iterations < 1) throw InputError(where, 0, "max_iterations", "must be at least 1");
-  if (connectivity != 4 && connectivity != 8) throw InputError(where, 0, "connectivity", "must be 4 or 8");
+  in_range("sphere_radius_m", "sphere_radius_m", sphere_radius_m), in_range("load_N", "load_N", load_N);
+  in_range("E", "E", E), in_range("nu", "nu", nu), in_range("tolerance", "contact.tolerance", tolerance);
+  in_range("max_iterations", "contact.max_iterations", max_iterations);
+  in_range("connectivity", "contact.connectivity", connectivity);
   SurfaceContactInput in;
   HeightMap& map = in.map;
   map.n = n;

@@ -53,6 +53,12 @@ struct RecipeProblem {
 };
 std::optional<RecipeProblem> topography_recipe_problem(const TopographyRecipe& recipe);
 
+// The range of one number of the recipe's elastomer, load and contact solve, by its key in the
+// recipe ("sphere_radius_m", "E", "nu", "load_N", "contact.tolerance", "contact.max_iterations",
+// "contact.connectivity"): the message when `value` lies outside it, else empty. The one place
+// these ranges are written, for the recipe's loader and the Python bindings alike.
+std::string topography_number_problem(const std::string& key, double value);
+
 // The recipe as a scene's lifted `topography:` section (two-space indent under it, every value
 // explicit, numbers round-trip exactly, the map file absolute): what scene.yaml repeats and what
 // the contact cache hashes. `with_slider` false leaves out name and slider (not part of the solve).

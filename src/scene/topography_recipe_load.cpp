@@ -126,28 +126,29 @@ void read_rest(const MapView& top, TopographyRecipe& r) {
     r.name = top.string(*n, "name");
     if (r.name.empty() || scene_io::has_control_char(r.name)) top.fail_at(*n, "name", "must be a non-empty single-line name");
   }
-  r.sphere_radius_m = positive(top, "sphere_radius_m", "m");
-  r.E_Pa = positive(top, "E", "Pa");
-  {
-    const YAML::Node n = top.require("nu");
-    r.nu = top.number(n, "nu", nullptr);
-    if (!(r.nu >= 0.0 && r.nu <= 0.5)) top.fail_at(n, "nu", "must be in [0, 0.5], got " + num(r.nu));
-  }
-  r.load_N = positive(top, "load_N", "N");
+  // Ranges: topography_number_problem (topography_recipe.hpp), shared with the Python bindings.
+  const auto in_range = [](const MapView& m, const YAML::Node& n, const std::string& key, const std::string& checked,
+                           double x) {
+    if (const std::string why = topography_number_problem(checked, x); !why.empty()) m.fail_at(n, key, why);
+    return x;
+  };
+  const auto number = [&](const char* key, const char* unit) {
+    const YAML::Node n = top.require(key);
+    return in_range(top, n, key, key, top.number(n, key, unit));
+  };
+  r.sphere_radius_m = number("sphere_radius_m", "m");
+  r.E_Pa = number("E", "Pa");
+  r.nu = number("nu", nullptr);
+  r.load_N = number("load_N", "N");
   if (const auto cn = top.find("contact")) {
     const MapView m(src, *cn, top.key("contact"), {"tolerance", "max_iterations", "connectivity"});
-    if (const auto n = m.find("tolerance")) {
-      r.tolerance = m.number(*n, "tolerance", nullptr);
-      if (!(r.tolerance >= 1e-15 && r.tolerance < 1)) m.fail_at(*n, "tolerance", "must be in [1e-15, 1)");
-    }
-    if (const auto n = m.find("max_iterations")) {
-      r.max_iterations = m.integer(*n, "max_iterations");
-      if (r.max_iterations < 1 || r.max_iterations > 1'000'000)
-        m.fail_at(*n, "max_iterations", "must be in [1, 1000000], got " + std::to_string(r.max_iterations));
-    }
+    if (const auto n = m.find("tolerance"))
+      r.tolerance = in_range(m, *n, "tolerance", "contact.tolerance", m.number(*n, "tolerance", nullptr));
+    if (const auto n = m.find("max_iterations"))
+      r.max_iterations = static_cast<int>(
+          in_range(m, *n, "max_iterations", "contact.max_iterations", m.integer(*n, "max_iterations")));
     if (const auto n = m.find("connectivity")) {
-      const int c = m.integer(*n, "connectivity");
-      if (c != 4 && c != 8) m.fail_at(*n, "connectivity", "must be 4 or 8, got " + std::to_string(c));
+      const double c = in_range(m, *n, "connectivity", "contact.connectivity", m.integer(*n, "connectivity"));
       r.connectivity = c == 4 ? Connectivity::four : Connectivity::eight;
     }
   }

@@ -20,6 +20,8 @@ void check(const QuasiStaticJunctions& j) {
     throw std::invalid_argument("quasi-static junctions: E and sigma must be positive and finite");
   for (const double a : j.area_m2)
     if (!(a > 0) || !std::isfinite(a)) throw std::invalid_argument("quasi-static junctions: an area is not positive");
+  if (!(j.tolerance > 0) || j.max_iterations < 1)
+    throw std::invalid_argument("quasi-static junctions: the tolerance and max_iterations must be positive");
   if (j.interacting && n > kMaxQuasiStaticJunctions)
     throw std::invalid_argument("quasi-static junctions: more than " + std::to_string(kMaxQuasiStaticJunctions) +
                                 " interacting junctions (a dense compliance matrix)");
@@ -57,7 +59,7 @@ JunctionCurve quasi_static_junction_curve(const QuasiStaticJunctions& j, const s
   pixel_loops::Workers W(1);
   BoundedCgSettings cs;
   cs.tolerance = j.tolerance;
-  cs.max_iterations = 100000;
+  cs.max_iterations = j.max_iterations;
   std::vector<double> bound(n);
   double total_area = 0;
   for (std::size_t i = 0; i < n; ++i) bound[i] = j.shear_strength_Pa * j.area_m2[i], total_area += j.area_m2[i];

@@ -24,6 +24,8 @@ struct QuasiStaticJunctions {
   bool interacting = false;
   TractionWeighting weighting = TractionWeighting::rigid;
   double tolerance = 1e-10;               // of the bounded CG (relative to X)
+  int max_iterations = 100000;            // of the bounded CG per displacement; a point that
+                                          // reaches it is marked not converged
 };
 
 struct JunctionCurvePoint {

@@ -181,7 +181,10 @@ TEST_CASE("loading_and_cycles scores the loading branch held at the peak, and th
   CHECK(z.cycles == Approx(0.0).margin(1e-20));
   // auto: loading_and_cycles here (four complete cycles measured); pointwise on a window that
   // ends before the third peak (one complete cycle).
-  CHECK(area_and_force_terms(scene, obs, {}, series, fe, noise, ForceScore::automatic).n_force == 100);
+  const JointTerms au = area_and_force_terms(scene, obs, {}, series, fe, noise, ForceScore::automatic);
+  CHECK(au.score == ForceScore::loading_and_cycles);
+  CHECK(au.n_force == 100);
+  CHECK(au.n_cycles == 2);
   FitExperiment short_fe;
   short_fe.force = MeasuredForce{std::vector<double>(f.t_s.begin(), f.t_s.begin() + 250),
                                  std::vector<double>(f.Q_N.begin(), f.Q_N.begin() + 250)};
