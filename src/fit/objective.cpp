@@ -217,7 +217,7 @@ double experiment_residual(FitObjective objective, const Scene& scene, const Obs
       return rd * rd + rp * rp;
     }
     case FitObjective::area_and_force:  // needs the series and the force curve: area_and_force_terms
-    case FitObjective::user: break;     // the caller's term (fit.cpp)
+    case FitObjective::user: break;     // the caller's term (fit_problem.cpp)
   }
   return Observables::nan;
 }

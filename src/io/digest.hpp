@@ -4,7 +4,7 @@
 // check, since anyone can make a line with any wanted FNV value in microseconds. SHA-256 cannot be
 // matched by a damaged or spliced line; a deliberate forger can still recompute it, which is why
 // a fit also re-runs its best point (fit/fit.cpp) and a store keeps points.csv equal to its
-// journal (campaign/sweep.cpp).
+// journal (campaign/sweep_store_provenance.cpp).
 #include <filesystem>
 #include <string>
 #include <string_view>
