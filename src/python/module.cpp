@@ -61,6 +61,38 @@ py::dict summary_dict(const Observables& o) {
   return d;
 }
 
+// An optimization's profiles: one dict per profiled parameter, its points as NumPy arrays.
+py::list profiles_list(const FitSpec& spec, const Optimization& o) {
+  py::list out;
+  for (const ParameterProfile& pp : o.profiles) {
+    py::dict d;
+    d["parameter"] = spec.parameters.at(pp.parameter).key;
+    std::vector<double> factor, value, objective;
+    for (const ProfilePoint& q : pp.points) factor.push_back(q.factor), value.push_back(q.value), objective.push_back(q.objective);
+    d["factor"] = py::array_t<double>(static_cast<py::ssize_t>(factor.size()), factor.data());
+    d["value"] = py::array_t<double>(static_cast<py::ssize_t>(value.size()), value.data());
+    d["objective"] = py::array_t<double>(static_cast<py::ssize_t>(objective.size()), objective.data());
+    d["interval"] = py::make_tuple(pp.lo, pp.hi);
+    d["parabola_sigma"] = pp.parabola_sigma;
+    out.append(d);
+  }
+  return out;
+}
+
+// An optimization's statistical uncertainty (fit.hpp, Uncertainty): sigma per free variable.
+py::dict uncertainty_dict(const Optimization& o) {
+  const Uncertainty& u = o.uncertainty;
+  py::dict d, sigma;
+  d["computed"] = u.computed;
+  d["failure"] = u.failure;
+  d["residuals"] = u.residuals;
+  d["reduced_chi2"] = u.reduced_chi2;
+  for (std::size_t k = 0; k < o.variables.size() && k < u.sigma.size(); ++k)
+    sigma[py::str(o.variables[k].label)] = u.sigma[k];
+  d["sigma"] = sigma;
+  return d;
+}
+
 py::array_t<double> column(const std::vector<Sample>& s, double Sample::*field) {
   py::array_t<double> a(static_cast<py::ssize_t>(s.size()));
   auto m = a.mutable_unchecked<1>();
@@ -480,6 +512,8 @@ PYBIND11_MODULE(_asperity, m) {
       py::dict runs;
       for (const ExperimentRun& r : o.best_runs) runs[py::str(spec.experiments[r.experiment].name)] = summary_dict(r.obs);
       d["runs"] = runs;
+      d["profiles"] = profiles_list(spec, o);
+      d["uncertainty"] = uncertainty_dict(o);
       fits.append(d);
     }
     py::dict d;

@@ -185,3 +185,31 @@ def test_defaults_are_the_command_lines():
     # --no-error-bars.
     p = inspect.signature(asperity.fit).parameters
     assert p["threads"].default is None and p["profile"].default is True and p["error_bars"].default is True
+
+
+def test_fit_result_tables_match_its_dict(source):
+    """FitResult's DataFrames repeat the dict's numbers. area_curve is not a chi-square, so its
+    certified optimum (two starts agree) gets no intervals: sigma and the interval are NaN."""
+    base = source / "tests" / "data" / "scene"
+    d = spec(objective="area_curve", profile={"parameter": "model.alpha_b", "span": 0.1, "points": 5})
+    d["optimizer"] = {"algorithm": "LN_BOBYQA", "xtol_rel": 1e-6, "max_evaluations": 60, "initial_step": 0.1,
+                      "starts": 2}
+    result = asperity.fit(d, base=base, threads=1, progress=False)
+    assert isinstance(result, asperity.FitResult) and isinstance(result, dict)
+    (f,) = result["fits"]
+    assert f["converged"] == "yes" and not f["uncertainty"]["computed"]
+    params = result.parameters
+    assert list(params["parameter"]) == ["model.alpha_b"] and list(params["fit"]) == [f["label"]]
+    assert params["value"][0] == f["best"]["model.alpha_b"] and params["objective"][0] == f["objective"]
+    assert params["converged"][0] == "yes"
+    assert np.isnan(params["sigma"][0]) and np.isnan(params["lo95"][0]) and np.isnan(params["hi95"][0])
+    prof = result.profiles
+    assert len(prof) == 5 and set(prof["parameter"]) == {"model.alpha_b"}
+    assert prof["factor"].tolist() == pytest.approx([0.9, 0.95, 1.0, 1.05, 1.1])
+    assert prof["value"].tolist() == pytest.approx((prof["factor"] * f["best"]["model.alpha_b"]).tolist(), rel=1e-12)
+    centre = prof[prof["factor"] == 1.0]["objective"].iloc[0]
+    assert centre == pytest.approx(f["objective"], rel=1e-9)  # the profile passes through the optimum
+    assert prof["objective"].min() == pytest.approx(f["objective"], rel=1e-9)
+    runs = result.runs
+    assert list(runs["experiment"]) == ["small"] and runs["Q_s"][0] == f["runs"]["small"]["Q_s"]
+    assert runs.attrs["units"]["Q_s"] == "N"

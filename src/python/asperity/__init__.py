@@ -31,7 +31,7 @@ from . import plot  # figures with matplotlib (imported when a function draws)
 __version__: str = _asperity.__version__  # the number `asperity --version` prints
 
 __all__ = ["InputError", "SolverError", "Scene", "Result", "load_scene", "run", "measured", "sweep",
-           "fit", "read_store", "read_series", "generate_junctions", "tangential_contact", "units", "version", "plot"]
+           "fit", "FitResult", "read_store", "read_series", "generate_junctions", "tangential_contact", "units", "version", "plot"]
 
 _PathLike = _Union[str, _os.PathLike]
 
@@ -222,9 +222,55 @@ def _objective_term(objective, series: bool):
     return term
 
 
+class FitResult(dict):
+    """What `fit` returns: the dict described there, plus its tables as pandas DataFrames (one row
+    per fit and parameter, profile point or experiment; the fit's label in column "fit").
+    Intervals are given only for a fit whose optimum is certified (two starts or more in its best
+    basin) and whose Hessian was computed: elsewhere sigma and the interval are NaN."""
+
+    @property
+    def parameters(self):
+        """value, sigma (marginal), lo95 and hi95 (value -+ 1.96 sigma), the fit's objective,
+        converged and reduced_chi2, one row per fit and free parameter."""
+        import pandas as pd  # only needed here
+        rows = []
+        for f in self["fits"]:
+            u = f.get("uncertainty", {})
+            for key, value in f["best"].items():
+                sigma = u.get("sigma", {}).get(key, float("nan")) if u.get("computed") else float("nan")
+                rows.append({"fit": f["label"], "parameter": key, "value": value, "sigma": sigma,
+                             "lo95": value - 1.96 * sigma, "hi95": value + 1.96 * sigma,
+                             "objective": f["objective"], "converged": f["converged"],
+                             "reduced_chi2": u.get("reduced_chi2", float("nan"))})
+        return pd.DataFrame(rows, columns=["fit", "parameter", "value", "sigma", "lo95", "hi95", "objective",
+                                           "converged", "reduced_chi2"])
+
+    @property
+    def profiles(self):
+        """The objective through each fit's optimum along each profiled parameter (the others at
+        the optimum): fit, parameter, factor (value / optimum), value, objective."""
+        import pandas as pd  # only needed here
+        frames = [pd.DataFrame({"fit": f["label"], "parameter": p["parameter"], "factor": p["factor"],
+                                "value": p["value"], "objective": p["objective"]})
+                  for f in self["fits"] for p in f.get("profiles", [])]
+        columns = ["fit", "parameter", "factor", "value", "objective"]
+        return pd.concat(frames, ignore_index=True) if frames else pd.DataFrame(columns=columns)
+
+    @property
+    def runs(self):
+        """Each fit's best run of each experiment: fit, experiment and every observable (the
+        summary's fields; units in .attrs["units"])."""
+        import pandas as pd  # only needed here
+        rows = [{"fit": f["label"], "experiment": name, **summary}
+                for f in self["fits"] for name, summary in f["runs"].items()]
+        frame = pd.DataFrame(rows)
+        frame.attrs["units"] = _units_of(frame.columns, "observables")
+        return frame
+
+
 def fit(spec: _Union[_PathLike, _Mapping[str, _Any]], out: _PathLike = "", threads: _Optional[int] = None,
         profile: bool = True, error_bars: bool = True, progress=True, objective=None, series: bool = False,
-        base: _Optional[_PathLike] = None) -> dict:
+        base: _Optional[_PathLike] = None) -> FitResult:
     """Runs a calibration (as `asperity fit`, with its defaults: every hardware thread, the
     profile and the error-bar refits the spec asks for). `spec`: a fit YAML file, or a dict of
     the same keys checked by the same loader (one-line errors naming the key, located at
@@ -237,9 +283,13 @@ def fit(spec: _Union[_PathLike, _Mapping[str, _Any]], out: _PathLike = "", threa
     fit and is raised. Writes the results folder when `out` is given (not with `objective`),
     journaling every evaluation there as it finishes (Ctrl-C raises KeyboardInterrupt within a
     second; the same call again resumes). `threads`: 1 to 1024, as `--threads` (None: all).
-    Returns {"name", "fits": [{"label", "best": {key: value}, "objective", "evaluations",
-    "stop_reason", "failure", "runs": {experiment: summary}}], "wall_s", "replayed", "computed",
-    "fit_yaml"} (replayed: evaluations answered from the journal in `out`; computed: run now).
+    Returns a FitResult: the dict {"name", "fits": [{"label", "best": {key: value}, "objective",
+    "evaluations", "stop_reason", "failure", "converged", "starts", "in_best_basin", "spread",
+    "runs": {experiment: summary}, "profiles": [{"parameter", "factor", "value", "objective",
+    "interval", "parabola_sigma"}], "uncertainty": {"computed", "failure", "residuals",
+    "reduced_chi2", "sigma": {key: sigma}}}], "wall_s", "replayed", "computed", "fit_yaml"}
+    (replayed: evaluations answered from the journal in `out`; computed: run now), whose
+    .parameters, .profiles and .runs are DataFrames.
     `progress`: a tqdm counter of the optimizations' evaluations when tqdm is installed (False:
     none; a callable: called as progress(evaluations, 0) every 0.1 s and at the end)."""
     if isinstance(spec, _Mapping):
@@ -251,8 +301,8 @@ def fit(spec: _Union[_PathLike, _Mapping[str, _Any]], out: _PathLike = "", threa
     term = None if objective is None else _objective_term(objective, series)
     callback, bar = _progress(progress, "fit", "evaluation")
     try:
-        return _asperity.fit(spec, _os.fspath(out), threads, profile, error_bars, callback, term, series,
-                             None if base is None else _os.fspath(base))
+        return FitResult(_asperity.fit(spec, _os.fspath(out), threads, profile, error_bars, callback, term, series,
+                                       None if base is None else _os.fspath(base)))
     finally:
         if bar is not None:
             bar.close()

@@ -57,10 +57,17 @@ def tangential_contact(heights: np.ndarray, pixel_m: float, *, sphere_radius_m: 
 def measured(scene: Scene) -> Optional[dict[str, np.ndarray]]: ...
 def sweep(campaign: _PathLike, out: _PathLike = "", threads: Optional[int] = None, shard: str = "0/1",
           progress: _Progress = True) -> dict[str, Any]: ...
+class FitResult(dict[str, Any]):
+    @property
+    def parameters(self) -> Any: ...  # pandas.DataFrame
+    @property
+    def profiles(self) -> Any: ...  # pandas.DataFrame
+    @property
+    def runs(self) -> Any: ...  # pandas.DataFrame
 def fit(spec: Union[_PathLike, Mapping[str, Any]], out: _PathLike = "", threads: Optional[int] = None,
         profile: bool = True, error_bars: bool = True, progress: _Progress = True,
         objective: Optional[Callable[..., float]] = None, series: bool = False,
-        base: Optional[_PathLike] = None) -> dict[str, Any]: ...
+        base: Optional[_PathLike] = None) -> FitResult: ...
 def read_store(path: _PathLike) -> Any: ...  # pandas.DataFrame
 def read_series(path: _PathLike, index: int) -> Any: ...  # pandas.DataFrame
 def units(column: str) -> str: ...
