@@ -41,6 +41,11 @@ namespace asperity {
 inline constexpr const char* kStoreProvenanceFirstLine =
     "# asperity sweep store: written once, when the store was started";
 
+// Whether the folder `dir` (which exists) may take a sweep store: a store already (its
+// provenance.yaml's first line), or what a sweep killed at its very start leaves (.lock,
+// campaign.yaml, temporaries). For check_ours of the command line and the Python module.
+bool is_sweep_store_folder(const std::filesystem::path& dir);
+
 // Most points one sweep process may hold (its shard of the campaign): the journal's index keeps
 // 16 bytes a point, reserved up front (1.6 GB at this size); larger campaigns run as shards.
 inline constexpr std::uint64_t kMaxShardPoints = 100'000'000;

@@ -5,6 +5,7 @@
 #include <cctype>
 #include <charconv>
 #include <ctime>
+#include <fstream>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
@@ -101,6 +102,21 @@ const std::string kInputsFirstLine =
     "complete run (the next run trusts the stored hashes while this text is unchanged)";
 
 }  // namespace
+
+bool is_sweep_store_folder(const fs::path& dir) {
+  std::error_code ec;
+  const fs::path prov = dir / "provenance.yaml";
+  if (fs::is_regular_file(fs::symlink_status(prov, ec))) {
+    std::ifstream f(prov, std::ios::binary);
+    std::string first;
+    if (std::getline(f, first) && first == kStoreProvenanceFirstLine) return true;
+  }
+  for (const auto& e : fs::directory_iterator(dir)) {
+    const std::string n = e.path().filename().string();
+    if (n != ".lock" && n != "campaign.yaml" && n.find(".tmp") == std::string::npos) return false;
+  }
+  return true;
+}
 
 namespace sweep_detail {
 

@@ -53,15 +53,7 @@ int sweep(const SweepArgs& a, const Invocation& inv) {
   // Only into a new or empty folder or a store (its provenance.yaml, or what a sweep killed at its
   // very start leaves): never among a user's files.
   const std::filesystem::path store = a.out.empty() ? std::filesystem::path("results") / c.name : std::filesystem::path(a.out);
-  check_ours(store, "sweep", "--out", [](const std::filesystem::path& d) {
-    if (first_line_is(d / "provenance.yaml", kStoreProvenanceFirstLine))
-      return true;
-    for (const auto& e : std::filesystem::directory_iterator(d)) {
-      const std::string n = e.path().filename().string();
-      if (n != ".lock" && n != "campaign.yaml" && n.find(".tmp") == std::string::npos) return false;
-    }
-    return true;
-  });
+  check_ours(store, "sweep", "--out", is_sweep_store_folder);
   opt.threads = a.threads;
   opt.out = a.out;
   opt.quiet = a.quiet;

@@ -35,6 +35,7 @@
 #include "io/temp_files.hpp"
 #include "io/numbers.hpp"
 #include "observe/simulate.hpp"
+#include "python/campaign_in_store.hpp"
 #include "python/topography_bindings.hpp"
 #include "report/fit_writer.hpp"
 #include "report/run_writer.hpp"
@@ -371,10 +372,23 @@ PYBIND11_MODULE(_asperity, m) {
     return d;
   }, py::arg("scene"));
 
-  m.def("sweep", [](const std::string& campaign, const std::string& out, const py::object& threads, const std::string& shard,
-                   const py::object& progress) {
-    check_no_nul(campaign, "campaign");
+  m.def("sweep", [](const py::object& campaign_arg, const std::string& out, const py::object& threads, const std::string& shard,
+                   const py::object& progress, const py::object& base) {
     check_no_nul(out, "out");
+    std::string campaign;  // the campaign file (a dict's: written into the store, campaign_in_store.hpp)
+    if (py::isinstance<py::dict>(campaign_arg)) {
+      std::filesystem::path dir = std::filesystem::current_path();
+      if (!base.is_none()) {
+        const std::string b = py::str(base);
+        check_no_nul(b, "base");
+        dir = b;
+      }
+      campaign = python::campaign_into_store(yaml_node(campaign_arg, ""), dir, out).string();
+    } else {
+      if (!base.is_none()) throw InputError("", 0, "base", "is for a dict campaign; a file's paths are relative to the file");
+      campaign = py::str(campaign_arg);
+      check_no_nul(campaign, "campaign");
+    }
     SweepOptions o;
     o.threads = threads_argument(threads, "threads", 0);  // 0: every hardware thread
     const Campaign c = load_campaign(campaign);
@@ -399,7 +413,7 @@ PYBIND11_MODULE(_asperity, m) {
     d["ok"] = r.ok, d["failed"] = r.failed, d["wall_s"] = r.wall_s;
     return d;
   }, py::arg("campaign"), py::arg("out") = "", py::arg("threads") = py::none(), py::arg("shard") = "0/1",
-     py::arg("progress") = py::none());
+     py::arg("progress") = py::none(), py::arg("base") = py::none());
 
   m.def("fit", [](const py::object& fit_spec, const std::string& out, const py::object& threads, bool profile, bool error_bars,
                  const py::object& progress, const py::object& objective, bool series, const py::object& base) {

@@ -99,6 +99,36 @@ def test_sweep_and_read_store(source, tmp_path):
     assert asperity.sweep(source / "tests" / "data" / "campaign" / "tiny.yaml", out=store, threads=1)["ran"] == 0
 
 
+def test_sweep_of_a_dict_campaign_equals_the_file(source, tmp_path):
+    """A campaign as a dict: the same points as the file's (values equal to the bit), kept in the
+    store as its campaign.yaml; the same dict resumes, another is refused, errors name the file."""
+    data = source / "tests" / "data" / "campaign"
+    campaign = {"name": "tiny", "scenes": ["tiny_scene.yaml"], "set": {"stop.time": 0.3},
+                "grids": [{"name": "eta_eps", "axes": {"model.eta": [0, 100, 250],
+                                                       "model.epsilon": {"linspace": [0.5, 0.9, 3]}}},
+                          {"name": "mass", "combine": "zip",
+                           "axes": {"experiment.mass": [0.05, 0.1],
+                                    "model.alpha_b": {"logspace": [0.3e-15, 1.2e-15, 2]}}}]}
+    from_dict = asperity.sweep(campaign, out=tmp_path / "d", threads=1, base=data, progress=False)
+    from_file = asperity.sweep(data / "tiny.yaml", out=tmp_path / "f", threads=1, progress=False)
+    assert from_dict["ok"] == from_file["ok"] == 11
+    a, b = asperity.read_store(tmp_path / "d"), asperity.read_store(tmp_path / "f")
+    for column in ("index", "model.eta", "Q_s", "A_s", "t_peak"):
+        assert list(a[column]) == list(b[column]), column
+    kept = (tmp_path / "d" / "campaign.yaml").read_text()
+    assert str(data / "tiny_scene.yaml") in kept  # the scene path made absolute
+    assert asperity.sweep(campaign, out=tmp_path / "d", threads=1, base=data, progress=False)["ran"] == 0
+    other = dict(campaign, set={"stop.time": 0.2})
+    with pytest.raises(asperity.InputError, match="another campaign"):
+        asperity.sweep(other, out=tmp_path / "d", threads=1, base=data, progress=False)
+    assert (tmp_path / "d" / "campaign.yaml").read_text() == kept  # nothing written
+    with pytest.raises(asperity.InputError, match="out="):
+        asperity.sweep(campaign, threads=1, base=data, progress=False)
+    bad = dict(campaign, grids=[{"axes": {"model.etaa": [1, 2]}}])
+    with pytest.raises(asperity.InputError, match=r"campaign\.yaml:\d+: .*model\.etaa"):
+        asperity.sweep(bad, out=tmp_path / "bad", threads=1, base=data, progress=False)
+
+
 def test_read_series_of_a_store_point(source, tmp_path):
     # A series campaign: every point's samples in the store's series.csv, read back per point.
     (tmp_path / "c.yaml").write_text(

@@ -189,16 +189,22 @@ def measured(scene: Scene):
     return _asperity.measured(scene)
 
 
-def sweep(campaign: _PathLike, out: _PathLike = "", threads: _Optional[int] = None,
-          shard: str = "0/1", progress=True) -> dict:
+def sweep(campaign: _Union[_PathLike, _Mapping[str, _Any]], out: _PathLike = "", threads: _Optional[int] = None,
+          shard: str = "0/1", progress=True, base: _Optional[_PathLike] = None) -> dict:
     """Runs (or resumes) a campaign into a store, as `asperity sweep`; returns its counts.
+    `campaign`: a campaign YAML file, or a dict of the same keys; a dict needs `out` (the store
+    keeps it as its campaign.yaml, with its scene paths made absolute against `base`, default the
+    working directory) and is checked by the same loader, whose one-line errors then name that
+    file. The same dict again resumes the store; another is refused.
     `threads`: 1 to 1024, as `--threads` (None: every hardware thread). Ctrl-C raises
     KeyboardInterrupt within a second; the store's journal keeps every finished point, so the
     same call again resumes. `progress`: a tqdm bar of points when tqdm is installed (False:
     none; a callable: called as progress(finished, total) every 0.1 s and at the end)."""
     callback, bar = _progress(progress, "sweep", "point")
     try:
-        return _asperity.sweep(_os.fspath(campaign), _os.fspath(out), threads, shard, callback)
+        spec = dict(campaign) if isinstance(campaign, _Mapping) else _os.fspath(campaign)
+        return _asperity.sweep(spec, _os.fspath(out), threads, shard, callback,
+                               None if base is None else _os.fspath(base))
     finally:
         if bar is not None:
             bar.close()
