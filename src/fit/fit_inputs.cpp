@@ -43,13 +43,17 @@ std::string fit_inputs_text(const FitSpec& spec, const std::vector<std::string>&
   InputsFingerprint t(kFirstLine, build_id, "task", task);
   for (const std::string& o : overrides) t.add("set", hex16(fnv1a64(o)));
   if (spec.file.empty()) t.add("spec", hex16(fnv1a64(spec.memory_text)));  // given in memory: no fit file to hash
+  if (!spec.user_objective_id.empty()) t.add("objective", spec.user_objective_id);
   std::vector<DataFile> files{{"fit", spec.file}};
   for (const FitExperiment& e : spec.experiments) {
     const std::vector<DataFile> f = input_files(e.scene.build());
     files.insert(files.end(), f.begin(), f.end());
     if (!e.force_file.empty()) files.push_back({"force", e.force_file});
   }
-  const fs::path base = fs::absolute(spec.file).lexically_normal().parent_path();
+  // Data paths relative to the fit file's folder (a spec in memory: the folder it was read against).
+  const fs::path base = !spec.file.empty()      ? fs::absolute(spec.file).lexically_normal().parent_path()
+                        : !spec.base_dir.empty() ? spec.base_dir
+                                                 : fs::current_path();
   std::vector<std::string> seen;
   for (const DataFile& f : files) {
     if (f.path.empty()) continue;
@@ -94,6 +98,11 @@ void check_fit_inputs(const fs::path& file, const std::string& expected) {
   if (const std::ptrdiff_t i = line_of(was, "spec"), j = line_of(now, "spec"); (i < 0) != (j < 0) || (i >= 0 && was[i] != now[j]))
     throw InputError(name, i < 0 ? 1 : static_cast<int>(i) + 1, "spec",
                      "the journal was computed from another fit spec (a dict given to asperity.fit, or a fit file)" + fix);
+  if (const std::ptrdiff_t i = line_of(was, "objective"), j = line_of(now, "objective");
+      (i < 0) != (j < 0) || (i >= 0 && was[i] != now[j]))
+    throw InputError(name, i < 0 ? 1 : static_cast<int>(i) + 1, "objective",
+                     "the journal was computed with another objective (a Python callable is known by the digest of "
+                     "its source)" + fix);
   std::vector<std::string> set_was, set_now;
   for (const auto& l : was) if (key_of(l) == "set") set_was.push_back(l);
   for (const auto& l : now) if (key_of(l) == "set") set_now.push_back(l);

@@ -88,7 +88,10 @@ struct ProfileSettings {
 struct FitSpec {
   std::string name;                   // results/fits/<name>/
   std::filesystem::path file;         // the fit file (provenance); empty for a spec given in memory
+  std::filesystem::path base_dir;     // the folder its relative paths were read against
   std::string memory_text;            // a spec given in memory: its YAML (hashed into a journal's inputs)
+  std::string user_objective_id;      // the caller's own objective, as a digest of its source: in a
+                                      // journal's inputs, so an edited one does not resume it
   std::string description;
   FitObjective objective = FitObjective::quadratic_alpha;
   std::vector<FitParameter> parameters;

@@ -416,18 +416,19 @@ PYBIND11_MODULE(_asperity, m) {
      py::arg("progress") = py::none(), py::arg("base") = py::none());
 
   m.def("fit", [](const py::object& fit_spec, const std::string& out, const py::object& threads, bool profile, bool error_bars,
-                 const py::object& progress, const py::object& objective, bool series, const py::object& base) {
+                 const py::object& progress, const py::object& objective, bool series, const py::object& base,
+                 const std::string& objective_id) {
     check_no_nul(out, "out");
     FitOptions fo;
     fo.threads = threads_argument(threads, "threads", hardware_threads());
     // A Python objective: `objective(summary, series)` (series None unless asked; __init__.py
     // wraps the user's callable) gives each experiment's term; the spec's `objective` key is
-    // then absent. Its runs are not journaled: a journal could not tell an edited callable.
+    // then absent. Journaled under `objective_id` (__init__.py: a digest of the callable's source),
+    // so that an edited callable does not resume a journal it did not compute.
     FitLoadOptions lo;
     if (!objective.is_none()) {
-      if (!out.empty())
-        throw InputError("", 0, "out", "a fit with a Python objective is not journaled (a changed callable could not be told "
-                                       "from the one that computed the journal); leave out empty and keep the returned dict");
+      if (!out.empty() && objective_id.empty())
+        throw InputError("", 0, "out", "a fit with a Python objective is journaled only under an identity of the callable");
       lo.user_objective = true;
       lo.user_series = series;
       lo.user_objective_name = "the Python callable given as objective=";
@@ -452,6 +453,7 @@ PYBIND11_MODULE(_asperity, m) {
       check_no_nul(what, "fit_file");
       spec = load_fit(what, {}, lo);
     }
+    if (!objective.is_none()) spec.user_objective_id = objective_id;
     const std::string command_line = "python: asperity.fit(" + what + ")";
     // The user's objective is called from the fit's worker threads, each taking the GIL; its first
     // exception stops the fit as Ctrl-C does and is raised here.
@@ -539,7 +541,7 @@ PYBIND11_MODULE(_asperity, m) {
     return d;
   }, py::arg("spec"), py::arg("out") = "", py::arg("threads") = py::none(), py::arg("profile") = true,
      py::arg("error_bars") = true, py::arg("progress") = py::none(), py::arg("objective") = py::none(),
-     py::arg("series") = false, py::arg("base") = py::none());
+     py::arg("series") = false, py::arg("base") = py::none(), py::arg("objective_id") = "");
 
   m.def("store_series", [](const std::string& store, const std::vector<std::uint64_t>& indices) {
     check_no_nul(store, "path");  // asperity.read_series(path, index)

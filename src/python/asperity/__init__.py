@@ -228,6 +228,27 @@ def _objective_term(objective, series: bool):
     return term
 
 
+def _callable_id(objective) -> str:
+    """An identity of the caller's objective for a fit's journal: the SHA-256 of its source
+    (inspect.getsource), else of its code object (a callable without source file, e.g. typed at a
+    prompt), with a warning that an edit of what it reads (its data, globals) is not detected."""
+    import hashlib
+    import inspect
+    import marshal
+    import warnings
+    try:
+        text = inspect.getsource(objective).encode()
+    except (OSError, TypeError):
+        code = getattr(objective, "__code__", None) or getattr(getattr(objective, "__call__", None), "__code__", None)
+        if code is None:
+            raise TypeError("objective: a fit with out= journals its evaluations under the callable's source or "
+                            f"code, and {type(objective).__name__} has neither; leave out empty") from None
+        text = marshal.dumps(code)
+        warnings.warn("objective: no source found, so the journal is keyed by its code object; an edit of "
+                      "the data it reads is not detected", stacklevel=3)
+    return "sha256:" + hashlib.sha256(text).hexdigest()
+
+
 class FitResult(dict):
     """What `fit` returns: the dict described there, plus its tables as pandas DataFrames (one row
     per fit and parameter, profile point or experiment; the fit's label in column "fit").
@@ -286,9 +307,12 @@ def fit(spec: _Union[_PathLike, _Mapping[str, _Any]], out: _PathLike = "", threa
     DataFrame too -- returning a float; the fit minimises the sum over the experiments with the
     same NLopt machinery (the spec then has no `objective` key; the scene's own stop applies).
     It is called from the fit's worker threads holding the GIL; an exception it raises stops the
-    fit and is raised. Writes the results folder when `out` is given (not with `objective`),
-    journaling every evaluation there as it finishes (Ctrl-C raises KeyboardInterrupt within a
-    second; the same call again resumes). `threads`: 1 to 1024, as `--threads` (None: all).
+    fit and is raised. Writes the results folder when `out` is given, journaling every evaluation
+    there as it finishes (Ctrl-C raises KeyboardInterrupt within a second; the same call again
+    resumes). With `objective`, the journal is keyed by the SHA-256 of the callable's source
+    (inputs.txt, "objective"): an edited callable is refused there (InputError naming
+    "objective"), but the data it reads (arrays, globals) are not covered: change `out` when they
+    change. `threads`: 1 to 1024, as `--threads` (None: all).
     Returns a FitResult: the dict {"name", "fits": [{"label", "best": {key: value}, "objective",
     "evaluations", "stop_reason", "failure", "converged", "starts", "in_best_basin", "spread",
     "runs": {experiment: summary}, "profiles": [{"parameter", "factor", "value", "objective",
@@ -307,8 +331,9 @@ def fit(spec: _Union[_PathLike, _Mapping[str, _Any]], out: _PathLike = "", threa
     term = None if objective is None else _objective_term(objective, series)
     callback, bar = _progress(progress, "fit", "evaluation")
     try:
+        objective_id = _callable_id(objective) if objective is not None and _os.fspath(out) else ""
         return FitResult(_asperity.fit(spec, _os.fspath(out), threads, profile, error_bars, callback, term, series,
-                                       None if base is None else _os.fspath(base)))
+                                       None if base is None else _os.fspath(base), objective_id))
     finally:
         if bar is not None:
             bar.close()
