@@ -549,7 +549,7 @@ FitSpec fit_from_tree(const YAML::Node& root_node, const fs::path& path, const f
   const Source src{display, nullptr};
   const MapView root(src, root_node, "", kFitKeys, path.empty() ? 0 : 1);  // a tree in memory has no lines
   FitSpec spec;
-  spec.base_dir = fs::absolute(base).lexically_normal();
+  spec.base_dir = base.empty() ? fs::current_path() : fs::absolute(base).lexically_normal();  // "f.yaml": its folder is ""
   if (!path.empty()) {
     std::error_code ec;
     spec.file = fs::weakly_canonical(fs::absolute(path), ec);
