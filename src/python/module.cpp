@@ -94,6 +94,14 @@ py::dict uncertainty_dict(const Optimization& o) {
   return d;
 }
 
+// The folder a spec given as a dict reads its relative paths against: `base=`, else the working directory.
+std::filesystem::path base_dir(const py::object& base) {
+  if (base.is_none()) return std::filesystem::current_path();
+  const std::string b = py::str(base);
+  check_no_nul(b, "base");
+  return b;
+}
+
 py::array_t<double> column(const std::vector<Sample>& s, double Sample::*field) {
   py::array_t<double> a(static_cast<py::ssize_t>(s.size()));
   auto m = a.mutable_unchecked<1>();
@@ -377,13 +385,7 @@ PYBIND11_MODULE(_asperity, m) {
     check_no_nul(out, "out");
     std::string campaign;  // the campaign file (a dict's: written into the store, campaign_in_store.hpp)
     if (py::isinstance<py::dict>(campaign_arg)) {
-      std::filesystem::path dir = std::filesystem::current_path();
-      if (!base.is_none()) {
-        const std::string b = py::str(base);
-        check_no_nul(b, "base");
-        dir = b;
-      }
-      campaign = python::campaign_into_store(yaml_node(campaign_arg, ""), dir, out).string();
+      campaign = python::campaign_into_store(yaml_node(campaign_arg, ""), base_dir(base), out).string();
     } else {
       if (!base.is_none()) throw InputError("", 0, "base", "is for a dict campaign; a file's paths are relative to the file");
       campaign = py::str(campaign_arg);
@@ -438,13 +440,7 @@ PYBIND11_MODULE(_asperity, m) {
     std::string what;  // the spec, as the provenance's command line names it
     FitSpec spec;
     if (py::isinstance<py::dict>(fit_spec)) {
-      std::filesystem::path dir = std::filesystem::current_path();
-      if (!base.is_none()) {
-        const std::string b = py::str(base);
-        check_no_nul(b, "base");
-        dir = b;
-      }
-      spec = fit_from_memory(yaml_node(fit_spec, ""), dir, "asperity.fit", {}, lo);
+      spec = fit_from_memory(yaml_node(fit_spec, ""), base_dir(base), "asperity.fit", {}, lo);
       what = "dict";
     } else {
       if (!base.is_none())
