@@ -178,8 +178,8 @@ TEST_CASE("open: recovery of truth b at the light load, both models", "[.][recov
 // case"). Read by mean drop and period (peaks paired by order) the i-th peaks of model and data
 // are then different events, and the cycle term at the truth is 31-49 over its 2 residuals at six
 // of the ten seeds (measured). Paired by time, the term stays at most its residual count: 0.5-3.4
-// over 8-10 (the deviations are the sampling's, wider than the noise alone; measured
-// 2026-11-29 with this test and -s).
+// over 8-10 (the deviations are the sampling's, wider than the noise alone; measured with this
+// test and -s).
 TEST_CASE("the peaks paired by time keep the Q(t) score at the truth a chi-square when noise changes the peaks found",
           "[recovery][pairing]") {
   const fs::path dir = fresh_dir("asperity-cycle-chi2");
