@@ -1,5 +1,5 @@
 // asperity bench tradeoff|speed|accuracy|savings [--out results/bench] [--quick] ...
-// Benchmarks that print measured figures and write them under results/bench/ (issue 3).
+// Benchmarks that print measured figures and write them under results/bench/.
 #include <omp.h>
 
 #include <algorithm>
