@@ -1,8 +1,8 @@
 #pragma once
-// `asperity bench accuracy`: issue 3 item 2. Each paper scene (six stand-ins) at its own
-// (default) tolerance through the first peak and five stick-slip cycles, against a converged run
-// (tolerance 1e-12): relative errors of Q_s, A_s, t_peak, alpha (target < 1e-4) and of the
-// mean stick-slip drop and period (target < 1e-2).
+// `asperity bench accuracy`: is the default tolerance accurate enough? Each paper scene (six
+// stand-ins) at its own (default) tolerance through the first peak and five stick-slip cycles,
+// against a converged run (tolerance 1e-12): relative errors of Q_s, A_s, t_peak, alpha
+// (target < 1e-4) and of the mean stick-slip drop and period (target < 1e-2).
 #include <array>
 #include <filesystem>
 #include <functional>

@@ -1,5 +1,5 @@
 #pragma once
-// `asperity bench interacting` (issue 12, item 3): the fast interacting solver's cost and memory.
+// `asperity bench interacting`: the fast interacting solver's cost and memory.
 //  - scaling: synthetic populations of N = 300 … 5000 junctions with the stand-in P4.00N's
 //    area distribution (its areas repeated), the slider mass ∝ N (same mean load per junction)
 //    and centres placed as the stand-ins' (Hertz density in a contact disc of radius

@@ -1,5 +1,5 @@
 #pragma once
-// `asperity bench savings`: issue 3 item 5, "model only what a scene requires". Times each
+// `asperity bench savings`: "model only what a scene requires". Times each
 // saving against its baseline on the same scene (default: stand-in P4.00N):
 //   series    full series (every column)        vs output.series=[]  (integration + writing)
 //   stop      peak + 5 stick-slip cycles        vs stop.at_first_peak=true

@@ -1,5 +1,5 @@
 #pragma once
-// `asperity bench tradeoff`: the measured speed–accuracy trade (issue 3, items 3–4).
+// `asperity bench tradeoff`: the measured speed–accuracy trade.
 //
 // Work-precision study on a bench experiment the reference can finish (bench/scenes/P0.20N.yaml:
 // 60 junctions drawn with the stand-in recipe, peak at 0.65 s, five stick-slip cycles by

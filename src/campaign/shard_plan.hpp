@@ -10,8 +10,8 @@
 
 namespace asperity {
 
-// More points than this are not cost-balanced (the plan is a pass over every point, ~0.3 µs
-// each when costs repeat, and a bit per point): `cost` refuses, the default falls back to index.
+// More points than this are not cost-balanced (the plan is a pass over every point and a bit per
+// point; its time: docs/performance.md): `cost` refuses, the default falls back to index.
 inline constexpr std::uint64_t kMaxCostBalancedPoints = 100'000'000;
 
 // The plan of `shard` of the campaign. cost: each point's expected_run_seconds, its scene built

@@ -1,5 +1,5 @@
 // asperity bench tradeoff|speed|accuracy|savings [--out results/bench] [--quick] ...
-// Benchmarks that print measured figures and write them under results/bench/ (issue 3).
+// Benchmarks that print measured figures and write them under results/bench/.
 #include <omp.h>
 
 #include <algorithm>
@@ -259,8 +259,8 @@ Command add_bench_command(CLI::App& app) {
   sub->add_option("--repeats", opt->repeats, "Runs faster than 1 s: median wall time of this many")
       ->capture_default_str()
       ->check(CLI::Range(1, 100));
-  // Default 1, not all: a benchmark times one thread unless asked (on a shared 2-core machine 2
-  // threads made the reference slower).
+  // Default 1, not all: a benchmark times one thread unless asked (on a shared machine a second
+  // thread can make the reference slower).
   add_threads_option(sub, opt->threads, "OpenMP threads of the reference solver (the event solver uses one below 65536 never-slipped junctions)");
   add_quiet_flag(sub, opt->quiet);
 

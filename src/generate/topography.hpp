@@ -1,5 +1,5 @@
 #pragma once
-// Junctions from topography (issue 23), as files: `asperity generate --recipe` runs the recipe
+// Junctions from topography, as files: `asperity generate --recipe` runs the recipe
 // (scene/topography_recipe_load.hpp, scene/topography_junctions.hpp: surface, sphere, contact,
 // clusters, merged junctions) and writes them as the junctions of an experiment (junctions.csv
 // with a provenance header, experiment.yaml) that `asperity run` takes like any other. Same

@@ -1,5 +1,5 @@
 #pragma once
-// A model's A(Q) against a measured one at the measurement's own noise (issue 22 item 3).
+// A model's A(Q) against a measured one at the measurement's own noise.
 // The shape exponent n of a log-log fit is dominated by the noise at small Q (exact parabolas
 // with 0.2 % noise give n from 1.7 to 2.1), so a verdict on shape needs measures whose spread
 // over that noise is known:

@@ -1,5 +1,5 @@
 #pragma once
-// Junctions from topography (issue 23): the recipe's surface with its sphere, the frictionless
+// Junctions from topography: the recipe's surface with its sphere, the frictionless
 // normal contact (surface/normal_contact.hpp), its clusters (surface/segmentation.hpp) merged
 // until their equivalent discs are disjoint, and the experiment they make. Same recipe, same
 // numbers (the thread count does not change them).

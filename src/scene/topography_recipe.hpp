@@ -1,5 +1,5 @@
 #pragma once
-// A topography recipe (issue 23): a surface (smooth, self-affine, or a measured height map), a
+// A topography recipe: a surface (smooth, self-affine, or a measured height map), a
 // sphere, the elastomer's constants, a normal load and the contact solver's settings, plus the
 // slider of the experiment it makes. Read from a recipe file (`asperity generate --recipe`) or
 // from a scene's `topography:` section, where the recipe's own `topography:` map is lifted one

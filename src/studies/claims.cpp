@@ -120,7 +120,7 @@ struct ReportInputs {
 void write_intro(std::ostream& r, const ReportInputs& x, const std::string& data_label) {
   const bool standin = x.standin;
   const std::vector<PaperRun>& base = x.base;
-  r << "# Reproduction report: the paper's claims (MODEL.md §6)\n\n";
+  r << "# Reproduction report: the paper's claims (docs/model.md §6)\n\n";
   if (standin)
     r << "> **" << data_label << ".** Every number below comes from the project's stand-in experiments "
       << "(`data/standin/`), built from the paper's published constraints. They test the engine and the "
@@ -139,7 +139,7 @@ void write_intro(std::ostream& r, const ReportInputs& x, const std::string& data
   std::string stop_text;
   for (const auto& s : stops) stop_text += (stop_text.empty() ? "" : "; ") + s;
   r << "Written by `asperity reproduce` (the main job, `scripts/reproduce.sh`). Base runs: the paper's "
-       "parameters (MODEL.md §2), event solver at the scenes' tolerance, each " << stop_text << "; "
+       "parameters (docs/model.md §2), event solver at the scenes' tolerance, each " << stop_text << "; "
     << peaks << " of " << base.size() << " confirmed their first peak and completed "
     << (base.empty() ? 0 : min_cycles) << (min_cycles != max_cycles ? "–" + std::to_string(max_cycles) : "")
     << " stick-slip cycles. Figures: `fig3_Q_A_t.png`, `fig4_A_Q.png`; numbers: `table.csv`. The "
@@ -271,7 +271,7 @@ void write_claim5(std::ostream& r, const ReportInputs& x) {
     if (n_cal >= 2)
       r << " The calibrated α_b " << (rising ? "rises" : "does not rise") << " monotonically with load here.";
     r << " The paper found 0.45e-15 at the smallest and 1.00e-15 at the largest load on the real data"
-      << (standin ? "; the stand-ins' measured area drop was generated rising with load at one α_b (MODEL.md §7)" : "")
+      << (standin ? "; the stand-ins' measured area drop was generated rising with load at one α_b (docs/model.md §7)" : "")
       << ".\n\n";
     for (const auto& c : calibration.runs)
       if (!c.failure.empty())
@@ -294,7 +294,7 @@ void write_claim5(std::ostream& r, const ReportInputs& x) {
     << ".)\n\n**Area decay: " << verdict_text(c5.decay) << ". Incipient slope: " << verdict_text(c5.slope)
     << ". Shape contrast: " << verdict_text(c5.shape) << ".**";
   if (standin)
-    r << " The stand-in \"measured\" curves are parabolas plus noise (MODEL.md §7): their slope at Q = 0 "
+    r << " The stand-in \"measured\" curves are parabolas plus noise (docs/model.md §7): their slope at Q = 0 "
          "is zero, so a quasi-linear model cannot match the incipient slope, and their quadratic shape is "
          "built in, so only the model side of the shape contrast is evidence.";
   r << "\n\n";

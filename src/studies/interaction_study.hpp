@@ -1,11 +1,11 @@
 #pragma once
 // `asperity study interactions`: does elastic coupling between junctions (docs/model.md §8) make A(Q)
-// quadratic? (issue 12, the study). For each experiment, the independent model at its own
+// quadratic? For each experiment, the independent model at its own
 // calibrated α_b and the interacting model at its recalibrated α_b (the paper's method, per
 // load), side by side: shape exponent n of A0 − A ∝ Qⁿ, area decay, incipient slope, stick-slip;
 // the spread of f_i/(σA_i) at the first peak among junctions of equal area in crowded vs sparse
 // neighbourhoods (the paper's Figure 2 argument); the crowding and cut-off sweep's table; each
-// model re-run at its joint calibration of (α_b, ε, η) (issue 22), its Q(t) and A(Q) against the
+// model re-run at its joint calibration of (α_b, ε, η), its Q(t) and A(Q) against the
 // measured ones at their noise (studies/joint_comparison.hpp); the topography study's table of
 // both models on junctions from contact mechanics (studies/topography_comparison.hpp). Every
 // verdict is computed from the runs of the same command; missing inputs read "no evidence".

@@ -39,7 +39,7 @@ struct Tally {
   int dn_count = 0;
 };
 
-// The verdict, on a measure whose spread over the measurement noise is known (issue 22): the
+// The verdict, on a measure whose spread over the measurement noise is known: the
 // rms residual of each model's A(Q) at the measured points, in linear space. A model
 // reproduces the measured (quadratic) shape at a load when its residual is within what noise
 // alone leaves in 95 % of the bootstrap resamples; interacting is closer than independent when

@@ -1,5 +1,5 @@
 #pragma once
-// The joint calibrations of (α_b, ε, η) (objective area_and_force, issue 22) in the interaction
+// The joint calibrations of (α_b, ε, η) (objective area_and_force) in the interaction
 // study: each model re-run at its calibrated values per load, its Q(t) against the measured
 // Q(t) at that curve's noise, its A(Q) against the measured A(Q) by the study's residual rule.
 //  - force_misfit: the rms of Q_model(t_k) − Q_k over the measured samples, the noise level

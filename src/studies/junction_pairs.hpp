@@ -1,5 +1,5 @@
 #pragma once
-// Junction-level evidence for the interaction study (issue 22, item 4; the paper's Figure 2
+// Junction-level evidence for the interaction study (the paper's Figure 2
 // argument followed in time): pairs of junctions of equal area, one in a crowded and one in a
 // sparse neighbourhood, and their force f_i(t) and contact area A_i(t) from the start of
 // loading to past the first peak, with and without elastic interactions.

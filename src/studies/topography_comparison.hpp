@@ -1,9 +1,9 @@
 #pragma once
-// The interaction study's view of the topography study (results/topography/, issue 23 item 5;
+// The interaction study's view of the topography study (results/topography/;
 // SYNTHETIC surfaces): its table.csv, one row per surface realisation (seed), load and model,
 // with the shape of that model's A(Q) there, read and tallied so that the interaction study's
-// REPORT.md states what interactions change on junctions from contact mechanics (issue 22
-// item 5) from that table's own numbers. Absent table: no rows (no evidence).
+// REPORT.md states what interactions change on junctions from contact mechanics
+// from that table's own numbers. Absent table: no rows (no evidence).
 #include <filesystem>
 #include <string>
 #include <vector>

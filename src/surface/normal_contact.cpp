@@ -254,9 +254,8 @@ NormalContact solve_normal_contact(const HeightMap& map, const NormalContactSett
     });
     // Polonsky & Keer restart the conjugate directions whenever a point joins; here only the first
     // iteration is steepest descent. A few points joining at nearly every iteration (small spots at
-    // the edges of a rough contact) kept the iteration at steepest descent: measured on the bench's
-    // 1024² sphere from the same coarse start, 736 iterations with restarts, 131 without, the same
-    // contact set and pressures within 5e-8 (Σ|Δp| / Σp; tolerance 1e-8).
+    // the edges of a rough contact) kept the iteration at steepest descent, several times the
+    // iterations for the same contact set and pressures (docs/performance.md).
     delta = true;
     // The load.
     const double total = total_p * A;
@@ -276,9 +275,8 @@ NormalContact solve_normal_contact(const HeightMap& map, const NormalContactSett
     // K p = f (u − τ r) by linearity, without a convolution (within rounding: u is recomputed at the
     // end). Where a few points were (isolated contacts), p = f (p_old − τ t + δ) with δ nonzero at
     // those points only, and K p = f (u − τ r + K δ), K δ summed directly from the kernel (n² terms a
-    // point): cheaper than a convolution up to about 4 log2(n) points (measured on the bench's 1024²
-    // sphere, one thread: 200 → 165 convolutions, 14 % less CPU time; 12 log2(n) and 24 log2(n) were
-    // slower; the pressures within 5e-12 of the convolved ones, Σ|Δp| / Σp).
+    // point): cheaper than a convolution up to about 4 log2(n) points, at the convolved pressures
+    // within rounding (docs/topography.md, "Speed"; docs/performance.md).
     // Not for periodic maps: at Westergaard's exact full contact the steps are rounding over
     // rounding and the updated u drifted from K p until the CG broke down (a recomputed u stays at
     // rounding).

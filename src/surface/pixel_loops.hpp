@@ -24,8 +24,8 @@ constexpr std::size_t kParallelFrom = std::size_t{1} << 18;
 // task each, taken as threads come free: idle workers sleep instead of spinning at a barrier, and
 // the caller takes chunks itself, so a worker that has lost its core on a machine shared with
 // other work holds up at most the chunk it took (an OpenMP team, whose barriers wait for every
-// thread and spin, took up to 17× longer on a loaded 2-core machine). A chunk's values do not
-// depend on the thread that computes it.
+// thread and spin, was many times slower on a loaded machine: docs/performance.md). A chunk's
+// values do not depend on the thread that computes it.
 class Workers {
  public:
   explicit Workers(int threads) : count_(std::max(1, threads)), arena_(count_) {}

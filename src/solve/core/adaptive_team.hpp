@@ -2,7 +2,7 @@
 // How many OpenMP threads a short, repeated parallel loop uses, decided by measuring it. On a
 // quiet machine the widest team wins; when another process holds a core, a team member shares
 // that core and every barrier waits for it to be scheduled again (a time slice, milliseconds,
-// against loops of tens of microseconds: measured 12-40x slower than one thread on two cores),
+// against loops of tens of microseconds: many times slower than one thread, docs/performance.md),
 // and one thread wins. Each loop kind keeps its own AdaptiveTeam: the cost per unit of work of
 // the last regions run with one thread and with the whole team (moving averages); the loop runs
 // with the cheaper, and now and then (more rarely as the other keeps losing, at most 1/20 of the

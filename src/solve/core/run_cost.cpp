@@ -5,15 +5,13 @@
 namespace asperity {
 
 namespace {
-// Constants, seconds on one core of the development machine (README, Benchmarks):
-// event: P4.00N whole run (N = 1201, 5.70 s simulated) 0.170 s → 2.5e-5 s per junction·s
-//   (results/bench/speed_runs.csv, tolerance 1e-9);
-// reference: same run at C_t 100, 59,741 steps in 187.6 s → 2.6e-6 s per junction·step
-//   (results/bench/speed_ratio.csv);
+// Constants, seconds on one core, from the committed benchmarks (the runs and figures each comes
+// from: docs/performance.md, "Figures behind the code's choices"):
+// event: per junction·simulated second (results/bench/speed_runs.csv);
+// reference: per junction·step (results/bench/speed_ratio.csv);
 // interacting event: seconds per simulated second a N² + b N through the first-peak rows of
-//   results/bench/interacting.csv (one thread, 2026-11-26) at N = 300 (0.109 s to t = 2.79 s) and
-//   5,000 (107 s to t = 22.7 s); N = 1,200 (1.79 s to t = 7.43 s) comes out 1.4 times high;
-//   the test "run cost: the model is within a factor of two of the committed benchmarks" holds it;
+//   results/bench/interacting.csv; the test "run cost: the model is within a factor of two of
+//   the committed benchmarks" holds it;
 // interacting reference: one LU-like dense solve of N³/3 flops per step, ~1 Gflop/s;
 // per run: loading the scene, observables and the row, ~1 ms.
 constexpr double kEventPerJunctionSecond = 2.5e-5;

@@ -30,8 +30,8 @@ class ReferenceStepper {
   ReferenceScheme scheme_;
   JunctionState J_;
   double max_ratio_ = 0;  // max f_i / (σ A_i)
-  // The step's threads, chosen by measuring the steps (adaptive_team.hpp); from N = 256 on two
-  // threads pay on a quiet machine (at N = 60 two threads were 8x slower than one).
+  // The step's threads, chosen by measuring the steps (adaptive_team.hpp): on small populations a
+  // team costs more than it saves (docs/performance.md, "Figures behind the code's choices").
   AdaptiveTeam team_;
 };
 
