@@ -33,24 +33,6 @@
 
 namespace asperity {
 
-// The single-precision copy's layout: row r packed from its diagonal, its entry at column c at
-// S[packed_row(r, N) + c] (row r holds N − r entries).
-inline std::size_t packed_row(std::size_t r, std::size_t N) { return r * N - r * (r + 1) / 2; }
-
-// One form of the chord pass's product kernel: rows [r0, r1) of an upper triangle (row r's entry
-// at column c ≥ r at G[r·N + c], or packed in single precision) times (w1, w2), row r's sums
-// added into p[r] and its entries' transposed products into p[c > r]. The forms this CPU can run
-// (kernel_forms_available()) are listed for tests: every form groups every sum alike, so all
-// give the same bits. A PinnedCompliance uses the form kernel_form() names (ASPERITY_KERNEL).
-struct ProductKernel {
-  const char* name;
-  void (*rows)(const double* G, std::size_t N, std::size_t n, std::size_t r0, std::size_t r1, const double* w1,
-               const double* w2, double* p1, double* p2);
-  void (*single_rows)(const float* S, std::size_t N, std::size_t n, std::size_t r0, std::size_t r1,
-                      const double* w1, const double* w2, double* p1, double* p2);
-};
-std::vector<ProductKernel> product_kernels();
-
 class PinnedCompliance {
  public:
   static constexpr std::size_t npos = static_cast<std::size_t>(-1);
