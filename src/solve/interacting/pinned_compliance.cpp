@@ -59,7 +59,7 @@ PinnedCompliance::PinnedCompliance(const Problem& problem, std::vector<double> r
 }
 
 void PinnedCompliance::apply(const std::vector<std::size_t>& columns, const std::vector<double>& w1,
-                             const std::vector<double>& w2, std::vector<double>& y1, std::vector<double>& y2) const {
+                             const std::vector<double>& w2, std::vector<double>& y1, std::vector<double>& y2) {
   const std::size_t n = n_, N = N_;
   // Many columns (before the first peak, every pinned junction): the product over the whole
   // stored triangle, the weights being zero elsewhere; it reads each stored entry once (half of
@@ -109,14 +109,14 @@ std::vector<std::size_t> PinnedCompliance::row_blocks() const {
 }
 
 void PinnedCompliance::symmetric_product(const std::vector<double>& w1, const std::vector<double>& w2,
-                                         std::vector<double>& y1, std::vector<double>& y2) const {
+                                         std::vector<double>& y1, std::vector<double>& y2) {
   const ProductRows rows = product_rows_for(form_);
   triangle_product(rows, G_.data(), N_, n_, row_blocks(), partial_, w1, w2, y1, y2, teams_.product);
   subtract_deferred(w1, w2, y1, y2);
 }
 
 void PinnedCompliance::subtract_deferred(const std::vector<double>& w1, const std::vector<double>& w2,
-                                         std::vector<double>& y1, std::vector<double>& y2) const {
+                                         std::vector<double>& y1, std::vector<double>& y2) {
   // − Σ u (uᵀ w)/d, in order. All removals in one sweep over the positions for the dot products
   // (each a chain of its own: the chains overlap) and one for the updates: the same operations as
   // one removal at a time, so the same bits.
@@ -140,7 +140,7 @@ void PinnedCompliance::subtract_deferred(const std::vector<double>& w1, const st
 
 PinnedCompliance::Pass PinnedCompliance::apply(const std::vector<std::size_t>& columns, const std::vector<double>& w1,
                                                const std::vector<double>& w2, std::vector<double>& y1,
-                                               std::vector<double>& y2, const PassBudget& budget) const {
+                                               std::vector<double>& y2, const PassBudget& budget) {
   const std::size_t n = n_;
   if (!single_.usable || columns.size() * kFewColumns < n) {
     apply(columns, w1, w2, y1, y2);
