@@ -33,6 +33,7 @@
 #include "solve/core/problem.hpp"
 #include "solve/core/run_info.hpp"
 #include "solve/interacting/anderson.hpp"
+#include "solve/interacting/chord_policy.hpp"
 #include "solve/interacting/eq3_displacement.hpp"
 #include "solve/interacting/force_cache.hpp"
 #include "solve/interacting/pinned_compliance.hpp"
@@ -122,6 +123,18 @@ class InteractingJunctions {
   // `tol` of the slip forces (solver.interaction_tolerance unless given).
   ForceNode solve(double X) const { return solve(X, tol_); }
   ForceNode solve(double X, double tol) const;
+  // The steps of a solve's chord iteration (interacting_solve.cpp), on the work vectors of one
+  // solve: from node's warm start to the fixed point at X (returns the passes); its start; the
+  // junctions' own laws at the iterate; the chord map's image (one pass over G); the damped or
+  // accelerated step (returns the largest change, of the slip forces); a rebuild of G at the
+  // current compliances.
+  struct ChordPass;
+  int chord_iteration(double X, const ChordPolicy& policy, ForceNode& node) const;
+  ChordPass start_chord(double tol) const;
+  void own_laws(const ForceNode& node, ChordPass& w) const;
+  void chord_image(double X, const ForceNode& node, ChordPass& w) const;
+  double take_step(double X, double damp, ForceNode& node, const ChordPass& w) const;
+  void refresh_reference(const ForceNode& node, ChordPass& w) const;
   // One chord iteration's step on the active positions: damps it (returns the factor) or
   // replaces g by Anderson's accelerated iterate when that stays within the same bound.
   double chord_step(double X, const std::vector<std::size_t>& active, double a_scale, const std::vector<double>& y1,
