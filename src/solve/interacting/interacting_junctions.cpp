@@ -68,25 +68,25 @@ double InteractingJunctions::threshold(std::size_t q) const {
   return pinned_.nonlinear(q) ? eq3_.slip_force(i) : J_.f_s[i];
 }
 
-void InteractingJunctions::own(std::size_t q, double f, double& u, double& du) const {
+void InteractingJunctions::own(std::size_t q, double f, double& u, double& du) {
   const std::size_t i = pinned_.junction(q);
   if (pinned_.nonlinear(q)) return eq3_.at(i, f, u, du);
   u = f / J_.k[i];
   du = 1.0 / J_.k[i];
 }
 
-double InteractingJunctions::force(double X) const {
+double InteractingJunctions::force(double X) {
   ++force_evals_;
   if (pinned_.n_nonlinear() == 0) return X * sum_a0_ + sum_b0_ + F_slip_;
   return cache_.value(X, &ForceNode::F, &ForceNode::dF, x_up_, x_down_);
 }
 
-double InteractingJunctions::area(double X) const {
+double InteractingJunctions::area(double X) {
   if (pinned_.n_nonlinear() == 0) return A_fixed_;
   return cache_.value(X, &ForceNode::A, &ForceNode::dA, x_up_, x_down_);
 }
 
-std::vector<double> InteractingJunctions::forces(double X) const {
+std::vector<double> InteractingJunctions::forces(double X) {
   std::vector<double> f(J_.force);
   const ForceNode n = solve(X);
   for (std::size_t q = 0; q < pinned_.size(); ++q) f[pinned_.junction(q)] = n.f[q];
@@ -102,7 +102,7 @@ std::vector<double> InteractingJunctions::areas(const std::vector<double>& f) co
   return A;
 }
 
-std::vector<double> InteractingJunctions::load_ratios(double X) const {
+std::vector<double> InteractingJunctions::load_ratios(double X) {
   const std::vector<double> f = forces(X);
   const std::vector<double> A = areas(f);
   std::vector<double> r(N_);
@@ -156,46 +156,52 @@ void InteractingJunctions::find_thresholds(double X) {
       k_down_ = pinned_.junction(k);
       continue;
     }
-    double lo = X, hi = dir * HUGE_VAL;  // bracket: below threshold at lo, over at hi
-    double Xt = X + dir * best;
-    for (int round = 0;; ++round) {
-      if (round > 50) interacting_solver_failure("no slip position found", X);
-      // Newton in X on f_k(X) = threshold, kept inside the bracket.
-      for (int it = 0;; ++it) {
-        if (it > 100) interacting_solver_failure("Newton on a slip position did not converge", Xt);
-        const ForceNode& m = cache_.at(Xt);
-        const std::size_t qk = k;  // positions do not move while no junction changes state
-        const double thr = threshold(qk);
-        const double r = m.f[qk] - thr;
-        if (r < 0) lo = Xt; else hi = Xt;
-        if (std::abs(r) <= tol_ * thr) break;
-        double next = Xt - r / m.a[qk];
-        const bool inside = dir > 0 ? (next > lo && next < hi) : (next < lo && next > hi);
-        if (!inside && std::isfinite(hi)) next = 0.5 * (lo + hi);
-        if (std::abs(next - Xt) <= 4e-16 * std::abs(Xt)) break;
-        Xt = next;
-      }
-      // Has another junction crossed before? Take the earliest by linear back-extrapolation.
-      const ForceNode& m = cache_.at(Xt);
-      std::size_t other = npos;
-      double earliest = Xt;
-      for (std::size_t q = 0; q < n; ++q) {
-        const double thr = threshold(q);
-        if (q == k || m.f[q] - thr <= 0.1 * tol_ * thr) continue;
-        const double back = m.a[q] != 0 ? Xt - (m.f[q] - thr) / m.a[q] : lo;
-        const double xb = dir > 0 ? std::clamp(back, std::min(lo, X), Xt) : std::clamp(back, Xt, std::max(lo, X));
-        if (other == npos || dir * xb < dir * earliest) other = q, earliest = xb;
-      }
-      if (other == npos) break;
-      k = other;
-      hi = Xt;
-      lo = X;
-      Xt = earliest;
-      if (Xt == X || Xt == hi) Xt = 0.5 * (lo + hi);
-    }
+    const double Xt = refine_crossing(X, dir, best, k);
     if (dir > 0) x_up_ = Xt, k_up_ = pinned_.junction(k);
     else x_down_ = Xt, k_down_ = pinned_.junction(k);
   }
+}
+
+double InteractingJunctions::refine_crossing(double X, int dir, double best, std::size_t& k) {
+  const std::size_t n = pinned_.size();
+  double lo = X, hi = dir * HUGE_VAL;  // bracket: below threshold at lo, over at hi
+  double Xt = X + dir * best;
+  for (int round = 0;; ++round) {
+    if (round > 50) interacting_solver_failure("no slip position found", X);
+    // Newton in X on f_k(X) = threshold, kept inside the bracket.
+    for (int it = 0;; ++it) {
+      if (it > 100) interacting_solver_failure("Newton on a slip position did not converge", Xt);
+      const ForceNode& m = cache_.at(Xt);
+      const std::size_t qk = k;  // positions do not move while no junction changes state
+      const double thr = threshold(qk);
+      const double r = m.f[qk] - thr;
+      if (r < 0) lo = Xt; else hi = Xt;
+      if (std::abs(r) <= tol_ * thr) break;
+      double next = Xt - r / m.a[qk];
+      const bool inside = dir > 0 ? (next > lo && next < hi) : (next < lo && next > hi);
+      if (!inside && std::isfinite(hi)) next = 0.5 * (lo + hi);
+      if (std::abs(next - Xt) <= 4e-16 * std::abs(Xt)) break;
+      Xt = next;
+    }
+    // Has another junction crossed before? Take the earliest by linear back-extrapolation.
+    const ForceNode& m = cache_.at(Xt);
+    std::size_t other = npos;
+    double earliest = Xt;
+    for (std::size_t q = 0; q < n; ++q) {
+      const double thr = threshold(q);
+      if (q == k || m.f[q] - thr <= 0.1 * tol_ * thr) continue;
+      const double back = m.a[q] != 0 ? Xt - (m.f[q] - thr) / m.a[q] : lo;
+      const double xb = dir > 0 ? std::clamp(back, std::min(lo, X), Xt) : std::clamp(back, Xt, std::max(lo, X));
+      if (other == npos || dir * xb < dir * earliest) other = q, earliest = xb;
+    }
+    if (other == npos) break;
+    k = other;
+    hi = Xt;
+    lo = X;
+    Xt = earliest;
+    if (Xt == X || Xt == hi) Xt = 0.5 * (lo + hi);
+  }
+  return Xt;
 }
 
 void InteractingJunctions::after_change(double X) {

@@ -66,7 +66,7 @@ void InteractingJunctions::warm_start(double X, std::vector<double>& f, std::vec
   }
 }
 
-ForceNode InteractingJunctions::solve(double X, double tol) const {
+ForceNode InteractingJunctions::solve(double X, double tol) {
   const std::size_t n = pinned_.size();
   ForceNode node;
   node.X = X;
@@ -103,7 +103,7 @@ struct InteractingJunctions::ChordPass {
   explicit ChordPass(std::size_t nA_) : nA(nA_), aa(2 * nA_) {}
 };
 
-int InteractingJunctions::chord_iteration(double X, const ChordPolicy& policy, ForceNode& node) const {
+int InteractingJunctions::chord_iteration(double X, const ChordPolicy& policy, ForceNode& node) {
   const std::size_t n = pinned_.size();
   ChordPass w = start_chord(policy.tol);
   double previous = HUGE_VAL;
@@ -179,7 +179,7 @@ InteractingJunctions::ChordPass InteractingJunctions::start_chord(double tol) co
   return w;
 }
 
-void InteractingJunctions::own_laws(const ForceNode& node, ChordPass& w) const {
+void InteractingJunctions::own_laws(const ForceNode& node, ChordPass& w) {
   // The junctions' own laws, each independent of the others (the same numbers on any number of
   // threads): a tenth of a pass's time, worth splitting from a few hundred on.
   const std::size_t nA = w.nA;
@@ -195,7 +195,7 @@ void InteractingJunctions::own_laws(const ForceNode& node, ChordPass& w) const {
   }
 }
 
-void InteractingJunctions::chord_image(double X, const ForceNode& node, ChordPass& w) const {
+void InteractingJunctions::chord_image(double X, const ForceNode& node, ChordPass& w) {
   // y = G [Δ, Δ'a]: one pass over the rows of the nonlinear positions.
   if (w.single)
     pinned_.apply(w.active, w.dl, w.da, w.y1, w.y2, w.budget);
@@ -220,7 +220,7 @@ void InteractingJunctions::chord_image(double X, const ForceNode& node, ChordPas
   }
 }
 
-double InteractingJunctions::take_step(double X, double damp, ForceNode& node, const ChordPass& w) const {
+double InteractingJunctions::take_step(double X, double damp, ForceNode& node, const ChordPass& w) {
   const std::size_t n = pinned_.size(), nA = w.nA;
   const double a_scale = w.a_scale;
   double change = 0;
@@ -245,7 +245,7 @@ double InteractingJunctions::take_step(double X, double damp, ForceNode& node, c
   return change;
 }
 
-void InteractingJunctions::refresh_reference(const ForceNode& node, ChordPass& w) const {
+void InteractingJunctions::refresh_reference(const ForceNode& node, ChordPass& w) {
   // The reference compliances at the current forces, and G rebuilt (a Newton step's Jacobian).
   for (std::size_t q : w.active) {
     double u, du;
