@@ -21,7 +21,7 @@
 using namespace asperity;
 
 struct MarginObserver {
-  const InteractingEventStepper* stepper = nullptr;
+  InteractingEventStepper* stepper = nullptr;
   double every = 0.005, next = 0, Q_max = 0;
   bool past_peak = false;
   static constexpr int kBounds = 5;
