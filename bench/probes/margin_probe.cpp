@@ -21,7 +21,7 @@
 using namespace asperity;
 
 struct MarginObserver {
-  const InteractingEventStepper* stepper = nullptr;
+  InteractingEventStepper* stepper = nullptr;
   double every = 0.005, next = 0, Q_max = 0;
   bool past_peak = false;
   static constexpr int kBounds = 5;
@@ -31,7 +31,7 @@ struct MarginObserver {
   void sample(const Sample& s) {
     next = s.t + every;
     Q_max = std::max(Q_max, s.Q);
-    const auto& J = stepper->junctions();
+    auto& J = stepper->junctions();
     const std::vector<double> ratio = J.load_ratios(s.X);
     std::int64_t count[kBounds] = {}, pinned = 0;
     for (std::size_t i = 0; i < ratio.size(); ++i) {

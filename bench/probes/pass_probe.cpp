@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "solve/interacting/pinned_compliance.hpp"
+#include "solve/interacting/pinned_kernels.hpp"
 using namespace asperity;
 
 int main(int argc, char** argv) {

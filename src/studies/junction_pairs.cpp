@@ -21,10 +21,10 @@ namespace {
 // (population changes come after the slips are applied, so the state tells who slipped).
 class TraceObserver {
  public:
-  TraceObserver(const InteractingEventStepper& stepper, std::vector<JunctionTrace>& traces, double t_end, int n)
+  TraceObserver(InteractingEventStepper& stepper, std::vector<JunctionTrace>& traces, double t_end, int n)
       : stepper_(stepper), traces_(traces), t_end_(t_end), n_(n) {}
   void sample(const Sample& s) {
-    const InteractingJunctions& J = stepper_.junctions();
+    InteractingJunctions& J = stepper_.junctions();
     const std::vector<double> f = J.forces(s.X);
     const std::vector<double> A = J.areas(f);
     for (JunctionTrace& tr : traces_) {
@@ -45,7 +45,7 @@ class TraceObserver {
   double next_sample_time() const { return k_ <= n_ ? t_end_ * k_ / n_ : HUGE_VAL; }
 
  private:
-  const InteractingEventStepper& stepper_;
+  InteractingEventStepper& stepper_;
   std::vector<JunctionTrace>& traces_;
   double t_end_;
   int n_, k_ = 0;

@@ -15,8 +15,8 @@ namespace asperity {
 
 template <class J>
 concept JunctionModel = std::constructible_from<J, const Problem&> && requires(J& j, const J& cj, double X) {
-  { cj.force(X) } -> std::convertible_to<double>;  // N, total junction force at X
-  { cj.area(X) } -> std::convertible_to<double>;   // m², total contact area at X
+  { j.force(X) } -> std::convertible_to<double>;  // N, total junction force at X (may update caches)
+  { j.area(X) } -> std::convertible_to<double>;   // m², total contact area at X
   { cj.has_threshold() } -> std::convertible_to<bool>;
   { cj.next_threshold() } -> std::convertible_to<double>;  // m: the next slip as X grows
   { cj.has_threshold_below() } -> std::convertible_to<bool>;

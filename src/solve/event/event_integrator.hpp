@@ -55,12 +55,13 @@ struct EventIntegrator {
         junctions(p, std::forward<Args>(junction_args)...),
         stepper(boost::numeric::odeint::make_dense_output(p.solver.tolerance, p.solver.tolerance, boost::numeric::odeint::runge_kutta_dopri5<State>())) {}
 
-  void rhs(const State& y, State& dy, double tt) const {
+  // Not const: a junction model may solve, and cache, as it is asked for F(X) and A(X).
+  void rhs(const State& y, State& dy, double tt) {
     const double X = y[0] * L, V = y[1] * p.slider.v;
     dy[0] = V / L;
     dy[1] = p.slider.acceleration(p.slider.loading_force(tt, X), junctions.force(X), V) / p.slider.v;
   }
-  Sample sample_at(double ts, const State& st) const {
+  Sample sample_at(double ts, const State& st) {
     const double X = st[0] * L;
     return Sample{ts, X, st[1] * p.slider.v, p.slider.loading_force(ts, X), junctions.area(X),
                   junctions.n_slipping(), junctions.n_intact()};

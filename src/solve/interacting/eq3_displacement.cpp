@@ -28,7 +28,7 @@ Eq3Displacement::Eq3Displacement(const ContactLaw& law, const std::vector<double
     interacting_solver_failure("the universal force law's table is not accurate enough", 0.0);
 }
 
-void Eq3Displacement::at(std::size_t i, double f, double& u, double& du) const {
+void Eq3Displacement::at(std::size_t i, double f, double& u, double& du) {
   // Universal law: φ = s f = ψ g(ψ) (the tabulated inverse of ψ = φ/κ(1 − φ²)), u = ψ/c, so
   // ψ by Newton on the table, from the tangent at the junction's last call: successive calls
   // move φ by little (a chord pass, a nearby X), so the start is within O(Δφ²) and Newton's

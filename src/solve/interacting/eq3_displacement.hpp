@@ -19,7 +19,7 @@ class Eq3Displacement {
   Eq3Displacement(const ContactLaw& law, const std::vector<double>& A0_m2);
 
   // u [m] and du/df [m/N] of junction i at force f [N].
-  void at(std::size_t i, double f, double& u, double& du) const;
+  void at(std::size_t i, double f, double& u, double& du);  // and keeps the warm start
   double force_scale(std::size_t i) const { return s_[i]; }  // s [1/N]: φ = s f
   double slip_force(std::size_t i) const { return f_slip_[i]; }  // N: φ = φ_s
 
@@ -30,7 +30,7 @@ class Eq3Displacement {
   std::vector<double> f_slip_;
   // Per junction, a warm start only: the last φ, ψ and dψ/dφ; the next call starts from the
   // tangent's prediction ψ + (φ_new − φ) dψ/dφ.
-  mutable std::vector<double> phi_last_, psi_last_, dpsi_last_;
+  std::vector<double> phi_last_, psi_last_, dpsi_last_;
 };
 
 }  // namespace asperity

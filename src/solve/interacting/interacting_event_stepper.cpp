@@ -23,6 +23,7 @@ void InteractingEventStepper::set_deadline(std::chrono::steady_clock::time_point
 void InteractingEventStepper::clear_deadline() { impl_->junctions.clear_deadline(); }
 void InteractingEventStepper::finish(RunInfo& info) const { impl_->finish(info); }
 const InteractingJunctions& InteractingEventStepper::junctions() const { return impl_->junctions; }
+InteractingJunctions& InteractingEventStepper::junctions() { return impl_->junctions; }
 double InteractingEventStepper::X() const { return impl_->y[0] * impl_->L; }
 
 }  // namespace asperity

@@ -31,6 +31,7 @@ class InteractingEventStepper {
   void finish(RunInfo& info) const;
 
   const InteractingJunctions& junctions() const;
+  InteractingJunctions& junctions();  // its forces at X solve (and cache)
   double X() const;  // m, the slider position now
 
  private:

@@ -68,315 +68,25 @@ double InteractingJunctions::threshold(std::size_t q) const {
   return pinned_.nonlinear(q) ? eq3_.slip_force(i) : J_.f_s[i];
 }
 
-void InteractingJunctions::own(std::size_t q, double f, double& u, double& du) const {
+void InteractingJunctions::own(std::size_t q, double f, double& u, double& du) {
   const std::size_t i = pinned_.junction(q);
   if (pinned_.nonlinear(q)) return eq3_.at(i, f, u, du);
   u = f / J_.k[i];
   du = 1.0 / J_.k[i];
 }
 
-// ---- exact solves -------------------------------------------------------------------------
-
-void InteractingJunctions::warm_start(double X, std::vector<double>& f, std::vector<double>& a) const {
-  const std::size_t n = pinned_.size();
-  // Per junction, f and df/dX are smooth between events: the cubic Hermite of the two nodes
-  // around X (or of the two nearest on one side, extrapolated no farther than their spacing
-  // twice over) starts the iteration within O(h^4) of the solution instead of the first-order
-  // prediction's O(h^2); fewer passes over G for the same fixed point (the stopping rule is
-  // unchanged). Without two nodes: the nearest node's first-order prediction, then the seed a
-  // slip left at this X (the old solution plus the redistribution of the slipped junction's
-  // force), then the last solution.
-  const std::size_t m = cache_.nodes().size();
-  if (m >= 2) {
-    auto it = std::lower_bound(cache_.nodes().begin(), cache_.nodes().end(), X, [](const ForceNode& k, double x) { return k.X < x; });
-    std::size_t hi = static_cast<std::size_t>(it - cache_.nodes().begin());
-    hi = std::clamp<std::size_t>(hi, 1, m - 1);
-    const ForceNode& n0 = cache_.nodes()[hi - 1];
-    const ForceNode& n1 = cache_.nodes()[hi];
-    const double h = n1.X - n0.X;
-    const double t = (X - n0.X) / h;
-    if (h > 0 && t >= -2.0 && t <= 3.0) {
-      for (std::size_t q = 0; q < n; ++q)
-        f[q] = hermite(n0.X, n1.X, n0.f[q], n0.a[q], n1.f[q], n1.a[q], X, &a[q]);
-      return;
-    }
-  }
-  if (m >= 1) {
-    const ForceNode* near = &cache_.nodes()[0];
-    for (const ForceNode& k : cache_.nodes())
-      if (std::abs(k.X - X) < std::abs(near->X - X)) near = &k;
-    // From the node a slip left, with the curvatures predicted there: second order.
-    // (Within twice the old nodes' spacing, where that cubic's curvature holds.)
-    const bool curved = seed_valid_ && near->X == seed_X_ && seed_c_.size() == n && std::abs(X - near->X) <= 2 * seed_h_;
-    for (std::size_t q = 0; q < n; ++q) {
-      const double d = X - near->X, c = curved ? seed_c_[q] : 0.0;
-      f[q] = near->f[q] + (near->a[q] + 0.5 * c * d) * d;
-      a[q] = near->a[q] + c * d;
-    }
-    return;
-  }
-  if (seed_valid_ && seed_X_ == X && seed_f_.size() == n) {
-    f = seed_f_;
-    a = seed_a_;
-    return;
-  }
-  for (std::size_t q = 0; q < n; ++q) {
-    f[q] = last_f_[pinned_.junction(q)];
-    a[q] = last_a_[pinned_.junction(q)];
-  }
-}
-
-ForceNode InteractingJunctions::solve(double X, double tol) const {
-  const std::size_t n = pinned_.size();
-  ForceNode node;
-  node.X = X;
-  node.f.resize(n);
-  node.a.resize(n);
-  if (pinned_.n_nonlinear() == 0) {
-    for (std::size_t q = 0; q < n; ++q) {
-      node.f[q] = X * pinned_.a0(q) + pinned_.b0(q);
-      node.a[q] = pinned_.a0(q);
-    }
-  } else {
-    warm_start(X, node.f, node.a);
-    std::vector<double> dl(n, 0.0), da(n, 0.0), y1(n), y2(n);
-    std::vector<std::size_t> active;
-    active.reserve(pinned_.n_nonlinear());
-    for (std::size_t q = 0; q < n; ++q)
-      if (pinned_.nonlinear(q)) active.push_back(q);
-    // Anderson acceleration of the chord map on the active positions' forces and slopes, scaled
-    // to O(1) (f by the slip force, df/dX by the mean |a0|). The chord map contracts linearly at
-    // the drift of u' from D, almost the same linear map from one iteration to the next, so the
-    // last few residuals predict most of the remaining error: fewer passes over G for the same
-    // fixed point (the stopping rule is unchanged).
-    const std::size_t nA = active.size();
-    double a_scale = 0;
-    for (std::size_t q : active) a_scale += std::abs(pinned_.a0(q));
-    a_scale = nA > 0 && a_scale > 0 ? a_scale / static_cast<double>(nA) : 1.0;
-    Anderson aa(2 * nA);
-    std::vector<double> z(2 * nA), g(2 * nA);
-    // A pass may read G's single-precision copy where its error stays within a tenth of the
-    // tolerance of each slip force (the fixed point then moves by at most that over 1 − ρ; the
-    // stopping rule is unchanged) and within ten times the tolerance of the slopes' mean scale
-    // (the slopes only shape the interpolants and Newton's rate: at N = 2,400, 711 more passes on
-    // the copy than with the tolerance itself, of 17,363, and the peak equal to 1e-15; a tenth
-    // held the copy back every other pass).
-    const bool single = pinned_.single_kept();
-    PinnedCompliance::PassBudget budget;
-    if (single) {
-      budget.y1.resize(n);
-      for (std::size_t q = 0; q < n; ++q) budget.y1[q] = 0.1 * tol * threshold(q);
-      budget.y2 = 10 * tol * a_scale;
-    }
-    double previous = HUGE_VAL;
-    int iter = 0, refreshes = 0;
-    for (;;) {
-      ++iter;
-      // The run's wall-time limit, read at every pass: at N = 20,000 one step's solves and their
-      // Newton refreshes (rebuilds of about 90 s) took over ten minutes past it.
-      if (std::chrono::steady_clock::now() >= deadline_) throw WallTimeReached();
-      // The junctions' own laws, each independent of the others (the same numbers on any
-      // number of threads): a tenth of a pass's time, worth splitting from a few hundred on.
-      {
-      const AdaptiveTeam::Region region(teams_.laws, static_cast<double>(nA));
-      const int threads = region.threads();
-#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
-      for (std::size_t k = 0; k < nA; ++k) {
-        const std::size_t q = active[k];
-        double u, du;
-        own(q, node.f[q], u, du);
-        dl[q] = u - pinned_.reference(q) * node.f[q];
-        da[q] = (du - pinned_.reference(q)) * node.a[q];
-      }
-      }
-      // y = G [Δ, Δ'a]: one pass over the rows of the nonlinear positions.
-      if (single)
-        pinned_.apply(active, dl, da, y1, y2, budget);
-      else
-        pinned_.apply(active, dl, da, y1, y2);
-      // The chord map's image g and the current iterate z, scaled, on the active positions.
-      // This loop and the update below are per junction (and a maximum), the same numbers on
-      // any number of threads; split like the laws above (on two threads the other thread
-      // otherwise waits through them).
-      {
-      const AdaptiveTeam::Region region(teams_.updates, static_cast<double>(nA));
-      const int threads = region.threads();
-#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
-      for (std::size_t k = 0; k < nA; ++k) {
-        const std::size_t q = active[k];
-        const double thr = threshold(q);
-        z[k] = node.f[q] / thr;
-        g[k] = (X * pinned_.a0(q) + pinned_.b0(q) - y1[q]) / thr;
-        z[nA + k] = node.a[q] / a_scale;
-        g[nA + k] = (pinned_.a0(q) - y2[q]) / a_scale;
-      }
-      }
-      const double damp = chord_step(X, active, a_scale, y1, y2, z, g, aa);
-      double change = 0;
-      for (std::size_t q = 0; q < n; ++q) {
-        if (pinned_.nonlinear(q)) continue;
-        const double f = node.f[q] + damp * (X * pinned_.a0(q) + pinned_.b0(q) - y1[q] - node.f[q]);
-        change = std::max(change, std::abs(f - node.f[q]) / threshold(q));
-        node.f[q] = f;
-        node.a[q] = pinned_.a0(q) - y2[q];
-      }
-      {
-      const AdaptiveTeam::Region region(teams_.updates, static_cast<double>(nA));
-      const int threads = region.threads();
-#pragma omp parallel for schedule(static) reduction(max : change) num_threads(threads) if (threads > 1)
-      for (std::size_t k = 0; k < nA; ++k) {
-        const std::size_t q = active[k];
-        const double thr = threshold(q);
-        const double f = thr * (z[k] + damp * (g[k] - z[k]));
-        change = std::max(change, std::abs(f - node.f[q]) / thr);
-        node.f[q] = f;
-        node.a[q] = a_scale * g[nA + k];
-      }
-      }
-      // Long after a solve normally ends (2-9 passes, about 20 with refreshes), an iterate past
-      // φ = 1, or over a threshold while still far from any fixed point (1e-2 of the slip forces,
-      // or 100 times the tolerance if less): a junction far over its threshold, which the
-      // iteration cannot follow (see Overloaded; the stand-in P6.40N at α_b = 2.06e-16, ε =
-      // 0.503, η = 300 cycled between φ = 0.89 and 0.99 of a junction whose threshold is 0.63).
-      if (iter >= 30) overloaded_check(X, active, node.f, change, std::min(100 * tol, 1e-2));
-      // Converged to solver.interaction_tolerance of the slip force. The solves' errors reach the
-      // observables damped (measured: the default 1e-8 moves Q_s, A_s and t_peak by ≤ 1e-9
-      // relative against 1e-12, for 0.6 of the passes; docs/interactions.md, "The interaction
-      // tolerance").
-      if (change <= tol) break;
-      // Contracting by ρ, the iterate is about ρ/(1 − ρ) times the last change from the fixed
-      // point: stop when that is already within the tolerance (one pass fewer; never above ten
-      // times it off).
-      if (iter >= 3 && change <= 10 * tol && change < 0.5 * previous) {
-        const double rho = change / previous;
-        if (change * rho / (1.0 - rho) <= tol) break;
-      }
-      // Stalled at rounding: the change stops shrinking once it is of the order of the rounding
-      // of the sums (about 1e-11 of the slip force; at a looser tolerance the solve has stopped
-      // before, so this never ends one early).
-      if (iter >= 3 && change < std::min(10 * tol, 1e-11) && change > 0.5 * previous) break;
-      // Slow contraction: the reference compliances drifted from the junctions' own. Take them
-      // at the current forces and rebuild G (a Newton step's Jacobian): the solution is the
-      // same, the iteration fast again.
-      // A rebuild costs about n/8 passes over G (O(n³) against O(n²), measured at n = 1,200),
-      // so the slow passes are paid until they add up to one (a rent-or-buy rule: at most twice
-      // the better of the two), unless this solve stalls or grows.
-      // Slow: contracting by more than 0.2 a pass, or by more than 0.5 within ten times the
-      // tolerance (where the estimate above cannot stop it yet).
-      const bool slow = iter >= 3 && ((change > 0.2 * previous && change > 10 * tol) || (change > 0.5 * previous && change > tol));
-      if (pinned_.rebuilds() != slow_since_) slow_since_ = pinned_.rebuilds(), slow_passes_ = 0;
-      if (slow) ++slow_passes_;
-      const bool worth = slow_passes_ * 8 >= static_cast<std::int64_t>(n) || change > previous || iter >= 20;
-      if (slow && worth && refreshes < 5) {
-        ++refreshes;
-        for (std::size_t q : active) {
-          double u, du;
-          own(q, node.f[q], u, du);
-          pinned_.set_reference(q, du);
-        }
-        pinned_.rebuild();
-        aa.clear();
-        previous = HUGE_VAL;
-        continue;
-      }
-      if (iter >= 200) interacting_solver_failure("the chord iteration did not converge in 200 iterations", X);
-      previous = change;
-    }
-    iterations_ += iter;
-  }
-  add_totals(node);
-  for (std::size_t q = 0; q < n; ++q) {
-    last_f_[pinned_.junction(q)] = node.f[q];
-    last_a_[pinned_.junction(q)] = node.a[q];
-  }
-  ++solves_;
-  return node;
-}
-
-void InteractingJunctions::overloaded_check(double X, const std::vector<std::size_t>& active,
-                                            const std::vector<double>& f, double change, double stuck) const {
-  std::size_t worst = npos;
-  double ratio = 0, phi_max = 0;
-  for (std::size_t q : active) {
-    phi_max = std::max(phi_max, eq3_.force_scale(pinned_.junction(q)) * f[q]);
-    if (f[q] / threshold(q) > ratio) ratio = f[q] / threshold(q), worst = q;
-  }
-  if (worst == npos || !(phi_max >= 1.0 || (ratio > 1.0 && change > stuck))) return;
-  char what[240];
-  std::snprintf(what, sizeof what,
-                "interacting event solver: a pinned junction is driven past its slip force (%.3g times it, phi up "
-                "to %.3g) and the coupled solve cannot settle, outside an avalanche, at X = %.6g m",
-                ratio, phi_max, X);
-  throw Overloaded(what, worst);
-}
-
-double InteractingJunctions::chord_step(double X, const std::vector<std::size_t>& active, double a_scale,
-                                        const std::vector<double>& y1, const std::vector<double>& y2,
-                                        const std::vector<double>& z, std::vector<double>& g, Anderson& aa) const {
-  const std::size_t nA = active.size();
-  // Damped: no nonlinear junction's φ = s f moves by more than 0.1 in one iteration (far
-  // from the solution, e.g. a poor warm start, the full step can overshoot into φ → 1).
-  // The accelerated step is taken only where the plain one needs no damping and stays
-  // within the same bound itself.
-  double step_phi = 0;
-  for (std::size_t k = 0; k < nA; ++k) {
-    const std::size_t q = active[k];
-    step_phi = std::max(step_phi, eq3_.force_scale(pinned_.junction(q)) * threshold(q) * std::abs(g[k] - z[k]));
-  }
-  const double damp = step_phi > 0.1 ? 0.1 / step_phi : 1.0;
-  if (damp < 1.0) {
-    aa.clear();
-    return damp;
-  }
-  if (!aa.step(z, g)) return damp;  // g becomes the accelerated iterate when true
-  double jump = 0;
-  for (std::size_t k = 0; k < nA; ++k) {
-    const std::size_t q = active[k];
-    jump = std::max(jump, eq3_.force_scale(pinned_.junction(q)) * threshold(q) * std::abs(g[k] - z[k]));
-  }
-  if (!(jump <= 0.1)) {  // an extrapolation too far: back to the plain step
-    aa.clear();
-    for (std::size_t k = 0; k < nA; ++k) {
-      const std::size_t q = active[k];
-      g[k] = (X * pinned_.a0(q) + pinned_.b0(q) - y1[q]) / threshold(q);
-      g[nA + k] = (pinned_.a0(q) - y2[q]) / a_scale;
-    }
-  }
-  return damp;
-}
-
-void InteractingJunctions::add_totals(ForceNode& node) const {
-  // Totals and their X-derivatives.
-  const std::size_t n = pinned_.size();
-  double F = F_slip_, dF = 0, A = A_fixed_, dA = 0;
-  for (std::size_t q = 0; q < n; ++q) {
-    F += node.f[q];
-    dF += node.a[q];
-    if (pinned_.nonlinear(q)) {
-      const std::size_t i = pinned_.junction(q);
-      const double phi = eq3_.force_scale(i) * node.f[q];
-      A += sheared_area_phi(J_.A0[i], phi);
-      dA += sheared_area_phi_slope(J_.A0[i], phi) * eq3_.force_scale(i) * node.a[q];
-    }
-  }
-  node.F = F;
-  node.dF = dF;
-  node.A = A;
-  node.dA = dA;
-}
-
-double InteractingJunctions::force(double X) const {
+double InteractingJunctions::force(double X) {
   ++force_evals_;
   if (pinned_.n_nonlinear() == 0) return X * sum_a0_ + sum_b0_ + F_slip_;
   return cache_.value(X, &ForceNode::F, &ForceNode::dF, x_up_, x_down_);
 }
 
-double InteractingJunctions::area(double X) const {
+double InteractingJunctions::area(double X) {
   if (pinned_.n_nonlinear() == 0) return A_fixed_;
   return cache_.value(X, &ForceNode::A, &ForceNode::dA, x_up_, x_down_);
 }
 
-std::vector<double> InteractingJunctions::forces(double X) const {
+std::vector<double> InteractingJunctions::forces(double X) {
   std::vector<double> f(J_.force);
   const ForceNode n = solve(X);
   for (std::size_t q = 0; q < pinned_.size(); ++q) f[pinned_.junction(q)] = n.f[q];
@@ -392,7 +102,7 @@ std::vector<double> InteractingJunctions::areas(const std::vector<double>& f) co
   return A;
 }
 
-std::vector<double> InteractingJunctions::load_ratios(double X) const {
+std::vector<double> InteractingJunctions::load_ratios(double X) {
   const std::vector<double> f = forces(X);
   const std::vector<double> A = areas(f);
   std::vector<double> r(N_);
@@ -446,46 +156,52 @@ void InteractingJunctions::find_thresholds(double X) {
       k_down_ = pinned_.junction(k);
       continue;
     }
-    double lo = X, hi = dir * HUGE_VAL;  // bracket: below threshold at lo, over at hi
-    double Xt = X + dir * best;
-    for (int round = 0;; ++round) {
-      if (round > 50) interacting_solver_failure("no slip position found", X);
-      // Newton in X on f_k(X) = threshold, kept inside the bracket.
-      for (int it = 0;; ++it) {
-        if (it > 100) interacting_solver_failure("Newton on a slip position did not converge", Xt);
-        const ForceNode& m = cache_.at(Xt);
-        const std::size_t qk = k;  // positions do not move while no junction changes state
-        const double thr = threshold(qk);
-        const double r = m.f[qk] - thr;
-        if (r < 0) lo = Xt; else hi = Xt;
-        if (std::abs(r) <= tol_ * thr) break;
-        double next = Xt - r / m.a[qk];
-        const bool inside = dir > 0 ? (next > lo && next < hi) : (next < lo && next > hi);
-        if (!inside && std::isfinite(hi)) next = 0.5 * (lo + hi);
-        if (std::abs(next - Xt) <= 4e-16 * std::abs(Xt)) break;
-        Xt = next;
-      }
-      // Has another junction crossed before? Take the earliest by linear back-extrapolation.
-      const ForceNode& m = cache_.at(Xt);
-      std::size_t other = npos;
-      double earliest = Xt;
-      for (std::size_t q = 0; q < n; ++q) {
-        const double thr = threshold(q);
-        if (q == k || m.f[q] - thr <= 0.1 * tol_ * thr) continue;
-        const double back = m.a[q] != 0 ? Xt - (m.f[q] - thr) / m.a[q] : lo;
-        const double xb = dir > 0 ? std::clamp(back, std::min(lo, X), Xt) : std::clamp(back, Xt, std::max(lo, X));
-        if (other == npos || dir * xb < dir * earliest) other = q, earliest = xb;
-      }
-      if (other == npos) break;
-      k = other;
-      hi = Xt;
-      lo = X;
-      Xt = earliest;
-      if (Xt == X || Xt == hi) Xt = 0.5 * (lo + hi);
-    }
+    const double Xt = refine_crossing(X, dir, best, k);
     if (dir > 0) x_up_ = Xt, k_up_ = pinned_.junction(k);
     else x_down_ = Xt, k_down_ = pinned_.junction(k);
   }
+}
+
+double InteractingJunctions::refine_crossing(double X, int dir, double best, std::size_t& k) {
+  const std::size_t n = pinned_.size();
+  double lo = X, hi = dir * HUGE_VAL;  // bracket: below threshold at lo, over at hi
+  double Xt = X + dir * best;
+  for (int round = 0;; ++round) {
+    if (round > 50) interacting_solver_failure("no slip position found", X);
+    // Newton in X on f_k(X) = threshold, kept inside the bracket.
+    for (int it = 0;; ++it) {
+      if (it > 100) interacting_solver_failure("Newton on a slip position did not converge", Xt);
+      const ForceNode& m = cache_.at(Xt);
+      const std::size_t qk = k;  // positions do not move while no junction changes state
+      const double thr = threshold(qk);
+      const double r = m.f[qk] - thr;
+      if (r < 0) lo = Xt; else hi = Xt;
+      if (std::abs(r) <= tol_ * thr) break;
+      double next = Xt - r / m.a[qk];
+      const bool inside = dir > 0 ? (next > lo && next < hi) : (next < lo && next > hi);
+      if (!inside && std::isfinite(hi)) next = 0.5 * (lo + hi);
+      if (std::abs(next - Xt) <= 4e-16 * std::abs(Xt)) break;
+      Xt = next;
+    }
+    // Has another junction crossed before? Take the earliest by linear back-extrapolation.
+    const ForceNode& m = cache_.at(Xt);
+    std::size_t other = npos;
+    double earliest = Xt;
+    for (std::size_t q = 0; q < n; ++q) {
+      const double thr = threshold(q);
+      if (q == k || m.f[q] - thr <= 0.1 * tol_ * thr) continue;
+      const double back = m.a[q] != 0 ? Xt - (m.f[q] - thr) / m.a[q] : lo;
+      const double xb = dir > 0 ? std::clamp(back, std::min(lo, X), Xt) : std::clamp(back, Xt, std::max(lo, X));
+      if (other == npos || dir * xb < dir * earliest) other = q, earliest = xb;
+    }
+    if (other == npos) break;
+    k = other;
+    hi = Xt;
+    lo = X;
+    Xt = earliest;
+    if (Xt == X || Xt == hi) Xt = 0.5 * (lo + hi);
+  }
+  return Xt;
 }
 
 void InteractingJunctions::after_change(double X) {

@@ -33,6 +33,7 @@
 #include "solve/core/problem.hpp"
 #include "solve/core/run_info.hpp"
 #include "solve/interacting/anderson.hpp"
+#include "solve/interacting/chord_policy.hpp"
 #include "solve/interacting/eq3_displacement.hpp"
 #include "solve/interacting/force_cache.hpp"
 #include "solve/interacting/pinned_compliance.hpp"
@@ -52,8 +53,9 @@ class InteractingJunctions {
   InteractingJunctions(const InteractingJunctions&) = delete;
   InteractingJunctions& operator=(const InteractingJunctions&) = delete;
 
-  double force(double X) const;  // total junction force at slider position X [N]
-  double area(double X) const;   // total area [m²]
+  // Not const: each solves at X when its interpolants do not yet cover it (and caches the node).
+  double force(double X);  // total junction force at slider position X [N]
+  double area(double X);   // total area [m²]
   bool has_threshold() const;
   double next_threshold() const { return x_up_; }  // m: the next slip as X grows
   bool has_threshold_below() const;
@@ -79,11 +81,11 @@ class InteractingJunctions {
 
   // Every junction's force at X (N, by junction) for the current pinned set; for tests and
   // the force-spread study.
-  std::vector<double> forces(double X) const;
+  std::vector<double> forces(double X);
   const JunctionState& state() const { return J_; }  // areas, thresholds, pinned, intact
   // f_i / (σ A_i) at X, A_i the current area (Eq. 3 at f_i for a junction whose area follows its
   // force): 1 at the slip threshold, ε for a slipping junction under area_law until_first_slip.
-  std::vector<double> load_ratios(double X) const;
+  std::vector<double> load_ratios(double X);
   // Every junction's contact area [m²] with the forces f (N, by junction, as forces() gives them
   // for the current set): Eq. (3) at f_i for a junction whose area follows its force, else its
   // frozen area.
@@ -117,11 +119,23 @@ class InteractingJunctions {
   };
 
   // Own displacement u(f) [m] and du/df [m/N] of the junction at position q of P.
-  void own(std::size_t q, double f, double& u, double& du) const;
+  void own(std::size_t q, double f, double& u, double& du);
   // Exact solve at X by the chord iteration, warm-started from the cache: a new node, converged to
   // `tol` of the slip forces (solver.interaction_tolerance unless given).
-  ForceNode solve(double X) const { return solve(X, tol_); }
-  ForceNode solve(double X, double tol) const;
+  ForceNode solve(double X) { return solve(X, tol_); }
+  ForceNode solve(double X, double tol);
+  // The steps of a solve's chord iteration (interacting_solve.cpp), on the work vectors of one
+  // solve: from node's warm start to the fixed point at X (returns the passes); its start; the
+  // junctions' own laws at the iterate; the chord map's image (one pass over G); the damped or
+  // accelerated step (returns the largest change, of the slip forces); a rebuild of G at the
+  // current compliances.
+  struct ChordPass;
+  int chord_iteration(double X, const ChordPolicy& policy, ForceNode& node);
+  ChordPass start_chord(double tol) const;
+  void own_laws(const ForceNode& node, ChordPass& w);
+  void chord_image(double X, const ForceNode& node, ChordPass& w);
+  double take_step(double X, double damp, ForceNode& node, const ChordPass& w);
+  void refresh_reference(const ForceNode& node, ChordPass& w);
   // One chord iteration's step on the active positions: damps it (returns the factor) or
   // replaces g by Anderson's accelerated iterate when that stays within the same bound.
   double chord_step(double X, const std::vector<std::size_t>& active, double a_scale, const std::vector<double>& y1,
@@ -140,6 +154,10 @@ class InteractingJunctions {
   // time, most overloaded first; then the new slip positions. Returns how many slipped.
   std::int64_t settle(double X, std::size_t k);
   void find_thresholds(double X);
+  // From the crossing of position k predicted at X + dir·best: Newton in X on its force, then on
+  // any junction found over its threshold before it, the earliest first; returns the slip
+  // position and leaves k on the position that slips there.
+  double refine_crossing(double X, int dir, double best, std::size_t& k);
   // Position q leaves P carrying f_slip; at_X: the old set's solution nearest X (or null), from
   // which the new set's seed at X is predicted.
   // other: at_X's neighbour in the old cache (or null), for the curvatures.
@@ -155,30 +173,30 @@ class InteractingJunctions {
   JunctionState J_;
   Eq3Displacement eq3_;
   // G, D, a0, b0 change with the reference compliances, a choice of the iteration, not of the
-  // solution: refreshed inside const solves. The cache is a memo of the same const solves.
-  mutable PinnedCompliance pinned_;
-  mutable ForceCache cache_;
+  // solution: refreshed inside solves. The cache is a memo of the solves.
+  PinnedCompliance pinned_;
+  ForceCache cache_;
   double sum_a0_ = 0, sum_b0_ = 0, F_slip_ = 0, A_fixed_ = 0;
   std::int64_t n_intact_ = 0, slips_ = 0, repins_ = 0, overloaded_ = 0;
   double x_up_ = 0, x_down_ = 0;
   std::chrono::steady_clock::time_point deadline_ = std::chrono::steady_clock::time_point::max();
   std::size_t k_up_ = npos, k_down_ = npos;  // junctions of the next slips
-  mutable std::vector<double> last_f_, last_a_;  // by junction: the last solve (warm start)
+  std::vector<double> last_f_, last_a_;  // by junction: the last solve (warm start)
   // After a slip at seed_X_: the new set's forces and slopes there, predicted (warm start).
   bool seed_valid_ = false;
   double seed_X_ = 0;
   std::vector<double> seed_f_, seed_a_, seed_c_;  // c: d²f/dX² (empty: unknown)
   double seed_h_ = 0;  // m: the spacing of the old nodes the curvatures come from
-  mutable std::int64_t force_evals_ = 0, solves_ = 0, iterations_ = 0;
+  std::int64_t force_evals_ = 0, solves_ = 0, iterations_ = 0;
   // Chord passes that contracted slowly since G was last rebuilt (rebuild count slow_since_).
-  mutable std::int64_t slow_passes_ = 0, slow_since_ = -1;
+  std::int64_t slow_passes_ = 0, slow_since_ = -1;
   // The threads of the per-junction loops of a chord pass (the laws; the iterate's update), chosen
   // by measuring them (adaptive_team.hpp); from 512 junctions on two threads pay on a quiet machine.
   struct Teams {
     explicit Teams(int threads) : laws(threads, 512), updates(threads, 512) {}
     AdaptiveTeam laws, updates;
   };
-  mutable Teams teams_;
+  Teams teams_;
 };
 
 }  // namespace asperity

@@ -1,5 +1,5 @@
 #pragma once
-// Which form of the pinned operator's SIMD kernels a run uses (pinned_compliance.cpp): the
+// Which form of the pinned operator's SIMD kernels a run uses (pinned_kernels.cpp): the
 // widest this CPU runs, or the one the environment variable ASPERITY_KERNEL names, so that one
 // machine can run every form its CPU has (the test suite does: tests/shell/kernel_variant.sh).
 // The forms group every sum of the chord passes alike (the same bits); only the row norms of

@@ -33,24 +33,6 @@
 
 namespace asperity {
 
-// The single-precision copy's layout: row r packed from its diagonal, its entry at column c at
-// S[packed_row(r, N) + c] (row r holds N − r entries).
-inline std::size_t packed_row(std::size_t r, std::size_t N) { return r * N - r * (r + 1) / 2; }
-
-// One form of the chord pass's product kernel: rows [r0, r1) of an upper triangle (row r's entry
-// at column c ≥ r at G[r·N + c], or packed in single precision) times (w1, w2), row r's sums
-// added into p[r] and its entries' transposed products into p[c > r]. The forms this CPU can run
-// (kernel_forms_available()) are listed for tests: every form groups every sum alike, so all
-// give the same bits. A PinnedCompliance uses the form kernel_form() names (ASPERITY_KERNEL).
-struct ProductKernel {
-  const char* name;
-  void (*rows)(const double* G, std::size_t N, std::size_t n, std::size_t r0, std::size_t r1, const double* w1,
-               const double* w2, double* p1, double* p2);
-  void (*single_rows)(const float* S, std::size_t N, std::size_t n, std::size_t r0, std::size_t r1,
-                      const double* w1, const double* w2, double* p1, double* p2);
-};
-std::vector<ProductKernel> product_kernels();
-
 class PinnedCompliance {
  public:
   static constexpr std::size_t npos = static_cast<std::size_t>(-1);
@@ -80,7 +62,7 @@ class PinnedCompliance {
   // y1 = G w1, y2 = G w2 over P with w1, w2 (size() entries) zero outside the positions
   // `columns` (one pass over the stored triangle of G). y1, y2 are overwritten.
   void apply(const std::vector<std::size_t>& columns, const std::vector<double>& w1, const std::vector<double>& w2,
-             std::vector<double>& y1, std::vector<double>& y2) const;
+             std::vector<double>& y1, std::vector<double>& y2);
   // The errors a pass may make on y1 (by position, absolute) and on y2 (absolute, every entry)
   // by reading the single-precision copy.
   struct PassBudget {
@@ -91,7 +73,7 @@ class PinnedCompliance {
   // The same product, from the single-precision copy when its error bound is within `budget`
   // on every entry (a product over the whole triangle only, and with the copy kept).
   Pass apply(const std::vector<std::size_t>& columns, const std::vector<double>& w1, const std::vector<double>& w2,
-             std::vector<double>& y1, std::vector<double>& y2, const PassBudget& budget) const;
+             std::vector<double>& y1, std::vector<double>& y2, const PassBudget& budget);
   bool single_kept() const { return !single_.S.empty(); }
   std::int64_t single_passes() const { return single_.passes; }
   std::int64_t single_refreshes() const { return single_.refreshes; }
@@ -140,13 +122,13 @@ class PinnedCompliance {
           fold(threads, 2.0 * kParallelWork), deferred(threads, kParallelWork / 4.0) {}
     AdaptiveTeam product, single, fold, deferred;
   };
-  mutable Teams teams_;
+  Teams teams_;
   // y1 = G w1, y2 = G w2 over all of P (w1, w2: size() entries).
   void symmetric_product(const std::vector<double>& w1, const std::vector<double>& w2, std::vector<double>& y1,
-                         std::vector<double>& y2) const;
+                         std::vector<double>& y2);
   // y −= Σ u (uᵀ w)/d over the removals not yet folded.
   void subtract_deferred(const std::vector<double>& w1, const std::vector<double>& w2, std::vector<double>& y1,
-                         std::vector<double>& y2) const;
+                         std::vector<double>& y2);
   // The fixed row blocks of a product over the triangle (n + 1 edges).
   std::vector<std::size_t> row_blocks() const;
 
@@ -165,7 +147,7 @@ class PinnedCompliance {
   // One pass over the triangle's rows: the removals kept aside folded in (when asked), and the
   // single-precision copy with its row norms written (when kept).
   void write_rows(bool removals);
-  mutable std::vector<double> partial_;  // the symmetric product's per-block sums (a workspace)
+  std::vector<double> partial_;  // the symmetric product's per-block sums (a workspace)
   // The single-precision copy (empty: not kept): S packed by rows (row r from its diagonal,
   // N − r entries), the rows' 2-norm bounds of the triangle T it copies, and the reference of
   // the last exact pass.
@@ -177,7 +159,7 @@ class PinnedCompliance {
     bool usable = false;  // S and row_error hold for the current triangle (and no entry overflowed)
     std::int64_t passes = 0, refreshes = 0;
   };
-  mutable Single single_;
+  Single single_;
   // Rows [0, n) of T written into S, with their norms (after a rebuild or fold).
   void copy_single();
   // Row norms and usability from a copy's per-row and per-block sums.

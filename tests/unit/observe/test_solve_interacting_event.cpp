@@ -99,7 +99,7 @@ TEST_CASE("event solver: a pair of linear junctions has the 2x2 closed-form stif
   Scene s = interacting_event_scene({1e-9, 2.5e-9}, {0, 8e-5}, {0, 3e-5});
   s.model.alpha_b = 0;  // constant areas: linear until the first slip
   const Problem p = make_problem(s);
-  const InteractingJunctions J(p);
+  InteractingJunctions J(p);
   const double k1 = p.law.stiffness(1e-9, 1e-9), k2 = p.law.stiffness(2.5e-9, 2.5e-9);
   const double a = 1 / k1, d = 1 / k2;
   const double c = disc_compliance(-8e-5, -3e-5, std::sqrt(1e-9 / M_PI), std::sqrt(2.5e-9 / M_PI), p.law.E, p.law.nu);

@@ -19,6 +19,7 @@
 #include "solve/core/problem.hpp"
 #include "solve/interacting/interaction_matrix.hpp"
 #include "solve/interacting/pinned_compliance.hpp"
+#include "solve/interacting/pinned_kernels.hpp"
 
 namespace {
 
