@@ -63,7 +63,9 @@ MeasuredShape measured_shape(const Scene& scene, const MeasuredForce& f, const F
     // How fast Q rises into a peak: the reloading (drop per period), else the first loading.
     const double rise = c.n_periods > 0 ? c.mean_drop / c.mean_period : c.peaks.front().Q_max / c.peaks.front().t_max;
     const double miss = rise * dt;  // how far a sampled maximum may sit below the true one
-    m.sigma_drop_N = std::sqrt((2.0 * sigma_Q * sigma_Q + miss * miss / 6.0) / c.n_drops);
+    // One drop: two sampled extrema, each with force noise and the sampled maximum's miss.
+    const double sigma_one_drop_N = std::sqrt(2.0 * sigma_Q * sigma_Q + miss * miss / 6.0);
+    m.sigma_drop_N = sigma_one_drop_N / std::sqrt(static_cast<double>(c.n_drops));
     if (c.n_periods > 0) m.sigma_period_s = dt / (std::sqrt(3.0) * c.n_periods);
     // One peak each: its drop as one of the means' n_d, its t_cross uniform within its sampling
     // interval on either curve (σ = dt/√12 each, dt/√6 their difference). Compared up to midway
@@ -71,7 +73,7 @@ MeasuredShape measured_shape(const Scene& scene, const MeasuredForce& f, const F
     constexpr std::size_t compared = 6;
     m.peaks_compared = std::min(c.peaks.size(), compared);
     m.pairing.sigma_t_s = dt / std::sqrt(6.0);
-    m.pairing.sigma_drop_N = std::sqrt(2.0 * sigma_Q * sigma_Q + miss * miss / 6.0);
+    m.pairing.sigma_drop_N = sigma_one_drop_N;
     m.pairing.t_window_s = c.peaks.size() > compared
                                ? 0.5 * (c.peaks[compared - 1].t_cross + c.peaks[compared].t_cross)
                                : f.t_s.back();

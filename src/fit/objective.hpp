@@ -46,6 +46,8 @@ std::vector<double> model_force_at(const std::vector<Sample>& series, std::span<
 //            peak, else the window's end). A precursor near the threshold that noise finds in
 //            one curve and not the other then costs about nothing, where pairing by order
 //            compares every later peak with the wrong one.
+//            Both: a measured curve without a peak is all loading branch, and gives no cycle term
+//            (the model's late peaks are then scored pointwise by the held-peak branch).
 //            auto: loading_and_cycles where the measured Q(t) shows two complete cycles or more
 //            (n_p ≥ 2), else pointwise: through the first cycle the phase has had no time to
 //            drift, the samples after the peak still inform, and pointwise recovers the truth

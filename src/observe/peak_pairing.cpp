@@ -37,12 +37,12 @@ PeakPairing pair_peaks(std::span<const SampledPeak> measured, std::span<const Sa
       if (i == 0 && j == 0) continue;
       double best = std::numeric_limits<double>::infinity();
       unsigned char move = 0;
-      if (i > 0 && cost[at(i - 1, j)] + unpaired(measured[i - 1]) < best)
-        best = cost[at(i - 1, j)] + unpaired(measured[i - 1]), move = 0;
-      if (j > 0 && cost[at(i, j - 1)] + unpaired(model[j - 1]) < best)
-        best = cost[at(i, j - 1)] + unpaired(model[j - 1]), move = 1;
-      if (i > 0 && j > 0 && cost[at(i - 1, j - 1)] + paired(measured[i - 1], model[j - 1]) < best)
-        best = cost[at(i - 1, j - 1)] + paired(measured[i - 1], model[j - 1]), move = 2;
+      const auto consider = [&](double c, unsigned char mv) {
+        if (c < best) best = c, move = mv;
+      };
+      if (i > 0) consider(cost[at(i - 1, j)] + unpaired(measured[i - 1]), 0);
+      if (j > 0) consider(cost[at(i, j - 1)] + unpaired(model[j - 1]), 1);
+      if (i > 0 && j > 0) consider(cost[at(i - 1, j - 1)] + paired(measured[i - 1], model[j - 1]), 2);
       cost[at(i, j)] = best;
       step[at(i, j)] = move;
     }

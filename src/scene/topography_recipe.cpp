@@ -33,16 +33,17 @@ std::optional<RecipeProblem> topography_recipe_problem(const TopographyRecipe& r
 }
 
 std::string topography_number_problem(const std::string& key, double x) {
-  // A value from Python may be NaN or infinite (a file's never reaches here so).
-  const auto num = [](double v) { return std::isfinite(v) ? scene_io::format_double(v) : scene_io::format_printf("%g", v); };
+  // A value from Python may be NaN or infinite (a file's never reaches here so): shown as given,
+  // where num refuses it.
+  const auto got = [](double v) { return std::isfinite(v) ? scene_io::format_double(v) : scene_io::format_printf("%g", v); };
   if (key == "sphere_radius_m" || key == "E" || key == "load_N")
-    return x > 0.0 && std::isfinite(x) ? "" : "must be > 0, got " + num(x);
-  if (key == "nu") return x >= 0.0 && x <= 0.5 ? "" : "must be in [0, 0.5], got " + num(x);
+    return x > 0.0 && std::isfinite(x) ? "" : "must be > 0, got " + got(x);
+  if (key == "nu") return x >= 0.0 && x <= 0.5 ? "" : "must be in [0, 0.5], got " + got(x);
   if (key == "contact.tolerance") return x >= 1e-15 && x < 1 ? "" : "must be in [1e-15, 1)";
   const bool integer = std::isfinite(x) && x == std::floor(x);
   if (key == "contact.max_iterations")
-    return integer && x >= 1 && x <= 1'000'000 ? "" : "must be in [1, 1000000], got " + num(x);
-  if (key == "contact.connectivity") return integer && (x == 4 || x == 8) ? "" : "must be 4 or 8, got " + num(x);
+    return integer && x >= 1 && x <= 1'000'000 ? "" : "must be in [1, 1000000], got " + got(x);
+  if (key == "contact.connectivity") return integer && (x == 4 || x == 8) ? "" : "must be 4 or 8, got " + got(x);
   throw std::invalid_argument("topography_number_problem: no range for " + key);
 }
 

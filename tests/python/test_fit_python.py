@@ -213,6 +213,35 @@ def test_fit_result_tables_match_its_dict(source):
     assert runs.attrs["units"]["Q_s"] == "N"
 
 
+def test_fit_result_intervals_at_a_certified_chi_square(source, tmp_path):
+    """A chi-square objective (area_and_force, against a Q(t) the model made) at a certified
+    optimum: sigma is the Hessian's, and a second method, the parabola through the profile,
+    agrees with it (measured 4 % apart); the 95 % interval is value -+ 1.96 sigma."""
+    base = source / "tests" / "data" / "scene"
+    run = asperity.run(asperity.load_scene(small_scene(source), {"model.alpha_b": ALPHA_B_TRUE}))
+    t, Q = np.asarray(run.series["t"]), np.asarray(run.series["Q"])
+    pick = np.linspace(0, len(t) - 1, 40).astype(int)
+    force = tmp_path / "Qt.csv"
+    force.write_text("t_s,Q_N\n" + "".join(f"{t[i]!r},{Q[i]!r}\n" for i in pick))
+    d = spec(objective="area_and_force", noise={"area": 0.002, "force": 0.002},
+             experiments=[{"scene": str(small_scene(source)), "force": str(force)}],
+             profile={"parameter": "model.alpha_b", "span": 0.1, "points": 5})
+    d["optimizer"]["starts"] = 2
+    result = asperity.fit(d, base=base, threads=1, progress=False)
+    (f,) = result["fits"]
+    assert f["converged"] == "yes" and f["uncertainty"]["computed"], f
+    params = result.parameters
+    value, sigma = params["value"][0], params["sigma"][0]
+    assert sigma == f["uncertainty"]["sigma"]["model.alpha_b"] and 0 < sigma < 0.2 * value
+    assert params["lo95"][0] == pytest.approx(value - 1.96 * sigma, rel=1e-12)
+    assert params["hi95"][0] == pytest.approx(value + 1.96 * sigma, rel=1e-12)
+    assert params["reduced_chi2"][0] == f["uncertainty"]["reduced_chi2"] > 0
+    (profile,) = f["profiles"]
+    assert profile["parabola_sigma"] == pytest.approx(sigma, rel=0.15)
+    lo, hi = profile["interval"]
+    assert lo < value < hi
+
+
 def area_term(summary):  # a Python objective with a source file: journaled under its digest
     return (summary["alpha"] / 2.0e-7 - 1.0) ** 2
 
