@@ -10,10 +10,10 @@
 
 #include "fit/fit.hpp"
 #include "fit/fit_load.hpp"
+#include "io/numbers.hpp"
 #include "observe/simulate.hpp"
 #include "scene/csv.hpp"
 #include "scene/load.hpp"
-#include "io/numbers.hpp"
 #include "support_files.hpp"
 #include "support_scenes.hpp"
 
@@ -34,8 +34,7 @@ struct FitCase {
 };
 
 // Areas log-spread on [1e-9, 1e-7] m² plus a few large ones (a peak that the recorder confirms).
-inline FitCase make_fit_case(const std::string& tag, double alpha_b, double p, double mass = 0.1,
-                             std::size_t n = 120) {
+inline FitCase make_fit_case(const std::string& tag, double alpha_b, double p, double mass = 0.1, std::size_t n = 120) {
   namespace fs = std::filesystem;
   FitCase c;
   c.alpha_b = alpha_b;
@@ -53,10 +52,9 @@ inline FitCase make_fit_case(const std::string& tag, double alpha_b, double p, d
     std::ofstream(c.dir / "scene.yaml") << "experiment: experiment.yaml\nstop: {time: 3}\n";
   }
   // The truth: loading branch of the model at (alpha_b, p), as the measured curve.
-  const Scene truth = load_scene(c.dir / "scene.yaml",
-                                 {"model.alpha_b=" + scene_io::format_double(alpha_b),
-                                  "model.p=" + scene_io::format_double(p), "stop.at_first_peak=true",
-                                  "output.series=[]"});
+  const Scene truth = load_scene(
+      c.dir / "scene.yaml", {"model.alpha_b=" + scene_io::format_double(alpha_b),
+                             "model.p=" + scene_io::format_double(p), "stop.at_first_peak=true", "output.series=[]"});
   const RunResult r = simulate(truth);
   MeasuredCurve m;
   for (const auto& s : r.recorder.loading_branch())

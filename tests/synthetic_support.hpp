@@ -48,16 +48,33 @@ inline std::string synthetic_recipe_text(const std::string& scene, const Synthet
                                          std::uint64_t seed, double end, double every = 0.005, int points = 40) {
   const auto num = [](double x) { return scene_io::format_double(x); };
   return "synthetic:\n"
-         "  scene: " + scene + "\n"
+         "  scene: " +
+         scene +
+         "\n"
          "  set:\n"
-         "    model.alpha_b: " + num(t.alpha_b) + "\n"
-         "    model.epsilon: " + num(t.epsilon) + "\n"
-         "    model.eta: " + num(t.eta) + "\n"
-         "    model.interactions: " + t.interactions + "\n"
-         "  seed: " + std::to_string(seed) + "\n"
-         "  noise: {area: " + num(noise) + ", force: " + num(noise) + "}\n"
-         "  measured: {points: " + std::to_string(points) + "}\n"
-         "  measured_force: {every: " + num(every) + ", end: " + num(end) + "}\n";
+         "    model.alpha_b: " +
+         num(t.alpha_b) +
+         "\n"
+         "    model.epsilon: " +
+         num(t.epsilon) +
+         "\n"
+         "    model.eta: " +
+         num(t.eta) +
+         "\n"
+         "    model.interactions: " +
+         t.interactions +
+         "\n"
+         "  seed: " +
+         std::to_string(seed) +
+         "\n"
+         "  noise: {area: " +
+         num(noise) + ", force: " + num(noise) +
+         "}\n"
+         "  measured: {points: " +
+         std::to_string(points) +
+         "}\n"
+         "  measured_force: {every: " +
+         num(every) + ", end: " + num(end) + "}\n";
 }
 
 }  // namespace asperity::testing

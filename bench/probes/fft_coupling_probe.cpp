@@ -20,7 +20,9 @@
 using namespace asperity;
 
 int main(int argc, char** argv) {
-  std::printf("N,order,cell_per_spacing,near_cells,setup_s,product_ms,dense_product_ms,speedup,near_pairs_per_junction,grid_points,error\n");
+  std::printf(
+      "N,order,cell_per_spacing,near_cells,setup_s,product_ms,dense_product_ms,speedup,near_pairs_per_junction,grid_"
+      "points,error\n");
   for (int k = 1; k < argc; ++k) {
     const std::size_t N = std::atoi(argv[k]);
     const ProbePopulation p = probe_population(N);
@@ -57,8 +59,12 @@ int main(int argc, char** argv) {
     const double dense_s = times[times.size() / 2];
     double ymax = 0;
     for (double v : exact) ymax = std::max(ymax, std::abs(v));
-    struct Knob { int order; double cell, near; };
-    for (const Knob kn : {Knob{6, 1.0, 8}, Knob{6, 0.5, 16}, Knob{8, 0.5, 12}, Knob{8, 0.5, 16}, Knob{8, 0.35, 11.4}, Knob{8, 0.35, 17.1}}) {
+    struct Knob {
+      int order;
+      double cell, near;
+    };
+    for (const Knob kn : {Knob{6, 1.0, 8}, Knob{6, 0.5, 16}, Knob{8, 0.5, 12}, Knob{8, 0.5, 16}, Knob{8, 0.35, 11.4},
+                          Knob{8, 0.35, 17.1}}) {
       FftCouplingSettings s{kn.order, kn.near, kn.cell};
       auto t0 = ProbeClock::now();
       const FftCoupling c(p.x_m, p.y_m, a, E, nu, TractionWeighting::uniform, s);
@@ -74,8 +80,8 @@ int main(int argc, char** argv) {
       double e = 0;
       for (std::size_t i = 0; i < N; ++i) e = std::max(e, std::abs(y[i] - exact[i]));
       const double prod = times[times.size() / 2];
-      std::printf("%zu,%d,%.2f,%.1f,%.3f,%.3f,%.3f,%.1f,%.1f,%zu,%.2e\n", N, kn.order, kn.cell, kn.near, setup, 1e3 * prod, 1e3 * dense_s,
-                  dense_s / prod, 2.0 * c.near_pairs() / N, c.grid_points(), e / ymax);
+      std::printf("%zu,%d,%.2f,%.1f,%.3f,%.3f,%.3f,%.1f,%.1f,%zu,%.2e\n", N, kn.order, kn.cell, kn.near, setup,
+                  1e3 * prod, 1e3 * dense_s, dense_s / prod, 2.0 * c.near_pairs() / N, c.grid_points(), e / ymax);
       std::fflush(stdout);
     }
   }

@@ -9,9 +9,9 @@
 #include <sys/resource.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <cmath>
 #include <memory>
 #include "generate/positions.hpp"
 #include "observe/recorder.hpp"
@@ -29,12 +29,16 @@ int main(int argc, char** argv) {
   s.experiment.junctions.area_m2.resize(N);
   for (std::size_t i = 0; i < N; ++i) s.experiment.junctions.area_m2[i] = areas[i % N0];
   s.experiment.mass_kg = base.experiment.mass_kg * double(N) / double(N0);
-  s.stop.at_first_peak = true; s.stop.time = 60; s.stop.wall_time = 7200;
+  s.stop.at_first_peak = true;
+  s.stop.time = 60;
+  s.stop.wall_time = 7200;
   s.output.series.clear();
   const double R = 4.5e-3 * std::sqrt(double(N) / double(N0));
   const Positions p = place_in_contact_disc(s.experiment.junctions.area_m2, R, 20200318);
-  s.experiment.junctions.x_m = p.x_m; s.experiment.junctions.y_m = p.y_m;
-  s.model.interactions = Interactions::elastic; s.solver.method = SolverMethod::event;
+  s.experiment.junctions.x_m = p.x_m;
+  s.experiment.junctions.y_m = p.y_m;
+  s.model.interactions = Interactions::elastic;
+  s.solver.method = SolverMethod::event;
   if (argc > 2) s.solver.interaction_tolerance = std::atof(argv[2]);
   if (argc > 3) s.stop.wall_time = std::atof(argv[3]);
   const Problem problem = make_problem(s);
@@ -56,9 +60,12 @@ int main(int argc, char** argv) {
   const FirstPeak fp = rec.first_peak();
   rusage ru{};
   getrusage(RUSAGE_SELF, &ru);
-  std::printf("set-up %.3f s, max RSS %.0f MB, t_end %.6g s, stopped by a limit: %s\n", setup, ru.ru_maxrss / 1024.0, info.t_end,
-              info.stopped_by == LimitHit::none ? "no" : "yes");
-  std::printf("N %zu tol %g wall %.3f s  Q_s %.17g t_peak %.17g A_s %.17g steps %lld slips %lld solves %lld iters %lld rank1 %lld rebuilds %lld single %lld refresh %lld\n", N, s.solver.interaction_tolerance, wall, fp.max.Q, fp.max.t, fp.max.A,
-    (long long)info.stats.steps, (long long)info.stats.slips, (long long)w.solves, (long long)w.iterations, (long long)w.rank_one, (long long)w.rebuilds,
-    (long long)w.single_passes, (long long)w.single_refreshes);
+  std::printf("set-up %.3f s, max RSS %.0f MB, t_end %.6g s, stopped by a limit: %s\n", setup, ru.ru_maxrss / 1024.0,
+              info.t_end, info.stopped_by == LimitHit::none ? "no" : "yes");
+  std::printf(
+      "N %zu tol %g wall %.3f s  Q_s %.17g t_peak %.17g A_s %.17g steps %lld slips %lld solves %lld iters %lld rank1 "
+      "%lld rebuilds %lld single %lld refresh %lld\n",
+      N, s.solver.interaction_tolerance, wall, fp.max.Q, fp.max.t, fp.max.A, (long long)info.stats.steps,
+      (long long)info.stats.slips, (long long)w.solves, (long long)w.iterations, (long long)w.rank_one,
+      (long long)w.rebuilds, (long long)w.single_passes, (long long)w.single_refreshes);
 }

@@ -9,6 +9,7 @@
 //   cmake -S . -B build -DASPERITY_PROBES=ON && ninja -C build hmat_probe
 //   OMP_NUM_THREADS=1 build/hmat_probe N eps [leaf [eta]]      (from the repository root)
 #include <hmat/hmat.h>
+#include <Eigen/Dense>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -17,27 +18,37 @@
 #include <sstream>
 #include <string>
 #include <vector>
-#include <Eigen/Dense>
-#include "physics/elastic_interaction.hpp"
 #include "generate/positions.hpp"
+#include "physics/elastic_interaction.hpp"
 using namespace asperity;
-struct Data { std::vector<double> x, y, a, D; double E = 1.6e6, nu = 0.5; };
+struct Data {
+  std::vector<double> x, y, a, D;
+  double E = 1.6e6, nu = 0.5;
+};
 static void entry(void* ctx, int i, int j, void* out) {
   auto* d = static_cast<Data*>(ctx);
   double v;
-  if (i == j) v = d->D[i];
-  else v = disc_compliance(d->x[i] - d->x[j], d->y[i] - d->y[j], d->a[i], d->a[j], d->E, d->nu);
+  if (i == j)
+    v = d->D[i];
+  else
+    v = disc_compliance(d->x[i] - d->x[j], d->y[i] - d->y[j], d->a[i], d->a[j], d->E, d->nu);
   *static_cast<double*>(out) = v;
 }
-static double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
+static double now() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
 int main(int argc, char** argv) {
   const int N = std::atoi(argv[1]);
   const double eps = std::atof(argv[2]);
   const int leaf = argc > 3 ? std::atoi(argv[3]) : 64;
   const double eta = argc > 4 ? std::atof(argv[4]) : 2.0;
   std::ifstream in("data/standin/P4.00N/junctions.csv");  // run from the repository root
-  if (!in) { std::fprintf(stderr, "run from the repository root (data/standin/P4.00N/junctions.csv)\n"); return 2; }
-  std::string line; std::getline(in, line);
+  if (!in) {
+    std::fprintf(stderr, "run from the repository root (data/standin/P4.00N/junctions.csv)\n");
+    return 2;
+  }
+  std::string line;
+  std::getline(in, line);
   std::vector<double> A0;
   while (std::getline(in, line)) A0.push_back(std::stod(line.substr(0, line.find(','))));
   const std::size_t N0 = A0.size();
@@ -45,12 +56,24 @@ int main(int argc, char** argv) {
   for (int i = 0; i < N; ++i) areas[i] = A0[i % N0];
   const double R = 4.5e-3 * std::sqrt(double(N) / N0);
   Positions p = place_in_contact_disc(areas, R, 20200318);
-  Data d; d.x = p.x_m; d.y = p.y_m; d.a.resize(N); d.D.resize(N);
+  Data d;
+  d.x = p.x_m;
+  d.y = p.y_m;
+  d.a.resize(N);
+  d.D.resize(N);
   const double G = d.E / (2 * (1 + d.nu));
-  for (int i = 0; i < N; ++i) { d.a[i] = std::sqrt(areas[i] / M_PI); d.D[i] = (2 - d.nu) / (8 * G * d.a[i]); }
+  for (int i = 0; i < N; ++i) {
+    d.a[i] = std::sqrt(areas[i] / M_PI);
+    d.D[i] = (2 - d.nu) / (8 * G * d.a[i]);
+  }
   std::vector<double> coord(3 * N);
-  for (int i = 0; i < N; ++i) { coord[3*i] = d.x[i]; coord[3*i+1] = d.y[i]; coord[3*i+2] = 0; }
-  hmat_interface_t hmat; hmat_settings_t settings;
+  for (int i = 0; i < N; ++i) {
+    coord[3 * i] = d.x[i];
+    coord[3 * i + 1] = d.y[i];
+    coord[3 * i + 2] = 0;
+  }
+  hmat_interface_t hmat;
+  hmat_settings_t settings;
   hmat_get_parameters(&settings);
   hmat_init_default_interface(&hmat, HMAT_DOUBLE_PRECISION);
   hmat_set_parameters(&settings);
@@ -62,40 +85,59 @@ int main(int argc, char** argv) {
   auto* adm = hmat_create_admissibility_standard(eta);
   auto* H = hmat.create_empty_hmatrix_admissibility(tree, tree, 1, adm);
   hmat.set_low_rank_epsilon(H, eps);
-  hmat_assemble_context_t ctx; hmat_assemble_context_init(&ctx); ctx.progress = nullptr;
+  hmat_assemble_context_t ctx;
+  hmat_assemble_context_init(&ctx);
+  ctx.progress = nullptr;
   ctx.compression = hmat_create_compression_aca_plus(eps);
-  ctx.user_context = &d; ctx.simple_compute = entry; ctx.lower_symmetric = 1;
+  ctx.user_context = &d;
+  ctx.simple_compute = entry;
+  ctx.lower_symmetric = 1;
   hmat.assemble_generic(H, &ctx);
   double t1 = now();
-  hmat_info_t info; hmat.get_info(H, &info);
-  std::printf("N %d eps %g leaf %d: assemble %.3f s, %.1f MB of %.1f MB\n", N, eps, leaf, t1 - t0, 8e-6*info.compressed_size, 8e-6*info.uncompressed_size);
+  hmat_info_t info;
+  hmat.get_info(H, &info);
+  std::printf("N %d eps %g leaf %d: assemble %.3f s, %.1f MB of %.1f MB\n", N, eps, leaf, t1 - t0,
+              8e-6 * info.compressed_size, 8e-6 * info.uncompressed_size);
   // gemv with a copy before factorizing
   hmat_matrix_t* Hc = hmat.copy(H);
-  std::vector<double> b(2*N), x(2*N);
-  for (int i = 0; i < N; ++i) { b[i] = 1.0; b[N+i] = std::sin(0.37*i); }
+  std::vector<double> b(2 * N), x(2 * N);
+  for (int i = 0; i < N; ++i) {
+    b[i] = 1.0;
+    b[N + i] = std::sin(0.37 * i);
+  }
   double t2 = now();
-  hmat_factorization_context_t fc; hmat_factorization_context_init(&fc); fc.progress = nullptr; fc.factorization = hmat_factorization_llt;
+  hmat_factorization_context_t fc;
+  hmat_factorization_context_init(&fc);
+  fc.progress = nullptr;
+  fc.factorization = hmat_factorization_llt;
   hmat.factorize_generic(H, &fc);
   double t3 = now();
   hmat.get_info(H, &info);
-  std::printf("  LLT %.3f s, %.1f MB\n", t3 - t2, 8e-6*info.compressed_size);
+  std::printf("  LLT %.3f s, %.1f MB\n", t3 - t2, 8e-6 * info.compressed_size);
   x = b;
   const int reps = 10;
   double t4 = now();
-  for (int r = 0; r < reps; ++r) { x = b; hmat.solve_systems(H, x.data(), 2); }
+  for (int r = 0; r < reps; ++r) {
+    x = b;
+    hmat.solve_systems(H, x.data(), 2);
+  }
   double t5 = now();
-  std::vector<double> y(2*N, 0.0);
+  std::vector<double> y(2 * N, 0.0);
   double one = 1, zero = 0;
   double t6 = now();
   for (int r = 0; r < reps; ++r) hmat.gemv('N', &one, Hc, x.data(), &zero, y.data(), 2);
   double t7 = now();
-  std::printf("  solve(2 rhs) %.4f s, gemv(2 rhs) %.4f s\n", (t5-t4)/reps, (t7-t6)/reps);
+  std::printf("  solve(2 rhs) %.4f s, gemv(2 rhs) %.4f s\n", (t5 - t4) / reps, (t7 - t6) / reps);
   double res = 0, nb = 0;
-  for (int i = 0; i < 2*N; ++i) { res += (y[i]-b[i])*(y[i]-b[i]); nb += b[i]*b[i]; }
-  std::printf("  ||H x - b||/||b|| (H-gemv) %.3e\n", std::sqrt(res/nb));
+  for (int i = 0; i < 2 * N; ++i) {
+    res += (y[i] - b[i]) * (y[i] - b[i]);
+    nb += b[i] * b[i];
+  }
+  std::printf("  ||H x - b||/||b|| (H-gemv) %.3e\n", std::sqrt(res / nb));
   if (N <= 6000) {
     Eigen::MatrixXd M(N, N);
-    for (int i = 0; i < N; ++i) for (int j = 0; j < N; ++j) entry(&d, i, j, &M(i, j));
+    for (int i = 0; i < N; ++i)
+      for (int j = 0; j < N; ++j) entry(&d, i, j, &M(i, j));
     double t8 = now();
     Eigen::LLT<Eigen::MatrixXd> llt(M);
     double t9 = now();

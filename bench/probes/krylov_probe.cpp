@@ -69,7 +69,8 @@ Eigen::SparseMatrix<double> near_field(const ProbePopulation& p, const std::vect
 }
 
 int main(int argc, char** argv) {
-  std::printf("N,preconditioner,near_spacings,rhs,setup_s,iterations,solve_ms,product_ms,error_vs_dense,factor_nnz_per_row\n");
+  std::printf(
+      "N,preconditioner,near_spacings,rhs,setup_s,iterations,solve_ms,product_ms,error_vs_dense,factor_nnz_per_row\n");
   const double near_s = std::getenv("NEAR") ? std::atof(std::getenv("NEAR")) : 0.0;
   for (int k = 1; k < argc; ++k) {
     const std::size_t N = std::atoi(argv[k]);
@@ -93,7 +94,9 @@ int main(int argc, char** argv) {
       if (std::hypot(p.x_m[i], p.y_m[i]) < std::hypot(p.x_m[centre], p.y_m[centre])) centre = i;
     Vector column(N);
     for (std::size_t i = 0; i < N; ++i)
-      column[i] = i == centre ? 0.0 : disc_compliance(p.x_m[i] - p.x_m[centre], p.y_m[i] - p.y_m[centre], a[i], a[centre], E, nu);
+      column[i] = i == centre
+                      ? 0.0
+                      : disc_compliance(p.x_m[i] - p.x_m[centre], p.y_m[i] - p.y_m[centre], a[i], a[centre], E, nu);
     // The slipping junction's own column, M⁻¹ e_j (exact slip positions need it, one a slip),
     // from zero and from the solve on its patch alone (the pinned junctions within 12 spacings,
     // dense), to 1e-8 and 1e-10.
@@ -137,7 +140,8 @@ int main(int argc, char** argv) {
         std::vector<double> ring_max(64, 0.0), ring_sum(64, 0.0);
         double total = 0;
         for (std::size_t i = 0; i < N; ++i) {
-          const std::size_t b = std::min<std::size_t>(63, std::hypot(p.x_m[i] - p.x_m[centre], p.y_m[i] - p.y_m[centre]) / spacing);
+          const std::size_t b =
+              std::min<std::size_t>(63, std::hypot(p.x_m[i] - p.x_m[centre], p.y_m[i] - p.y_m[centre]) / spacing);
           ring_max[b] = std::max(ring_max[b], std::abs(ref[1][i]));
           ring_sum[b] += std::abs(ref[1][i]);
           total += std::abs(ref[1][i]);
@@ -145,14 +149,18 @@ int main(int argc, char** argv) {
         double beyond = total;
         for (std::size_t b = 0; b < 64; ++b) {
           beyond -= ring_sum[b];
-          if (ring_sum[b] > 0) std::fprintf(stderr, "N %zu ring %zu spacings: max |y| %.3e, share of sum |y| beyond %.3e\n", N, b, ring_max[b] / ref[1].cwiseAbs().maxCoeff(), beyond / total);
+          if (ring_sum[b] > 0)
+            std::fprintf(stderr, "N %zu ring %zu spacings: max |y| %.3e, share of sum |y| beyond %.3e\n", N, b,
+                         ring_max[b] / ref[1].cwiseAbs().maxCoeff(), beyond / total);
         }
       }
     }
-    const auto report = [&](const char* name, double near, int which, double setup, int it, double ms, const Vector& x, double nnz,
-                            const char* variant = "") {
-      const double err = ref[which].size() ? (x - ref[which]).cwiseAbs().maxCoeff() / ref[which].cwiseAbs().maxCoeff() : NAN;
-      std::printf("%zu,%s,%g,%s%s,%.3f,%d,%.2f,%.3f,%.2e,%.0f\n", N, name, near, rhs_name[which], variant, setup, it, ms, product_ms, err, nnz);
+    const auto report = [&](const char* name, double near, int which, double setup, int it, double ms, const Vector& x,
+                            double nnz, const char* variant = "") {
+      const double err =
+          ref[which].size() ? (x - ref[which]).cwiseAbs().maxCoeff() / ref[which].cwiseAbs().maxCoeff() : NAN;
+      std::printf("%zu,%s,%g,%s%s,%.3f,%d,%.2f,%.3f,%.2e,%.0f\n", N, name, near, rhs_name[which], variant, setup, it,
+                  ms, product_ms, err, nnz);
       std::fflush(stdout);
     };
     // One level: Jacobi (0) or the near field's sparse Cholesky.
@@ -160,21 +168,27 @@ int main(int argc, char** argv) {
       t0 = ProbeClock::now();
       const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(near_field(p, D, near));
       const double setup = seconds_since(t0);
-      if (ldlt.info() != Eigen::Success) { std::printf("%zu,near Cholesky,%g,-,factorisation failed\n", N, near); continue; }
+      if (ldlt.info() != Eigen::Success) {
+        std::printf("%zu,near Cholesky,%g,-,factorisation failed\n", N, near);
+        continue;
+      }
       const double nnz = double(ldlt.matrixL().nestedExpression().nonZeros()) / N;
       for (int which = 0; which < 2; ++which) {
         t0 = ProbeClock::now();
         Vector x;
-        const int it = pcg(apply, [&](const Vector& r) { return Vector(ldlt.solve(r)); }, rhs[which], x);
+        const int it = pcg(
+            apply, [&](const Vector& r) { return Vector(ldlt.solve(r)); }, rhs[which], x);
         report(near == 0 ? "Jacobi" : "near Cholesky", near, which, setup, it, 1e3 * seconds_since(t0), x, nnz);
       }
       for (const double tol : {1e-8, 1e-10})
         for (const bool from_patch : {false, true}) {
           t0 = ProbeClock::now();
           Vector x = from_patch ? local : Vector();
-          const int it = pcg(apply, [&](const Vector& r) { return Vector(ldlt.solve(r)); }, unit, x, tol);
+          const int it = pcg(
+              apply, [&](const Vector& r) { return Vector(ldlt.solve(r)); }, unit, x, tol);
           report(near == 0 ? "Jacobi" : "near Cholesky", near, 2, setup, it, 1e3 * seconds_since(t0), x, nnz,
-                 tol == 1e-8 ? (from_patch ? " to 1e-8 from its patch" : " to 1e-8") : (from_patch ? " to 1e-10 from its patch" : " to 1e-10"));
+                 tol == 1e-8 ? (from_patch ? " to 1e-8 from its patch" : " to 1e-8")
+                             : (from_patch ? " to 1e-10 from its patch" : " to 1e-10"));
         }
     }
     // Two levels: deflation by bilinear hats on a coarse grid of H spacings (the collective modes)
@@ -216,8 +230,8 @@ int main(int argc, char** argv) {
       for (int which = 0; which < 2; ++which) {
         t0 = ProbeClock::now();
         Vector xt;
-        const int it = pcg([&](const Vector& v) { return deflate(apply(v)); }, [&](const Vector& r) { return Vector(smoother.solve(r)); },
-                           deflate(rhs[which]), xt);
+        const int it = pcg([&](const Vector& v) { return deflate(apply(v)); },
+                           [&](const Vector& r) { return Vector(smoother.solve(r)); }, deflate(rhs[which]), xt);
         const Vector x = Z * Einv.solve(Z.transpose() * rhs[which]) + xt - Z * Einv.solve(AZ.transpose() * xt);
         report(name, near_s, which, setup, it, 1e3 * seconds_since(t0), x, 0);
       }
@@ -226,11 +240,13 @@ int main(int argc, char** argv) {
           t0 = ProbeClock::now();
           Vector xt = from_patch ? local : Vector();
           const Vector b = deflate(unit);
-          const int it = pcg([&](const Vector& v) { return deflate(apply(v)); }, [&](const Vector& r) { return Vector(smoother.solve(r)); },
-                             b, xt, tol * unit.norm() / b.norm());
+          const int it =
+              pcg([&](const Vector& v) { return deflate(apply(v)); },
+                  [&](const Vector& r) { return Vector(smoother.solve(r)); }, b, xt, tol * unit.norm() / b.norm());
           const Vector x = Z * Einv.solve(Z.transpose() * unit) + xt - Z * Einv.solve(AZ.transpose() * xt);
           report(name, near_s, 2, setup, it, 1e3 * seconds_since(t0), x, 0,
-                 tol == 1e-8 ? (from_patch ? " to 1e-8 from its patch" : " to 1e-8") : (from_patch ? " to 1e-10 from its patch" : " to 1e-10"));
+                 tol == 1e-8 ? (from_patch ? " to 1e-8 from its patch" : " to 1e-8")
+                             : (from_patch ? " to 1e-10 from its patch" : " to 1e-10"));
         }
     }
   }

@@ -35,11 +35,14 @@ int main(int argc, char** argv) {
   const ProbePopulation p = probe_population(N);
   const double sigma = 0.23e6 / 0.9, eps = 0.9;
   std::vector<double> D(N), fs(N);
-  for (std::size_t i = 0; i < N; ++i) D[i] = 1.0 / circle_stiffness(2 * p.radius_m[i], p.E_pa, p.nu), fs[i] = sigma * p.area_m2[i];
+  for (std::size_t i = 0; i < N; ++i)
+    D[i] = 1.0 / circle_stiffness(2 * p.radius_m[i], p.E_pa, p.nu), fs[i] = sigma * p.area_m2[i];
   Eigen::MatrixXd M(N, N);
   for (std::size_t i = 0; i < N; ++i)
     for (std::size_t j = 0; j < N; ++j)
-      M(i, j) = i == j ? D[i] : disc_compliance(p.x_m[i] - p.x_m[j], p.y_m[i] - p.y_m[j], p.radius_m[i], p.radius_m[j], p.E_pa, p.nu);
+      M(i, j) = i == j ? D[i]
+                       : disc_compliance(p.x_m[i] - p.x_m[j], p.y_m[i] - p.y_m[j], p.radius_m[i], p.radius_m[j], p.E_pa,
+                                         p.nu);
   const Eigen::MatrixXd G0 = M.llt().solve(Eigen::MatrixXd::Identity(N, N));
   const double spacing = std::sqrt(M_PI * p.disc_radius_m * p.disc_radius_m / N);
 
@@ -127,21 +130,25 @@ int main(int argc, char** argv) {
   const Run exact = run(0, 0, false);
   // Slip positions are compared in units of the exact run's last one (the loading's range).
   const double x_last = exact.x_slip[exact.order.back()];
-  std::printf("N,R_spacings,K,local_solves,F_peak_rel,X_peak_rel,slip_X_max_of_range,slip_X_median_of_range,order_differs\n");
+  std::printf(
+      "N,R_spacings,K,local_solves,F_peak_rel,X_peak_rel,slip_X_max_of_range,slip_X_median_of_range,order_differs\n");
   std::printf("%zu,exact,-,0,%.17g,%.17g,0,0,0\n", N, exact.F_peak, exact.X_peak);
   std::fflush(stdout);
   for (const bool fix : {false, true})
-  for (double R : {4.0, 8.0, 12.0})
-    for (int K : {2, 8, 32, 0}) {
-      const Run r = run(R, K, fix);
-      std::vector<double> d;
-      for (std::size_t i = 0; i < N; ++i)
-        if (std::isfinite(r.x_slip[i]) && std::isfinite(exact.x_slip[i])) d.push_back(std::abs(r.x_slip[i] - exact.x_slip[i]) / x_last);
-      std::sort(d.begin(), d.end());
-      std::size_t differ = 0;
-      for (std::size_t s = 0; s < std::min(r.order.size(), exact.order.size()); ++s) differ += r.order[s] != exact.order[s];
-      std::printf("%zu,%s%g,%d,%ld,%.3e,%.3e,%.3e,%.3e,%zu\n", N, fix ? "sum-fixed " : "", R, K, r.local_solves, std::abs(r.F_peak / exact.F_peak - 1),
-                  std::abs(r.X_peak / exact.X_peak - 1), d.empty() ? NAN : d.back(), d.empty() ? NAN : d[d.size() / 2], differ);
-      std::fflush(stdout);
-    }
+    for (double R : {4.0, 8.0, 12.0})
+      for (int K : {2, 8, 32, 0}) {
+        const Run r = run(R, K, fix);
+        std::vector<double> d;
+        for (std::size_t i = 0; i < N; ++i)
+          if (std::isfinite(r.x_slip[i]) && std::isfinite(exact.x_slip[i]))
+            d.push_back(std::abs(r.x_slip[i] - exact.x_slip[i]) / x_last);
+        std::sort(d.begin(), d.end());
+        std::size_t differ = 0;
+        for (std::size_t s = 0; s < std::min(r.order.size(), exact.order.size()); ++s)
+          differ += r.order[s] != exact.order[s];
+        std::printf("%zu,%s%g,%d,%ld,%.3e,%.3e,%.3e,%.3e,%zu\n", N, fix ? "sum-fixed " : "", R, K, r.local_solves,
+                    std::abs(r.F_peak / exact.F_peak - 1), std::abs(r.X_peak / exact.X_peak - 1),
+                    d.empty() ? NAN : d.back(), d.empty() ? NAN : d[d.size() / 2], differ);
+        std::fflush(stdout);
+      }
 }

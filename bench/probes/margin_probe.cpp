@@ -59,7 +59,8 @@ int main(int argc, char** argv) {
   s.experiment.mass_kg = base.experiment.mass_kg * double(N) / double(areas.size());
   s.stop.time = 60;
   s.stop.wall_time = 7200;
-  const Positions p = place_in_contact_disc(s.experiment.junctions.area_m2, 4.5e-3 * std::sqrt(double(N) / double(areas.size())), 20200318);
+  const Positions p = place_in_contact_disc(s.experiment.junctions.area_m2,
+                                            4.5e-3 * std::sqrt(double(N) / double(areas.size())), 20200318);
   s.experiment.junctions.x_m = p.x_m, s.experiment.junctions.y_m = p.y_m;
   s.model.interactions = Interactions::elastic;
   const Problem problem = make_problem(s);

@@ -23,11 +23,14 @@ inline ProbePopulation probe_population(std::size_t N) {
   p.E_pa = base.experiment.E, p.nu = base.experiment.nu;
   p.disc_radius_m = 4.5e-3 * std::sqrt(double(N) / double(areas.size()));
   p.area_m2.resize(N), p.radius_m.resize(N);
-  for (std::size_t i = 0; i < N; ++i) p.area_m2[i] = areas[i % areas.size()], p.radius_m[i] = asperity::disc_radius(p.area_m2[i]);
+  for (std::size_t i = 0; i < N; ++i)
+    p.area_m2[i] = areas[i % areas.size()], p.radius_m[i] = asperity::disc_radius(p.area_m2[i]);
   const asperity::Positions at = asperity::place_in_contact_disc(p.area_m2, p.disc_radius_m, 20200318);
   p.x_m = at.x_m, p.y_m = at.y_m;
   return p;
 }
 
 using ProbeClock = std::chrono::steady_clock;
-inline double seconds_since(ProbeClock::time_point a) { return std::chrono::duration<double>(ProbeClock::now() - a).count(); }
+inline double seconds_since(ProbeClock::time_point a) {
+  return std::chrono::duration<double>(ProbeClock::now() - a).count();
+}

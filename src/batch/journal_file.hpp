@@ -31,8 +31,8 @@ class JournalFile {
   // append() then fdatasync, either failing as "cannot write NAME: ..." (a fit's evaluation: the
   // line is durable before the next one is asked for).
   void append_durably(std::string_view row);
-  void sync();                    // fdatasync (std::runtime_error "cannot sync NAME: ...")
-  bool try_sync() noexcept;       // the same for a destructor: false when it failed
+  void sync();               // fdatasync (std::runtime_error "cannot sync NAME: ...")
+  bool try_sync() noexcept;  // the same for a destructor: false when it failed
   // Cuts the file to its first `size` bytes (a torn or damaged tail after the last good line).
   void cut(std::uint64_t size);
   // The line that starts at byte `offset`, without its newline (pread: thread-safe).

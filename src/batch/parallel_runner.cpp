@@ -14,8 +14,7 @@ struct ParallelRunner::Arena {
   tbb::task_arena arena;
 };
 
-ParallelRunner::ParallelRunner(int threads)
-    : threads_(threads > 0 ? threads : tbb::info::default_concurrency()) {
+ParallelRunner::ParallelRunner(int threads) : threads_(threads > 0 ? threads : tbb::info::default_concurrency()) {
   arena_ = std::make_unique<Arena>();
   arena_->arena.initialize(threads_);
 }
@@ -26,10 +25,13 @@ void ParallelRunner::for_each(std::size_t n, const std::function<void(std::size_
                               const std::function<void(std::size_t, std::size_t)>& done) const {
   std::atomic<std::size_t> finished{0};
   arena_->arena.execute([&] {
-    tbb::parallel_for(std::size_t{0}, n, [&](std::size_t i) {
-      body(i);
-      if (done) done(++finished, n);
-    }, tbb::simple_partitioner());
+    tbb::parallel_for(
+        std::size_t{0}, n,
+        [&](std::size_t i) {
+          body(i);
+          if (done) done(++finished, n);
+        },
+        tbb::simple_partitioner());
   });
 }
 
@@ -73,8 +75,10 @@ void for_each_nested(std::size_t n, const std::function<void(std::size_t)>& body
     tbb::task_group_context context(tbb::task_group_context::isolated);
     tbb::parallel_for(std::size_t{0}, n, body, context);
   };
-  if (nesting == Nesting::isolated) tbb::this_task_arena::isolate(loop);
-  else loop();
+  if (nesting == Nesting::isolated)
+    tbb::this_task_arena::isolate(loop);
+  else
+    loop();
 }
 
 }  // namespace asperity

@@ -7,7 +7,8 @@
 
 namespace asperity {
 
-std::vector<double> deal_by_cost(std::uint64_t count, std::uint64_t parts, const std::function<double(std::uint64_t)>& cost,
+std::vector<double> deal_by_cost(std::uint64_t count, std::uint64_t parts,
+                                 const std::function<double(std::uint64_t)>& cost,
                                  const std::function<void(std::uint64_t, std::uint64_t)>& take) {
   // Min-heap of (expected cost, part): the lexicographic order breaks ties by the lower part.
   using Load = std::pair<double, std::uint64_t>;

@@ -19,7 +19,8 @@ namespace asperity {
 // Deals `count` items to `parts` parts: for k = 0 … count − 1, item k (whatever the caller's order
 // makes it) of cost `cost(k)` goes to the least loaded part, told by `take(k, part)`. Returns the
 // expected cost of every part. Costs are taken as given (a caller clamps what it does not trust).
-std::vector<double> deal_by_cost(std::uint64_t count, std::uint64_t parts, const std::function<double(std::uint64_t)>& cost,
+std::vector<double> deal_by_cost(std::uint64_t count, std::uint64_t parts,
+                                 const std::function<double(std::uint64_t)>& cost,
                                  const std::function<void(std::uint64_t, std::uint64_t)>& take);
 
 enum class ShardBalance { index, cost };
@@ -38,8 +39,8 @@ class ShardPlan {
   static ShardPlan by_cost(Shard shard, std::uint64_t total, const std::function<double(std::uint64_t)>& cost);
 
   bool contains(std::uint64_t point) const;
-  std::uint64_t size() const { return size_; }             // points of this shard
-  std::uint64_t next(std::uint64_t from) const;           // its least point ≥ from, or total
+  std::uint64_t size() const { return size_; }   // points of this shard
+  std::uint64_t next(std::uint64_t from) const;  // its least point ≥ from, or total
   const Shard& shard() const { return shard_; }
   ShardBalance balance() const { return balance_; }
   // Expected seconds of every shard (by_cost only; empty otherwise).

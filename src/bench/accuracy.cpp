@@ -5,9 +5,9 @@
 #include <sstream>
 
 #include "bench/bench_scene.hpp"
-#include "observe/simulate.hpp"
 #include "io/atomic_file.hpp"
 #include "io/numbers.hpp"
+#include "observe/simulate.hpp"
 
 #include "bench/number_text.hpp"
 
@@ -15,8 +15,8 @@ namespace asperity {
 namespace fs = std::filesystem;
 
 namespace {
-using bench_text::g;
 using bench_text::exact;
+using bench_text::g;
 }  // namespace
 
 bool AccuracyRow::within_targets() const {

@@ -28,11 +28,11 @@ struct AccuracyOptions {
 
 struct AccuracyRow {
   std::string experiment;
-  double tolerance = 0;            // the tested tolerance (default: the scene's own)
+  double tolerance = 0;  // the tested tolerance (default: the scene's own)
   double wall_s = 0, converged_wall_s = 0;
   int cycles = 0, converged_cycles = 0;
   std::array<double, n_robust> value{}, converged{}, error{};
-  bool within_targets() const;     // every error below robust_targets() (NaN fails)
+  bool within_targets() const;  // every error below robust_targets() (NaN fails)
 };
 
 // Errors of `run` against `converged` as one row.

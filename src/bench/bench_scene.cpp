@@ -3,22 +3,21 @@
 #include <algorithm>
 
 #include "io/input_error.hpp"
-#include "scene/load.hpp"
 #include "io/numbers.hpp"
+#include "scene/load.hpp"
 
 namespace asperity {
 namespace fs = std::filesystem;
 
 Scene bench_scene(const fs::path& path, const std::vector<std::string>& overrides) {
   if (!fs::exists(path))
-    throw InputError(path.string(), 0, "", "scene file not found (bench commands take paths relative "
+    throw InputError(path.string(), 0, "",
+                     "scene file not found (bench commands take paths relative "
                      "to the current folder: run them from the repository root or pass the path)");
   return load_scene(path, overrides);
 }
 
-std::string set_number(const std::string& key, double value) {
-  return key + "=" + scene_io::format_double(value);
-}
+std::string set_number(const std::string& key, double value) { return key + "=" + scene_io::format_double(value); }
 
 std::vector<fs::path> paper_scenes(const fs::path& dir) {
   if (!fs::is_directory(dir))

@@ -110,12 +110,13 @@ std::vector<ContactBenchRow> run_contact_bench(const ContactBenchOptions& opt) {
     if (opt.log)
       *opt.log << "  " << n << "^2 (padded " << 2 * n << "^2), " << r.threads << " thread(s): " << r.iterations
                << " CG iterations (+ " << r.coarse_iterations << " on coarser grids), " << r.convolutions
-               << " FFT pairs" << (r.converged ? "" : " (NOT converged)") << ", " << r.wall_s << " s, " << r.per_iteration_s * 1e3
-               << " ms per iteration = " << r.per_iteration_s / (2 * r.fft_pair_s) << " x two FFT pairs ("
-               << r.fft_pair_s * 1e3 << " ms each); tangential solve " << r.tangential_wall_s << " s = "
-               << r.tangential_wall_s / r.wall_s << " x the normal solve, " << r.tangential_iterations << " iterations, "
-               << r.tangential_convolutions << " FFT pairs" << (r.tangential_converged ? "" : " (NOT converged)")
-               << ", peak RSS " << r.max_rss_kB / 1024 << " MB" << std::endl;
+               << " FFT pairs" << (r.converged ? "" : " (NOT converged)") << ", " << r.wall_s << " s, "
+               << r.per_iteration_s * 1e3 << " ms per iteration = " << r.per_iteration_s / (2 * r.fft_pair_s)
+               << " x two FFT pairs (" << r.fft_pair_s * 1e3 << " ms each); tangential solve " << r.tangential_wall_s
+               << " s = " << r.tangential_wall_s / r.wall_s << " x the normal solve, " << r.tangential_iterations
+               << " iterations, " << r.tangential_convolutions << " FFT pairs"
+               << (r.tangential_converged ? "" : " (NOT converged)") << ", peak RSS " << r.max_rss_kB / 1024 << " MB"
+               << std::endl;
     rows.push_back(r);
   }
   return rows;
@@ -123,14 +124,17 @@ std::vector<ContactBenchRow> run_contact_bench(const ContactBenchOptions& opt) {
 
 void write_contact_bench(const fs::path& dir, const std::vector<ContactBenchRow>& rows) {
   std::ostringstream o;
-  o << "n,padded,threads,iterations,coarse_iterations,convolutions,converged,wall_s,per_iteration_s,fft_pair_s,per_iteration_over_two_fft_pairs,area_m2,tangential_wall_s,tangential_over_normal,tangential_iterations,tangential_convolutions,tangential_converged,max_rss_kB\n";
+  o << "n,padded,threads,iterations,coarse_iterations,convolutions,converged,wall_s,per_iteration_s,fft_pair_s,per_"
+       "iteration_over_two_fft_pairs,area_m2,tangential_wall_s,tangential_over_normal,tangential_iterations,tangential_"
+       "convolutions,tangential_converged,max_rss_kB\n";
   for (const auto& r : rows)
     o << r.n << ',' << 2 * r.n << ',' << r.threads << ',' << r.iterations << ',' << r.coarse_iterations << ','
-      << r.convolutions << ',' << (r.converged ? "true" : "false") << ','
-      << csv_number(r.wall_s) << ',' << csv_number(r.per_iteration_s) << ',' << csv_number(r.fft_pair_s) << ','
+      << r.convolutions << ',' << (r.converged ? "true" : "false") << ',' << csv_number(r.wall_s) << ','
+      << csv_number(r.per_iteration_s) << ',' << csv_number(r.fft_pair_s) << ','
       << csv_number(r.per_iteration_s / (2 * r.fft_pair_s)) << ',' << csv_number(r.area_m2) << ','
-      << csv_number(r.tangential_wall_s) << ',' << csv_number(r.tangential_wall_s / r.wall_s) << ',' << r.tangential_iterations
-      << ',' << r.tangential_convolutions << ',' << (r.tangential_converged ? "true" : "false") << ',' << r.max_rss_kB << '\n';
+      << csv_number(r.tangential_wall_s) << ',' << csv_number(r.tangential_wall_s / r.wall_s) << ','
+      << r.tangential_iterations << ',' << r.tangential_convolutions << ','
+      << (r.tangential_converged ? "true" : "false") << ',' << r.max_rss_kB << '\n';
   fs::create_directories(dir);
   scene_io::write_text_file(dir / "contact.csv", o.str());
 }

@@ -17,22 +17,22 @@
 namespace asperity {
 
 struct ContactBenchRow {
-  std::size_t n = 0;               // pixels per side (the padded grid is 2n)
+  std::size_t n = 0;  // pixels per side (the padded grid is 2n)
   int threads = 1;
-  int iterations = 0;              // on the n grid
-  int coarse_iterations = 0;       // on the coarser grids of the coarse-to-fine start
-  int convolutions = 0;            // FFT pairs on the n grid (fewer than 2 per iteration: see normal_contact.cpp)
+  int iterations = 0;         // on the n grid
+  int coarse_iterations = 0;  // on the coarser grids of the coarse-to-fine start
+  int convolutions = 0;       // FFT pairs on the n grid (fewer than 2 per iteration: see normal_contact.cpp)
   bool converged = false;
-  double wall_s = 0;               // the whole solve (kernel, coarse grids, iterations)
-  double per_iteration_s = 0;      // wall_s / iterations
-  double fft_pair_s = 0;           // one forward + inverse FFT on 2n × 2n, median of several
+  double wall_s = 0;           // the whole solve (kernel, coarse grids, iterations)
+  double per_iteration_s = 0;  // wall_s / iterations
+  double fft_pair_s = 0;       // one forward + inverse FFT on 2n × 2n, median of several
   double area_m2 = 0;
   // The tangential solve (kernel, one solve from q = 0) and its iterations and FFT pairs.
   double tangential_wall_s = 0;
   int tangential_iterations = 0;
   int tangential_convolutions = 0;
   bool tangential_converged = false;
-  long max_rss_kB = 0;             // of the process after this size (sizes in increasing order)
+  long max_rss_kB = 0;  // of the process after this size (sizes in increasing order)
 };
 
 struct ContactBenchOptions {
@@ -50,6 +50,7 @@ NormalContactSettings contact_bench_settings(double tolerance);
 TangentialContactSettings tangential_bench_settings(double tolerance);
 
 std::vector<ContactBenchRow> run_contact_bench(const ContactBenchOptions& opt);
-void write_contact_bench(const std::filesystem::path& dir, const std::vector<ContactBenchRow>& rows);  // DIR/contact.csv
+void write_contact_bench(const std::filesystem::path& dir,
+                         const std::vector<ContactBenchRow>& rows);  // DIR/contact.csv
 
 }  // namespace asperity

@@ -122,9 +122,9 @@ std::vector<InteractingBenchRow> run_interacting_bench(const InteractingBenchOpt
     rows.push_back(timed("first_peak", with_positions(s, R)));
     const auto& r = rows.back();
     if (opt.log) {
-      *opt.log << "  N " << r.N << ": first peak at t = " << r.t_peak << " s in " << r.wall_s << " s wall ("
-               << r.slips << " slips, " << r.solves << " solves, " << r.iterations << " chord iterations, "
-               << r.rank_one << " rank-one updates, " << r.rebuilds << " rebuilds), peak RSS " << r.max_rss_kB / 1024
+      *opt.log << "  N " << r.N << ": first peak at t = " << r.t_peak << " s in " << r.wall_s << " s wall (" << r.slips
+               << " slips, " << r.solves << " solves, " << r.iterations << " chord iterations, " << r.rank_one
+               << " rank-one updates, " << r.rebuilds << " rebuilds), peak RSS " << r.max_rss_kB / 1024
                << " MB vs N^2 doubles " << r.bound_kB / 1024 << " MB" << std::endl;
       if (both) {
         const auto& d = rows[rows.size() - 2];
@@ -185,8 +185,8 @@ std::string fitted_exponent_text(const std::vector<InteractingBenchRow>& rows) {
   if (std::isfinite(b))
     std::snprintf(text, sizeof text, "time to the first peak ~ N^%.3g (least squares over N = %zu..%zu)", b, lo, hi);
   else
-    std::snprintf(text, sizeof text, "time to the first peak: no exponent from one size (N = %zu); give two sizes or more",
-                  lo);
+    std::snprintf(text, sizeof text,
+                  "time to the first peak: no exponent from one size (N = %zu); give two sizes or more", lo);
   return text;
 }
 
@@ -197,10 +197,9 @@ void write_interacting_bench(const fs::path& dir, const std::vector<InteractingB
   for (const auto& r : rows)
     o << r.what << ',' << r.N << ',' << csv_number(r.interaction_tolerance) << ',' << csv_number(r.wall_s) << ','
       << csv_number(r.t_end) << ',' << csv_number(r.Q_s) << ',' << csv_number(r.A_s) << ',' << csv_number(r.t_peak)
-      << ',' << r.steps << ',' << r.slips << ',' << r.repins
-      << ',' << r.solves << ',' << r.iterations << ',' << r.rank_one << ',' << r.rebuilds << ',' << r.samples << ','
-      << r.max_rss_kB
-      << ',' << csv_number(r.bound_kB) << ',' << r.single_passes << ',' << r.single_refreshes << '\n';
+      << ',' << r.steps << ',' << r.slips << ',' << r.repins << ',' << r.solves << ',' << r.iterations << ','
+      << r.rank_one << ',' << r.rebuilds << ',' << r.samples << ',' << r.max_rss_kB << ',' << csv_number(r.bound_kB)
+      << ',' << r.single_passes << ',' << r.single_refreshes << '\n';
   fs::create_directories(dir);
   scene_io::write_text_file(dir / "interacting.csv", o.str());
 }
@@ -228,8 +227,8 @@ std::vector<InteractingTradeoffRow> run_interacting_tradeoff(const InteractingTr
     row.error.assign(e.begin(), e.end());
     rows.push_back(row);
     if (opt.log) {
-      *opt.log << "  interacting " << knob << " tol " << tol << " interaction tol " << itol << " cutoff " << (cutoff > 0 ? std::to_string(cutoff * 1e3) + " mm" : "none")
-               << ": " << r.wall_s << " s wall";
+      *opt.log << "  interacting " << knob << " tol " << tol << " interaction tol " << itol << " cutoff "
+               << (cutoff > 0 ? std::to_string(cutoff * 1e3) + " mm" : "none") << ": " << r.wall_s << " s wall";
       for (std::size_t i = 0; i < n_robust && conv; ++i)
         if (std::isfinite(row.error[i])) *opt.log << ", " << robust_names()[i] << " err " << row.error[i];
       *opt.log << std::endl;
@@ -251,8 +250,7 @@ void write_interacting_tradeoff(const fs::path& dir, const std::vector<Interacti
   o << '\n';
   for (const auto& r : rows) {
     o << r.knob << ',' << csv_number(r.tolerance) << ',' << csv_number(r.interaction_tolerance) << ','
-      << csv_number(r.cutoff_m) << ',' << csv_number(r.wall_s) << ','
-      << csv_number(r.cpu_s);
+      << csv_number(r.cutoff_m) << ',' << csv_number(r.wall_s) << ',' << csv_number(r.cpu_s);
     for (std::size_t i = 0; i < r.value.size(); ++i)
       o << ',' << csv_number(r.value[i]) << ',' << (r.knob == "converged" ? std::string() : csv_number(r.error[i]));
     o << '\n';

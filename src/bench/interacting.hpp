@@ -41,10 +41,10 @@ struct InteractingBenchRow {
   double interaction_tolerance = 0;
   double wall_s = 0, t_end = 0, Q_s = 0, A_s = 0, t_peak = 0;
   std::int64_t steps = 0, slips = 0, repins = 0, solves = 0, iterations = 0, rank_one = 0, rebuilds = 0;
-  std::int64_t samples = 0;  // of the output series
+  std::int64_t samples = 0;                              // of the output series
   std::int64_t single_passes = 0, single_refreshes = 0;  // chord passes on G's single-precision copy
-  long max_rss_kB = 0;   // of the whole process after this run (sizes run in increasing order)
-  double bound_kB = 0;   // N² doubles
+  long max_rss_kB = 0;  // of the whole process after this run (sizes run in increasing order)
+  double bound_kB = 0;  // N² doubles
 };
 
 std::vector<InteractingBenchRow> run_interacting_bench(const InteractingBenchOptions& opt);

@@ -58,7 +58,8 @@ std::vector<ThreadsBenchRow> run_threads_bench(const ThreadsBenchOptions& opt) {
     timed(s, widest, "warm-up");  // tables, pages, caches: not in the first timed row
     for (int t : opt.threads) {
       rows.push_back(timed(s, t, "quiet"));
-      if (opt.log) *opt.log << "  N " << N << ", quiet, " << t << " thread(s): " << rows.back().wall_s << " s" << std::endl;
+      if (opt.log)
+        *opt.log << "  N " << N << ", quiet, " << t << " thread(s): " << rows.back().wall_s << " s" << std::endl;
     }
     if (opt.busy) {
       // One core held by another process for the two runs (bounded: it dies with this process,
@@ -66,7 +67,9 @@ std::vector<ThreadsBenchRow> run_threads_bench(const ThreadsBenchOptions& opt) {
       const BusyCore busy(3600);
       for (int t : {1, widest}) {
         rows.push_back(timed(s, t, "busy"));
-        if (opt.log) *opt.log << "  N " << N << ", one core busy, " << t << " thread(s): " << rows.back().wall_s << " s" << std::endl;
+        if (opt.log)
+          *opt.log << "  N " << N << ", one core busy, " << t << " thread(s): " << rows.back().wall_s << " s"
+                   << std::endl;
       }
     }
   }
@@ -76,7 +79,8 @@ std::vector<ThreadsBenchRow> run_threads_bench(const ThreadsBenchOptions& opt) {
 
 void write_threads_bench(const fs::path& dir, const std::vector<ThreadsBenchRow>& rows) {
   std::ostringstream o;
-  o << "load,N,threads,wall_s,pass_s,fold_s,rebuild_s,remove_s,law_s,update_s,rest_s,slips,chord_iterations,Q_s_N,A_s_m2,"
+  o << "load,N,threads,wall_s,pass_s,fold_s,rebuild_s,remove_s,law_s,update_s,rest_s,slips,chord_iterations,Q_s_N,A_s_"
+       "m2,"
        "t_peak_s\n";
   for (const auto& r : rows)
     o << r.load << ',' << r.N << ',' << r.threads << ',' << csv_number(r.wall_s) << ',' << csv_number(r.pass_s) << ','
@@ -90,11 +94,12 @@ void write_threads_bench(const fs::path& dir, const std::vector<ThreadsBenchRow>
 std::string threads_bench_table(const std::vector<ThreadsBenchRow>& rows) {
   std::ostringstream o;
   char line[400];
-  std::snprintf(line, sizeof line,
-                "  %-5s %5s %3s %8s %6s | seconds by phase: %7s %7s %7s %7s %7s %7s %7s | efficiency t1/(p tp): %5s %5s "
-                "%5s %5s %5s %5s %5s\n",
-                "load", "N", "thr", "wall s", "x 1thr", "pass", "fold", "rebuild", "remove", "law", "update", "rest", "pass",
-                "fold", "rebld", "remov", "law", "updat", "rest");
+  std::snprintf(
+      line, sizeof line,
+      "  %-5s %5s %3s %8s %6s | seconds by phase: %7s %7s %7s %7s %7s %7s %7s | efficiency t1/(p tp): %5s %5s "
+      "%5s %5s %5s %5s %5s\n",
+      "load", "N", "thr", "wall s", "x 1thr", "pass", "fold", "rebuild", "remove", "law", "update", "rest", "pass",
+      "fold", "rebld", "remov", "law", "updat", "rest");
   o << line;
   for (const auto& r : rows) {
     const ThreadsBenchRow* one = nullptr;        // the same load's one-thread row
@@ -107,13 +112,14 @@ std::string threads_bench_table(const std::vector<ThreadsBenchRow>& rows) {
     const double p = r.threads;
     const auto eff = [&](double t1, double tp) { return tp > 0 ? t1 / (p * tp) : 0.0; };
     const ThreadsBenchRow& b = quiet_one ? *quiet_one : r;
-    std::snprintf(line, sizeof line,
-                  "  %-5s %5zu %3d %8.4g %6.3g | %17s %7.3g %7.3g %7.3g %7.3g %7.3g %7.3g %7.3g | %21s %5.2f %5.2f %5.2f %5.2f "
-                  "%5.2f %5.2f %5.2f\n",
-                  r.load.c_str(), r.N, r.threads, r.wall_s, one ? r.wall_s / one->wall_s : 0.0, "", r.pass_s, r.fold_s,
-                  r.rebuild_s, r.remove_s, r.law_s, r.update_s, r.rest_s(), "", eff(b.pass_s, r.pass_s),
-                  eff(b.fold_s, r.fold_s), eff(b.rebuild_s, r.rebuild_s), eff(b.remove_s, r.remove_s),
-                  eff(b.law_s, r.law_s), eff(b.update_s, r.update_s), eff(b.rest_s(), r.rest_s()));
+    std::snprintf(
+        line, sizeof line,
+        "  %-5s %5zu %3d %8.4g %6.3g | %17s %7.3g %7.3g %7.3g %7.3g %7.3g %7.3g %7.3g | %21s %5.2f %5.2f %5.2f %5.2f "
+        "%5.2f %5.2f %5.2f\n",
+        r.load.c_str(), r.N, r.threads, r.wall_s, one ? r.wall_s / one->wall_s : 0.0, "", r.pass_s, r.fold_s,
+        r.rebuild_s, r.remove_s, r.law_s, r.update_s, r.rest_s(), "", eff(b.pass_s, r.pass_s), eff(b.fold_s, r.fold_s),
+        eff(b.rebuild_s, r.rebuild_s), eff(b.remove_s, r.remove_s), eff(b.law_s, r.law_s), eff(b.update_s, r.update_s),
+        eff(b.rest_s(), r.rest_s()));
     o << line;
   }
   return o.str();

@@ -6,11 +6,11 @@
 #include <system_error>
 
 #include "bench/bench_scene.hpp"
-#include "report/gnuplot.hpp"
 #include "bench/timed_run.hpp"
-#include "observe/simulate.hpp"
-#include "report/run_writer.hpp"
 #include "io/atomic_file.hpp"
+#include "observe/simulate.hpp"
+#include "report/gnuplot.hpp"
+#include "report/run_writer.hpp"
 
 #include "bench/number_text.hpp"
 
@@ -101,11 +101,12 @@ std::vector<SavingRow> run_savings(const SavingsOptions& opt) {
 void write_savings(const fs::path& dir, const std::vector<SavingRow>& rows, const FigureFormats& figures) {
   fs::create_directories(dir);
   std::ostringstream o;
-  o << "experiment,saving,variant,baseline,wall_s,cpu_s,write_s,total_s,repeats,t_end_s,steps,force_evals,series_bytes\n";
+  o << "experiment,saving,variant,baseline,wall_s,cpu_s,write_s,total_s,repeats,t_end_s,steps,force_evals,series_"
+       "bytes\n";
   for (const auto& r : rows)
     o << r.experiment << ',' << r.saving << ',' << r.variant << ',' << (r.baseline ? "yes" : "no") << ','
-      << g(r.wall_s, 4) << ',' << g(r.cpu_s, 4) << ',' << g(r.write_s, 4) << ',' << g(r.total_s(), 4) << ',' << r.repeats << ','
-      << g(r.t_end, 6) << ',' << r.steps << ',' << r.force_evals << ',' << r.series_bytes << '\n';
+      << g(r.wall_s, 4) << ',' << g(r.cpu_s, 4) << ',' << g(r.write_s, 4) << ',' << g(r.total_s(), 4) << ','
+      << r.repeats << ',' << g(r.t_end, 6) << ',' << r.steps << ',' << r.force_evals << ',' << r.series_bytes << '\n';
   scene_io::write_text_file(dir / "savings.csv", o.str());
   if (rows.empty()) return;
 
@@ -116,18 +117,17 @@ void write_savings(const fs::path& dir, const std::vector<SavingRow>& rows, cons
   gp << "$d << EOD\n";
   for (std::size_t i = 0; i + 1 < rows.size(); i += 2) {
     if (rows[i].experiment != exp) break;
-    gp << '"' << rows[i].saving << "\\n" << rows[i + 1].variant << "\\nvs " << rows[i].variant << "\" "
-       << g((rows[i].cpu_s + rows[i].write_s) * 1e3, 5) << ' '
-       << g((rows[i + 1].cpu_s + rows[i + 1].write_s) * 1e3, 5) << '\n';
+    gp << '"' << rows[i].saving << "\\n"
+       << rows[i + 1].variant << "\\nvs " << rows[i].variant << "\" " << g((rows[i].cpu_s + rows[i].write_s) * 1e3, 5)
+       << ' ' << g((rows[i + 1].cpu_s + rows[i + 1].write_s) * 1e3, 5) << '\n';
   }
   gp << "EOD\n"
-     << "set title "
-     << gnuplot_text("Model only what a scene requires: " + exp + " (stand-in)") << " . \"\\n\" . "
-     << gnuplot_quote("CPU time of integration + writing the run directory")
-     << "\n"
+     << "set title " << gnuplot_text("Model only what a scene requires: " + exp + " (stand-in)") << " . \"\\n\" . "
+     << gnuplot_quote("CPU time of integration + writing the run directory") << "\n"
      << "set style data histograms\nset style histogram clustered gap 1\nset style fill solid 0.8 border -1\n"
      << "set xtics noenhanced\n"  // the tic labels are scene settings (output.series=[]), not markup
-     << "set bmargin 5\nset boxwidth 0.9\nset ylabel 'CPU time [ms]'\nset grid ytics\nset yrange [0:*]\nset key top right\n"
+     << "set bmargin 5\nset boxwidth 0.9\nset ylabel 'CPU time [ms]'\nset grid ytics\nset yrange [0:*]\nset key top "
+        "right\n"
      << "plot $d using 2:xticlabels(1) title 'baseline' lc rgb '#4477aa', "
         "'' using 3 title 'variant (saving)' lc rgb '#ee6677'\n";
   render_figures(dir / "savings.png", gp.str(), 1000, 600, figures);

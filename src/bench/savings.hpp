@@ -17,7 +17,7 @@ namespace asperity {
 struct SavingsOptions {
   std::vector<std::filesystem::path> scenes{"scenes/paper/P4.00N.yaml"};
   std::vector<std::string> overrides{"stop.time=10", "stop.cycles=5"};  // the baseline run
-  int repeats = 5;          // baseline and variant run alternately, this many times each
+  int repeats = 5;                // baseline and variant run alternately, this many times each
   std::filesystem::path scratch;  // where run directories are written for timing (then removed)
   std::ostream* log = nullptr;
 };
@@ -25,11 +25,11 @@ struct SavingsOptions {
 struct SavingRow {
   std::string experiment, saving, variant;  // variant: what differs from the scene's defaults
   bool baseline = false;
-  double wall_s = 0;        // median integration wall time [s]
-  double cpu_s = 0;         // median process CPU time of the same runs [s]
-  double write_s = 0;       // writing the run directory (series.csv, summary, scene) [s]
+  double wall_s = 0;   // median integration wall time [s]
+  double cpu_s = 0;    // median process CPU time of the same runs [s]
+  double write_s = 0;  // writing the run directory (series.csv, summary, scene) [s]
   int repeats = 1;
-  double t_end = 0;         // simulated [s]
+  double t_end = 0;  // simulated [s]
   std::int64_t steps = 0, force_evals = 0;
   std::size_t series_bytes = 0;  // memory of the recorded series
   double total_s() const { return wall_s + write_s; }

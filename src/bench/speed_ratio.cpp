@@ -47,9 +47,7 @@ bool SpeedRun::at_least_as_accurate_as(const SpeedRun& other) const {
 double SpeedComparison::ratio_wall() const {
   return (reference.wall_s / reference.t_end) / (event.wall_s / event.t_end);
 }
-double SpeedComparison::ratio_cpu() const {
-  return (reference.cpu_s / reference.t_end) / (event.cpu_s / event.t_end);
-}
+double SpeedComparison::ratio_cpu() const { return (reference.cpu_s / reference.t_end) / (event.cpu_s / event.t_end); }
 
 SpeedResult run_speed(const SpeedOptions& opt) {
   SpeedResult res;
@@ -98,8 +96,9 @@ SpeedResult run_speed(const SpeedOptions& opt) {
     std::string line = "  " + describe(r) + ": " + g(r.wall_s, 4) + " s wall, " + g(r.cpu_s, 4) + " s CPU (" +
                        std::to_string(r.repeats) + " runs), " + std::to_string(r.steps) + " steps, t_end " +
                        g(r.t_end, 6) + " s";
-    if (whole) line += ", " + std::to_string(r.cycles) + " cycles, max error loading " + g(r.max_loading_error(), 2) +
-                       ", stick-slip " + g(r.max_stick_slip_error(), 2);
+    if (whole)
+      line += ", " + std::to_string(r.cycles) + " cycles, max error loading " + g(r.max_loading_error(), 2) +
+              ", stick-slip " + g(r.max_stick_slip_error(), 2);
     log(line + "\n");
     return r;
   };
@@ -123,9 +122,10 @@ SpeedResult run_speed(const SpeedOptions& opt) {
     whole.push_back(record("reference", Ct, true, timed_run(reference_scene(Ct, true), opt.repeats)));
   }
   log("reference, early window of " + g(opt.window_s) + " s ...\n");
-  const SpeedRun window_target = record("reference", opt.target_Ct, false, timed_run(reference_scene(opt.target_Ct, false), 1));
-  const SpeedRun window_coarse =
-      record("reference", opt.whole_run_Ct.front(), false, timed_run(reference_scene(opt.whole_run_Ct.front(), false), opt.repeats));
+  const SpeedRun window_target =
+      record("reference", opt.target_Ct, false, timed_run(reference_scene(opt.target_Ct, false), 1));
+  const SpeedRun window_coarse = record("reference", opt.whole_run_Ct.front(), false,
+                                        timed_run(reference_scene(opt.whole_run_Ct.front(), false), opt.repeats));
   res.runs.insert(res.runs.end(), whole.begin(), whole.end());
   res.runs.push_back(window_target);
   res.runs.push_back(window_coarse);
@@ -157,12 +157,13 @@ SpeedResult run_speed(const SpeedOptions& opt) {
   extrapolated.error.fill(std::nan(""));  // not run: its accuracy is not measured here
   res.comparisons.push_back({"whole run: reference at C_t " + g(opt.target_Ct) + " vs event at its default tolerance",
                              "reference extrapolated: per-step cost of its whole run at C_t " + g(ref.setting) +
-                                 " x the step count at C_t " + g(opt.target_Ct) + " (T_run/dt, T_run of the tight "
-                                 "event run); per-step CPU cost vs C_t: whole run at C_t " + g(opt.whole_run_Ct.back()) +
-                                 " / at " + g(opt.whole_run_Ct.front()) + " = " + g(res.whole_per_step_ratio, 3) +
-                                 ", first " + g(opt.window_s) + " s at C_t " + g(opt.target_Ct) + " / at " +
-                                 g(opt.whole_run_Ct.front()) + " = " + g(res.window_per_step_ratio, 3) +
-                                 "; its accuracy is not measured; event measured",
+                                 " x the step count at C_t " + g(opt.target_Ct) +
+                                 " (T_run/dt, T_run of the tight "
+                                 "event run); per-step CPU cost vs C_t: whole run at C_t " +
+                                 g(opt.whole_run_Ct.back()) + " / at " + g(opt.whole_run_Ct.front()) + " = " +
+                                 g(res.whole_per_step_ratio, 3) + ", first " + g(opt.window_s) + " s at C_t " +
+                                 g(opt.target_Ct) + " / at " + g(opt.whole_run_Ct.front()) + " = " +
+                                 g(res.window_per_step_ratio, 3) + "; its accuracy is not measured; event measured",
                              extrapolated, ev_default});
   res.comparisons.push_back({"early window (the previous definition): reference at C_t " + g(opt.target_Ct) +
                                  " over its first " + g(opt.window_s) + " s vs event over the whole run",
@@ -198,7 +199,8 @@ std::string speed_runs_csv(const SpeedResult& r) {
 
 std::string speed_ratio_csv(const SpeedResult& r) {
   std::ostringstream o;
-  o << "experiment,comparison,basis,reference_Ct,reference_span,reference_steps,reference_t_end_s,reference_wall_s,reference_cpu_s,"
+  o << "experiment,comparison,basis,reference_Ct,reference_span,reference_steps,reference_t_end_s,reference_wall_s,"
+       "reference_cpu_s,"
        "reference_max_error_loading,reference_max_error_stick_slip,event_tolerance,event_t_end_s,event_wall_s,"
        "event_cpu_s,event_max_error_loading,event_max_error_stick_slip,ratio_wall,ratio_cpu\n";
   auto quoted = [](const std::string& s) { return '"' + s + '"'; };

@@ -23,29 +23,29 @@ namespace asperity {
 
 struct SpeedOptions {
   std::filesystem::path scene = "scenes/paper/P4.00N.yaml";
-  double stop_time = 8.0;          // s; the runs stop after the first peak + `cycles` cycles
+  double stop_time = 8.0;  // s; the runs stop after the first peak + `cycles` cycles
   int cycles = 5;
-  double truth_tolerance = 1e-12;  // the accuracy yardstick (event solver)
+  double truth_tolerance = 1e-12;                                      // the accuracy yardstick (event solver)
   std::vector<double> event_tolerances{1e-4, 1e-5, 1e-6, 1e-7, 1e-8};  // + the scene's own
-  std::vector<double> whole_run_Ct{25, 100};  // reference over the whole run (T_run)
-  double target_Ct = 1e4;          // the paper's C_t, extrapolated to
-  double window_s = 2e-3;          // early window timed at target_Ct and at whole_run_Ct[0]
-  int repeats = 5;                 // runs faster than 1 s: median of this many
+  std::vector<double> whole_run_Ct{25, 100};                           // reference over the whole run (T_run)
+  double target_Ct = 1e4;                                              // the paper's C_t, extrapolated to
+  double window_s = 2e-3;  // early window timed at target_Ct and at whole_run_Ct[0]
+  int repeats = 5;         // runs faster than 1 s: median of this many
   std::ostream* log = nullptr;
 };
 
 struct SpeedRun {
-  std::string method;              // "event" (setting = tolerance) or "reference" (setting = C_t)
+  std::string method;  // "event" (setting = tolerance) or "reference" (setting = C_t)
   double setting = 0;
-  bool whole = true;               // whole run (peak + cycles) or the early window
+  bool whole = true;  // whole run (peak + cycles) or the early window
   double t_end = 0, wall_s = 0, cpu_s = 0;
-  std::int64_t steps = 0;          // reference: time steps; event: accepted ODE steps
+  std::int64_t steps = 0;  // reference: time steps; event: accepted ODE steps
   int cycles = 0, repeats = 1;
   std::array<double, n_robust> error{};  // relative, vs the truth run (NaN for a window)
   double wall_per_step() const { return wall_s / static_cast<double>(steps); }
   double cpu_per_step() const { return cpu_s / static_cast<double>(steps); }
-  double max_loading_error() const;      // max over Q_s, A_s, t_peak, alpha (NaN if any is)
-  double max_stick_slip_error() const;   // max over ss_drop, ss_period
+  double max_loading_error() const;     // max over Q_s, A_s, t_peak, alpha (NaN if any is)
+  double max_stick_slip_error() const;  // max over ss_drop, ss_period
   // Every error ≤ the other's; an observable the other lacks (NaN, e.g. no stick-slip) counts
   // as larger than any finite error.
   bool at_least_as_accurate_as(const SpeedRun& other) const;
@@ -53,21 +53,21 @@ struct SpeedRun {
 
 // One ratio: reference time per simulated second over event time per simulated second.
 struct SpeedComparison {
-  std::string comparison;          // what is compared
-  std::string basis;               // "measured" or how the reference figure was obtained
-  SpeedRun reference, event;       // reference.wall_s/cpu_s/steps may be extrapolated
+  std::string comparison;     // what is compared
+  std::string basis;          // "measured" or how the reference figure was obtained
+  SpeedRun reference, event;  // reference.wall_s/cpu_s/steps may be extrapolated
   double ratio_wall() const;
   double ratio_cpu() const;
 };
 
 struct SpeedResult {
   std::string experiment;
-  int threads = 1;                 // OpenMP threads of the reference
-  double dt_target = 0;            // dt at target_Ct [s]
-  double T_run = 0;                // simulated time of the truth run (peak + cycles) [s]
-  std::int64_t target_steps = 0;   // ceil(T_run / dt_target)
+  int threads = 1;                // OpenMP threads of the reference
+  double dt_target = 0;           // dt at target_Ct [s]
+  double T_run = 0;               // simulated time of the truth run (peak + cycles) [s]
+  std::int64_t target_steps = 0;  // ceil(T_run / dt_target)
   SpeedRun truth;
-  std::vector<SpeedRun> runs;      // every timed run except the truth
+  std::vector<SpeedRun> runs;  // every timed run except the truth
   std::vector<SpeedComparison> comparisons;
   // Per-step cost of the reference: whole run at whole_run_Ct[1] over whole_run_Ct[0], and the
   // early window at target_Ct over whole_run_Ct[0] (1 = independent of C_t).

@@ -10,10 +10,10 @@
 namespace asperity {
 
 struct TimedRun {
-  Observables obs;        // of the first run (the runs are deterministic)
-  double wall_s = 0;      // median wall time of integrate() over the repeats [s]
-  double cpu_s = 0;       // median process CPU time of the same runs [s] (less sensitive to
-                          // other jobs on a shared machine than the wall time)
+  Observables obs;    // of the first run (the runs are deterministic)
+  double wall_s = 0;  // median wall time of integrate() over the repeats [s]
+  double cpu_s = 0;   // median process CPU time of the same runs [s] (less sensitive to
+                      // other jobs on a shared machine than the wall time)
   int repeats = 1;
   std::size_t series_bytes = 0;  // memory held by the Recorder's series [bytes]
 };

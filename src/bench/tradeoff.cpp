@@ -6,11 +6,11 @@
 #include <sstream>
 
 #include "bench/bench_scene.hpp"
-#include "report/gnuplot.hpp"
-#include "report/units.hpp"
 #include "bench/timed_run.hpp"
 #include "io/atomic_file.hpp"
 #include "io/numbers.hpp"
+#include "report/gnuplot.hpp"
+#include "report/units.hpp"
 
 #include "bench/number_text.hpp"
 
@@ -19,18 +19,17 @@ namespace fs = std::filesystem;
 
 namespace {
 
-using bench_text::g;
 using bench_text::exact;
+using bench_text::g;
 
 // Scene overrides shared by every run of one experiment: stop after the peak and `cycles`
 // stick-slip cycles; no series (the loading branch the fit needs is kept regardless).
 std::vector<std::string> run_overrides(double stop_time, int cycles) {
-  return {set_number("stop.time", stop_time), "stop.cycles=" + std::to_string(cycles),
-          "stop.at_first_peak=false", "output.series=[]"};
+  return {set_number("stop.time", stop_time), "stop.cycles=" + std::to_string(cycles), "stop.at_first_peak=false",
+          "output.series=[]"};
 }
 
-WorkPrecisionRow make_row(const std::string& experiment, const std::string& method, double setting,
-                          const TimedRun& t) {
+WorkPrecisionRow make_row(const std::string& experiment, const std::string& method, double setting, const TimedRun& t) {
   WorkPrecisionRow r;
   r.experiment = experiment;
   r.method = method;
@@ -52,8 +51,7 @@ TradeoffResult run_tradeoff(const TradeoffOptions& opt) {
     if (opt.log) *opt.log << s << std::flush;
   };
   const std::vector<std::string> base = run_overrides(opt.stop_time, opt.cycles);
-  auto scene_with = [&](const fs::path& path, std::vector<std::string> base_o,
-                        std::vector<std::string> extra) {
+  auto scene_with = [&](const fs::path& path, std::vector<std::string> base_o, std::vector<std::string> extra) {
     base_o.insert(base_o.end(), extra.begin(), extra.end());
     return bench_scene(path, base_o);
   };
@@ -82,12 +80,14 @@ TradeoffResult run_tradeoff(const TradeoffOptions& opt) {
   add("event", opt.converged_tolerance, conv);
   log("check: event, tolerance " + g(opt.check_tolerance) + "\n");
   add("event", opt.check_tolerance,
-      timed_run(scene_with(opt.scene, base, {"solver.method=event", set_number("solver.tolerance", opt.check_tolerance)}),
-                opt.repeats));
+      timed_run(
+          scene_with(opt.scene, base, {"solver.method=event", set_number("solver.tolerance", opt.check_tolerance)}),
+          opt.repeats));
 
   for (double tol : opt.tolerances)
     add("event", tol,
-        timed_run(scene_with(opt.scene, base, {"solver.method=event", set_number("solver.tolerance", tol)}), opt.repeats));
+        timed_run(scene_with(opt.scene, base, {"solver.method=event", set_number("solver.tolerance", tol)}),
+                  opt.repeats));
   std::vector<const WorkPrecisionRow*> ref_rows;
   for (double Ct : opt.Ct) {
     log("reference, C_t = " + g(Ct) + " ...\n");
@@ -114,8 +114,8 @@ std::string work_precision_csv(const std::vector<WorkPrecisionRow>& rows) {
   for (const auto& n : robust_names()) o << ",relerr_" << n;
   o << '\n';
   for (const auto& r : rows) {
-    o << r.experiment << ',' << r.method << ',' << g(r.setting) << ',' << g(r.wall_s, 4) << ',' << g(r.cpu_s, 4) << ',' << r.repeats
-      << ',' << g(r.t_end, 10) << ',' << r.steps;
+    o << r.experiment << ',' << r.method << ',' << g(r.setting) << ',' << g(r.wall_s, 4) << ',' << g(r.cpu_s, 4) << ','
+      << r.repeats << ',' << g(r.t_end, 10) << ',' << r.steps;
     for (double x : r.value) o << ',' << exact(x);
     for (double x : r.error) o << ',' << g(x, 4);
     o << '\n';
@@ -128,7 +128,8 @@ namespace {
 std::string order_csv(const std::vector<OrderRow>& rows) {
   std::ostringstream o;
   o << "observable,Ct_lo,Ct_hi,order\n";
-  for (const auto& r : rows) o << r.observable << ',' << g(r.Ct_lo) << ',' << g(r.Ct_hi) << ',' << g(r.order, 3) << '\n';
+  for (const auto& r : rows)
+    o << r.observable << ',' << g(r.Ct_lo) << ',' << g(r.Ct_hi) << ',' << g(r.order, 3) << '\n';
   return o.str();
 }
 
@@ -177,7 +178,8 @@ std::string plot_script(const TradeoffResult& r) {
        << "plot $reference using 1:" << c << " with linespoints pt 7 ps 0.6 lw 1.5 title "
        << gnuplot_quote("reference, C_t " + range[0]) << ", "
        << "$reference_ends using 1:" << c << ":(sprintf('%g',$2)) with labels right offset -1,0 font ',8' notitle, "
-       << "$event using 1:" << c << " with linespoints pt 5 ps 0.6 lw 1.5 title " << gnuplot_quote("event, tol " + range[1]) << ", "
+       << "$event using 1:" << c << " with linespoints pt 5 ps 0.6 lw 1.5 title "
+       << gnuplot_quote("event, tol " + range[1]) << ", "
        << "$event_ends using 1:" << c << ":(sprintf('%g',$2)) with labels left offset 1,0 font ',8' notitle\n";
   }
   gp << "unset multiplot\n";

@@ -21,15 +21,15 @@
 namespace asperity {
 
 struct TradeoffOptions {
-  std::filesystem::path scene = "bench/scenes/P0.20N.yaml";     // work-precision experiment
+  std::filesystem::path scene = "bench/scenes/P0.20N.yaml";  // work-precision experiment
   std::vector<double> Ct{1e2, 1e3, 1e4};
   std::vector<double> tolerances{1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11};
   double converged_tolerance = 1e-12;
   double check_tolerance = 1e-13;  // converged vs this: how converged the converged run is
   double stop_time = 2.0;          // s, the runs stop after peak + `cycles` cycles
   int cycles = 5;
-  int repeats = 5;                 // runs faster than 1 s: median of this many
-  std::ostream* log = nullptr;     // progress lines
+  int repeats = 5;              // runs faster than 1 s: median of this many
+  std::ostream* log = nullptr;  // progress lines
   // After each setting: settings done and their total (for a progress line); may be empty.
   std::function<void(std::size_t done, std::size_t total)> on_setting;
 };
@@ -37,10 +37,10 @@ struct TradeoffOptions {
 struct WorkPrecisionRow {
   std::string experiment, method;  // method: "reference" (setting = C_t) or "event" (tolerance)
   double setting = 0;
-  double wall_s = 0;               // median wall time of the integration [s]
-  double cpu_s = 0;                // median process CPU time of the same runs [s]
+  double wall_s = 0;  // median wall time of the integration [s]
+  double cpu_s = 0;   // median process CPU time of the same runs [s]
   int repeats = 1;
-  double t_end = 0;                // simulated time [s]
+  double t_end = 0;  // simulated time [s]
   std::int64_t steps = 0;
   std::array<double, n_robust> value{}, error{};  // error: relative, vs the converged run
 };

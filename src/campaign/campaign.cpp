@@ -77,5 +77,4 @@ Point point_at(const Campaign& c, std::uint64_t index) {
                           std::to_string(c.size()) + " points)");
 }
 
-
 }  // namespace asperity

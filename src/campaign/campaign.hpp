@@ -9,8 +9,8 @@
 //   zip → the k-th value of every axis.
 #include <cstdint>
 #include <cstdlib>
-#include <functional>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <string>
 #include <utility>
@@ -33,7 +33,7 @@ struct AxisValue {
 
 struct Axis {
   enum class Kind { list, linspace, logspace };
-  std::string key;                // dotted scene key, e.g. model.eta
+  std::string key;  // dotted scene key, e.g. model.eta
   Kind kind = Kind::list;
   std::vector<AxisValue> values;  // Kind::list
   double a = 0, b = 0;            // linspace / logspace end points (both included)
@@ -49,26 +49,26 @@ struct Axis {
 enum class Combine { product, zip };
 
 struct Grid {
-  std::string name;          // optional label (grid_<k> when not given)
+  std::string name;  // optional label (grid_<k> when not given)
   Combine combine = Combine::product;
-  std::vector<Axis> axes;    // may be empty: one point (the base scenes as they are)
+  std::vector<Axis> axes;      // may be empty: one point (the base scenes as they are)
   std::uint64_t size() const;  // points per base scene
 };
 
 struct Campaign {
-  std::string name;                                 // store folder name (default: file stem)
-  std::filesystem::path file;                       // the campaign YAML
-  std::vector<std::filesystem::path> scenes;        // base scenes (resolved against the file)
+  std::string name;                                    // store folder name (default: file stem)
+  std::filesystem::path file;                          // the campaign YAML
+  std::vector<std::filesystem::path> scenes;           // base scenes (resolved against the file)
   std::vector<std::pair<std::string, AxisValue>> set;  // fixed overrides applied to every point
   std::vector<Grid> grids;
-  bool series = false;                              // also store each point's series.csv
-  double time_limit_s = 0;                          // wall-clock limit per point (0: none)
+  bool series = false;      // also store each point's series.csv
+  double time_limit_s = 0;  // wall-clock limit per point (0: none)
   // The contact solves of topography scenes (scene/topography_cache.hpp), shared by the campaign's
   // load checks, its store set-up and its points: each distinct surface and load is solved once
   // per process. Null: each CampaignScenes makes its own.
   std::shared_ptr<TopographyCache> topography;
 
-  std::uint64_t size() const;                       // total points (overflow checked at load)
+  std::uint64_t size() const;  // total points (overflow checked at load)
   // Every key some grid varies, in first-appearance order: the store's value columns.
   std::vector<std::string> varied_keys() const;
 };
@@ -81,12 +81,11 @@ struct PointValue {
 struct Point {
   std::uint64_t index = 0;
   std::size_t grid = 0;
-  std::size_t scene = 0;             // index into Campaign::scenes
-  std::vector<PointValue> values;    // one per axis of the grid, in axis order
+  std::size_t scene = 0;           // index into Campaign::scenes
+  std::vector<PointValue> values;  // one per axis of the grid, in axis order
 };
 
 // index in [0, campaign.size()) → its point (std::out_of_range otherwise). O(axes + grids).
 Point point_at(const Campaign& campaign, std::uint64_t index);
-
 
 }  // namespace asperity

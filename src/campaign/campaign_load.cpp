@@ -6,10 +6,10 @@
 #include <cstdlib>
 #include <limits>
 
-#include "scene/topography_cache.hpp"
-#include "scene/load.hpp"
 #include "io/numbers.hpp"
 #include "io/yaml_util.hpp"
+#include "scene/load.hpp"
+#include "scene/topography_cache.hpp"
 
 namespace asperity {
 
@@ -18,8 +18,8 @@ using namespace scene_io;
 
 namespace {
 
-const std::vector<std::string> kCampaignKeys{"name",   "description", "scene", "scenes", "set",
-                                             "series", "time_limit",  "combine", "axes",  "grids"};
+const std::vector<std::string> kCampaignKeys{"name",   "description", "scene",   "scenes", "set",
+                                             "series", "time_limit",  "combine", "axes",   "grids"};
 const std::vector<std::string> kGridKeys{"name", "combine", "axes"};
 
 int line_of(const YAML::Node& n) {
@@ -35,7 +35,8 @@ std::vector<std::pair<YAML::Node, YAML::Node>> free_map(const MapView& parent, c
   if (!n.IsMap()) parent.fail_at(n, k, "expected a map of 'scene.key: values' entries, got " + node_kind(n));
   std::vector<std::pair<YAML::Node, YAML::Node>> out;
   for (auto it = n.begin(); it != n.end(); ++it) {
-    if (!it->first.IsScalar()) parent.fail_at(it->first, k, "keys must be dotted scene keys, got " + node_kind(it->first));
+    if (!it->first.IsScalar())
+      parent.fail_at(it->first, k, "keys must be dotted scene keys, got " + node_kind(it->first));
     for (const auto& e : out)
       if (e.first.Scalar() == it->first.Scalar())
         fail(parent.source(), it->first, parent.key(k) + "." + it->first.Scalar(),
@@ -107,8 +108,9 @@ Axis parse_axis(const Source& src, const YAML::Node& kn, const YAML::Node& vn) {
     if (n < 1) m.fail_at(spec[2], which, "empty axis: count must be >= 1, got " + std::to_string(n));
     if (n > 1 && ax.a == ax.b) m.fail_at(spec, which, "first == last with count > 1 repeats one value");
     if (ax.kind == Axis::Kind::logspace && !(ax.a * ax.b > 0))
-      m.fail_at(spec, which, "end points must be non-zero and of one sign, got " + format_double(ax.a) + " and " +
-                                 format_double(ax.b));
+      m.fail_at(
+          spec, which,
+          "end points must be non-zero and of one sign, got " + format_double(ax.a) + " and " + format_double(ax.b));
     ax.n = static_cast<std::uint64_t>(n);
     return ax;
   }
@@ -156,7 +158,8 @@ void read_campaign_keys(const MapView& m, Campaign& c) {
   if (auto n = m.find("series")) c.series = m.boolean(*n, "series");
   if (auto n = m.find("time_limit")) {
     c.time_limit_s = m.number(*n, "time_limit", "s");
-    if (!(c.time_limit_s > 0)) m.fail_at(*n, "time_limit", "must be > 0 (seconds of wall time per point), got " + format_double(c.time_limit_s));
+    if (!(c.time_limit_s > 0))
+      m.fail_at(*n, "time_limit", "must be > 0 (seconds of wall time per point), got " + format_double(c.time_limit_s));
   }
 }
 
@@ -178,7 +181,9 @@ void read_base_scenes(const MapView& m, const fs::path& yaml, Campaign& c) {
     const fs::path p = yaml.parent_path() / scene_texts[i];
     std::error_code ec;
     if (!fs::is_regular_file(p, ec))
-      m.fail_at(at, k, "scene file not found: " + quote(scene_texts[i]) + " (looked for " + p.lexically_normal().string() + ")");
+      m.fail_at(
+          at, k,
+          "scene file not found: " + quote(scene_texts[i]) + " (looked for " + p.lexically_normal().string() + ")");
     for (const auto& q : c.scenes)
       if (fs::equivalent(q, p, ec)) m.fail_at(at, k, "scene " + quote(scene_texts[i]) + " listed twice");
     c.scenes.push_back(p.lexically_normal());
@@ -217,7 +222,8 @@ void read_grids(const Source& src, const MapView& m, Campaign& c) {
       std::string name = "grid_" + std::to_string(i);
       if (auto n = gm.find("name")) {
         name = gm.string(*n, "name");
-        if (has_control_char(name)) gm.fail_at(*n, "name", "must not hold control characters (newline, tab, ...), got " + quote(name));
+        if (has_control_char(name))
+          gm.fail_at(*n, "name", "must not hold control characters (newline, tab, ...), got " + quote(name));
       }
       c.grids.push_back(parse_grid(src, gm, name));
     }

@@ -17,12 +17,12 @@ namespace fs = std::filesystem;
 using scene_io::format_double;
 
 // A scene tree error caused by an override, re-reported at the campaign line that set it.
-[[noreturn]] void rethrow_at_campaign_line(const InputError& e, const std::string& campaign_file, int line, const std::string& key) {
+[[noreturn]] void rethrow_at_campaign_line(const InputError& e, const std::string& campaign_file, int line,
+                                           const std::string& key) {
   std::string msg = e.message;
   if (!e.key.empty() && e.key != key) msg = e.key + ": " + msg;
   throw InputError(campaign_file, line, key, msg + " (on " + e.file + ")");
 }
-
 
 namespace {
 
@@ -39,7 +39,6 @@ YAML::Node override_value(const std::string& key, const AxisValue& v, const fs::
   if (is_path_key(key)) return YAML::Node(fs::absolute(campaign_dir / v.text).lexically_normal().string());
   return YAML::Node(v.text);
 }
-
 
 // A base scene: its file's text, read once and checked by the loader, parsed again for every
 // point. A fresh tree per point, because yaml-cpp merges the memory of every tree a node is
@@ -58,7 +57,6 @@ YAML::Node parse_base(const BaseScene& b) {
                      "malformed YAML: " + e.msg);
   }
 }
-
 
 // The tree of a base scene with the campaign's `set` applied; errors name the scene file (its
 // own errors) or, when `set_lines` is given, the campaign's `set` line (the override's).
@@ -93,7 +91,6 @@ std::vector<BaseScene> base_scenes(const Campaign& c) {
 }
 
 }  // namespace
-
 
 struct CampaignScenes::Impl {
   const Campaign* campaign = nullptr;

@@ -28,9 +28,12 @@ enum class Type { integer, real, flag, text };
 const char* sql_type(Type t) {
   switch (t) {
     case Type::integer:
-    case Type::flag: return "INTEGER";
-    case Type::real: return "REAL";
-    case Type::text: return "TEXT";
+    case Type::flag:
+      return "INTEGER";
+    case Type::real:
+      return "REAL";
+    case Type::text:
+      return "TEXT";
   }
   return "TEXT";
 }
@@ -120,7 +123,7 @@ void check_export_target(const fs::path& file) {
 struct ExportColumns {
   std::vector<std::string> names, cols;  // as in the store; unique in the table (NAME_2, NAME_3)
   std::vector<Type> types;
-  std::vector<std::size_t> varied;       // the varied keys' columns (indexed)
+  std::vector<std::size_t> varied;  // the varied keys' columns (indexed)
   std::string where;
 };
 
@@ -134,10 +137,10 @@ void set_column_types(const StoreReader& s, std::size_t status, ExportColumns& x
     x.types[c] = Type::real;  // wall_s and any observable not in the table
     for (const ObservableField& f : observable_fields())
       if (x.names[c] == f.name)
-        x.types[c] = f.kind == ObservableKind::real ? Type::real
+        x.types[c] = f.kind == ObservableKind::real    ? Type::real
                      : f.kind == ObservableKind::count ? Type::integer
-                     : f.kind == ObservableKind::flag ? Type::flag
-                                                      : Type::text;
+                     : f.kind == ObservableKind::flag  ? Type::flag
+                                                       : Type::text;
   }
   if (x.varied.empty()) return;
   for (const StoredRow& r : s.rows()) {
@@ -161,7 +164,10 @@ ExportColumns export_columns(const StoreReader& s, const fs::path& store) {
   // Unique column names (an `experiment` axis repeats the experiment column): NAME_2, NAME_3.
   x.cols = x.names;
   for (std::size_t c = 0; c < x.cols.size(); ++c) {
-    auto taken = [&](const std::string& n) { return std::find(x.cols.begin(), x.cols.begin() + static_cast<std::ptrdiff_t>(c), n) != x.cols.begin() + static_cast<std::ptrdiff_t>(c); };
+    auto taken = [&](const std::string& n) {
+      return std::find(x.cols.begin(), x.cols.begin() + static_cast<std::ptrdiff_t>(c), n) !=
+             x.cols.begin() + static_cast<std::ptrdiff_t>(c);
+    };
     for (std::size_t k = 2; taken(x.cols[c]); ++k) x.cols[c] = x.names[c] + "_" + std::to_string(k);
   }
   return x;
@@ -230,7 +236,8 @@ void write_database(const fs::path& tmp, const StoreReader& s, const fs::path& s
   }
   db.exec("COMMIT");
   for (std::size_t k = 0; k < x.varied.size(); ++k, ++rep.indexes)
-    db.exec("CREATE INDEX points_by_" + std::to_string(k + 1) + " ON points (" + quoted_name(x.cols[x.varied[k]]) + ")");
+    db.exec("CREATE INDEX points_by_" + std::to_string(k + 1) + " ON points (" + quoted_name(x.cols[x.varied[k]]) +
+            ")");
   db.close();
 }
 

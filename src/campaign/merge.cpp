@@ -34,7 +34,8 @@ void check_same_point(std::uint64_t index, const std::string& kept, const std::s
                       const fs::path& other_in, const std::string& header) {
   const auto a = csv_split(kept), b = csv_split(other);
   const auto names = csv_split(header);
-  const std::string point = "merge: point " + std::to_string(index) + " (grid " + a.at(2) + ", experiment " + a.at(3) + ")";
+  const std::string point =
+      "merge: point " + std::to_string(index) + " (grid " + a.at(2) + ", experiment " + a.at(3) + ")";
   if (a.at(1) != b.at(1))
     throw std::runtime_error(point + " was computed from different scenes or data: hash " + a.at(1) + " in " +
                              kept_in.string() + ", " + b.at(1) + " in " + other_in.string() +
@@ -51,7 +52,8 @@ void check_same_point(std::uint64_t index, const std::string& kept, const std::s
 
 // The input stores, read-only (only their indexes are held: 16 bytes a row), after checking they
 // share their columns and campaign text; `first_provenance`: the first input's provenance.yaml.
-std::vector<StoreReader> open_inputs(const std::vector<fs::path>& inputs, std::string& header, std::string& first_provenance) {
+std::vector<StoreReader> open_inputs(const std::vector<fs::path>& inputs, std::string& header,
+                                     std::string& first_provenance) {
   std::string campaign_hash;
   std::vector<StoreReader> stores;
   stores.reserve(inputs.size());
@@ -63,24 +65,27 @@ std::vector<StoreReader> open_inputs(const std::vector<fs::path>& inputs, std::s
       header = s.header(), campaign_hash = h, first_provenance = prov;
       continue;
     }
-    if (s.header() != header) throw std::runtime_error("merge: " + in.string() + " has other columns than " + inputs[0].string());
+    if (s.header() != header)
+      throw std::runtime_error("merge: " + in.string() + " has other columns than " + inputs[0].string());
     if (h != campaign_hash)
-      throw std::runtime_error("merge: " + in.string() + " comes from another campaign text than " + inputs[0].string() +
-                               " (" + h + " vs " + campaign_hash + ")");
+      throw std::runtime_error("merge: " + in.string() + " comes from another campaign text than " +
+                               inputs[0].string() + " (" + h + " vs " + campaign_hash + ")");
   }
   return stores;
 }
 
 // Series files (series.csv) of the inputs that have one (null where none): one set of columns
 // for all, whose header line is `series_header` (empty: no input has series).
-std::vector<std::unique_ptr<SeriesFile>> open_input_series(const std::vector<fs::path>& inputs, std::string& series_header) {
+std::vector<std::unique_ptr<SeriesFile>> open_input_series(const std::vector<fs::path>& inputs,
+                                                           std::string& series_header) {
   std::vector<std::unique_ptr<SeriesFile>> series(inputs.size());
   for (std::size_t i = 0; i < inputs.size(); ++i) {
     if (!fs::exists(inputs[i] / "series.csv")) continue;
     series[i] = std::make_unique<SeriesFile>(inputs[i], false);
     std::string h = "index";
     for (const std::string& col : series[i]->columns()) h += "," + col;
-    if (series_header.empty()) series_header = h;
+    if (series_header.empty())
+      series_header = h;
     else if (h != series_header)
       throw std::runtime_error("merge: " + (inputs[i] / "series.csv").string() + " has other series columns (" + h +
                                ") than the first input's (" + series_header + ")");
@@ -111,14 +116,16 @@ void for_each_point(const std::vector<StoreReader>& stores,
 // The row of point `index` in a store that holds it.
 std::string row_of(const StoreReader& store, std::uint64_t index) {
   const auto r = store.rows();
-  const auto it = std::lower_bound(r.begin(), r.end(), index, [](const StoredRow& e, std::uint64_t i) { return e.index < i; });
+  const auto it =
+      std::lower_bound(r.begin(), r.end(), index, [](const StoredRow& e, std::uint64_t i) { return e.index < i; });
   return store.row(*it);
 }
 
 // Before anything is written: points held by more than one input must agree; the one kept is the
 // first that ran to the end (only these choices are held, by point index).
-std::map<std::uint64_t, std::size_t> choose_duplicates(const std::vector<StoreReader>& stores, const std::vector<fs::path>& inputs,
-                                                       const std::string& header, MergeReport& rep) {
+std::map<std::uint64_t, std::size_t> choose_duplicates(const std::vector<StoreReader>& stores,
+                                                       const std::vector<fs::path>& inputs, const std::string& header,
+                                                       MergeReport& rep) {
   const std::size_t status_col = Journal::status_column(header);
   std::map<std::uint64_t, std::size_t> chosen;
   for_each_point(stores, [&](std::uint64_t index, const std::vector<std::size_t>& holders) {

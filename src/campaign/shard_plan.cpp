@@ -44,7 +44,8 @@ ShardPlan plan_shard(const Campaign& c, Shard shard, ShardBalance balance) {
   for (std::size_t g = 0; g < c.grids.size(); ++g) {
     for (const Axis& a : c.grids[g].axes) {
       bool numbers = a.kind != Axis::Kind::list;
-      if (!numbers) numbers = std::all_of(a.values.begin(), a.values.end(), [](const AxisValue& v) { return v.is_number; });
+      if (!numbers)
+        numbers = std::all_of(a.values.begin(), a.values.end(), [](const AxisValue& v) { return v.is_number; });
       varies[g] = varies[g] || !numbers || sets_cost(a.key);
     }
     const std::uint64_t per_scene = c.grids[g].size();
@@ -54,8 +55,7 @@ ShardPlan plan_shard(const Campaign& c, Shard shard, ShardBalance balance) {
   }
   if (uniform) {
     const double c0 = block.empty() || block[0].empty() ? 0.0 : block[0][0];
-    for (const auto& b : block)
-      uniform = uniform && std::all_of(b.begin(), b.end(), [&](double x) { return x == c0; });
+    for (const auto& b : block) uniform = uniform && std::all_of(b.begin(), b.end(), [&](double x) { return x == c0; });
   }
   if (uniform) return ShardPlan::round_robin(shard, total, ShardBalance::cost);
   // Otherwise expected seconds per distinct combination of the values that set the cost.
@@ -67,7 +67,8 @@ ShardPlan plan_shard(const Campaign& c, Shard shard, ShardBalance balance) {
     if (!varies[p.grid]) return block[p.grid][p.scene];
     std::string key = std::to_string(p.grid) + "|" + std::to_string(p.scene);
     for (const PointValue& v : p.values)
-      if (!v.value.is_number || sets_cost(v.axis->key)) key.append("|").append(v.axis->key).append("=").append(v.value.text);
+      if (!v.value.is_number || sets_cost(v.axis->key))
+        key.append("|").append(v.axis->key).append("=").append(v.value.text);
     if (const auto it = memo.find(key); it != memo.end()) return it->second;
     const double s = scene_cost(p);
     if (memo.size() >= kMemo) memo.clear();

@@ -5,10 +5,10 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <cstring>
-#include <algorithm>
 #include <fstream>
 #include <memory>
 #include <stdexcept>
@@ -32,7 +32,6 @@ bool parse_u64(std::string_view s, std::uint64_t& out, int base = 10) {
   const auto r = std::from_chars(s.data(), s.data() + s.size(), out, base);
   return r.ec == std::errc() && r.ptr == s.data() + s.size() && !s.empty();
 }
-
 
 // Reads a file line by line (buffered), with each line's byte offset; a last line without its
 // newline is not returned (torn() says it was there).
@@ -93,8 +92,10 @@ bool csv_field_at(std::string_view row, std::size_t col, std::string_view& out) 
     if (i < row.size() && row[i] == '"') {
       for (++i; i < row.size(); ++i)
         if (row[i] == '"') {
-          if (i + 1 < row.size() && row[i + 1] == '"') ++i;
-          else break;
+          if (i + 1 < row.size() && row[i + 1] == '"')
+            ++i;
+          else
+            break;
         }
     }
     const std::size_t comma = row.find(',', i);
@@ -145,7 +146,8 @@ void RowIndex::settle() {
 
 const StoredRow* RowIndex::find(std::uint64_t index) const {
   const auto r = rows();
-  const auto it = std::lower_bound(r.begin(), r.end(), index, [](const StoredRow& e, std::uint64_t i) { return e.index < i; });
+  const auto it =
+      std::lower_bound(r.begin(), r.end(), index, [](const StoredRow& e, std::uint64_t i) { return e.index < i; });
   return it != r.end() && it->index == index ? &*it : nullptr;
 }
 
@@ -153,7 +155,8 @@ void Journal::add_entry(std::string_view row, std::uint64_t offset) {
   const std::size_t comma = row.find(',');
   std::uint64_t index = 0;
   std::string_view status;
-  if (comma == std::string_view::npos || !parse_u64(row.substr(0, comma), index) || !csv_field_at(row, status_col_, status))
+  if (comma == std::string_view::npos || !parse_u64(row.substr(0, comma), index) ||
+      !csv_field_at(row, status_col_, status))
     throw std::runtime_error("malformed journal row (checksum good): " + std::string(row.substr(0, 60)));
   index_.add(index, offset, status == "ok");
 }
@@ -171,14 +174,17 @@ bool Journal::scan(const fs::path& path) {
   }
   const std::optional<JournalDigest> digest = journal_digest_of(line, header_);
   if (!digest)
-    throw InputError(path.string(), 1, "header",
-                     "written for another campaign or version (its header differs); use another --out or remove the store");
+    throw InputError(
+        path.string(), 1, "header",
+        "written for another campaign or version (its header differs); use another --out or remove the store");
   digest_ = *digest;
   bool clean = digest_ == JournalDigest::sha256;  // a legacy journal is rewritten with SHA-256
   while (in.next(line, offset)) {
     std::string_view row;
-    if (checked_journal_row(line, row, digest_)) add_entry(row, offset);
-    else ++dropped_, clean = false;
+    if (checked_journal_row(line, row, digest_))
+      add_entry(row, offset);
+    else
+      ++dropped_, clean = false;
   }
   if (in.torn()) ++dropped_, clean = false;
   size_ = in.offset();
@@ -203,7 +209,8 @@ Journal::Journal(const fs::path& dir, const std::string& header, JournalSync syn
     // points.csv is only ever written atomically, so its rows seed the journal as they are.
     LineReader in(dir / "points.csv");
     if (!in.next(line, offset) || line != header_)
-      throw std::runtime_error((dir / "points.csv").string() + " was written for another campaign or version "
+      throw std::runtime_error((dir / "points.csv").string() +
+                               " was written for another campaign or version "
                                "(header differs); use another --out or remove the store");
     AtomicFileWriter out(path, Durability::synced);
     out.write(head);
@@ -317,7 +324,11 @@ StoreReader::~StoreReader() {
 }
 
 StoreReader::StoreReader(StoreReader&& o) noexcept
-    : file_(std::move(o.file_)), header_(std::move(o.header_)), rows_(std::move(o.rows_)), journal_(o.journal_), fd_(o.fd_) {
+    : file_(std::move(o.file_)),
+      header_(std::move(o.header_)),
+      rows_(std::move(o.rows_)),
+      journal_(o.journal_),
+      fd_(o.fd_) {
   o.fd_ = -1;
 }
 
@@ -336,7 +347,8 @@ std::string series_header(const std::vector<std::string>& columns) {
 }
 
 // "#end,INDEX,HASH,ROWS,CHECKSUM" → its fields; false when malformed.
-bool parse_trailer(std::string_view line, std::uint64_t& index, std::uint64_t& hash, std::uint64_t& rows, std::uint64_t& sum) {
+bool parse_trailer(std::string_view line, std::uint64_t& index, std::uint64_t& hash, std::uint64_t& rows,
+                   std::uint64_t& sum) {
   if (line.rfind("#end,", 0) != 0) return false;
   std::string_view f[4];
   std::size_t at = 5;
@@ -354,7 +366,8 @@ bool parse_trailer(std::string_view line, std::uint64_t& index, std::uint64_t& h
 std::string series_block(std::uint64_t index, std::uint64_t hash, const std::string& rows) {
   std::uint64_t n = 0;
   for (const char c : rows) n += c == '\n' ? 1 : 0;
-  return rows + "#end," + std::to_string(index) + "," + hex16(hash) + "," + std::to_string(n) + "," + hex16(fnv1a64(rows)) + "\n";
+  return rows + "#end," + std::to_string(index) + "," + hex16(hash) + "," + std::to_string(n) + "," +
+         hex16(fnv1a64(rows)) + "\n";
 }
 
 SeriesFile::SeriesFile(const fs::path& dir, bool append, const std::vector<std::string>& columns)
@@ -381,7 +394,8 @@ SeriesFile::SeriesFile(const fs::path& dir, bool append, const std::vector<std::
   while (!bad && in.next(line, offset)) {
     if (line.rfind("#end,", 0) == 0) {
       std::uint64_t index = 0, hash = 0, n = 0, want = 0;
-      if (!parse_trailer(line, index, hash, n, want) || n != rows || want != sum || (rows > 0 && index != first_index)) {
+      if (!parse_trailer(line, index, hash, n, want) || n != rows || want != sum ||
+          (rows > 0 && index != first_index)) {
         bad = true;
         break;
       }
@@ -402,7 +416,8 @@ SeriesFile::SeriesFile(const fs::path& dir, bool append, const std::vector<std::
   const std::uint64_t file_size = fs::file_size(path_);
   dropped_ = static_cast<std::size_t>(file_size - good_end);
   // Last block of each index, sorted (stable: file order within an index).
-  std::stable_sort(all.begin(), all.end(), [](const SeriesBlock& a, const SeriesBlock& b) { return a.index < b.index; });
+  std::stable_sort(all.begin(), all.end(),
+                   [](const SeriesBlock& a, const SeriesBlock& b) { return a.index < b.index; });
   for (std::size_t i = 0; i < all.size(); ++i) {
     if (!blocks_.empty() && blocks_.back().index == all[i].index) {
       blocks_.back() = all[i];
@@ -414,7 +429,8 @@ SeriesFile::SeriesFile(const fs::path& dir, bool append, const std::vector<std::
   fd_ = open_regular(path_, append ? O_RDWR | O_APPEND : O_RDONLY, "--out");
   if (fd_ < 0) sys_fail("cannot open", path_);
   if (append && dropped_ > 0) {  // cut off the torn tail, durably, before appending after it
-    if (::ftruncate(fd_, static_cast<off_t>(good_end)) != 0 || ::fdatasync(fd_) != 0) sys_fail("cannot truncate", path_);
+    if (::ftruncate(fd_, static_cast<off_t>(good_end)) != 0 || ::fdatasync(fd_) != 0)
+      sys_fail("cannot truncate", path_);
   }
   size_ = good_end;
 }
@@ -484,7 +500,8 @@ std::map<std::uint64_t, std::string> read_point_series(const fs::path& dir, cons
   std::map<std::uint64_t, std::string> out;
   const auto rows = store.rows();
   for (const std::uint64_t index : indices) {
-    const auto it = std::lower_bound(rows.begin(), rows.end(), index, [](const StoredRow& e, std::uint64_t i) { return e.index < i; });
+    const auto it = std::lower_bound(rows.begin(), rows.end(), index,
+                                     [](const StoredRow& e, std::uint64_t i) { return e.index < i; });
     if (it == rows.end() || it->index != index) continue;
     const std::string row = store.row(*it);
     const std::size_t a = row.find(',') + 1, b = row.find(',', a);

@@ -18,8 +18,8 @@
 //   .lock           flock: one sweep per store at a time.
 #include <chrono>
 #include <cstdint>
-#include <functional>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <memory>
 #include <span>
@@ -152,7 +152,7 @@ class StoreReader {
   StoreReader& operator=(const StoreReader&) = delete;
   StoreReader& operator=(StoreReader&&) = delete;
 
-  const std::string& header() const { return header_; }  // the points.csv header
+  const std::string& header() const { return header_; }             // the points.csv header
   std::span<const StoredRow> rows() const { return rows_.rows(); }  // ascending by index
   std::string row(const StoredRow& r) const;
 
@@ -195,7 +195,7 @@ class SeriesFile {
   SeriesFile& operator=(const SeriesFile&) = delete;
 
   const std::vector<std::string>& columns() const { return columns_; }  // without "index"
-  std::size_t dropped_bytes() const { return dropped_; }               // cut off at open
+  std::size_t dropped_bytes() const { return dropped_; }                // cut off at open
   // The last whole block of `index` as of the open (nullptr: none).
   const SeriesBlock* find(std::uint64_t index) const;
   bool superseded() const { return superseded_; }  // an index with more than one block (as opened or appended)
@@ -214,7 +214,7 @@ class SeriesFile {
   std::filesystem::path path_;
   std::string header_;
   std::vector<std::string> columns_;
-  std::vector<SeriesBlock> blocks_;  // sorted by index (last block of each), as opened
+  std::vector<SeriesBlock> blocks_;      // sorted by index (last block of each), as opened
   std::vector<std::uint64_t> appended_;  // indices appended since the open
   int fd_ = -1;
   std::uint64_t size_ = 0;

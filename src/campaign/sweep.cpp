@@ -59,7 +59,9 @@ struct Job {
 class Progress {
  public:
   Progress(std::uint64_t total, bool quiet, SweepCounters* counters)
-      : total_(total), skipped_(0), counters_(counters),
+      : total_(total),
+        skipped_(0),
+        counters_(counters),
         line_("sweep", "points", static_cast<double>(total), quiet, 0.0, 10.0) {
     if (counters_) counters_->total = total;
   }
@@ -133,7 +135,8 @@ ShardPlan plan_and_report(const Campaign& c, const Shard& shard, SweepReport& re
 // Series: one append-only file (store.hpp, SeriesFile), its columns those of the shard's first
 // point (every point's block has them), synced before the journal so that a synced row implies
 // its synced series. Null for a campaign without series.
-std::unique_ptr<SeriesFile> open_series(const Campaign& c, const fs::path& dir, const ShardPlan& shard, Journal& journal) {
+std::unique_ptr<SeriesFile> open_series(const Campaign& c, const fs::path& dir, const ShardPlan& shard,
+                                        Journal& journal) {
   if (!c.series) return nullptr;
   std::vector<std::string> columns;
   if (!fs::exists(dir / "series.csv")) {
@@ -149,7 +152,8 @@ std::unique_ptr<SeriesFile> open_series(const Campaign& c, const fs::path& dir, 
 }
 
 // The text of each varied key at a point (store_header order): its axis value, or the scene's.
-std::vector<std::string> varied_texts(const Point& p, const std::optional<Scene>& scene, const std::vector<std::string>& keys) {
+std::vector<std::string> varied_texts(const Point& p, const std::optional<Scene>& scene,
+                                      const std::vector<std::string>& keys) {
   std::vector<std::string> out;
   for (const std::string& k : keys) {
     std::string v;
@@ -181,11 +185,13 @@ std::string series_block_rows(std::uint64_t index, const RunResult& r, const std
 // Why a finished run counts as failed (empty: it did not).
 std::string run_failure(const Campaign& c, const RunResult& r) {
   if (r.recorder.timed_out())
-    return "per-point time limit of " + num(c.time_limit_s) + " s exceeded at simulated t = " + num(r.recorder.last().t) + " s";
+    return "per-point time limit of " + num(c.time_limit_s) +
+           " s exceeded at simulated t = " + num(r.recorder.last().t) + " s";
   // A run that ends before any junction slips has no peak (Q_s = NaN) and is not a failure.
   const bool peak = r.obs.peak_found;
   for (const auto& [name, x] : {std::pair<const char*, double>{"Q_s", peak ? r.obs.Q_s : 0.0},
-                                {"A_s", peak ? r.obs.A_s : 0.0}, {"t_peak", peak ? r.obs.t_peak : 0.0},
+                                {"A_s", peak ? r.obs.A_s : 0.0},
+                                {"t_peak", peak ? r.obs.t_peak : 0.0},
                                 {"t_end", r.obs.t_end}})
     if (!std::isfinite(x)) return std::string("non-finite observable ") + name;
   return {};
@@ -194,8 +200,9 @@ std::string run_failure(const Campaign& c, const RunResult& r) {
 // The journal row of a job: index, hash, grid, experiment, varied values, status, error,
 // observables (empty when failed), wall time.
 std::string job_row(const Campaign& c, const Job& job, const std::optional<RunResult>& r, double wall) {
-  std::string row = std::to_string(job.point.index) + "," + hex16(job.hash) + "," + csv_field(c.grids[job.point.grid].name) +
-                    "," + csv_field(job.scene ? job.scene->experiment.name : "");
+  std::string row = std::to_string(job.point.index) + "," + hex16(job.hash) + "," +
+                    csv_field(c.grids[job.point.grid].name) + "," +
+                    csv_field(job.scene ? job.scene->experiment.name : "");
   for (const std::string& v : job.varied) row.append(",").append(csv_field(v));
   row += job.failed ? ",failed," + csv_field(job.error) : ",ok,";
   for (const ObservableField& f : observable_fields())
@@ -208,10 +215,21 @@ class ShardRun {
  public:
   ShardRun(const Campaign& c, const SweepOptions& opt, const ShardPlan& shard, Journal& journal, SeriesFile* series,
            std::vector<std::uint8_t> current, FileHashes& data_hashes, SweepReport& rep)
-      : c_(c), opt_(opt), shard_(shard), journal_(journal), series_(series), stored_(journal.entries()),
-        current_(std::move(current)), data_hashes_(data_hashes), rep_(rep), scenes_(c), varied_keys_(c.varied_keys()),
-        series_columns_(series ? series->columns() : std::vector<std::string>{}), progress_(rep.points, opt.quiet, opt.counters),
-        stop_(opt.stop), next_(shard.next(0)) {}
+      : c_(c),
+        opt_(opt),
+        shard_(shard),
+        journal_(journal),
+        series_(series),
+        stored_(journal.entries()),
+        current_(std::move(current)),
+        data_hashes_(data_hashes),
+        rep_(rep),
+        scenes_(c),
+        varied_keys_(c.varied_keys()),
+        series_columns_(series ? series->columns() : std::vector<std::string>{}),
+        progress_(rep.points, opt.quiet, opt.counters),
+        stop_(opt.stop),
+        next_(shard.next(0)) {}
 
   // Serial, in order: the next point of the shard that needs a run; null at the end or on a stop.
   std::shared_ptr<Job> build() {
@@ -357,14 +375,16 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
   std::string points_digest;  // SHA-256 of points.csv as the last complete run wrote it
   if (std::optional<std::string> old = read_inputs(rep.store)) {
     points_digest = take_points_digest(*old);
-    rep.trusted = !opt.build_id.empty() && inputs_text(c, opt.build_id, shard, listed_inputs(*old, c), data_hashes) == *old;
+    rep.trusted =
+        !opt.build_id.empty() && inputs_text(c, opt.build_id, shard, listed_inputs(*old, c), data_hashes) == *old;
     remove_file_durably(rep.store / kInputsFileName);
   }
   std::vector<std::uint8_t> current(journal.entries().size(), 1);
   if (!rep.trusted) current = recheck_stored(c, opt, shard, journal, data_hashes, runner, rep.rehashed);
 
   ShardRun stages(c, opt, shard, journal, series.get(), std::move(current), data_hashes, rep);
-  runner.pipeline<Job>([&] { return stages.build(); }, [&](Job& j) { stages.run(j); }, [&](Job& j) { stages.store(j); });
+  runner.pipeline<Job>([&] { return stages.build(); }, [&](Job& j) { stages.run(j); },
+                       [&](Job& j) { stages.store(j); });
   stages.finish();
   journal.sync();
   rep.syncs = journal.syncs();
@@ -372,8 +392,8 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
   // the run that completes the shard (inputs.txt is absent now, so it checks every stored point).
   if (stages.cut_short())
     throw RunInterrupted("interrupted; " + std::to_string(rep.skipped + rep.ran) + " of " + std::to_string(rep.points) +
-                         " point(s) of this shard kept in " + rep.store.string() + " (" +
-                         std::to_string(rep.ran) + " run now); rerun the same command to resume");
+                         " point(s) of this shard kept in " + rep.store.string() + " (" + std::to_string(rep.ran) +
+                         " run now); rerun the same command to resume");
 
   auto mine = [&](std::uint64_t index) { return index < c.size() && shard.contains(index); };
   const bool unchanged = points_current(rep, points_digest);

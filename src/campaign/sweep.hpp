@@ -23,9 +23,9 @@
 #include <cstdint>
 #include <filesystem>
 #include <limits>
-#include <optional>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -57,15 +57,15 @@ struct SweepCounters {
 };
 
 struct SweepOptions {
-  int threads = 0;                   // 0: all hardware threads
-  Shard shard;                       // default 0/1: every point
+  int threads = 0;  // 0: all hardware threads
+  Shard shard;      // default 0/1: every point
   // How the points are dealt to shards (shard_plan.hpp). Empty: the store's own (provenance.yaml
   // shard_balance; a store written before it was recorded: index), cost for a new store.
   std::optional<ShardBalance> balance;
-  std::filesystem::path out;         // empty: results/<campaign name>
-  bool quiet = false;                // no progress, no summary
-  bool retry_failed = false;         // rerun points the store holds as failed
-  std::string command_line;          // the command that started the store (provenance.yaml)
+  std::filesystem::path out;  // empty: results/<campaign name>
+  bool quiet = false;         // no progress, no summary
+  bool retry_failed = false;  // rerun points the store holds as failed
+  std::string command_line;   // the command that started the store (provenance.yaml)
   // Group commit of the journal (store.hpp): fdatasync after 100 points or 1 s, whichever comes
   // first, and at the end. A power cut loses (and the next run recomputes) at most the points
   // journaled in the last second, never more than 99; kill -9 loses none. {1, 0}: per point.
@@ -87,7 +87,7 @@ struct SweepOptions {
 
 struct SweepReport {
   std::filesystem::path store;
-  std::uint64_t points = 0;          // points of this shard
+  std::uint64_t points = 0;  // points of this shard
   ShardBalance balance = ShardBalance::index;
   // Expected seconds on one core (solve/core/run_cost.hpp) of this shard and of the costliest and
   // cheapest shard; NaN unless the plan was balanced by cost over unequal costs.

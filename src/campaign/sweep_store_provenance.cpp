@@ -68,7 +68,8 @@ std::string store_provenance_yaml(const Campaign& c, const std::string& campaign
   y << "build_type: " << yaml_quoted(build_info().build_type) << '\n';
   y << "started_utc: " << yaml_quoted(utc_now()) << '\n';
   y << "stand_in_data: " << (uses_stand_ins(c) ? "true  # STAND-IN experiments, not measurements" : "false") << '\n';
-  y << "hash: \"FNV-1a 64 of the resolved scene (scene_to_yaml, experiment file relative to the campaign folder) and of the bytes of its junctions and measured CSVs\"\n";
+  y << "hash: \"FNV-1a 64 of the resolved scene (scene_to_yaml, experiment file relative to the campaign folder) and "
+       "of the bytes of its junctions and measured CSVs\"\n";
   // The input files as they were when the store started (each point's hash covers its own data,
   // so a resume after a CSV changed recomputes the points that use it and says so).
   std::vector<DataFile> files{{"campaign", c.file}};
@@ -123,12 +124,14 @@ namespace sweep_detail {
 void check_store_folder(const fs::path& dir) {
   if (!fs::is_directory(dir)) return;
   for (const auto& e : fs::directory_iterator(dir)) {
-    static const std::string_view known[] = {".lock", "campaign.yaml", "provenance.yaml", "journal.csv", "points.csv", "series", "series.csv", kInputsFileName};
+    static const std::string_view known[] = {".lock",      "campaign.yaml", "provenance.yaml", "journal.csv",
+                                             "points.csv", "series",        "series.csv",      kInputsFileName};
     const std::string n = e.path().filename().string();
     if (std::find(std::begin(known), std::end(known), n) == std::end(known) && n.find(".tmp-") == std::string::npos &&
         e.path().extension() != ".png" && e.path().extension() != ".svg" && e.path().extension() != ".pdf" &&
         e.path().extension() != ".gp")  // figures drawn from the store and their kept scripts
-      throw InputError(dir.string(), 0, "--out", "refusing to use it as a sweep store: it holds '" + n + "', which no store holds");
+      throw InputError(dir.string(), 0, "--out",
+                       "refusing to use it as a sweep store: it holds '" + n + "', which no store holds");
   }
 }
 
@@ -162,20 +165,23 @@ ShardBalance prepare_store(const fs::path& dir, const Campaign& c, const SweepOp
 std::string inputs_text(const Campaign& c, const std::string& build_id, const ShardPlan& plan,
                         const std::vector<fs::path>& files, FileHashes& hashes) {
   const Shard& shard = plan.shard();
-  InputsFingerprint t(kInputsFirstLine, build_id, "shard", shard,
-                      plan.balance() == ShardBalance::index || shard.count == 1 ? std::string() : shard_balance_name(plan.balance()));
+  InputsFingerprint t(
+      kInputsFirstLine, build_id, "shard", shard,
+      plan.balance() == ShardBalance::index || shard.count == 1 ? std::string() : shard_balance_name(plan.balance()));
   // The effective `set` (the campaign's, then --set): --set changes points without changing the campaign text.
   for (const auto& [key, v] : c.set)
     t.add("set", hex16(fnv1a64(key + "\n" + std::to_string(v.is_number) + std::to_string(v.is_yaml) + "\n" +
                                scene_io::format_double(v.number) + "\n" + v.text)));
   const fs::path base = fs::absolute(c.file.parent_path()).lexically_normal();
-  for (const fs::path& f : files) t.add_file("", f.lexically_relative(base).generic_string(), [&] { return hashes.of(f); });
+  for (const fs::path& f : files)
+    t.add_file("", f.lexically_relative(base).generic_string(), [&] { return hashes.of(f); });
   return t.text();
 }
 
 std::string take_points_digest(std::string& text) {
   const std::size_t at = text.rfind("\n" + kPointsDigestTag);
-  if (at == std::string::npos || text.size() != at + 1 + kPointsDigestTag.size() + 64 + 1 || text.back() != '\n') return {};
+  if (at == std::string::npos || text.size() != at + 1 + kPointsDigestTag.size() + 64 + 1 || text.back() != '\n')
+    return {};
   std::string digest = text.substr(at + 1 + kPointsDigestTag.size(), 64);
   text.resize(at + 1);
   return digest;
@@ -313,7 +319,8 @@ std::string canonical_scene_text(const Scene& scene, const fs::path& base_dir, F
   data.note(scene.file);  // read into the text above
   data.note(f);
   text += "data:\n";
-  text += "  junctions_fnv1a64: " + yaml_quoted(e.junctions_file.empty() ? "" : hex16(data.of(e.junctions_file))) + "\n";
+  text +=
+      "  junctions_fnv1a64: " + yaml_quoted(e.junctions_file.empty() ? "" : hex16(data.of(e.junctions_file))) + "\n";
   text += "  measured_fnv1a64: " + yaml_quoted(e.measured_file.empty() ? "" : hex16(data.of(e.measured_file))) + "\n";
   // A topography scene's text holds its whole recipe; a measured height map is named by path, so
   // its bytes count too. Only then: other scenes keep their text (and stored hashes).

@@ -6,10 +6,10 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <thread>
 #include <iostream>
 #include <memory>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "bench/accuracy.hpp"
@@ -64,8 +64,10 @@ std::string load_average() {
 
 // The files the benchmarks write: a folder holding only these (before markers existed) is ours.
 bool bench_folder(const std::filesystem::path& d) {
-  static const char* const ours[] = {"accuracy.csv", "reference_order.csv", "savings.csv", "savings.png",
-                                     "speed_ratio.csv", "speed_runs.csv", "interacting.csv", "interacting_threads.csv", "interacting_tradeoff.csv", "contact.csv", "work_precision.csv", "work_precision.png"};
+  static const char* const ours[] = {"accuracy.csv",    "reference_order.csv",     "savings.csv",
+                                     "savings.png",     "speed_ratio.csv",         "speed_runs.csv",
+                                     "interacting.csv", "interacting_threads.csv", "interacting_tradeoff.csv",
+                                     "contact.csv",     "work_precision.csv",      "work_precision.png"};
   bool any = false;
   for (const auto& e : std::filesystem::directory_iterator(d)) {
     const std::string n = e.path().filename().string();
@@ -83,9 +85,10 @@ void check_out(const BenchOptions& b) { check_ours(b.out, "bench", "--out", benc
 void machine_line(const BenchOptions& b) {
   check_out(b);
   omp_set_num_threads(b.threads);
-  std::printf("(%d OpenMP thread(s) for the reference, %u hardware threads, load average %s; "
-              "wall-clock timings on this machine)\n",
-              omp_get_max_threads(), std::thread::hardware_concurrency(), load_average().c_str());
+  std::printf(
+      "(%d OpenMP thread(s) for the reference, %u hardware threads, load average %s; "
+      "wall-clock timings on this machine)\n",
+      omp_get_max_threads(), std::thread::hardware_concurrency(), load_average().c_str());
 }
 
 int tradeoff(const BenchOptions& b) {
@@ -119,7 +122,8 @@ int tradeoff(const BenchOptions& b) {
   std::printf("reference order of convergence (log error ratio / log C_t ratio):\n");
   for (const auto& x : r.orders)
     std::printf("  %-9s C_t %g -> %g: %.3g\n", x.observable.c_str(), x.Ct_lo, x.Ct_hi, x.order);
-  std::printf("-> %s/{work_precision.csv,work_precision.png,reference_order.csv,interacting_tradeoff.csv}\n", b.out.c_str());
+  std::printf("-> %s/{work_precision.csv,work_precision.png,reference_order.csv,interacting_tradeoff.csv}\n",
+              b.out.c_str());
   return exit_ok;
 }
 
@@ -169,8 +173,8 @@ int accuracy(const BenchOptions& b) {
   write_marker(b.out, "bench");
   int ok = 0;
   for (const auto& r : rows) ok += r.within_targets();
-  std::printf("%d of %zu runs within the targets (1e-4 loading branch, 1e-2 stick-slip) -> %s/accuracy.csv\n",
-              ok, rows.size(), b.out.c_str());
+  std::printf("%d of %zu runs within the targets (1e-4 loading branch, 1e-2 stick-slip) -> %s/accuracy.csv\n", ok,
+              rows.size(), b.out.c_str());
   return exit_ok;
 }
 
@@ -179,8 +183,10 @@ int accuracy(const BenchOptions& b) {
 int interacting_threads(const BenchOptions& b) {
   ThreadsBenchOptions o;
   if (!b.interacting_sizes.empty()) o.sizes = b.interacting_sizes;
-  if (!b.threads_scan.empty()) o.threads = b.threads_scan;
-  else o.threads = {1, std::max(2, static_cast<int>(std::thread::hardware_concurrency()))};
+  if (!b.threads_scan.empty())
+    o.threads = b.threads_scan;
+  else
+    o.threads = {1, std::max(2, static_cast<int>(std::thread::hardware_concurrency()))};
   if (o.threads.front() != 1) o.threads.insert(o.threads.begin(), 1);  // efficiencies need one thread
   o.busy = b.busy;
   o.log = &std::cout;
@@ -218,7 +224,10 @@ int contact(const BenchOptions& b) {
   o.threads = b.threads;
   o.log = &std::cout;
   machine_line(b);
-  std::printf("normal and tangential contact, FFT boundary elements (a sphere with a self-affine surface, 4 N, Coulomb mu 0.5; %d thread(s))\n", b.threads);
+  std::printf(
+      "normal and tangential contact, FFT boundary elements (a sphere with a self-affine surface, 4 N, Coulomb mu 0.5; "
+      "%d thread(s))\n",
+      b.threads);
   const auto rows = run_contact_bench(o);
   write_contact_bench(b.out, rows);
   write_marker(b.out, "bench");
@@ -238,10 +247,10 @@ int savings(const BenchOptions& b) {
   write_marker(b.out, "bench");
   auto cpu_ms = [](const SavingRow& r) { return (r.cpu_s + r.write_s) * 1e3; };
   for (std::size_t i = 0; i + 1 < rows.size(); i += 2)
-    std::printf("  %s %s: %s %.4g ms CPU -> %s %.4g ms CPU (x%.3g; wall %.4g -> %.4g ms)\n",
-                rows[i].experiment.c_str(), rows[i].saving.c_str(), rows[i].variant.c_str(), cpu_ms(rows[i]),
-                rows[i + 1].variant.c_str(), cpu_ms(rows[i + 1]), cpu_ms(rows[i]) / cpu_ms(rows[i + 1]),
-                rows[i].total_s() * 1e3, rows[i + 1].total_s() * 1e3);
+    std::printf("  %s %s: %s %.4g ms CPU -> %s %.4g ms CPU (x%.3g; wall %.4g -> %.4g ms)\n", rows[i].experiment.c_str(),
+                rows[i].saving.c_str(), rows[i].variant.c_str(), cpu_ms(rows[i]), rows[i + 1].variant.c_str(),
+                cpu_ms(rows[i + 1]), cpu_ms(rows[i]) / cpu_ms(rows[i + 1]), rows[i].total_s() * 1e3,
+                rows[i + 1].total_s() * 1e3);
   std::printf("-> %s/{savings.csv,savings.png}\n", b.out.c_str());
   return exit_ok;
 }
@@ -250,7 +259,8 @@ int savings(const BenchOptions& b) {
 
 Command add_bench_command(CLI::App& app) {
   auto opt = std::make_shared<BenchOptions>();
-  CLI::App* sub = app.add_subcommand("bench", "Benchmarks: speed-accuracy trade, speed ratio, accuracy on the stand-ins, savings");
+  CLI::App* sub =
+      app.add_subcommand("bench", "Benchmarks: speed-accuracy trade, speed ratio, accuracy on the stand-ins, savings");
   sub->require_subcommand(1);
   sub->fallthrough();  // --out, --quick, --repeats also after the sub-subcommand
   sub->add_option("--out,-o", opt->out, "Output folder")->capture_default_str();
@@ -261,55 +271,64 @@ Command add_bench_command(CLI::App& app) {
       ->check(CLI::Range(1, 100));
   // Default 1, not all: a benchmark times one thread unless asked (on a shared machine a second
   // thread can make the reference slower).
-  add_threads_option(sub, opt->threads, "OpenMP threads of the reference solver (the event solver uses one below 65536 never-slipped junctions)");
+  add_threads_option(
+      sub, opt->threads,
+      "OpenMP threads of the reference solver (the event solver uses one below 65536 never-slipped junctions)");
   add_quiet_flag(sub, opt->quiet);
 
   CLI::App* t = sub->add_subcommand("tradeoff", "Work-precision study (reference C_t vs event tolerance)");
   t->add_option("--scene", opt->scene, "Work-precision experiment (the reference must finish it)")
       ->capture_default_str();
   t->add_option("--ct", opt->Ct, "Reference C_t values (default 1e2 1e3 1e4)")->check(CLI::PositiveNumber);
-  CLI::App* sp = sub->add_subcommand("speed", "Reference vs event solver over the whole run (peak + 5 cycles) of "
-                                              "a paper scene, each with its error against a tight event run");
+  CLI::App* sp = sub->add_subcommand("speed",
+                                     "Reference vs event solver over the whole run (peak + 5 cycles) of "
+                                     "a paper scene, each with its error against a tight event run");
   sp->add_option("--scene", opt->speed_scene, "Scene")->capture_default_str();
-  sp->add_option("--ct", opt->whole_Ct, "C_t of the whole reference runs (default 25 100; the last is the "
-                                        "one compared and extrapolated to 1e4)")
+  sp->add_option("--ct", opt->whole_Ct,
+                 "C_t of the whole reference runs (default 25 100; the last is the "
+                 "one compared and extrapolated to 1e4)")
       ->check(CLI::PositiveNumber);
   sp->add_option("--window", opt->window, "Early window of the per-step cost check at C_t 1e4 [s]")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
-  CLI::App* a = sub->add_subcommand("accuracy", "Default tolerance vs converged (1e-12) on the paper scenes, "
-                                                "through peak + 5 stick-slip cycles");
+  CLI::App* a = sub->add_subcommand("accuracy",
+                                    "Default tolerance vs converged (1e-12) on the paper scenes, "
+                                    "through peak + 5 stick-slip cycles");
   a->add_option("--scenes-dir", opt->scenes_dir, "Folder of the scenes")->capture_default_str();
   a->add_option("--scene", opt->scenes, "Scene(s) instead of the folder");
   a->add_option("--tolerance", opt->tolerances, "Tolerance(s) to test (default: each scene's own)")
       ->check(CLI::PositiveNumber);
   CLI::App* s = sub->add_subcommand("savings", "Wall time saved by series=[], stop.at_first_peak, alpha_b=0");
   s->add_option("--scene", opt->scenes, "Scene(s) (default scenes/paper/P4.00N.yaml)");
-  CLI::App* in = sub->add_subcommand("interacting", "Interacting event solver: time to the first peak vs N "
-                                                    "(fitted exponent), peak memory vs N^2 doubles, P4.00N whole run");
+  CLI::App* in = sub->add_subcommand("interacting",
+                                     "Interacting event solver: time to the first peak vs N "
+                                     "(fitted exponent), peak memory vs N^2 doubles, P4.00N whole run");
   in->add_option("--sizes", opt->interacting_sizes, "Junction counts (default 300 600 1200 2400 5000)")
       ->check(CLI::Range(2, 20000));
-  in->add_option("--threads-scan", opt->threads_scan, "Instead: the first peak at each of these thread counts, "
-                                                      "wall time by phase and parallel efficiency (sizes default 1200 5000)")
+  in->add_option("--threads-scan", opt->threads_scan,
+                 "Instead: the first peak at each of these thread counts, "
+                 "wall time by phase and parallel efficiency (sizes default 1200 5000)")
       ->check(CLI::Range(1, 1024));
-  in->add_flag("--busy", opt->busy, "Instead (or with --threads-scan): also with one core kept busy by another process, "
-                                    "at one thread and the widest count");
+  in->add_flag("--busy", opt->busy,
+               "Instead (or with --threads-scan): also with one core kept busy by another process, "
+               "at one thread and the widest count");
 
-  CLI::App* ct = sub->add_subcommand("contact", "Rough-surface normal contact (FFT boundary elements): time and CG "
-                                                "iterations vs grid size, time per iteration vs two FFT pairs, peak memory");
+  CLI::App* ct = sub->add_subcommand("contact",
+                                     "Rough-surface normal contact (FFT boundary elements): time and CG "
+                                     "iterations vs grid size, time per iteration vs two FFT pairs, peak memory");
   ct->add_option("--sizes", opt->contact_sizes, "Pixels per side (default 256 512 1024)")->check(CLI::Range(8, 4096));
 
   return Command{sub, [opt, t, sp, a, s, in, ct](const Invocation&) {
-    // --quiet: the benchmarks report on stdout as they go; their results are the files.
-    if (opt->quiet && !std::freopen("/dev/null", "w", stdout)) return exit_failure;
-    if (t->parsed()) return tradeoff(*opt);
-    if (sp->parsed()) return speed(*opt);
-    if (a->parsed()) return accuracy(*opt);
-    if (s->parsed()) return savings(*opt);
-    if (in->parsed()) return interacting(*opt);
-    if (ct->parsed()) return contact(*opt);
-    return exit_input;
-  }};
+                   // --quiet: the benchmarks report on stdout as they go; their results are the files.
+                   if (opt->quiet && !std::freopen("/dev/null", "w", stdout)) return exit_failure;
+                   if (t->parsed()) return tradeoff(*opt);
+                   if (sp->parsed()) return speed(*opt);
+                   if (a->parsed()) return accuracy(*opt);
+                   if (s->parsed()) return savings(*opt);
+                   if (in->parsed()) return interacting(*opt);
+                   if (ct->parsed()) return contact(*opt);
+                   return exit_input;
+                 }};
 }
 
 }  // namespace asperity::cli

@@ -13,9 +13,9 @@
 namespace asperity::cli {
 
 inline constexpr int exit_ok = 0;
-inline constexpr int exit_failure = 1;  // command ran but its check failed (e.g. regress)
-inline constexpr int exit_input = 2;    // bad scene / arguments (InputError)
-inline constexpr int exit_solver = 3;   // solver could not go on (SolverError)
+inline constexpr int exit_failure = 1;        // command ran but its check failed (e.g. regress)
+inline constexpr int exit_input = 2;          // bad scene / arguments (InputError)
+inline constexpr int exit_solver = 3;         // solver could not go on (SolverError)
 inline constexpr int exit_interrupted = 130;  // Ctrl-C (128 + SIGINT, as shells report it)
 
 // What every command may record of how it was called (provenance of its results).
@@ -24,7 +24,7 @@ struct Invocation {
 };
 
 struct Command {
-  CLI::App* sub = nullptr;        // the subcommand; main runs `run` when it was parsed
+  CLI::App* sub = nullptr;  // the subcommand; main runs `run` when it was parsed
   std::function<int(const Invocation&)> run;
 };
 
@@ -61,6 +61,5 @@ Command add_plot_command(CLI::App& app);  // plot_command.cpp
 
 // asperity study interactions [SCENE...] [--out results/interactions] [--fit-independent F] ...
 Command add_study_command(CLI::App& app);  // study_command.cpp
-
 
 }  // namespace asperity::cli

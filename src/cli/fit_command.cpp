@@ -5,10 +5,10 @@
 // DIR/tasks/I-of-N/; --collect writes the results folder from the tasks' journals.
 #include <cmath>
 #include <cstdio>
-#include <mutex>
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <string_view>
 
@@ -20,14 +20,14 @@
 #include "fit/fit_journal.hpp"
 #include "fit/fit_load.hpp"
 #include "fit/fit_tasks.hpp"
-#include "observe/run_monitor.hpp"
 #include "io/atomic_file.hpp"
 #include "io/dir_lock.hpp"
 #include "io/input_error.hpp"
 #include "io/numbers.hpp"
 #include "io/progress.hpp"
-#include "io/safe_open.hpp"
 #include "io/provenance.hpp"
+#include "io/safe_open.hpp"
+#include "observe/run_monitor.hpp"
 #include "report/fit_writer.hpp"
 #include "report/output_dir.hpp"
 
@@ -57,7 +57,8 @@ fs::path task_dir(const fs::path& out, const Shard& t) {
 // --collect: the tasks' journals (read-only), each checked against its task's inputs; every task
 // I of one N must be there, none running.
 std::vector<std::unique_ptr<DirLock>> open_task_journals(FitJournal& journal, const fs::path& out, const FitSpec& spec,
-                                                         const std::vector<std::string>& overrides, const std::string& build) {
+                                                         const std::vector<std::string>& overrides,
+                                                         const std::string& build) {
   const fs::path tasks = out / "tasks";
   std::uint64_t count = 0;
   std::vector<std::uint64_t> seen;
@@ -75,19 +76,23 @@ std::vector<std::unique_ptr<DirLock>> open_task_journals(FitJournal& journal, co
         throw InputError(e.path().string(), 0, "--collect", "not a task folder (expected I-of-N)");
       }
       if (count != 0 && t.count != count)
-        throw InputError(e.path().string(), 0, "--collect", "tasks of two splits (" + std::to_string(count) + " and " +
-                                                                std::to_string(t.count) + " tasks); remove the stale ones");
+        throw InputError(e.path().string(), 0, "--collect",
+                         "tasks of two splits (" + std::to_string(count) + " and " + std::to_string(t.count) +
+                             " tasks); remove the stale ones");
       count = t.count;
       seen.push_back(t.index);
     }
-  if (count == 0) throw InputError(tasks.string(), 0, "--collect", "no array task has run into " + out.string() + " (asperity fit FIT --task I/N)");
+  if (count == 0)
+    throw InputError(tasks.string(), 0, "--collect",
+                     "no array task has run into " + out.string() + " (asperity fit FIT --task I/N)");
   std::vector<std::unique_ptr<DirLock>> locks;
   for (std::uint64_t i = 0; i < count; ++i) {
     const Shard t{i, count};
     const fs::path d = task_dir(out, t);
     if (std::find(seen.begin(), seen.end(), i) == seen.end() || !fs::exists(d / "journal.csv"))
-      throw InputError(d.string(), 0, "--collect", "task " + std::to_string(i) + "/" + std::to_string(count) +
-                                                       " has not run (no journal); run it first");
+      throw InputError(
+          d.string(), 0, "--collect",
+          "task " + std::to_string(i) + "/" + std::to_string(count) + " has not run (no journal); run it first");
     locks.push_back(lock_fit_journal_dir(d, "--out"));  // a task still writing is refused here
     check_fit_inputs(d / "inputs.txt", fit_inputs_text(spec, overrides, build, t));
     journal.open(d / "journal.csv", false);
@@ -99,7 +104,8 @@ std::vector<std::unique_ptr<DirLock>> open_task_journals(FitJournal& journal, co
 Shard parse_task(const FitCliOptions& opt) {
   if (opt.task.empty()) return {};
   try {
-    return parse_shard(opt.task, [](const char* n) { return std::getenv(n); }, "--task");
+    return parse_shard(
+        opt.task, [](const char* n) { return std::getenv(n); }, "--task");
   } catch (const std::invalid_argument& e) {
     throw InputError("", 0, "--task", e.what());
   }
@@ -147,11 +153,15 @@ class EvaluationProgress {
     {
       const std::lock_guard<std::mutex> lock(mutex_);
       done_ += t.counted();
-      if (t.done()) ++finished_;
-      else if (std::string_view(t.part) == "fit" && t.objective < best_) best_ = t.objective;
+      if (t.done())
+        ++finished_;
+      else if (std::string_view(t.part) == "fit" && t.objective < best_)
+        best_ = t.objective;
       done = done_;
-      if (fits_ > 1) extra = std::to_string(finished_) + " of " + std::to_string(fits_) + " fits done";
-      else if (best_ < HUGE_VAL) extra = "best J so far " + scene_io::format_printf("%.4g", best_);
+      if (fits_ > 1)
+        extra = std::to_string(finished_) + " of " + std::to_string(fits_) + " fits done";
+      else if (best_ < HUGE_VAL)
+        extra = "best J so far " + scene_io::format_printf("%.4g", best_);
     }
     line_.update(done, extra);
   }
@@ -179,18 +189,24 @@ int report_fit(const FitCliOptions& opt, const FitSpec& spec, const FitResult& r
     certified += o.certified() ? 1 : 0;
   }
   if (!opt.quiet) {
-    std::printf("  %d evaluations in %zu fit(s); optimizations %.3f s (sum), total wall %.3f s (incl. profile, error-bar refits)\n",
-                evaluations, result.fits.size(), result.fit_wall_s, result.wall_s);
-    std::printf("  converged: %d of %zu certified (>= 2 starts in the best basin)\n  -> %s\n", certified, result.fits.size(),
-                written.string().c_str());
+    std::printf(
+        "  %d evaluations in %zu fit(s); optimizations %.3f s (sum), total wall %.3f s (incl. profile, error-bar "
+        "refits)\n",
+        evaluations, result.fits.size(), result.fit_wall_s, result.wall_s);
+    std::printf("  converged: %d of %zu certified (>= 2 starts in the best basin)\n  -> %s\n", certified,
+                result.fits.size(), written.string().c_str());
   }
   for (const auto& o : result.fits) {
-    if (!o.ok()) std::cerr << "fit " << o.label << " failed: " << o.failure << '\n';
-    else if (o.converged == Converged::yes) continue;
+    if (!o.ok())
+      std::cerr << "fit " << o.label << " failed: " << o.failure << '\n';
+    else if (o.converged == Converged::yes)
+      continue;
     else if (spec.certify)
       std::cerr << "fit " << o.label << (o.converged == Converged::no ? " did not converge: " : " is not certified: ")
                 << o.convergence
-                << (o.converged == Converged::unverified ? ", or optimizer.certify: false to accept it unconfirmed" : "") << '\n';
+                << (o.converged == Converged::unverified ? ", or optimizer.certify: false to accept it unconfirmed"
+                                                         : "")
+                << '\n';
     else if (!opt.quiet)
       std::cerr << "fit " << o.label << " not certified (optimizer.certify: false): " << o.convergence << '\n';
   }
@@ -204,9 +220,10 @@ int run(const FitCliOptions& opt, const Invocation& inv) {
   const bool sharded = !opt.task.empty();
   const Shard task = parse_task(opt);
   if ((sharded || opt.collect) && !spec.separate)
-    throw InputError(opt.fit_file, 0, sharded ? "--task" : "--collect",
-                     "a joint fit (separate: false) is one optimization and cannot be split into array tasks; run it without " +
-                         std::string(sharded ? "--task" : "--collect"));
+    throw InputError(
+        opt.fit_file, 0, sharded ? "--task" : "--collect",
+        "a joint fit (separate: false) is one optimization and cannot be split into array tasks; run it without " +
+            std::string(sharded ? "--task" : "--collect"));
   // The folder is claimed (made, with the marker) before the fit, so its journal can live there;
   // only a folder asperity fit made, or a new or empty one, is used.
   claim_fit_dir(out);
@@ -218,7 +235,9 @@ int run(const FitCliOptions& opt, const Invocation& inv) {
   if (sharded) {
     fo.only = task_optimizations(spec, task);
     if (fo.only.empty()) {  // more tasks than experiments: this one's (empty) journal says it ran
-      if (!opt.quiet) std::printf("task %s: no experiment falls to this task (%zu experiments)\n", opt.task.c_str(), spec.experiments.size());
+      if (!opt.quiet)
+        std::printf("task %s: no experiment falls to this task (%zu experiments)\n", opt.task.c_str(),
+                    spec.experiments.size());
       return exit_ok;
     }
   }
@@ -227,10 +246,12 @@ int run(const FitCliOptions& opt, const Invocation& inv) {
   fo.error_bars = !opt.no_error_bars;
   if (!opt.quiet) {
     std::printf("%s: %s, %zu experiment(s)%s, %s, %d thread(s)\n", opt.fit_file.c_str(), objective_name(spec.objective),
-                spec.experiments.size(), spec.separate ? " fitted separately" : " fitted jointly", spec.algorithm.c_str(),
-                threads_or_all(opt.threads));
+                spec.experiments.size(), spec.separate ? " fitted separately" : " fitted jointly",
+                spec.algorithm.c_str(), threads_or_all(opt.threads));
     std::fflush(stdout);
-    fo.progress = [](const std::string& line) { print_line(stdout, "  " + line); };  // never glued onto the progress line
+    fo.progress = [](const std::string& line) {
+      print_line(stdout, "  " + line);
+    };  // never glued onto the progress line
   }
   const std::size_t optimizations = sharded ? fo.only.size() : spec.separate ? spec.experiments.size() : 1;
   EvaluationProgress progress(static_cast<double>(fit_run_budget(spec, fo)), optimizations, opt.quiet);
@@ -247,8 +268,9 @@ int run(const FitCliOptions& opt, const Invocation& inv) {
     return exit_interrupted;
   } catch (const NotJournaled& e) {
     throw InputError((out / "tasks").string(), 0, "--collect",
-                     std::string(e.what()) + ": a task has not finished (run it again: it resumes) or ran with other "
-                                             "--no-profile/--no-error-bars/--set options than this collect");
+                     std::string(e.what()) +
+                         ": a task has not finished (run it again: it resumes) or ran with other "
+                         "--no-profile/--no-error-bars/--set options than this collect");
   }
   progress.close();  // what follows starts on a line of its own
   if (!opt.quiet) {
@@ -263,13 +285,16 @@ int run(const FitCliOptions& opt, const Invocation& inv) {
 
 Command add_fit_command(CLI::App& app) {
   auto opt = std::make_shared<FitCliOptions>();
-  CLI::App* sub = app.add_subcommand("fit", "Calibrate model parameters against measurements with NLopt "
-                                            "(writes results/fits/<name>/). Every evaluation is journaled as it "
-                                            "finishes (DIR/journal.csv): rerun the same command to resume a killed fit");
+  CLI::App* sub = app.add_subcommand("fit",
+                                     "Calibrate model parameters against measurements with NLopt "
+                                     "(writes results/fits/<name>/). Every evaluation is journaled as it "
+                                     "finishes (DIR/journal.csv): rerun the same command to resume a killed fit");
   sub->add_option("fit", opt->fit_file, "Fit YAML file (see fits/)")->required();
-  sub->add_option("--out,-o", opt->out, "Results directory (default: results/fits/<name>/); one this fit made is resumed");
+  sub->add_option("--out,-o", opt->out,
+                  "Results directory (default: results/fits/<name>/); one this fit made is resumed");
   add_threads_option(sub, opt->threads, "Worker threads (experiments or per-experiment fits in parallel)");
-  add_set_option(sub, opt->overrides, "in every experiment's scene (the fit's parameters and the objective's own settings win)");
+  add_set_option(sub, opt->overrides,
+                 "in every experiment's scene (the fit's parameters and the objective's own settings win)");
   sub->add_flag("--no-profile", opt->no_profile, "Skip the objective profile around the optimum");
   sub->add_flag("--no-error-bars", opt->no_error_bars, "Skip the error-bar refits");
   add_quiet_flag(sub, opt->quiet);

@@ -39,9 +39,8 @@ int generate_topography(const GenerateCliOptions& o) {
     throw InputError("--scenes", 0, "", "a topography recipe writes one experiment and no scenes; leave out --scenes");
   check_publishable(o.out, kTopographyMarker, "--out");  // before the solve: a refused folder costs nothing
   const TopographyJunctions t = build_topography_junctions(recipe, threads_or_all(o.threads));
-  publish_dir(o.out, kTopographyMarker, "--out", [&](const std::filesystem::path& tmp) {
-    write_topography_experiment(recipe, t, tmp);
-  });
+  publish_dir(o.out, kTopographyMarker, "--out",
+              [&](const std::filesystem::path& tmp) { write_topography_experiment(recipe, t, tmp); });
   if (!o.quiet) {
     double total = 0;
     for (const double A : t.experiment.junctions.area_m2) total += A;
@@ -59,16 +58,16 @@ constexpr const char* kSyntheticMarker = "generate synthetic";
 int generate_synthetic(const GenerateCliOptions& o) {
   const SyntheticRecipe recipe = load_synthetic_recipe(o.recipe);
   if (!o.scenes.empty())
-    throw InputError("--scenes", 0, "", "a synthetic recipe writes one experiment folder (with its scene.yaml); leave out --scenes");
+    throw InputError("--scenes", 0, "",
+                     "a synthetic recipe writes one experiment folder (with its scene.yaml); leave out --scenes");
   check_publishable(o.out, kSyntheticMarker, "--out");  // before the run: a refused folder costs no simulation
   const SyntheticExperiment x = build_synthetic(recipe);
-  publish_dir(o.out, kSyntheticMarker, "--out", [&](const std::filesystem::path& tmp) {
-    write_synthetic_experiment(recipe, x, tmp);
-  });
+  publish_dir(o.out, kSyntheticMarker, "--out",
+              [&](const std::filesystem::path& tmp) { write_synthetic_experiment(recipe, x, tmp); });
   if (!o.quiet)
     std::cout << "wrote the SYNTHETIC experiment " << x.experiment.name << " (" << x.experiment.junctions.size()
-              << " junctions, Q_s = " << scene_io::format_short(x.model.Q_s) << " N at t = "
-              << scene_io::format_short(x.model.t_peak) << " s; " << x.experiment.measured->Q_N.size()
+              << " junctions, Q_s = " << scene_io::format_short(x.model.Q_s)
+              << " N at t = " << scene_io::format_short(x.model.t_peak) << " s; " << x.experiment.measured->Q_N.size()
               << " A(Q) and " << x.force.t_s.size() << " Q(t) samples) to " << o.out << "\n";
   return exit_ok;
 }
@@ -88,9 +87,8 @@ int generate(const GenerateCliOptions& o) {
     if (!o.scenes.empty() && scenes == out) write_standin_scenes(recipe, xs, tmp, out, out);
   });
   if (!o.scenes.empty() && scenes != out)
-    publish_dir(o.scenes, "generate", "--scenes", [&](const std::filesystem::path& tmp) {
-      write_standin_scenes(recipe, xs, tmp, scenes, out);
-    });
+    publish_dir(o.scenes, "generate", "--scenes",
+                [&](const std::filesystem::path& tmp) { write_standin_scenes(recipe, xs, tmp, scenes, out); });
   if (!o.quiet) {
     std::cout << "wrote " << xs.size() << " stand-in experiments and README.md to " << o.out;
     if (!o.scenes.empty()) std::cout << ", scenes to " << o.scenes;
@@ -104,8 +102,10 @@ int generate(const GenerateCliOptions& o) {
 Command add_generate_command(CLI::App& app) {
   auto opt = std::make_shared<GenerateCliOptions>();
   CLI::App* sub = app.add_subcommand(
-      "generate", "Generate the stand-in experiments (junctions, stand-in measured A(Q), README) from a recipe, with a "
-      "topography recipe one experiment whose junctions are the contact clusters of a surface under a sphere, or with a "
+      "generate",
+      "Generate the stand-in experiments (junctions, stand-in measured A(Q), README) from a recipe, with a "
+      "topography recipe one experiment whose junctions are the contact clusters of a surface under a sphere, or with "
+      "a "
       "synthetic recipe one experiment whose A(Q) and Q(t) come from one run of a scene at known model settings");
   sub->add_option("--recipe,-r", opt->recipe, "Recipe YAML")->capture_default_str();
   sub->add_option("--out,-o", opt->out, "Output folder (one P<load>N/ subfolder per experiment)")

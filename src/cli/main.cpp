@@ -3,9 +3,9 @@
 #include <cctype>
 #include <cstring>
 #include <exception>
+#include <iostream>
 #include <new>
 #include <string>
-#include <iostream>
 #include <vector>
 
 #include "cli/commands.hpp"
@@ -47,8 +47,9 @@ std::string command_line_text(int argc, char** argv) {
 
 int run_cli(int argc, char** argv) {
   namespace cli = asperity::cli;
-  CLI::App app{"asperity: onset of sliding of elastomer multicontacts "
-               "(independent-asperity model, Scheibert, Sahli & Peyrard 2020)"};
+  CLI::App app{
+      "asperity: onset of sliding of elastomer multicontacts "
+      "(independent-asperity model, Scheibert, Sahli & Peyrard 2020)"};
   app.set_version_flag("--version", asperity::version_line());
   app.require_subcommand(1);
 

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "io/arguments.hpp"  // hardware_threads(), the thread count's range
+#include "io/arguments.hpp"    // hardware_threads(), the thread count's range
 #include "report/gnuplot.hpp"  // FigureFormats
 
 namespace asperity::cli {

@@ -9,12 +9,12 @@
 #include <string>
 #include <thread>
 
-#include "io/provenance.hpp"
 #include "cli/commands.hpp"
 #include "cli/options.hpp"
-#include "regress/regress.hpp"
 #include "io/atomic_file.hpp"
 #include "io/input_error.hpp"
+#include "io/provenance.hpp"
+#include "regress/regress.hpp"
 
 namespace asperity::cli {
 namespace {
@@ -60,16 +60,17 @@ int regress(const RegressOptions& opt) {
     const Golden fresh = bless(results, history);
     fs::create_directories(fs::path(opt.golden).parent_path());
     scene_io::write_text_file(opt.golden, golden_to_yaml(fresh));
-    if (!opt.quiet) std::printf("blessed %zu entries in %.1f s wall (%d threads) -> %s\n", results.size(), wall, threads,
-                opt.golden.c_str());
+    if (!opt.quiet)
+      std::printf("blessed %zu entries in %.1f s wall (%d threads) -> %s\n", results.size(), wall, threads,
+                  opt.golden.c_str());
     return exit_ok;
   }
   const auto rows = compare(golden, results);
   std::size_t bad = 0;
   for (const auto& r : rows) bad += r.ok ? 0 : 1;
   if (bad || opt.all) {
-    std::printf("%-28s %-20s %24s %24s %11s %11s  %s\n", "entry", "observable", "golden", "now", "|diff|",
-                "tolerance", "status");
+    std::printf("%-28s %-20s %24s %24s %11s %11s  %s\n", "entry", "observable", "golden", "now", "|diff|", "tolerance",
+                "status");
     for (const auto& r : rows) {
       if (r.ok && !opt.all) continue;
       std::printf("%-28s %-20s %24.17g %24.17g %11.3g %11.3g  %s%s%s\n", r.entry.c_str(), r.observable.c_str(),
@@ -77,8 +78,9 @@ int regress(const RegressOptions& opt) {
                   r.note.empty() ? "" : ": ", r.note.c_str());
     }
   }
-  if (!opt.quiet || bad) std::printf("regress: %zu entries, %zu values compared, %zu drifted; %.1f s wall on %d threads\n",
-              results.size(), rows.size(), bad, wall, threads);
+  if (!opt.quiet || bad)
+    std::printf("regress: %zu entries, %zu values compared, %zu drifted; %.1f s wall on %d threads\n", results.size(),
+                rows.size(), bad, wall, threads);
   return bad ? exit_failure : exit_ok;
 }
 
@@ -86,8 +88,9 @@ int regress(const RegressOptions& opt) {
 
 Command add_regress_command(CLI::App& app) {
   auto opt = std::make_shared<RegressOptions>();
-  CLI::App* sub = app.add_subcommand("regress", "Run the regression suite and compare it with the golden results "
-                                                "(exit 1 on drift)");
+  CLI::App* sub = app.add_subcommand("regress",
+                                     "Run the regression suite and compare it with the golden results "
+                                     "(exit 1 on drift)");
   sub->add_option("--suite", opt->suite, "Suite YAML (default scenes/regression/suite.yaml)");
   sub->add_option("--golden", opt->golden, "Golden results (default results/regression/golden.yaml)");
   sub->add_flag("--update", opt->update, "Re-bless: run with tightened twins, write new golden values and tolerances");

@@ -16,16 +16,16 @@
 #include "batch/parallel_runner.hpp"
 #include "cli/commands.hpp"
 #include "cli/options.hpp"
+#include "fit/fit.hpp"
+#include "fit/fit_load.hpp"
+#include "io/atomic_file.hpp"
 #include "io/progress.hpp"
 #include "observe/simulate.hpp"
-#include "fit/fit.hpp"
-#include "studies/claims.hpp"
-#include "fit/fit_load.hpp"
-#include "report/paper_figures.hpp"
 #include "report/output_dir.hpp"
+#include "report/paper_figures.hpp"
 #include "report/run_writer.hpp"
-#include "io/atomic_file.hpp"
 #include "scene/load.hpp"
+#include "studies/claims.hpp"
 
 namespace asperity::cli {
 namespace {
@@ -37,7 +37,7 @@ struct ReproduceOptions {
   int threads = 0;
   bool quiet = false;
   bool claims = true;
-  std::string fit;  // per-load α_b calibration for claim 5 (e.g. fits/paper_alpha_b.yaml)
+  std::string fit;        // per-load α_b calibration for claim 5 (e.g. fits/paper_alpha_b.yaml)
   FigureFormats figures;  // of Figures 3 and 4 (--figures)
 };
 
@@ -47,8 +47,9 @@ FitSpec calibration_spec(const std::string& fit) {
   FitSpec spec = load_fit(fit);
   if (spec.objective != FitObjective::quadratic_alpha || !spec.separate || spec.parameters.size() != 1 ||
       spec.parameters.front().key != "model.alpha_b")
-    throw InputError(fit, 0, "", "reproduce --fit needs a per-experiment (separate) quadratic_alpha fit of "
-                                 "model.alpha_b alone, like fits/paper_alpha_b.yaml");
+    throw InputError(fit, 0, "",
+                     "reproduce --fit needs a per-experiment (separate) quadratic_alpha fit of "
+                     "model.alpha_b alone, like fits/paper_alpha_b.yaml");
   return spec;
 }
 
@@ -59,8 +60,9 @@ std::vector<std::filesystem::path> run_dirs(const std::vector<std::string>& scen
   for (const auto& s : scenes) {
     dirs.push_back(out / fs::path(s).stem());
     if (std::count(dirs.begin(), dirs.end(), dirs.back()) > 1)
-      throw InputError(s, 0, "", "two scenes share the file name " + fs::path(s).filename().string() +
-                                     ": their run folders in " + out.string() + " would collide");
+      throw InputError(s, 0, "",
+                       "two scenes share the file name " + fs::path(s).filename().string() + ": their run folders in " +
+                           out.string() + " would collide");
     check_run_dir(dirs.back());
   }
   return dirs;
@@ -71,17 +73,20 @@ void run_paper(std::vector<PaperRun>& runs, const std::vector<std::filesystem::p
                const Invocation& inv, int threads) {
   std::vector<std::string> errors(runs.size());
   ProgressLine progress("reproduce", "runs", static_cast<double>(runs.size()), opt.quiet);
-  ParallelRunner(threads).for_each(runs.size(), [&](std::size_t i) {
-    try {
-      RunResult r = simulate(runs[i].scene);
-      write_run(dirs[i], runs[i].scene, r.obs, r.recorder, RunWriteOptions{false, inv.command_line, {}});
-      runs[i].obs = r.obs;
-      runs[i].series = r.recorder.series();
-      runs[i].loading = r.recorder.loading_branch();
-    } catch (const std::exception& e) {
-      errors[i] = e.what();
-    }
-  }, [&](std::size_t finished, std::size_t) { progress.update(static_cast<double>(finished)); });
+  ParallelRunner(threads).for_each(
+      runs.size(),
+      [&](std::size_t i) {
+        try {
+          RunResult r = simulate(runs[i].scene);
+          write_run(dirs[i], runs[i].scene, r.obs, r.recorder, RunWriteOptions{false, inv.command_line, {}});
+          runs[i].obs = r.obs;
+          runs[i].series = r.recorder.series();
+          runs[i].loading = r.recorder.loading_branch();
+        } catch (const std::exception& e) {
+          errors[i] = e.what();
+        }
+      },
+      [&](std::size_t finished, std::size_t) { progress.update(static_cast<double>(finished)); });
   for (std::size_t i = 0; i < runs.size(); ++i)
     if (!errors[i].empty()) throw SolverError(opt.scenes[i] + ": " + errors[i]);
 }
@@ -92,25 +97,28 @@ void write_paper_outputs(const std::filesystem::path& out, const std::vector<Pap
   std::filesystem::remove(out / "REPORT.md");  // a previous one would describe other runs
   scene_io::write_text_file(out / "table.csv", paper_table_csv(runs));
   if (runs.empty()) return;
-  for (const auto& [name, error] : {std::pair<const char*, std::string>{"fig3_Q_A_t.png", write_figure3(out, runs.front(), runs.back(), label, figures)},
-                                    {"fig4_A_Q.png", write_figure4(out, runs, label, figures)}})
+  for (const auto& [name, error] :
+       {std::pair<const char*, std::string>{"fig3_Q_A_t.png",
+                                            write_figure3(out, runs.front(), runs.back(), label, figures)},
+        {"fig4_A_Q.png", write_figure4(out, runs, label, figures)}})
     if (!error.empty())
-      std::fprintf(stderr, "reproduce: %s not drawn: %s (its script, data inline, is kept beside it)\n", name, error.c_str());
+      std::fprintf(stderr, "reproduce: %s not drawn: %s (its script, data inline, is kept beside it)\n", name,
+                   error.c_str());
 }
 
 // Claim 5's per-load calibration (run_fit); adds its evaluations to `runs_count`.
-Calibration calibrate(const FitSpec& spec, const std::string& fit_file, int threads, bool quiet, std::size_t& runs_count) {
+Calibration calibrate(const FitSpec& spec, const std::string& fit_file, int threads, bool quiet,
+                      std::size_t& runs_count) {
   Calibration calibration;
   calibration.fit_file = fit_file;
   FitOptions fo;
   fo.threads = threads;
   fo.profile = false;
   fo.error_bars = false;
-  ProgressLine fp("reproduce", "calibration evaluations (at most)", static_cast<double>(fit_run_budget(spec, fo)), quiet);
+  ProgressLine fp("reproduce", "calibration evaluations (at most)", static_cast<double>(fit_run_budget(spec, fo)),
+                  quiet);
   std::atomic<int> evaluations{0};  // a finished calibration adds what it left of its budget
-  fo.on_evaluation = [&](const FitTick& t) {
-    fp.update(evaluations += t.counted());
-  };
+  fo.on_evaluation = [&](const FitTick& t) { fp.update(evaluations += t.counted()); };
   const FitResult fr = run_fit(spec, fo);
   for (const Optimization& f : fr.fits) {
     // A failed calibration stays in the report as failed: claim 5 then has no evidence at that load.
@@ -134,8 +142,9 @@ Calibration calibrate(const FitSpec& spec, const std::string& fit_file, int thre
 }
 
 // REPORT.md: the claim variants (and the calibration) run, then judged; returns the runs made.
-std::size_t write_claims(const std::filesystem::path& out, const std::vector<PaperRun>& runs, const FitSpec& spec_of_fit,
-                         const ReproduceOptions& opt, int threads, const std::string& label) {
+std::size_t write_claims(const std::filesystem::path& out, const std::vector<PaperRun>& runs,
+                         const FitSpec& spec_of_fit, const ReproduceOptions& opt, int threads,
+                         const std::string& label) {
   std::vector<Scene> base;
   for (const auto& r : runs) base.push_back(r.scene);
   ProgressLine vp("reproduce", "claim-variant runs", 0, opt.quiet);
@@ -144,14 +153,15 @@ std::size_t write_claims(const std::filesystem::path& out, const std::vector<Pap
     vp.update(static_cast<double>(done));
   });
   std::size_t n_runs = variants.size();
-  const Calibration calibration = opt.fit.empty() ? Calibration{} : calibrate(spec_of_fit, opt.fit, threads, opt.quiet, n_runs);
+  const Calibration calibration =
+      opt.fit.empty() ? Calibration{} : calibrate(spec_of_fit, opt.fit, threads, opt.quiet, n_runs);
   scene_io::write_text_file(out / "REPORT.md", claims_report(runs, variants, calibration, label));
   return n_runs;
 }
 
 void print_summary(const std::vector<PaperRun>& runs, bool standin) {
-  std::printf("%-8s %6s %10s %10s %9s %12s %7s %6s %10s %10s %7s\n", "exp", "N", "Q_s [N]", "A_s [mm2]",
-              "t_peak", "alpha", "n", "n_meas", "ss_drop", "ss_period", "wall");
+  std::printf("%-8s %6s %10s %10s %9s %12s %7s %6s %10s %10s %7s\n", "exp", "N", "Q_s [N]", "A_s [mm2]", "t_peak",
+              "alpha", "n", "n_meas", "ss_drop", "ss_period", "wall");
   for (const auto& r : runs) {
     const auto& o = r.obs;
     std::printf("%-8s %6zu %10.5g %10.5g %9.4g %12.5g %7.3g %6.3g %10.4g %10.4g %6.2fs\n",
@@ -195,8 +205,8 @@ int reproduce(const ReproduceOptions& opt, const Invocation& inv) {
   }
   if (!opt.quiet) {
     print_summary(runs, standin);
-    std::printf("%zu runs on %d threads in %.2f s wall -> %s (table.csv, fig3_Q_A_t.png, fig4_A_Q.png)\n",
-                runs.size(), threads, wall, out.string().c_str());
+    std::printf("%zu runs on %d threads in %.2f s wall -> %s (table.csv, fig3_Q_A_t.png, fig4_A_Q.png)\n", runs.size(),
+                threads, wall, out.string().c_str());
     if (opt.claims)
       std::printf("claims: %zu more runs in %.1f s wall -> %s\n", n_variant_runs, wall_claims,
                   (out / "REPORT.md").string().c_str());
@@ -208,8 +218,9 @@ int reproduce(const ReproduceOptions& opt, const Invocation& inv) {
 
 Command add_reproduce_command(CLI::App& app) {
   auto opt = std::make_shared<ReproduceOptions>();
-  CLI::App* sub = app.add_subcommand("reproduce", "Paper reproduction: run scenes in parallel, write run "
-                                                  "directories, Figures 3 and 4 and table.csv");
+  CLI::App* sub = app.add_subcommand("reproduce",
+                                     "Paper reproduction: run scenes in parallel, write run "
+                                     "directories, Figures 3 and 4 and table.csv");
   sub->add_option("scenes", opt->scenes, "Scene YAML files (e.g. scenes/paper/*.yaml)")->required();
   sub->add_option("--out,-o", opt->out, "Output directory (default results/paper)");
   add_set_option(sub, opt->overrides, "in every scene");

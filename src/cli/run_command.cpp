@@ -48,35 +48,34 @@ std::string interaction_advice(const Scene& scene) {
   const double percent = 100 * rule.error_at(m.stiffness_ratio);
   const bool outside = m.stiffness_ratio < rule.ratio_min || m.stiffness_ratio > rule.ratio_max;
   return "independent junctions: estimated stiffness error " + g(percent < 10 ? "%.2g" : "%.0f", percent) + " %" +
-         (outside ? " (extrapolated)" : "") + " at stiffness ratio " + g("%.3g", m.stiffness_ratio) + " (coverage " + g("%.3g", m.coverage) +
-         "; docs/continuum.md, SYNTHETIC surfaces); interactions recommended above ratio " +
+         (outside ? " (extrapolated)" : "") + " at stiffness ratio " + g("%.3g", m.stiffness_ratio) + " (coverage " +
+         g("%.3g", m.coverage) + "; docs/continuum.md, SYNTHETIC surfaces); interactions recommended above ratio " +
          g("%.2g", rule.ratio_for(0.05)) + " (error 5 %)";
 }
 
 void print_summary(const Scene& scene, const Observables& o, const std::filesystem::path& out) {
   const char* method = scene.solver.method == SolverMethod::reference ? "reference" : "event";
-  std::printf("%s: N = %zu, A0 = %.6g mm^2, dt = %.6g us (T0/Ct, Ct = %g), method %s\n",
-              scene.file.string().c_str(), o.N, o.A0 * 1e6, o.dt * 1e6, scene.solver.Ct, method);
-  std::printf("  Q_s = %.6g N, A_s = %.6g mm^2 (area drop %.3g %%) at t_peak = %.6g s%s\n", o.Q_s,
-              o.A_s * 1e6, 100.0 * o.area_drop_fraction, o.t_peak,
-              o.peak_rule == PeakRule::stick          ? " (peak: closed by a stick after every junction slipped)"
+  std::printf("%s: N = %zu, A0 = %.6g mm^2, dt = %.6g us (T0/Ct, Ct = %g), method %s\n", scene.file.string().c_str(),
+              o.N, o.A0 * 1e6, o.dt * 1e6, scene.solver.Ct, method);
+  std::printf("  Q_s = %.6g N, A_s = %.6g mm^2 (area drop %.3g %%) at t_peak = %.6g s%s\n", o.Q_s, o.A_s * 1e6,
+              100.0 * o.area_drop_fraction, o.t_peak,
+              o.peak_rule == PeakRule::stick         ? " (peak: closed by a stick after every junction slipped)"
               : o.peak_rule == PeakRule::all_slipped ? " (peak: every junction has slipped)"
               : o.peak_rule == PeakRule::steady_sliding
                   ? " (every junction has slipped, no maximum followed: steady sliding)"
                   : " (no peak: the run ended before every junction had slipped)");
-  std::printf("  alpha = %.6g m^2/N^2 (R^2 = %.6f, %zu points), shape exponent n = %.4g\n", o.alpha,
-              o.alpha_R2, o.alpha_points, o.shape_exponent);
+  std::printf("  alpha = %.6g m^2/N^2 (R^2 = %.6f, %zu points), shape exponent n = %.4g\n", o.alpha, o.alpha_R2,
+              o.alpha_points, o.shape_exponent);
   if (!std::isnan(o.alpha_measured))
-    std::printf("  measured A(Q): alpha = %.6g m^2/N^2 (R^2 = %.6f), shape exponent n = %.4g\n",
-                o.alpha_measured, o.alpha_measured_R2, o.shape_exponent_measured);
+    std::printf("  measured A(Q): alpha = %.6g m^2/N^2 (R^2 = %.6f), shape exponent n = %.4g\n", o.alpha_measured,
+                o.alpha_measured_R2, o.shape_exponent_measured);
   if (o.ss_cycles > 0)
-    std::printf("  stick-slip: %d cycles, mean drop %.6g N, mean period %.6g s\n", o.ss_cycles,
-                o.ss_drop, o.ss_period);
+    std::printf("  stick-slip: %d cycles, mean drop %.6g N, mean period %.6g s\n", o.ss_cycles, o.ss_drop, o.ss_period);
   else
     std::printf("  stick-slip: no complete cycle (%zu confirmed peaks)\n", o.n_peaks);
   if (const std::string line = interaction_advice(scene); !line.empty()) std::printf("  %s\n", line.c_str());
-  std::printf("  max f/(sigma A) = %.6g, t_end = %.6g s, %lld steps, wall %.3f s\n",
-              o.max_f_over_sigmaA, o.t_end, static_cast<long long>(o.steps), o.wall_s);
+  std::printf("  max f/(sigma A) = %.6g, t_end = %.6g s, %lld steps, wall %.3f s\n", o.max_f_over_sigmaA, o.t_end,
+              static_cast<long long>(o.steps), o.wall_s);
   std::printf("  -> %s\n", out.string().c_str());
 }
 
@@ -89,15 +88,15 @@ std::string missing_peak_reason(const Scene& scene, const Observables& o) {
   if (o.slips == 0)
     return head + "no junction slipped before the run ended at t = " + g(o.t_end) + " s (stop.time " +
            g(scene.stop.time) + " s); raise stop.time, or check the scene's values and their units";
-  return head + "no peak found (" + std::to_string(o.slips) + " slips) before the run ended at t = " + g(o.t_end) + " s";
+  return head + "no peak found (" + std::to_string(o.slips) + " slips) before the run ended at t = " + g(o.t_end) +
+         " s";
 }
 
 int run(const RunOptions& opt, const Invocation& inv) {
   const Scene scene = load_scene(opt.scene, opt.overrides);
   if (opt.threads > 0) omp_set_num_threads(opt.threads);
   const std::filesystem::path out =
-      opt.out.empty() ? std::filesystem::path("results") / "runs" /
-                            std::filesystem::path(opt.scene).stem()
+      opt.out.empty() ? std::filesystem::path("results") / "runs" / std::filesystem::path(opt.scene).stem()
                       : std::filesystem::path(opt.out);
   check_run_dir(out);  // fail before the run, not after it
   ProgressLine progress("run", "s simulated", scene.stop.time, opt.quiet);
@@ -128,8 +127,9 @@ int run(const RunOptions& opt, const Invocation& inv) {
 
 Command add_run_command(CLI::App& app) {
   auto opt = std::make_shared<RunOptions>();
-  CLI::App* sub = app.add_subcommand("run", "Run one scene and write its run directory "
-                                            "(series.csv, summary.yaml, scene.yaml)");
+  CLI::App* sub = app.add_subcommand("run",
+                                     "Run one scene and write its run directory "
+                                     "(series.csv, summary.yaml, scene.yaml)");
   sub->add_option("scene", opt->scene, "Scene YAML file")->required();
   sub->add_option("--out,-o", opt->out, "Run directory (default: results/runs/<scene stem>/)");
   add_set_option(sub, opt->overrides, "in the scene");

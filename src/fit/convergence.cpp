@@ -45,9 +45,12 @@ bool BasinRule::same_basin(double objective, double best, double scaled_distance
 
 const char* converged_name(Converged c) {
   switch (c) {
-    case Converged::yes: return "yes";
-    case Converged::no: return "no";
-    case Converged::unverified: return "unverified";
+    case Converged::yes:
+      return "yes";
+    case Converged::no:
+      return "no";
+    case Converged::unverified:
+      return "unverified";
   }
   return "unknown";
 }

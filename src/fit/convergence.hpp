@@ -14,7 +14,8 @@ namespace asperity {
 // first lattice point of DIRECT: a start there would repeat the global phase's first point),
 // and any point within 1e-9 of a coordinate-wise equal `avoid` (the file's start, already a
 // start of its own).
-std::vector<std::vector<double>> sobol_starts(std::size_t dims, std::size_t count, const std::vector<double>& avoid = {});
+std::vector<std::vector<double>> sobol_starts(std::size_t dims, std::size_t count,
+                                              const std::vector<double>& avoid = {});
 
 // A start ended in the best basin when its objective J is within `relative` of the best J*
 // (J − J* ≤ relative·|J*|), or its optimum lies within `distance` of the best's (Euclidean, in
@@ -42,11 +43,11 @@ const char* converged_name(Converged c);  // "yes", "no", "unverified"
 // single start (nothing to compare it with: reported, not failed).
 struct ConvergenceVerdict {
   Converged converged = Converged::unverified;
-  std::size_t best = 0;            // index of the start with the lowest J (the first on ties)
-  std::vector<bool> in_best_basin; // per start
-  int in_basin = 0;                // how many (the best included)
-  double spread = 0;               // largest scaled distance of a basin member from the best
-  std::string reason;              // one line: why yes, no or unverified
+  std::size_t best = 0;             // index of the start with the lowest J (the first on ties)
+  std::vector<bool> in_best_basin;  // per start
+  int in_basin = 0;                 // how many (the best included)
+  double spread = 0;                // largest scaled distance of a basin member from the best
+  std::string reason;               // one line: why yes, no or unverified
 };
 ConvergenceVerdict judge_convergence(const std::vector<StartEnd>& ends, const BasinRule& rule);
 

@@ -181,7 +181,8 @@ std::string start_part(std::size_t k) { return k == 0 ? std::string("fit") : "fi
 std::vector<std::vector<double>> start_points(const FitSpec& spec, const Optimization& o) {
   const std::size_t n = o.variables.size();
   std::vector<double> u0(n);
-  for (std::size_t i = 0; i < n; ++i) u0[i] = parameter_coordinate(spec.parameters[o.variables[i].parameter], o.start[i]);
+  for (std::size_t i = 0; i < n; ++i)
+    u0[i] = parameter_coordinate(spec.parameters[o.variables[i].parameter], o.start[i]);
   std::vector<std::vector<double>> points{o.start};
   const std::size_t more = static_cast<std::size_t>(std::max(spec.starts, 1) - 1);
   for (const auto& u : sobol_starts(n, more, u0)) {
@@ -209,10 +210,13 @@ void run_starts(const FitSpec& spec, const Problem& pb, Optimization& o) {
   std::vector<StartEnd> ends;
   for (std::size_t k = 0; k < results.size(); ++k) {
     OptimizeResult& r = results[k];
-    StartRun sr{start_part(k), from[k], r.best, r.objective, static_cast<int>(r.log.size()), r.stop_reason, r.failure, false};
-    if (o.failure.empty() && !r.failure.empty()) o.failure = (k == 0 ? "" : "start " + std::to_string(k + 1) + ": ") + r.failure;
+    StartRun sr{start_part(k), from[k],   r.best, r.objective, static_cast<int>(r.log.size()),
+                r.stop_reason, r.failure, false};
+    if (o.failure.empty() && !r.failure.empty())
+      o.failure = (k == 0 ? "" : "start " + std::to_string(k + 1) + ": ") + r.failure;
     StartEnd e{std::vector<double>(r.best.size()), r.objective};
-    for (std::size_t i = 0; i < r.best.size(); ++i) e.u[i] = parameter_coordinate(spec.parameters[o.variables[i].parameter], r.best[i]);
+    for (std::size_t i = 0; i < r.best.size(); ++i)
+      e.u[i] = parameter_coordinate(spec.parameters[o.variables[i].parameter], r.best[i]);
     ends.push_back(std::move(e));
     for (Evaluation& ev : r.log) {
       ev.index = static_cast<int>(o.log.size()) + 1;
@@ -276,8 +280,10 @@ void keep_best_runs(const Problem& pb, Optimization& o) {
 // its own best objective and whether starts confirmed it first, then how it got there.
 std::string done_line(const Problem& pb, const Optimization& o) {
   std::string line = o.label + ": ";
-  if (o.best.empty() || !std::isfinite(o.objective)) line += "no successful evaluation";
-  else line += "best J = " + g6(o.objective) + " at " + values_text(pb, o.best);
+  if (o.best.empty() || !std::isfinite(o.objective))
+    line += "no successful evaluation";
+  else
+    line += "best J = " + g6(o.objective) + " at " + values_text(pb, o.best);
   line += ", converged: " + std::string(converged_name(o.converged)) + " (" + std::to_string(o.in_best_basin) + " of " +
           std::to_string(o.starts.size()) + " start(s) in the best basin), " + std::to_string(o.evaluations) +
           " evaluations, " + o.stop_reason + ", " + g6(o.wall_s) + " s";
@@ -320,8 +326,8 @@ std::string degenerate_objective(const std::vector<Evaluation>& log) {
 
 // One optimization (a task of the runner): optimize, then the best runs, the profile and the
 // error-bar refits as asked.
-void run_task(const FitSpec& spec, const FitOptions& options, Optimization& o, std::mutex& progress_mutex, Counts& counts,
-              const StopFlag& stop) {
+void run_task(const FitSpec& spec, const FitOptions& options, Optimization& o, std::mutex& progress_mutex,
+              Counts& counts, const StopFlag& stop) {
   std::atomic<int> ticked{0};
   Problem pb = fit_problem(spec, options, o, counts, stop);
   pb.ticked = &ticked;
@@ -336,10 +342,14 @@ void run_task(const FitSpec& spec, const FitOptions& options, Optimization& o, s
   if (have_best && o.ok() && options.profile && spec.profile) run_profile(spec, pb, o);
   if (have_best && o.ok() && options.error_bars && spec.intervals && spec.objective == FitObjective::area_and_force) {
     // Intervals describe a minimum: around a point no second start confirms they describe a slope.
-    if (o.certified()) run_uncertainty(spec, pb, o);
-    else o.uncertainty.failure = std::string("not certified (converged: ") + converged_name(o.converged) + "): " + o.convergence;
+    if (o.certified())
+      run_uncertainty(spec, pb, o);
+    else
+      o.uncertainty.failure =
+          std::string("not certified (converged: ") + converged_name(o.converged) + "): " + o.convergence;
   }
-  if (have_best && o.ok() && options.error_bars && !spec.error_bars.empty()) run_refits(spec, options, o, counts, stop, ticked);
+  if (have_best && o.ok() && options.error_bars && !spec.error_bars.empty())
+    run_refits(spec, options, o, counts, stop, ticked);
   // What it did not use of its budget (early convergence, no profile around a failure, ...).
   const long long unused = optimization_budget(spec, options, o.variables.size()) - ticked.load();
   if (options.on_evaluation)
@@ -382,7 +392,8 @@ std::vector<Optimization> optimizations(const FitSpec& spec, const FitOptions& o
   if (options.only.empty()) return fits;
   std::vector<Optimization> chosen;
   for (const std::size_t i : options.only) {
-    if (i >= fits.size()) throw std::invalid_argument("run_fit: FitOptions::only names optimization " + std::to_string(i));
+    if (i >= fits.size())
+      throw std::invalid_argument("run_fit: FitOptions::only names optimization " + std::to_string(i));
     chosen.push_back(std::move(fits[i]));
   }
   return chosen;

@@ -52,7 +52,7 @@ struct RunResult;  // observe/simulate.hpp
 // and 1 for every other tick ends exactly at the budget.
 struct FitTick {
   const std::string* label = nullptr;  // the optimization's (Optimization::label)
-  const char* part = "";  // "fit" (its starts), "best" (re-run), "profile", "hessian", "refit"; "done"
+  const char* part = "";               // "fit" (its starts), "best" (re-run), "profile", "hessian", "refit"; "done"
   double objective = std::numeric_limits<double>::quiet_NaN();  // the evaluation's; NaN: failed
   int unused = 0;                                               // "done" only
   bool done() const { return std::string_view(part) == "done"; }
@@ -61,9 +61,9 @@ struct FitTick {
 };
 
 struct FitOptions {
-  int threads = 2;          // TBB workers
-  bool profile = true;      // and spec.profile
-  bool error_bars = true;   // and spec.error_bars non-empty
+  int threads = 2;         // TBB workers
+  bool profile = true;     // and spec.profile
+  bool error_bars = true;  // and spec.error_bars non-empty
   // Called (serialised) with one line after each finished optimization, its profile and refits
   // included: its label, best objective J and convergence; may be empty.
   std::function<void(const std::string&)> progress;
@@ -104,37 +104,37 @@ struct NotJournaled : std::runtime_error {
 
 // One coordinate of an optimization: a parameter, shared or for one experiment.
 struct FreeVariable {
-  std::size_t parameter = 0;   // index into FitSpec::parameters
+  std::size_t parameter = 0;       // index into FitSpec::parameters
   std::ptrdiff_t experiment = -1;  // index into FitSpec::experiments; -1: shared
-  std::string label;           // "model.alpha_b" or "model.alpha_b@P0.98N"
+  std::string label;               // "model.alpha_b" or "model.alpha_b@P0.98N"
 };
 
 struct Evaluation {
-  int index = 0;                    // 1-based, in call order
-  std::vector<double> values;       // SI, one per free variable
+  int index = 0;               // 1-based, in call order
+  std::vector<double> values;  // SI, one per free variable
   double objective = std::numeric_limits<double>::quiet_NaN();
-  std::vector<double> residuals;    // per experiment of the optimization
-  std::string status = "ok";        // "ok" or why it failed
+  std::vector<double> residuals;  // per experiment of the optimization
+  std::string status = "ok";      // "ok" or why it failed
   double wall_s = 0;
 };
 
 // The best run of one experiment (at the fitted values).
 struct ExperimentRun {
-  JointTerms terms;                 // area_and_force: the term by part (objective.hpp)
-  std::vector<Sample> series;       // area_and_force: the run's Q(t) samples
+  JointTerms terms;            // area_and_force: the term by part (objective.hpp)
+  std::vector<Sample> series;  // area_and_force: the run's Q(t) samples
   std::optional<MeasuredForce> force;
-  std::size_t experiment = 0;       // index into FitSpec::experiments
+  std::size_t experiment = 0;  // index into FitSpec::experiments
   double residual = std::numeric_limits<double>::quiet_NaN();
   Observables obs;
-  std::vector<Sample> loading;      // loading branch
+  std::vector<Sample> loading;  // loading branch
   double mass_kg = 0;
-  bool stand_in = false;            // the experiment's description says STAND-IN
+  bool stand_in = false;  // the experiment's description says STAND-IN
   std::optional<MeasuredCurve> measured;
 };
 
 struct ProfilePoint {
-  double factor = 1;                // x = x* · factor
-  double value = 0;                 // SI
+  double factor = 1;  // x = x* · factor
+  double value = 0;   // SI
   double objective = std::numeric_limits<double>::quiet_NaN();
   std::string status = "ok";
 };
@@ -143,7 +143,7 @@ struct ProfilePoint {
 // it rises by s² (Uncertainty::reduced_chi2) on each side: the conditional interval (narrower
 // than the marginal one when parameters are correlated). NaN where the span does not reach it.
 struct ParameterProfile {
-  std::size_t parameter = 0;        // index into FitSpec::parameters
+  std::size_t parameter = 0;  // index into FitSpec::parameters
   std::vector<ProfilePoint> points;
   double lo = std::numeric_limits<double>::quiet_NaN(), hi = std::numeric_limits<double>::quiet_NaN();
   // sqrt(s² / c) for the least-squares parabola J ≈ a + b d + c d² through the profile's points
@@ -161,12 +161,12 @@ struct ParameterProfile {
 // the model fits; larger when it does not, and the intervals widen accordingly.
 struct Uncertainty {
   bool computed = false;
-  std::string failure;              // why not (at a bound, H not positive definite, ...)
-  int residuals = 0;                // N
+  std::string failure;  // why not (at a bound, H not positive definite, ...)
+  int residuals = 0;    // N
   double reduced_chi2 = std::numeric_limits<double>::quiet_NaN();
-  double step = 0;                  // the initial relative step of each parameter
-  std::vector<double> steps;        // the steps used, relative to each value
-  std::vector<double> sigma;        // SI, per free variable (marginal standard deviation)
+  double step = 0;            // the initial relative step of each parameter
+  std::vector<double> steps;  // the steps used, relative to each value
+  std::vector<double> sigma;  // SI, per free variable (marginal standard deviation)
   std::vector<std::vector<double>> correlation;
   int evaluations = 0;
   double wall_s = 0;
@@ -175,8 +175,8 @@ struct Uncertainty {
 struct ErrorBarRefit {
   std::string key;
   double bar = 0;
-  int sign = 0;                     // −1: nominal − bar, +1: nominal + bar
-  std::vector<double> best;         // SI, per free variable (NaN when it failed)
+  int sign = 0;              // −1: nominal − bar, +1: nominal + bar
+  std::vector<double> best;  // SI, per free variable (NaN when it failed)
   double objective = std::numeric_limits<double>::quiet_NaN();
   int evaluations = 0;
   std::string stop_reason;
@@ -187,9 +187,9 @@ struct ErrorBarRefit {
 // from the file's start, journaled as part "fit"; start K ≥ 2 runs the local stage from a Sobol
 // point, part "fit start K".
 struct StartRun {
-  std::string part;                      // its journal part
-  std::vector<double> from;              // SI
-  std::vector<double> best;              // SI (NaN before any successful evaluation)
+  std::string part;          // its journal part
+  std::vector<double> from;  // SI
+  std::vector<double> best;  // SI (NaN before any successful evaluation)
   double objective = std::numeric_limits<double>::quiet_NaN();
   int evaluations = 0;
   std::string stop_reason;
@@ -201,25 +201,25 @@ struct Optimization {
   std::string label;                     // experiment name (separate) or "joint"
   std::vector<std::size_t> experiments;  // indices into FitSpec::experiments
   std::vector<FreeVariable> variables;
-  std::vector<double> start;             // SI
-  std::vector<double> best;              // SI (NaN before any successful evaluation)
+  std::vector<double> start;  // SI
+  std::vector<double> best;   // SI (NaN before any successful evaluation)
   double objective = std::numeric_limits<double>::quiet_NaN();
-  std::string stop_reason;               // NLopt result, e.g. XTOL_REACHED, FORCED_STOP
-  std::string failure;                   // empty when the fit ended normally
+  std::string stop_reason;  // NLopt result, e.g. XTOL_REACHED, FORCED_STOP
+  std::string failure;      // empty when the fit ended normally
   int evaluations = 0;
-  double wall_s = 0;                     // the optimization itself
-  std::vector<Evaluation> log;            // every start's evaluations, start after start
+  double wall_s = 0;            // the optimization itself
+  std::vector<Evaluation> log;  // every start's evaluations, start after start
   std::vector<StartRun> starts;
-  std::size_t best_start = 0;             // index into starts of the best one
+  std::size_t best_start = 0;  // index into starts of the best one
   Converged converged = Converged::unverified;
-  std::string convergence;                // why (ConvergenceVerdict::reason)
-  int in_best_basin = 0;                  // starts in the best basin (the best included)
-  double spread = 0;                      // their largest scaled distance from the best
+  std::string convergence;  // why (ConvergenceVerdict::reason)
+  int in_best_basin = 0;    // starts in the best basin (the best included)
+  double spread = 0;        // their largest scaled distance from the best
   bool certified() const { return converged == Converged::yes; }
   std::vector<ExperimentRun> best_runs;  // empty when no evaluation succeeded
-  std::vector<ProfilePoint> profile;      // the first profiled parameter's (= profiles[0].points)
+  std::vector<ProfilePoint> profile;     // the first profiled parameter's (= profiles[0].points)
   std::size_t profile_parameter = 0;
-  std::vector<ParameterProfile> profiles; // every profiled parameter
+  std::vector<ParameterProfile> profiles;  // every profiled parameter
   Uncertainty uncertainty;
   std::vector<ErrorBarRefit> refits;
   double profile_wall_s = 0, refits_wall_s = 0;
@@ -231,8 +231,8 @@ struct FitResult {
   double wall_s = 0;               // everything
   double fit_wall_s = 0;           // sum of the optimizations' wall times (no profile, refits)
   int threads = 1;
-  int replayed = 0;                // evaluations answered from FitOptions::journal
-  int computed = 0;                // evaluations that ran the model (profiles and refits included)
+  int replayed = 0;  // evaluations answered from FitOptions::journal
+  int computed = 0;  // evaluations that ran the model (profiles and refits included)
 };
 
 // NLopt's name of a result code (e.g. "XTOL_REACHED").

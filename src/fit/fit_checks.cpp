@@ -15,21 +15,30 @@ using namespace scene_io;
 
 const char* objective_name(FitObjective o) {
   switch (o) {
-    case FitObjective::quadratic_alpha: return "quadratic_alpha";
-    case FitObjective::area_curve: return "area_curve";
-    case FitObjective::stick_slip: return "stick_slip";
-    case FitObjective::area_and_force: return "area_and_force";
-    case FitObjective::user: return "user";
+    case FitObjective::quadratic_alpha:
+      return "quadratic_alpha";
+    case FitObjective::area_curve:
+      return "area_curve";
+    case FitObjective::stick_slip:
+      return "stick_slip";
+    case FitObjective::area_and_force:
+      return "area_and_force";
+    case FitObjective::user:
+      return "user";
   }
   return "unknown";
 }
 
 const char* force_score_name(ForceScore s) {
   switch (s) {
-    case ForceScore::pointwise: return "pointwise";
-    case ForceScore::loading_and_cycles: return "loading_and_cycles";
-    case ForceScore::loading_and_peaks: return "loading_and_peaks";
-    case ForceScore::automatic: return "auto";
+    case ForceScore::pointwise:
+      return "pointwise";
+    case ForceScore::loading_and_cycles:
+      return "loading_and_cycles";
+    case ForceScore::loading_and_peaks:
+      return "loading_and_peaks";
+    case ForceScore::automatic:
+      return "auto";
   }
   return "unknown";
 }
@@ -53,11 +62,17 @@ std::string measured_curve_problem(const MeasuredCurve& curve, double A0_sum) {
   const std::size_t n = x.size();
   if (n < 3) return "measured A(Q) has " + std::to_string(n) + " point(s); a fit needs at least 3";
   double mx = 0, my = 0;
-  for (std::size_t i = 0; i < n; ++i) { mx += x[i]; my += y[i]; }
+  for (std::size_t i = 0; i < n; ++i) {
+    mx += x[i];
+    my += y[i];
+  }
   mx /= static_cast<double>(n);
   my /= static_cast<double>(n);
   double sxx = 0, sxy = 0;
-  for (std::size_t i = 0; i < n; ++i) { sxx += (x[i] - mx) * (x[i] - mx); sxy += (x[i] - mx) * (y[i] - my); }
+  for (std::size_t i = 0; i < n; ++i) {
+    sxx += (x[i] - mx) * (x[i] - mx);
+    sxy += (x[i] - mx) * (y[i] - my);
+  }
   if (!(sxx > 0)) return "measured A(Q) has a single value of Q; a fit needs A over a range of Q";
   const double b = sxy / sxx, a = my - b * mx;
   double ss_res = 0;
@@ -65,13 +80,12 @@ std::string measured_curve_problem(const MeasuredCurve& curve, double A0_sum) {
   const double se_alpha = std::sqrt(ss_res / static_cast<double>(n - 2) / sxx);
   const double alpha = -b;
   if (!(alpha > kMeasuredAlphaMinSigmas * se_alpha))
-    return "measured A(Q) does not decrease with Q: the fit A = a - alpha Q^2 gives alpha = " + g4(alpha) +
-           " +- " + g4(se_alpha) + " m^2/N^2 (a fit needs alpha > " + g4(kMeasuredAlphaMinSigmas) +
-           " standard errors)";
+    return "measured A(Q) does not decrease with Q: the fit A = a - alpha Q^2 gives alpha = " + g4(alpha) + " +- " +
+           g4(se_alpha) + " m^2/N^2 (a fit needs alpha > " + g4(kMeasuredAlphaMinSigmas) + " standard errors)";
   if (!(std::abs(a / A0_sum - 1) <= kMeasuredA0Tolerance))
-    return "measured A(Q = 0) = " + g4(a) + " m^2 (intercept of A = a - alpha Q^2) is " +
-           g4(a / A0_sum) + " x the sum of the junction areas, " + g4(A0_sum) +
-           " m^2 (allowed: within " + g4(kMeasuredA0Tolerance * 100) + " %; wrong unit or wrong file?)";
+    return "measured A(Q = 0) = " + g4(a) + " m^2 (intercept of A = a - alpha Q^2) is " + g4(a / A0_sum) +
+           " x the sum of the junction areas, " + g4(A0_sum) + " m^2 (allowed: within " +
+           g4(kMeasuredA0Tolerance * 100) + " %; wrong unit or wrong file?)";
   return "";
 }
 

@@ -37,7 +37,8 @@ bool parse_list(std::string_view s, std::vector<double>& out) {
   for (std::size_t start = 0;;) {
     const std::size_t semi = s.find(';', start);
     double v = 0;
-    if (!parse_number(s.substr(start, semi == std::string_view::npos ? std::string_view::npos : semi - start), v)) return false;
+    if (!parse_number(s.substr(start, semi == std::string_view::npos ? std::string_view::npos : semi - start), v))
+      return false;
     out.push_back(v);
     if (semi == std::string_view::npos) return true;
     start = semi + 1;
@@ -71,12 +72,14 @@ Evaluation parse_evaluation(const std::vector<std::string>& f, const std::string
     throw InputError(name, lineno, "evaluation", "not a positive whole number: " + scene_io::quote(f[2]));
   if (!parse_list(f[3], ev.values) || ev.values.empty())
     throw InputError(name, lineno, "x", "not a ';'-separated list of numbers: " + scene_io::quote(f[3]));
-  if (!parse_number(f[4], ev.objective)) throw InputError(name, lineno, "objective", "not a number: " + scene_io::quote(f[4]));
+  if (!parse_number(f[4], ev.objective))
+    throw InputError(name, lineno, "objective", "not a number: " + scene_io::quote(f[4]));
   if (!parse_list(f[5], ev.residuals))
     throw InputError(name, lineno, "terms", "not a ';'-separated list of numbers: " + scene_io::quote(f[5]));
   if (f[6].empty()) throw InputError(name, lineno, "status", "empty");
   ev.status = f[6];
-  if (!parse_number(f[7], ev.wall_s)) throw InputError(name, lineno, "wall_s", "not a number: " + scene_io::quote(f[7]));
+  if (!parse_number(f[7], ev.wall_s))
+    throw InputError(name, lineno, "wall_s", "not a number: " + scene_io::quote(f[7]));
   return ev;
 }
 
@@ -84,7 +87,7 @@ Evaluation parse_evaluation(const std::vector<std::string>& f, const std::string
 struct JournalScan {
   std::uint64_t good_end = 0;  // bytes up to the end of the last good line
   JournalDigest digest = JournalDigest::sha256;
-  std::size_t dropped = 0;     // torn or damaged tail lines
+  std::size_t dropped = 0;                                  // torn or damaged tail lines
   std::map<std::string, std::pair<Evaluation, int>> found;  // key → evaluation, line
 };
 
@@ -108,7 +111,9 @@ JournalScan scan_journal(const std::string& text, const std::string& name) {
     if (lineno == 1) {
       if (!whole) break;  // torn header: as good as an empty journal
       const std::optional<JournalDigest> d = journal_digest_of(line, kColumnsLine);
-      if (!d) throw InputError(name, 1, "header", "not an asperity fit journal (expected '" + journal_header(kColumnsLine) + "')");
+      if (!d)
+        throw InputError(name, 1, "header",
+                         "not an asperity fit journal (expected '" + journal_header(kColumnsLine) + "')");
       scan.digest = *d;
       scan.good_end = end;
       continue;
@@ -177,8 +182,10 @@ void FitJournal::read(const fs::path& file, bool append) {
     rewritten = false;
   }
   file_ = std::make_unique<JournalFile>(file, false, name);
-  if (!rewritten && scan.good_end < text.size()) file_->cut(scan.good_end);  // only a torn or damaged tail: nothing computed is lost
-  else file_->sync();
+  if (!rewritten && scan.good_end < text.size())
+    file_->cut(scan.good_end);  // only a torn or damaged tail: nothing computed is lost
+  else
+    file_->sync();
 }
 
 std::optional<Evaluation> FitJournal::find(const std::string& part, const std::string& optimization,
@@ -191,9 +198,9 @@ std::optional<Evaluation> FitJournal::find(const std::string& part, const std::s
 
 void FitJournal::append(const std::string& part, const std::string& optimization, const Evaluation& ev) {
   const std::string x = journal_values(ev.values);
-  const std::string row = csv_field(part) + "," + csv_field(optimization) + "," + std::to_string(ev.index) + "," + x + "," +
-                          csv_number(ev.objective) + "," + journal_values(ev.residuals) + "," + csv_field(ev.status) + "," +
-                          csv_number(ev.wall_s);
+  const std::string row = csv_field(part) + "," + csv_field(optimization) + "," + std::to_string(ev.index) + "," + x +
+                          "," + csv_number(ev.objective) + "," + journal_values(ev.residuals) + "," +
+                          csv_field(ev.status) + "," + csv_number(ev.wall_s);
   const std::lock_guard<std::mutex> lock(mutex_);
   if (!file_) throw std::logic_error("FitJournal::append: no journal opened for appending");
   file_->append_durably(row);
@@ -225,8 +232,9 @@ void open_fit_journal(FitJournal& journal, const fs::path& dir, const std::strin
   const fs::path file = dir / "journal.csv", in = dir / kInputsFileName;
   if (fs::exists(file)) {
     if (!fs::exists(in))
-      throw InputError(file.string(), 0, "", "no inputs.txt beside it, so what its evaluations were computed from is "
-                                             "unknown; use another --out or remove the folder");
+      throw InputError(file.string(), 0, "",
+                       "no inputs.txt beside it, so what its evaluations were computed from is "
+                       "unknown; use another --out or remove the folder");
     check_fit_inputs(in, inputs);
   } else {
     write_inputs(dir, inputs);

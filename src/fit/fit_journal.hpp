@@ -56,14 +56,14 @@ class FitJournal {
   // Appends one evaluation and makes it durable (thread-safe; std::runtime_error on I/O failure).
   void append(const std::string& part, const std::string& optimization, const Evaluation& ev);
 
-  std::size_t size() const;                                 // evaluations indexed
-  std::size_t dropped_lines() const { return dropped_; }    // torn or damaged tail lines dropped
+  std::size_t size() const;                               // evaluations indexed
+  std::size_t dropped_lines() const { return dropped_; }  // torn or damaged tail lines dropped
   const std::vector<std::filesystem::path>& files() const { return files_; }
 
  private:
   void read(const std::filesystem::path& file, bool append);
   mutable std::mutex mutex_;
-  std::map<std::string, Evaluation> index_;  // part '\n' optimization '\n' x text → evaluation
+  std::map<std::string, Evaluation> index_;                   // part '\n' optimization '\n' x text → evaluation
   std::map<std::string, std::pair<std::string, int>> where_;  // the same key → file, line it was read from
   std::vector<std::filesystem::path> files_;
   std::unique_ptr<JournalFile> file_;  // the one file append()s go to

@@ -1,9 +1,9 @@
 #include "fit/fit_load.hpp"
-#include "scene/load.hpp"
 #include "scene/csv.hpp"
+#include "scene/load.hpp"
 
-#include <nlopt.hpp>
 #include <yaml-cpp/yaml.h>
+#include <nlopt.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -21,19 +21,18 @@ namespace asperity {
 namespace fs = std::filesystem;
 using namespace scene_io;
 
-
 namespace {
 
-const std::vector<std::string> kFitKeys{"name", "description", "objective", "separate", "experiments",
-                                        "parameters", "optimizer", "profile", "error_bars", "noise", "intervals",
-                                        "force_score"};
+const std::vector<std::string> kFitKeys{"name",        "description", "objective", "separate",
+                                        "experiments", "parameters",  "optimizer", "profile",
+                                        "error_bars",  "noise",       "intervals", "force_score"};
 const std::vector<std::string> kExperimentKeys{"scene", "set", "target", "force"};
 const std::vector<std::string> kNoiseKeys{"area", "force", "stick_slip"};
 const std::vector<std::string> kIntervalKeys{"hessian_step"};
 const std::vector<std::string> kTargetKeys{"drop", "period"};
 const std::vector<std::string> kParameterKeys{"lo", "hi", "start", "scale", "per_experiment"};
-const std::vector<std::string> kOptimizerKeys{"algorithm", "xtol_rel", "ftol_rel", "ftol_abs",
-                                              "max_evaluations", "initial_step", "polish", "starts",
+const std::vector<std::string> kOptimizerKeys{"algorithm",       "xtol_rel",       "ftol_rel", "ftol_abs",
+                                              "max_evaluations", "initial_step",   "polish",   "starts",
                                               "basin_tolerance", "basin_distance", "certify"};
 const std::vector<std::string> kPolishKeys{"algorithm", "max_evaluations"};
 const std::vector<std::string> kProfileKeys{"parameter", "span", "points"};
@@ -45,10 +44,9 @@ const char* unit_of(const std::string& key) {
 }
 
 bool all_names_ok(const std::string& s) {
-  return !s.empty() && s != "." && s != ".." &&
-         std::all_of(s.begin(), s.end(), [](char c) {
-           return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
-         });
+  return !s.empty() && s != "." && s != ".." && std::all_of(s.begin(), s.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
+  });
 }
 
 // Forced settings per objective (see fit_load.hpp), applied after the user's `set`.
@@ -87,8 +85,9 @@ void read_fit_header(const MapView& root, const fs::path& path, const FitLoadOpt
   if (auto n = root.find("description")) spec.description = root.string(*n, "description");
   if (options.user_objective) {
     if (auto n = root.find("objective"))
-      root.fail_at(*n, "objective", "the objective is the caller's own (" + options.user_objective_name +
-                                        "); remove this key, or give no objective of your own");
+      root.fail_at(*n, "objective",
+                   "the objective is the caller's own (" + options.user_objective_name +
+                       "); remove this key, or give no objective of your own");
     spec.objective = FitObjective::user;
   } else {
     YAML::Node objective_node = root.require("objective");
@@ -101,12 +100,14 @@ void read_fit_header(const MapView& root, const fs::path& path, const FitLoadOpt
   if (auto n = root.find("separate")) spec.separate = root.boolean(*n, "separate");
   if (auto n = root.find("force_score")) {
     if (spec.objective != FitObjective::area_and_force)
-      root.fail_at(*n, "force_score", std::string("a Q(t) score is used by the area_and_force objective only, not ") +
-                                          objective_name(spec.objective));
-    spec.force_score = root.enumeration<ForceScore>(*n, "force_score", {{"pointwise", ForceScore::pointwise},
-                                                                        {"loading_and_cycles", ForceScore::loading_and_cycles},
-                                                                        {"loading_and_peaks", ForceScore::loading_and_peaks},
-                                                                        {"auto", ForceScore::automatic}});
+      root.fail_at(*n, "force_score",
+                   std::string("a Q(t) score is used by the area_and_force objective only, not ") +
+                       objective_name(spec.objective));
+    spec.force_score = root.enumeration<ForceScore>(*n, "force_score",
+                                                    {{"pointwise", ForceScore::pointwise},
+                                                     {"loading_and_cycles", ForceScore::loading_and_cycles},
+                                                     {"loading_and_peaks", ForceScore::loading_and_peaks},
+                                                     {"auto", ForceScore::automatic}});
   }
 }
 
@@ -122,18 +123,22 @@ FitParameter read_parameter(const Source& src, const MapView& params, const std:
   fp.lo = p.number(nodes.lo, "lo", unit);
   fp.hi = p.number(nodes.hi, "hi", unit);
   fp.start = p.number(nodes.start, "start", unit);
-  if (!(fp.lo < fp.hi)) p.fail_at(nodes.hi, "hi", "must be > lo = " + format_double(fp.lo) + ", got " + format_double(fp.hi));
+  if (!(fp.lo < fp.hi))
+    p.fail_at(nodes.hi, "hi", "must be > lo = " + format_double(fp.lo) + ", got " + format_double(fp.hi));
   if (!(fp.start >= fp.lo && fp.start <= fp.hi))
-    p.fail_at(nodes.start, "start", "must be in [lo, hi] = [" + format_double(fp.lo) + ", " +
-                                        format_double(fp.hi) + "], got " + format_double(fp.start));
+    p.fail_at(nodes.start, "start",
+              "must be in [lo, hi] = [" + format_double(fp.lo) + ", " + format_double(fp.hi) + "], got " +
+                  format_double(fp.start));
   if (auto s = p.find("scale")) {
     fp.log_scale = p.enumeration<bool>(*s, "scale", {{"linear", false}, {"log", true}});
-    if (fp.log_scale && !(fp.lo > 0)) p.fail_at(*s, "scale", "log scale needs lo > 0, got lo = " + format_double(fp.lo));
+    if (fp.log_scale && !(fp.lo > 0))
+      p.fail_at(*s, "scale", "log scale needs lo > 0, got lo = " + format_double(fp.lo));
   }
   if (auto s = p.find("per_experiment")) {
     fp.per_experiment = p.boolean(*s, "per_experiment");
     if (fp.per_experiment && spec.separate)
-      p.fail_at(*s, "per_experiment", "has no effect with separate: true (every parameter is then per experiment); remove it");
+      p.fail_at(*s, "per_experiment",
+                "has no effect with separate: true (every parameter is then per experiment); remove it");
   }
   return fp;
 }
@@ -143,7 +148,10 @@ std::vector<ParamNodes> read_parameters(const Source& src, const MapView& root, 
   std::vector<ParamNodes> pnodes;
   const YAML::Node pn = root.require("parameters");
   if (!pn.IsMap() || pn.size() == 0)
-    root.fail_at(pn, "parameters", "expected a map of free parameters, e.g. {model.alpha_b: {lo: 1e-16, hi: 3e-15, start: 7.25e-16}}, got " + node_kind(pn));
+    root.fail_at(
+        pn, "parameters",
+        "expected a map of free parameters, e.g. {model.alpha_b: {lo: 1e-16, hi: 3e-15, start: 7.25e-16}}, got " +
+            node_kind(pn));
   const MapView params(src, pn, "parameters", numeric_scene_keys());
   for (auto it = pn.begin(); it != pn.end(); ++it) {
     ParamNodes nodes{it->first, {}, {}, {}};
@@ -156,14 +164,15 @@ std::vector<ParamNodes> read_parameters(const Source& src, const MapView& root, 
 // An entry of `experiments:` as written: a scene path, or a map {scene:, set:, target:}.
 struct ExperimentEntry {
   YAML::Node scene_node;
-  std::optional<MapView> view;                                  // the map form's
-  std::vector<std::pair<std::string, std::string>> fixed;       // settings, in order
-  std::vector<std::pair<std::string, YAML::Node>> set_nodes;    // where each `set` key was written
+  std::optional<MapView> view;                                // the map form's
+  std::vector<std::pair<std::string, std::string>> fixed;     // settings, in order
+  std::vector<std::pair<std::string, YAML::Node>> set_nodes;  // where each `set` key was written
   StickSlipTarget target;
   bool has_target = false;
 };
 
-ExperimentEntry read_entry(const Source& src, const MapView& root, const YAML::Node& en, std::size_t i, const FitSpec& spec) {
+ExperimentEntry read_entry(const Source& src, const MapView& root, const YAML::Node& en, std::size_t i,
+                           const FitSpec& spec) {
   const YAML::Node item = en[i];
   const std::string ikey = "experiments[" + std::to_string(i) + "]";
   ExperimentEntry x;
@@ -172,15 +181,18 @@ ExperimentEntry read_entry(const Source& src, const MapView& root, const YAML::N
     return x;
   }
   if (!item.IsMap())
-    root.fail_at(item.Mark().is_null() ? en : item, ikey, "expected a scene path or a map {scene: path, set: {...}}, got " + node_kind(item));
+    root.fail_at(item.Mark().is_null() ? en : item, ikey,
+                 "expected a scene path or a map {scene: path, set: {...}}, got " + node_kind(item));
   MapView& ev = x.view.emplace(src, item, ikey, kExperimentKeys);
   x.scene_node = ev.require("scene");
   if (auto s = ev.find("set")) {
-    if (!s->IsMap()) ev.fail_at(*s, "set", "expected a map of dotted scene keys, e.g. {model.eta: 50}, got " + node_kind(*s));
+    if (!s->IsMap())
+      ev.fail_at(*s, "set", "expected a map of dotted scene keys, e.g. {model.eta: 50}, got " + node_kind(*s));
     for (auto it = s->begin(); it != s->end(); ++it) {
       if (!it->first.IsScalar()) ev.fail_at(it->first, "set", "keys must be dotted scene keys");
       const std::string k = it->first.Scalar();
-      if (std::any_of(spec.parameters.begin(), spec.parameters.end(), [&](const FitParameter& p) { return p.key == k; }))
+      if (std::any_of(spec.parameters.begin(), spec.parameters.end(),
+                      [&](const FitParameter& p) { return p.key == k; }))
         ev.fail_at(it->first, "set." + k, "is a free parameter of this fit; it cannot also be set");
       YAML::Emitter out;
       out << YAML::Flow << it->second;
@@ -190,7 +202,9 @@ ExperimentEntry read_entry(const Source& src, const MapView& root, const YAML::N
   }
   if (auto t = ev.find("target")) {
     if (spec.objective != FitObjective::stick_slip && spec.objective != FitObjective::area_and_force)
-      ev.fail_at(*t, "target", std::string("stick-slip targets are used by the stick_slip and area_and_force objectives only, not ") + objective_name(spec.objective));
+      ev.fail_at(*t, "target",
+                 std::string("stick-slip targets are used by the stick_slip and area_and_force objectives only, not ") +
+                     objective_name(spec.objective));
     const MapView tv(src, *t, ev.key("target"), kTargetKeys);
     x.target.drop_N = positive(tv, tv.require("drop"), "drop", "N");
     x.target.period_s = positive(tv, tv.require("period"), "period", "s");
@@ -203,13 +217,15 @@ ExperimentEntry read_entry(const Source& src, const MapView& root, const YAML::N
 // file's `measured:` line, the key the user would fix.
 void check_measured(const Scene& scene, const std::string& name, const FitSpec& spec, const MapView& sv,
                     const YAML::Node& scene_node, const std::string& skey, const std::string& display) {
-  const bool needs_measured = spec.objective == FitObjective::quadratic_alpha || spec.objective == FitObjective::area_curve ||
+  const bool needs_measured = spec.objective == FitObjective::quadratic_alpha ||
+                              spec.objective == FitObjective::area_curve ||
                               spec.objective == FitObjective::area_and_force;
   if (!needs_measured) return;
   if (!scene.experiment.measured)
-    sv.fail_at(scene_node, skey, std::string("objective ") + objective_name(spec.objective) +
-                                     " needs a measured A(Q) curve, and experiment " + quote(name) + " (" +
-                                     input_path(scene.experiment.file) + ") has none (key `measured`)");
+    sv.fail_at(scene_node, skey,
+               std::string("objective ") + objective_name(spec.objective) +
+                   " needs a measured A(Q) curve, and experiment " + quote(name) + " (" +
+                   input_path(scene.experiment.file) + ") has none (key `measured`)");
   double A0_sum = 0;
   for (const double a : scene.experiment.junctions.area_m2) A0_sum += a;
   const std::string why = measured_curve_problem(*scene.experiment.measured, A0_sum);
@@ -223,9 +239,9 @@ void check_measured(const Scene& scene, const std::string& name, const FitSpec& 
   } catch (const std::exception&) {
     // the file was read a moment ago; without it the message keeps no line
   }
-  throw InputError(edisplay, line, "measured",
-                   why + " (" + input_path(scene.experiment.measured_file) + ", experiment " + quote(name) + " of " +
-                       display + ")");
+  throw InputError(
+      edisplay, line, "measured",
+      why + " (" + input_path(scene.experiment.measured_file) + ", experiment " + quote(name) + " of " + display + ")");
 }
 
 // Every value the optimizer may try must make a valid scene: the bounds checked on `fe`.
@@ -265,29 +281,37 @@ FitExperiment read_experiment(const ExperimentContext& cx, const YAML::Node& en,
   {
     std::error_code e2;
     const auto st = fs::status(scene_path, e2);
-    if (!fs::exists(st)) sv.fail_at(x.scene_node, skey, "scene file not found: " + quote(rel) + " (looked for " + input_path(scene_path) + ")");
+    if (!fs::exists(st))
+      sv.fail_at(x.scene_node, skey,
+                 "scene file not found: " + quote(rel) + " (looked for " + input_path(scene_path) + ")");
     if (fs::is_directory(st)) sv.fail_at(x.scene_node, skey, "scene file is a directory: " + input_path(scene_path));
   }
   if (spec.objective == FitObjective::stick_slip && !x.has_target)
-    sv.fail_at(en[i], x.view ? "target" : skey, "the stick_slip objective needs target: {drop: N, period: s} for every experiment");
+    sv.fail_at(en[i], x.view ? "target" : skey,
+               "the stick_slip objective needs target: {drop: N, period: s} for every experiment");
   std::optional<MeasuredForce> force;
   fs::path force_file;
   if (const auto fn = x.view ? x.view->find("force") : std::nullopt) {
     if (spec.objective != FitObjective::area_and_force)
-      x.view->fail_at(*fn, "force", std::string("a measured Q(t) is used by the area_and_force objective only, not ") +
-                                        objective_name(spec.objective));
+      x.view->fail_at(*fn, "force",
+                      std::string("a measured Q(t) is used by the area_and_force objective only, not ") +
+                          objective_name(spec.objective));
     const std::string frel = x.view->string(*fn, "force");
     force_file = cx.base / fs::path(frel);
     std::error_code e3;
     const auto st = fs::status(force_file, e3);
-    if (!fs::exists(st)) x.view->fail_at(*fn, "force", "force CSV not found: " + quote(frel) + " (looked for " + input_path(force_file) + ")");
-    if (!fs::is_regular_file(st)) x.view->fail_at(*fn, "force", "force CSV is not a regular file: " + input_path(force_file));
+    if (!fs::exists(st))
+      x.view->fail_at(*fn, "force",
+                      "force CSV not found: " + quote(frel) + " (looked for " + input_path(force_file) + ")");
+    if (!fs::is_regular_file(st))
+      x.view->fail_at(*fn, "force", "force CSV is not a regular file: " + input_path(force_file));
     force = scene_io::read_force_csv(force_file, input_path(force_file));
   } else if (spec.objective == FitObjective::area_and_force) {
-    sv.fail_at(en[i], x.view ? "force" : skey,
-               "the area_and_force objective needs force: CSV of the measured Q(t) (columns t_s, Q_N) for every experiment");
+    sv.fail_at(
+        en[i], x.view ? "force" : skey,
+        "the area_and_force objective needs force: CSV of the measured Q(t) (columns t_s, Q_N) for every experiment");
   }
-  if (!cx.overrides.empty()) {  // before the objective's forced settings, which win
+  if (!cx.overrides.empty()) {                   // before the objective's forced settings, which win
     (void)load_scene(scene_path, cx.overrides);  // each --set checked on this scene, with its message
     for (const std::string& o : cx.overrides) {
       const std::size_t eq = o.find('=');
@@ -323,7 +347,8 @@ FitExperiment read_experiment(const ExperimentContext& cx, const YAML::Node& en,
     throw;
   }
   fe.name = base_scene.experiment.name;
-  if (std::any_of(spec.experiments.begin(), spec.experiments.end(), [&](const FitExperiment& o) { return o.name == fe.name; }))
+  if (std::any_of(spec.experiments.begin(), spec.experiments.end(),
+                  [&](const FitExperiment& o) { return o.name == fe.name; }))
     sv.fail_at(x.scene_node, skey, "experiment " + quote(fe.name) + " is listed twice (outputs are named after it)");
   check_measured(base_scene, fe.name, spec, sv, x.scene_node, skey, cx.display);
   check_bounds(cx.src, cx.root, spec, pnodes, fe);
@@ -336,22 +361,26 @@ void read_starts(const MapView& o, FitSpec& spec) {
   if (auto n = o.find("starts")) {
     spec.starts = o.integer(*n, "starts");
     if (spec.starts < 1 || spec.starts > kMaxFitStarts)
-      o.fail_at(*n, "starts", "must be in [1, " + std::to_string(kMaxFitStarts) + "], got " + std::to_string(spec.starts));
+      o.fail_at(*n, "starts",
+                "must be in [1, " + std::to_string(kMaxFitStarts) + "], got " + std::to_string(spec.starts));
     if (spec.starts > 1 && spec.polish_algorithm.empty() && spec.algorithm.rfind("LN_", 0) != 0)
-      o.fail_at(*n, "starts", "every start after the first runs the local stage, and " + quote(spec.algorithm) +
-                                  " is global with no polish: add polish: {algorithm: LN_SBPLX} or use an LN_* algorithm");
+      o.fail_at(*n, "starts",
+                "every start after the first runs the local stage, and " + quote(spec.algorithm) +
+                    " is global with no polish: add polish: {algorithm: LN_SBPLX} or use an LN_* algorithm");
   }
   if (auto n = o.find("certify")) spec.certify = o.boolean(*n, "certify");
   if (auto n = o.find("basin_tolerance")) {
     spec.basin_tolerance = o.number(*n, "basin_tolerance", nullptr);
     if (!(spec.basin_tolerance >= 0 && spec.basin_tolerance < 1))
-      o.fail_at(*n, "basin_tolerance", "must be in [0, 1) (relative to the best objective), got " + format_double(spec.basin_tolerance));
+      o.fail_at(*n, "basin_tolerance",
+                "must be in [0, 1) (relative to the best objective), got " + format_double(spec.basin_tolerance));
   }
   if (auto n = o.find("basin_distance")) {
     spec.basin_distance = o.number(*n, "basin_distance", nullptr);
     if (!(spec.basin_distance >= 0 && spec.basin_distance < 1))
-      o.fail_at(*n, "basin_distance", "must be in [0, 1) (in the scaled coordinates, each parameter's range 1), got " +
-                                          format_double(spec.basin_distance));
+      o.fail_at(*n, "basin_distance",
+                "must be in [0, 1) (in the scaled coordinates, each parameter's range 1), got " +
+                    format_double(spec.basin_distance));
   }
 }
 
@@ -368,11 +397,13 @@ YAML::Node read_optimizer(const Source& src, const MapView& root, FitSpec& spec)
   }
   if (auto n = o.find("xtol_rel")) {
     spec.xtol_rel = o.number(*n, "xtol_rel", nullptr);
-    if (!(spec.xtol_rel > 0 && spec.xtol_rel < 1)) o.fail_at(*n, "xtol_rel", "must be in (0, 1), got " + format_double(spec.xtol_rel));
+    if (!(spec.xtol_rel > 0 && spec.xtol_rel < 1))
+      o.fail_at(*n, "xtol_rel", "must be in (0, 1), got " + format_double(spec.xtol_rel));
   }
   if (auto n = o.find("ftol_rel")) {
     spec.ftol_rel = o.number(*n, "ftol_rel", nullptr);
-    if (!(spec.ftol_rel >= 0 && spec.ftol_rel < 1)) o.fail_at(*n, "ftol_rel", "must be in [0, 1) (0: off), got " + format_double(spec.ftol_rel));
+    if (!(spec.ftol_rel >= 0 && spec.ftol_rel < 1))
+      o.fail_at(*n, "ftol_rel", "must be in [0, 1) (0: off), got " + format_double(spec.ftol_rel));
   }
   if (auto n = o.find("ftol_abs")) {
     spec.ftol_abs = o.number(*n, "ftol_abs", nullptr);
@@ -380,24 +411,30 @@ YAML::Node read_optimizer(const Source& src, const MapView& root, FitSpec& spec)
   }
   if (auto n = o.find("max_evaluations")) {
     spec.max_evaluations = o.integer(*n, "max_evaluations");
-    if (spec.max_evaluations < 1) o.fail_at(*n, "max_evaluations", "must be >= 1, got " + std::to_string(spec.max_evaluations));
+    if (spec.max_evaluations < 1)
+      o.fail_at(*n, "max_evaluations", "must be >= 1, got " + std::to_string(spec.max_evaluations));
   }
   if (auto pn = o.find("polish")) {
     const MapView pv(src, *pn, "optimizer.polish", kPolishKeys);
     const YAML::Node an = pv.require("algorithm");
     spec.polish_algorithm = pv.string(an, "algorithm");
-    if (const std::string why = check_fit_algorithm(spec.polish_algorithm); !why.empty()) pv.fail_at(an, "algorithm", why);
+    if (const std::string why = check_fit_algorithm(spec.polish_algorithm); !why.empty())
+      pv.fail_at(an, "algorithm", why);
     if (spec.polish_algorithm.rfind("LN_", 0) != 0)
-      pv.fail_at(an, "algorithm", "the polish stage is local: use an LN_* algorithm, got " + quote(spec.polish_algorithm));
+      pv.fail_at(an, "algorithm",
+                 "the polish stage is local: use an LN_* algorithm, got " + quote(spec.polish_algorithm));
     if (auto n = pv.find("max_evaluations")) {
       spec.polish_max_evaluations = pv.integer(*n, "max_evaluations");
-      if (spec.polish_max_evaluations < 1) pv.fail_at(*n, "max_evaluations", "must be >= 1, got " + std::to_string(spec.polish_max_evaluations));
+      if (spec.polish_max_evaluations < 1)
+        pv.fail_at(*n, "max_evaluations", "must be >= 1, got " + std::to_string(spec.polish_max_evaluations));
     }
   }
   if (auto n = o.find("initial_step")) {
     spec.initial_step = o.number(*n, "initial_step", nullptr);
     if (!(spec.initial_step > 0 && spec.initial_step <= 1))
-      o.fail_at(*n, "initial_step", "must be in (0, 1] (a fraction of each parameter's scaled range), got " + format_double(spec.initial_step));
+      o.fail_at(
+          *n, "initial_step",
+          "must be in (0, 1] (a fraction of each parameter's scaled range), got " + format_double(spec.initial_step));
   }
   read_starts(o, spec);
   return algorithm_node;
@@ -409,20 +446,24 @@ void check_algorithm_accepts(const FitSpec& spec, const MapView& root, const YAM
   std::size_t n = 0;
   for (const auto& p : spec.parameters) n += (p.per_experiment && !spec.separate) ? spec.experiments.size() : 1;
   try {
-    nlopt::opt trial(static_cast<nlopt::algorithm>(nlopt_algorithm_from_string(spec.algorithm.c_str())), static_cast<unsigned>(n));
+    nlopt::opt trial(static_cast<nlopt::algorithm>(nlopt_algorithm_from_string(spec.algorithm.c_str())),
+                     static_cast<unsigned>(n));
     trial.set_lower_bounds(std::vector<double>(n, 0.0));
     trial.set_upper_bounds(std::vector<double>(n, 1.0));
-    trial.set_min_objective([](unsigned m, const double* x, double*, void*) {
-      double s = 0;
-      for (unsigned i = 0; i < m; ++i) s += (x[i] - 0.3) * (x[i] - 0.3);
-      return s;
-    }, nullptr);
+    trial.set_min_objective(
+        [](unsigned m, const double* x, double*, void*) {
+          double s = 0;
+          for (unsigned i = 0; i < m; ++i) s += (x[i] - 0.3) * (x[i] - 0.3);
+          return s;
+        },
+        nullptr);
     trial.set_maxeval(3);
     std::vector<double> x(n, 0.5);
     double f = 0;
     trial.optimize(x, f);
   } catch (const std::invalid_argument& e) {
-    const std::string msg = "NLopt rejects " + spec.algorithm + " with " + std::to_string(n) + " free variable(s): " + e.what();
+    const std::string msg =
+        "NLopt rejects " + spec.algorithm + " with " + std::to_string(n) + " free variable(s): " + e.what();
     if (algorithm_node.IsDefined()) root.fail_at(algorithm_node, "optimizer.algorithm", msg);
     throw InputError(display, 0, "optimizer.algorithm", msg);
   } catch (const std::exception&) {
@@ -448,14 +489,18 @@ void read_profile(const Source& src, const MapView& root, FitSpec& spec) {
     } else {
       wanted.push_back(p.string(*n, "parameter"));
     }
-    if (wanted.empty()) p.fail_at(*n, "parameter", "expected a free parameter, a list of them, or all; got an empty list");
+    if (wanted.empty())
+      p.fail_at(*n, "parameter", "expected a free parameter, a list of them, or all; got an empty list");
     spec.profile_settings.parameters.clear();
     for (const std::string& k : wanted) {
-      const auto it = std::find_if(spec.parameters.begin(), spec.parameters.end(), [&](const FitParameter& q) { return q.key == k; });
+      const auto it = std::find_if(spec.parameters.begin(), spec.parameters.end(),
+                                   [&](const FitParameter& q) { return q.key == k; });
       if (it == spec.parameters.end()) {
         std::vector<std::string> keys;
         for (const auto& q : spec.parameters) keys.push_back(q.key);
-        p.fail_at(*n, "parameter", "not a free parameter of this fit: " + quote(k) + did_you_mean(k, keys) + "; free: " + join(keys) + " (or all)");
+        p.fail_at(*n, "parameter",
+                  "not a free parameter of this fit: " + quote(k) + did_you_mean(k, keys) + "; free: " + join(keys) +
+                      " (or all)");
       }
       const auto idx = static_cast<std::size_t>(it - spec.parameters.begin());
       if (std::find(spec.profile_settings.parameters.begin(), spec.profile_settings.parameters.end(), idx) ==
@@ -493,7 +538,8 @@ void read_error_bars(const Source& src, const MapView& root, FitSpec& spec) {
         try {
           e.scene.build({{k, x}});
         } catch (const InputError& err) {
-          b.fail_at(it->second, k, "nominal ± bar gives an invalid scene for experiment " + quote(e.name) + ": " + err.message);
+          b.fail_at(it->second, k,
+                    "nominal ± bar gives an invalid scene for experiment " + quote(e.name) + ": " + err.message);
         }
       }
     }
@@ -505,8 +551,9 @@ void read_error_bars(const Source& src, const MapView& root, FitSpec& spec) {
 double noise_level(const MapView& v, const YAML::Node& n, const std::string& k) {
   const double x = v.number(n, k, nullptr);
   if (!(x >= kNoiseMin && x <= kNoiseMax))
-    v.fail_at(n, k, "must be in [" + format_double(kNoiseMin) + ", " + format_double(kNoiseMax) +
-                        "] (relative), got " + format_double(x));
+    v.fail_at(n, k,
+              "must be in [" + format_double(kNoiseMin) + ", " + format_double(kNoiseMax) + "] (relative), got " +
+                  format_double(x));
   return x;
 }
 
@@ -514,10 +561,12 @@ double noise_level(const MapView& v, const YAML::Node& n, const std::string& k) 
 void read_noise_and_intervals(const Source& src, const MapView& root, FitSpec& spec) {
   if (const auto nn = root.find("noise")) {
     if (spec.objective != FitObjective::area_and_force)
-      root.fail_at(*nn, "noise", std::string("noise levels are used by the area_and_force objective only, not ") +
-                                     objective_name(spec.objective));
+      root.fail_at(*nn, "noise",
+                   std::string("noise levels are used by the area_and_force objective only, not ") +
+                       objective_name(spec.objective));
     const MapView nv(src, *nn, "noise", kNoiseKeys);
-    if (!nn->IsMap()) root.fail_at(*nn, "noise", "expected a map {area: 0.002, force: 0.002, stick_slip: 0.05}, got " + node_kind(*nn));
+    if (!nn->IsMap())
+      root.fail_at(*nn, "noise", "expected a map {area: 0.002, force: 0.002, stick_slip: 0.05}, got " + node_kind(*nn));
     if (auto n = nv.find("area")) spec.noise.area = noise_level(nv, *n, "area");
     if (auto n = nv.find("force")) spec.noise.force = noise_level(nv, *n, "force");
     if (auto n = nv.find("stick_slip")) spec.noise.stick_slip = noise_level(nv, *n, "stick_slip");
@@ -532,24 +581,28 @@ void read_noise_and_intervals(const Source& src, const MapView& root, FitSpec& s
       if (auto n = iv.find("hessian_step")) {
         spec.hessian_step = iv.number(*n, "hessian_step", nullptr);
         if (!(spec.hessian_step > 0 && spec.hessian_step <= 0.2))
-          iv.fail_at(*n, "hessian_step", "must be in (0, 0.2] (relative step of each parameter), got " + format_double(spec.hessian_step));
+          iv.fail_at(*n, "hessian_step",
+                     "must be in (0, 0.2] (relative step of each parameter), got " + format_double(spec.hessian_step));
       }
     }
     if (spec.intervals && spec.objective != FitObjective::area_and_force)
-      root.fail_at(*in, "intervals", std::string("statistical intervals need a chi-square objective (area_and_force), not ") +
-                                         objective_name(spec.objective));
+      root.fail_at(*in, "intervals",
+                   std::string("statistical intervals need a chi-square objective (area_and_force), not ") +
+                       objective_name(spec.objective));
   }
 }
 
 // The fit tree `root_node` (a file's, or one given in memory: `path` empty) → FitSpec; relative
 // scene paths resolve against `base`, errors name `display`. The keys are read in file-format
 // order, so the first error reported stays the same.
-FitSpec fit_from_tree(const YAML::Node& root_node, const fs::path& path, const fs::path& base, const std::string& display,
-                      const std::vector<std::string>& overrides, const FitLoadOptions& options) {
+FitSpec fit_from_tree(const YAML::Node& root_node, const fs::path& path, const fs::path& base,
+                      const std::string& display, const std::vector<std::string>& overrides,
+                      const FitLoadOptions& options) {
   const Source src{display, nullptr};
   const MapView root(src, root_node, "", kFitKeys, path.empty() ? 0 : 1);  // a tree in memory has no lines
   FitSpec spec;
-  spec.base_dir = base.empty() ? fs::current_path() : fs::absolute(base).lexically_normal();  // "f.yaml": its folder is ""
+  spec.base_dir =
+      base.empty() ? fs::current_path() : fs::absolute(base).lexically_normal();  // "f.yaml": its folder is ""
   if (!path.empty()) {
     std::error_code ec;
     spec.file = fs::weakly_canonical(fs::absolute(path), ec);

@@ -19,8 +19,8 @@ namespace {
 
 // One experiment at the settings. RunInterrupted (the stop's) passes through: the evaluation is
 // abandoned, not failed.
-ExperimentEval run_experiment(const FitSpec& spec, std::size_t e, const std::vector<SceneSetting>& settings,
-                              bool keep, const RunMonitor* monitor, const UserTerm* user_term) {
+ExperimentEval run_experiment(const FitSpec& spec, std::size_t e, const std::vector<SceneSetting>& settings, bool keep,
+                              const RunMonitor* monitor, const UserTerm* user_term) {
   omp_set_num_threads(1);  // this task is one of `threads` workers: no nested OpenMP team
   ExperimentEval out;
   try {
@@ -28,10 +28,12 @@ ExperimentEval run_experiment(const FitSpec& spec, std::size_t e, const std::vec
     const Scene scene = fe.scene.build(settings);
     RunResult r = simulate(scene, 0, monitor);
     if (spec.objective == FitObjective::user) {
-      if (!user_term || !*user_term) throw std::invalid_argument("run_fit: the user objective needs FitOptions::user_term");
+      if (!user_term || !*user_term)
+        throw std::invalid_argument("run_fit: the user objective needs FitOptions::user_term");
       out.residual = (*user_term)(fe, scene, r);
     } else if (spec.objective == FitObjective::area_and_force) {
-      out.terms = area_and_force_terms(scene, r.obs, r.recorder.loading_branch(), r.recorder.series(), fe, spec.noise, spec.force_score);
+      out.terms = area_and_force_terms(scene, r.obs, r.recorder.loading_branch(), r.recorder.series(), fe, spec.noise,
+                                       spec.force_score);
       out.residual = out.terms.total();
     } else {
       out.residual = experiment_residual(spec.objective, scene, r.obs, r.recorder.loading_branch(), fe.target);
@@ -48,8 +50,8 @@ ExperimentEval run_experiment(const FitSpec& spec, std::size_t e, const std::vec
       // Without a confirmed peak, Q_s, the loading branch and every objective built on them
       // come from wherever the run stopped: a number, but not the one the fit is about.
       out.error = fe.name + " (" + display_path(scene.experiment.file) +
-                  "): no confirmed static friction peak before stop.time = " + g6(scene.stop.time) +
-                  " s (highest Q " + g6(r.obs.Q_s) + " N at t = " + g6(r.obs.t_peak) +
+                  "): no confirmed static friction peak before stop.time = " + g6(scene.stop.time) + " s (highest Q " +
+                  g6(r.obs.Q_s) + " N at t = " + g6(r.obs.t_peak) +
                   " s); the objective would use an unfinished loading branch: raise stop.time";
     }
     if (keep) {
@@ -90,10 +92,13 @@ Evaluation evaluate(const Problem& pb, const std::vector<double>& x, std::vector
   std::vector<ExperimentEval> r(pb.exps.size());
   // Isolated: a thread waiting here runs only these runs, never another task's optimizer (so
   // each nlopt::opt stays on its own thread, with no nested optimize on one stack).
-  for_each_nested(pb.exps.size(), [&](std::size_t k) {
-    r[k] = run_experiment(*pb.spec, pb.exps[k], settings_for(pb, k, x), runs != nullptr, pb.stop ? pb.stop->monitor() : nullptr,
-                          pb.user_term);
-  }, Nesting::isolated);
+  for_each_nested(
+      pb.exps.size(),
+      [&](std::size_t k) {
+        r[k] = run_experiment(*pb.spec, pb.exps[k], settings_for(pb, k, x), runs != nullptr,
+                              pb.stop ? pb.stop->monitor() : nullptr, pb.user_term);
+      },
+      Nesting::isolated);
   Evaluation ev;
   ev.values = x;
   ev.objective = 0;

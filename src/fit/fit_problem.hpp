@@ -22,9 +22,7 @@ namespace asperity::fit_detail {
 
 using Clock = std::chrono::steady_clock;
 
-inline double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
+inline double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 // Six significant digits: the numbers of the fit's messages and progress lines.
 inline std::string g6(double x) { return scene_io::format_printf("%.6g", x); }
@@ -63,13 +61,13 @@ struct Problem {
   Clock::time_point t0;
   const std::function<void(const FitTick&)>* on_evaluation = nullptr;  // FitOptions::on_evaluation
   std::atomic<int>* ticked = nullptr;  // evaluations told to on_evaluation for this optimization
-  FitJournal* journal = nullptr;                               // FitOptions::journal
-  bool replay_only = false;                                    // FitOptions::replay_only
+  FitJournal* journal = nullptr;       // FitOptions::journal
+  bool replay_only = false;            // FitOptions::replay_only
   Counts* counts = nullptr;
-  std::string not_journaled;  // replay_only: the evaluation the journal lacked
-  const StopFlag* stop = nullptr;     // FitOptions::stop, polled by every run
+  std::string not_journaled;            // replay_only: the evaluation the journal lacked
+  const StopFlag* stop = nullptr;       // FitOptions::stop, polled by every run
   const UserTerm* user_term = nullptr;  // FitOptions::user_term
-  bool interrupted = false;           // the stop ended the optimization
+  bool interrupted = false;             // the stop ended the optimization
 };
 
 // Tells FitOptions::on_evaluation that an evaluation of the optimization is done.

@@ -3,9 +3,9 @@
 // fit YAML file, tests may build it in code).
 #include <cmath>
 #include <cstddef>
-#include <optional>
 #include <filesystem>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -41,11 +41,11 @@ struct StickSlipTarget {
 };
 
 struct FitExperiment {
-  std::string name;        // label in outputs (the experiment name of the scene)
-  SceneTemplate scene;     // the scene with the fit's fixed settings applied
-  StickSlipTarget target;  // stick_slip objective; optional with area_and_force
-  std::optional<MeasuredForce> force;   // measured Q(t): area_and_force objective (required there)
-  std::filesystem::path force_file;     // its CSV (provenance, inputs.txt)
+  std::string name;                    // label in outputs (the experiment name of the scene)
+  SceneTemplate scene;                 // the scene with the fit's fixed settings applied
+  StickSlipTarget target;              // stick_slip objective; optional with area_and_force
+  std::optional<MeasuredForce> force;  // measured Q(t): area_and_force objective (required there)
+  std::filesystem::path force_file;    // its CSV (provenance, inputs.txt)
   bool has_target() const { return std::isfinite(target.drop_N) && std::isfinite(target.period_s); }
 };
 
@@ -79,35 +79,35 @@ struct ErrorBar {
 };
 
 struct ProfileSettings {
-  std::size_t parameter = 0;  // index into FitSpec::parameters: the first profiled one
+  std::size_t parameter = 0;            // index into FitSpec::parameters: the first profiled one
   std::vector<std::size_t> parameters;  // every profiled parameter (empty: just `parameter`)
-  double span = 0.2;          // relative: values x*·(1 ± span)
-  int points = 11;            // ≥ 2 (odd: includes the optimum)
+  double span = 0.2;                    // relative: values x*·(1 ± span)
+  int points = 11;                      // ≥ 2 (odd: includes the optimum)
 };
 
 struct FitSpec {
-  std::string name;                   // results/fits/<name>/
-  std::filesystem::path file;         // the fit file (provenance); empty for a spec given in memory
-  std::filesystem::path base_dir;     // the folder its relative paths were read against
-  std::string memory_text;            // a spec given in memory: its YAML (hashed into a journal's inputs)
-  std::string user_objective_id;      // the caller's own objective, as a digest of its source: in a
-                                      // journal's inputs, so an edited one does not resume it
+  std::string name;                // results/fits/<name>/
+  std::filesystem::path file;      // the fit file (provenance); empty for a spec given in memory
+  std::filesystem::path base_dir;  // the folder its relative paths were read against
+  std::string memory_text;         // a spec given in memory: its YAML (hashed into a journal's inputs)
+  std::string user_objective_id;   // the caller's own objective, as a digest of its source: in a
+                                   // journal's inputs, so an edited one does not resume it
   std::string description;
   FitObjective objective = FitObjective::quadratic_alpha;
   std::vector<FitParameter> parameters;
   std::vector<FitExperiment> experiments;
-  bool separate = false;              // one independent fit per experiment (per-load fits)
-  std::string algorithm = "LN_BOBYQA";// NLopt name, derivative-free (LN_*/GN_*)
-  double xtol_rel = 1e-4;             // on each parameter (relative to its value)
-  double ftol_rel = 0;                // on the objective; 0: off
-  double ftol_abs = 0;                // on the objective; 0: off
-  int max_evaluations = 60;           // per optimization (the first stage when polishing)
+  bool separate = false;                // one independent fit per experiment (per-load fits)
+  std::string algorithm = "LN_BOBYQA";  // NLopt name, derivative-free (LN_*/GN_*)
+  double xtol_rel = 1e-4;               // on each parameter (relative to its value)
+  double ftol_rel = 0;                  // on the objective; 0: off
+  double ftol_abs = 0;                  // on the objective; 0: off
+  int max_evaluations = 60;             // per optimization (the first stage when polishing)
   // Optional second stage: a local algorithm started from the first stage's best point (e.g.
   // GN_DIRECT_L to find the basin, then LN_BOBYQA to converge in it); "" = none. Error-bar
   // refits, which start at the optimum, run this stage alone.
   std::string polish_algorithm;
   int polish_max_evaluations = 100;
-  double initial_step = 0.1;          // first step, as a fraction of each scaled box [0, 1]
+  double initial_step = 0.1;  // first step, as a fraction of each scaled box [0, 1]
   // Starts (fit/convergence.hpp): the first is the algorithm (then the polish) from `start`; each
   // further one is the local stage (the polish when there is one, else the algorithm) from a
   // point of a Sobol design. ≥ 2 starts ending in the best basin certify the optimum; one start
@@ -117,17 +117,17 @@ struct FitSpec {
   // `asperity fit` exits 1. false accepts an unconfirmed optimum (a point evaluation, a costly
   // one-start fit): said on stderr and in fit.yaml, exit 0.
   bool certify = true;
-  double basin_tolerance = 1e-3;      // relative on the objective (BasinRule::relative)
-  double basin_distance = 1e-3;       // in the scaled coordinates (BasinRule::distance)
-  bool profile = true;                // write profile.csv / profile.png
+  double basin_tolerance = 1e-3;  // relative on the objective (BasinRule::relative)
+  double basin_distance = 1e-3;   // in the scaled coordinates (BasinRule::distance)
+  bool profile = true;            // write profile.csv / profile.png
   ProfileSettings profile_settings;
-  std::vector<ErrorBar> error_bars;   // empty: no error-bar refits
-  FitNoise noise;                     // area_and_force only
+  std::vector<ErrorBar> error_bars;                // empty: no error-bar refits
+  FitNoise noise;                                  // area_and_force only
   ForceScore force_score = ForceScore::automatic;  // area_and_force only (docs/calibration.md)
   // Statistical intervals from the curvature of the objective at the optimum (area_and_force:
   // a chi-square): central finite differences of relative step `hessian_step` per parameter,
   // covariance 2 s² H⁻¹ with s² the reduced chi-square at the optimum (fit.hpp, Uncertainty).
-  bool intervals = false;             // default true for area_and_force
+  bool intervals = false;  // default true for area_and_force
   double hessian_step = 0.01;
 };
 

@@ -115,7 +115,8 @@ std::string hessian_start(const FitSpec& spec, const Optimization& o, std::vecto
 // (f(+h) + f(−h))/2 − f0 is within [1, 16] s² (target 4 s²: about two conditional standard
 // deviations): large enough above rounding, small enough to stay quadratic where the objective is
 // sharp (epsilon moves every stick-slip event). An empty string, or why not.
-std::string settle_steps(HessianPoints& hp, const std::vector<double>& u0, std::vector<double>& h, double f0, double s2) {
+std::string settle_steps(HessianPoints& hp, const std::vector<double>& u0, std::vector<double>& h, double f0,
+                         double s2) {
   const std::size_t n = u0.size();
   const double target = 4 * s2;
   std::vector<bool> settled(n, false);
@@ -138,7 +139,8 @@ std::string settle_steps(HessianPoints& hp, const std::vector<double>& u0, std::
     for (std::size_t w = 0; w < who.size(); ++w) {
       const std::size_t i = who[w];
       if (st[2 * w] != "ok" || st[2 * w + 1] != "ok")
-        return "hessian evaluation along " + hp.o.variables[i].label + ": " + (st[2 * w] != "ok" ? st[2 * w] : st[2 * w + 1]);
+        return "hessian evaluation along " + hp.o.variables[i].label + ": " +
+               (st[2 * w] != "ok" ? st[2 * w] : st[2 * w + 1]);
       const double rise = 0.5 * (fv[2 * w] + fv[2 * w + 1]) - f0;
       if (round == 4 || (rise >= target / 4 && rise <= target * 4)) {
         settled[i] = true;
@@ -157,12 +159,17 @@ std::string settle_steps(HessianPoints& hp, const std::vector<double>& u0, std::
 std::string hessian_at(HessianPoints& hp, const std::vector<double>& u0, const std::vector<double>& h, double f0,
                        Eigen::MatrixXd& H) {
   const std::size_t n = u0.size();
-  struct Point { std::size_t i, j; int si, sj; };
+  struct Point {
+    std::size_t i, j;
+    int si, sj;
+  };
   std::vector<Point> pts;
-  for (std::size_t i = 0; i < n; ++i) for (const int si : {-1, +1}) pts.push_back({i, i, si, 0});
+  for (std::size_t i = 0; i < n; ++i)
+    for (const int si : {-1, +1}) pts.push_back({i, i, si, 0});
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = i + 1; j < n; ++j)
-      for (const int si : {-1, +1}) for (const int sj : {-1, +1}) pts.push_back({i, j, si, sj});
+      for (const int si : {-1, +1})
+        for (const int sj : {-1, +1}) pts.push_back({i, j, si, sj});
   std::vector<std::vector<double>> us;
   for (const Point& pt : pts) {
     std::vector<double> u = u0;
@@ -234,7 +241,9 @@ void run_uncertainty(const FitSpec& spec, const Problem& pb, Optimization& o) {
   Uncertainty& un = o.uncertainty;
   un.step = spec.hessian_step;
   const std::size_t n = o.variables.size();
-  for (const std::size_t e : o.experiments) un.residuals += area_and_force_count(spec.experiments[e].scene.build(), spec.experiments[e], spec.noise, spec.force_score);
+  for (const std::size_t e : o.experiments)
+    un.residuals +=
+        area_and_force_count(spec.experiments[e].scene.build(), spec.experiments[e], spec.noise, spec.force_score);
   const double f0 = o.objective;
   if (un.residuals <= static_cast<int>(n)) {
     un.failure = std::to_string(un.residuals) + " residuals for " + std::to_string(n) + " free variables";
@@ -259,8 +268,10 @@ void run_uncertainty(const FitSpec& spec, const Problem& pb, Optimization& o) {
         rows += g6(H(i, j));
       }
     }
-    un.failure = "the Hessian of the objective at the optimum is not positive definite (a flat or unidentifiable direction, "
-                 "or the optimum is not a minimum on the step's scale): H = [" + rows + "] in the scaled coordinates";
+    un.failure =
+        "the Hessian of the objective at the optimum is not positive definite (a flat or unidentifiable direction, "
+        "or the optimum is not a minimum on the step's scale): H = [" +
+        rows + "] in the scaled coordinates";
     return;
   }
   const Eigen::MatrixXd inv = llt.solve(Eigen::MatrixXd::Identity(H.rows(), H.cols()));
@@ -269,9 +280,11 @@ void run_uncertainty(const FitSpec& spec, const Problem& pb, Optimization& o) {
   un.sigma.resize(n);
   un.correlation.assign(n, std::vector<double>(n, 0.0));
   const auto I = [](std::size_t i) { return static_cast<Eigen::Index>(i); };
-  for (std::size_t i = 0; i < n; ++i) un.sigma[i] = std::abs(dxdu[i]) * std::sqrt(2 * un.reduced_chi2 * inv(I(i), I(i)));
   for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t j = 0; j < n; ++j) un.correlation[i][j] = inv(I(i), I(j)) / std::sqrt(inv(I(i), I(i)) * inv(I(j), I(j)));
+    un.sigma[i] = std::abs(dxdu[i]) * std::sqrt(2 * un.reduced_chi2 * inv(I(i), I(i)));
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = 0; j < n; ++j)
+      un.correlation[i][j] = inv(I(i), I(j)) / std::sqrt(inv(I(i), I(i)) * inv(I(j), I(j)));
   un.computed = true;
   un.wall_s = seconds_since(t0);
   // The profiles' conditional intervals at the same rise s².

@@ -19,7 +19,8 @@ std::vector<double> model_force_at(const std::vector<Sample>& series, std::span<
     } else if (x >= series.back().t) {
       out[k] = series.back().Q;
     } else {
-      const auto it = std::upper_bound(series.begin(), series.end(), x, [](double v, const Sample& s) { return v < s.t; });
+      const auto it =
+          std::upper_bound(series.begin(), series.end(), x, [](double v, const Sample& s) { return v < s.t; });
       const Sample& b = *it;
       const Sample& a = *(it - 1);  // a.t <= x < b.t
       out[k] = b.t > a.t ? a.Q + (x - a.t) / (b.t - a.t) * (b.Q - a.Q) : a.Q;
@@ -74,9 +75,8 @@ MeasuredShape measured_shape(const Scene& scene, const MeasuredForce& f, const F
     m.peaks_compared = std::min(c.peaks.size(), compared);
     m.pairing.sigma_t_s = dt / std::sqrt(6.0);
     m.pairing.sigma_drop_N = sigma_one_drop_N;
-    m.pairing.t_window_s = c.peaks.size() > compared
-                               ? 0.5 * (c.peaks[compared - 1].t_cross + c.peaks[compared].t_cross)
-                               : f.t_s.back();
+    m.pairing.t_window_s =
+        c.peaks.size() > compared ? 0.5 * (c.peaks[compared - 1].t_cross + c.peaks[compared].t_cross) : f.t_s.back();
     m.pairing.taper_s = c.n_periods > 0 ? 0.5 * c.mean_period : dt;
   }
   return m;
@@ -219,7 +219,8 @@ double experiment_residual(FitObjective objective, const Scene& scene, const Obs
       return rd * rd + rp * rp;
     }
     case FitObjective::area_and_force:  // needs the series and the force curve: area_and_force_terms
-    case FitObjective::user: break;     // the caller's term (fit_problem.cpp)
+    case FitObjective::user:
+      break;  // the caller's term (fit_problem.cpp)
   }
   return Observables::nan;
 }

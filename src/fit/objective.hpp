@@ -70,8 +70,7 @@ JointTerms area_and_force_terms(const Scene& scene, const Observables& obs, cons
                                 const FitNoise& noise, ForceScore score);
 
 // The number of residuals behind one experiment's term of an area_and_force objective.
-int area_and_force_count(const Scene& scene, const FitExperiment& experiment, const FitNoise& noise,
-                         ForceScore score);
+int area_and_force_count(const Scene& scene, const FitExperiment& experiment, const FitNoise& noise, ForceScore score);
 
 // One experiment's term of the objective. NaN when the run gives no value to compare (e.g. no
 // loading branch); a run without stick-slip counts as drop = period = 0 for stick_slip.

@@ -203,11 +203,10 @@ void validate_component(const Component& c) {
       check(d.a_min >= 0.0 && d.a_max > d.a_min, "lognormal needs 0 <= a_min < a_max");
       const double z_lo = d.a_min > 0.0 ? (std::log(d.a_min) - std::log(d.median)) / d.sigma_ln : -INFINITY;
       const double z_hi = std::isfinite(d.a_max) ? (std::log(d.a_max) - std::log(d.median)) / d.sigma_ln : INFINITY;
-      check(normal_cdf_or_limit(z_hi) > normal_cdf_or_limit(z_lo), "lognormal truncation interval holds no probability");
+      check(normal_cdf_or_limit(z_hi) > normal_cdf_or_limit(z_lo),
+            "lognormal truncation interval holds no probability");
     }
-    void operator()(const Fixed& d) const {
-      check(std::isfinite(d.area) && d.area > 0.0, "fixed area must be > 0");
-    }
+    void operator()(const Fixed& d) const { check(std::isfinite(d.area) && d.area > 0.0, "fixed area must be > 0"); }
   };
   std::visit(V{}, c);
 }
@@ -229,8 +228,7 @@ void validate(const Distribution& d) {
       d.family);
 }
 
-JunctionPopulation draw_population(const Distribution& d, std::size_t n, std::uint64_t seed,
-                                   double square_side_m) {
+JunctionPopulation draw_population(const Distribution& d, std::size_t n, std::uint64_t seed, double square_side_m) {
   validate(d);
   Uniform01 u(seed);
   JunctionPopulation pop;

@@ -17,7 +17,9 @@ std::uint64_t noise_seed(std::uint64_t experiment_seed) {
   return splitmix64(experiment_seed ^ 0x6e6f697365ULL);  // "noise"
 }
 
-std::uint64_t positions_seed(std::uint64_t experiment_seed) { return splitmix64(experiment_seed ^ 0x706f736974696f6eull); }
+std::uint64_t positions_seed(std::uint64_t experiment_seed) {
+  return splitmix64(experiment_seed ^ 0x706f736974696f6eull);
+}
 
 std::uint64_t force_seed(std::uint64_t experiment_seed) { return splitmix64(experiment_seed ^ 0x666f726365ULL); }
 
@@ -112,14 +114,15 @@ Distribution read_distribution(const Source& src, const YAML::Node& node, const 
   MapView m(src, node, path, known ? keys_of(fam, false) : all_keys(false));
   const YAML::Node fn = m.require("family");
   m.enumeration<int>(fn, "family", {{"power_law", 0}, {"lognormal", 1}, {"fixed", 2}, {"mixture", 3}});
-  if (fam != "mixture") return Distribution{std::visit([](const auto& d) {
-    return std::variant<PowerLaw, LogNormal, Fixed, Mixture>(d); }, read_component(m, fam))};
+  if (fam != "mixture")
+    return Distribution{std::visit([](const auto& d) { return std::variant<PowerLaw, LogNormal, Fixed, Mixture>(d); },
+                                   read_component(m, fam))};
 
   Mixture mix;
   const YAML::Node list = m.require("components");
   if (!list.IsSequence() || list.size() == 0)
-    m.fail_at(list, "components", "expected a non-empty list of {weight, family, ...} maps, got " +
-                                      scene_io::node_kind(list));
+    m.fail_at(list, "components",
+              "expected a non-empty list of {weight, family, ...} maps, got " + scene_io::node_kind(list));
   for (std::size_t j = 0; j < list.size(); ++j) {
     const YAML::Node c = list[j];
     const std::string cpath = m.key("components") + "[" + std::to_string(j) + "]";
@@ -196,8 +199,7 @@ StandinRecipe load_recipe(const std::filesystem::path& path) {
     }
     if (auto n = m.find("noise_relative")) {
       r.noise_relative = m.number(*n, "noise_relative", nullptr);
-      if (!(r.noise_relative >= 0.0 && r.noise_relative < 0.1))
-        m.fail_at(*n, "noise_relative", "must be in [0, 0.1)");
+      if (!(r.noise_relative >= 0.0 && r.noise_relative < 0.1)) m.fail_at(*n, "noise_relative", "must be in [0, 0.1)");
     }
   }
 

@@ -20,24 +20,24 @@ std::string standin_name(double P_newton);
 
 // One generated experiment and what the generator learnt while building it.
 struct StandinExperiment {
-  Experiment experiment;          // name, parameters, junctions, measured curve
-  double P = 0;                   // N, M g
+  Experiment experiment;  // name, parameters, junctions, measured curve
+  double P = 0;           // N, M g
   std::uint64_t area_seed = 0, noise_seed = 0;
-  double dt_Ct1e4 = 0;            // s, initial_info at C_t = 1e4 (paper parameters)
-  Observables model;              // the model run that gave Q_s (recipe's solver)
-  double area_drop_target = 0;    // (A0 − A)/A0 of the measured curve at Q_s
-  double alpha_exp = 0;           // m²/N², A0 − α_exp Q² of the measured curve
+  double dt_Ct1e4 = 0;          // s, initial_info at C_t = 1e4 (paper parameters)
+  Observables model;            // the model run that gave Q_s (recipe's solver)
+  double area_drop_target = 0;  // (A0 − A)/A0 of the measured curve at Q_s
+  double alpha_exp = 0;         // m²/N², A0 − α_exp Q² of the measured curve
   // Stand-in "measured" Q(t) (recipe measured_force; empty without it) and its provenance lines.
   MeasuredForce force;
   std::uint64_t force_seed = 0;
-  double force_t_end = 0;         // s
+  double force_t_end = 0;  // s
   std::vector<std::string> force_header;
 };
 
 // The stand-in Q(t): the model's samples (t, Q) of `series` with t <= t_end, each Q plus
 // Q_s · noise_relative · z, z standard normal from Uniform01(seed), in time order.
-MeasuredForce standin_measured_force(const std::vector<Sample>& series, double t_end, double Q_s,
-                                     double noise_relative, std::uint64_t seed);
+MeasuredForce standin_measured_force(const std::vector<Sample>& series, double t_end, double Q_s, double noise_relative,
+                                     std::uint64_t seed);
 
 // Builds experiment i of the recipe in memory (runs the model once). Throws SolverError.
 StandinExperiment build_standin(const StandinRecipe& recipe, std::size_t i);
@@ -48,8 +48,8 @@ Scene generation_scene(const StandinRecipe& recipe, const Experiment& e);
 
 // Stand-in measured curve: `points` Q values equally spaced on [0, Q_s],
 // A = A0 − α_exp Q² + A0 · noise_relative · z, z standard normal from Uniform01(noise_seed).
-MeasuredCurve standin_measured_curve(double A0, double Q_s, double alpha_exp, int points,
-                                     double noise_relative, std::uint64_t noise_seed);
+MeasuredCurve standin_measured_curve(double A0, double Q_s, double alpha_exp, int points, double noise_relative,
+                                     std::uint64_t noise_seed);
 
 struct GenerateOptions {
   std::filesystem::path out_dir = "data/standin";

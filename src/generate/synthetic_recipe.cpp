@@ -43,8 +43,9 @@ Scene truth_scene(const MapView& top, SyntheticRecipe& r, const YAML::Node& scen
   std::vector<std::pair<std::string, YAML::Node>> entries;
   if (set_node) {
     if (!set_node->IsMap() || set_node->size() == 0)
-      top.fail_at(*set_node, "set", "expected a map of dotted scene keys, e.g. {model.alpha_b: 0.7e-15}, got " +
-                                        scene_io::node_kind(*set_node));
+      top.fail_at(
+          *set_node, "set",
+          "expected a map of dotted scene keys, e.g. {model.alpha_b: 0.7e-15}, got " + scene_io::node_kind(*set_node));
     for (auto it = set_node->begin(); it != set_node->end(); ++it) {
       const std::string key = it->first.Scalar();
       if (!settable(key))
@@ -96,12 +97,14 @@ SyntheticRecipe load_synthetic_recipe(const fs::path& path) {
   {
     std::error_code ec;
     if (!fs::is_regular_file(r.scene_file, ec))
-      top.fail_at(sn, "scene", "scene file not found: " + scene_io::quote(r.scene_rel) + " (looked for " +
-                                   display_of(r.scene_file) + ")");
+      top.fail_at(
+          sn, "scene",
+          "scene file not found: " + scene_io::quote(r.scene_rel) + " (looked for " + display_of(r.scene_file) + ")");
   }
   const auto set_node = top.find("set");
   r.scene = truth_scene(top, r, sn, set_node ? &*set_node : nullptr);
-  if (r.scene.experiment.junctions.size() == 0) top.fail_at(sn, "scene", "the base scene's experiment has no junctions");
+  if (r.scene.experiment.junctions.size() == 0)
+    top.fail_at(sn, "scene", "the base scene's experiment has no junctions");
 
   r.name = r.scene.experiment.name + "-synthetic";
   if (auto n = top.find("name")) {

@@ -23,13 +23,13 @@ struct SyntheticRecipe {
   // and the base scene with them applied (checked by the scene loader).
   std::vector<std::pair<std::string, std::string>> set;
   Scene scene;
-  std::string name;                  // experiment name (default: the base experiment's + "-synthetic")
-  std::uint64_t seed = 0;            // area noise: splitmix64(seed ^ "noise"); force noise: ^ "force"
-  double noise_area = 0.002;         // std of the noise on A, in units of Σ A0
-  double noise_force = 0.002;        // std of the noise on Q, in units of the run's largest Q in the window
-  int points = 40;                   // A(Q): Q equally spaced on [0, Q_s] (Q_s: the run's first peak)
-  double force_every = 0.005;        // s, Q(t) sampling (also the run's output.every)
-  double force_end = 0.0;            // s, Q(t) window [0, force_end]: the run's stop.time
+  std::string name;            // experiment name (default: the base experiment's + "-synthetic")
+  std::uint64_t seed = 0;      // area noise: splitmix64(seed ^ "noise"); force noise: ^ "force"
+  double noise_area = 0.002;   // std of the noise on A, in units of Σ A0
+  double noise_force = 0.002;  // std of the noise on Q, in units of the run's largest Q in the window
+  int points = 40;             // A(Q): Q equally spaced on [0, Q_s] (Q_s: the run's first peak)
+  double force_every = 0.005;  // s, Q(t) sampling (also the run's output.every)
+  double force_end = 0.0;      // s, Q(t) window [0, force_end]: the run's stop.time
 };
 
 // Whether the YAML file at `path` has a top-level `synthetic:` key (parse errors: InputError).

@@ -22,10 +22,12 @@ void comment(std::string& s, const std::string& text) { s += "# " + text + "\n";
 
 TopographyJunctions build_topography_junctions(const TopographyRecipe& r, int threads) {
   TopographyJunctions t;
-  t.recipe_sha256 = sha256_hex(scene_io::read_input_file(r.file, r.file.lexically_normal().string(), scene_io::kMaxYamlBytes));
+  t.recipe_sha256 =
+      sha256_hex(scene_io::read_input_file(r.file, r.file.lexically_normal().string(), scene_io::kMaxYamlBytes));
   static_cast<TopographyContact&>(t) = solve_topography_contact(r, threads);
-  t.experiment = topography_experiment(r, t, "Written by `asperity generate` from " + r.file.filename().string() +
-                                                 "; provenance in the header of junctions.csv.");
+  t.experiment = topography_experiment(r, t,
+                                       "Written by `asperity generate` from " + r.file.filename().string() +
+                                           "; provenance in the header of junctions.csv.");
   return t;
 }
 
@@ -39,10 +41,10 @@ std::string topography_junctions_csv(const TopographyRecipe& r, const Topography
                  "; regenerate rather than edit.");
   comment(s, "recipe_sha256: " + t.recipe_sha256);
   comment(s, "surface: " + topography_surface_text(r));
-  comment(s, std::string("seed: ") +
-                 (r.kind == TopographyKind::self_affine ? std::to_string(r.self_affine.seed) : "none"));
-  comment(s, "n: " + std::to_string(n) + ", pixel_m: " + num(t.pixel_m) + ", size_m: " +
-                 num(t.pixel_m * static_cast<double>(n)));
+  comment(
+      s, std::string("seed: ") + (r.kind == TopographyKind::self_affine ? std::to_string(r.self_affine.seed) : "none"));
+  comment(s, "n: " + std::to_string(n) + ", pixel_m: " + num(t.pixel_m) +
+                 ", size_m: " + num(t.pixel_m * static_cast<double>(n)));
   comment(s, "rms_height_m: " + num(t.rms_height_m) + ", rms_slope: " + num(t.rms_slope) +
                  " (before the sphere; heights sha256 " + t.heights_sha256 + ", float64 LE row-major)");
   comment(s, "sphere_radius_m: " + num(r.sphere_radius_m) + ", E: " + num(r.E_Pa) + " Pa, nu: " + num(r.nu) +
@@ -50,8 +52,8 @@ std::string topography_junctions_csv(const TopographyRecipe& r, const Topography
   comment(s, "load_N: " + num(r.load_N) + ", solver iterations: " + std::to_string(t.iterations) +
                  ", residual: " + num(t.residual) + " (tolerance " + num(r.tolerance) + ")");
   comment(s, "clusters: " + std::to_string(t.clusters) + " (connectivity " +
-                 (r.connectivity == Connectivity::four ? "4" : "8") + "), merges of overlapping equivalent discs: " +
-                 std::to_string(t.merges));
+                 (r.connectivity == Connectivity::four ? "4" : "8") +
+                 "), merges of overlapping equivalent discs: " + std::to_string(t.merges));
   comment(s, "junctions: " + std::to_string(J.size()) + ", total area_m2: " + num(total));
   s += "area_m2,x_m,y_m\n";
   for (std::size_t i = 0; i < J.size(); ++i)

@@ -15,8 +15,8 @@ namespace asperity {
 
 // Everything the generator learnt, for the provenance header: the contact and its experiment.
 struct TopographyJunctions : TopographyContact {
-  Experiment experiment;            // name, slider, junctions (x_m, y_m from the grid's centre)
-  std::string recipe_sha256;        // of the recipe file's bytes
+  Experiment experiment;      // name, slider, junctions (x_m, y_m from the grid's centre)
+  std::string recipe_sha256;  // of the recipe file's bytes
 };
 
 // Runs the recipe (surface → sphere → contact → clusters → merged junctions). InputError when

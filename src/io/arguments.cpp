@@ -15,7 +15,8 @@ std::string threads_problem(std::string_view text) {
   const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), n);
   if (ec == std::errc() && end == text.data() + text.size() && !text.empty() && n >= kMinThreads && n <= kMaxThreads)
     return {};
-  return "Value " + std::string(text) + " not in range " + std::to_string(kMinThreads) + " to " + std::to_string(kMaxThreads);
+  return "Value " + std::string(text) + " not in range " + std::to_string(kMinThreads) + " to " +
+         std::to_string(kMaxThreads);
 }
 
 int checked_threads(std::string_view text, const std::string& argument) {

@@ -45,7 +45,6 @@ bool write_fully(int fd, std::string_view bytes) {
   return true;
 }
 
-
 AtomicFileWriter::AtomicFileWriter(const fs::path& path, Durability durability) : path_(path), durability_(durability) {
   tmp_ = path.parent_path() / temp_name(path.filename().string());
   // Guarded before it exists: a signal between its creation and the guard would leave it behind.
@@ -82,8 +81,10 @@ void AtomicFileWriter::write(std::string_view bytes) {
     return;
   }
   flush();
-  if (bytes.size() >= kBuffer) put(bytes);  // large pieces go straight to the file, uncopied
-  else buffer_.append(bytes);
+  if (bytes.size() >= kBuffer)
+    put(bytes);  // large pieces go straight to the file, uncopied
+  else
+    buffer_.append(bytes);
 }
 
 void AtomicFileWriter::commit() {

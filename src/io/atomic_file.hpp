@@ -16,7 +16,6 @@ namespace asperity {
 
 enum class Durability { unsynced, synced };
 
-
 // Throws std::runtime_error naming the path and the system's reason; the temporary is removed.
 void write_file_atomically(const std::filesystem::path& path, const std::string& text, Durability durability);
 

@@ -33,8 +33,10 @@ std::vector<std::string> csv_split(std::string_view line) {
     const char c = line[i];
     if (in_quotes) {
       if (c == '"') {
-        if (i + 1 < line.size() && line[i + 1] == '"') cur += '"', ++i;
-        else in_quotes = false;
+        if (i + 1 < line.size() && line[i + 1] == '"')
+          cur += '"', ++i;
+        else
+          in_quotes = false;
       } else {
         cur += c;
       }
@@ -68,7 +70,8 @@ std::vector<std::string> split_plain_fields(std::string_view line) {
   std::size_t start = 0;
   while (true) {
     const std::size_t comma = line.find(',', start);
-    out.emplace_back(trim(line.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start)));
+    out.emplace_back(
+        trim(line.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start)));
     if (comma == std::string_view::npos) break;
     start = comma + 1;
   }
@@ -122,10 +125,9 @@ CsvTable read_numeric_csv(const std::filesystem::path& path, const std::string& 
         const int col = static_cast<int>(c) + 1;
         if (name.empty()) throw InputError(display, line_no, "", "empty column name in the header", col);
         if (std::find(allowed.begin(), allowed.end(), name) == allowed.end())
-          throw InputError(display, line_no, name,
-                           "unknown column " + quote(name) + did_you_mean(name, allowed) +
-                               "; valid columns: " + join(allowed),
-                           col);
+          throw InputError(
+              display, line_no, name,
+              "unknown column " + quote(name) + did_you_mean(name, allowed) + "; valid columns: " + join(allowed), col);
         if (t.column(name) >= 0) throw InputError(display, line_no, name, "duplicate column", col);
         t.columns.push_back(name);
       }

@@ -60,9 +60,9 @@ CsvMatrix read_numeric_matrix_csv(const std::filesystem::path& path, const std::
 
 // --- text tables we write and read back (results tables: a study's table.csv, matrix.csv) ----
 struct TextTable {
-  std::vector<std::string> columns;           // the header's names
-  std::vector<int> lines;                     // 1-based line of each row
-  std::vector<std::vector<std::string>> rows; // each as wide as the header
+  std::vector<std::string> columns;            // the header's names
+  std::vector<int> lines;                      // 1-based line of each row
+  std::vector<std::vector<std::string>> rows;  // each as wide as the header
   // Index of `name`; InputError "DISPLAY:LINE: NAME: column missing" (line: the header's) when absent.
   std::size_t column(const std::string& name) const;
   std::string display;

@@ -56,7 +56,8 @@ void Sha256::update(std::string_view bytes) {
 std::string Sha256::hex() {
   unsigned char d[EVP_MAX_MD_SIZE];
   unsigned n = 0;
-  if (EVP_DigestFinal_ex(static_cast<EVP_MD_CTX*>(ctx_), d, &n) != 1) throw std::runtime_error("SHA-256 failed (libcrypto)");
+  if (EVP_DigestFinal_ex(static_cast<EVP_MD_CTX*>(ctx_), d, &n) != 1)
+    throw std::runtime_error("SHA-256 failed (libcrypto)");
   return hex_of(d, n);
 }
 

@@ -41,7 +41,8 @@ std::string journal_header(std::string_view header) {
 }
 
 std::optional<JournalDigest> journal_digest_of(std::string_view first_line, std::string_view header) {
-  if (first_line.size() <= header.size() || first_line.substr(0, header.size()) != header || first_line[header.size()] != ',')
+  if (first_line.size() <= header.size() || first_line.substr(0, header.size()) != header ||
+      first_line[header.size()] != ',')
     return std::nullopt;
   const std::string_view column = first_line.substr(header.size() + 1);
   if (column == kJournalDigestColumn) return JournalDigest::sha256;

@@ -27,9 +27,7 @@ std::string format_printf(const char* format, double x) {
   return buf;
 }
 
-std::string format_cell(const char* format, double x) {
-  return std::isfinite(x) ? format_printf(format, x) : "–";
-}
+std::string format_cell(const char* format, double x) { return std::isfinite(x) ? format_printf(format, x) : "–"; }
 
 std::string format_short(double x) {
   char buf[32];
@@ -53,8 +51,7 @@ NumberParse parse_double(std::string_view text, double& out) {
   {
     std::string_view l = lower;
     if (l.front() == '+' || l.front() == '-') l.remove_prefix(1);
-    if (l == "nan" || l == ".nan" || l == "inf" || l == ".inf" || l == "infinity")
-      return NumberParse::not_finite;
+    if (l == "nan" || l == ".nan" || l == "inf" || l == ".inf" || l == "infinity") return NumberParse::not_finite;
   }
   if (s.front() == '+' && s.size() > 1 && s[1] != '-' && s[1] != '+') s.remove_prefix(1);
   double v = 0;
@@ -63,8 +60,8 @@ NumberParse parse_double(std::string_view text, double& out) {
   if (r.ec != std::errc() || r.ptr == s.data()) return NumberParse::not_a_number;
   if (r.ptr != s.data() + s.size()) {
     const char c = *r.ptr;
-    const bool word_follows = c == ' ' || c == '\t' || std::isalpha(static_cast<unsigned char>(c)) ||
-                              c == '%' || c == '/' || c == '*' || c == '_';
+    const bool word_follows = c == ' ' || c == '\t' || std::isalpha(static_cast<unsigned char>(c)) || c == '%' ||
+                              c == '/' || c == '*' || c == '_';
     return word_follows ? NumberParse::has_unit : NumberParse::not_a_number;
   }
   if (!std::isfinite(v)) return NumberParse::not_finite;
@@ -86,8 +83,10 @@ bool parse_int(std::string_view text, int& out) {
 std::string quote(std::string_view s) {
   std::string q;
   for (char c : s) {
-    if (c == '\n' || c == '\r' || c == '\t') c = ' ';
-    else if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';  // messages stay one clean line
+    if (c == '\n' || c == '\r' || c == '\t')
+      c = ' ';
+    else if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+      c = '?';  // messages stay one clean line
     q += c;
   }
   if (q.size() > 40) q = q.substr(0, 37) + "...";

@@ -38,9 +38,12 @@ std::string duration_text(double s) {
   if (!std::isfinite(s)) return "?";
   char buf[32];
   const long t = std::lround(s);
-  if (t >= 3600) std::snprintf(buf, sizeof buf, "%ldh%02ldm", t / 3600, (t / 60) % 60);
-  else if (t >= 60) std::snprintf(buf, sizeof buf, "%ldm%02lds", t / 60, t % 60);
-  else std::snprintf(buf, sizeof buf, "%lds", t);
+  if (t >= 3600)
+    std::snprintf(buf, sizeof buf, "%ldh%02ldm", t / 3600, (t / 60) % 60);
+  else if (t >= 60)
+    std::snprintf(buf, sizeof buf, "%ldm%02lds", t / 60, t % 60);
+  else
+    std::snprintf(buf, sizeof buf, "%lds", t);
   return buf;
 }
 
@@ -51,8 +54,15 @@ double eta_seconds(double elapsed_s, double done, double total) {
 
 ProgressLine::ProgressLine(std::string what, std::string unit, double total, bool quiet, double delay_s,
                            double log_period_s)
-    : what_(std::move(what)), unit_(std::move(unit)), total_(total), quiet_(quiet), tty_(::isatty(2) == 1),
-      delay_s_(delay_s), log_period_s_(log_period_s), start_(Clock::now()), last_(start_) {}
+    : what_(std::move(what)),
+      unit_(std::move(unit)),
+      total_(total),
+      quiet_(quiet),
+      tty_(::isatty(2) == 1),
+      delay_s_(delay_s),
+      log_period_s_(log_period_s),
+      start_(Clock::now()),
+      last_(start_) {}
 
 ProgressLine::~ProgressLine() { close(); }
 

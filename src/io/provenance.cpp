@@ -31,8 +31,7 @@ std::string compiler_text() {
 }  // namespace
 
 BuildInfo build_info() {
-  return BuildInfo{ASPERITY_VERSION, ASPERITY_GIT_COMMIT, ASPERITY_BUILD_TYPE, compiler_text(),
-                   ASPERITY_LIBRARIES};
+  return BuildInfo{ASPERITY_VERSION, ASPERITY_GIT_COMMIT, ASPERITY_BUILD_TYPE, compiler_text(), ASPERITY_LIBRARIES};
 }
 
 std::string clean_build_id() {
@@ -45,8 +44,8 @@ std::string code_build_id() {
   if (std::string id = clean_build_id(); !id.empty()) return id;
   const BuildInfo b = build_info();
   try {
-    return "asperity " + b.version + " commit " + b.git_commit + " " + b.build_type + " " + b.compiler + " executable " +
-           hex16(fnv1a64(read_file_text("/proc/self/exe")));
+    return "asperity " + b.version + " commit " + b.git_commit + " " + b.build_type + " " + b.compiler +
+           " executable " + hex16(fnv1a64(read_file_text("/proc/self/exe")));
   } catch (const std::exception&) {  // no /proc: nothing names this code
     return "";
   }
@@ -86,8 +85,8 @@ std::string provenance_yaml(const std::string& command_line, const std::vector<D
       hash = hex16(fnv1a64(read_file_text(f.path)));
     } catch (const std::exception&) {
     }
-    y << "    - {role: " << yaml_quoted(f.role) << ", path: " << yaml_quoted(shown) << ", fnv1a64: " << yaml_quoted(hash)
-      << "}\n";
+    y << "    - {role: " << yaml_quoted(f.role) << ", path: " << yaml_quoted(shown)
+      << ", fnv1a64: " << yaml_quoted(hash) << "}\n";
     any = true;
   }
   if (!any) y << "    []\n";

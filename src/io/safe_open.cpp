@@ -37,8 +37,9 @@ const char* what_it_is(mode_t m) {
 
 [[noreturn]] void refuse(const fs::path& p, const std::string& key, const std::string& what) {
   throw InputError(p.string(), 0, key,
-                   "is " + what + ": asperity reads and writes only regular files inside its output folders "
-                   "(never through a link, never a FIFO or device); remove it");
+                   "is " + what +
+                       ": asperity reads and writes only regular files inside its output folders "
+                       "(never through a link, never a FIFO or device); remove it");
 }
 
 [[noreturn]] void fail(const std::string& what, const fs::path& p) {

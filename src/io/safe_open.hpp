@@ -26,7 +26,8 @@ int open_regular(const std::filesystem::path& path, int flags, const std::string
 
 // Throws InputError like open_in_folder when a component of `rel` below `folder` exists and is
 // not a real folder (a symbolic link, a file); absent components are fine (they will be made).
-void check_real_folders(const std::filesystem::path& folder, const std::filesystem::path& rel, const std::string& key = "");
+void check_real_folders(const std::filesystem::path& folder, const std::filesystem::path& rel,
+                        const std::string& key = "");
 
 // The whole text of `path` read through open_regular into `text`; false when it does not exist.
 bool read_regular(const std::filesystem::path& path, std::string& text, const std::string& key = "");

@@ -8,22 +8,26 @@ namespace asperity {
 namespace {
 
 // A non-negative whole number from the environment variable `name`.
-std::uint64_t slurm_number(const std::function<const char*(const char*)>& env, const char* name, const std::string& option) {
+std::uint64_t slurm_number(const std::function<const char*(const char*)>& env, const char* name,
+                           const std::string& option) {
   const char* v = env(name);
   const std::string text = v ? v : "";
   std::uint64_t n = 0;
   const auto r = std::from_chars(text.data(), text.data() + text.size(), n);
   if (text.empty() || r.ec != std::errc() || r.ptr != text.data() + text.size())
-    throw std::invalid_argument(option + " auto: " + name +
-                                (v ? " is '" + text + "', not a whole number" : " is not set (not inside a SLURM job array?)"));
+    throw std::invalid_argument(
+        option + " auto: " + name +
+        (v ? " is '" + text + "', not a whole number" : " is not set (not inside a SLURM job array?)"));
   return n;
 }
 
 }  // namespace
 
-Shard parse_shard(const std::string& text, const std::function<const char*(const char*)>& env, const std::string& option) {
+Shard parse_shard(const std::string& text, const std::function<const char*(const char*)>& env,
+                  const std::string& option) {
   if (text == "auto") {
-    const std::uint64_t id = slurm_number(env, "SLURM_ARRAY_TASK_ID", option), lo = slurm_number(env, "SLURM_ARRAY_TASK_MIN", option),
+    const std::uint64_t id = slurm_number(env, "SLURM_ARRAY_TASK_ID", option),
+                        lo = slurm_number(env, "SLURM_ARRAY_TASK_MIN", option),
                         hi = slurm_number(env, "SLURM_ARRAY_TASK_MAX", option),
                         count = slurm_number(env, "SLURM_ARRAY_TASK_COUNT", option);
     if (hi < lo || hi - lo + 1 != count || id < lo || id > hi)
@@ -33,7 +37,8 @@ Shard parse_shard(const std::string& text, const std::function<const char*(const
     return Shard{id - lo, count};
   }
   const auto bad = [&] {
-    return std::invalid_argument(option + " " + text + ": expected I/N with 0 <= I < N, e.g. 0/4, or auto (a SLURM array task)");
+    return std::invalid_argument(option + " " + text +
+                                 ": expected I/N with 0 <= I < N, e.g. 0/4, or auto (a SLURM array task)");
   };
   const std::size_t slash = text.find('/');
   if (slash == std::string::npos) throw bad();

@@ -19,8 +19,9 @@ struct Shard {
   }
 };
 
-Shard parse_shard(const std::string& text,
-                  const std::function<const char*(const char*)>& env = [](const char* n) { return std::getenv(n); },
-                  const std::string& option = "--shard");
+Shard parse_shard(
+    const std::string& text,
+    const std::function<const char*(const char*)>& env = [](const char* n) { return std::getenv(n); },
+    const std::string& option = "--shard");
 
 }  // namespace asperity

@@ -173,9 +173,11 @@ std::size_t remove_stale_temporaries(const fs::path& folder, std::string_view pr
     const std::size_t n_dash = tail.rfind('-');
     if (n_dash == std::string::npos || n_dash == 0) continue;
     const std::size_t pid_dash = tail.rfind('-', n_dash - 1);
-    const std::string pid_text = pid_dash == std::string::npos ? tail.substr(0, n_dash) : tail.substr(pid_dash + 1, n_dash - pid_dash - 1);
+    const std::string pid_text =
+        pid_dash == std::string::npos ? tail.substr(0, n_dash) : tail.substr(pid_dash + 1, n_dash - pid_dash - 1);
     const std::string host = pid_dash == std::string::npos ? this_host() : tail.substr(0, pid_dash);
-    if (pid_text.empty() || pid_text.find_first_not_of("0123456789") != std::string::npos || pid_text.size() > 9) continue;
+    if (pid_text.empty() || pid_text.find_first_not_of("0123456789") != std::string::npos || pid_text.size() > 9)
+      continue;
     const pid_t pid = static_cast<pid_t>(std::stol(pid_text));
     bool stale = host == this_host() && pid != ::getpid() && ::kill(pid, 0) != 0 && errno == ESRCH;
     if (!stale) {

@@ -11,8 +11,8 @@
 #include <cctype>
 #include <cerrno>
 #include <charconv>
-#include <cstdio>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <map>
 #include <sstream>
@@ -32,13 +32,13 @@ int mark_line(const YAML::Node& n) {
 }
 
 bool under(const std::string& key, const std::string& prefix) {
-  return key.size() > prefix.size() && key.compare(0, prefix.size(), prefix) == 0 &&
-         key[prefix.size()] == '.';
+  return key.size() > prefix.size() && key.compare(0, prefix.size(), prefix) == 0 && key[prefix.size()] == '.';
 }
 
 }  // namespace
 
-std::pair<std::string, int> value_origin(const Source& src, const YAML::Node& at, const std::string& key, int fallback_line) {
+std::pair<std::string, int> value_origin(const Source& src, const YAML::Node& at, const std::string& key,
+                                         int fallback_line) {
   if (const int line = mark_line(at); line > 0) return {src.file, line};
   if (src.sets) {
     for (auto it = src.sets->rbegin(); it != src.sets->rend(); ++it)
@@ -53,9 +53,7 @@ void fail(const Source& src, const YAML::Node& at, const std::string& key, const
   throw InputError(file, line, key, message);
 }
 
-std::string join_key(const std::string& path, const std::string& key) {
-  return path.empty() ? key : path + "." + key;
-}
+std::string join_key(const std::string& path, const std::string& key) { return path.empty() ? key : path + "." + key; }
 
 std::string node_kind(const YAML::Node& n) {
   if (!n.IsDefined() || n.IsNull()) return "nothing";
@@ -87,7 +85,8 @@ std::string did_you_mean(const std::string& word, const std::vector<std::string>
   return pick ? " (did you mean '" + *pick + "'?)" : "";
 }
 
-std::string misplaced_key_hint(const std::string& path, const std::string& key, const std::vector<std::string>& layout) {
+std::string misplaced_key_hint(const std::string& path, const std::string& key,
+                               const std::vector<std::string>& layout) {
   const std::string here = join_key(path, key);
   std::vector<std::string> homes;
   for (const std::string& d : layout) {
@@ -151,7 +150,8 @@ struct Fd {
 
 std::string input_file_problem(const std::filesystem::path& path, std::uintmax_t max_bytes) {
   struct stat st {};
-  if (::stat(path.c_str(), &st) != 0) return errno == ENOENT || errno == ENOTDIR ? "file not found" : std::strerror(errno);
+  if (::stat(path.c_str(), &st) != 0)
+    return errno == ENOENT || errno == ENOTDIR ? "file not found" : std::strerror(errno);
   return stat_problem(st, max_bytes);
 }
 
@@ -162,7 +162,8 @@ std::string read_input_file(const std::filesystem::path& path, const std::string
   const Fd f{::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC)};
   if (f.fd < 0) throw InputError(display, 0, "", std::string("cannot open file: ") + std::strerror(errno));
   struct stat st {};
-  if (::fstat(f.fd, &st) != 0) throw InputError(display, 0, "", std::string("cannot read file: ") + std::strerror(errno));
+  if (::fstat(f.fd, &st) != 0)
+    throw InputError(display, 0, "", std::string("cannot read file: ") + std::strerror(errno));
   if (std::string why = stat_problem(st, max_bytes); !why.empty()) throw InputError(display, 0, "", why);
   std::string text;
   text.reserve(static_cast<std::size_t>(st.st_size));
@@ -174,7 +175,8 @@ std::string read_input_file(const std::filesystem::path& path, const std::string
     if (n == 0) break;
     text.append(buf, static_cast<std::size_t>(n));
     if (text.size() > max_bytes)  // grew while being read
-      throw InputError(display, 0, "", "is more than the " + size_text(max_bytes) + " an input file of this kind may have");
+      throw InputError(display, 0, "",
+                       "is more than the " + size_text(max_bytes) + " an input file of this kind may have");
   }
   return text;
 }
@@ -185,7 +187,11 @@ static void check_yaml_text(const std::string& text, const std::string& display,
   int line = 1, col = 0;
   for (unsigned char c : text) {
     ++col;
-    if (c == '\n') { ++line; col = 0; continue; }
+    if (c == '\n') {
+      ++line;
+      col = 0;
+      continue;
+    }
     if ((c < 0x20 && c != '\t' && c != '\r') || c == 0x7f) {
       char hex[8];
       std::snprintf(hex, sizeof hex, "0x%02x", c);
@@ -203,8 +209,16 @@ static void check_utf8(const std::string& text, const std::string& display, cons
   for (std::size_t i = 0; i < text.size();) {
     const auto c = static_cast<unsigned char>(text[i]);
     ++col;
-    if (c == '\n') { ++line; col = 0; ++i; continue; }
-    if (c < 0x80) { ++i; continue; }
+    if (c == '\n') {
+      ++line;
+      col = 0;
+      ++i;
+      continue;
+    }
+    if (c < 0x80) {
+      ++i;
+      continue;
+    }
     // Lead byte → sequence length and the smallest code point it may encode (no overlongs).
     const std::size_t len = c >= 0xC2 && c <= 0xDF ? 2 : c >= 0xE0 && c <= 0xEF ? 3 : c >= 0xF0 && c <= 0xF4 ? 4 : 0;
     bool ok = len != 0 && i + len <= text.size();
@@ -233,14 +247,19 @@ namespace {
 // expands it, and nested aliases grow geometrically (a "billion laughs" of 600 bytes re-emits as
 // gigabytes). An anchor's size is known when it closes, so the sum is exact and costs O(events).
 struct DocumentCounter : YAML::EventHandler {
-  struct TooLarge { int line; };    // thrown out of the parser at the first alias over the limit
+  struct TooLarge {
+    int line;
+  };  // thrown out of the parser at the first alias over the limit
   int documents = 0;
-  int second_line = 0;  // 1-based line where a second document starts
-  std::uint64_t limit = 0;          // largest expanded size accepted
-  std::uint64_t total = 0;          // expanded size of everything read so far
+  int second_line = 0;      // 1-based line where a second document starts
+  std::uint64_t limit = 0;  // largest expanded size accepted
+  std::uint64_t total = 0;  // expanded size of everything read so far
   std::map<YAML::anchor_t, std::uint64_t> anchor_size;
-  struct Open { YAML::anchor_t anchor; std::uint64_t size; };
-  std::vector<Open> open;           // collections being read, innermost last
+  struct Open {
+    YAML::anchor_t anchor;
+    std::uint64_t size;
+  };
+  std::vector<Open> open;  // collections being read, innermost last
 
   // A node of expanded size n (≤ limit, so no sum here can overflow) read at mark m.
   void count(std::uint64_t n, const YAML::Mark& m) {
@@ -310,7 +329,8 @@ YAML::Node load_one_document(const std::string& text, const std::string& display
     DocumentCounter counter;
     counter.limit = std::max<std::uint64_t>(kMaxYamlExpansion, 4 * text.size());
     try {
-      while (counter.documents < 2 && parser.HandleNextDocument(counter)) {}
+      while (counter.documents < 2 && parser.HandleNextDocument(counter)) {
+      }
     } catch (const DocumentCounter::TooLarge& big) {
       throw InputError(display, line_of * big.line, key,
                        "aliases (*name) expand this YAML to more than " + std::to_string(counter.limit) +
@@ -385,8 +405,7 @@ MapView::MapView(Source src, const YAML::Node& node, std::string path, std::vect
     const std::string k = kn.Scalar();
     for (const auto& e : entries_)
       if (e.first == k)
-        fail(src_, kn, key(k),
-             "duplicate key (first given at line " + std::to_string(mark_line(e.second.first)) + ")",
+        fail(src_, kn, key(k), "duplicate key (first given at line " + std::to_string(mark_line(e.second.first)) + ")",
              fallback_line_);
     if (std::find(allowed.begin(), allowed.end(), k) == allowed.end())
       fail(src_, kn, key(k),
@@ -431,8 +450,9 @@ double MapView::number(const YAML::Node& n, const std::string& k, const char* un
     case NumberParse::ok:
       return v;
     case NumberParse::has_unit:
-      fail_at(n, k, std::string("expected a plain number") + (unit ? in_unit : " (dimensionless)") +
-                        ", got " + quote(n.Scalar()));
+      fail_at(n, k,
+              std::string("expected a plain number") + (unit ? in_unit : " (dimensionless)") + ", got " +
+                  quote(n.Scalar()));
     case NumberParse::not_finite:
       fail_at(n, k, "must be a finite number, got " + quote(n.Scalar()));
     default:
@@ -478,7 +498,8 @@ std::vector<std::string> MapView::string_list(const YAML::Node& n, const std::st
   if (!n.IsSequence()) fail_at(n, k, "expected a list such as [t, Q, A], got " + node_kind(n));
   std::vector<std::string> out;
   for (const auto& c : n) {
-    if (!c.IsScalar()) fail(src_, c.Mark().is_null() ? n : c, key(k), "list items must be names, got " + node_kind(c), fallback_line_);
+    if (!c.IsScalar())
+      fail(src_, c.Mark().is_null() ? n : c, key(k), "list items must be names, got " + node_kind(c), fallback_line_);
     out.push_back(c.Scalar());
   }
   return out;
@@ -494,11 +515,21 @@ std::string yaml_quoted(const std::string& s) {
   std::string out = "\"";
   for (unsigned char c : s) {
     switch (c) {
-      case '"': out += "\\\""; break;
-      case '\\': out += "\\\\"; break;
-      case '\n': out += "\\n"; break;
-      case '\t': out += "\\t"; break;
-      case '\r': out += "\\r"; break;
+      case '"':
+        out += "\\\"";
+        break;
+      case '\\':
+        out += "\\\\";
+        break;
+      case '\n':
+        out += "\\n";
+        break;
+      case '\t':
+        out += "\\t";
+        break;
+      case '\r':
+        out += "\\r";
+        break;
       default:
         if (c < 0x20 || c == 0x7F) {
           out += "\\x";

@@ -41,11 +41,11 @@ std::string misplaced_key_hint(const std::string& path, const std::string& key, 
 // for a node an override put there, or {file, fallback_line}.
 std::pair<std::string, int> value_origin(const Source& src, const YAML::Node& at, const std::string& key,
                                          int fallback_line = 0);
-[[noreturn]] void fail(const Source& src, const YAML::Node& at, const std::string& key,
-                       const std::string& message, int fallback_line = 0);
+[[noreturn]] void fail(const Source& src, const YAML::Node& at, const std::string& key, const std::string& message,
+                       int fallback_line = 0);
 
 std::string join_key(const std::string& path, const std::string& key);
-std::string node_kind(const YAML::Node& n);  // "a map", "a list", "a value", "nothing"
+std::string node_kind(const YAML::Node& n);                             // "a map", "a list", "a value", "nothing"
 std::size_t edit_distance(const std::string& a, const std::string& b);  // case-insensitive
 // " (did you mean 'x'?)" when some candidate is within edit distance 2, else "".
 std::string did_you_mean(const std::string& word, const std::vector<std::string>& candidates);
@@ -71,8 +71,7 @@ std::string input_file_problem(const std::filesystem::path& path, std::uintmax_t
 // The whole text of an input file; any problem above (checked on the opened file, so a file
 // swapped after the check is caught too) or a read error → InputError "display: message".
 // Never blocks on a FIFO and never reads more than max_bytes + 1 bytes.
-std::string read_input_file(const std::filesystem::path& path, const std::string& display,
-                            std::uintmax_t max_bytes);
+std::string read_input_file(const std::filesystem::path& path, const std::string& display, std::uintmax_t max_bytes);
 
 // Reads a whole YAML file (first and only document, read_input_file with kMaxYamlBytes); Null
 // when empty. Parse errors → InputError.

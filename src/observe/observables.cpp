@@ -11,20 +11,48 @@ namespace asperity {
 
 namespace {
 
-#define REAL(F, UNIT) ObservableField{#F, UNIT, ObservableKind::real, [](const Observables& o) { return static_cast<double>(o.F); }, nullptr, true}
-#define COUNT(F) ObservableField{#F, "", ObservableKind::count, [](const Observables& o) { return static_cast<double>(o.F); }, nullptr, true}
+#define REAL(F, UNIT)                                                                                            \
+  ObservableField {                                                                                              \
+#F, UNIT, ObservableKind::real, [](const Observables& o) { return static_cast<double>(o.F); }, nullptr, true \
+  }
+#define COUNT(F)                                                                                                \
+  ObservableField {                                                                                             \
+#F, "", ObservableKind::count, [](const Observables& o) { return static_cast<double>(o.F); }, nullptr, true \
+  }
 const std::vector<ObservableField> kFields{
-    COUNT(N), REAL(A0, "m^2"), REAL(K0, "N/m"), REAL(T0, "s"), REAL(dt, "s"), REAL(Q_s, "N"), REAL(A_s, "m^2"),
+    COUNT(N),
+    REAL(A0, "m^2"),
+    REAL(K0, "N/m"),
+    REAL(T0, "s"),
+    REAL(dt, "s"),
+    REAL(Q_s, "N"),
+    REAL(A_s, "m^2"),
     REAL(t_peak, "s"),
-    ObservableField{"peak_found", "", ObservableKind::flag, [](const Observables& o) { return o.peak_found ? 1.0 : 0.0; },
-                    nullptr, true},
+    ObservableField{"peak_found", "", ObservableKind::flag,
+                    [](const Observables& o) { return o.peak_found ? 1.0 : 0.0; }, nullptr, true},
     ObservableField{"peak_rule", "", ObservableKind::label, nullptr,
                     [](const Observables& o) { return to_string(o.peak_rule); }, false},
-    REAL(alpha, "m^2/N^2"), REAL(alpha_R2, ""), COUNT(alpha_points), REAL(shape_exponent, ""),
-    REAL(shape_prefactor, "m^2/N^n"), REAL(area_drop_fraction, ""), REAL(alpha_measured, "m^2/N^2"),
-    REAL(alpha_measured_R2, ""), REAL(shape_exponent_measured, ""), COUNT(ss_cycles), REAL(ss_drop, "N"),
-    REAL(ss_period, "s"), COUNT(n_peaks), REAL(max_f_over_sigmaA, ""), REAL(max_f_over_sigma_exp_A, ""),
-    REAL(t_end, "s"), COUNT(steps), COUNT(rejected), COUNT(force_evals), COUNT(slips), COUNT(repins),
+    REAL(alpha, "m^2/N^2"),
+    REAL(alpha_R2, ""),
+    COUNT(alpha_points),
+    REAL(shape_exponent, ""),
+    REAL(shape_prefactor, "m^2/N^n"),
+    REAL(area_drop_fraction, ""),
+    REAL(alpha_measured, "m^2/N^2"),
+    REAL(alpha_measured_R2, ""),
+    REAL(shape_exponent_measured, ""),
+    COUNT(ss_cycles),
+    REAL(ss_drop, "N"),
+    REAL(ss_period, "s"),
+    COUNT(n_peaks),
+    REAL(max_f_over_sigmaA, ""),
+    REAL(max_f_over_sigma_exp_A, ""),
+    REAL(t_end, "s"),
+    COUNT(steps),
+    COUNT(rejected),
+    COUNT(force_evals),
+    COUNT(slips),
+    COUNT(repins),
     ObservableField{"wall_s", "s", ObservableKind::real, [](const Observables& o) { return o.wall_s; }, nullptr, false},
 };
 #undef REAL
@@ -42,16 +70,19 @@ const ObservableField& observable_field(const std::string& name) {
 
 std::string observable_text(const ObservableField& f, const Observables& o, std::string (*real)(double)) {
   switch (f.kind) {
-    case ObservableKind::real: return real(f.value(o));
-    case ObservableKind::count: return std::to_string(static_cast<long long>(f.value(o)));
-    case ObservableKind::flag: return f.value(o) != 0 ? "true" : "false";
-    case ObservableKind::label: return f.label(o);
+    case ObservableKind::real:
+      return real(f.value(o));
+    case ObservableKind::count:
+      return std::to_string(static_cast<long long>(f.value(o)));
+    case ObservableKind::flag:
+      return f.value(o) != 0 ? "true" : "false";
+    case ObservableKind::label:
+      return f.label(o);
   }
   return "";
 }
 
-Observables summarize(const Scene& scene, const RunInfo& info, const Recorder& rec,
-                      double wall_s, int ss_cycles_max) {
+Observables summarize(const Scene& scene, const RunInfo& info, const Recorder& rec, double wall_s, int ss_cycles_max) {
   Observables o;
   o.N = info.N;
   o.A0 = info.A0;

@@ -16,24 +16,24 @@ namespace asperity {
 struct Observables {
   static constexpr double nan = std::numeric_limits<double>::quiet_NaN();
   // Initial state.
-  std::size_t N = 0;      // junctions
-  double A0 = nan;        // m², Σ A0_i
-  double K0 = nan;        // N/m, Σ k_i(t = 0)
-  double T0 = nan;        // s
-  double dt = nan;        // s, T0 / C_t
+  std::size_t N = 0;  // junctions
+  double A0 = nan;    // m², Σ A0_i
+  double K0 = nan;    // N/m, Σ k_i(t = 0)
+  double T0 = nan;    // s
+  double dt = nan;    // s, T0 / C_t
   // Static friction peak (end of the loading branch).
-  double Q_s = nan;       // N
-  double A_s = nan;       // m², A at the peak
-  double t_peak = nan;    // s
-  bool peak_found = false;// the contact failed (peak_rule ≠ none); else Q_s is the highest Q
-                          // after the first slip (NaN without a slip)
+  double Q_s = nan;                     // N
+  double A_s = nan;                     // m², A at the peak
+  double t_peak = nan;                  // s
+  bool peak_found = false;              // the contact failed (peak_rule ≠ none); else Q_s is the highest Q
+                                        // after the first slip (NaN without a slip)
   PeakRule peak_rule = PeakRule::none;  // how the peak was found (recorder.hpp)
   // Shape of A(Q) on the loading branch.
   double alpha = nan;     // m²/N², A ≈ A0 − α Q² (A0 fixed)
   double alpha_R2 = nan;  // R² of that fit
   std::size_t alpha_points = 0;
-  double shape_exponent = nan;  // n of A0 − A = c Qⁿ (1: quasi-linear, 2: quadratic)
-  double shape_prefactor = nan; // c [m²/Nⁿ]
+  double shape_exponent = nan;      // n of A0 − A = c Qⁿ (1: quasi-linear, 2: quadratic)
+  double shape_prefactor = nan;     // c [m²/Nⁿ]
   double area_drop_fraction = nan;  // 1 − A_s/A0
   // The same fits of the experiment's measured A(Q), when it has one (A0 fixed at Σ A0_i, as
   // the paper does); NaN otherwise. The paper calibrates α_b so that alpha = alpha_measured.
@@ -42,16 +42,16 @@ struct Observables {
   double shape_exponent_measured = nan;
   // Stick-slip over the first cycles (stick_slip_stats, n = 5).
   int ss_cycles = 0;
-  double ss_drop = nan;   // N, mean Q_max − Q_min
-  double ss_period = nan; // s, mean time between peaks
-  std::size_t n_peaks = 0;// confirmed peaks
+  double ss_drop = nan;     // N, mean Q_max − Q_min
+  double ss_period = nan;   // s, mean time between peaks
+  std::size_t n_peaks = 0;  // confirmed peaks
   // Claim 7.
   double max_f_over_sigmaA = nan;
   double max_f_over_sigma_exp_A = nan;
   // Run.
-  double t_end = nan;     // s
+  double t_end = nan;  // s
   std::int64_t steps = 0, rejected = 0, force_evals = 0, slips = 0, repins = 0;
-  double wall_s = nan;    // s, wall-clock time of the integration
+  double wall_s = nan;  // s, wall-clock time of the integration
 };
 
 // The fields of Observables in one table, in the order every writer lists them (summary.yaml,
@@ -67,9 +67,9 @@ struct ObservableField {
   const char* name;
   const char* unit;  // SI unit; "" when dimensionless or not a number
   ObservableKind kind;
-  double (*value)(const Observables&);        // real, count (exact below 2^53), flag (0/1)
+  double (*value)(const Observables&);       // real, count (exact below 2^53), flag (0/1)
   const char* (*label)(const Observables&);  // label only
-  bool per_point;   // a column of a sweep store's points.csv (peak_rule and wall_s are not)
+  bool per_point;                            // a column of a sweep store's points.csv (peak_rule and wall_s are not)
 };
 
 const std::vector<ObservableField>& observable_fields();

@@ -50,9 +50,15 @@ PeakPairing pair_peaks(std::span<const SampledPeak> measured, std::span<const Sa
   out.chi2 = cost[at(m, n)];
   for (std::size_t i = m, j = n; i > 0 || j > 0;) {
     switch (step[at(i, j)]) {
-      case 0: ++out.unpaired_measured, --i; break;
-      case 1: ++out.unpaired_model, --j; break;
-      default: ++out.pairs, --i, --j; break;
+      case 0:
+        ++out.unpaired_measured, --i;
+        break;
+      case 1:
+        ++out.unpaired_model, --j;
+        break;
+      default:
+        ++out.pairs, --i, --j;
+        break;
     }
   }
   return out;

@@ -12,8 +12,8 @@ namespace {
 
 void check_sizes(std::span<const double> Q, std::span<const double> A) {
   if (Q.size() != A.size())
-    throw std::invalid_argument("A(Q) fit: Q and A have different lengths (" +
-                                std::to_string(Q.size()) + " vs " + std::to_string(A.size()) + ")");
+    throw std::invalid_argument("A(Q) fit: Q and A have different lengths (" + std::to_string(Q.size()) + " vs " +
+                                std::to_string(A.size()) + ")");
 }
 
 // Column of Q and A out of samples, so that both kinds of input share one implementation.
@@ -77,8 +77,7 @@ QuadraticFit fit_quadratic_area(const MeasuredCurve& curve, double A0) {
   return fit_quadratic_area(curve.Q_N, curve.A_m2, A0);
 }
 
-ShapeIndex fit_power_law(std::span<const double> Q, std::span<const double> A, double A0,
-                         double q_min_fraction) {
+ShapeIndex fit_power_law(std::span<const double> Q, std::span<const double> A, double A0, double q_min_fraction) {
   check_sizes(Q, A);
   ShapeIndex s;
   double q_max = -std::numeric_limits<double>::infinity();
@@ -97,8 +96,7 @@ ShapeIndex fit_power_law(std::span<const double> Q, std::span<const double> A, d
     }
   }
   s.n_points = lx.size();
-  if (lx.size() < 2 || *std::max_element(lx.begin(), lx.end()) == *std::min_element(lx.begin(), lx.end()))
-    return s;
+  if (lx.size() < 2 || *std::max_element(lx.begin(), lx.end()) == *std::min_element(lx.begin(), lx.end())) return s;
 
   const auto n = static_cast<Eigen::Index>(lx.size());
   Eigen::MatrixXd D(n, 2);

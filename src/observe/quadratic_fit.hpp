@@ -38,10 +38,8 @@ QuadraticFit fit_quadratic_area(const MeasuredCurve& curve, double A0);
 // Least squares of log(A0 − A) = log c + n log Q over the points with Q > q_min_fraction·Q_max
 // (Q_max: largest Q of the input) and A0 − A > 0. NaN fields when fewer than two such points
 // with distinct Q exist.
-ShapeIndex fit_power_law(std::span<const double> Q, std::span<const double> A, double A0,
-                         double q_min_fraction = 0.05);
-ShapeIndex fit_power_law(const std::vector<Sample>& loading, double A0,
-                         double q_min_fraction = 0.05);
+ShapeIndex fit_power_law(std::span<const double> Q, std::span<const double> A, double A0, double q_min_fraction = 0.05);
+ShapeIndex fit_power_law(const std::vector<Sample>& loading, double A0, double q_min_fraction = 0.05);
 ShapeIndex fit_power_law(const MeasuredCurve& curve, double A0, double q_min_fraction = 0.05);
 
 }  // namespace asperity

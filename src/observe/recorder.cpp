@@ -6,16 +6,19 @@ namespace asperity {
 
 const char* to_string(PeakRule r) {
   switch (r) {
-    case PeakRule::none: return "none";
-    case PeakRule::stick: return "stick";
-    case PeakRule::all_slipped: return "all_slipped";
-    case PeakRule::steady_sliding: return "steady_sliding";
+    case PeakRule::none:
+      return "none";
+    case PeakRule::stick:
+      return "stick";
+    case PeakRule::all_slipped:
+      return "all_slipped";
+    case PeakRule::steady_sliding:
+      return "steady_sliding";
   }
   return "none";
 }
 
-Recorder::Recorder(double every, bool keep_series, double min_drop, bool stop_at_first_peak,
-                   int stop_after_cycles)
+Recorder::Recorder(double every, bool keep_series, double min_drop, bool stop_at_first_peak, int stop_after_cycles)
     : every_(every),
       keep_series_(keep_series),
       min_drop_(min_drop),
@@ -102,8 +105,7 @@ void Recorder::check_stop() {
   if (peaks_.empty() || trough_pending_) return;  // the first peak's drop is part of its result
   if (stop_at_first_peak_) done_ = true;
   // n cycles = n drops with their periods: needs n + 1 peaks.
-  if (stop_after_cycles_ >= 0 && static_cast<int>(peaks_.size()) >= stop_after_cycles_ + 1)
-    done_ = true;
+  if (stop_after_cycles_ >= 0 && static_cast<int>(peaks_.size()) >= stop_after_cycles_ + 1) done_ = true;
 }
 
 FirstPeak Recorder::first_peak() const {

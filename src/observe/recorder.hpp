@@ -18,7 +18,7 @@
 
 namespace asperity {
 
-struct Peak {        // a confirmed macroscopic peak of Q and the trough that follows it
+struct Peak {  // a confirmed macroscopic peak of Q and the trough that follows it
   Extremum max, min;
 };
 
@@ -45,8 +45,7 @@ class Recorder {
   // branch, which the quadratic fit needs); min_drop: relative drop that confirms a stick-slip
   // peak after the first one; stop_at_first_peak / stop_after_cycles: stop conditions
   // (cycles < 0: none).
-  Recorder(double every, bool keep_series, double min_drop, bool stop_at_first_peak,
-           int stop_after_cycles);
+  Recorder(double every, bool keep_series, double min_drop, bool stop_at_first_peak, int stop_after_cycles);
 
   // Time of the next sample the solver must deliver.
   double next_sample_time() const { return static_cast<double>(next_index_) * every_; }
@@ -87,13 +86,13 @@ class Recorder {
   bool done_ = false;
   bool timed_out_ = false;
   // First peak: search state.
-  bool slipped_ = false;       // some junction has slipped
-  bool failed_ = false;        // every junction has slipped at least once
-  bool have_best_ = false;     // a maximum of Q after the first slip
-  Extremum best_{};            // the highest such maximum
+  bool slipped_ = false;    // some junction has slipped
+  bool failed_ = false;     // every junction has slipped at least once
+  bool have_best_ = false;  // a maximum of Q after the first slip
+  Extremum best_{};         // the highest such maximum
   bool have_best_trough_ = false;
-  Extremum best_trough_{};     // lowest minimum after best_
-  bool trough_pending_ = false;// first peak confirmed, its trough not seen yet
+  Extremum best_trough_{};       // lowest minimum after best_
+  bool trough_pending_ = false;  // first peak confirmed, its trough not seen yet
   PeakRule rule_ = PeakRule::none;
   Extremum highest_after_slip_{0, -std::numeric_limits<double>::infinity(), 0, true};
   Extremum highest_after_failure_{0, -std::numeric_limits<double>::infinity(), 0, true};

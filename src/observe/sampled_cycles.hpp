@@ -35,7 +35,7 @@ struct SampledCycles {
 };
 
 // t_s increasing, Q_N the same length; no peak at all when a value is not finite.
-SampledCycles sampled_cycles(std::span<const double> t_s, std::span<const double> Q_N, double min_drop,
-                             double floor_N, int n = 5, double min_peak_N = 0);
+SampledCycles sampled_cycles(std::span<const double> t_s, std::span<const double> Q_N, double min_drop, double floor_N,
+                             int n = 5, double min_peak_N = 0);
 
 }  // namespace asperity

@@ -8,8 +8,7 @@
 
 namespace asperity {
 
-void write_series_csv(std::ostream& out, const std::vector<Sample>& samples,
-                      const std::vector<std::string>& series) {
+void write_series_csv(std::ostream& out, const std::vector<Sample>& samples, const std::vector<std::string>& series) {
   const auto& all = all_series();
   for (const auto& name : series)
     if (std::find(all.begin(), all.end(), name) == all.end())
@@ -26,14 +25,29 @@ void write_series_csv(std::ostream& out, const std::vector<Sample>& samples,
     for (std::size_t j = 0; j < cols.size(); ++j) {
       if (j) line += ',';
       switch (cols[j]) {
-        case 0: line += scene_io::format_g17(s.t); break;
-        case 1: line += scene_io::format_g17(s.X); break;
-        case 2: line += scene_io::format_g17(s.V); break;
-        case 3: line += scene_io::format_g17(s.Q); break;
-        case 4: line += scene_io::format_g17(s.A); break;
-        case 5: line += std::to_string(s.n_slipping); break;
-        case 6: line += std::to_string(s.n_intact); break;
-        default: break;
+        case 0:
+          line += scene_io::format_g17(s.t);
+          break;
+        case 1:
+          line += scene_io::format_g17(s.X);
+          break;
+        case 2:
+          line += scene_io::format_g17(s.V);
+          break;
+        case 3:
+          line += scene_io::format_g17(s.Q);
+          break;
+        case 4:
+          line += scene_io::format_g17(s.A);
+          break;
+        case 5:
+          line += std::to_string(s.n_slipping);
+          break;
+        case 6:
+          line += std::to_string(s.n_intact);
+          break;
+        default:
+          break;
       }
     }
     line += '\n';

@@ -13,7 +13,6 @@ namespace asperity {
 
 // Writes `series` columns (validated against all_series(), written in its order) of `samples`.
 // Throws std::invalid_argument on an unknown column name.
-void write_series_csv(std::ostream& out, const std::vector<Sample>& samples,
-                      const std::vector<std::string>& series);
+void write_series_csv(std::ostream& out, const std::vector<Sample>& samples, const std::vector<std::string>& series);
 
 }  // namespace asperity

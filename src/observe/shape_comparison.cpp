@@ -80,7 +80,8 @@ ShapeComparison bootstrap(const std::vector<double>& Q, const std::vector<double
   c.n_measured_sd = sd(ns);
   if (!noise.empty()) {
     std::sort(noise.begin(), noise.end());
-    c.noise_rms_p95 = noise[std::min(noise.size() - 1, static_cast<std::size_t>(std::ceil(0.95 * static_cast<double>(noise.size()))) - 1)];
+    c.noise_rms_p95 = noise[std::min(
+        noise.size() - 1, static_cast<std::size_t>(std::ceil(0.95 * static_cast<double>(noise.size()))) - 1)];
   }
   return c;
 }

@@ -23,17 +23,17 @@ struct MeasuredCurve;  // scene/scene.hpp
 
 struct ShapeComparison {
   static constexpr double nan = std::numeric_limits<double>::quiet_NaN();
-  double alpha_model = nan;         // m²/N², fit of the model's loading branch
-  double alpha_measured = nan;      // m²/N², fit of the measured points
-  double alpha_measured_sd = nan;   // m²/N², its bootstrap standard deviation
-  double n_model = nan;             // shape exponent of A0 − A ∝ Qⁿ, model
-  double n_measured = nan;          // the same of the measured points
-  double n_measured_sd = nan;       // its bootstrap standard deviation
-  double residual_rms = nan;        // m², rms of A_model(Q_i) − A_i over the measured points used
-  double residual_rms_sd = nan;     // m², its bootstrap standard deviation (the measured points resampled)
-  double noise_rms = nan;           // m², rms of the measured points about their own parabola
-  double noise_rms_p95 = nan;       // m², 95th percentile of that rms over the bootstrap
-  std::size_t points_used = 0;      // measured points within the model's loading branch
+  double alpha_model = nan;        // m²/N², fit of the model's loading branch
+  double alpha_measured = nan;     // m²/N², fit of the measured points
+  double alpha_measured_sd = nan;  // m²/N², its bootstrap standard deviation
+  double n_model = nan;            // shape exponent of A0 − A ∝ Qⁿ, model
+  double n_measured = nan;         // the same of the measured points
+  double n_measured_sd = nan;      // its bootstrap standard deviation
+  double residual_rms = nan;       // m², rms of A_model(Q_i) − A_i over the measured points used
+  double residual_rms_sd = nan;    // m², its bootstrap standard deviation (the measured points resampled)
+  double noise_rms = nan;          // m², rms of the measured points about their own parabola
+  double noise_rms_p95 = nan;      // m², 95th percentile of that rms over the bootstrap
+  std::size_t points_used = 0;     // measured points within the model's loading branch
   std::size_t resamples = 0;
   // |α_model − α_measured| > 2 sd: the model's curvature differs from the measured one beyond
   // the noise; false means no evidence of a difference (not proof of agreement).

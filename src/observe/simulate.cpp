@@ -3,9 +3,9 @@
 #include <chrono>
 #include <cstdint>
 
+#include <utility>
 #include "io/numbers.hpp"
 #include "solve/core/openmp_fork.hpp"
-#include <utility>
 
 namespace asperity {
 
@@ -26,9 +26,18 @@ class MonitoredRecorder {
   MonitoredRecorder(Recorder& rec, const RunMonitor& monitor, double stop_time_s)
       : rec_(rec), monitor_(monitor), stop_time_s_(stop_time_s), next_poll_(Clock::now()) {}
 
-  void sample(const Sample& s) { t_ = s.t; rec_.sample(s); }
-  void extremum(const Extremum& e) { t_ = e.t; rec_.extremum(e); }
-  void population(const PopulationChange& c) { t_ = c.t; rec_.population(c); }
+  void sample(const Sample& s) {
+    t_ = s.t;
+    rec_.sample(s);
+  }
+  void extremum(const Extremum& e) {
+    t_ = e.t;
+    rec_.extremum(e);
+  }
+  void population(const PopulationChange& c) {
+    t_ = c.t;
+    rec_.population(c);
+  }
   double next_sample_time() const { return rec_.next_sample_time(); }
   bool done() const {
     if (rec_.done() || interrupted_) return true;

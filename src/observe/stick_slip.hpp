@@ -11,7 +11,7 @@
 namespace asperity {
 
 struct StickSlipStats {
-  int n_cycles = 0;  // complete cycles averaged over (≤ the n asked for)
+  int n_cycles = 0;                                               // complete cycles averaged over (≤ the n asked for)
   double mean_drop = std::numeric_limits<double>::quiet_NaN();    // N, mean Q_max − Q_min
   double mean_period = std::numeric_limits<double>::quiet_NaN();  // s, mean time between peaks
 };

@@ -1,9 +1,9 @@
 #include "physics/contact_law.hpp"
 
+#include <algorithm>
 #include <boost/math/special_functions/ellint_rd.hpp>
 #include <boost/math/special_functions/ellint_rf.hpp>
 #include <boost/math/tools/roots.hpp>
-#include <algorithm>
 #include <limits>
 
 namespace asperity {
@@ -36,7 +36,9 @@ double ContactLaw::solve_pinned_force(double A0, double delta) const {
   const double hi = std::min(k0 * d, max_force(A0));
   auto g = [&](double f) { return f - stiffness(A0, area(A0, f)) * d; };
   std::uintmax_t iters = 200;
-  auto tol = [](double a, double b) { return std::abs(b - a) <= 4 * std::numeric_limits<double>::epsilon() * std::abs(b); };
+  auto tol = [](double a, double b) {
+    return std::abs(b - a) <= 4 * std::numeric_limits<double>::epsilon() * std::abs(b);
+  };
   const auto br = boost::math::tools::bisect(g, 0.0, hi, tol, iters);
   const double f = 0.5 * (br.first + br.second);
   return delta > 0 ? f : -f;

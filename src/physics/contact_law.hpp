@@ -42,18 +42,16 @@ inline double disc_radius(double area_m2) { return std::sqrt(area_m2 / M_PI); }
 
 // The parameters that turn areas into forces; one value shared by all junctions of a run.
 struct ContactLaw {
-  double E = 1.6e6;        // Pa
+  double E = 1.6e6;  // Pa
   double nu = 0.5;
   double sigma = 0.23e6 / 0.9;  // Pa, model shear strength σ = σ_exp/ε
-  double epsilon = 0.9;    // slipping force / static threshold
-  double alpha_b = 0.725e-15;  // m⁵/N² (for p = 1.5)
+  double epsilon = 0.9;         // slipping force / static threshold
+  double alpha_b = 0.725e-15;   // m⁵/N² (for p = 1.5)
   double p = 1.5;
   JunctionShape shape = JunctionShape::elliptic;
 
   // k [N/m] of a junction with initial area A0 at current area A.
-  double stiffness(double A0, double A) const {
-    return initial_diameter(A0) * E * stiffness_factor(A / A0, nu, shape);
-  }
+  double stiffness(double A0, double A) const { return initial_diameter(A0) * E * stiffness_factor(A / A0, nu, shape); }
   double area(double A0, double f) const { return sheared_area(A0, f, alpha_b, p); }
   // Largest |f| for which Eq. (3) leaves a positive area.
   double max_force(double A0) const { return std::sqrt(std::pow(A0, p + 1.0) / alpha_b); }

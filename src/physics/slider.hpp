@@ -7,10 +7,10 @@
 namespace asperity {
 
 struct Slider {
-  double mass_kg = 0;    // M
-  double k_L = 0;        // N/m, loading spring
-  double v = 0;          // m/s, driving velocity
-  double eta = 0;        // 1/s, damping rate η
+  double mass_kg = 0;  // M
+  double k_L = 0;      // N/m, loading spring
+  double v = 0;        // m/s, driving velocity
+  double eta = 0;      // 1/s, damping rate η
 
   // Spring tension Q = k_L (v t − X) [N]: the measured tangential force.
   double loading_force(double t_s, double X_m) const { return k_L * (v * t_s - X_m); }

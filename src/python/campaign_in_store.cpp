@@ -25,7 +25,8 @@ void absolute_scene(YAML::Node node, const fs::path& base) {
 }  // namespace
 
 fs::path campaign_into_store(YAML::Node tree, const fs::path& base, const fs::path& store) {
-  if (store.empty()) throw InputError("", 0, "out", "a campaign given as a dict needs out= (the store folder, which keeps it)");
+  if (store.empty())
+    throw InputError("", 0, "out", "a campaign given as a dict needs out= (the store folder, which keeps it)");
   if (!tree.IsMap()) throw InputError("", 0, "campaign", "expected a dict of a campaign file's keys");
   const YAML::Node& lookup = tree;  // const: a missing key is not added
   if (lookup["scene"]) absolute_scene(tree["scene"], base);
@@ -35,8 +36,8 @@ fs::path campaign_into_store(YAML::Node tree, const fs::path& base, const fs::pa
   }
   YAML::Emitter out;
   out << tree;
-  const std::string text = "# a campaign given to asperity.sweep as a dict (scene paths made absolute)\n" +
-                           std::string(out.c_str()) + "\n";
+  const std::string text =
+      "# a campaign given to asperity.sweep as a dict (scene paths made absolute)\n" + std::string(out.c_str()) + "\n";
 
   check_ours(store, "sweep", "out", is_sweep_store_folder);
   const fs::path file = store / "campaign.yaml";

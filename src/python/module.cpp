@@ -31,9 +31,9 @@
 #include "fit/fit_load.hpp"
 #include "io/arguments.hpp"
 #include "io/input_error.hpp"
+#include "io/numbers.hpp"
 #include "io/provenance.hpp"
 #include "io/temp_files.hpp"
-#include "io/numbers.hpp"
 #include "observe/simulate.hpp"
 #include "python/campaign_in_store.hpp"
 #include "python/topography_bindings.hpp"
@@ -53,10 +53,18 @@ py::dict summary_dict(const Observables& o) {
   py::dict d;
   for (const ObservableField& f : observable_fields()) {
     switch (f.kind) {
-      case ObservableKind::real: d[f.name] = f.value(o); break;
-      case ObservableKind::count: d[f.name] = static_cast<long long>(f.value(o)); break;
-      case ObservableKind::flag: d[f.name] = f.value(o) != 0; break;
-      case ObservableKind::label: d[f.name] = std::string(f.label(o)); break;
+      case ObservableKind::real:
+        d[f.name] = f.value(o);
+        break;
+      case ObservableKind::count:
+        d[f.name] = static_cast<long long>(f.value(o));
+        break;
+      case ObservableKind::flag:
+        d[f.name] = f.value(o) != 0;
+        break;
+      case ObservableKind::label:
+        d[f.name] = std::string(f.label(o));
+        break;
     }
   }
   return d;
@@ -69,7 +77,8 @@ py::list profiles_list(const FitSpec& spec, const Optimization& o) {
     py::dict d;
     d["parameter"] = spec.parameters.at(pp.parameter).key;
     std::vector<double> factor, value, objective;
-    for (const ProfilePoint& q : pp.points) factor.push_back(q.factor), value.push_back(q.value), objective.push_back(q.objective);
+    for (const ProfilePoint& q : pp.points)
+      factor.push_back(q.factor), value.push_back(q.value), objective.push_back(q.objective);
     d["factor"] = py::array_t<double>(static_cast<py::ssize_t>(factor.size()), factor.data());
     d["value"] = py::array_t<double>(static_cast<py::ssize_t>(value.size()), value.data());
     d["objective"] = py::array_t<double>(static_cast<py::ssize_t>(objective.size()), objective.data());
@@ -180,7 +189,8 @@ YAML::Node yaml_node(const py::handle& v, const std::string& key) {
   if (py::isinstance<py::dict>(v)) {
     YAML::Node m(YAML::NodeType::Map);
     for (const auto& [k, x] : v.cast<py::dict>()) {
-      if (!py::isinstance<py::str>(k)) throw py::type_error(key + ": keys must be str, got " + std::string(py::repr(k)));
+      if (!py::isinstance<py::str>(k))
+        throw py::type_error(key + ": keys must be str, got " + std::string(py::repr(k)));
       const std::string name = k.cast<std::string>();
       m[name] = yaml_node(x, key.empty() ? name : key + "." + name);
     }
@@ -192,7 +202,8 @@ YAML::Node yaml_node(const py::handle& v, const std::string& key) {
       s.push_back(yaml_node(x, key));
     return s;
   }
-  if (py::hasattr(v, "__index__")) return YAML::Node(std::string(py::str(py::int_(py::reinterpret_borrow<py::object>(v)))));
+  if (py::hasattr(v, "__index__"))
+    return YAML::Node(std::string(py::str(py::int_(py::reinterpret_borrow<py::object>(v)))));
   if (py::hasattr(v, "__float__")) return YAML::Node(scene_io::format_double(v.cast<double>()));  // numpy floats
   throw py::type_error(key + ": expected a number, text, bool, list or dict, got " +
                        std::string(py::str(v.get_type().attr("__name__"))));
@@ -209,8 +220,9 @@ YAML::Node junction_column(const py::object& column, const std::string& where, c
                          std::string(py::str(column.get_type().attr("__name__"))));
   }
   if (a.ndim() != 1)
-    throw InputError(where, 0, name,
-                     "expected one value per junction (one dimension), got " + std::to_string(a.ndim()) + " dimensions");
+    throw InputError(
+        where, 0, name,
+        "expected one value per junction (one dimension), got " + std::to_string(a.ndim()) + " dimensions");
   YAML::Node s(YAML::NodeType::Sequence);
   const auto r = a.unchecked<1>();
   for (py::ssize_t i = 0; i < r.shape(0); ++i) s.push_back(YAML::Node(scene_io::format_double(r(i))));
@@ -245,8 +257,9 @@ Scene scene_from_dict(const py::dict& d, py::object areas, py::object x, py::obj
     for (const py::handle c : df.attr("columns")) {
       const std::string n = py::str(c);
       if (std::find(valid.begin(), valid.end(), n) == valid.end())
-        throw InputError(where, 0, "areas", "unknown column " + scene_io::quote(n) + scene_io::did_you_mean(n, valid) +
-                                                "; valid: area_m2, x_m, y_m");
+        throw InputError(
+            where, 0, "areas",
+            "unknown column " + scene_io::quote(n) + scene_io::did_you_mean(n, valid) + "; valid: area_m2, x_m, y_m");
       (n == "area_m2" ? areas : n == "x_m" ? x : y) = py::object(df[c]);
     }
     if (areas.is_none()) throw InputError(where, 0, "areas", "missing column 'area_m2'");
@@ -256,7 +269,8 @@ Scene scene_from_dict(const py::dict& d, py::object areas, py::object x, py::obj
     if (!measured.is_none()) throw InputError(where, 0, "measured", "needs the junction areas too");
   } else {
     const YAML::Node& view = tree;
-    if (!view["experiment"].IsDefined() || view["experiment"].IsNull()) tree["experiment"] = YAML::Node(YAML::NodeType::Map);
+    if (!view["experiment"].IsDefined() || view["experiment"].IsNull())
+      tree["experiment"] = YAML::Node(YAML::NodeType::Map);
     YAML::Node e = tree["experiment"];
     if (!e.IsMap())
       throw InputError(where, 0, "experiment",
@@ -303,12 +317,13 @@ auto interruptible(std::atomic<bool>& stop, F work, const std::function<void()>&
   }  // joins the worker
   if (tick_error) std::rethrow_exception(tick_error);
   if (interrupted) throw py::error_already_set();
-  if (tick) tick();  // the last count
+  if (tick) tick();     // the last count
   return result.get();  // the engine's exception, if any
 }
 
 // A progress tick calling Python's `progress(finished, total)` (total 0: unknown); none for None.
-std::function<void()> progress_tick(const py::object& progress, const std::function<std::pair<long long, long long>()>& counts) {
+std::function<void()> progress_tick(const py::object& progress,
+                                    const std::function<std::pair<long long, long long>()>& counts) {
   if (progress.is_none()) return {};
   return [progress, counts] {
     const auto [done, total] = counts();
@@ -340,24 +355,30 @@ PYBIND11_MODULE(_asperity, m) {
       .def_property_readonly("file", [](const Scene& s) { return s.file.string(); })
       .def_property_readonly("experiment", [](const Scene& s) { return s.experiment.name; })
       .def_property_readonly("junctions", [](const Scene& s) { return s.experiment.junctions.size(); })
-      .def_property_readonly("stand_in", [](const Scene& s) {
-        std::string d = s.experiment.description;
-        for (char& c : d) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-        return d.find("stand-in") != std::string::npos;
-      })
-      .def("to_yaml", [](const Scene& s) { return scene_to_yaml(s); },
-           "The scene as `asperity run` writes scene.yaml (junctions inline when it has no experiment file); "
-           "Scene.from_yaml of it, or asperity.load_scene of it saved, gives the same scene")
-      .def_static("from_dict", &scene_from_dict, py::arg("d"), py::arg("areas") = py::none(), py::arg("x") = py::none(),
-                  py::arg("y") = py::none(), py::arg("measured") = py::none(),
-                  "A scene from a dict shaped as a scene file, checked as one; the experiment a map of its values with "
-                  "junction `areas` [m²] and optional centres `x`, `y` [m] (NumPy arrays, lists, or a pandas DataFrame "
-                  "with columns area_m2, x_m, y_m as `areas`), optional `measured` A(Q) (a DataFrame or dict with Q_N [N], "
-                  "A_m2 [m²]); or the experiment a path as in a scene file")
-      .def_static("from_yaml", [](const std::string& text) -> Scene {
-        const std::string where = "Scene.from_yaml";
-        return scene_from_memory(scene_io::load_yaml_document(text, where), std::filesystem::current_path(), where);
-      }, py::arg("text"), "A scene from scene-file text (paths relative to the working directory)")
+      .def_property_readonly("stand_in",
+                             [](const Scene& s) {
+                               std::string d = s.experiment.description;
+                               for (char& c : d) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+                               return d.find("stand-in") != std::string::npos;
+                             })
+      .def(
+          "to_yaml", [](const Scene& s) { return scene_to_yaml(s); },
+          "The scene as `asperity run` writes scene.yaml (junctions inline when it has no experiment file); "
+          "Scene.from_yaml of it, or asperity.load_scene of it saved, gives the same scene")
+      .def_static(
+          "from_dict", &scene_from_dict, py::arg("d"), py::arg("areas") = py::none(), py::arg("x") = py::none(),
+          py::arg("y") = py::none(), py::arg("measured") = py::none(),
+          "A scene from a dict shaped as a scene file, checked as one; the experiment a map of its values with "
+          "junction `areas` [m²] and optional centres `x`, `y` [m] (NumPy arrays, lists, or a pandas DataFrame "
+          "with columns area_m2, x_m, y_m as `areas`), optional `measured` A(Q) (a DataFrame or dict with Q_N [N], "
+          "A_m2 [m²]); or the experiment a path as in a scene file")
+      .def_static(
+          "from_yaml",
+          [](const std::string& text) -> Scene {
+            const std::string where = "Scene.from_yaml";
+            return scene_from_memory(scene_io::load_yaml_document(text, where), std::filesystem::current_path(), where);
+          },
+          py::arg("text"), "A scene from scene-file text (paths relative to the working directory)")
       .def("__repr__", [](const Scene& s) {
         return "<asperity.Scene " + s.experiment.name + ", " + std::to_string(s.experiment.junctions.size()) +
                " junctions, from " + (s.file.empty() ? std::string("memory") : s.file.string()) + ">";
@@ -365,189 +386,214 @@ PYBIND11_MODULE(_asperity, m) {
 
   m.def("check_no_nul", &check_no_nul, py::arg("text"), py::arg("argument"),
         "InputError naming `argument` when `text` holds a NUL byte (which every system call would cut)");
-  m.def("load_scene", [](const std::string& path, const std::vector<std::string>& overrides) {
-    check_no_nul(path, "path");
-    for (const std::string& o : overrides) check_no_nul(o, "overrides");
-    return load_scene(path, overrides, "overrides:");
-  }, py::arg("path"), py::arg("overrides") = std::vector<std::string>{});
+  m.def(
+      "load_scene",
+      [](const std::string& path, const std::vector<std::string>& overrides) {
+        check_no_nul(path, "path");
+        for (const std::string& o : overrides) check_no_nul(o, "overrides");
+        return load_scene(path, overrides, "overrides:");
+      },
+      py::arg("path"), py::arg("overrides") = std::vector<std::string>{});
   m.def("run", &run_scene, py::arg("scene"));
   asperity::python::bind_topography(m);  // generate_junctions, tangential_contact (topography_bindings.cpp)
-  m.def("measured", [](const Scene& s) -> py::object {
-    if (!s.experiment.measured) return py::none();
-    py::dict d;
-    d["Q"] = py::array_t<double>(static_cast<py::ssize_t>(s.experiment.measured->Q_N.size()), s.experiment.measured->Q_N.data());
-    d["A"] = py::array_t<double>(static_cast<py::ssize_t>(s.experiment.measured->A_m2.size()), s.experiment.measured->A_m2.data());
-    return d;
-  }, py::arg("scene"));
+  m.def(
+      "measured",
+      [](const Scene& s) -> py::object {
+        if (!s.experiment.measured) return py::none();
+        py::dict d;
+        d["Q"] = py::array_t<double>(static_cast<py::ssize_t>(s.experiment.measured->Q_N.size()),
+                                     s.experiment.measured->Q_N.data());
+        d["A"] = py::array_t<double>(static_cast<py::ssize_t>(s.experiment.measured->A_m2.size()),
+                                     s.experiment.measured->A_m2.data());
+        return d;
+      },
+      py::arg("scene"));
 
-  m.def("sweep", [](const py::object& campaign_arg, const std::string& out, const py::object& threads, const std::string& shard,
-                   const py::object& progress, const py::object& base) {
-    check_no_nul(out, "out");
-    std::string campaign;  // the campaign file (a dict's: written into the store, campaign_in_store.hpp)
-    if (py::isinstance<py::dict>(campaign_arg)) {
-      campaign = python::campaign_into_store(yaml_node(campaign_arg, ""), base_dir(base), out).string();
-    } else {
-      if (!base.is_none()) throw InputError("", 0, "base", "is for a dict campaign; a file's paths are relative to the file");
-      campaign = py::str(campaign_arg);
-      check_no_nul(campaign, "campaign");
-    }
-    SweepOptions o;
-    o.threads = threads_argument(threads, "threads", 0);  // 0: every hardware thread
-    const Campaign c = load_campaign(campaign);
-    o.out = out;
-    try {
-      o.shard = parse_shard(shard, [](const char* n) { return std::getenv(n); }, "shard");
-    } catch (const std::invalid_argument& e) {  // as the command line's --shard
-      throw InputError("", 0, "shard", e.what());
-    }
-    o.quiet = true;
-    o.command_line = "python: asperity.sweep(" + campaign + ")";
-    std::atomic<bool> stop{false};
-    o.stop = &stop;
-    SweepCounters counters;
-    o.counters = &counters;
-    const SweepReport r = interruptible(stop, [&] { return run_sweep(c, o); }, progress_tick(progress, [&] {
-      return std::pair<long long, long long>(counters.finished.load(), counters.total.load());
-    }));
-    py::dict d;
-    d["store"] = r.store.string();
-    d["points"] = r.points, d["skipped"] = r.skipped, d["changed"] = r.changed, d["ran"] = r.ran;
-    d["ok"] = r.ok, d["failed"] = r.failed, d["wall_s"] = r.wall_s;
-    return d;
-  }, py::arg("campaign"), py::arg("out") = "", py::arg("threads") = py::none(), py::arg("shard") = "0/1",
-     py::arg("progress") = py::none(), py::arg("base") = py::none());
-
-  m.def("fit", [](const py::object& fit_spec, const std::string& out, const py::object& threads, bool profile, bool error_bars,
-                 const py::object& progress, const py::object& objective, bool series, const py::object& base,
-                 const std::string& objective_id) {
-    check_no_nul(out, "out");
-    FitOptions fo;
-    fo.threads = threads_argument(threads, "threads", hardware_threads());
-    // A Python objective: `objective(summary, series)` (series None unless asked; __init__.py
-    // wraps the user's callable) gives each experiment's term; the spec's `objective` key is
-    // then absent. Journaled under `objective_id` (__init__.py: a digest of the callable's source),
-    // so that an edited callable does not resume a journal it did not compute.
-    FitLoadOptions lo;
-    if (!objective.is_none()) {
-      if (!out.empty() && objective_id.empty())
-        throw InputError("", 0, "out", "a fit with a Python objective is journaled only under an identity of the callable");
-      lo.user_objective = true;
-      lo.user_series = series;
-      lo.user_objective_name = "the Python callable given as objective=";
-    } else if (series) {
-      throw InputError("", 0, "series", "passes the series to a Python objective; give objective= too");
-    }
-    std::string what;  // the spec, as the provenance's command line names it
-    FitSpec spec;
-    if (py::isinstance<py::dict>(fit_spec)) {
-      spec = fit_from_memory(yaml_node(fit_spec, ""), base_dir(base), "asperity.fit", {}, lo);
-      what = "dict";
-    } else {
-      if (!base.is_none())
-        throw InputError("", 0, "base", "is for a dict spec; a fit file's paths are relative to the file");
-      what = py::str(fit_spec);
-      check_no_nul(what, "fit_file");
-      spec = load_fit(what, {}, lo);
-    }
-    if (!objective.is_none()) spec.user_objective_id = objective_id;
-    const std::string command_line = "python: asperity.fit(" + what + ")";
-    // The user's objective is called from the fit's worker threads, each taking the GIL; its first
-    // exception stops the fit as Ctrl-C does and is raised here.
-    std::mutex user_mutex;
-    std::exception_ptr user_error;
-    std::atomic<bool> stop{false};
-    if (!objective.is_none()) {
-      fo.user_term = [&, series](const FitExperiment& fe, const Scene&, const RunResult& r) -> double {
-        py::gil_scoped_acquire gil;
-        try {
-          py::dict summary = summary_dict(r.obs);
-          summary["experiment"] = fe.name;
-          const py::object columns = series ? py::object(series_dict(r.recorder.series())) : py::object(py::none());
-          return objective(summary, columns).cast<double>();
-        } catch (...) {
-          {
-            const std::lock_guard<std::mutex> lock(user_mutex);
-            if (!user_error) user_error = std::current_exception();
-          }
-          stop = true;
-          throw RunInterrupted("the Python objective raised");
+  m.def(
+      "sweep",
+      [](const py::object& campaign_arg, const std::string& out, const py::object& threads, const std::string& shard,
+         const py::object& progress, const py::object& base) {
+        check_no_nul(out, "out");
+        std::string campaign;  // the campaign file (a dict's: written into the store, campaign_in_store.hpp)
+        if (py::isinstance<py::dict>(campaign_arg)) {
+          campaign = python::campaign_into_store(yaml_node(campaign_arg, ""), base_dir(base), out).string();
+        } else {
+          if (!base.is_none())
+            throw InputError("", 0, "base", "is for a dict campaign; a file's paths are relative to the file");
+          campaign = py::str(campaign_arg);
+          check_no_nul(campaign, "campaign");
         }
-      };
-    }
-    // With `out`, as `asperity fit --out`: the folder is claimed first and every evaluation is
-    // journaled there as it finishes, so a fit stopped by Ctrl-C (or killed) resumes when run
-    // again into the same folder (by Python or by the command line: the same inputs.txt).
-    FitJournal journal;
-    std::unique_ptr<DirLock> lock;
-    if (!out.empty()) {
-      claim_fit_dir(out);
-      lock = lock_fit_journal_dir(out, "out");
-      remove_stale_temporaries(out);  // of a fit that died while writing
-      open_fit_journal(journal, out, fit_inputs_text(spec, {}, code_build_id(), Shard{}));
-      fo.journal = &journal;
-    }
-    fo.profile = profile;
-    fo.error_bars = error_bars;
-    fo.stop = &stop;
-    // Every evaluation the fit makes (profiles and refits too) against the most it can make; a
-    // finished optimization adds what it left unused, so the count ends at the total.
-    const long long budget = fit_run_budget(spec, fo);
-    std::atomic<long long> evaluations{0};
-    fo.on_evaluation = [&](const FitTick& t) { evaluations += t.counted(); };
-    FitResult result;
-    try {
-      result = interruptible(stop, [&] {
-        FitResult r = run_fit(spec, fo);
-        if (!out.empty()) write_fit(out, spec, r, command_line);
-        return r;
-      }, progress_tick(progress, [&] { return std::pair<long long, long long>(evaluations.load(), budget); }));
-    } catch (const RunInterrupted&) {
-      if (user_error) std::rethrow_exception(user_error);  // the objective's own exception
-      throw;
-    }
-    if (user_error) std::rethrow_exception(user_error);
-    py::list fits;
-    for (const Optimization& o : result.fits) {
-      py::dict d, best;
-      for (std::size_t k = 0; k < o.variables.size(); ++k)
-        best[py::str(o.variables[k].label)] = k < o.best.size() ? o.best[k] : std::nan("");
-      d["label"] = o.label;
-      d["best"] = best;
-      d["objective"] = o.objective;
-      d["evaluations"] = o.evaluations;
-      d["stop_reason"] = o.stop_reason;
-      d["failure"] = o.failure;
-      d["converged"] = converged_name(o.converged);  // fit/convergence.hpp: yes, no, unverified
-      d["starts"] = o.starts.size();
-      d["in_best_basin"] = o.in_best_basin;
-      d["spread"] = o.spread;
-      py::dict runs;
-      for (const ExperimentRun& r : o.best_runs) runs[py::str(spec.experiments[r.experiment].name)] = summary_dict(r.obs);
-      d["runs"] = runs;
-      d["profiles"] = profiles_list(spec, o);
-      d["uncertainty"] = uncertainty_dict(o);
-      fits.append(d);
-    }
-    py::dict d;
-    d["name"] = spec.name;
-    d["fits"] = fits;
-    d["wall_s"] = result.wall_s;
-    d["replayed"] = result.replayed, d["computed"] = result.computed;  // evaluations from the journal, run now
-    d["fit_yaml"] = fit_yaml(spec, result, command_line);
-    return d;
-  }, py::arg("spec"), py::arg("out") = "", py::arg("threads") = py::none(), py::arg("profile") = true,
-     py::arg("error_bars") = true, py::arg("progress") = py::none(), py::arg("objective") = py::none(),
-     py::arg("series") = false, py::arg("base") = py::none(), py::arg("objective_id") = "");
+        SweepOptions o;
+        o.threads = threads_argument(threads, "threads", 0);  // 0: every hardware thread
+        const Campaign c = load_campaign(campaign);
+        o.out = out;
+        try {
+          o.shard = parse_shard(
+              shard, [](const char* n) { return std::getenv(n); }, "shard");
+        } catch (const std::invalid_argument& e) {  // as the command line's --shard
+          throw InputError("", 0, "shard", e.what());
+        }
+        o.quiet = true;
+        o.command_line = "python: asperity.sweep(" + campaign + ")";
+        std::atomic<bool> stop{false};
+        o.stop = &stop;
+        SweepCounters counters;
+        o.counters = &counters;
+        const SweepReport r = interruptible(
+            stop, [&] { return run_sweep(c, o); }, progress_tick(progress, [&] {
+              return std::pair<long long, long long>(counters.finished.load(), counters.total.load());
+            }));
+        py::dict d;
+        d["store"] = r.store.string();
+        d["points"] = r.points, d["skipped"] = r.skipped, d["changed"] = r.changed, d["ran"] = r.ran;
+        d["ok"] = r.ok, d["failed"] = r.failed, d["wall_s"] = r.wall_s;
+        return d;
+      },
+      py::arg("campaign"), py::arg("out") = "", py::arg("threads") = py::none(), py::arg("shard") = "0/1",
+      py::arg("progress") = py::none(), py::arg("base") = py::none());
 
-  m.def("store_series", [](const std::string& store, const std::vector<std::uint64_t>& indices) {
-    check_no_nul(store, "path");  // asperity.read_series(path, index)
-    std::map<std::uint64_t, std::string> texts;
-    {
-      py::gil_scoped_release release;
-      texts = read_point_series(store, indices);
-    }
-    return texts;
-  }, py::arg("store"), py::arg("indices"));
+  m.def(
+      "fit",
+      [](const py::object& fit_spec, const std::string& out, const py::object& threads, bool profile, bool error_bars,
+         const py::object& progress, const py::object& objective, bool series, const py::object& base,
+         const std::string& objective_id) {
+        check_no_nul(out, "out");
+        FitOptions fo;
+        fo.threads = threads_argument(threads, "threads", hardware_threads());
+        // A Python objective: `objective(summary, series)` (series None unless asked; __init__.py
+        // wraps the user's callable) gives each experiment's term; the spec's `objective` key is
+        // then absent. Journaled under `objective_id` (__init__.py: a digest of the callable's source),
+        // so that an edited callable does not resume a journal it did not compute.
+        FitLoadOptions lo;
+        if (!objective.is_none()) {
+          if (!out.empty() && objective_id.empty())
+            throw InputError("", 0, "out",
+                             "a fit with a Python objective is journaled only under an identity of the callable");
+          lo.user_objective = true;
+          lo.user_series = series;
+          lo.user_objective_name = "the Python callable given as objective=";
+        } else if (series) {
+          throw InputError("", 0, "series", "passes the series to a Python objective; give objective= too");
+        }
+        std::string what;  // the spec, as the provenance's command line names it
+        FitSpec spec;
+        if (py::isinstance<py::dict>(fit_spec)) {
+          spec = fit_from_memory(yaml_node(fit_spec, ""), base_dir(base), "asperity.fit", {}, lo);
+          what = "dict";
+        } else {
+          if (!base.is_none())
+            throw InputError("", 0, "base", "is for a dict spec; a fit file's paths are relative to the file");
+          what = py::str(fit_spec);
+          check_no_nul(what, "fit_file");
+          spec = load_fit(what, {}, lo);
+        }
+        if (!objective.is_none()) spec.user_objective_id = objective_id;
+        const std::string command_line = "python: asperity.fit(" + what + ")";
+        // The user's objective is called from the fit's worker threads, each taking the GIL; its first
+        // exception stops the fit as Ctrl-C does and is raised here.
+        std::mutex user_mutex;
+        std::exception_ptr user_error;
+        std::atomic<bool> stop{false};
+        if (!objective.is_none()) {
+          fo.user_term = [&, series](const FitExperiment& fe, const Scene&, const RunResult& r) -> double {
+            py::gil_scoped_acquire gil;
+            try {
+              py::dict summary = summary_dict(r.obs);
+              summary["experiment"] = fe.name;
+              const py::object columns = series ? py::object(series_dict(r.recorder.series())) : py::object(py::none());
+              return objective(summary, columns).cast<double>();
+            } catch (...) {
+              {
+                const std::lock_guard<std::mutex> lock(user_mutex);
+                if (!user_error) user_error = std::current_exception();
+              }
+              stop = true;
+              throw RunInterrupted("the Python objective raised");
+            }
+          };
+        }
+        // With `out`, as `asperity fit --out`: the folder is claimed first and every evaluation is
+        // journaled there as it finishes, so a fit stopped by Ctrl-C (or killed) resumes when run
+        // again into the same folder (by Python or by the command line: the same inputs.txt).
+        FitJournal journal;
+        std::unique_ptr<DirLock> lock;
+        if (!out.empty()) {
+          claim_fit_dir(out);
+          lock = lock_fit_journal_dir(out, "out");
+          remove_stale_temporaries(out);  // of a fit that died while writing
+          open_fit_journal(journal, out, fit_inputs_text(spec, {}, code_build_id(), Shard{}));
+          fo.journal = &journal;
+        }
+        fo.profile = profile;
+        fo.error_bars = error_bars;
+        fo.stop = &stop;
+        // Every evaluation the fit makes (profiles and refits too) against the most it can make; a
+        // finished optimization adds what it left unused, so the count ends at the total.
+        const long long budget = fit_run_budget(spec, fo);
+        std::atomic<long long> evaluations{0};
+        fo.on_evaluation = [&](const FitTick& t) { evaluations += t.counted(); };
+        FitResult result;
+        try {
+          result = interruptible(
+              stop,
+              [&] {
+                FitResult r = run_fit(spec, fo);
+                if (!out.empty()) write_fit(out, spec, r, command_line);
+                return r;
+              },
+              progress_tick(progress, [&] { return std::pair<long long, long long>(evaluations.load(), budget); }));
+        } catch (const RunInterrupted&) {
+          if (user_error) std::rethrow_exception(user_error);  // the objective's own exception
+          throw;
+        }
+        if (user_error) std::rethrow_exception(user_error);
+        py::list fits;
+        for (const Optimization& o : result.fits) {
+          py::dict d, best;
+          for (std::size_t k = 0; k < o.variables.size(); ++k)
+            best[py::str(o.variables[k].label)] = k < o.best.size() ? o.best[k] : std::nan("");
+          d["label"] = o.label;
+          d["best"] = best;
+          d["objective"] = o.objective;
+          d["evaluations"] = o.evaluations;
+          d["stop_reason"] = o.stop_reason;
+          d["failure"] = o.failure;
+          d["converged"] = converged_name(o.converged);  // fit/convergence.hpp: yes, no, unverified
+          d["starts"] = o.starts.size();
+          d["in_best_basin"] = o.in_best_basin;
+          d["spread"] = o.spread;
+          py::dict runs;
+          for (const ExperimentRun& r : o.best_runs)
+            runs[py::str(spec.experiments[r.experiment].name)] = summary_dict(r.obs);
+          d["runs"] = runs;
+          d["profiles"] = profiles_list(spec, o);
+          d["uncertainty"] = uncertainty_dict(o);
+          fits.append(d);
+        }
+        py::dict d;
+        d["name"] = spec.name;
+        d["fits"] = fits;
+        d["wall_s"] = result.wall_s;
+        d["replayed"] = result.replayed, d["computed"] = result.computed;  // evaluations from the journal, run now
+        d["fit_yaml"] = fit_yaml(spec, result, command_line);
+        return d;
+      },
+      py::arg("spec"), py::arg("out") = "", py::arg("threads") = py::none(), py::arg("profile") = true,
+      py::arg("error_bars") = true, py::arg("progress") = py::none(), py::arg("objective") = py::none(),
+      py::arg("series") = false, py::arg("base") = py::none(), py::arg("objective_id") = "");
+
+  m.def(
+      "store_series",
+      [](const std::string& store, const std::vector<std::uint64_t>& indices) {
+        check_no_nul(store, "path");  // asperity.read_series(path, index)
+        std::map<std::uint64_t, std::string> texts;
+        {
+          py::gil_scoped_release release;
+          texts = read_point_series(store, indices);
+        }
+        return texts;
+      },
+      py::arg("store"), py::arg("indices"));
 
   m.def("version", [] { return version_line(); });
   m.attr("__version__") = build_info().version;  // the number `asperity --version` prints

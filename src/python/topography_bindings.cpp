@@ -42,11 +42,13 @@ SurfaceContactInput surface_contact_input(const std::string& where, const py::ob
     throw InputError(where, 0, "heights", "expected a square n x n array with n >= 2");
   const auto n = static_cast<std::size_t>(a.shape(0));
   if (n > kMaxHeightMapSide)
-    throw InputError(where, 0, "heights", std::to_string(n) + " pixels a side: at most " + std::to_string(kMaxHeightMapSide));
+    throw InputError(where, 0, "heights",
+                     std::to_string(n) + " pixels a side: at most " + std::to_string(kMaxHeightMapSide));
   if (const std::string why = pixel_size_problem(pixel_m); !why.empty()) throw InputError(where, 0, "pixel_m", why);
   // The recipe's own ranges (scene/topography_recipe.hpp), named by the argument.
   const auto in_range = [&](const char* argument, const char* key, double v) {
-    if (const std::string why = topography_number_problem(key, v); !why.empty()) throw InputError(where, 0, argument, why);
+    if (const std::string why = topography_number_problem(key, v); !why.empty())
+      throw InputError(where, 0, argument, why);
   };
   in_range("sphere_radius_m", "sphere_radius_m", sphere_radius_m), in_range("load_N", "load_N", load_N);
   in_range("E", "E", E), in_range("nu", "nu", nu), in_range("tolerance", "contact.tolerance", tolerance);
@@ -59,7 +61,8 @@ SurfaceContactInput surface_contact_input(const std::string& where, const py::ob
   map.h_m.assign(a.data(), a.data() + n * n);
   for (std::size_t k = 0; k < n * n; ++k)
     if (!std::isfinite(map.h_m[k]))
-      throw InputError(where, 0, "heights", "heights[" + std::to_string(k / n) + ", " + std::to_string(k % n) + "] is not finite");
+      throw InputError(where, 0, "heights",
+                       "heights[" + std::to_string(k / n) + ", " + std::to_string(k % n) + "] is not finite");
   if (const auto p = height_range_problem(map)) throw InputError(where, 0, "heights", p->message);
   TopographyRecipe& r = in.recipe;
   r.name = "numpy";
@@ -105,9 +108,10 @@ py::dict tangential_contact(const py::object& heights, double pixel_m, double sp
                             double friction_coefficient, double E, double nu, double tolerance, int max_iterations,
                             double tangential_tolerance, bool slip_maps, int threads) {
   const std::string where = "tangential_contact";
-  SurfaceContactInput in = surface_contact_input(where, heights, pixel_m, sphere_radius_m, load_N, E, nu, tolerance,
-                                                 max_iterations, 8);
-  if (nu != 0.5) throw InputError(where, 0, "nu", "the tangential contact is solved at nu = 0.5 only (docs/continuum.md)");
+  SurfaceContactInput in =
+      surface_contact_input(where, heights, pixel_m, sphere_radius_m, load_N, E, nu, tolerance, max_iterations, 8);
+  if (nu != 0.5)
+    throw InputError(where, 0, "nu", "the tangential contact is solved at nu = 0.5 only (docs/continuum.md)");
   if ((shear_strength_Pa > 0) == (friction_coefficient > 0))
     throw InputError(where, 0, "shear_strength_Pa", "give one bound: shear_strength_Pa or friction_coefficient");
   if (!std::isfinite(shear_strength_Pa) || shear_strength_Pa < 0)

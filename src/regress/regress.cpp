@@ -44,7 +44,8 @@ std::vector<RegressResult> run_regress_suite(const RegressSuite& suite, bool tig
     Scene s = scenes[i];
     s.output.series.clear();
     if (twin) {
-      if (s.solver.method == SolverMethod::reference) s.solver.Ct *= 2;
+      if (s.solver.method == SolverMethod::reference)
+        s.solver.Ct *= 2;
       else {
         s.solver.tolerance = std::max(1e-13, s.solver.tolerance * 1e-2);
         s.solver.interaction_tolerance = std::max(1e-14, s.solver.interaction_tolerance * 1e-2);
@@ -114,7 +115,8 @@ std::vector<Drift> compare(const Golden& golden, const std::vector<RegressResult
   }
   for (const auto& entry : golden.entries) {
     const std::string& name = entry.first;  // (clang 14 cannot capture structured bindings)
-    const bool ran = std::any_of(results.begin(), results.end(), [&](const RegressResult& r) { return r.name == name; });
+    const bool ran =
+        std::any_of(results.begin(), results.end(), [&](const RegressResult& r) { return r.name == name; });
     if (!ran) rows.push_back({name, "(entry)", 0, 0, 0, false, "in golden but not in the suite"});
   }
   return rows;

@@ -22,8 +22,8 @@ bool regress_is_count(const std::string& name);
 struct RegressResult {
   std::string name;
   std::map<std::string, double> values, tight;  // at the scene's settings / tightened
-  double solver_rel_floor = 0;                   // 10·tolerance (event) or 1e-12 (reference)
-  std::string error;                             // non-empty when the run failed
+  double solver_rel_floor = 0;                  // 10·tolerance (event) or 1e-12 (reference)
+  std::string error;                            // non-empty when the run failed
   double wall_s = 0;
 };
 

@@ -4,9 +4,9 @@
 #include <set>
 #include <sstream>
 
+#include "io/yaml_util.hpp"
 #include "regress/regress.hpp"
 #include "scene/load.hpp"
-#include "io/yaml_util.hpp"
 
 namespace asperity {
 namespace fs = std::filesystem;
@@ -76,8 +76,10 @@ Golden load_golden(const fs::path& yaml) {
       // Non-finite values are legitimate observables (e.g. no stick-slip → drop NaN).
       const YAML::Node val = v.require("value");
       const std::string text = val.IsScalar() ? val.Scalar() : "";
-      if (text == ".nan" || text == "nan") gv.value = std::nan("");
-      else gv.value = v.number(val, "value", nullptr);
+      if (text == ".nan" || text == "nan")
+        gv.value = std::nan("");
+      else
+        gv.value = v.number(val, "value", nullptr);
       gv.tolerance = v.number(v.require("tolerance"), "tolerance", nullptr);
       if (!(gv.tolerance >= 0)) v.fail_at(v.require("tolerance"), "tolerance", "must be >= 0");
       g.entries[name][key] = gv;
@@ -99,7 +101,8 @@ std::string golden_to_yaml(const Golden& g) {
   for (const auto& [name, obs] : g.entries) {
     s << "  " << name << ":\n";
     for (const auto& [key, v] : obs)
-      s << "    " << key << ": {value: " << (std::isnan(v.value) ? std::string(".nan") : scene_io::format_double(v.value))
+      s << "    " << key
+        << ": {value: " << (std::isnan(v.value) ? std::string(".nan") : scene_io::format_double(v.value))
         << ", tolerance: " << scene_io::format_double(v.tolerance) << "}\n";
   }
   return s.str();

@@ -41,8 +41,8 @@ struct Golden {
   std::map<std::string, std::map<std::string, GoldenValue>> entries;
 };
 
-RegressSuite load_regress_suite(const std::filesystem::path& yaml);   // InputError on bad input
-Golden load_golden(const std::filesystem::path& yaml);                // InputError on bad input
-std::string golden_to_yaml(const Golden& g);                          // exact round trip
+RegressSuite load_regress_suite(const std::filesystem::path& yaml);  // InputError on bad input
+Golden load_golden(const std::filesystem::path& yaml);               // InputError on bad input
+std::string golden_to_yaml(const Golden& g);                         // exact round trip
 
 }  // namespace asperity

@@ -17,8 +17,8 @@
 
 #include "io/csv.hpp"
 #include "io/hash.hpp"
-#include "io/provenance.hpp"
 #include "io/numbers.hpp"
+#include "io/provenance.hpp"
 #include "report/run_writer.hpp"
 #include "report/units.hpp"
 #include "scene/input_files.hpp"
@@ -40,8 +40,11 @@ constexpr double kGravity = 9.81;  // m/s², P = M g (as the stand-in recipe)
 // that "x y" and "x_y" (or two long names with a common start) never share files. '+' is not in
 // the plain set, so a hashed stem never equals a plain one.
 std::string file_stem(const std::string& name) {
-  const auto plain = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-' || c == '_'; };
-  const bool as_is = !name.empty() && name.size() <= 80 && name.front() != '.' && std::all_of(name.begin(), name.end(), plain);
+  const auto plain = [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-' || c == '_';
+  };
+  const bool as_is =
+      !name.empty() && name.size() <= 80 && name.front() != '.' && std::all_of(name.begin(), name.end(), plain);
   if (as_is) return name;
   std::string s;
   for (char c : name.substr(0, 60)) s += plain(c) ? c : '_';
@@ -49,16 +52,14 @@ std::string file_stem(const std::string& name) {
   return s + "+" + hex16(fnv1a64(name));
 }
 
-
-
-
 // Draws the fit's figures from the CSVs beside them; the script is kept as `gp_name` in the
 // folder (`gnuplot NAME.gp` there redraws them).
 // The fit figures: 800 × 560 pixels (PNG), one journal column (SVG, PDF).
 constexpr int kFitPlotWidth = 800, kFitPlotHeight = 560;
 
 void plot_quietly(const fs::path& dir, const std::string& script, const std::string& gp_name) {
-  keep_plot_script(dir / gp_name, "# asperity plot script: `gnuplot " + gp_name + "` redraws this fit's figures\n" + script);
+  keep_plot_script(dir / gp_name,
+                   "# asperity plot script: `gnuplot " + gp_name + "` redraws this fit's figures\n" + script);
   try {
     run_gnuplot(dir, script);
   } catch (const std::exception&) {  // a failed plot is not a failed fit
@@ -88,7 +89,8 @@ std::vector<Range> error_bar_ranges(const Optimization& o) {
       r.max = std::max(r.max, x);
       if (o.refits[k].sign < 0)
         for (const auto& q : o.refits)
-          if (q.key == o.refits[k].key && q.sign > 0 && std::isfinite(q.best[i])) s2 += std::pow(0.5 * (q.best[i] - x), 2);
+          if (q.key == o.refits[k].key && q.sign > 0 && std::isfinite(q.best[i]))
+            s2 += std::pow(0.5 * (q.best[i] - x), 2);
     }
     r.sigma = complete ? std::sqrt(s2) : Observables::nan;
   }
@@ -156,7 +158,8 @@ void write_optimization(const fs::path& d, const FitSpec& spec, const Optimizati
       for (const auto& s : r.series) mq << format_g17(s.t) << "," << format_g17(s.Q) << "\n";
       scene_io::write_text_file(d / (qstem + "_model.csv"), mq.str());
       xq << "t_s,Q_N\n";
-      for (std::size_t k = 0; k < r.force->t_s.size(); ++k) xq << format_g17(r.force->t_s[k]) << "," << format_g17(r.force->Q_N[k]) << "\n";
+      for (std::size_t k = 0; k < r.force->t_s.size(); ++k)
+        xq << format_g17(r.force->t_s[k]) << "," << format_g17(r.force->Q_N[k]) << "\n";
       scene_io::write_text_file(d / (qstem + "_measured.csv"), xq.str());
     }
   }
@@ -168,22 +171,23 @@ void write_optimization(const fs::path& d, const FitSpec& spec, const Optimizati
     std::ostringstream gp;
     gp << "set datafile separator ','\nset grid\n";
     gp << "set output " << gnuplot_quote("convergence" + ext) << "\n"
-       << "set title " << gnuplot_text(spec.name + " / " + o.label + ": objective (" + objective_name(spec.objective) + ")")
-       << " . \"\\n\" . " << gnuplot_text(spec.algorithm + ", stop " + o.stop_reason)
-       << "\n"
-       << "set xlabel 'evaluation number'\nset ylabel 'objective [1] (dimensionless)'\nset logscale y\nset key top right\n"
+       << "set title "
+       << gnuplot_text(spec.name + " / " + o.label + ": objective (" + objective_name(spec.objective) + ")")
+       << " . \"\\n\" . " << gnuplot_text(spec.algorithm + ", stop " + o.stop_reason) << "\n"
+       << "set xlabel 'evaluation number'\nset ylabel 'objective [1] (dimensionless)'\nset logscale y\nset key top "
+          "right\n"
        << "best = 1e300\n"
-       << "plot 'evaluations.csv' skip 1 using 1:($" << (o.variables.size() + 2)
-       << " > 0 ? $" << (o.variables.size() + 2) << " : 1/0) with linespoints pt 7 ps 0.6 title 'objective', "
+       << "plot 'evaluations.csv' skip 1 using 1:($" << (o.variables.size() + 2) << " > 0 ? $"
+       << (o.variables.size() + 2) << " : 1/0) with linespoints pt 7 ps 0.6 title 'objective', "
        << "'' skip 1 using 1:(($" << (o.variables.size() + 2) << " > 0 && $" << (o.variables.size() + 2)
        << " < best) ? (best = $" << (o.variables.size() + 2) << ") : best) with steps lw 2 title 'best so far'\n"
        << "unset logscale y\n";
     if (!o.profile.empty()) {
       const std::string& key = spec.parameters[o.profile_parameter].key;
       gp << "set output " << gnuplot_quote("profile" + ext) << "\n"
-         << "set title " << gnuplot_text(o.label) << " . " << gnuplot_quote(": objective around the optimum, ")
-         << " . " << gnuplot_quote(column_symbol(key)) << " . " << gnuplot_quote(" varied (others fixed)")
-         << "\nset xlabel " << gnuplot_quote(axis_markup(key)) << "\nset ylabel 'objective [1] (dimensionless)'\nset key off\n"
+         << "set title " << gnuplot_text(o.label) << " . " << gnuplot_quote(": objective around the optimum, ") << " . "
+         << gnuplot_quote(column_symbol(key)) << " . " << gnuplot_quote(" varied (others fixed)") << "\nset xlabel "
+         << gnuplot_quote(axis_markup(key)) << "\nset ylabel 'objective [1] (dimensionless)'\nset key off\n"
          << "set rmargin 6\n"  // room for the last x tic label (10^{-16}-style labels are wide)
          << "plot 'profile.csv' skip 1 using 2:($3 == $3 ? $3 : 1/0) with linespoints pt 7 lw 1.5\n"
          << "set rmargin -1\n";
@@ -192,11 +196,12 @@ void write_optimization(const fs::path& d, const FitSpec& spec, const Optimizati
       const std::string& key = spec.parameters[o.profiles[q].parameter].key;
       const std::string stem = "profile_" + file_stem(key);
       gp << "set output " << gnuplot_quote(stem + ext) << "\n"
-         << "set title " << gnuplot_text(o.label) << " . " << gnuplot_quote(": objective around the optimum, ")
-         << " . " << gnuplot_quote(column_symbol(key)) << " . " << gnuplot_quote(" varied (others fixed)")
-         << "\nset xlabel " << gnuplot_quote(axis_markup(key)) << "\nset ylabel 'objective [1] (dimensionless)'\nset key off\n"
+         << "set title " << gnuplot_text(o.label) << " . " << gnuplot_quote(": objective around the optimum, ") << " . "
+         << gnuplot_quote(column_symbol(key)) << " . " << gnuplot_quote(" varied (others fixed)") << "\nset xlabel "
+         << gnuplot_quote(axis_markup(key)) << "\nset ylabel 'objective [1] (dimensionless)'\nset key off\n"
          << "set rmargin 6\n"
-         << "plot " << gnuplot_quote(stem + ".csv") << " skip 1 using 2:($3 == $3 ? $3 : 1/0) with linespoints pt 7 lw 1.5\n"
+         << "plot " << gnuplot_quote(stem + ".csv")
+         << " skip 1 using 2:($3 == $3 ? $3 : 1/0) with linespoints pt 7 lw 1.5\n"
          << "set rmargin -1\n";
     }
     for (const auto& r : o.best_runs) {
@@ -207,18 +212,21 @@ void write_optimization(const fs::path& d, const FitSpec& spec, const Optimizati
          << "set title " << gnuplot_text(name + (r.stand_in ? " (STAND-IN data)" : "") + ": Q(t) at the fit")
          << "\nset xlabel 't [s]'\nset ylabel 'Q [N]'\nset key top left\n"
          << "plot " << gnuplot_quote(qstem + "_measured.csv") << " skip 1 using 1:2 with points pt 7 ps 0.3 title '"
-         << (r.stand_in ? "stand-in measurement" : "measurement") << "', "
-         << gnuplot_quote(qstem + "_model.csv") << " skip 1 using 1:2 with lines lw 1.5 title 'model (fitted)'\n";
+         << (r.stand_in ? "stand-in measurement" : "measurement") << "', " << gnuplot_quote(qstem + "_model.csv")
+         << " skip 1 using 1:2 with lines lw 1.5 title 'model (fitted)'\n";
     }
     for (const auto& r : o.best_runs) {
       const std::string name = spec.experiments[r.experiment].name;
       const std::string stem = "AQ_" + file_stem(name);
       gp << "set output " << gnuplot_quote(stem + ext) << "\n"
-         << "set title " << gnuplot_text(name + (r.stand_in ? " (STAND-IN data)" : "") + ": A(Q) on the loading branch at the fit")
+         << "set title "
+         << gnuplot_text(name + (r.stand_in ? " (STAND-IN data)" : "") + ": A(Q) on the loading branch at the fit")
          << "\nset xlabel 'Q [N]'\nset ylabel 'A [mm^2]'\nset key bottom left\n"
-         << "plot " << gnuplot_quote(stem + "_model.csv") << " skip 1 using 1:($2*1e6) with lines lw 2 title 'model (fitted)'";
+         << "plot " << gnuplot_quote(stem + "_model.csv")
+         << " skip 1 using 1:($2*1e6) with lines lw 2 title 'model (fitted)'";
       if (r.measured)
-        gp << ", " << gnuplot_quote(stem + "_measured.csv") << " skip 1 using 1:($2*1e6) with points pt 7 ps 0.7 title '"
+        gp << ", " << gnuplot_quote(stem + "_measured.csv")
+           << " skip 1 using 1:($2*1e6) with points pt 7 ps 0.7 title '"
            << (r.stand_in ? "stand-in measurement" : "measurement") << "'";
       gp << "\n";
     }
@@ -229,11 +237,20 @@ void write_optimization(const fs::path& d, const FitSpec& spec, const Optimizati
 
 constexpr const char* kFitHeader = "# asperity fit results (SI units: m, m², N, s; alpha_b in m^(2p+2)/N²)";
 
-
 // The observables of each best run in fit.yaml, in this order.
-const char* const kFitYamlObservables[] = {"alpha", "alpha_measured", "alpha_R2", "shape_exponent",
-                                           "shape_exponent_measured", "A0", "Q_s", "A_s", "t_peak",
-                                           "area_drop_fraction", "ss_cycles", "ss_drop", "ss_period"};
+const char* const kFitYamlObservables[] = {"alpha",
+                                           "alpha_measured",
+                                           "alpha_R2",
+                                           "shape_exponent",
+                                           "shape_exponent_measured",
+                                           "A0",
+                                           "Q_s",
+                                           "A_s",
+                                           "t_peak",
+                                           "area_drop_fraction",
+                                           "ss_cycles",
+                                           "ss_drop",
+                                           "ss_period"};
 
 // The fit's statistical uncertainty (area_and_force with intervals): method, s², σ, intervals, correlation.
 void write_uncertainty(std::ostream& y, const Optimization& o) {
@@ -245,10 +262,14 @@ void write_uncertainty(std::ostream& y, const Optimization& o) {
     return;
   }
   y << "      certified: true\n";
-  y << "      method: \"chi-square: Hessian H of the objective at the optimum by central differences (relative steps from "
-    << num(un.step) << ", rescaled until each parameter's own rise is 1-16 s^2), covariance 2 s^2 H^-1, s^2 = objective / (residuals - free variables) (the reduced chi-square); "
+  y << "      method: \"chi-square: Hessian H of the objective at the optimum by central differences (relative steps "
+       "from "
+    << num(un.step)
+    << ", rescaled until each parameter's own rise is 1-16 s^2), covariance 2 s^2 H^-1, s^2 = objective / (residuals - "
+       "free variables) (the reduced chi-square); "
        "sigma: marginal standard deviation; interval95: value +- 1.96 sigma; profile_interval: where the one-parameter "
-       "profile (others at the optimum) rises by s^2 (conditional, narrower when correlated); profile_sigma: sqrt(s^2/c) "
+       "profile (others at the optimum) rises by s^2 (conditional, narrower when correlated); profile_sigma: "
+       "sqrt(s^2/c) "
        "of the least-squares parabola through the profile's points (conditional; robust to jumps of the objective "
        "below the points' spacing, where sigma is not)\"\n";
   y << "      residuals: " << un.residuals << "\n      reduced_chi2: " << num(un.reduced_chi2) << "\n";
@@ -261,10 +282,12 @@ void write_uncertainty(std::ostream& y, const Optimization& o) {
       const double x = o.best[i], sg = un.sigma[i];
       double plo = Observables::nan, phi = Observables::nan, psg = Observables::nan;
       for (const ParameterProfile& pp : o.profiles)
-        if (pp.parameter == o.variables[i].parameter && o.variables[i].experiment < 0) plo = pp.lo, phi = pp.hi, psg = pp.parabola_sigma;
-      y << "        " << yaml_quoted(o.variables[i].label) << ": {value: " << num(x) << ", step: " << num(un.steps[i]) << ", sigma: " << num(sg)
-        << ", sigma_relative: " << num(sg / std::abs(x)) << ", interval95: [" << num(x - 1.96 * sg) << ", " << num(x + 1.96 * sg)
-        << "], profile_interval: [" << num(plo) << ", " << num(phi) << "], profile_sigma: " << num(psg) << "}\n";
+        if (pp.parameter == o.variables[i].parameter && o.variables[i].experiment < 0)
+          plo = pp.lo, phi = pp.hi, psg = pp.parabola_sigma;
+      y << "        " << yaml_quoted(o.variables[i].label) << ": {value: " << num(x) << ", step: " << num(un.steps[i])
+        << ", sigma: " << num(sg) << ", sigma_relative: " << num(sg / std::abs(x)) << ", interval95: ["
+        << num(x - 1.96 * sg) << ", " << num(x + 1.96 * sg) << "], profile_interval: [" << num(plo) << ", " << num(phi)
+        << "], profile_sigma: " << num(psg) << "}\n";
     }
     y << "      correlation:\n";
     for (std::size_t i = 0; i < o.variables.size(); ++i) {
@@ -300,8 +323,8 @@ void write_convergence(std::ostream& y, const Optimization& o) {
     for (std::size_t i = 0; i < s.from.size(); ++i) y << (i ? ", " : "") << num(s.from[i]);
     y << "], best: [";
     for (std::size_t i = 0; i < s.best.size(); ++i) y << (i ? ", " : "") << num(s.best[i]);
-    y << "], objective: " << num(s.objective) << ", evaluations: " << s.evaluations << ", stop_reason: " << yaml_quoted(s.stop_reason)
-      << ", in_best_basin: " << (s.in_best_basin ? "true" : "false");
+    y << "], objective: " << num(s.objective) << ", evaluations: " << s.evaluations
+      << ", stop_reason: " << yaml_quoted(s.stop_reason) << ", in_best_basin: " << (s.in_best_basin ? "true" : "false");
     if (!s.failure.empty()) y << ", failure: " << yaml_quoted(s.failure);
     y << "}\n";
   }
@@ -330,9 +353,10 @@ std::string fit_yaml(const FitSpec& spec, const FitResult& result, const std::st
   y << "mode: " << (spec.separate ? "separate" : "joint") << "\n";
   y << "algorithm: " << spec.algorithm << "\n";
   if (!spec.polish_algorithm.empty())
-    y << "polish: {algorithm: " << spec.polish_algorithm << ", max_evaluations: " << spec.polish_max_evaluations << "}\n";
-  y << "xtol_rel: " << num(spec.xtol_rel) << "\nftol_rel: " << num(spec.ftol_rel) << "\nftol_abs: "
-    << num(spec.ftol_abs) << "\n";
+    y << "polish: {algorithm: " << spec.polish_algorithm << ", max_evaluations: " << spec.polish_max_evaluations
+      << "}\n";
+  y << "xtol_rel: " << num(spec.xtol_rel) << "\nftol_rel: " << num(spec.ftol_rel)
+    << "\nftol_abs: " << num(spec.ftol_abs) << "\n";
   y << "max_evaluations: " << spec.max_evaluations << "\ninitial_step: " << num(spec.initial_step) << "\n";
   y << "starts: " << spec.starts << "   # the algorithm from the start, then the local stage from Sobol points\n";
   y << "basin: {tolerance: " << num(spec.basin_tolerance) << ", distance: " << num(spec.basin_distance)
@@ -350,7 +374,8 @@ std::string fit_yaml(const FitSpec& spec, const FitResult& result, const std::st
     y << "  - label: " << yaml_quoted(o.label) << "\n";
     y << "    files: " << yaml_quoted(fit_subdir(spec, o).empty() ? "." : fit_subdir(spec, o)) << "\n";
     y << "    experiments: [";
-    for (std::size_t k = 0; k < o.experiments.size(); ++k) y << (k ? ", " : "") << yaml_quoted(spec.experiments[o.experiments[k]].name);
+    for (std::size_t k = 0; k < o.experiments.size(); ++k)
+      y << (k ? ", " : "") << yaml_quoted(spec.experiments[o.experiments[k]].name);
     y << "]\n";
     y << "    status: " << (o.ok() ? "ok" : "failed") << "\n";
     if (!o.ok()) y << "    failure: " << yaml_quoted(o.failure) << "\n";
@@ -362,8 +387,9 @@ std::string fit_yaml(const FitSpec& spec, const FitResult& result, const std::st
     y << "    parameters:\n";
     for (std::size_t i = 0; i < o.variables.size(); ++i) {
       const FitParameter& p = spec.parameters[o.variables[i].parameter];
-      y << "      " << yaml_quoted(o.variables[i].label) << ": {value: " << num(o.best[i]) << ", start: " << num(o.start[i])
-        << ", lo: " << num(p.lo) << ", hi: " << num(p.hi) << ", scale: " << (p.log_scale ? "log" : "linear");
+      y << "      " << yaml_quoted(o.variables[i].label) << ": {value: " << num(o.best[i])
+        << ", start: " << num(o.start[i]) << ", lo: " << num(p.lo) << ", hi: " << num(p.hi)
+        << ", scale: " << (p.log_scale ? "log" : "linear");
       const bool at_bound = o.best[i] == p.lo || o.best[i] == p.hi;
       y << ", at_bound: " << (at_bound ? "true" : "false") << "}\n";
     }
@@ -375,9 +401,11 @@ std::string fit_yaml(const FitSpec& spec, const FitResult& result, const std::st
       y << "        mass: " << num(r.mass_kg) << "\n";
       y << "        term: " << num(r.residual) << "\n";
       if (spec.objective == FitObjective::area_and_force)
-        y << "        chi2: {area: " << num(r.terms.area) << ", n_area: " << r.terms.n_area << ", force: " << num(r.terms.force)
-          << ", n_force: " << r.terms.n_force << ", score: " << force_score_name(r.terms.score) << ", cycles: " << num(r.terms.cycles) << ", n_cycles: " << r.terms.n_cycles
-          << ", stick_slip: " << num(r.terms.stick_slip) << ", n_stick_slip: " << r.terms.n_stick_slip << "}\n";
+        y << "        chi2: {area: " << num(r.terms.area) << ", n_area: " << r.terms.n_area
+          << ", force: " << num(r.terms.force) << ", n_force: " << r.terms.n_force
+          << ", score: " << force_score_name(r.terms.score) << ", cycles: " << num(r.terms.cycles)
+          << ", n_cycles: " << r.terms.n_cycles << ", stick_slip: " << num(r.terms.stick_slip)
+          << ", n_stick_slip: " << r.terms.n_stick_slip << "}\n";
       for (const char* name : kFitYamlObservables) {
         const ObservableField& f = observable_field(name);
         y << "        " << f.name << ": " << observable_text(f, b, yaml_double) << "\n";
@@ -407,23 +435,26 @@ std::string fit_yaml(const FitSpec& spec, const FitResult& result, const std::st
     if (spec.objective == FitObjective::area_and_force && spec.intervals) write_uncertainty(y, o);
     if (!o.refits.empty()) {
       y << "    error_bars:\n";
-      y << "      method: \"one at a time: refit (from the optimum) with each quantity at nominal - bar and nominal + bar, "
+      y << "      method: \"one at a time: refit (from the optimum) with each quantity at nominal - bar and nominal + "
+           "bar, "
            "the others nominal; min/max over the fit and all refits; sigma = quadrature sum over quantities of "
            "|x(+bar) - x(-bar)|/2 (linear propagation of independent errors)\"\n";
       y << "      wall_s: " << num(o.refits_wall_s) << "\n";
       y << "      refits:\n";
       for (const auto& rf : o.refits) {
         y << "        - {key: " << rf.key << ", shift: " << num(rf.sign * rf.bar);
-        for (std::size_t i = 0; i < o.variables.size(); ++i) y << ", " << yaml_quoted(o.variables[i].label) << ": " << num(rf.best[i]);
-        y << ", objective: " << num(rf.objective) << ", evaluations: " << rf.evaluations << ", stop_reason: " << rf.stop_reason;
+        for (std::size_t i = 0; i < o.variables.size(); ++i)
+          y << ", " << yaml_quoted(o.variables[i].label) << ": " << num(rf.best[i]);
+        y << ", objective: " << num(rf.objective) << ", evaluations: " << rf.evaluations
+          << ", stop_reason: " << rf.stop_reason;
         if (!rf.failure.empty()) y << ", failure: " << yaml_quoted(rf.failure);
         y << "}\n";
       }
       const std::vector<Range> ranges = error_bar_ranges(o);
       y << "      ranges:\n";
       for (std::size_t i = 0; i < ranges.size(); ++i)
-        y << "        " << yaml_quoted(o.variables[i].label) << ": {value: " << num(ranges[i].value) << ", min: " << num(ranges[i].min)
-          << ", max: " << num(ranges[i].max) << ", sigma: " << num(ranges[i].sigma)
+        y << "        " << yaml_quoted(o.variables[i].label) << ": {value: " << num(ranges[i].value)
+          << ", min: " << num(ranges[i].min) << ", max: " << num(ranges[i].max) << ", sigma: " << num(ranges[i].sigma)
           << ", sigma_relative: " << num(ranges[i].sigma / std::abs(ranges[i].value)) << "}\n";
     }
   }
@@ -446,8 +477,12 @@ void claim_fit_dir(const fs::path& dir) {
 
 // The observables of fitted.csv: (column, observable_fields() name).
 const std::pair<const char*, const char*> kFittedObservables[] = {
-    {"alpha", "alpha"}, {"alpha_measured", "alpha_measured"}, {"Q_s_N", "Q_s"}, {"area_drop_fraction", "area_drop_fraction"},
-    {"shape_exponent", "shape_exponent"}, {"shape_exponent_measured", "shape_exponent_measured"}};
+    {"alpha", "alpha"},
+    {"alpha_measured", "alpha_measured"},
+    {"Q_s_N", "Q_s"},
+    {"area_drop_fraction", "area_drop_fraction"},
+    {"shape_exponent", "shape_exponent"},
+    {"shape_exponent_measured", "shape_exponent_measured"}};
 
 void write_fit(const fs::path& dir, const FitSpec& spec, const FitResult& result, const std::string& command_line,
                const FigureFormats& figures) {
@@ -460,7 +495,8 @@ void write_fit(const fs::path& dir, const FitSpec& spec, const FitResult& result
     // fitted.csv: one row per (optimization, experiment).
     std::ostringstream c;
     c << "fit,experiment,stand_in,mass_kg,P_N";
-    for (const auto& p : spec.parameters) c << "," << csv_field(p.key) << "," << csv_field(p.key + "_min") << "," << csv_field(p.key + "_max");
+    for (const auto& p : spec.parameters)
+      c << "," << csv_field(p.key) << "," << csv_field(p.key + "_min") << "," << csv_field(p.key + "_max");
     c << ",objective,term";
     for (const auto& [column, field] : kFittedObservables) c << "," << column;
     c << ",evaluations,wall_s,stop_reason,status\n";
@@ -468,8 +504,8 @@ void write_fit(const fs::path& dir, const FitSpec& spec, const FitResult& result
     for (const auto& o : result.fits) {
       const std::vector<Range> ranges = error_bar_ranges(o);
       for (const auto& r : o.best_runs) {
-        c << csv_field(o.label) << "," << csv_field(spec.experiments[r.experiment].name) << "," << (r.stand_in ? "true" : "false") << ","
-          << format_g17(r.mass_kg) << "," << format_g17(r.mass_kg * kGravity);
+        c << csv_field(o.label) << "," << csv_field(spec.experiments[r.experiment].name) << ","
+          << (r.stand_in ? "true" : "false") << "," << format_g17(r.mass_kg) << "," << format_g17(r.mass_kg * kGravity);
         for (std::size_t j = 0; j < spec.parameters.size(); ++j) {
           Range v;
           for (std::size_t i = 0; i < o.variables.size(); ++i)
@@ -482,9 +518,10 @@ void write_fit(const fs::path& dir, const FitSpec& spec, const FitResult& result
                              std::isnan(v.max) ? v.value : v.max});
         }
         c << "," << format_g17(o.objective) << "," << format_g17(r.residual);
-        for (const auto& [column, field] : kFittedObservables) c << "," << format_g17(observable_field(field).value(r.obs));
-        c << "," << o.evaluations << ","
-          << format_g17(o.wall_s) << "," << csv_field(o.stop_reason) << "," << (o.ok() ? "ok" : "failed") << "\n";
+        for (const auto& [column, field] : kFittedObservables)
+          c << "," << format_g17(observable_field(field).value(r.obs));
+        c << "," << o.evaluations << "," << format_g17(o.wall_s) << "," << csv_field(o.stop_reason) << ","
+          << (o.ok() ? "ok" : "failed") << "\n";
       }
     }
     scene_io::write_text_file(tmp / "fitted.csv", c.str());
@@ -495,7 +532,8 @@ void write_fit(const fs::path& dir, const FitSpec& spec, const FitResult& result
       for (const fs::path& probe : figure_files("fitted.png", figures)) {
         std::ostringstream gp;
         gp << "set grid\nset output " << gnuplot_quote(probe.string()) << "\nset key top left\n"
-           << "set title " << gnuplot_text(spec.name) << " . " << gnuplot_quote(": fitted " + column_symbol(spec.parameters[0].key) + " per experiment")
+           << "set title " << gnuplot_text(spec.name) << " . "
+           << gnuplot_quote(": fitted " + column_symbol(spec.parameters[0].key) + " per experiment")
            << "\nset xlabel 'P = M g [N]'\nset ylabel " << gnuplot_quote(axis_markup(spec.parameters[0].key)) << "\n"
            << "plot $fitted using 1:2:3:4 with yerrorbars pt 7 title 'fit (bars: error-bar range)'\n";
         script += terminal_for(probe, kFitPlotWidth, kFitPlotHeight) + "\n" + script_for_terminal(probe, gp.str());

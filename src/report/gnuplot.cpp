@@ -96,7 +96,14 @@ std::string enhanced_literal(const std::string& text) {
   out.reserve(text.size() + 8);
   for (const char c : text) {
     switch (c) {
-      case '^': case '_': case '@': case '&': case '~': case '{': case '}': case '\\':
+      case '^':
+      case '_':
+      case '@':
+      case '&':
+      case '~':
+      case '{':
+      case '}':
+      case '\\':
         out += '\\';
         break;
       default:
@@ -118,10 +125,14 @@ FigureFormats parse_figure_formats(const std::string& list) {
     std::string name = list.substr(begin, comma - begin);
     while (!name.empty() && name.front() == ' ') name.erase(name.begin());
     while (!name.empty() && name.back() == ' ') name.pop_back();
-    if (name == "png") f.png = true;
-    else if (name == "svg") f.svg = true;
-    else if (name == "pdf") f.pdf = true;
-    else throw std::invalid_argument("unknown figure format '" + name + "' (use png, svg or pdf, comma-separated)");
+    if (name == "png")
+      f.png = true;
+    else if (name == "svg")
+      f.svg = true;
+    else if (name == "pdf")
+      f.pdf = true;
+    else
+      throw std::invalid_argument("unknown figure format '" + name + "' (use png, svg or pdf, comma-separated)");
     any = true;
     begin = comma + 1;
   }
@@ -229,8 +240,8 @@ namespace {
 std::string kept_script(const std::vector<fs::path>& figures, const std::string& script, int width, int height) {
   std::string names;
   for (const fs::path& f : figures) names += (names.empty() ? "" : ", ") + f.filename().string();
-  std::string text = kScriptHeader + ": `gnuplot " + plot_script_path(figures.front()).filename().string() + "` redraws " +
-                     names + " (data inline; restyle freely)\n";
+  std::string text = kScriptHeader + ": `gnuplot " + plot_script_path(figures.front()).filename().string() +
+                     "` redraws " + names + " (data inline; restyle freely)\n";
   for (std::size_t i = 0; i < figures.size(); ++i) {
     if (i) text += '\n';
     text += terminal_for(figures[i], width, height);
@@ -309,7 +320,8 @@ bool png_is_ours(const fs::path& png) {
     std::string head = read_all(plot_script_path(png), 1024);
     head = head.substr(0, head.find('\n'));
     const std::size_t from = head.find("` redraws "), to = head.rfind(" (data inline");
-    if (head.rfind(kScriptHeader, 0) != 0 || from == std::string::npos || to == std::string::npos || to < from) return false;
+    if (head.rfind(kScriptHeader, 0) != 0 || from == std::string::npos || to == std::string::npos || to < from)
+      return false;
     const std::string names = ", " + head.substr(from + 10, to - from - 10) + ", ";
     return names.find(", " + png.filename().string() + ", ") != std::string::npos;
   }

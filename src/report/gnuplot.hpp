@@ -61,8 +61,8 @@ std::string gnuplot_block(const std::string& name, const std::vector<std::vector
 // it: restyle it there), unless a file of that name exists that asperity did not write.
 // Returns false when gnuplot is missing or fails (the script is still kept), with the reason in
 // `*error` ("gnuplot not found on the PATH" or gnuplot's first error line).
-bool render_plot(const std::filesystem::path& figure, const std::string& script, int width = 1200,
-                 int height = 800, std::string* error = nullptr);
+bool render_plot(const std::filesystem::path& figure, const std::string& script, int width = 1200, int height = 800,
+                 std::string* error = nullptr);
 
 // render_plot in every format of `formats` (`figure`'s extension is replaced), one kept script
 // FIGURE-STEM.gp redrawing them all. Returns false when any was not drawn (the first reason in

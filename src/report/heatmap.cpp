@@ -12,11 +12,11 @@
 #include <system_error>
 
 #include "campaign/store.hpp"
+#include "io/input_error.hpp"
+#include "io/numbers.hpp"
 #include "report/gnuplot.hpp"
 #include "report/plot_axes.hpp"
 #include "report/units.hpp"
-#include "io/input_error.hpp"
-#include "io/numbers.hpp"
 
 namespace asperity {
 namespace fs = std::filesystem;
@@ -24,16 +24,18 @@ namespace fs = std::filesystem;
 using namespace plot_detail;
 
 HeatmapReport plot_heatmap(const fs::path& store, const HeatmapOptions& opt) {
-  const fs::path png = opt.out.empty() ? store / ("heatmap_" + file_part(opt.z) + "_over_" + file_part(opt.x) + "_" +
-                                                  file_part(opt.y) + ".png")
-                                       : opt.out;
+  const fs::path png =
+      opt.out.empty()
+          ? store / ("heatmap_" + file_part(opt.z) + "_over_" + file_part(opt.x) + "_" + file_part(opt.y) + ".png")
+          : opt.out;
   check_png_target(png, store, !opt.out.empty());
   const StoreTable t(store, opt.where);
   const std::size_t cx = t.column(opt.x, "--x"), cy = t.column(opt.y, "--y"), cz = t.column(opt.z, "--z");
   const std::size_t cstatus = t.column("status", "status"), cgrid = t.column("grid", "grid");
   const std::vector<std::string>& cols = t.cols;
   std::vector<std::vector<std::string>> rows = t.rows_with_numbers({cx, cy});
-  if (rows.empty()) throw InputError("asperity plot", 0, "--where", "no point of the store matches (or x/y are not numbers)");
+  if (rows.empty())
+    throw InputError("asperity plot", 0, "--where", "no point of the store matches (or x/y are not numbers)");
 
   HeatmapReport rep;
   // Prefer the grids in which both x and y vary (the one-at-a-time grids would pile up at the
@@ -83,7 +85,8 @@ HeatmapReport plot_heatmap(const fs::path& store, const HeatmapOptions& opt) {
   for (const std::string& w : opt.where) title += ", " + enhanced_literal(w);
   gp << "set title " << gnuplot_quote(title);
   if (stand_in) gp << " . \"\\n\" . " << gnuplot_quote("STAND-IN experiments, not measurements");
-  gp << " . \"\\n\" . " << gnuplot_quote("(blank: no value: NaN, e.g. no stick-slip cycle, or failed/missing point)") << "\n";
+  gp << " . \"\\n\" . " << gnuplot_quote("(blank: no value: NaN, e.g. no stick-slip cycle, or failed/missing point)")
+     << "\n";
   gp << "set cblabel " << gnuplot_quote(axis_markup(opt.z)) << "\n";
   gp << "set palette defined (0 '#440154', 1 '#3b528b', 2 '#21908d', 3 '#5dc963', 4 '#fde725')\n";
   // Numeric axes: each cell spans the values between its neighbours, so η = 150, 180, 200 sit
@@ -103,14 +106,15 @@ HeatmapReport plot_heatmap(const fs::path& store, const HeatmapOptions& opt) {
     for (std::size_t j = 0; j < ys.size(); ++j) {
       ++rep.cells;
       double z = NAN;
-      if (const auto it = cell.find({i, j}); it != cell.end() && (*it->second)[cstatus] == "ok") number_of((*it->second)[cz], z);
+      if (const auto it = cell.find({i, j}); it != cell.end() && (*it->second)[cstatus] == "ok")
+        number_of((*it->second)[cz], z);
       if (!std::isfinite(z)) {
         ++rep.blank;
         continue;
       }
       const auto f = [](double x) { return scene_io::format_double(x); };
-      gp << f(xv[i]) << ' ' << f(yv[j]) << ' ' << f(xe[i].first) << ' ' << f(xe[i].second) << ' ' << f(ye[j].first) << ' '
-         << f(ye[j].second) << ' ' << f(z) << '\n';
+      gp << f(xv[i]) << ' ' << f(yv[j]) << ' ' << f(xe[i].first) << ' ' << f(xe[i].second) << ' ' << f(ye[j].first)
+         << ' ' << f(ye[j].second) << ' ' << f(z) << '\n';
     }
   gp << "EOD\n";
   if (rep.blank < rep.cells)

@@ -27,7 +27,8 @@ LinePlotReport plot_lines(const fs::path& store, const LinePlotOptions& opt) {
   const std::size_t cstatus = t.column("status", "status"), cgrid = t.column("grid", "grid"),
                     cexp = t.column("experiment", "experiment");
   std::vector<std::vector<std::string>> rows = t.rows_with_numbers({cx});
-  if (rows.empty()) throw InputError("asperity plot", 0, "--where", "no point of the store matches (or x is not a number)");
+  if (rows.empty())
+    throw InputError("asperity plot", 0, "--where", "no point of the store matches (or x is not a number)");
 
   LinePlotReport rep;
   {  // Prefer the grids in which x varies (the others would pile up at their base value).
@@ -70,8 +71,9 @@ LinePlotReport plot_lines(const fs::path& store, const LinePlotOptions& opt) {
   gp << axis_settings("x", opt.x, xtexts, {}, xlog);
   gp << "set ylabel " << gnuplot_quote(axis_markup(opt.y)) << "\n";
   if (xtexts.size() > 8) gp << "set xtics rotate by 60 right\n";
-  if (xlog && xv.size() > 1) gp << "set xrange [" << scene_io::format_double(xv.front() / std::pow(xv.back() / xv.front(), 0.03))
-                                 << ":" << scene_io::format_double(xv.back() * std::pow(xv.back() / xv.front(), 0.03)) << "]\n";
+  if (xlog && xv.size() > 1)
+    gp << "set xrange [" << scene_io::format_double(xv.front() / std::pow(xv.back() / xv.front(), 0.03)) << ":"
+       << scene_io::format_double(xv.back() * std::pow(xv.back() / xv.front(), 0.03)) << "]\n";
   std::size_t k = 0;
   std::string plot = "plot ";
   for (const auto& [experiment, points] : lines) {
@@ -88,17 +90,19 @@ LinePlotReport plot_lines(const fs::path& store, const LinePlotOptions& opt) {
       gp << scene_io::format_double(x) << ' ' << scene_io::format_double(y) << '\n';
     }
     gp << "EOD\n";
-    plot += std::string(k ? ", " : "") + "$line" + std::to_string(k) + " using 1:2 with linespoints pt 7 ps 0.8 lw 1.5 title " +
-            gnuplot_text(experiment);
+    plot += std::string(k ? ", " : "") + "$line" + std::to_string(k) +
+            " using 1:2 with linespoints pt 7 ps 0.8 lw 1.5 title " + gnuplot_text(experiment);
     ++k;
   }
   rep.lines = k;
-  gp << (rep.blank < rep.points ? plot : std::string("set label 1 'no finite value' at graph 0.5,0.5 center\nplot NaN notitle"))
+  gp << (rep.blank < rep.points
+             ? plot
+             : std::string("set label 1 'no finite value' at graph 0.5,0.5 center\nplot NaN notitle"))
      << "\n";
   std::string error;
   if (!render_plot(figure, gp.str(), 1000, 650, &error))
-    throw std::runtime_error("cannot draw " + figure.string() + ": " + error + " (its script is kept: " +
-                             plot_script_path(figure).string() + ")");
+    throw std::runtime_error("cannot draw " + figure.string() + ": " + error +
+                             " (its script is kept: " + plot_script_path(figure).string() + ")");
   rep.figure = figure;
   return rep;
 }

@@ -27,7 +27,9 @@ namespace {
 
 constexpr const char* kFilesLine = "files v2";
 
-std::string marker_head(const std::string& command) { return "created by asperity " + command + "\n" + kFilesLine + "\n"; }
+std::string marker_head(const std::string& command) {
+  return "created by asperity " + command + "\n" + kFilesLine + "\n";
+}
 
 // What lstat says a path is (no symbolic link followed).
 enum class Kind { absent, file, dir, other };
@@ -42,7 +44,8 @@ Kind kind_of(const fs::path& p) {
 // The file list of `dir`'s marker of `command`: relative path → the SHA-256 digests it was written
 // with; nothing when the marker is missing, of another command, or has no list (written before
 // lists existed, or made by hand).
-std::optional<std::map<std::string, std::set<std::string>>> marker_files(const fs::path& dir, const std::string& command) {
+std::optional<std::map<std::string, std::set<std::string>>> marker_files(const fs::path& dir,
+                                                                         const std::string& command) {
   if (kind_of(dir) != Kind::dir || kind_of(dir / kMarkerFile) != Kind::file) return std::nullopt;
   std::ifstream in(dir / kMarkerFile, std::ios::binary);
   std::string line;
@@ -71,7 +74,8 @@ void write_marker_files(const fs::path& dir, const std::string& command,
 }  // namespace
 
 void write_marker(const fs::path& dir, const std::string& command, bool file_list) {
-  scene_io::write_text_file(dir / kMarkerFile, file_list ? marker_head(command) : "created by asperity " + command + "\n");
+  scene_io::write_text_file(dir / kMarkerFile,
+                            file_list ? marker_head(command) : "created by asperity " + command + "\n");
 }
 
 bool has_marker(const fs::path& dir, const std::string& command) {
@@ -116,7 +120,8 @@ void claim_dir(const fs::path& dir, const std::string& command, const std::strin
   const fs::path tmp = target.parent_path() / temp_name(name);
   remove_stale_temporaries(target.parent_path(), temp_prefix(name));
   const TempGuard on_signal(tmp);  // before it exists: a signal in between would leave it behind
-  if (!fs::create_directory(tmp, ec) || ec) throw std::runtime_error("cannot create " + tmp.string() + ": " + ec.message());
+  if (!fs::create_directory(tmp, ec) || ec)
+    throw std::runtime_error("cannot create " + tmp.string() + ": " + ec.message());
   write_marker(tmp, command, file_list);
   fs::rename(tmp, target, ec);
   if (ec) {  // another process made it first: it must be ours too
@@ -134,7 +139,7 @@ void check_publishable(const fs::path& dir, const std::string& command, const st
   std::error_code ec;
   if (k == Kind::dir && fs::is_empty(target, ec) && !ec) return;
   if (marker_files(target, command)) return;
-  const std::string why = k == Kind::other ? "it is a symbolic link or a special file"
+  const std::string why = k == Kind::other  ? "it is a symbolic link or a special file"
                           : k == Kind::file ? "it is a file, not a folder"
                           : fs::exists(fs::symlink_status(target / kMarkerFile))
                               ? "its " + std::string(kMarkerFile) + " does not list the files asperity " + command +
@@ -158,7 +163,8 @@ void publish_dir(const fs::path& dir, const std::string& command, const std::str
   remove_stale_temporaries(parent, own);
   if (kind_of(target) == Kind::dir) remove_stale_temporaries(target);
   const TempGuard on_signal(tmp);  // before it exists: a signal in between would leave it behind
-  if (!fs::create_directory(tmp, ec) || ec) throw std::runtime_error("cannot create " + tmp.string() + ": " + ec.message());
+  if (!fs::create_directory(tmp, ec) || ec)
+    throw std::runtime_error("cannot create " + tmp.string() + ": " + ec.message());
   struct Cleanup {  // the temporary folder goes whatever happens (renamed into place: nothing to do)
     fs::path p;
     ~Cleanup() {
@@ -188,8 +194,8 @@ void publish_dir(const fs::path& dir, const std::string& command, const std::str
 
   // An existing folder: every file to write must be absent or ours as we left it, and the
   // folders on its way real folders.
-  const std::map<std::string, std::set<std::string>> old = marker_files(target, command).value_or(
-      std::map<std::string, std::set<std::string>>{});
+  const std::map<std::string, std::set<std::string>> old =
+      marker_files(target, command).value_or(std::map<std::string, std::set<std::string>>{});
   for (const auto& [rel, digest] : made) {
     fs::path at = target;
     const fs::path r(rel);
@@ -216,14 +222,17 @@ void publish_dir(const fs::path& dir, const std::string& command, const std::str
   for (const auto& [rel, digest] : made) {
     fs::create_directories((target / rel).parent_path(), ec);
     fs::rename(tmp / rel, target / rel, ec);
-    if (ec) throw std::runtime_error("cannot move " + (tmp / rel).string() + " into " + target.string() + ": " + ec.message());
+    if (ec)
+      throw std::runtime_error("cannot move " + (tmp / rel).string() + " into " + target.string() + ": " +
+                               ec.message());
   }
   // Files the last write made and this one did not: removed when still as written.
   for (const auto& [rel, digests] : old) {
     if (made.count(rel)) continue;
     const fs::path at = target / rel;
     bool real_path = true;  // no link on the way
-    for (fs::path p = at.parent_path(); p != target && real_path; p = p.parent_path()) real_path = kind_of(p) == Kind::dir;
+    for (fs::path p = at.parent_path(); p != target && real_path; p = p.parent_path())
+      real_path = kind_of(p) == Kind::dir;
     if (real_path && kind_of(at) == Kind::file && digests.count(sha256_file_hex(at))) {
       fs::remove(at, ec);
       for (fs::path p = at.parent_path(); p != target && fs::is_empty(p, ec); p = p.parent_path()) fs::remove(p, ec);
@@ -231,6 +240,5 @@ void publish_dir(const fs::path& dir, const std::string& command, const std::str
   }
   write_marker_files(target, command, made);
 }
-
 
 }  // namespace asperity

@@ -51,14 +51,15 @@ const char* kColors[] = {"#1b9e77", "#d95f02", "#7570b3", "#e7298a", "#66a61e", 
 }  // namespace
 
 std::string write_figure3(const fs::path& out_dir, const PaperRun& small, const PaperRun& large,
-                   const std::string& label, const FigureFormats& formats) {
+                          const std::string& label, const FigureFormats& formats) {
   std::ostringstream gp;
   gp << gnuplot_block("ms", series_rows(small.series)) << gnuplot_block("me", measured_rows(small))
      << gnuplot_block("ls", series_rows(large.series)) << gnuplot_block("le", measured_rows(large));
   gp << kScreenFont << "set grid\n"
      << "set multiplot layout 2,2 title "
-     << gnuplot_text(label + ": Figure 3 analogue. Measured A(Q) has no time axis: its samples sit at the model time "
-                             "of equal Q (loading branch).")
+     << gnuplot_text(label +
+                     ": Figure 3 analogue. Measured A(Q) has no time axis: its samples sit at the model time "
+                     "of equal Q (loading branch).")
      << "\n";
   auto panel = [&](const PaperRun& r, const char* model, const char* meas, bool area) {
     // Q rises from the lower left, A falls from the upper left (the measured points start
@@ -87,8 +88,7 @@ std::string write_figure4(const fs::path& out_dir, const std::vector<PaperRun>& 
   for (std::size_t k = 0; k < runs.size(); ++k) {
     const PaperRun& r = runs[k];
     std::vector<std::vector<double>> model, meas;
-    for (const Sample& s : r.loading)
-      model.push_back({s.Q, s.A * 1e6, s.Q / r.obs.Q_s, s.A / r.obs.A0});
+    for (const Sample& s : r.loading) model.push_back({s.Q, s.A * 1e6, s.Q / r.obs.Q_s, s.A / r.obs.A0});
     if (r.scene.experiment.measured) {
       const auto& m = *r.scene.experiment.measured;
       for (std::size_t i = 0; i < m.Q_N.size(); ++i)
@@ -112,8 +112,7 @@ std::string write_figure4(const fs::path& out_dir, const std::vector<PaperRun>& 
       gp << "$m" << k << " using " << cx << ":" << cy << " with lines lw 2 lc rgb '" << col << "' title "
          << gnuplot_text(runs[k].scene.experiment.name);
       if (runs[k].scene.experiment.measured)
-        gp << ", $e" << k << " using " << cx << ":" << cy << " with points pt 7 ps 0.4 lc rgb '" << col
-           << "' notitle";
+        gp << ", $e" << k << " using " << cx << ":" << cy << " with points pt 7 ps 0.4 lc rgb '" << col << "' notitle";
     }
     gp << "\n";
   }
@@ -130,9 +129,9 @@ std::string paper_table_csv(const std::vector<PaperRun>& runs) {
   for (const PaperRun& r : runs) {
     const Observables& o = r.obs;
     s << csv_field(r.scene.experiment.name) << ',' << o.N << ',' << g(o.A0) << ',' << g(o.dt) << ',' << g(o.Q_s) << ','
-      << g(o.A_s) << ',' << g(o.t_peak) << ',' << g(o.alpha) << ',' << g(o.alpha_R2) << ','
-      << g(o.alpha_measured) << ',' << g(o.shape_exponent) << ',' << g(o.shape_exponent_measured) << ','
-      << g(o.area_drop_fraction) << ',' << o.ss_cycles << ',' << g(o.ss_drop) << ',' << g(o.ss_period) << '\n';
+      << g(o.A_s) << ',' << g(o.t_peak) << ',' << g(o.alpha) << ',' << g(o.alpha_R2) << ',' << g(o.alpha_measured)
+      << ',' << g(o.shape_exponent) << ',' << g(o.shape_exponent_measured) << ',' << g(o.area_drop_fraction) << ','
+      << o.ss_cycles << ',' << g(o.ss_drop) << ',' << g(o.ss_period) << '\n';
   }
   return s.str();
 }

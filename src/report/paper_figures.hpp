@@ -13,8 +13,8 @@
 
 #include "observe/observables.hpp"
 #include "report/gnuplot.hpp"  // FigureFormats
-#include "solve/core/observer.hpp"
 #include "scene/scene.hpp"
+#include "solve/core/observer.hpp"
 
 namespace asperity {
 
@@ -31,10 +31,10 @@ double loading_time_at(const std::vector<Sample>& loading, double Q);
 // `label` marks the data's origin on every figure (e.g. "STAND-IN data"). Each returns "" when
 // drawn, else why not (gnuplot missing or failing); the script is kept beside the PNG either way.
 // Each figure in every format of `formats` (fig3_Q_A_t.svg, .pdf: report/gnuplot.hpp).
-std::string write_figure3(const std::filesystem::path& out_dir, const PaperRun& smallest,
-                   const PaperRun& largest, const std::string& label, const FigureFormats& formats = {});
+std::string write_figure3(const std::filesystem::path& out_dir, const PaperRun& smallest, const PaperRun& largest,
+                          const std::string& label, const FigureFormats& formats = {});
 std::string write_figure4(const std::filesystem::path& out_dir, const std::vector<PaperRun>& runs,
-                   const std::string& label, const FigureFormats& formats = {});
+                          const std::string& label, const FigureFormats& formats = {});
 // table.csv: a header line (kPaperTableHeader), then one row per run (names CSV-quoted).
 std::string paper_table_csv(const std::vector<PaperRun>& runs);
 inline constexpr const char* kPaperTableHeader =

@@ -127,7 +127,6 @@ std::string axis_settings(const char* axis, const std::string& column, const std
   return gp.str();
 }
 
-
 StoreTable::StoreTable(const fs::path& dir, const std::vector<std::string>& where) : store(dir) {
   const StoreReader s(dir);
   header = s.header();
@@ -135,7 +134,8 @@ StoreTable::StoreTable(const fs::path& dir, const std::vector<std::string>& wher
   std::vector<std::pair<std::size_t, std::string>> filters;
   for (const std::string& w : where) {
     const std::size_t eq = w.find('=');
-    if (eq == std::string::npos) throw InputError("asperity plot", 0, "--where", "expected column=value, got '" + w + "'");
+    if (eq == std::string::npos)
+      throw InputError("asperity plot", 0, "--where", "expected column=value, got '" + w + "'");
     filters.emplace_back(column(w.substr(0, eq), "--where"), w.substr(eq + 1));
   }
   for (const StoredRow& stored : s.rows()) {
@@ -150,7 +150,8 @@ StoreTable::StoreTable(const fs::path& dir, const std::vector<std::string>& wher
 std::size_t StoreTable::column(const std::string& name, const char* option) const {
   const auto it = std::find(cols.begin(), cols.end(), name);
   if (it == cols.end())
-    throw InputError("asperity plot", 0, option, "no column '" + name + "' in the store " + store.string() + "; columns: " + header);
+    throw InputError("asperity plot", 0, option,
+                     "no column '" + name + "' in the store " + store.string() + "; columns: " + header);
   return static_cast<std::size_t>(it - cols.begin());
 }
 

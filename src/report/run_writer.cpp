@@ -21,11 +21,12 @@ namespace fs = std::filesystem;
 
 namespace {
 
-
 const char* method_name(SolverMethod m) {
   switch (m) {
-    case SolverMethod::reference: return "reference";
-    case SolverMethod::event: return "event";
+    case SolverMethod::reference:
+      return "reference";
+    case SolverMethod::event:
+      return "event";
   }
   return "unknown";
 }

@@ -35,8 +35,8 @@ struct RunWriteOptions {
 // Writes the run directory `dir` atomically, replacing an existing run directory. Throws
 // std::runtime_error (with the path) when a file cannot be written, or when `dir` exists but
 // holds anything else than a run's files (so `--out .` never deletes unrelated files).
-void write_run(const std::filesystem::path& dir, const Scene& scene, const Observables& obs,
-               const Recorder& rec, const RunWriteOptions& opt = {});
+void write_run(const std::filesystem::path& dir, const Scene& scene, const Observables& obs, const Recorder& rec,
+               const RunWriteOptions& opt = {});
 
 // Throws the error write_run would give for an existing `dir` that is not a run directory; call
 // it before a long run so it fails early.

@@ -10,12 +10,18 @@ namespace {
 
 const char* kind_name(KeyKind k) {
   switch (k) {
-    case KeyKind::number: return "number";
-    case KeyKind::integer: return "whole number";
-    case KeyKind::boolean: return "true/false";
-    case KeyKind::choice: return "choice";
-    case KeyKind::text: return "text";
-    case KeyKind::list: return "list";
+    case KeyKind::number:
+      return "number";
+    case KeyKind::integer:
+      return "whole number";
+    case KeyKind::boolean:
+      return "true/false";
+    case KeyKind::choice:
+      return "choice";
+    case KeyKind::text:
+      return "text";
+    case KeyKind::list:
+      return "list";
   }
   return "";
 }
@@ -48,7 +54,8 @@ std::string scene_keys_markdown() {
       "A value allowed but outside its key's `plausible` range (where a real slider on an elastomer\n"
       "puts it) is run, with one warning on stderr naming the file and line (or the `--set`) and the\n"
       "unit slip that would explain it, e.g. `warning: --set experiment.E=1.6: experiment.E = 1.6 Pa is\n"
-      "far below an elastomer's 1e+05 to 1e+08 Pa; was it meant in MPa (1.6e+06 Pa)?`; `-q` keeps it (a warning is not a success's chatter).\n\n"
+      "far below an elastomer's 1e+05 to 1e+08 Pa; was it meant in MPa (1.6e+06 Pa)?`; `-q` keeps it (a warning is not "
+      "a success's chatter).\n\n"
       "| key | kind | unit | allowed | plausible | default | fit parameter | why the limit |\n"
       "|---|---|---|---|---|---|---|---|\n";
   const Scene defaults{};
@@ -56,13 +63,16 @@ std::string scene_keys_markdown() {
     const bool numeric = k.kind == KeyKind::number;
     std::string unit = numeric ? (k.unit ? k.unit : "1") : "";
     std::string def;
-    if (numeric) def = std::isnan(k.default_value) ? "required" : scene_io::format_double(k.default_value);
-    else if (k.text) def = k.text(defaults);
+    if (numeric)
+      def = std::isnan(k.default_value) ? "required" : scene_io::format_double(k.default_value);
+    else if (k.text)
+      def = k.text(defaults);
     if (std::string(k.name).rfind("experiment.", 0) == 0 && !numeric) def = "(from the experiment file)";
     if (std::string(k.name).rfind("topography.", 0) == 0) def = "(from the recipe)";  // only in topography scenes
     md += "| `" + std::string(k.name) + "` | " + kind_name(k.kind) + " | " + cell(unit) + " | " +
-          cell(k.range ? k.range : "") + " | " + plausible_text(k) + " | " + (def.empty() ? "" : "`" + cell(def) + "`") + " | " +
-          (k.fittable ? "yes" : "") + " | " + cell(k.why ? k.why : "") + " |\n";
+          cell(k.range ? k.range : "") + " | " + plausible_text(k) + " | " +
+          (def.empty() ? "" : "`" + cell(def) + "`") + " | " + (k.fittable ? "yes" : "") + " | " +
+          cell(k.why ? k.why : "") + " |\n";
   }
   return md;
 }

@@ -23,8 +23,8 @@ std::string column_unit(const std::string& column) {
 }
 
 std::string series_unit(const std::string& column) {
-  static const char* const units[][2] = {{"t", "s"}, {"X", "m"}, {"V", "m/s"}, {"Q", "N"}, {"A", "m^2"},
-                                          {"n_slipping", "1"}, {"n_intact", "1"}};
+  static const char* const units[][2] = {{"t", "s"},   {"X", "m"},          {"V", "m/s"},     {"Q", "N"},
+                                         {"A", "m^2"}, {"n_slipping", "1"}, {"n_intact", "1"}};
   for (const auto& [name, unit] : units)
     if (column == name) return unit;
   return "";
@@ -123,7 +123,8 @@ const char* find_symbol(const std::string& column) {
 std::string factor_markup(const std::string& f, bool negate) {
   const std::size_t hat = f.find('^');
   std::string base = f.substr(0, hat), exponent = hat == std::string::npos ? "" : f.substr(hat + 1);
-  if (exponent.size() >= 2 && exponent.front() == '(' && exponent.back() == ')') exponent = exponent.substr(1, exponent.size() - 2);
+  if (exponent.size() >= 2 && exponent.front() == '(' && exponent.back() == ')')
+    exponent = exponent.substr(1, exponent.size() - 2);
   if (negate) exponent.insert(0, exponent.empty() ? "-1" : "-");
   if (exponent.empty()) return enhanced_literal(base);
   const bool one_char = exponent.size() == 1;
@@ -159,7 +160,8 @@ std::string axis_markup(const std::string& column) {
 std::string units_reference_markdown() {
   std::string md =
       "# Units of every column\n\n"
-      "Generated from the key and observable tables (`src/report/units.cpp`; `tests/unit/report/test_report_units.cpp`\n"
+      "Generated from the key and observable tables (`src/report/units.cpp`; "
+      "`tests/unit/report/test_report_units.cpp`\n"
       "keeps this file equal to them). All values are SI. `1`: dimensionless. Columns of a store's\n"
       "`points.csv`, of `summary.yaml`, `fitted.csv` and the bench CSVs are named as below; `table.csv`\n"
       "of `asperity reproduce` carries its units in its header names (`Q_s_N`, `A0_m2`, ...).\n\n"

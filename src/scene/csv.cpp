@@ -69,8 +69,10 @@ MeasuredCurve read_measured_csv(const std::filesystem::path& csv, const std::str
   MeasuredCurve m;
   for (std::size_t i = 0; i < t.rows.size(); ++i) {
     const double q = t.rows[i][static_cast<std::size_t>(cq)], a = t.rows[i][static_cast<std::size_t>(ca)];
-    if (const std::string why = measured_force_problem(q); !why.empty()) throw InputError(display, t.lines[i], "Q_N", why, cq + 1);
-    if (const std::string why = measured_area_problem(a); !why.empty()) throw InputError(display, t.lines[i], "A_m2", why, ca + 1);
+    if (const std::string why = measured_force_problem(q); !why.empty())
+      throw InputError(display, t.lines[i], "Q_N", why, cq + 1);
+    if (const std::string why = measured_area_problem(a); !why.empty())
+      throw InputError(display, t.lines[i], "A_m2", why, ca + 1);
     m.Q_N.push_back(q);
     m.A_m2.push_back(a);
   }
@@ -83,17 +85,19 @@ MeasuredForce read_force_csv(const std::filesystem::path& csv, const std::string
   MeasuredForce f;
   for (std::size_t i = 0; i < t.rows.size(); ++i) {
     const double time = t.rows[i][static_cast<std::size_t>(ct)], q = t.rows[i][static_cast<std::size_t>(cq)];
-    if (!(time >= 0)) throw InputError(display, t.lines[i], "t_s", "time must be >= 0, got " + format_double(time), ct + 1);
+    if (!(time >= 0))
+      throw InputError(display, t.lines[i], "t_s", "time must be >= 0, got " + format_double(time), ct + 1);
     if (!f.t_s.empty() && !(time > f.t_s.back()))
       throw InputError(display, t.lines[i], "t_s",
-                       "times must increase strictly: " + format_double(time) + " after " + format_double(f.t_s.back()) +
-                           " (line " + std::to_string(t.lines[i - 1]) + ")",
+                       "times must increase strictly: " + format_double(time) + " after " +
+                           format_double(f.t_s.back()) + " (line " + std::to_string(t.lines[i - 1]) + ")",
                        ct + 1);
     f.t_s.push_back(time);
     f.Q_N.push_back(q);
   }
   if (f.t_s.size() < 2)
-    throw InputError(display, t.header_line, "t_s", "a force history needs at least 2 samples, got " + std::to_string(f.t_s.size()));
+    throw InputError(display, t.header_line, "t_s",
+                     "a force history needs at least 2 samples, got " + std::to_string(f.t_s.size()));
   return f;
 }
 
@@ -130,8 +134,7 @@ void write_junctions_csv(const std::filesystem::path& csv, const JunctionPopulat
 }
 
 void write_measured_csv(const std::filesystem::path& csv, const MeasuredCurve& m) {
-  if (m.Q_N.size() != m.A_m2.size())
-    throw std::invalid_argument("write_measured_csv: Q_N and A_m2 differ in length");
+  if (m.Q_N.size() != m.A_m2.size()) throw std::invalid_argument("write_measured_csv: Q_N and A_m2 differ in length");
   std::string s = "Q_N,A_m2\n";
   for (std::size_t i = 0; i < m.Q_N.size(); ++i) {
     s += csv_number(m.Q_N[i]);
@@ -142,7 +145,8 @@ void write_measured_csv(const std::filesystem::path& csv, const MeasuredCurve& m
   scene_io::write_text_file(csv, s);
 }
 
-void write_force_csv(const std::filesystem::path& csv, const MeasuredForce& f, const std::vector<std::string>& comment) {
+void write_force_csv(const std::filesystem::path& csv, const MeasuredForce& f,
+                     const std::vector<std::string>& comment) {
   if (f.t_s.size() != f.Q_N.size()) throw std::invalid_argument("write_force_csv: t_s and Q_N differ in length");
   std::string s;
   for (const std::string& line : comment) s += "# " + line + "\n";

@@ -10,9 +10,10 @@ namespace asperity {
 
 inline std::vector<DataFile> input_files(const Scene& scene) {
   const Experiment& e = scene.experiment;
-  if (const auto& t = scene.topography) return {{"scene", scene.file}, {"topography", t->file}, {"height map", t->map_file}};
-  return {{"scene", scene.file}, {"experiment", e.file}, {"junctions", e.junctions_file},
-          {"measured", e.measured_file}};
+  if (const auto& t = scene.topography)
+    return {{"scene", scene.file}, {"topography", t->file}, {"height map", t->map_file}};
+  return {
+      {"scene", scene.file}, {"experiment", e.file}, {"junctions", e.junctions_file}, {"measured", e.measured_file}};
 }
 
 }  // namespace asperity

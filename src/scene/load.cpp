@@ -118,8 +118,9 @@ JunctionPopulation inline_junctions(const MapView& ev, const YAML::Node& n) {
     p.y_m = column("y_m", "m", junction_coordinate_problem);
     for (const auto& [k, c] : {std::pair{"x_m", &p.x_m}, std::pair{"y_m", &p.y_m}})
       if (c->size() != p.area_m2.size())
-        jv.fail_at(*jv.find(k), k, "has " + std::to_string(c->size()) + " values, area_m2 has " +
-                                       std::to_string(p.area_m2.size()) + " (one per junction)");
+        jv.fail_at(*jv.find(k), k,
+                   "has " + std::to_string(c->size()) + " values, area_m2 has " + std::to_string(p.area_m2.size()) +
+                       " (one per junction)");
   }
   return p;
 }
@@ -132,8 +133,9 @@ MeasuredCurve inline_measured(const MapView& ev, const YAML::Node& n) {
   m.Q_N = inline_column(mv, "Q_N", "N", measured_force_problem);
   m.A_m2 = inline_column(mv, "A_m2", "m^2", measured_area_problem);
   if (m.Q_N.size() != m.A_m2.size())
-    mv.fail_at(*mv.find("A_m2"), "A_m2", "has " + std::to_string(m.A_m2.size()) + " values, Q_N has " +
-                                             std::to_string(m.Q_N.size()) + " (one per sample)");
+    mv.fail_at(*mv.find("A_m2"), "A_m2",
+               "has " + std::to_string(m.A_m2.size()) + " values, Q_N has " + std::to_string(m.Q_N.size()) +
+                   " (one per sample)");
   return m;
 }
 
@@ -235,17 +237,20 @@ void read_other(const MapView& m, const YAML::Node& n, const SceneKey& key, Scen
   const std::string k = key.leaf();
   const std::string name = key.name;
   if (name == "model.junction_shape")
-    s.model.junction_shape =
-        m.enumeration<JunctionShape>(n, k, {{"elliptic", JunctionShape::elliptic}, {"circular", JunctionShape::circular}});
+    s.model.junction_shape = m.enumeration<JunctionShape>(
+        n, k, {{"elliptic", JunctionShape::elliptic}, {"circular", JunctionShape::circular}});
   else if (name == "model.area_law")
-    s.model.area_law = m.enumeration<AreaLaw>(n, k, {{"until_first_slip", AreaLaw::until_first_slip}, {"always", AreaLaw::always}});
+    s.model.area_law =
+        m.enumeration<AreaLaw>(n, k, {{"until_first_slip", AreaLaw::until_first_slip}, {"always", AreaLaw::always}});
   else if (name == "model.interactions")
-    s.model.interactions = m.enumeration<Interactions>(n, k, {{"none", Interactions::none}, {"elastic", Interactions::elastic}});
+    s.model.interactions =
+        m.enumeration<Interactions>(n, k, {{"none", Interactions::none}, {"elastic", Interactions::elastic}});
   else if (name == "model.interaction_weighting")
-    s.model.interaction_weighting =
-        m.enumeration<TractionWeighting>(n, k, {{"uniform", TractionWeighting::uniform}, {"rigid", TractionWeighting::rigid}});
+    s.model.interaction_weighting = m.enumeration<TractionWeighting>(
+        n, k, {{"uniform", TractionWeighting::uniform}, {"rigid", TractionWeighting::rigid}});
   else if (name == "solver.method")
-    s.solver.method = m.enumeration<SolverMethod>(n, k, {{"reference", SolverMethod::reference}, {"event", SolverMethod::event}});
+    s.solver.method =
+        m.enumeration<SolverMethod>(n, k, {{"reference", SolverMethod::reference}, {"event", SolverMethod::event}});
   else if (name == "stop.at_first_peak")
     s.stop.at_first_peak = m.boolean(n, k);
   else if (name == "stop.cycles") {
@@ -290,7 +295,8 @@ void read_topography(const MapView& root, const YAML::Node& tn, const fs::path& 
   } else if (tn.IsMap()) {
     r = topography_recipe_from_scene(root.source(), tn, base_dir);
   } else {
-    root.fail_at(tn, "topography", "expected the path of a topography recipe or a map of its keys, got " + node_kind(tn));
+    root.fail_at(tn, "topography",
+                 "expected the path of a topography recipe or a map of its keys, got " + node_kind(tn));
   }
   std::shared_ptr<const TopographyContact> contact;
   try {

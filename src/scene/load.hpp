@@ -48,9 +48,9 @@
 #include <string>
 #include <vector>
 
-#include "scene/csv.hpp"
 #include "io/input_error.hpp"
 #include "io/yaml_util.hpp"  // yaml_quoted
+#include "scene/csv.hpp"
 #include "scene/scene.hpp"
 #include "scene/typed_scene.hpp"
 
@@ -108,8 +108,7 @@ std::string scene_to_yaml(const Scene& scene);
 
 // An experiment file for `e` whose CSVs are at the given paths (relative to the experiment file;
 // measured_rel empty: no measured curve). Numbers round-trip exactly.
-std::string experiment_to_yaml(const Experiment& e, const std::string& junctions_rel,
-                               const std::string& measured_rel);
+std::string experiment_to_yaml(const Experiment& e, const std::string& junctions_rel, const std::string& measured_rel);
 
 // The model: and solver: sections of a scene, exactly as scene_to_yaml writes them.
 std::string model_solver_yaml(const ModelSettings& m, const SolverSettings& solver);

@@ -19,8 +19,8 @@ inline constexpr double kMaxJunctionCoordinate_m = 1e9;
 
 // Junctions of one interface, as segmented from an image (or drawn by the generator).
 struct JunctionPopulation {
-  std::vector<double> area_m2;  // initial areas A0_i > 0
-  std::vector<double> x_m, y_m; // optional centre positions (empty when absent)
+  std::vector<double> area_m2;   // initial areas A0_i > 0
+  std::vector<double> x_m, y_m;  // optional centre positions (empty when absent)
   std::size_t size() const { return area_m2.size(); }
 };
 
@@ -34,12 +34,12 @@ struct Experiment {
   std::filesystem::path file;            // the experiment YAML (for provenance)
   std::filesystem::path junctions_file;  // resolved CSV path
   std::filesystem::path measured_file;   // resolved CSV path, empty when absent
-  double mass_kg = 0;      // slider mass M
-  double k_L = 0;          // N/m, loading spring
-  double v = 0;            // m/s, driving velocity
-  double E = 0;            // Pa
+  double mass_kg = 0;                    // slider mass M
+  double k_L = 0;                        // N/m, loading spring
+  double v = 0;                          // m/s, driving velocity
+  double E = 0;                          // Pa
   double nu = 0;
-  double sigma_exp = 0;    // Pa, measured frictional shear strength
+  double sigma_exp = 0;  // Pa, measured frictional shear strength
   JunctionPopulation junctions;
   std::optional<MeasuredCurve> measured;
   std::string description;  // free text from the experiment file (e.g. "stand-in data"); may be empty
@@ -48,7 +48,7 @@ struct Experiment {
 enum class Interactions { none, elastic };
 
 struct ModelSettings {
-  double eta = 100.0;        // 1/s
+  double eta = 100.0;  // 1/s
   double epsilon = 0.90;
   double c_min = 0.01;
   double p = 1.5;
@@ -71,8 +71,8 @@ enum class SolverMethod { reference, event };
 
 struct SolverSettings {
   SolverMethod method = SolverMethod::event;
-  double Ct = 1e4;           // reference: dt = T0 / Ct
-  double tolerance = 1e-9;   // event solver: relative local error per step
+  double Ct = 1e4;          // reference: dt = T0 / Ct
+  double tolerance = 1e-9;  // event solver: relative local error per step
   // Event solver with interactions: each exact solve of the coupled pinned junctions stops when
   // its last correction is below this fraction of the junctions' slip forces, and slip positions
   // are located to it (docs/interactions.md, "The interaction tolerance").
@@ -80,13 +80,13 @@ struct SolverSettings {
 };
 
 struct StopSettings {
-  double time = 1.0;         // s, hard end of the run
-  bool at_first_peak = false;// stop once the first macroscopic peak of Q is confirmed
-  int cycles = -1;           // stop once this many stick-slip cycles are complete (-1: never)
+  double time = 1.0;           // s, hard end of the run
+  bool at_first_peak = false;  // stop once the first macroscopic peak of Q is confirmed
+  int cycles = -1;             // stop once this many stick-slip cycles are complete (-1: never)
   // Resource limits, checked inside the solver loops (solve/core/run_limits.hpp): reaching one ends
   // the run with a SolverError naming the key. The defaults never trigger on the shipped scenes.
-  double wall_time = 3600.0; // s of wall-clock time for one run
-  std::int64_t max_slips = 0;// pinned → slipping transitions; 0: automatic (default_max_slips)
+  double wall_time = 3600.0;   // s of wall-clock time for one run
+  std::int64_t max_slips = 0;  // pinned → slipping transitions; 0: automatic (default_max_slips)
 };
 
 // Names of the columns series.csv may hold, in file order.
@@ -96,7 +96,7 @@ inline const std::vector<std::string>& all_series() {
 }
 
 struct OutputSettings {
-  double every = 1e-3;                  // s, sampling interval of series and loading-branch fit
+  double every = 1e-3;                             // s, sampling interval of series and loading-branch fit
   std::vector<std::string> series = all_series();  // empty: no series.csv
   // A Q maximum counts as a peak if Q then drops by this fraction. 2 %: the ringing of Q after
   // single slips (drops ≲ 1 %) is not stick-slip; with equal areas 1e-3 gave a 0.03 s "period"
@@ -105,8 +105,8 @@ struct OutputSettings {
 };
 
 struct Scene {
-  std::filesystem::path file;           // the scene YAML
-  std::filesystem::path experiment_ref; // as written in the scene (relative to it)
+  std::filesystem::path file;            // the scene YAML
+  std::filesystem::path experiment_ref;  // as written in the scene (relative to it)
   Experiment experiment;
   // A scene whose `topography:` section makes its experiment (topography_recipe.hpp): the
   // experiment above is then the recipe's, its junctions those of the contact solve.

@@ -37,18 +37,17 @@ TopographyRecipe& recipe_of(Scene& s) {
 const char* name_of(SolverMethod m) { return m == SolverMethod::reference ? "reference" : "event"; }
 
 // A number row: FIELD is an lvalue expression of `s`.
-#define NUMBER(NAME, UNIT, RANGE, CHECK, WHY, DEFAULT, FIT, FIELD)                          \
-  SceneKey {                                                                                 \
-    NAME, KeyKind::number, UNIT, RANGE, [](double x) { return CHECK; }, WHY, DEFAULT, FIT,   \
-        [](const Scene& s) { return static_cast<double>(FIELD); },                           \
-        [](Scene& s, double x) { FIELD = x; }, [](const Scene& s) { return num(FIELD); }, nullptr, \
-        PlausibleRange{}                                                                     \
+#define NUMBER(NAME, UNIT, RANGE, CHECK, WHY, DEFAULT, FIT, FIELD)                                        \
+  SceneKey {                                                                                              \
+    NAME, KeyKind::number, UNIT, RANGE, [](double x) { return CHECK; }, WHY, DEFAULT, FIT,                \
+        [](const Scene& s) { return static_cast<double>(FIELD); }, [](Scene& s, double x) { FIELD = x; }, \
+        [](const Scene& s) { return num(FIELD); }, nullptr, PlausibleRange {}                             \
   }
 // Any other row: TEXT is a std::string expression of `s`.
-#define OTHER(NAME, KIND, TEXT)                                                          \
-  SceneKey {                                                                             \
-    NAME, KIND, nullptr, nullptr, nullptr, "", kRequired, false, nullptr, nullptr,       \
-        [](const Scene& s) { return std::string(TEXT); }, nullptr, PlausibleRange{}      \
+#define OTHER(NAME, KIND, TEXT)                                                      \
+  SceneKey {                                                                         \
+    NAME, KIND, nullptr, nullptr, nullptr, "", kRequired, false, nullptr, nullptr,   \
+        [](const Scene& s) { return std::string(TEXT); }, nullptr, PlausibleRange {} \
   }
 
 std::vector<SceneKey> make_table() {
@@ -87,7 +86,8 @@ std::vector<SceneKey> make_table() {
              "the steps shrink without bound",
              1e-9, false, s.solver.tolerance),
       NUMBER("solver.interaction_tolerance", nullptr, "in [1e-14, 1e-3]", x >= 1e-14 && x <= 1e-3,
-             "fraction of the slip force to which each coupled solve converges; above 1e-3 the peak moves by more than 1e-5 relative",
+             "fraction of the slip force to which each coupled solve converges; above 1e-3 the peak moves by more than "
+             "1e-5 relative",
              1e-8, false, s.solver.interaction_tolerance),
       NUMBER("stop.time", "s", "> 0", x > 0, "", 1.0, false, s.stop.time),
       OTHER("stop.at_first_peak", KeyKind::boolean, s.stop.at_first_peak ? "true" : "false"),
@@ -97,11 +97,12 @@ std::vector<SceneKey> make_table() {
       NUMBER("stop.max_slips", nullptr, "a whole number in [1, 1e18]", x >= 1 && x <= 1e18 && x == std::floor(x), "",
              0.0, false, s.stop.max_slips),
       NUMBER("output.every", "s", "> 0", x > 0, "", 1e-3, false, s.output.every),
-      OTHER("output.series", KeyKind::list, [&] {
-        std::string y = "[";
-        for (std::size_t i = 0; i < s.output.series.size(); ++i) y += (i ? ", " : "") + s.output.series[i];
-        return y + "]";
-      }()),
+      OTHER("output.series", KeyKind::list,
+            [&] {
+              std::string y = "[";
+              for (std::size_t i = 0; i < s.output.series.size(); ++i) y += (i ? ", " : "") + s.output.series[i];
+              return y + "]";
+            }()),
       NUMBER("output.peak_min_drop", nullptr, "in (0, 1)", x > 0 && x < 1, "", 0.02, false, s.output.peak_min_drop),
       // A topography scene's recipe (topography_recipe.hpp): setting one re-makes the junctions
       // (one contact solve per distinct surface and load, topography_cache.hpp).
@@ -141,9 +142,9 @@ std::vector<SceneKey> make_table() {
     // Topography keys: only in a topography scene (its own section, written by the writer).
     if (n.rfind("topography.", 0) == 0) {
       const bool surface = n.rfind("topography.self_affine.", 0) == 0;
-      k.written = surface ? +[](const Scene& s) {
-        return s.topography && s.topography->kind == TopographyKind::self_affine;
-      } : +[](const Scene& s) { return s.topography.has_value(); };
+      k.written =
+          surface ? +[](const Scene& s) { return s.topography && s.topography->kind == TopographyKind::self_affine; }
+                  : +[](const Scene& s) { return s.topography.has_value(); };
     }
     // Empty for a scene without topography (the macro's text would throw there).
     if (n == "topography.sphere_radius_m")
@@ -156,7 +157,9 @@ std::vector<SceneKey> make_table() {
       k.text = [](const Scene& s) { return s.topography ? num(s.topography->load_N) : std::string(); };
     if (n == "topography.self_affine.seed") {
       k.set = [](Scene& s, double x) { recipe_of(s).self_affine.seed = static_cast<std::uint64_t>(x); };
-      k.text = [](const Scene& s) { return s.topography ? std::to_string(s.topography->self_affine.seed) : std::string(); };
+      k.text = [](const Scene& s) {
+        return s.topography ? std::to_string(s.topography->self_affine.seed) : std::string();
+      };
     }
     if (n == "topography.self_affine.hurst")
       k.text = [](const Scene& s) { return s.topography ? num(s.topography->self_affine.hurst) : std::string(); };
@@ -190,7 +193,8 @@ std::vector<SceneKey> make_table() {
     // Written only when rigid: interacting scenes of before keep their text and store hash.
     if (n == "model.interaction_weighting")
       k.written = [](const Scene& s) {
-        return s.model.interactions != Interactions::none && s.model.interaction_weighting != TractionWeighting::uniform;
+        return s.model.interactions != Interactions::none &&
+               s.model.interaction_weighting != TractionWeighting::uniform;
       };
     // Only when interactions are on and it differs from the default: scenes of before keep their
     // text and store hash.
@@ -264,7 +268,8 @@ double scene_value(const Scene& scene, const std::string& key) {
 
 std::string out_of_range_message(const SceneKey& key, double x) {
   const std::string why = key.why ? key.why : "";
-  return "must be " + std::string(key.range) + ", got " + scene_io::format_double(x) + (why.empty() ? "" : " (" + why + ")");
+  return "must be " + std::string(key.range) + ", got " + scene_io::format_double(x) +
+         (why.empty() ? "" : " (" + why + ")");
 }
 
 std::string implausible_message(const SceneKey& key, double x) {
@@ -273,12 +278,17 @@ std::string implausible_message(const SceneKey& key, double x) {
   using scene_io::format_short;
   const std::string unit = key.unit ? std::string(" ") + key.unit : "";
   std::string m = std::string(key.name) + " = " + scene_io::format_double(x) + unit + " is far " +
-                  (x < p.lo ? "below " : "above ") + p.of + " " + format_short(p.lo) + " to " + format_short(p.hi) + unit;
+                  (x < p.lo ? "below " : "above ") + p.of + " " + format_short(p.lo) + " to " + format_short(p.hi) +
+                  unit;
   // The units a value of this SI unit is often written in by mistake, and their factor to SI.
-  struct Slip { const char* unit; const char* in; double factor; };
-  static const Slip slips[] = {{"Pa", "MPa", 1e6}, {"Pa", "kPa", 1e3}, {"Pa", "GPa", 1e9}, {"kg", "g", 1e-3},
-                               {"N/m", "N/mm", 1e3}, {"m/s", "mm/s", 1e-3}, {"m/s", "um/s", 1e-6},
-                               {"m", "mm", 1e-3},   {"m", "um", 1e-6}};
+  struct Slip {
+    const char* unit;
+    const char* in;
+    double factor;
+  };
+  static const Slip slips[] = {{"Pa", "MPa", 1e6},    {"Pa", "kPa", 1e3},   {"Pa", "GPa", 1e9},
+                               {"kg", "g", 1e-3},     {"N/m", "N/mm", 1e3}, {"m/s", "mm/s", 1e-3},
+                               {"m/s", "um/s", 1e-6}, {"m", "mm", 1e-3},    {"m", "um", 1e-6}};
   const Slip* best = nullptr;
   double best_distance = 0;
   for (const Slip& s : slips) {

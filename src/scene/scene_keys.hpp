@@ -18,28 +18,28 @@ enum class KeyKind { number, integer, boolean, choice, text, list };
 // outside is accepted (the model runs it) but warned about, naming the unit slip that explains it.
 struct PlausibleRange {
   double lo = 0, hi = 0;
-  double typical = 0;      // the paper's value: of two unit slips, the one landing nearer wins
-  const char* of = "";     // whose range, e.g. "an elastomer's"
+  double typical = 0;   // the paper's value: of two unit slips, the one landing nearer wins
+  const char* of = "";  // whose range, e.g. "an elastomer's"
 };
 
 struct SceneKey {
-  const char* name;   // dotted key, e.g. "model.eta"
+  const char* name;  // dotted key, e.g. "model.eta"
   KeyKind kind;
-  const char* unit;   // SI unit named in messages; nullptr: dimensionless (or not a number)
+  const char* unit;  // SI unit named in messages; nullptr: dimensionless (or not a number)
   // Numbers: the allowed range as messages print it ("in (0, 1]"), its check, and why the
   // limit is there when that is not obvious ("" otherwise). nullptr/nullptr for other kinds.
   const char* range;
   bool (*allowed)(double);
   const char* why;
-  double default_value;             // numbers: the struct default; NaN: required (experiment)
-  bool fittable;                    // a fit parameter / error-bar key (one number of the model)
-  double (*get)(const Scene&);      // numbers only
-  void (*set)(Scene&, double);      // numbers only
-  std::string (*text)(const Scene&);   // the value as scene_to_yaml writes it (YAML text)
-  bool (*written)(const Scene&);    // nullptr: always written; else written when this is true
-  PlausibleRange plausible{};       // numbers only
-  std::string leaf() const;         // "eta" of "model.eta"
-  std::string section() const;      // "model" of "model.eta"
+  double default_value;               // numbers: the struct default; NaN: required (experiment)
+  bool fittable;                      // a fit parameter / error-bar key (one number of the model)
+  double (*get)(const Scene&);        // numbers only
+  void (*set)(Scene&, double);        // numbers only
+  std::string (*text)(const Scene&);  // the value as scene_to_yaml writes it (YAML text)
+  bool (*written)(const Scene&);      // nullptr: always written; else written when this is true
+  PlausibleRange plausible{};         // numbers only
+  std::string leaf() const;           // "eta" of "model.eta"
+  std::string section() const;        // "model" of "model.eta"
 };
 
 const std::vector<SceneKey>& scene_keys();

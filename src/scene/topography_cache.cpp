@@ -25,7 +25,7 @@ std::shared_ptr<const TopographyContact> TopographyCache::contact(const Topograp
     }
   }
   if (found.valid()) return found.get();  // found, or being solved by another caller: wait outside the lock
-  try {  // the solve, outside the lock: other keys proceed meanwhile
+  try {                                   // the solve, outside the lock: other keys proceed meanwhile
     mine.set_value(std::make_shared<const TopographyContact>(solve_topography_contact(recipe, 1)));
   } catch (...) {
     mine.set_exception(std::current_exception());

@@ -64,8 +64,8 @@ std::string topography_surface_text(const TopographyRecipe& r) {
 }
 
 std::string scene_made_by(const TopographyRecipe& r) {
-  return "Made by the scene from " + (r.file.empty() ? std::string("its topography section") : r.file.filename().string()) +
-         " when it was read.";
+  return "Made by the scene from " +
+         (r.file.empty() ? std::string("its topography section") : r.file.filename().string()) + " when it was read.";
 }
 
 HeightMap topography_surface(const TopographyRecipe& r) {
@@ -116,12 +116,16 @@ std::size_t merge_overlapping_junctions(JunctionPopulation& J, std::uint64_t max
     const double h = grid.cell();
     std::vector<std::size_t> big;
     const auto place = [&](std::size_t k) {
-      if (2 * r[k] > h) big.push_back(k);
-      else grid.insert(k, J.x_m[k], J.y_m[k]);
+      if (2 * r[k] > h)
+        big.push_back(k);
+      else
+        grid.insert(k, J.x_m[k], J.y_m[k]);
     };
     const auto unplace = [&](std::size_t k) {
-      if (2 * r[k] > h) big.erase(std::find(big.begin(), big.end(), k));
-      else grid.erase(k, J.x_m[k], J.y_m[k]);
+      if (2 * r[k] > h)
+        big.erase(std::find(big.begin(), big.end(), k));
+      else
+        grid.erase(k, J.x_m[k], J.y_m[k]);
     };
     for (std::size_t k = 0; k < n; ++k) place(k);
     std::uint64_t work = 0;
@@ -175,8 +179,10 @@ std::size_t merge_overlapping_junctions(JunctionPopulation& J, std::uint64_t max
       // The grown disc may overlap discs of lower index (now pending) and of higher.
       bool higher = false;
       for_each_overlap(i, [&](std::size_t b) {
-        if (b < i) pending.insert(b);
-        else higher = true;
+        if (b < i)
+          pending.insert(b);
+        else
+          higher = true;
       });
       if (!higher) pending.erase(i);
     }

@@ -32,14 +32,14 @@ std::size_t merge_overlapping_junctions(JunctionPopulation& junctions, std::uint
 // What the contact solve gives: depends on the surface, R, E, ν, P and the contact settings only
 // (the slider and the name do not enter), so one solve serves every scene that shares them.
 struct TopographyContact {
-  JunctionPopulation junctions;     // merged, x_m, y_m from the grid's centre
-  std::size_t n = 0;                // the map: pixels per side and pixel size
+  JunctionPopulation junctions;  // merged, x_m, y_m from the grid's centre
+  std::size_t n = 0;             // the map: pixels per side and pixel size
   double pixel_m = 0;
-  std::string heights_sha256;       // of the surface heights (float64 LE, row-major, before the sphere)
+  std::string heights_sha256;              // of the surface heights (float64 LE, row-major, before the sphere)
   double rms_height_m = 0, rms_slope = 0;  // of the surface before the sphere
   int iterations = 0;
   double residual = 0;
-  double contact_area_m2 = 0;       // pixels in contact × pixel area (= Σ junction areas)
+  double contact_area_m2 = 0;  // pixels in contact × pixel area (= Σ junction areas)
   std::size_t clusters = 0, merges = 0;
 };
 

@@ -26,16 +26,18 @@ std::optional<RecipeProblem> topography_recipe_problem(const TopographyRecipe& r
     return RecipeProblem{"topography.self_affine.rolloff_wavelength_m",
                          "must be at most the map's size " + num(s.length_m) + " m"};
   if (s.short_wavelength_m > 0 && (ls < 2 * r.pixel_m * (1 - 1e-12) || !(ls < lr)))
-    return RecipeProblem{"topography.self_affine.short_wavelength_m",
-                         "must be at least 2 pixels (" + num(2 * r.pixel_m) + " m) and below the roll-off wavelength " +
-                             num(lr) + " m"};
+    return RecipeProblem{
+        "topography.self_affine.short_wavelength_m",
+        "must be at least 2 pixels (" + num(2 * r.pixel_m) + " m) and below the roll-off wavelength " + num(lr) + " m"};
   return std::nullopt;
 }
 
 std::string topography_number_problem(const std::string& key, double x) {
   // A value from Python may be NaN or infinite (a file's never reaches here so): shown as given,
   // where num refuses it.
-  const auto got = [](double v) { return std::isfinite(v) ? scene_io::format_double(v) : scene_io::format_printf("%g", v); };
+  const auto got = [](double v) {
+    return std::isfinite(v) ? scene_io::format_double(v) : scene_io::format_printf("%g", v);
+  };
   if (key == "sphere_radius_m" || key == "E" || key == "load_N")
     return x > 0.0 && std::isfinite(x) ? "" : "must be > 0, got " + got(x);
   if (key == "nu") return x >= 0.0 && x <= 0.5 ? "" : "must be in [0, 0.5], got " + got(x);
@@ -68,8 +70,10 @@ std::string topography_section_yaml(const TopographyRecipe& r, bool with_slider)
       line(4, "hurst", num(s.hurst));
       if (s.rolloff_wavelength_m > 0) line(4, "rolloff_wavelength_m", num(s.rolloff_wavelength_m));
       if (s.short_wavelength_m > 0) line(4, "short_wavelength_m", num(s.short_wavelength_m));
-      if (s.rms_height_m > 0) line(4, "rms_height_m", num(s.rms_height_m));
-      else line(4, "rms_slope", num(s.rms_slope));
+      if (s.rms_height_m > 0)
+        line(4, "rms_height_m", num(s.rms_height_m));
+      else
+        line(4, "rms_slope", num(s.rms_slope));
       break;
     }
     case TopographyKind::measured:

@@ -19,30 +19,30 @@ namespace asperity {
 enum class TopographyKind { smooth, self_affine, measured };
 
 struct TopographyRecipe {
-  std::filesystem::path file;  // the recipe file it was read from; empty when given inline in a scene
+  std::filesystem::path file;       // the recipe file it was read from; empty when given inline in a scene
   std::string name = "topography";  // the experiment's name
 
   TopographyKind kind = TopographyKind::smooth;
-  SelfAffineSpec self_affine;       // self_affine (n, length_m from n × pixel or size_m)
-  std::size_t n = 0;                // smooth: pixels per side ...
-  double pixel_m = 0;               // ... and pixel size (self_affine and measured: set at load too)
-  std::filesystem::path map_file;   // measured: .csv (pixel_m from the recipe) or .yaml header
-  std::string display;              // where errors found after loading point: the recipe or the scene
-  int topography_line = 0;          // line of the surface section, for errors found later
+  SelfAffineSpec self_affine;      // self_affine (n, length_m from n × pixel or size_m)
+  std::size_t n = 0;               // smooth: pixels per side ...
+  double pixel_m = 0;              // ... and pixel size (self_affine and measured: set at load too)
+  std::filesystem::path map_file;  // measured: .csv (pixel_m from the recipe) or .yaml header
+  std::string display;             // where errors found after loading point: the recipe or the scene
+  int topography_line = 0;         // line of the surface section, for errors found later
 
-  double sphere_radius_m = 0;       // R of the paraboloid added to the surface (> 0)
-  double E_Pa = 0, nu = 0.5;        // the elastomer; the counter-surface is rigid
-  double load_N = 0;                // P
-  double tolerance = 1e-10;         // normal contact: Σ|Δp|A / P between iterations
+  double sphere_radius_m = 0;  // R of the paraboloid added to the surface (> 0)
+  double E_Pa = 0, nu = 0.5;   // the elastomer; the counter-surface is rigid
+  double load_N = 0;           // P
+  double tolerance = 1e-10;    // normal contact: Σ|Δp|A / P between iterations
   int max_iterations = 5000;
   Connectivity connectivity = Connectivity::eight;
 
   // The slider of the experiment; defaults are the paper's (docs/model.md §2): M = P/g, k_L, v, σ_exp.
-  double gravity = 9.81;            // m/s²
-  double mass_kg = 0;               // 0: load_N / gravity
-  double k_L = 9200.0;              // N/m
-  double v = 1.0e-4;                // m/s
-  double sigma_exp = 0.23e6;        // Pa
+  double gravity = 9.81;      // m/s²
+  double mass_kg = 0;         // 0: load_N / gravity
+  double k_L = 9200.0;        // N/m
+  double v = 1.0e-4;          // m/s
+  double sigma_exp = 0.23e6;  // Pa
 };
 
 // The checks that span several keys of the surface (roll-off within the map, short cut-off of at

@@ -35,8 +35,9 @@ std::size_t side(const MapView& m, bool even) {
   const int v = m.integer(n, "n");
   const int lo = even ? 4 : 2;
   if (v < lo || static_cast<std::size_t>(v) > kMaxHeightMapSide || (even && v % 2))
-    m.fail_at(n, "n", std::string("must be ") + (even ? "an even number " : "") + "in [" + std::to_string(lo) + ", " +
-                          std::to_string(kMaxHeightMapSide) + "], got " + std::to_string(v));
+    m.fail_at(n, "n",
+              std::string("must be ") + (even ? "an even number " : "") + "in [" + std::to_string(lo) + ", " +
+                  std::to_string(kMaxHeightMapSide) + "], got " + std::to_string(v));
   return static_cast<std::size_t>(v);
 }
 
@@ -49,8 +50,7 @@ double pixel_checked(const MapView& m, const std::string& k, double pixel_m, con
 // The pixel size, from pixel_m or size_m (the side of the map), exactly one of them.
 double pixel_of(const MapView& m, std::size_t n) {
   const auto p = m.find("pixel_m"), s = m.find("size_m");
-  if (p.has_value() == s.has_value())
-    m.fail_at(p ? *p : m.node(), "pixel_m", "give exactly one of pixel_m and size_m");
+  if (p.has_value() == s.has_value()) m.fail_at(p ? *p : m.node(), "pixel_m", "give exactly one of pixel_m and size_m");
   if (p) return pixel_checked(m, "pixel_m", positive(m, "pixel_m", "m"));
   const double size = positive(m, "size_m", "m");
   return pixel_checked(m, "size_m", size / static_cast<double>(n),
@@ -105,15 +105,16 @@ void read_surface(const MapView& t, const YAML::Node& tn, const fs::path& base_d
     const std::string ext = r.map_file.extension().string();
     const bool csv = ext == ".csv", header = ext == ".yaml" || ext == ".yml";
     if (!csv && !header)
-      t.fail_at(*fi, "file", "expected a .csv matrix of heights or a .yaml header of a float64 file, got " +
-                                 scene_io::quote(rel));
+      t.fail_at(*fi, "file",
+                "expected a .csv matrix of heights or a .yaml header of a float64 file, got " + scene_io::quote(rel));
     const std::string why =
         scene_io::input_file_problem(r.map_file, csv ? scene_io::kMaxCsvBytes : scene_io::kMaxYamlBytes);
     if (why == "file not found")
-      t.fail_at(*fi, "file", "height map not found: " + scene_io::quote(rel) + " (looked for " +
-                                 display_of(r.map_file) + ")");
+      t.fail_at(*fi, "file",
+                "height map not found: " + scene_io::quote(rel) + " (looked for " + display_of(r.map_file) + ")");
     if (!why.empty()) t.fail_at(*fi, "file", "height map " + why + ": " + display_of(r.map_file));
-    if (csv) r.pixel_m = pixel_checked(t, "pixel_m", positive(t, "pixel_m", "m"));
+    if (csv)
+      r.pixel_m = pixel_checked(t, "pixel_m", positive(t, "pixel_m", "m"));
     else if (const auto p = t.find("pixel_m"))
       t.fail_at(*p, "pixel_m", "a binary height map gives its pixel size in its header");
   }
@@ -124,7 +125,8 @@ void read_rest(const MapView& top, TopographyRecipe& r) {
   const Source& src = top.source();
   if (const auto n = top.find("name")) {
     r.name = top.string(*n, "name");
-    if (r.name.empty() || scene_io::has_control_char(r.name)) top.fail_at(*n, "name", "must be a non-empty single-line name");
+    if (r.name.empty() || scene_io::has_control_char(r.name))
+      top.fail_at(*n, "name", "must be a non-empty single-line name");
   }
   // Ranges: topography_number_problem (topography_recipe.hpp), shared with the Python bindings.
   const auto in_range = [](const MapView& m, const YAML::Node& n, const std::string& key, const std::string& checked,
@@ -168,7 +170,8 @@ YAML::Node lifted_file_tree(const YAML::Node& root) {
   YAML::Node out(YAML::NodeType::Map);
   for (auto it = root.begin(); it != root.end(); ++it) {
     const std::string k = it->first.Scalar();
-    if (k != "topography") out[k] = scene_io::strip_marks(it->second);
+    if (k != "topography")
+      out[k] = scene_io::strip_marks(it->second);
     else
       for (auto jt = it->second.begin(); jt != it->second.end(); ++jt)
         out[jt->first.Scalar()] = scene_io::strip_marks(jt->second);
@@ -180,8 +183,8 @@ YAML::Node lifted_file_tree(const YAML::Node& root) {
 // (rms_height_m / rms_slope, pixel_m / size_m) replaces the other.
 YAML::Node merged(const YAML::Node& base, const YAML::Node& over) {
   if (!base.IsMap() || !over.IsMap()) return over;
-  static const std::vector<std::pair<std::string, std::string>> kAlternatives{
-      {"rms_height_m", "rms_slope"}, {"pixel_m", "size_m"}};
+  static const std::vector<std::pair<std::string, std::string>> kAlternatives{{"rms_height_m", "rms_slope"},
+                                                                              {"pixel_m", "size_m"}};
   YAML::Node out(YAML::NodeType::Map);
   for (auto it = base.begin(); it != base.end(); ++it) {
     const std::string k = it->first.Scalar();

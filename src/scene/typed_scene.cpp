@@ -75,7 +75,8 @@ Scene TypedScene::with(const std::vector<NumberSetting>& settings) const {
         throw InputError(display_, 0, name, "the scene's topography is not self_affine");
       recipe_changed = true;
     } else if (s.topography && name.rfind("experiment.", 0) == 0) {
-      throw InputError(display_, 0, name, "a topography scene's experiment comes from its recipe: set topography.* instead");
+      throw InputError(display_, 0, name,
+                       "a topography scene's experiment comes from its recipe: set topography.* instead");
     }
     k.set(s, last->value);
   }

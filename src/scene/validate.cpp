@@ -19,10 +19,10 @@ using scene_io::format_short;
 namespace {
 
 // Limits that keep every run finite in time and memory.
-constexpr double kMaxSamples = 1e6;      // samples of one run (1e6: 0.3 GB resident, 0.1 GB of series.csv)
-constexpr double kMaxEtaTime = 1e6;      // η · stop.time: ≤ ~3·10^5 steps forced by damping
-constexpr double kMaxPeriods = 1e6;     // slider oscillations in stop.time (≥ 2·10^7 event steps)
-constexpr double kMaxReferenceSteps = 1e9;  // steps of the reference solver
+constexpr double kMaxSamples = 1e6;            // samples of one run (1e6: 0.3 GB resident, 0.1 GB of series.csv)
+constexpr double kMaxEtaTime = 1e6;            // η · stop.time: ≤ ~3·10^5 steps forced by damping
+constexpr double kMaxPeriods = 1e6;            // slider oscillations in stop.time (≥ 2·10^7 event steps)
+constexpr double kMaxReferenceSteps = 1e9;     // steps of the reference solver
 constexpr double kMinSlipAreaFraction = 1e-6;  // A_s/A0 at a junction's first slip
 // 4.0 GB at 20,000: the compliance matrix and its inverse (N^2 doubles) and the inverse's
 // single-precision copy (N^2/2 floats).
@@ -47,8 +47,8 @@ void check_resources(const Scene& s, const KeyOrigins& o) {
   const double eta_time = s.model.eta * s.stop.time;
   if (!(eta_time <= kMaxEtaTime))
     blame(o, "model.eta", "stop.time",
-          "too strong damping: eta * stop.time = " + format_short(eta_time) + " is more than " + format_short(kMaxEtaTime) +
-              ": damping that strong needs explicit steps shorter than ~3/eta, i.e. over " +
+          "too strong damping: eta * stop.time = " + format_short(eta_time) + " is more than " +
+              format_short(kMaxEtaTime) + ": damping that strong needs explicit steps shorter than ~3/eta, i.e. over " +
               format_short(eta_time / 3.3) + " steps (the slider is overdamped long before: eta = " +
               format_double(s.model.eta) + " 1/s, stop.time = " + format_double(s.stop.time) + " s)");
   // Time scales: the slider oscillates at ω = sqrt((k_L + K0)/M) with K0 = Σ k_i(A0) =
@@ -60,17 +60,17 @@ void check_resources(const Scene& s, const KeyOrigins& o) {
   const double M = s.experiment.mass_kg;
   const double periods = s.stop.time * std::sqrt((s.experiment.k_L + K0) / M) / (2.0 * M_PI);
   if (!(periods <= kMaxPeriods))
-    o.fail("stop.time", "too many slider oscillations: " + format_short(periods) + " periods of 2 pi sqrt(M/(k_L + K0)) in " +
-                            format_double(s.stop.time) + " s, more than " + format_short(kMaxPeriods) + " (mass = " +
-                            format_double(M) + " kg, k_L = " + format_double(s.experiment.k_L) + " N/m, K0 = " +
-                            format_short(K0) + " N/m)");
+    o.fail("stop.time", "too many slider oscillations: " + format_short(periods) +
+                            " periods of 2 pi sqrt(M/(k_L + K0)) in " + format_double(s.stop.time) + " s, more than " +
+                            format_short(kMaxPeriods) + " (mass = " + format_double(M) + " kg, k_L = " +
+                            format_double(s.experiment.k_L) + " N/m, K0 = " + format_short(K0) + " N/m)");
   if (s.solver.method == SolverMethod::reference && K0 > 0) {
     const double steps = s.stop.time * s.solver.Ct / (2.0 * M_PI * std::sqrt(M / K0));
     if (!(steps <= kMaxReferenceSteps))
       blame(o, "solver.Ct", "stop.time",
             "too many reference steps: stop.time * Ct / T0 = " + format_short(steps) + ", more than " +
-                format_short(kMaxReferenceSteps) + " (dt = T0/Ct = " +
-                format_short(2.0 * M_PI * std::sqrt(M / K0) / s.solver.Ct) + " s)");
+                format_short(kMaxReferenceSteps) +
+                " (dt = T0/Ct = " + format_short(2.0 * M_PI * std::sqrt(M / K0) / s.solver.Ct) + " s)");
   }
 }
 
@@ -81,7 +81,8 @@ void check_resources(const Scene& s, const KeyOrigins& o) {
 void check_area_law_domain(const Scene& s, const KeyOrigins& o) {
   if (s.model.alpha_b == 0 || s.experiment.junctions.size() == 0) return;
   const ContactLaw law = make_contact_law(s.experiment, s.model);
-  const auto [lo, hi] = std::minmax_element(s.experiment.junctions.area_m2.begin(), s.experiment.junctions.area_m2.end());
+  const auto [lo, hi] =
+      std::minmax_element(s.experiment.junctions.area_m2.begin(), s.experiment.junctions.area_m2.end());
   for (const double A0 : {*lo, *hi}) {  // φ_s is monotonic in A0
     const double phi = law.slip_phi(A0);
     const double kept = sheared_area_phi(1.0, phi);  // A/A0 at the first slip
@@ -111,25 +112,27 @@ void check_interactions(const Scene& s, const KeyOrigins& o) {
   const JunctionPopulation& J = s.experiment.junctions;
   const std::string csv = s.experiment.junctions_file.string();
   if (J.x_m.size() != J.size() || J.y_m.size() != J.size())
-    o.fail("model.interactions", "elastic interactions need the junction positions: " +
-                                     (csv.empty() ? std::string("the junctions") : csv) +
-                                     " has no x_m and y_m columns");
+    o.fail("model.interactions",
+           "elastic interactions need the junction positions: " + (csv.empty() ? std::string("the junctions") : csv) +
+               " has no x_m and y_m columns");
   if (J.size() > kMaxInteractingJunctions)
-    o.fail("model.interactions", "elastic interactions keep an N x N compliance matrix (N^2 doubles, 4 GB at 20,000): N = " +
-                                     std::to_string(J.size()) + " junctions, more than " +
-                                     std::to_string(kMaxInteractingJunctions));
+    o.fail("model.interactions",
+           "elastic interactions keep an N x N compliance matrix (N^2 doubles, 4 GB at 20,000): N = " +
+               std::to_string(J.size()) + " junctions, more than " + std::to_string(kMaxInteractingJunctions));
   for (std::size_t i = 0; i < J.size(); ++i) {
     if (!std::isfinite(J.x_m[i]) || !std::isfinite(J.y_m[i]))
       throw InputError(csv, 0, "x_m", "junction " + std::to_string(i + 1) + " has a non-finite position");
     // The positions the run uses stay within the CSV reader's bound (finite squared distances).
     const double reach = std::max(std::abs(J.x_m[i]), std::abs(J.y_m[i]));
     if (reach > kMaxJunctionCoordinate_m)
-      throw InputError(csv, 0, "x_m", "junction " + std::to_string(i + 1) + " is centred " + format_short(reach) +
-                                          " m away; centres must be within +-" + format_short(kMaxJunctionCoordinate_m) + " m");
+      throw InputError(csv, 0, "x_m",
+                       "junction " + std::to_string(i + 1) + " is centred " + format_short(reach) +
+                           " m away; centres must be within +-" + format_short(kMaxJunctionCoordinate_m) + " m");
     if (reach * s.model.position_scale > kMaxJunctionCoordinate_m)
       o.fail("model.position_scale", "junction " + std::to_string(i + 1) + " of " + csv + " would be centred " +
-                                         format_short(reach * s.model.position_scale) + " m away; centres must be within +-" +
-                                         format_short(kMaxJunctionCoordinate_m) + " m");
+                                         format_short(reach * s.model.position_scale) +
+                                         " m away; centres must be within +-" + format_short(kMaxJunctionCoordinate_m) +
+                                         " m");
   }
   if (s.model.position_scale != 1.0) {  // the positions the run uses: a scale below 1 may overlap
     JunctionPopulation scaled = J;
@@ -142,11 +145,11 @@ void check_interactions(const Scene& s, const KeyOrigins& o) {
   }
   if (const auto pair = first_overlap(J)) {
     const auto [i, j] = *pair;
-    const std::string msg =
-        "junctions " + std::to_string(i + 1) + " and " + std::to_string(j + 1) + " overlap (centres " +
-        format_short(std::hypot(J.x_m[i] - J.x_m[j], J.y_m[i] - J.y_m[j])) + " m apart, radii sqrt(A0/pi) = " +
-        format_short(disc_radius(J.area_m2[i])) + " and " + format_short(disc_radius(J.area_m2[j])) +
-        " m); elastic interactions need separate junctions";
+    const std::string msg = "junctions " + std::to_string(i + 1) + " and " + std::to_string(j + 1) +
+                            " overlap (centres " + format_short(std::hypot(J.x_m[i] - J.x_m[j], J.y_m[i] - J.y_m[j])) +
+                            " m apart, radii sqrt(A0/pi) = " + format_short(disc_radius(J.area_m2[i])) + " and " +
+                            format_short(disc_radius(J.area_m2[j])) +
+                            " m); elastic interactions need separate junctions";
     if (csv.empty() && o.given("experiment.junctions")) o.fail("experiment.junctions", msg);  // inline
     if (csv.empty()) throw InputError("", 0, "x_m", msg);
     // The CSV's row of the second junction (read again: only on this error path).

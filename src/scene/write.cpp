@@ -3,12 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <initializer_list>
-#include <string_view>
 #include <stdexcept>
+#include <string_view>
 
+#include "io/numbers.hpp"
 #include "scene/load.hpp"
 #include "scene/scene_keys.hpp"
-#include "io/numbers.hpp"
 
 namespace asperity {
 
@@ -50,15 +50,13 @@ std::string sections_yaml(const Scene& s, std::initializer_list<std::string_view
     if (std::find(sections.begin(), sections.end(), sec) == sections.end()) continue;
     if (k.written && !k.written(s)) continue;
     if (sec != open) {
-      if (open == "experiment" && s.experiment.file.empty())
-        y += inline_data_yaml(s.experiment);
+      if (open == "experiment" && s.experiment.file.empty()) y += inline_data_yaml(s.experiment);
       y += sec + ":\n", open = sec;
     }
     const std::string text = k.text(s);
     y += "  " + k.leaf() + ": " + (k.kind == KeyKind::text ? yaml_quoted(text) : text) + "\n";
   }
-  if (open == "experiment" && s.experiment.file.empty())
-    y += inline_data_yaml(s.experiment);
+  if (open == "experiment" && s.experiment.file.empty()) y += inline_data_yaml(s.experiment);
   return y;
 }
 

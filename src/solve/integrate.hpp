@@ -9,14 +9,14 @@
 #include <stdexcept>
 
 #include "scene/scene.hpp"
+#include "solve/core/observer.hpp"
+#include "solve/core/problem.hpp"
+#include "solve/core/run_info.hpp"
+#include "solve/core/run_limits.hpp"
 #include "solve/event/event_stepper.hpp"
 #include "solve/interacting/interacting_event_stepper.hpp"
 #include "solve/interacting/interacting_reference_stepper.hpp"
-#include "solve/core/observer.hpp"
-#include "solve/core/problem.hpp"
 #include "solve/reference/reference_stepper.hpp"
-#include "solve/core/run_info.hpp"
-#include "solve/core/run_limits.hpp"
 
 namespace asperity {
 
@@ -45,7 +45,10 @@ RunInfo integrate(S& stepper, const Problem& problem, O& observer) {
   LimitGuard guard(problem.limits);  // the start's work counts too
   // A stepper whose single steps can run long (avalanches) watches the deadline inside them.
   // (Cleared after the run: the stepper's solves may serve a caller after the deadline.)
-  constexpr bool watches = requires { stepper.set_deadline(guard.deadline()); stepper.clear_deadline(); };
+  constexpr bool watches = requires {
+    stepper.set_deadline(guard.deadline());
+    stepper.clear_deadline();
+  };
   if constexpr (watches) stepper.set_deadline(guard.deadline());
   try {
     stepper.start(out);
@@ -84,8 +87,14 @@ RunInfo integrate(const Problem& problem, O& observer) {
     }
   }
   switch (problem.solver.method) {
-    case SolverMethod::reference: { ReferenceStepper s(problem); return integrate(s, problem, observer); }
-    case SolverMethod::event: { EventStepper s(problem); return integrate(s, problem, observer); }
+    case SolverMethod::reference: {
+      ReferenceStepper s(problem);
+      return integrate(s, problem, observer);
+    }
+    case SolverMethod::event: {
+      EventStepper s(problem);
+      return integrate(s, problem, observer);
+    }
   }
   throw std::logic_error("integrate: unknown solver.method");
 }

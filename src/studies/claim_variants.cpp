@@ -49,7 +49,9 @@ std::vector<ClaimVariant> paper_claim_variants() {
 
 std::vector<VariantRun> run_variants(const std::vector<Scene>& base, const std::vector<ClaimVariant>& variants,
                                      int threads, const std::function<void(std::size_t, std::size_t)>& done) {
-  struct Job { std::size_t scene, variant; };
+  struct Job {
+    std::size_t scene, variant;
+  };
   std::vector<Job> jobs;
   for (std::size_t v = 0; v < variants.size(); ++v)
     for (std::size_t s = 0; s < base.size(); ++s)
@@ -59,19 +61,23 @@ std::vector<VariantRun> run_variants(const std::vector<Scene>& base, const std::
     return !variants[a.variant].all_experiments && variants[b.variant].all_experiments;
   });
   std::vector<VariantRun> out(jobs.size());
-  ParallelRunner(std::max(1, threads)).for_each(jobs.size(), [&](std::size_t j) {
-    Scene s = base[jobs[j].scene];
-    const ClaimVariant& v = variants[jobs[j].variant];
-    v.apply(s);
-    s.output.series.clear();  // only observables are needed
-    out[j].experiment = s.experiment.name;
-    out[j].label = v.label;
-    try {
-      out[j].obs = simulate(s).obs;
-    } catch (const std::exception& e) {
-      out[j].error = e.what();
-    }
-  }, done);
+  ParallelRunner(std::max(1, threads))
+      .for_each(
+          jobs.size(),
+          [&](std::size_t j) {
+            Scene s = base[jobs[j].scene];
+            const ClaimVariant& v = variants[jobs[j].variant];
+            v.apply(s);
+            s.output.series.clear();  // only observables are needed
+            out[j].experiment = s.experiment.name;
+            out[j].label = v.label;
+            try {
+              out[j].obs = simulate(s).obs;
+            } catch (const std::exception& e) {
+              out[j].error = e.what();
+            }
+          },
+          done);
   return out;
 }
 

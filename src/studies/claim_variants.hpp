@@ -12,15 +12,15 @@
 namespace asperity {
 
 struct ClaimVariant {
-  std::string label;                   // e.g. "eta=180"
-  std::function<void(Scene&)> apply;   // modifies a copy of the base scene
-  bool all_experiments = true;         // false: on the first (smallest) experiment only
+  std::string label;                  // e.g. "eta=180"
+  std::function<void(Scene&)> apply;  // modifies a copy of the base scene
+  bool all_experiments = true;        // false: on the first (smallest) experiment only
 };
 
 struct VariantRun {
   std::string experiment, label;
   Observables obs;
-  std::string error;                   // non-empty when the run failed
+  std::string error;  // non-empty when the run failed
 };
 
 // The variants docs/model.md §6 needs beyond the base runs.

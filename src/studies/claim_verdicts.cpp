@@ -25,17 +25,18 @@ double max_of(std::initializer_list<double> xs) {
 Verdict combine_all(const std::vector<Verdict>& v) { return combine(std::span<const Verdict>(v)); }
 
 // The runs of a load could show stick-slip: they went on after a confirmed peak.
-bool could_show_stick_slip(const LoadObservables& l, const Observables& o) {
-  return l.past_first_peak && o.peak_found;
-}
+bool could_show_stick_slip(const LoadObservables& l, const Observables& o) { return l.past_first_peak && o.peak_found; }
 
 }  // namespace
 
 const char* verdict_text(Verdict v) {
   switch (v) {
-    case Verdict::reproduced: return "Reproduced";
-    case Verdict::not_reproduced: return "Not reproduced";
-    case Verdict::no_evidence: return "No evidence";
+    case Verdict::reproduced:
+      return "Reproduced";
+    case Verdict::not_reproduced:
+      return "Not reproduced";
+    case Verdict::no_evidence:
+      return "No evidence";
   }
   return "No evidence";
 }
@@ -60,7 +61,7 @@ Verdict claim1_dt(const ClaimObservables& c, const ClaimRules& r) {
   std::vector<Verdict> v;
   for (std::size_t i = 1; i + 1 < c.loads.size(); ++i) {
     const double dt = c.loads[i].base.dt;
-    v.push_back(std::isnan(dt) ? Verdict::no_evidence
+    v.push_back(std::isnan(dt)                 ? Verdict::no_evidence
                 : dt > r.dt_lo && dt < r.dt_hi ? Verdict::reproduced
                                                : Verdict::not_reproduced);
   }
@@ -93,8 +94,10 @@ EtaComparison claim3_eta50_vs_base(const ClaimObservables& c, const ClaimRules& 
       continue;
     }
     const Observables& b = l.base;
-    const double dl = max_of({rel(o50->Q_s, b.Q_s), rel(o50->A_s, b.A_s), rel(o50->t_peak, b.t_peak), rel(o50->alpha, b.alpha)});
-    out.loading_diff = std::isnan(dl) || std::isnan(out.loading_diff) ? Observables::nan : std::max(out.loading_diff, dl);
+    const double dl =
+        max_of({rel(o50->Q_s, b.Q_s), rel(o50->A_s, b.A_s), rel(o50->t_peak, b.t_peak), rel(o50->alpha, b.alpha)});
+    out.loading_diff =
+        std::isnan(dl) || std::isnan(out.loading_diff) ? Observables::nan : std::max(out.loading_diff, dl);
     // Stick-slip compared only where both runs could show it.
     if (could_show_stick_slip(l, b) && could_show_stick_slip(l, *o50))
       out.stick_slip_diff = std::max(out.stick_slip_diff, stick_slip_difference(*o50, b));
@@ -102,8 +105,9 @@ EtaComparison claim3_eta50_vs_base(const ClaimObservables& c, const ClaimRules& 
       missing = true;
   }
   if (!missing && !std::isnan(out.loading_diff))
-    out.verdict = out.loading_diff < r.same_loading && out.stick_slip_diff < r.same_stick_slip ? Verdict::reproduced
-                                                                                                : Verdict::not_reproduced;
+    out.verdict = out.loading_diff < r.same_loading && out.stick_slip_diff < r.same_stick_slip
+                      ? Verdict::reproduced
+                      : Verdict::not_reproduced;
   else if ((out.loading_diff >= r.same_loading) || (out.stick_slip_diff >= r.same_stick_slip))
     out.verdict = Verdict::not_reproduced;  // the runs that exist already contradict it
   return out;
@@ -114,8 +118,10 @@ VanishBracket claim3_vanish_bracket(const LoadObservables& l, const ClaimRules& 
   std::vector<std::pair<double, const Observables*>> scan{{l.base_eta, &l.base}};
   bool missing = false;
   for (const auto& [eta, o] : l.eta_scan) {
-    if (o) scan.emplace_back(eta, &*o);
-    else missing = true;
+    if (o)
+      scan.emplace_back(eta, &*o);
+    else
+      missing = true;
   }
   std::sort(scan.begin(), scan.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   double last_with = -inf;
@@ -132,7 +138,8 @@ VanishBracket claim3_vanish_bracket(const LoadObservables& l, const ClaimRules& 
   bool could = true;
   for (const auto& [eta, o] : scan) could = could && could_show_stick_slip(l, *o);
   if (missing || !could) return out;  // no_evidence
-  out.verdict = last_with < r.vanish_max && first_without >= r.vanish_min ? Verdict::reproduced : Verdict::not_reproduced;
+  out.verdict =
+      last_with < r.vanish_max && first_without >= r.vanish_min ? Verdict::reproduced : Verdict::not_reproduced;
   return out;
 }
 
@@ -147,11 +154,14 @@ MaxDifference claim4_c_min(const ClaimObservables& c, const ClaimRules& r) {
     }
     const Observables& o = *l.c_min_low;
     const Observables& b = l.base;
-    const double d = max_of({rel(o.Q_s, b.Q_s), rel(o.A_s, b.A_s), rel(o.t_peak, b.t_peak), stick_slip_difference(o, b)});
+    const double d =
+        max_of({rel(o.Q_s, b.Q_s), rel(o.A_s, b.A_s), rel(o.t_peak, b.t_peak), stick_slip_difference(o, b)});
     out.diff = std::isnan(d) || std::isnan(out.diff) ? Observables::nan : std::max(out.diff, d);
   }
-  if (out.diff >= r.same_c_min) out.verdict = Verdict::not_reproduced;
-  else if (!missing && !std::isnan(out.diff)) out.verdict = Verdict::reproduced;
+  if (out.diff >= r.same_c_min)
+    out.verdict = Verdict::not_reproduced;
+  else if (!missing && !std::isnan(out.diff))
+    out.verdict = Verdict::reproduced;
   return out;
 }
 
@@ -168,7 +178,7 @@ Claim5Verdicts claim5_calibrated(const LoadObservables& l, const ClaimRules& r) 
   }
   if (!std::isnan(shown.n_model) && !std::isnan(shown.n_measured))
     out.shape = shown.n_model < r.quasi_linear_n && shown.n_measured > r.quadratic_n ? Verdict::reproduced
-                                                                                      : Verdict::not_reproduced;
+                                                                                     : Verdict::not_reproduced;
   return out;
 }
 
@@ -195,7 +205,7 @@ Verdict claim7_forces(const ClaimObservables& c) {
       std::isnan(c.reference->max_f_over_sigma_exp_A))
     return Verdict::no_evidence;
   return c.reference->max_f_over_sigmaA <= 1.0 && c.reference->max_f_over_sigma_exp_A > 1.0 ? Verdict::reproduced
-                                                                                              : Verdict::not_reproduced;
+                                                                                            : Verdict::not_reproduced;
 }
 
 Verdict claim8_shape_robust(const LoadObservables& l, const ClaimRules& r) {

@@ -32,10 +32,10 @@ struct ClaimRules {
   // Claim 3b: "stick-slip vanishes for η ≳ 180–200" read as a threshold in
   // [180 (1 − 10 %), 200 (1 + 10 %)] = [162, 220] 1/s; 10 %: the claim's own spread (200/180).
   double vanish_min = 162, vanish_max = 220;
-  double match = 0.25;                    // claim 5: |model/measured − 1| of decay and slope
-  double quasi_linear_n = 1.6;            // claims 5, 8: model n below this
-  double quadratic_n = 1.7;               // claim 5: measured n above this
-  double quadratic_R2 = 0.999;            // claim 6
+  double match = 0.25;          // claim 5: |model/measured − 1| of decay and slope
+  double quasi_linear_n = 1.6;  // claims 5, 8: model n below this
+  double quadratic_n = 1.7;     // claim 5: measured n above this
+  double quadratic_R2 = 0.999;  // claim 6
 };
 
 // Claim 5's comparison at one α_b: model against the measured curve (NaN where unknown).
@@ -45,7 +45,7 @@ struct AreaComparison {
   double decay_measured = Observables::nan;  // 1 − A_last/A0 of the measured curve
   double slope_model = Observables::nan;     // dA/dQ over Q ≤ 0.3 Q_max, m²/N
   double slope_measured = Observables::nan;
-  double n_model = Observables::nan;         // exponent of A0 − A = c Qⁿ
+  double n_model = Observables::nan;  // exponent of A0 − A = c Qⁿ
   double n_measured = Observables::nan;
 };
 
@@ -57,13 +57,13 @@ struct LoadObservables {
   bool past_first_peak = true;  // the runs were allowed to go on after the first peak
   std::vector<std::pair<double, std::optional<Observables>>> eta_scan;  // (η, run), η ≠ base_eta
   std::optional<Observables> c_min_low, equal_areas, circular, area_law_always;
-  AreaComparison at_scene_alpha_b;            // base run
-  std::optional<AreaComparison> calibrated;   // nullopt: no calibration or it failed
+  AreaComparison at_scene_alpha_b;           // base run
+  std::optional<AreaComparison> calibrated;  // nullopt: no calibration or it failed
 };
 
 struct ClaimObservables {
-  std::vector<LoadObservables> loads;        // smallest load first
-  std::optional<Observables> reference;      // claim 7's reference-solver window
+  std::vector<LoadObservables> loads;    // smallest load first
+  std::optional<Observables> reference;  // claim 7's reference-solver window
 };
 
 // --- claims ---------------------------------------------------------------------------------

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <map>
 #include <limits>
+#include <map>
 #include <optional>
 #include <set>
 #include <span>
@@ -56,20 +56,28 @@ double initial_slope(std::span<const double> Q, std::span<const double> A, doubl
   int n = 0;
   for (std::size_t i = 0; i < Q.size(); ++i) {
     if (!(Q[i] <= frac * qmax)) continue;
-    sq += Q[i]; sa += A[i]; sqq += Q[i] * Q[i]; sqa += Q[i] * A[i]; ++n;
+    sq += Q[i];
+    sa += A[i];
+    sqq += Q[i] * Q[i];
+    sqa += Q[i] * A[i];
+    ++n;
   }
   if (n < 3) return std::nan("");
   return (n * sqa - sq * sa) / (n * sqq - sq * sq);
 }
 
-AreaComparison compare_areas(const Scene& scene, double alpha_b, const Observables& o, const std::vector<Sample>& loading) {
+AreaComparison compare_areas(const Scene& scene, double alpha_b, const Observables& o,
+                             const std::vector<Sample>& loading) {
   AreaComparison c;
   c.alpha_b = alpha_b;
   c.decay_model = o.area_drop_fraction;
   c.n_model = o.shape_exponent;
   c.n_measured = o.shape_exponent_measured;
   std::vector<double> q, a;
-  for (const auto& s : loading) { q.push_back(s.Q); a.push_back(s.A); }
+  for (const auto& s : loading) {
+    q.push_back(s.Q);
+    a.push_back(s.A);
+  }
   c.slope_model = initial_slope(q, a, 0.3);
   if (const auto& m = scene.experiment.measured; m && !m->A_m2.empty()) {
     c.decay_measured = 1 - m->A_m2.back() / o.A0;
@@ -77,7 +85,6 @@ AreaComparison compare_areas(const Scene& scene, double alpha_b, const Observabl
   }
   return c;
 }
-
 
 ClaimObservables claim_observables(const std::vector<PaperRun>& base, const std::vector<VariantRun>& variants,
                                    const Calibration& calibration) {
@@ -130,7 +137,9 @@ void write_intro(std::ostream& r, const ReportInputs& x, const std::string& data
   int min_cycles = std::numeric_limits<int>::max(), max_cycles = 0, peaks = 0;
   for (const auto& b : base) {
     const StopSettings& st = b.scene.stop;
-    std::string s = st.at_first_peak ? "to the first peak" : st.cycles >= 0 ? "through the first peak and " + std::to_string(st.cycles) + " stick-slip cycles" : "without a cycle limit";
+    std::string s = st.at_first_peak ? "to the first peak"
+                    : st.cycles >= 0 ? "through the first peak and " + std::to_string(st.cycles) + " stick-slip cycles"
+                                     : "without a cycle limit";
     stops.insert(s + " or stop.time = " + fmt("%g", st.time) + " s");
     min_cycles = std::min(min_cycles, b.obs.ss_cycles);
     max_cycles = std::max(max_cycles, b.obs.ss_cycles);
@@ -139,8 +148,8 @@ void write_intro(std::ostream& r, const ReportInputs& x, const std::string& data
   std::string stop_text;
   for (const auto& s : stops) stop_text += (stop_text.empty() ? "" : "; ") + s;
   r << "Written by `asperity reproduce` (the main job, `scripts/reproduce.sh`). Base runs: the paper's "
-       "parameters (docs/model.md §2), event solver at the scenes' tolerance, each " << stop_text << "; "
-    << peaks << " of " << base.size() << " confirmed their first peak and completed "
+       "parameters (docs/model.md §2), event solver at the scenes' tolerance, each "
+    << stop_text << "; " << peaks << " of " << base.size() << " confirmed their first peak and completed "
     << (base.empty() ? 0 : min_cycles) << (min_cycles != max_cycles ? "–" + std::to_string(max_cycles) : "")
     << " stick-slip cycles. Figures: `fig3_Q_A_t.png`, `fig4_A_Q.png`; numbers: `table.csv`. The "
        "quasi-linearity index is the exponent n of A0 − A = c Qⁿ fitted on the loading branch "
@@ -158,10 +167,13 @@ void write_claim1(std::ostream& r, const ReportInputs& x) {
   r << "## 1. dt ≈ 1 µs at C_t = 1e4 for the mid loads\n\n| experiment | N | dt [µs] |\n|---|---:|---:|\n";
   for (const auto& l : co.loads)
     r << "| " << l.experiment << " | " << l.base.N << " | " << cell("%.3f", l.base.dt * 1e6) << " |\n";
-  r << "\n" << verdict_bold(claim1_dt(co, rules)) << " (rule: " << fmt("%g", rules.dt_lo * 1e6) << " µs < dt < "
+  r << "\n"
+    << verdict_bold(claim1_dt(co, rules)) << " (rule: " << fmt("%g", rules.dt_lo * 1e6) << " µs < dt < "
     << fmt("%g", rules.dt_hi * 1e6) << " µs at every load but the smallest and the largest)"
     << (standin ? "; by construction: the stand-ins were generated to satisfy it, so this is a check of the "
-                  "generator, not evidence" : "") << ".\n\n";
+                  "generator, not evidence"
+                : "")
+    << ".\n\n";
 }
 
 // Claim 2 of REPORT.md: Stick-slip at all loads.
@@ -169,13 +181,17 @@ void write_claim2(std::ostream& r, const ReportInputs& x) {
   const ClaimObservables& co = x.co;
   const bool standin = x.standin;
   r << "## 2. Stick-slip at all six loads (ε = 0.9, η = 100)\n\n"
-       "| experiment | cycles | mean drop [N] | drop / Q_s | mean period [s] | verdict |\n|---|---:|---:|---:|---:|---|\n";
+       "| experiment | cycles | mean drop [N] | drop / Q_s | mean period [s] | verdict "
+       "|\n|---|---:|---:|---:|---:|---|\n";
   for (const auto& l : co.loads) {
     const auto& o = l.base;
     r << "| " << l.experiment << " | " << o.ss_cycles << " | " << cell("%.4g", o.ss_drop) << " | "
-      << cell("%.3f", o.ss_drop / o.Q_s) << " | " << cell("%.4g", o.ss_period) << " | " << verdict_text(claim2_stick_slip(l)) << " |\n";
+      << cell("%.3f", o.ss_drop / o.Q_s) << " | " << cell("%.4g", o.ss_period) << " | "
+      << verdict_text(claim2_stick_slip(l)) << " |\n";
   }
-  r << "\n" << verdict_bold(claim2_stick_slip(co)) << " (rule: at least one stick-slip cycle after the first "
+  r << "\n"
+    << verdict_bold(claim2_stick_slip(co))
+    << " (rule: at least one stick-slip cycle after the first "
        "peak at every load; no evidence where a run stopped at its first peak or never confirmed it)."
     << (standin ? " The stand-in population was chosen to show it (README: stand-in search)." : "") << "\n\n";
 }
@@ -183,7 +199,8 @@ void write_claim2(std::ostream& r, const ReportInputs& x) {
 // The η bracket where stick-slip vanishes, as claim 3's table writes it.
 std::string bracket_text(const VanishBracket& vb) {
   if (std::isnan(vb.last_with)) return "–";
-  if (std::isinf(vb.first_without)) return std::string("> ").append(eta_text(vb.last_with)).append(" (not in the scan)");
+  if (std::isinf(vb.first_without))
+    return std::string("> ").append(eta_text(vb.last_with)).append(" (not in the scan)");
   if (std::isinf(vb.last_with)) return std::string("≤ ").append(eta_text(vb.first_without)).append(" (none at any η)");
   return std::string("(").append(eta_text(vb.last_with)).append(", ").append(eta_text(vb.first_without)).append("]");
 }
@@ -212,7 +229,10 @@ void write_claim3(std::ostream& r, const ReportInputs& x) {
       if (e == l.base_eta) o = l.base;
       for (const auto& [eta, v] : l.eta_scan)
         if (eta == e) o = v;
-      if (!o) { r << " – |"; continue; }
+      if (!o) {
+        r << " – |";
+        continue;
+      }
       r << " " << o->ss_cycles << " (" << cell("%.3f", o->ss_drop / o->Q_s) << ") |";
     }
     const VanishBracket vb = claim3_vanish_bracket(l, rules);
@@ -226,7 +246,8 @@ void write_claim3(std::ostream& r, const ReportInputs& x) {
     << " over the loading branch and first peak (Q_s, A_s, t_peak, α; rule < " << fmt("%g", rules.same_loading) << "); "
     << cell("%.3g", e50.stick_slip_diff) << " over the mean stick-slip drop and period (rule < "
     << fmt("%g", rules.same_stick_slip) << "). Stick-slip vanishes in a bracket that meets η ∈ ["
-    << fmt("%g", rules.vanish_min) << ", " << fmt("%g", rules.vanish_max) << "] (the claim's 180–200 ± 10 %) at " << vanish_ok << " of " << co.loads.size() << " loads.\n\n"
+    << fmt("%g", rules.vanish_min) << ", " << fmt("%g", rules.vanish_max) << "] (the claim's 180–200 ± 10 %) at "
+    << vanish_ok << " of " << co.loads.size() << " loads.\n\n"
     << "First half: " << verdict_bold(e50.verdict) << ". Second half: " << verdict_bold(v3b) << ".\n\n";
 }
 
@@ -236,8 +257,9 @@ void write_claim4(std::ostream& r, const ReportInputs& x) {
   const ClaimRules& rules = x.rules;
   const MaxDifference c4 = claim4_c_min(co, rules);
   r << "## 4. c_min = 1e-5 and 0.01 indistinguishable\n\nLargest relative difference over Q_s, A_s, t_peak, "
-       "stick-slip drop and period, all loads: " << cell("%.3g", c4.diff) << " (rule < " << fmt("%g", rules.same_c_min)
-    << ").\n\n" << verdict_bold(c4.verdict) << ".\n\n";
+       "stick-slip drop and period, all loads: "
+    << cell("%.3g", c4.diff) << " (rule < " << fmt("%g", rules.same_c_min) << ").\n\n"
+    << verdict_bold(c4.verdict) << ".\n\n";
 }
 
 // Claim 5 of REPORT.md: Calibrated α_b: decay, incipient slope, shape.
@@ -254,7 +276,8 @@ void write_claim5(std::ostream& r, const ReportInputs& x) {
     r << "No calibration in this run (`--fit` not given): the table shows the runs at the scenes' α_b, which are "
          "no evidence for the calibrated parts (area decay, incipient slope).\n\n";
   } else {
-    r << "α_b calibrated per load with the paper's method (model quadratic α = measured α; `" << calibration.fit_file << "`): ";
+    r << "α_b calibrated per load with the paper's method (model quadratic α = measured α; `" << calibration.fit_file
+      << "`): ";
     for (std::size_t i = 0; i < calibration.runs.size(); ++i) {
       const CalibratedRun& c = calibration.runs[i];
       r << (i ? ", " : "") << c.experiment << " ";
@@ -267,11 +290,15 @@ void write_claim5(std::ostream& r, const ReportInputs& x) {
     bool rising = n_cal >= 2;
     double prev = -1;
     for (const auto& l : co.loads)
-      if (l.calibrated) { rising = rising && l.calibrated->alpha_b > prev; prev = l.calibrated->alpha_b; }
+      if (l.calibrated) {
+        rising = rising && l.calibrated->alpha_b > prev;
+        prev = l.calibrated->alpha_b;
+      }
     if (n_cal >= 2)
       r << " The calibrated α_b " << (rising ? "rises" : "does not rise") << " monotonically with load here.";
     r << " The paper found 0.45e-15 at the smallest and 1.00e-15 at the largest load on the real data"
-      << (standin ? "; the stand-ins' measured area drop was generated rising with load at one α_b (docs/model.md §7)" : "")
+      << (standin ? "; the stand-ins' measured area drop was generated rising with load at one α_b (docs/model.md §7)"
+                  : "")
       << ".\n\n";
     for (const auto& c : calibration.runs)
       if (!c.failure.empty())
@@ -289,8 +316,11 @@ void write_claim5(std::ostream& r, const ReportInputs& x) {
   }
   const Claim5Verdicts c5 = claim5_calibrated(co, rules);
   r << "\n(Area decay = 1 − A_s/A0 at the peak; incipient slope = least-squares dA/dQ over Q ≤ 0.3 Q_max. Rules: "
-       "decay and slope within " << fmt("%g", rules.match * 100) << " % of the measured ones, calibrated runs only; "
-       "shape: model n < " << fmt("%g", rules.quasi_linear_n) << " and measured n > " << fmt("%g", rules.quadratic_n)
+       "decay and slope within "
+    << fmt("%g", rules.match * 100)
+    << " % of the measured ones, calibrated runs only; "
+       "shape: model n < "
+    << fmt("%g", rules.quasi_linear_n) << " and measured n > " << fmt("%g", rules.quadratic_n)
     << ".)\n\n**Area decay: " << verdict_text(c5.decay) << ". Incipient slope: " << verdict_text(c5.slope)
     << ". Shape contrast: " << verdict_text(c5.shape) << ".**";
   if (standin)
@@ -313,7 +343,10 @@ void write_claim6(std::ostream& r, const ReportInputs& x) {
     const LoadObservables& l = co.loads[i];
     v6.push_back(claim6_equal_areas(l, rules));
     r << "| " << l.experiment << " | ";
-    if (!l.equal_areas) { r << "– | – | – | " << verdict_text(v6.back()) << " (run missing or failed) |\n"; continue; }
+    if (!l.equal_areas) {
+      r << "– | – | – | " << verdict_text(v6.back()) << " (run missing or failed) |\n";
+      continue;
+    }
     const Observables& o = *l.equal_areas;
     const Scene& s = base[i].scene;
     const double a = o.A0 / static_cast<double>(o.N);
@@ -322,7 +355,8 @@ void write_claim6(std::ostream& r, const ReportInputs& x) {
       << " | " << verdict_text(v6.back()) << " |\n";
   }
   r << "\n(α uses Q; the closed form holds for the junction force F = Q − M(Ẍ + ηẊ), which differs by the "
-       "viscous term. Rule: R² > " << fmt("%g", rules.quadratic_R2) << " with a confirmed peak.)\n\n"
+       "viscous term. Rule: R² > "
+    << fmt("%g", rules.quadratic_R2) << " with a confirmed peak.)\n\n"
     << verdict_bold(combine(std::span<const Verdict>(v6))) << ".\n\n";
 }
 
@@ -332,19 +366,21 @@ void write_claim7(std::ostream& r, const ReportInputs& x) {
   const std::vector<PaperRun>& base = x.base;
   const std::vector<VariantRun>& variants = x.variants;
   r << "## 7. Forces exceed σ_exp A transiently but stay below σ A = σ_exp A/ε\n\n";
-  if (const VariantRun* v = base.empty() ? nullptr : find_run(variants, base.front().scene.experiment.name, kReferenceVariantLabel)) {
+  if (const VariantRun* v =
+          base.empty() ? nullptr : find_run(variants, base.front().scene.experiment.name, kReferenceVariantLabel)) {
     if (!v->error.empty())
       r << "Reference run (" << v->label << ") on " << v->experiment << " failed: " << v->error << "\n\n";
     else
       r << "Reference solver (" << v->label << ") on " << v->experiment << ": " << v->obs.slips << " slips; max over "
-        << "junctions and steps of f/(σA) = " << cell("%.6f", v->obs.max_f_over_sigmaA) << ", of f/(σ_exp A) = "
-        << cell("%.6f", v->obs.max_f_over_sigma_exp_A) << ".\n\n";
+        << "junctions and steps of f/(σA) = " << cell("%.6f", v->obs.max_f_over_sigmaA)
+        << ", of f/(σ_exp A) = " << cell("%.6f", v->obs.max_f_over_sigma_exp_A) << ".\n\n";
   } else {
     r << "No reference run in this reproduction.\n\n";
   }
   r << "(Only the reference solver measures f/(σA) at every junction and step: the event solver locates each slip "
        "at f = σA, so it cannot test this claim. Rule: at least one slip in the window, max f/(σA) ≤ 1 and "
-       "max f/(σ_exp A) > 1.)\n\n" << verdict_bold(claim7_forces(co)) << ".\n\n";
+       "max f/(σ_exp A) > 1.)\n\n"
+    << verdict_bold(claim7_forces(co)) << ".\n\n";
 }
 
 // Claim 8 of REPORT.md: Robustness of the shape.
@@ -358,9 +394,11 @@ void write_claim8(std::ostream& r, const ReportInputs& x) {
     v8.push_back(claim8_shape_robust(l, rules));
     r << "| " << l.experiment << " | " << cell("%.2f", l.base.shape_exponent) << " | "
       << (l.circular ? cell("%.2f", l.circular->shape_exponent) : "–") << " | "
-      << (l.area_law_always ? cell("%.2f", l.area_law_always->shape_exponent) : "–") << " | " << verdict_text(v8.back()) << " |\n";
+      << (l.area_law_always ? cell("%.2f", l.area_law_always->shape_exponent) : "–") << " | " << verdict_text(v8.back())
+      << " |\n";
   }
-  r << "\n" << verdict_bold(combine(std::span<const Verdict>(v8))) << " (rule: n < " << fmt("%g", rules.quasi_linear_n)
+  r << "\n"
+    << verdict_bold(combine(std::span<const Verdict>(v8))) << " (rule: n < " << fmt("%g", rules.quasi_linear_n)
     << " in all three at every load).\n\n";
 }
 

@@ -55,7 +55,8 @@ Curve continuum_curve(TangentialContact& t, const std::vector<double>& deltas) {
     const TangentialState st = t.solve(d);
     c.converged = c.converged && st.converged;
     c.delta.push_back(d), c.force.push_back(st.force_N);
-    c.slip.push_back(static_cast<double>(st.slipping_pixels) / static_cast<double>(std::max<std::size_t>(1, st.contact_pixels)));
+    c.slip.push_back(static_cast<double>(st.slipping_pixels) /
+                     static_cast<double>(std::max<std::size_t>(1, st.contact_pixels)));
   }
   return c;
 }
@@ -69,7 +70,8 @@ Curve junction_curve(const JunctionPopulation& J, double E, double sigma, bool i
   const JunctionCurve jc = quasi_static_junction_curve(q, deltas);
   Curve c;
   c.model = model;
-  c.k0 = jc.initial_stiffness_N_per_m, c.full_force = jc.full_sliding_force_N, c.full_delta = jc.full_sliding_displacement_m;
+  c.k0 = jc.initial_stiffness_N_per_m, c.full_force = jc.full_sliding_force_N,
+  c.full_delta = jc.full_sliding_displacement_m;
   c.monotone = jc.monotone;
   c.delta = {0}, c.force = {0}, c.slip = {0};
   for (const JunctionCurvePoint& p : jc.points) {
@@ -106,12 +108,17 @@ ContinuumStudy run_continuum_study(const ContinuumStudyOptions& o) {
     const double cont_full = continuum.full_sliding_displacement_m();
     std::vector<double> deltas;
     for (int i = 1; i <= o.points; ++i) deltas.push_back(1.25 * cont_full * i / o.points);
-    if (o.log) *o.log << "  " << P << " N: " << tc.junctions.size() << " junctions, contact " << tc.contact_area_m2 * 1e6 << " mm^2" << std::flush;
+    if (o.log)
+      *o.log << "  " << P << " N: " << tc.junctions.size() << " junctions, contact " << tc.contact_area_m2 * 1e6
+             << " mm^2" << std::flush;
     std::vector<Curve> curves;
     curves.push_back(continuum_curve(continuum, deltas));
-    curves.push_back(junction_curve(tc.junctions, E, sigma, false, TractionWeighting::uniform, "independent", deltas, o.tolerance));
-    curves.push_back(junction_curve(tc.junctions, E, sigma, true, TractionWeighting::uniform, "interacting-uniform", deltas, o.tolerance));
-    curves.push_back(junction_curve(tc.junctions, E, sigma, true, TractionWeighting::rigid, "interacting-rigid", deltas, o.tolerance));
+    curves.push_back(
+        junction_curve(tc.junctions, E, sigma, false, TractionWeighting::uniform, "independent", deltas, o.tolerance));
+    curves.push_back(junction_curve(tc.junctions, E, sigma, true, TractionWeighting::uniform, "interacting-uniform",
+                                    deltas, o.tolerance));
+    curves.push_back(junction_curve(tc.junctions, E, sigma, true, TractionWeighting::rigid, "interacting-rigid", deltas,
+                                    o.tolerance));
     const Curve& ref = curves[0];
     for (const Curve& c : curves) {
       ContinuumRow r;
@@ -148,7 +155,9 @@ ContinuumStudy run_continuum_study(const ContinuumStudyOptions& o) {
 
 namespace {
 
-std::string fixed(double v, int digits) { return scene_io::format_cell(("%." + std::to_string(digits) + "f").c_str(), v); }
+std::string fixed(double v, int digits) {
+  return scene_io::format_cell(("%." + std::to_string(digits) + "f").c_str(), v);
+}
 
 std::string plot_script(const ContinuumStudy& s, const std::optional<StiffnessRule>& rule) {
   std::ostringstream gp;
@@ -156,7 +165,8 @@ std::string plot_script(const ContinuumStudy& s, const std::optional<StiffnessRu
   for (int m = 0; m < 3; ++m) {
     std::vector<std::vector<double>> rows;
     for (const ContinuumRow& r : s.rows)
-      if (r.model == models[m]) rows.push_back({r.stiffness_ratio, 100 * std::abs(r.stiffness_error), 100 * r.rms_error});
+      if (r.model == models[m])
+        rows.push_back({r.stiffness_ratio, 100 * std::abs(r.stiffness_error), 100 * r.rms_error});
     gp << gnuplot_block("m" + std::to_string(m), rows);
   }
   double heaviest = 0;
@@ -173,27 +183,35 @@ std::string plot_script(const ContinuumStudy& s, const std::optional<StiffnessRu
     for (auto& r : rows) r[1] /= ref_force;
     gp << gnuplot_block("c" + std::to_string(m), rows);
   }
-  gp << "set multiplot layout 1,2 title " << gnuplot_quote(std::string(kSynthetic) + "s: junction models against the continuum on the same contact map (α_b = 0, ε = 1)") << "\n";
+  gp << "set multiplot layout 1,2 title "
+     << gnuplot_quote(std::string(kSynthetic) +
+                      "s: junction models against the continuum on the same contact map (α_b = 0, ε = 1)")
+     << "\n";
   double lo = 0, hi = 0;
   for (const ContinuumRow& r : s.rows)
     lo = lo > 0 ? std::min(lo, r.stiffness_ratio) : r.stiffness_ratio, hi = std::max(hi, r.stiffness_ratio);
-  gp << "set logscale xy\nset xrange [" << 0.8 * lo << ":" << 1.25 * hi << "]\nset xtics (1, 2, 5, 10, 20, 50)\nset xlabel "
-     << gnuplot_quote("stiffness ratio Σ a_i / (√2 R_g) [1]") << "\nset ylabel " << gnuplot_quote("|error| [%]") << "\nset key top left\nset title " << gnuplot_quote("initial stiffness (points), rms of Q(δ)/Q_{full} (open)") << "\n";
+  gp << "set logscale xy\nset xrange [" << 0.8 * lo << ":" << 1.25 * hi
+     << "]\nset xtics (1, 2, 5, 10, 20, 50)\nset xlabel " << gnuplot_quote("stiffness ratio Σ a_i / (√2 R_g) [1]")
+     << "\nset ylabel " << gnuplot_quote("|error| [%]") << "\nset key top left\nset title "
+     << gnuplot_quote("initial stiffness (points), rms of Q(δ)/Q_{full} (open)") << "\n";
   gp << "plot $m0 using 1:2 with points pt 7 lc rgb '#d55e00' title " << gnuplot_quote("independent")
      << ", $m1 using 1:2 with points pt 5 lc rgb '#009e73' title " << gnuplot_quote("interacting, uniform")
      << ", $m2 using 1:2 with points pt 9 lc rgb '#0072b2' title " << gnuplot_quote("interacting, rigid")
-     << ", $m0 using 1:3 with points pt 6 lc rgb '#d55e00' notitle, $m1 using 1:3 with points pt 4 lc rgb '#009e73' notitle"
+     << ", $m0 using 1:3 with points pt 6 lc rgb '#d55e00' notitle, $m1 using 1:3 with points pt 4 lc rgb '#009e73' "
+        "notitle"
      << ", $m2 using 1:3 with points pt 8 lc rgb '#0072b2' notitle";
   if (rule)
     gp << ", [" << rule->ratio_min << ":" << rule->ratio_max << "] 100*" << rule->prefactor << "*x**" << rule->exponent
        << " with lines dt 2 lc rgb '#d55e00' title " << gnuplot_quote("rule (independent)");
-  gp << "\nunset logscale\nset autoscale x\nset xtics autofreq\nset xlabel " << gnuplot_quote("δ / δ_{full} of the continuum [1]") << "\nset ylabel "
-     << gnuplot_quote("Q / Q_{full} [1]") << "\nset key bottom right\nset title "
-     << gnuplot_quote("Q(δ) at " + fixed(heaviest, 2) + " N") << "\nset yrange [0:1.05]\n";
+  gp << "\nunset logscale\nset autoscale x\nset xtics autofreq\nset xlabel "
+     << gnuplot_quote("δ / δ_{full} of the continuum [1]") << "\nset ylabel " << gnuplot_quote("Q / Q_{full} [1]")
+     << "\nset key bottom right\nset title " << gnuplot_quote("Q(δ) at " + fixed(heaviest, 2) + " N")
+     << "\nset yrange [0:1.05]\n";
   gp << "plot $c0 using 1:2 with lines lw 3 lc rgb 'black' title " << gnuplot_quote("continuum (FFT boundary elements)")
      << ", $c1 using 1:2 with lines lw 2 lc rgb '#d55e00' title " << gnuplot_quote("independent")
      << ", $c2 using 1:2 with lines lw 2 lc rgb '#009e73' title " << gnuplot_quote("interacting, uniform")
-     << ", $c3 using 1:2 with lines lw 2 dt 2 lc rgb '#0072b2' title " << gnuplot_quote("interacting, rigid") << "\nunset multiplot\n";
+     << ", $c3 using 1:2 with lines lw 2 dt 2 lc rgb '#0072b2' title " << gnuplot_quote("interacting, rigid")
+     << "\nunset multiplot\n";
   return gp.str();
 }
 
@@ -201,21 +219,25 @@ void write_files(const ContinuumStudyOptions& o, const ContinuumStudy& s, const 
   fs::create_directories(o.out);
   std::ostringstream t;
   t << "# " << kSynthetic << " (" << o.recipe.filename().string() << "): `asperity study continuum`\n"
-    << "load_N,junctions,contact_area_m2,pixels_per_junction,coverage_hertz,coverage_population,stiffness_ratio,model,initial_stiffness_N_per_m,"
-       "stiffness_error,q10_over_qfull,q50_over_qfull,full_sliding_displacement_m,full_sliding_error,rms_error,converged,monotone\n";
+    << "load_N,junctions,contact_area_m2,pixels_per_junction,coverage_hertz,coverage_population,stiffness_ratio,model,"
+       "initial_stiffness_N_per_m,"
+       "stiffness_error,q10_over_qfull,q50_over_qfull,full_sliding_displacement_m,full_sliding_error,rms_error,"
+       "converged,monotone\n";
   for (const ContinuumRow& r : s.rows)
     t << csv_number(r.load_N) << ',' << r.junctions << ',' << csv_number(r.contact_area_m2) << ','
-      << csv_number(r.pixels_per_junction) << ',' << csv_number(r.coverage_hertz)
-      << ',' << csv_number(r.coverage_population) << ',' << csv_number(r.stiffness_ratio) << ',' << r.model << ',' << csv_number(r.initial_stiffness_N_per_m) << ','
-      << csv_number(r.stiffness_error) << ',' << csv_number(r.q10) << ',' << csv_number(r.q50) << ','
-      << csv_number(r.full_sliding_displacement_m) << ',' << csv_number(r.full_sliding_error) << ',' << csv_number(r.rms_error)
-      << ',' << (r.converged ? "true" : "false") << ',' << (r.monotone ? "true" : "false") << '\n';
+      << csv_number(r.pixels_per_junction) << ',' << csv_number(r.coverage_hertz) << ','
+      << csv_number(r.coverage_population) << ',' << csv_number(r.stiffness_ratio) << ',' << r.model << ','
+      << csv_number(r.initial_stiffness_N_per_m) << ',' << csv_number(r.stiffness_error) << ',' << csv_number(r.q10)
+      << ',' << csv_number(r.q50) << ',' << csv_number(r.full_sliding_displacement_m) << ','
+      << csv_number(r.full_sliding_error) << ',' << csv_number(r.rms_error) << ',' << (r.converged ? "true" : "false")
+      << ',' << (r.monotone ? "true" : "false") << '\n';
   scene_io::write_text_file(o.out / "table.csv", t.str());
   std::ostringstream c;
-  c << "# " << kSynthetic << ": Q(delta) of each model, `asperity study continuum`\nload_N,model,displacement_m,force_N,slip_area_fraction\n";
+  c << "# " << kSynthetic
+    << ": Q(delta) of each model, `asperity study continuum`\nload_N,model,displacement_m,force_N,slip_area_fraction\n";
   for (const ContinuumCurvePoint& p : s.curves)
-    c << csv_number(p.load_N) << ',' << p.model << ',' << csv_number(p.displacement_m) << ',' << csv_number(p.force_N) << ','
-      << csv_number(p.slip_area_fraction) << '\n';
+    c << csv_number(p.load_N) << ',' << p.model << ',' << csv_number(p.displacement_m) << ',' << csv_number(p.force_N)
+      << ',' << csv_number(p.slip_area_fraction) << '\n';
   scene_io::write_text_file(o.out / "curves.csv", c.str());
 
   std::vector<double> cov, err;
@@ -223,7 +245,9 @@ void write_files(const ContinuumStudyOptions& o, const ContinuumStudy& s, const 
     if (r.model == "independent") cov.push_back(r.stiffness_ratio), err.push_back(std::abs(r.stiffness_error));
   const std::optional<StiffnessRule> rule = fit_stiffness_rule(cov, err);
   std::ostringstream rl;
-  rl << "# " << kSynthetic << ": |stiffness error of independent junctions| = prefactor * stiffness_ratio^exponent, `asperity study continuum`\n"
+  rl << "# " << kSynthetic
+     << ": |stiffness error of independent junctions| = prefactor * stiffness_ratio^exponent, `asperity study "
+        "continuum`\n"
      << "prefactor,exponent,ratio_min,ratio_max,points\n";
   if (rule)
     rl << csv_number(rule->prefactor) << ',' << csv_number(rule->exponent) << ',' << csv_number(rule->ratio_min) << ','
@@ -238,21 +262,23 @@ void write_files(const ContinuumStudyOptions& o, const ContinuumStudy& s, const 
      << "The continuum is the tangential contact on the normal solve's contact map (FFT boundary elements, constant "
         "shear strength σ = σ_exp per unit area); the junction models take the junctions the same map makes, with "
         "α_b = 0 and ε = 1, quasi-statically. Errors are relative to the continuum.\n\n"
-     << "| load [N] | junctions | pixels per junction | coverage (population) | coverage (Hertz) | stiffness ratio | model | k0 [N/m] | k0 error | Q10/Qfull | "
+     << "| load [N] | junctions | pixels per junction | coverage (population) | coverage (Hertz) | stiffness ratio | "
+        "model | k0 [N/m] | k0 error | Q10/Qfull | "
         "Q50/Qfull | δ_full error | rms of Q(δ)/Qfull |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const ContinuumRow& r : s.rows)
     md << "| " << fixed(r.load_N, 2) << " | " << r.junctions << " | " << fixed(r.pixels_per_junction, 1) << " | "
-       << fixed(r.coverage_population, 3) << " | "
-       << fixed(r.coverage_hertz, 3) << " | " << fixed(r.stiffness_ratio, 2) << " | " << r.model
-       << (r.converged ? "" : " (NOT converged)") << (r.monotone ? "" : " (a slip stopped between two points)")
-       << " | " << scene_io::format_cell("%.4g", r.initial_stiffness_N_per_m) << " | " << fixed(100 * r.stiffness_error, 1)
-       << " % | " << fixed(r.q10, 3) << " | " << fixed(r.q50, 3) << " | " << fixed(100 * r.full_sliding_error, 1) << " % | "
-       << fixed(100 * r.rms_error, 2) << " % |\n";
+       << fixed(r.coverage_population, 3) << " | " << fixed(r.coverage_hertz, 3) << " | " << fixed(r.stiffness_ratio, 2)
+       << " | " << r.model << (r.converged ? "" : " (NOT converged)")
+       << (r.monotone ? "" : " (a slip stopped between two points)") << " | "
+       << scene_io::format_cell("%.4g", r.initial_stiffness_N_per_m) << " | " << fixed(100 * r.stiffness_error, 1)
+       << " % | " << fixed(r.q10, 3) << " | " << fixed(r.q50, 3) << " | " << fixed(100 * r.full_sliding_error, 1)
+       << " % | " << fixed(100 * r.rms_error, 2) << " % |\n";
   md << "\n## The rule\n\n";
   if (rule) {
-    md << "|k0 error of independent junctions| = " << scene_io::format_cell("%.4g", rule->prefactor) << " · (stiffness ratio)^"
-       << scene_io::format_cell("%.3g", rule->exponent) << ", fitted over stiffness ratios " << fixed(rule->ratio_min, 2) << " to "
-       << fixed(rule->ratio_max, 2) << " (" << rule->points << " loads; `rule.csv`). It reaches\n\n";
+    md << "|k0 error of independent junctions| = " << scene_io::format_cell("%.4g", rule->prefactor)
+       << " · (stiffness ratio)^" << scene_io::format_cell("%.3g", rule->exponent) << ", fitted over stiffness ratios "
+       << fixed(rule->ratio_min, 2) << " to " << fixed(rule->ratio_max, 2) << " (" << rule->points
+       << " loads; `rule.csv`). It reaches\n\n";
     for (const double e : {0.01, 0.05, 0.2}) {
       const double c = rule->ratio_for(e);
       md << "- " << fixed(100 * e, 0) << " % at stiffness ratio " << scene_io::format_cell("%.3g", c)

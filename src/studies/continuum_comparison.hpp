@@ -21,12 +21,12 @@
 namespace asperity {
 
 struct ContinuumStudyOptions {
-  std::filesystem::path recipe;          // a topography recipe (its load_N is replaced by each load)
+  std::filesystem::path recipe;  // a topography recipe (its load_N is replaced by each load)
   std::vector<double> loads_N;
   std::filesystem::path out;
-  int points = 32;                       // displacements of each Q(δ), up to 1.25 × the continuum's full sliding
-  double tolerance = 1e-8;               // of the tangential and junction solves (relative to δ)
-  int threads = 1;                       // of the contact solves (the numbers do not depend on it)
+  int points = 32;          // displacements of each Q(δ), up to 1.25 × the continuum's full sliding
+  double tolerance = 1e-8;  // of the tangential and junction solves (relative to δ)
+  int threads = 1;          // of the contact solves (the numbers do not depend on it)
   FigureFormats figures;
   std::ostream* log = nullptr;
 };
@@ -35,17 +35,17 @@ struct ContinuumRow {
   double load_N = 0;
   std::size_t junctions = 0;
   double contact_area_m2 = 0;
-  double pixels_per_junction = 0;   // contact pixels / junctions: how well the map resolves a junction
-  double coverage_hertz = 0;        // contact area / π a_H², a_H Hertz's radius of the smooth sphere
-  double coverage_population = 0;   // of the junctions (studies/continuum_rule.hpp, population_measures)
-  double stiffness_ratio = 0;       // of the junctions (the same)
-  std::string model;                // continuum, independent, interacting-uniform, interacting-rigid
+  double pixels_per_junction = 0;  // contact pixels / junctions: how well the map resolves a junction
+  double coverage_hertz = 0;       // contact area / π a_H², a_H Hertz's radius of the smooth sphere
+  double coverage_population = 0;  // of the junctions (studies/continuum_rule.hpp, population_measures)
+  double stiffness_ratio = 0;      // of the junctions (the same)
+  std::string model;               // continuum, independent, interacting-uniform, interacting-rigid
   double initial_stiffness_N_per_m = 0;
-  double stiffness_error = 0;       // relative to the continuum's (0 for it)
-  double q10 = 0, q50 = 0;          // Q / Q_full when 10 % and 50 % of the contact area slips
+  double stiffness_error = 0;  // relative to the continuum's (0 for it)
+  double q10 = 0, q50 = 0;     // Q / Q_full when 10 % and 50 % of the contact area slips
   double full_sliding_displacement_m = 0;
-  double full_sliding_error = 0;    // relative to the continuum's
-  double rms_error = 0;             // rms of (Q − Q_continuum) / Q_full over the displacements
+  double full_sliding_error = 0;  // relative to the continuum's
+  double rms_error = 0;           // rms of (Q − Q_continuum) / Q_full over the displacements
   bool converged = true, monotone = true;
 };
 

@@ -26,7 +26,8 @@ PopulationMeasures population_measures(const std::vector<double>& area, const st
 double StiffnessRule::error_at(double ratio) const { return prefactor * std::pow(ratio, exponent); }
 double StiffnessRule::ratio_for(double error) const { return std::pow(error / prefactor, 1 / exponent); }
 
-std::optional<StiffnessRule> fit_stiffness_rule(const std::vector<double>& ratio, const std::vector<double>& abs_error) {
+std::optional<StiffnessRule> fit_stiffness_rule(const std::vector<double>& ratio,
+                                                const std::vector<double>& abs_error) {
   const std::size_t n = ratio.size();
   if (n < 2 || abs_error.size() != n) return std::nullopt;
   double sx = 0, sy = 0, sxx = 0, sxy = 0;

@@ -77,27 +77,35 @@ std::string force_spread_plot(const Spread& sp) {
   }
   double lo = NAN, hi = NAN;  // the independent model's range (one bin wide or less)
   for (const auto& v : indep)
-    if (std::isfinite(v[0])) lo = std::isnan(lo) ? v[0] : std::min(lo, v[0]), hi = std::isnan(hi) ? v[0] : std::max(hi, v[0]);
+    if (std::isfinite(v[0]))
+      lo = std::isnan(lo) ? v[0] : std::min(lo, v[0]), hi = std::isnan(hi) ? v[0] : std::max(hi, v[0]);
   std::ostringstream gp;
   gp << gnuplot_block("crowded", crowded) << gnuplot_block("sparse", sparse) << gnuplot_block("indep", indep)
      << "set title " << gnuplot_text("STAND-IN " + sp.experiment) << " . "
-     << gnuplot_quote(": f/(σA) at half the time of the first peak") << " . \"\\n\" . "  // two lines: one column wide in a PDF
-     << gnuplot_quote("junctions of equal area (" + scene_io::format_cell("%.3g", sp.area_lo) + "–" + scene_io::format_cell("%.3g", sp.area_hi) + " m^2)")
+     << gnuplot_quote(": f/(σA) at half the time of the first peak")
+     << " . \"\\n\" . "  // two lines: one column wide in a PDF
+     << gnuplot_quote("junctions of equal area (" + scene_io::format_cell("%.3g", sp.area_lo) + "–" +
+                      scene_io::format_cell("%.3g", sp.area_hi) + " m^2)")
      << "\nset xlabel " << gnuplot_quote("f_i / (σ A_i) [1]") << "\nset ylabel " << gnuplot_quote("junctions [1]")
-     << "\nbin(x) = 0.02*floor(x/0.02) + 0.01\nset style fill transparent solid 0.5\nset boxwidth 0.02\nset key top right\n"
+     << "\nbin(x) = 0.02*floor(x/0.02) + 0.01\nset style fill transparent solid 0.5\nset boxwidth 0.02\nset key top "
+        "right\n"
      // The independent model gives the junctions of equal area one f/(σA) (a range narrower
      // than a bin): a band and a line across the plot, not a bar as tall as all the junctions
      // (which squashed the histograms); the y range is the histograms'.
      << "set yrange [0:*]\nset offsets 0, 0, graph 0.1, 0\n"
-     << (std::isfinite(lo) ? "set object 1 rect from first " + scene_io::format_cell("%.10g", lo) + ", graph 0 to first " + scene_io::format_cell("%.10g", hi) +
-                                 ", graph 1 behind fc rgb '#56b4e9' fs solid 0.35 noborder\nset arrow 1 from first " +
-                                 scene_io::format_cell("%.10g", 0.5 * (lo + hi)) + ", graph 0 to first " + scene_io::format_cell("%.10g", 0.5 * (lo + hi)) +
-                                 ", graph 1 nohead lw 3 lc rgb '#56b4e9'\n"
-                           : std::string())
+     << (std::isfinite(lo)
+             ? "set object 1 rect from first " + scene_io::format_cell("%.10g", lo) + ", graph 0 to first " +
+                   scene_io::format_cell("%.10g", hi) +
+                   ", graph 1 behind fc rgb '#56b4e9' fs solid 0.35 noborder\nset arrow 1 from first " +
+                   scene_io::format_cell("%.10g", 0.5 * (lo + hi)) + ", graph 0 to first " +
+                   scene_io::format_cell("%.10g", 0.5 * (lo + hi)) + ", graph 1 nohead lw 3 lc rgb '#56b4e9'\n"
+             : std::string())
      << "plot $crowded using (bin($1)):(1) smooth frequency with boxes title "
-     << gnuplot_quote("interacting, crowded (k_i Σ_j C_{ij} ≥ median)") << ", $sparse using (bin($1)):(1) smooth frequency "
+     << gnuplot_quote("interacting, crowded (k_i Σ_j C_{ij} ≥ median)")
+     << ", $sparse using (bin($1)):(1) smooth frequency "
      << "with boxes title " << gnuplot_quote("interacting, sparse") << ", NaN with lines lw 3 lc rgb '#56b4e9' title "
-     << gnuplot_quote("independent model (same junctions): " + scene_io::format_cell("%.3g", lo) + (hi > lo ? "–" + scene_io::format_cell("%.3g", hi) : ""))
+     << gnuplot_quote("independent model (same junctions): " + scene_io::format_cell("%.3g", lo) +
+                      (hi > lo ? "–" + scene_io::format_cell("%.3g", hi) : ""))
      << "\n";
   return gp.str();
 }
@@ -112,8 +120,9 @@ void write_verdict_md(std::ostream& md, const InteractionStudyOptions& opt, cons
         "size, not the real experiments.\n\n"
      << "Written by `asperity study interactions` from the runs of that command (calibrations read from `"
      << opt.fit_independent.generic_string() << "` and `" << opt.fit_interacting.generic_string()
-     << "`, the joint calibrations from `" << (opt.joint_independent.empty() ? fs::path() : opt.joint_independent.front()).generic_string()
-     << "` and `" << (opt.joint_interacting.empty() ? fs::path() : opt.joint_interacting.front()).generic_string()
+     << "`, the joint calibrations from `"
+     << (opt.joint_independent.empty() ? fs::path() : opt.joint_independent.front()).generic_string() << "` and `"
+     << (opt.joint_interacting.empty() ? fs::path() : opt.joint_interacting.front()).generic_string()
      << "` (and the further files the section names), the sweep from `" << opt.sweep_store.generic_string()
      << "/points.csv`, the recovery matrix from `" << opt.recovery_matrix.generic_string() << "`).\n\n"
      << "## What the joint calibration can tell apart: the recovery matrix\n\n"
@@ -124,8 +133,8 @@ void write_verdict_md(std::ostream& md, const InteractionStudyOptions& opt, cons
      << recovery << "## Verdict on the stand-ins\n\n**" << verdict << ".** ";
   if (t.ran > 0)
     md << "The independent model is within the noise at " << t.indep_quadratic << of << ". Against the measured curve, "
-       << "the interacting model is closer than the independent one at " << t.closer << of << ", farther at " << t.farther
-       << ", and the difference is within its spread (no evidence either way) at " << t.undecided << ". ";
+       << "the interacting model is closer than the independent one at " << t.closer << of << ", farther at "
+       << t.farther << ", and the difference is within its spread (no evidence either way) at " << t.undecided << ". ";
   if (t.dn_count > 0)
     md << "Interactions change the shape exponent n by " << scene_io::format_cell("%+.3f", t.dn_sum / t.dn_count)
        << " on average (interacting − independent, each at its own calibrated α_b); the stand-in \"measured\" "
@@ -154,11 +163,14 @@ void write_loads_md(std::ostream& md, const std::vector<StudyRow>& rows) {
         continue;
       }
       md << "| " << r.name << " | " << model << " | " << scene_io::format_cell("%.4f", s->alpha_b * 1e15) << " | "
-         << scene_io::format_cell("%.3f", s->obs.shape_exponent) << " | " << scene_io::format_cell("%.3f", s->areas.n_measured) << " | "
-         << scene_io::format_cell("%.3f", s->areas.decay_model) << " | " << scene_io::format_cell("%.3f", s->areas.decay_measured) << " | "
-         << scene_io::format_cell("%.3f", s->areas.slope_model * 1e6) << " | " << scene_io::format_cell("%.3f", s->areas.slope_measured * 1e6) << " | "
-         << scene_io::format_cell("%.4f", s->obs.Q_s) << " | " << scene_io::format_cell("%.3f", s->obs.t_peak) << " | " << s->obs.ss_cycles << " | "
-         << scene_io::format_cell("%.1f", s->wall_s) << " |\n";
+         << scene_io::format_cell("%.3f", s->obs.shape_exponent) << " | "
+         << scene_io::format_cell("%.3f", s->areas.n_measured) << " | "
+         << scene_io::format_cell("%.3f", s->areas.decay_model) << " | "
+         << scene_io::format_cell("%.3f", s->areas.decay_measured) << " | "
+         << scene_io::format_cell("%.3f", s->areas.slope_model * 1e6) << " | "
+         << scene_io::format_cell("%.3f", s->areas.slope_measured * 1e6) << " | "
+         << scene_io::format_cell("%.4f", s->obs.Q_s) << " | " << scene_io::format_cell("%.3f", s->obs.t_peak) << " | "
+         << s->obs.ss_cycles << " | " << scene_io::format_cell("%.1f", s->wall_s) << " |\n";
     }
   md << "\n(n: exponent of A0 − A = c Qⁿ on the loading branch; area decay 1 − A_s/A0; incipient slope: least-squares "
         "dA/dQ over Q ≤ 0.3 Q_max; runs to five stick-slip cycles or 12 s, 20 s with interactions.)\n\n";
@@ -175,11 +187,15 @@ void write_shape_md(std::ostream& md, const std::vector<StudyRow>& rows) {
       if (!s->ran || !std::isfinite(s->shape.residual_rms)) continue;
       const ShapeComparison& c = s->shape;
       md << "| " << r.name << " | " << (s == &r.indep ? "independent" : "interacting") << " | "
-         << scene_io::format_cell("%.4f", c.residual_rms * 1e6) << " | " << scene_io::format_cell("%.4f", c.residual_rms_sd * 1e6) << " | "
-         << scene_io::format_cell("%.4f", c.noise_rms * 1e6) << " | " << scene_io::format_cell("%.4f", c.noise_rms_p95 * 1e6) << " | "
-         << (c.residual_exceeds_noise() ? "no" : "yes") << " | " << scene_io::format_cell("%.4f", c.alpha_model * 1e6) << " | "
-         << scene_io::format_cell("%.4f", c.alpha_measured * 1e6) << " ± " << scene_io::format_cell("%.4f", c.alpha_measured_sd * 1e6) << " | "
-         << scene_io::format_cell("%.3f", c.n_measured) << " ± " << scene_io::format_cell("%.3f", c.n_measured_sd) << " | " << c.points_used << " |\n";
+         << scene_io::format_cell("%.4f", c.residual_rms * 1e6) << " | "
+         << scene_io::format_cell("%.4f", c.residual_rms_sd * 1e6) << " | "
+         << scene_io::format_cell("%.4f", c.noise_rms * 1e6) << " | "
+         << scene_io::format_cell("%.4f", c.noise_rms_p95 * 1e6) << " | " << (c.residual_exceeds_noise() ? "no" : "yes")
+         << " | " << scene_io::format_cell("%.4f", c.alpha_model * 1e6) << " | "
+         << scene_io::format_cell("%.4f", c.alpha_measured * 1e6) << " ± "
+         << scene_io::format_cell("%.4f", c.alpha_measured_sd * 1e6) << " | "
+         << scene_io::format_cell("%.3f", c.n_measured) << " ± " << scene_io::format_cell("%.3f", c.n_measured_sd)
+         << " | " << c.points_used << " |\n";
     }
   md << "\n(Residual: rms of A_model − A_measured at the measured Q the model's loading branch reaches; noise: rms of "
         "the measured points about their own parabola A0 − αQ², and its 95th percentile over the bootstrap. α: "
@@ -187,8 +203,8 @@ void write_shape_md(std::ostream& md, const std::vector<StudyRow>& rows) {
 }
 
 // REPORT.md: the force spread at the first peak (the paper's Figure 2 argument) and the pairs.
-void write_spread_md(std::ostream& md, const InteractionStudyOptions& opt, const Spread& sp, const std::string& fig_note,
-                     const std::string& pairs_md) {
+void write_spread_md(std::ostream& md, const InteractionStudyOptions& opt, const Spread& sp,
+                     const std::string& fig_note, const std::string& pairs_md) {
   md << "## Force spread at the first peak (" << opt.spread_experiment << ")\n\n";
   if (!sp.ran) {
     md << "No evidence: the interacting calibration of " << opt.spread_experiment << " or its runs are missing.\n\n";
@@ -204,7 +220,8 @@ void write_spread_md(std::ostream& md, const InteractionStudyOptions& opt, const
     };
     md << "The paper's Figure 2 argument: two junctions of similar area carry very different forces, presumably "
           "because crowded neighbourhoods evolve differently. Junctions of equal area ("
-       << scene_io::format_cell("%.3g", sp.area_lo) << "–" << scene_io::format_cell("%.3g", sp.area_hi) << " m², the stand-ins' cluster) at the first peak, "
+       << scene_io::format_cell("%.3g", sp.area_lo) << "–" << scene_io::format_cell("%.3g", sp.area_hi)
+       << " m², the stand-ins' cluster) at the first peak, "
        << "split at the median of their crowding k_i Σ_j C_ij (" << scene_io::format_cell("%.3f", sp.crowding_median)
        << ", the compliance the neighbours add relative to the junction's own), at half the time of the first peak "
           "and at the peak:\n\n"
@@ -214,8 +231,8 @@ void write_spread_md(std::ostream& md, const InteractionStudyOptions& opt, const
       const char* names[3] = {"interacting, crowded", "interacting, sparse", "independent (same junctions)"};
       for (int k = 0; k < 3; ++k)
         md << "| " << (w == 0 ? "half t_peak" : "t_peak") << " | " << names[k] << " | " << st[k].n << " | "
-           << scene_io::format_cell("%.4f", st[k].mean) << " | " << scene_io::format_cell("%.4f", st[k].sd) << " | " << scene_io::format_cell("%.4f", st[k].lo) << " | "
-           << scene_io::format_cell("%.4f", st[k].hi) << " |\n";
+           << scene_io::format_cell("%.4f", st[k].mean) << " | " << scene_io::format_cell("%.4f", st[k].sd) << " | "
+           << scene_io::format_cell("%.4f", st[k].lo) << " | " << scene_io::format_cell("%.4f", st[k].hi) << " |\n";
     }
     md << "\n"
        << "![force spread](force_spread.png)\n\n"
@@ -231,18 +248,26 @@ void write_sweep_md(std::ostream& md, const InteractionStudyOptions& opt) {
   const auto sw = sweep_rows(opt.sweep_store);
   md << "## Crowding and cut-off (`sweeps/interactions.yaml`, α_b = 0.725e-15, not recalibrated)\n\n";
   if (sw.empty()) {
-    md << "No evidence: `" << opt.sweep_store.generic_string() << "/points.csv` is missing (run `asperity sweep "
+    md << "No evidence: `" << opt.sweep_store.generic_string()
+       << "/points.csv` is missing (run `asperity sweep "
           "sweeps/interactions.yaml`).\n\n";
   } else {
-    md << "| experiment | grid | position scale | cut-off [mm] | n | area decay | Q_s [N] | t_peak [s] | stick-slip cycles "
+    md << "| experiment | grid | position scale | cut-off [mm] | n | area decay | Q_s [N] | t_peak [s] | stick-slip "
+          "cycles "
           "| status |\n|---|---|---|---|---|---|---|---|---|---|\n";
     for (const auto& r : sw) {
-      auto g = [&](const std::string& k) { const auto it = r.find(k); return it == r.end() ? std::string() : it->second; };
+      auto g = [&](const std::string& k) {
+        const auto it = r.find(k);
+        return it == r.end() ? std::string() : it->second;
+      };
       md << "| " << g("experiment") << " | " << g("grid") << " | " << g("model.position_scale") << " | "
-         << (num(r, "model.interaction_cutoff") > 0 ? scene_io::format_cell("%.2f", num(r, "model.interaction_cutoff") * 1e3) : "every pair")
-         << " | " << scene_io::format_cell("%.3f", num(r, "shape_exponent"))
-         << " | " << scene_io::format_cell("%.3f", num(r, "area_drop_fraction")) << " | " << scene_io::format_cell("%.4f", num(r, "Q_s")) << " | "
-         << scene_io::format_cell("%.3f", num(r, "t_peak")) << " | " << g("ss_cycles") << " | " << g("status") << " |\n";
+         << (num(r, "model.interaction_cutoff") > 0
+                 ? scene_io::format_cell("%.2f", num(r, "model.interaction_cutoff") * 1e3)
+                 : "every pair")
+         << " | " << scene_io::format_cell("%.3f", num(r, "shape_exponent")) << " | "
+         << scene_io::format_cell("%.3f", num(r, "area_drop_fraction")) << " | "
+         << scene_io::format_cell("%.4f", num(r, "Q_s")) << " | " << scene_io::format_cell("%.3f", num(r, "t_peak"))
+         << " | " << g("ss_cycles") << " | " << g("status") << " |\n";
     }
     md << "\n(Position scale s: the same arrangement in an apparent contact s times as wide, 1/s² as crowded; 1000: "
           "practically independent. A cut-off drops the pairs farther apart.)\n\n";
@@ -260,7 +285,8 @@ void write_topography_md(std::ostream& md, const InteractionStudyOptions& opt) {
     return;
   }
   const TopographyTally t = tally_topography(rows);
-  md << "Read from `" << table << "` (the topography study, `results/topography/REPORT.md`: a generated "
+  md << "Read from `" << table
+     << "` (the topography study, `results/topography/REPORT.md`: a generated "
         "self-affine rough sphere pressed at each load, its contact clusters as junctions, α_b per load and model "
         "so that the area drop at the first peak equals the stand-in one; roughness parameters assumed). Its "
         "surfaces are synthetic and it has no measured Q(t), so no joint calibration is made there. ";
@@ -269,18 +295,19 @@ void write_topography_md(std::ostream& md, const InteractionStudyOptions& opt) {
        << "the shape exponent n by " << scene_io::format_cell("%+.3f", t.mean_dn) << " on average (from "
        << scene_io::format_cell("%+.3f", t.min_dn) << " to " << scene_io::format_cell("%+.3f", t.max_dn)
        << "; lower at " << t.n_lower << " of " << t.pairs << ") and the endpoint residual (distance from a parabola "
-       << "through the same end points, in units of the drop) by at most " << scene_io::format_cell("%.3f", t.max_abs_dres)
-       << ". ";
+       << "through the same end points, in units of the drop) by at most "
+       << scene_io::format_cell("%.3f", t.max_abs_dres) << ". ";
   md << t.within_noise << " of " << t.rows << " model curves are within the noise of a stand-in-like measured "
      << "parabola (residual at most the noise's 95th percentile).\n\n"
      << "| seed | load [N] | N | model | α_b [1e-15] | n | endpoint residual | residual [mm²] | noise 95 % [mm²] | "
         "within noise |\n|---|---|---|---|---|---|---|---|---|---|\n";
   for (const TopographyShapeRow& r : rows)
     md << "| " << r.seed << " | " << scene_io::format_cell("%.2f", r.load_N) << " | " << r.junctions << " | " << r.model
-       << " | " << scene_io::format_cell("%.4f", r.alpha_b * 1e15) << " | " << scene_io::format_cell("%.3f", r.shape_exponent)
-       << " | " << scene_io::format_cell("%.3f", r.endpoint_residual) << " | "
-       << scene_io::format_cell("%.4f", r.residual_rms_m2 * 1e6) << " | " << scene_io::format_cell("%.4f", r.noise_rms_p95_m2 * 1e6)
-       << " | " << (r.within_noise() ? "yes" : "no") << " |\n";
+       << " | " << scene_io::format_cell("%.4f", r.alpha_b * 1e15) << " | "
+       << scene_io::format_cell("%.3f", r.shape_exponent) << " | " << scene_io::format_cell("%.3f", r.endpoint_residual)
+       << " | " << scene_io::format_cell("%.4f", r.residual_rms_m2 * 1e6) << " | "
+       << scene_io::format_cell("%.4f", r.noise_rms_p95_m2 * 1e6) << " | " << (r.within_noise() ? "yes" : "no")
+       << " |\n";
   md << "\n";
 }
 
@@ -294,15 +321,19 @@ std::string interval_cell(const JointParameter& p, double scale, const char* f) 
 void write_joint_values_md(std::ostream& md, const InteractionStudyOptions& opt, const std::vector<JointRow>& rows) {
   auto files = [](const std::vector<fs::path>& v) {
     std::string s;
-    for (const auto& f : v) s += (s.empty() ? "`" : ", `") + f.generic_string() + "`" + (fs::exists(f) ? "" : " (absent)");
+    for (const auto& f : v)
+      s += (s.empty() ? "`" : ", `") + f.generic_string() + "`" + (fs::exists(f) ? "" : " (absent)");
     return s;
   };
   md << "## Joint calibration of (α_b, ε, η) against A(Q) and Q(t)\n\n"
      << "Calibrated values per load and model, read from " << files(opt.joint_independent) << " (independent) and "
-     << files(opt.joint_interacting) << " (interacting): objective `area_and_force`, a chi-square over the measured "
-        "A(Q) and the measured Q(t) (docs/calibration.md, \"Joint calibration\"). 95 %: the Hessian's interval (±1.96 σ, "
+     << files(opt.joint_interacting)
+     << " (interacting): objective `area_and_force`, a chi-square over the measured "
+        "A(Q) and the measured Q(t) (docs/calibration.md, \"Joint calibration\"). 95 %: the Hessian's interval (±1.96 "
+        "σ, "
         "σ scaled by s²; n/a where the fit gave none: a parameter at its bound, or H not positive definite, fit.yaml's "
-        "`uncertainty.failure`); profile σ: the parabola through each one-parameter profile (conditional). Neither is a "
+        "`uncertainty.failure`); profile σ: the parabola through each one-parameter profile (conditional). Neither is "
+        "a "
         "statistical error bar while s² ≫ 1. (bound): the value sits at its box's bound. Position scale: the "
         "interacting fit's free junction spacing (1: the stand-ins' positions). Converged: yes where at least two of "
         "the fit's starts reached its best objective (docs/calibration.md, \"Convergence: several starts\"); "
@@ -314,7 +345,8 @@ void write_joint_values_md(std::ostream& md, const InteractionStudyOptions& opt,
     for (const auto* s : {&r.indep, &r.inter}) {
       const char* model = s == &r.indep ? "independent" : "interacting";
       if (s->fit.label.empty() || s->fit.status != "ok") {
-        md << "| " << r.name << " | " << model << " | " << (s->fit.label.empty() ? "no joint calibration" : "joint calibration " + s->fit.status)
+        md << "| " << r.name << " | " << model << " | "
+           << (s->fit.label.empty() ? "no joint calibration" : "joint calibration " + s->fit.status)
            << ": no evidence | | | | | | | | | | | |\n";
         continue;
       }
@@ -329,15 +361,16 @@ void write_joint_values_md(std::ostream& md, const InteractionStudyOptions& opt,
       const bool certified = s->fit.converged.empty() || s->fit.converged == "yes";
       const int dof = s->fit.n_residuals - static_cast<int>(s->fit.parameters.size());
       const double s2_value = std::isfinite(s->fit.reduced_chi2) ? s->fit.reduced_chi2
-                              : dof > 0 ? s->fit.objective / dof : ForceMisfit::nan;
+                              : dof > 0                          ? s->fit.objective / dof
+                                                                 : ForceMisfit::nan;
       const std::string s2 = scene_io::format_cell("%.1f", s2_value);
-      md << "| " << r.name << " | " << model << " | " << scene_io::format_cell("%.4f", a.value * 1e15) << bound(a) << " | "
-         << interval_cell(a, 1e15, "%.4f") << " | " << scene_io::format_cell("%.4f", a.profile_sigma * 1e15) << " | "
-         << scene_io::format_cell("%.4f", e.value) << bound(e) << " | " << interval_cell(e, 1, "%.4f") << " | "
-         << scene_io::format_cell("%.4f", e.profile_sigma) << " | " << scene_io::format_cell("%.2f", h.value) << bound(h) << " | "
-         << interval_cell(h, 1, "%.2f") << " | " << scene_io::format_cell("%.2f", h.profile_sigma) << " | "
-         << (std::isfinite(ps.value) ? scene_io::format_cell("%.4f", ps.value) + bound(ps) : std::string("–")) << " | "
-         << (certified ? s2 : "(" + s2 + ")") << " | "
+      md << "| " << r.name << " | " << model << " | " << scene_io::format_cell("%.4f", a.value * 1e15) << bound(a)
+         << " | " << interval_cell(a, 1e15, "%.4f") << " | " << scene_io::format_cell("%.4f", a.profile_sigma * 1e15)
+         << " | " << scene_io::format_cell("%.4f", e.value) << bound(e) << " | " << interval_cell(e, 1, "%.4f") << " | "
+         << scene_io::format_cell("%.4f", e.profile_sigma) << " | " << scene_io::format_cell("%.2f", h.value)
+         << bound(h) << " | " << interval_cell(h, 1, "%.2f") << " | " << scene_io::format_cell("%.2f", h.profile_sigma)
+         << " | " << (std::isfinite(ps.value) ? scene_io::format_cell("%.4f", ps.value) + bound(ps) : std::string("–"))
+         << " | " << (certified ? s2 : "(" + s2 + ")") << " | "
          << (s->fit.converged.empty() ? std::string("–")
                                       : s->fit.converged + " (" + std::to_string(s->fit.in_best_basin) + " of " +
                                             std::to_string(s->fit.starts) + ")")
@@ -354,7 +387,8 @@ void write_joint_reruns_md(std::ostream& md, const std::vector<JointRow>& rows) 
         "misfit is at most the rms that noise alone leaves in 95 % of cases (σ sqrt(χ²₀.₉₅(n)/n)). A(Q): the residual "
         "rule of the table above (bootstrap 95th percentile). χ² re-run / fit: the objective of this re-run over the "
         "one fit.yaml states (1 when the run is the fit's).\n\n"
-     << "| experiment | model | t_peak [s] | Q_s [N] | Q(t) rms [mN] | ± sd | noise σ [mN] | noise 95 % [mN] | Q(t) within "
+     << "| experiment | model | t_peak [s] | Q_s [N] | Q(t) rms [mN] | ± sd | noise σ [mN] | noise 95 % [mN] | Q(t) "
+        "within "
         "noise | A(Q) residual [mm²] | noise 95 % [mm²] | A(Q) within noise | χ² re-run / fit | wall [s] |\n"
      << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& r : rows)
@@ -367,12 +401,13 @@ void write_joint_reruns_md(std::ostream& md, const std::vector<JointRow>& rows) 
       const ForceMisfit& f = s->force;
       md << "| " << r.name << " | " << model << " | " << scene_io::format_cell("%.3f", s->obs.t_peak)
          << (s->obs.peak_found ? "" : " (no peak)") << " | " << scene_io::format_cell("%.4f", s->obs.Q_s) << " | "
-         << scene_io::format_cell("%.2f", f.rms * 1e3) << " | " << scene_io::format_cell("%.2f", f.rms_sd * 1e3) << " | "
-         << scene_io::format_cell("%.2f", f.noise * 1e3) << " | " << scene_io::format_cell("%.2f", f.noise_p95 * 1e3) << " | "
-         << (q_within(*s) ? "yes" : "no") << " | " << scene_io::format_cell("%.4f", s->shape.residual_rms * 1e6) << " | "
-         << scene_io::format_cell("%.4f", s->shape.noise_rms_p95 * 1e6) << " | " << (a_within(*s) ? "yes" : "no") << " | "
-         << scene_io::format_cell("%.6f", s->objective / s->fit.objective) << " | " << scene_io::format_cell("%.1f", s->wall_s)
-         << " |\n";
+         << scene_io::format_cell("%.2f", f.rms * 1e3) << " | " << scene_io::format_cell("%.2f", f.rms_sd * 1e3)
+         << " | " << scene_io::format_cell("%.2f", f.noise * 1e3) << " | "
+         << scene_io::format_cell("%.2f", f.noise_p95 * 1e3) << " | " << (q_within(*s) ? "yes" : "no") << " | "
+         << scene_io::format_cell("%.4f", s->shape.residual_rms * 1e6) << " | "
+         << scene_io::format_cell("%.4f", s->shape.noise_rms_p95 * 1e6) << " | " << (a_within(*s) ? "yes" : "no")
+         << " | " << scene_io::format_cell("%.6f", s->objective / s->fit.objective) << " | "
+         << scene_io::format_cell("%.1f", s->wall_s) << " |\n";
     }
   md << "\nPer load (from the table above: which model matches within the noise; no comparison between the "
         "models, see the verdict):\n\n"
@@ -403,11 +438,12 @@ void write_noise_md(std::ostream& md, const std::vector<StudyRow>& rows, const s
         "joint: A(Q) independent | joint: A(Q) interacting |\n|---|---|---|---|---|---|---|\n";
   auto k = [](double misfit, double p95) {
     return std::isfinite(misfit) && std::isfinite(p95) && p95 > 0 ? scene_io::format_cell("%.1f", misfit / p95)
-                                                                   : std::string("no evidence");
+                                                                  : std::string("no evidence");
   };
   for (const StudyRow& r : rows) {
-    md << "| " << r.name << " | " << (r.indep.ran ? k(r.indep.shape.residual_rms, r.indep.shape.noise_rms_p95) : "no evidence")
-       << " | " << (r.inter.ran ? k(r.inter.shape.residual_rms, r.inter.shape.noise_rms_p95) : "no evidence");
+    md << "| " << r.name << " | "
+       << (r.indep.ran ? k(r.indep.shape.residual_rms, r.indep.shape.noise_rms_p95) : "no evidence") << " | "
+       << (r.inter.ran ? k(r.inter.shape.residual_rms, r.inter.shape.noise_rms_p95) : "no evidence");
     const JointRow* j = nullptr;
     for (const JointRow& x : joint)
       if (x.name == r.name) j = &x;
@@ -415,7 +451,8 @@ void write_noise_md(std::ostream& md, const std::vector<StudyRow>& rows, const s
       for (int model = 0; model < 2; ++model) {
         const JointSide* s = j ? (model == 0 ? &j->indep : &j->inter) : nullptr;
         md << " | "
-           << (s && s->ran ? (part == 0 ? k(s->force.rms, s->force.noise_p95) : k(s->shape.residual_rms, s->shape.noise_rms_p95))
+           << (s && s->ran ? (part == 0 ? k(s->force.rms, s->force.noise_p95)
+                                        : k(s->shape.residual_rms, s->shape.noise_rms_p95))
                            : std::string("no evidence"));
       }
     md << " |\n";
@@ -455,8 +492,8 @@ void write_forces_csv(const fs::path& out, const Spread& sp) {
   for (std::size_t i = 0; i < sp.A0.size(); ++i)
     t << i + 1 << ',' << csv_number(sp.A0[i]) << ',' << csv_number(sp.x[i]) << ',' << csv_number(sp.y[i]) << ','
       << csv_number(sp.crowding[i]) << ',' << int(sp.equal[i]) << ',' << csv_number(sp.ratio_inter[i]) << ','
-      << csv_number(sp.ratio_indep[i]) << ',' << csv_number(sp.half_inter[i]) << ','
-      << csv_number(sp.half_indep[i]) << '\n';
+      << csv_number(sp.ratio_indep[i]) << ',' << csv_number(sp.half_inter[i]) << ',' << csv_number(sp.half_indep[i])
+      << '\n';
   scene_io::write_text_file(out / "forces_at_peak.csv", t.str());
 }
 
@@ -483,12 +520,13 @@ void write_joint_csv(const fs::path& out, const std::vector<JointRow>& rows) {
         t << ',' << csv_number(p.value) << ',' << csv_number(p.lo95) << ',' << csv_number(p.hi95) << ','
           << csv_number(p.profile_sigma);
       }
-      t << ',' << csv_number(s->fit.reduced_chi2) << ',' << csv_number(s->fit.objective) << ',' << csv_number(s->objective)
-        << ',' << csv_number(s->obs.t_peak) << ',' << (s->obs.peak_found ? "true" : "false") << ',' << csv_number(s->obs.Q_s)
-        << ',' << csv_number(s->force.rms) << ',' << csv_number(s->force.rms_sd) << ',' << csv_number(s->force.noise) << ','
-        << csv_number(s->force.noise_p95) << ',' << s->force.n << ',' << (q_within(*s) ? "true" : "false") << ','
-        << csv_number(s->shape.residual_rms) << ',' << csv_number(s->shape.noise_rms_p95) << ','
-        << (a_within(*s) ? "true" : "false") << ',' << csv_number(s->wall_s) << '\n';
+      t << ',' << csv_number(s->fit.reduced_chi2) << ',' << csv_number(s->fit.objective) << ','
+        << csv_number(s->objective) << ',' << csv_number(s->obs.t_peak) << ',' << (s->obs.peak_found ? "true" : "false")
+        << ',' << csv_number(s->obs.Q_s) << ',' << csv_number(s->force.rms) << ',' << csv_number(s->force.rms_sd) << ','
+        << csv_number(s->force.noise) << ',' << csv_number(s->force.noise_p95) << ',' << s->force.n << ','
+        << (q_within(*s) ? "true" : "false") << ',' << csv_number(s->shape.residual_rms) << ','
+        << csv_number(s->shape.noise_rms_p95) << ',' << (a_within(*s) ? "true" : "false") << ','
+        << csv_number(s->wall_s) << '\n';
     }
   scene_io::write_text_file(out / "joint.csv", t.str());
 }

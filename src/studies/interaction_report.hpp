@@ -22,9 +22,9 @@ struct Spread {
   std::string experiment;
   double area_lo = 0, area_hi = 0, crowding_median = 0;
   std::vector<double> A0, x, y, crowding, ratio_inter, ratio_indep;  // at the peak
-  std::vector<double> half_inter, half_indep;                           // at half its time
-  std::vector<std::uint8_t> equal;  // in the equal-area set
-  Scene inter, indep;                 // the runs: interacting, and the same arrangement 10⁶ wider
+  std::vector<double> half_inter, half_indep;                        // at half its time
+  std::vector<std::uint8_t> equal;                                   // in the equal-area set
+  Scene inter, indep;  // the runs: interacting, and the same arrangement 10⁶ wider
   double t_peak_inter = NAN, t_peak_indep = NAN;
 };
 

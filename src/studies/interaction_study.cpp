@@ -50,7 +50,8 @@ std::map<std::string, double> calibrated_alpha_b(const fs::path& fit_yaml) {
 }
 
 // Runs to five stick-slip cycles or `stop_time_s`.
-Side run_side(const fs::path& scene_file, std::vector<std::string> set, std::optional<double> alpha_b, double stop_time_s) {
+Side run_side(const fs::path& scene_file, std::vector<std::string> set, std::optional<double> alpha_b,
+              double stop_time_s) {
   Side s;
   if (!alpha_b) return s;
   set.push_back("model.alpha_b=" + csv_number(*alpha_b));
@@ -162,9 +163,10 @@ std::vector<StudyRow> run_rows(const InteractionStudyOptions& opt, const std::ma
     r.indep = run_side(f, {}, find(alpha_indep), 12.0);
     r.inter = run_side(f, {"model.interactions=elastic"}, find(alpha_inter), 20.0);
     if (opt.log)
-      *opt.log << "  " << name << ": n independent " << scene_io::format_cell("%.3f", r.indep.obs.shape_exponent) << ", interacting "
-               << scene_io::format_cell("%.3f", r.inter.obs.shape_exponent) << ", measured " << scene_io::format_cell("%.3f", r.inter.areas.n_measured)
-               << " (" << scene_io::format_cell("%.1f", r.inter.wall_s) << " s)" << std::endl;
+      *opt.log << "  " << name << ": n independent " << scene_io::format_cell("%.3f", r.indep.obs.shape_exponent)
+               << ", interacting " << scene_io::format_cell("%.3f", r.inter.obs.shape_exponent) << ", measured "
+               << scene_io::format_cell("%.3f", r.inter.areas.n_measured) << " ("
+               << scene_io::format_cell("%.1f", r.inter.wall_s) << " s)" << std::endl;
     if (name == opt.spread_experiment) spread_scene = f;
     rows.push_back(std::move(r));
   }
@@ -200,7 +202,8 @@ JointSide run_joint_side(const std::string& name, const std::map<std::string, Jo
   if (it == fits.end()) return s;
   s.fit = it->second;
   if (s.fit.status != "ok") {
-    s.missing = "joint calibration " + s.fit.status + " (" + s.fit.fit_yaml.generic_string() + ": " + s.fit.failure + ")";
+    s.missing =
+        "joint calibration " + s.fit.status + " (" + s.fit.fit_yaml.generic_string() + ": " + s.fit.failure + ")";
     return s;
   }
   const std::string key = s.fit.fit_file.generic_string();
@@ -226,7 +229,9 @@ JointSide run_joint_side(const std::string& name, const std::map<std::string, Jo
   s.missing.clear();
   s.obs = r.obs;
   s.wall_s = r.obs.wall_s;
-  s.objective = area_and_force_terms(scene, r.obs, r.recorder.loading_branch(), r.recorder.series(), *fe, spec.noise, spec.force_score).total();
+  s.objective = area_and_force_terms(scene, r.obs, r.recorder.loading_branch(), r.recorder.series(), *fe, spec.noise,
+                                     spec.force_score)
+                    .total();
   s.force = force_misfit(r.recorder.series(), *fe->force, spec.noise.force);
   if (scene.experiment.measured) {
     const auto& a0 = scene.experiment.junctions.area_m2;
@@ -247,7 +252,8 @@ std::vector<JointRow> run_joint_rows(const InteractionStudyOptions& opt, const s
       *opt.log << "  " << r.name << " joint: Q(t) rms independent "
                << scene_io::format_cell("%.2f", r.indep.force.rms * 1e3) << " mN, interacting "
                << scene_io::format_cell("%.2f", r.inter.force.rms * 1e3) << " mN (noise 95 % "
-               << scene_io::format_cell("%.2f", r.indep.ran ? r.indep.force.noise_p95 * 1e3 : r.inter.force.noise_p95 * 1e3)
+               << scene_io::format_cell("%.2f",
+                                        r.indep.ran ? r.indep.force.noise_p95 * 1e3 : r.inter.force.noise_p95 * 1e3)
                << " mN; " << scene_io::format_cell("%.1f", r.inter.wall_s) << " s)" << std::endl;
     out.push_back(std::move(r));
   }

@@ -20,7 +20,7 @@
 namespace asperity {
 
 struct InteractionStudyOptions {
-  std::vector<std::filesystem::path> scenes;            // the experiments (scenes/paper/P*.yaml)
+  std::vector<std::filesystem::path> scenes;  // the experiments (scenes/paper/P*.yaml)
   std::filesystem::path fit_independent = "results/fits/paper_alpha_b/fit.yaml";
   std::filesystem::path fit_interacting = "results/fits/interactions_alpha_b/fit.yaml";
   // The joint calibrations of (α_b, ε, η) against A(Q) and Q(t), per model: fit.yaml files read

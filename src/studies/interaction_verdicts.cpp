@@ -14,9 +14,12 @@ Tally tally_rows(const std::vector<StudyRow>& rows) {
       if (!r.indep.shape.residual_exceeds_noise()) ++t.indep_quadratic;
       const double diff = r.indep.shape.residual_rms - r.inter.shape.residual_rms;
       const double spread = 2 * (r.indep.shape.residual_rms_sd + r.inter.shape.residual_rms_sd);
-      if (diff > spread) ++t.closer;
-      else if (-diff > spread) ++t.farther;
-      else ++t.undecided;
+      if (diff > spread)
+        ++t.closer;
+      else if (-diff > spread)
+        ++t.farther;
+      else
+        ++t.undecided;
     }
     if (r.indep.ran && std::isfinite(r.indep.obs.shape_exponent) && std::isfinite(r.inter.obs.shape_exponent))
       t.dn_sum += r.inter.obs.shape_exponent - r.indep.obs.shape_exponent, ++t.dn_count;
@@ -47,12 +50,14 @@ JointTally tally_joint(const std::vector<JointRow>& rows) {
 std::string joint_verdict(const JointTally& t, std::size_t loads) {
   if (t.indep_ran == 0 && t.inter_ran == 0)
     return "Joint calibration of (α_b, ε, η) against A(Q) and Q(t): no evidence (no joint calibration found).";
-  std::string v = "**Joint calibration of (α_b, ε, η) against A(Q) and Q(t): the measured Q(t) is matched within its noise by "
-                  "the independent model at " + std::to_string(t.indep_q) + " of " + std::to_string(t.indep_ran) +
-                  " calibrated loads and by the interacting model at " + std::to_string(t.inter_q) + " of " +
-                  std::to_string(t.inter_ran) + "; the measured A(Q) by the independent model at " +
-                  std::to_string(t.indep_a) + " of " + std::to_string(t.indep_ran) + " and by the interacting model at " +
-                  std::to_string(t.inter_a) + " of " + std::to_string(t.inter_ran) + ".** ";
+  std::string v =
+      "**Joint calibration of (α_b, ε, η) against A(Q) and Q(t): the measured Q(t) is matched within its noise by "
+      "the independent model at " +
+      std::to_string(t.indep_q) + " of " + std::to_string(t.indep_ran) +
+      " calibrated loads and by the interacting model at " + std::to_string(t.inter_q) + " of " +
+      std::to_string(t.inter_ran) + "; the measured A(Q) by the independent model at " + std::to_string(t.indep_a) +
+      " of " + std::to_string(t.indep_ran) + " and by the interacting model at " + std::to_string(t.inter_a) + " of " +
+      std::to_string(t.inter_ran) + ".** ";
   const int missing = static_cast<int>(loads) - std::min(t.indep_ran, t.inter_ran);
   if (missing > 0) v += "Loads without a joint calibration of a model read \"no evidence\" (table). ";
   // The stand-ins cannot decide between the models, so no comparison between them is drawn here.

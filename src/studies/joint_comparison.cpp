@@ -1,7 +1,7 @@
 #include "studies/joint_comparison.hpp"
 
-#include <boost/math/distributions/chi_squared.hpp>
 #include <yaml-cpp/yaml.h>
+#include <boost/math/distributions/chi_squared.hpp>
 
 #include <algorithm>
 

@@ -51,16 +51,16 @@ struct JointParameter {
 };
 struct JointFitEntry {
   std::string label;
-  std::string status;               // "ok", or "failed" (then `failure` says why; no values to use)
-  std::string failure;              // the fit's failure, or its uncertainty's (Hessian) failure
-  std::filesystem::path fit_yaml;   // where it was read
-  std::filesystem::path fit_file;   // the fit file it names (fit_file:), as written
+  std::string status;                                // "ok", or "failed" (then `failure` says why; no values to use)
+  std::string failure;                               // the fit's failure, or its uncertainty's (Hessian) failure
+  std::filesystem::path fit_yaml;                    // where it was read
+  std::filesystem::path fit_file;                    // the fit file it names (fit_file:), as written
   std::map<std::string, JointParameter> parameters;  // by scene key (model.alpha_b, ...)
   double objective = ForceMisfit::nan, reduced_chi2 = ForceMisfit::nan;
   double chi2_area = ForceMisfit::nan, chi2_force = ForceMisfit::nan;
   int n_area = 0, n_force = 0;
-  int n_residuals = 0;  // every residual of the objective (A(Q), Q(t), cycle features)
-  std::string converged;            // fit.yaml's: yes, no, unverified ("" from an older file)
+  int n_residuals = 0;    // every residual of the objective (A(Q), Q(t), cycle features)
+  std::string converged;  // fit.yaml's: yes, no, unverified ("" from an older file)
   int in_best_basin = 0, starts = 0;
 };
 

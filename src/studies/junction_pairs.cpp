@@ -72,8 +72,8 @@ double at(const std::vector<double>& t, const std::vector<double>& v, double x) 
 
 }  // namespace
 
-std::vector<JunctionTrace> trace_junctions(const Scene& scene, const std::vector<std::size_t>& junctions, double t_end_s,
-                                           int n_samples) {
+std::vector<JunctionTrace> trace_junctions(const Scene& scene, const std::vector<std::size_t>& junctions,
+                                           double t_end_s, int n_samples) {
   Scene s = scene;
   s.stop.at_first_peak = false;
   s.stop.cycles = 0;
@@ -90,8 +90,9 @@ std::vector<JunctionTrace> trace_junctions(const Scene& scene, const std::vector
 
 std::vector<JunctionPair> crowded_sparse_pairs(std::vector<std::size_t> candidates, const std::vector<double>& crowding,
                                                std::size_t n_pairs) {
-  std::sort(candidates.begin(), candidates.end(),
-            [&](std::size_t a, std::size_t b) { return crowding[a] > crowding[b] || (crowding[a] == crowding[b] && a < b); });
+  std::sort(candidates.begin(), candidates.end(), [&](std::size_t a, std::size_t b) {
+    return crowding[a] > crowding[b] || (crowding[a] == crowding[b] && a < b);
+  });
   std::vector<JunctionPair> pairs;
   for (std::size_t k = 0; k < n_pairs && 2 * k + 1 < candidates.size(); ++k)
     pairs.push_back({candidates[k], candidates[candidates.size() - 1 - k]});
@@ -139,8 +140,8 @@ std::string plot_command(const JunctionPairsEvidence& e, int column) {
         std::string title = m == 0 ? "interacting, " : "independent, ";
         title += sp ? "sparse #" : "crowded #";
         title += std::to_string(tr.junction + 1);
-        c << (first ? "" : ", ") << "$" << name << " using 1:" << column << " with lines lw " << (m == 0 ? 2 : 1) << " dt "
-          << (sp ? 2 : 1) << " lc rgb '" << colours[k % 5] << "' title " << gnuplot_text(title);
+        c << (first ? "" : ", ") << "$" << name << " using 1:" << column << " with lines lw " << (m == 0 ? 2 : 1)
+          << " dt " << (sp ? 2 : 1) << " lc rgb '" << colours[k % 5] << "' title " << gnuplot_text(title);
         first = false;
       }
   return c.str();
@@ -171,7 +172,8 @@ std::string pairs_plot(const JunctionPairsEvidence& e) {
      << ", graph 1 nohead dt 3 lc rgb 'black'\n"
      << "set arrow from " << csv_number(e.t_peak_independent_s) << ", graph 0 to " << csv_number(e.t_peak_independent_s)
      << ", graph 1 nohead dt 3 lc rgb 'gray50'\n"
-     << plot_command(e, 2) << "\nset ylabel 'A_i / A_{0,i} [1]'\n" << plot_command(e, 3) << "\nunset multiplot\n";
+     << plot_command(e, 2) << "\nset ylabel 'A_i / A_{0,i} [1]'\n"
+     << plot_command(e, 3) << "\nunset multiplot\n";
   return gp.str();
 }
 
@@ -180,12 +182,13 @@ std::string pairs_section(const JunctionPairsEvidence& e, const std::string& not
   const std::size_t P = e.pairs.size();
   std::ostringstream md;
   md << "## Junction pairs in time (" << e.experiment << ")\n\n"
-     << "The same argument followed in time: " << P << " pairs of junctions of equal area, the k-th most crowded with "
+     << "The same argument followed in time: " << P
+     << " pairs of junctions of equal area, the k-th most crowded with "
         "the k-th least crowded (crowding k_i Σ_j C_ij), their force and area from the start of loading to past the "
         "interacting model's first peak, in both models (the independent one through the same solver, the arrangement "
         "10⁶ times wider). First slip: the time each junction first reaches its threshold (t_peak: "
-     << scene_io::format_cell("%.3f", e.t_peak_interacting_s) << " s interacting, " << scene_io::format_cell("%.3f", e.t_peak_independent_s)
-     << " s independent).\n\n"
+     << scene_io::format_cell("%.3f", e.t_peak_interacting_s) << " s interacting, "
+     << scene_io::format_cell("%.3f", e.t_peak_independent_s) << " s independent).\n\n"
      << "| pair | neighbourhood | junction | A0 [m²] | crowding | model | first slip [s] | first slip / t_peak | "
         "f/(σA) at ½ t_peak | f/(σA) at t_peak | A/A0 at t_peak |\n|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (std::size_t k = 0; k < P; ++k)
@@ -196,12 +199,15 @@ std::string pairs_section(const JunctionPairsEvidence& e, const std::string& not
         const double A0 = e.A0_m2[tr.junction];
         auto ratio = [&](double x) { return at(tr.t_s, tr.f_N, x) / (e.sigma_Pa * at(tr.t_s, tr.A_m2, x)); };
         md << "| " << k + 1 << " | " << (sp ? "sparse" : "crowded") << " | " << tr.junction + 1 << " | "
-           << scene_io::format_cell("%.4g", A0) << " | " << scene_io::format_cell("%.2f", e.crowding[tr.junction]) << " | "
-           << (m == 0 ? "interacting" : "independent") << " | " << scene_io::format_cell("%.3f", tr.first_slip_s) << " | "
-           << scene_io::format_cell("%.3f", tr.first_slip_s / tp) << " | " << scene_io::format_cell("%.3f", ratio(0.5 * tp)) << " | "
-           << scene_io::format_cell("%.3f", ratio(tp)) << " | " << scene_io::format_cell("%.4f", at(tr.t_s, tr.A_m2, tp) / A0) << " |\n";
+           << scene_io::format_cell("%.4g", A0) << " | " << scene_io::format_cell("%.2f", e.crowding[tr.junction])
+           << " | " << (m == 0 ? "interacting" : "independent") << " | "
+           << scene_io::format_cell("%.3f", tr.first_slip_s) << " | "
+           << scene_io::format_cell("%.3f", tr.first_slip_s / tp) << " | "
+           << scene_io::format_cell("%.3f", ratio(0.5 * tp)) << " | " << scene_io::format_cell("%.3f", ratio(tp))
+           << " | " << scene_io::format_cell("%.4f", at(tr.t_s, tr.A_m2, tp) / A0) << " |\n";
       }
-  md << "\n![junction pairs](junction_pairs.png)\n\n" << (note.empty() ? "" : note + "\n\n")
+  md << "\n![junction pairs](junction_pairs.png)\n\n"
+     << (note.empty() ? "" : note + "\n\n")
      << "Every sample of every junction above: `junction_pairs.csv` (f/(σA) = 1 at the threshold; a slipping "
         "junction carries ε times it).\n\n";
   return md.str();

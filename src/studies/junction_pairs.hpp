@@ -16,7 +16,7 @@ namespace asperity {
 // One junction's history: force [N] and contact area [m²] at the sample times [s], and the
 // time of its first slip (NaN: it never slipped before the run ended).
 struct JunctionTrace {
-  std::size_t junction = 0;  // 0-based index in the scene's junctions
+  std::size_t junction = 0;                 // 0-based index in the scene's junctions
   std::vector<double> t_s, X_m, f_N, A_m2;  // X_m: the slider position
   double first_slip_s = NAN;
 };
@@ -40,10 +40,10 @@ std::vector<JunctionPair> crowded_sparse_pairs(std::vector<std::size_t> candidat
 // What the study shows of the pairs: the traces of every pair's junctions in both models.
 struct JunctionPairsEvidence {
   std::string experiment;
-  double sigma_Pa = 0;               // the interfacial shear strength σ of f/(σA)
+  double sigma_Pa = 0;  // the interfacial shear strength σ of f/(σA)
   double t_peak_interacting_s = NAN, t_peak_independent_s = NAN;
   std::vector<JunctionPair> pairs;
-  std::vector<double> A0_m2, crowding;  // every junction's, by index
+  std::vector<double> A0_m2, crowding;                  // every junction's, by index
   std::vector<JunctionTrace> interacting, independent;  // pairs' junctions in order: crowded, sparse, …
 };
 

@@ -22,10 +22,14 @@ namespace fs = std::filesystem;
 
 const char* row_decision_name(RowDecision d) {
   switch (d) {
-    case RowDecision::diagonal_wins: return "diagonal wins";
-    case RowDecision::off_diagonal_wins: return "off-diagonal wins";
-    case RowDecision::undecided: return "undecided";
-    case RowDecision::no_evidence: return "no evidence";
+    case RowDecision::diagonal_wins:
+      return "diagonal wins";
+    case RowDecision::off_diagonal_wins:
+      return "off-diagonal wins";
+    case RowDecision::undecided:
+      return "undecided";
+    case RowDecision::no_evidence:
+      return "no evidence";
   }
   return "?";
 }
@@ -106,9 +110,9 @@ std::string cell_fit_text(const std::string& template_text, const std::string& n
                           const std::string& interactions) {
   std::string t = template_text;
   if (!t.empty() && t.back() != '\n') t += '\n';
-  return t + "# Added by `asperity study recovery`: this cell's data.\nname: " + name + "\nexperiments:\n  - {scene: " +
-         data_rel + "/scene.yaml, force: " + data_rel + "/measured_Qt.csv, set: {model.interactions: " + interactions +
-         "}}\n";
+  return t + "# Added by `asperity study recovery`: this cell's data.\nname: " + name +
+         "\nexperiments:\n  - {scene: " + data_rel + "/scene.yaml, force: " + data_rel +
+         "/measured_Qt.csv, set: {model.interactions: " + interactions + "}}\n";
 }
 
 RecoveryCell fit_cell(const FitSpec& spec, const SyntheticRecipe& recipe, const RecoveryMatrixOptions& opt) {
@@ -162,15 +166,16 @@ const char* kParameterKeys[] = {"model.alpha_b", "model.epsilon", "model.eta", "
 
 void write_matrix_csv(const fs::path& file, const std::vector<RecoveryCell>& cells) {
   std::ostringstream t;
-  t << "# SYNTHETIC experiments (examples/recovery/), each fitted by each model: `asperity study recovery`\n" << kColumns;
+  t << "# SYNTHETIC experiments (examples/recovery/), each fitted by each model: `asperity study recovery`\n"
+    << kColumns;
   for (const char* k : kParameterKeys) {
     const std::string leaf = std::string(k).substr(6);
     t << ',' << leaf << ',' << leaf << "_sigma," << leaf << "_truth";
   }
   t << '\n';
   for (const RecoveryCell& c : cells) {
-    t << c.load << ',' << csv_number(c.mass_kg) << ',' << c.junctions << ',' << c.data_model << ',' << c.fit_model << ','
-      << csv_field(c.status) << ',' << csv_number(c.objective) << ',' << csv_number(c.objective_at_truth) << ','
+    t << c.load << ',' << csv_number(c.mass_kg) << ',' << c.junctions << ',' << c.data_model << ',' << c.fit_model
+      << ',' << csv_field(c.status) << ',' << csv_number(c.objective) << ',' << csv_number(c.objective_at_truth) << ','
       << c.residuals << ',' << c.free_parameters << ',' << csv_number(c.reduced_chi2()) << ',' << c.converged << ','
       << c.in_best_basin << ',' << c.starts << ',' << c.evaluations << ',' << csv_number(c.wall_s);
     for (const char* k : kParameterKeys) {
@@ -205,7 +210,9 @@ std::string cell_number(const char* format, double x) {
 std::vector<RecoveryCell> run_recovery_matrix(const RecoveryMatrixOptions& opt) {
   // Templates first (a bad one fails before any run), with equal budgets.
   std::vector<std::string> templates;
-  for (const RecoveryModel& m : opt.models) templates.push_back(scene_io::read_input_file(m.fit_template, m.fit_template.generic_string(), scene_io::kMaxYamlBytes));
+  for (const RecoveryModel& m : opt.models)
+    templates.push_back(
+        scene_io::read_input_file(m.fit_template, m.fit_template.generic_string(), scene_io::kMaxYamlBytes));
   fs::create_directories(opt.out / "data");
   fs::create_directories(opt.out / "fits");
   std::vector<RecoveryCell> cells;
@@ -213,9 +220,11 @@ std::vector<RecoveryCell> run_recovery_matrix(const RecoveryMatrixOptions& opt) 
   for (const fs::path& recipe_file : opt.recipes) {
     const SyntheticRecipe recipe = load_synthetic_recipe(recipe_file);
     const std::string load = recipe.scene.experiment.name;
-    const std::string data_model = model_label(opt.models, recipe.scene.model.interactions == Interactions::elastic ? "elastic" : "none");
+    const std::string data_model =
+        model_label(opt.models, recipe.scene.model.interactions == Interactions::elastic ? "elastic" : "none");
     const std::string data_dir = load + "_" + data_model;
-    if (opt.log) *opt.log << "generating " << data_dir << " from " << recipe_file.generic_string() << "\n" << std::flush;
+    if (opt.log)
+      *opt.log << "generating " << data_dir << " from " << recipe_file.generic_string() << "\n" << std::flush;
     const SyntheticExperiment x = build_synthetic(recipe);
     write_synthetic_experiment(recipe, x, opt.out / "data" / data_dir);
     // Every model's spec first: budgets that differ stop the study before any fit runs.
@@ -255,7 +264,8 @@ std::vector<RecoveryCell> run_recovery_matrix(const RecoveryMatrixOptions& opt) 
   }
   std::ostringstream md;
   md << "# The recovery matrix\n\n**SYNTHETIC DATA.** Each experiment here was made by one of the models at a known "
-        "truth, with the noise its recipe states (the recipes: examples/recovery/ by default), then fitted by each model. It shows what the "
+        "truth, with the noise its recipe states (the recipes: examples/recovery/ by default), then fitted by each "
+        "model. It shows what the "
         "joint calibration can tell apart, not what the real experiments say.\n\n"
      << "Written by `asperity study recovery`; the budget of every fit: " << first_budget
      << ". Each cell's fit file is in `fits/`, its data in `data/`.\n\n";
@@ -284,8 +294,10 @@ void write_recovery_matrix_md(std::ostream& md, const std::vector<RecoveryCell>&
     for (std::size_t i = 0; i < v.rows.size(); ++i) md << (i ? "; " : "") << v.rows[i];
     md << " |\n";
   }
-  md << "\n| load | data by | fitted by | J | J at truth | N | reduced χ² | converged | α_b [1e-15] (truth) | ε (truth) | "
-        "η [1/s] (truth) | position scale (truth) | recovered | status |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  md << "\n| load | data by | fitted by | J | J at truth | N | reduced χ² | converged | α_b [1e-15] (truth) | ε "
+        "(truth) | "
+        "η [1/s] (truth) | position scale (truth) | recovered | status "
+        "|\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   auto param = [](const RecoveryCell& c, const char* key, double unit, const char* format) -> std::string {
     for (const RecoveryParameter& p : c.parameters)
       if (p.key == key) {

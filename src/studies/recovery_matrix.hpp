@@ -43,15 +43,15 @@ struct RecoveryParameter {
 
 // One cell: the data of `data_model` at `load`, fitted by `fit_model`.
 struct RecoveryCell {
-  std::string load;                 // the base experiment's name (recovery-light, ...)
+  std::string load;  // the base experiment's name (recovery-light, ...)
   double mass_kg = 0;
   int junctions = 0;
   std::string data_model, fit_model;
-  std::string status = "ok";        // "ok" or why the fit failed
+  std::string status = "ok";                                             // "ok" or why the fit failed
   double objective = std::numeric_limits<double>::quiet_NaN();           // J at the fit
   double objective_at_truth = std::numeric_limits<double>::quiet_NaN();  // diagonal cells only
   int residuals = 0, free_parameters = 0;
-  std::string converged;            // yes / no / unverified
+  std::string converged;  // yes / no / unverified
   int in_best_basin = 0, starts = 0, evaluations = 0;
   double wall_s = 0;
   std::vector<RecoveryParameter> parameters;

@@ -26,7 +26,8 @@ std::vector<TopographyShapeRow> read_topography_table(const std::filesystem::pat
     auto number = [&](std::size_t c) {
       double x = 0;
       if (scene_io::parse_double(f[c], x) != scene_io::NumberParse::ok || !std::isfinite(x))
-        throw InputError(t.display, t.lines[i], t.columns[c], "not a finite number: '" + f[c] + "'", static_cast<int>(c) + 1);
+        throw InputError(t.display, t.lines[i], t.columns[c], "not a finite number: '" + f[c] + "'",
+                         static_cast<int>(c) + 1);
       return x;
     };
     TopographyShapeRow r;

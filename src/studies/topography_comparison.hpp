@@ -14,10 +14,10 @@ struct TopographyShapeRow {
   int seed = 0;
   double load_N = 0;
   int junctions = 0;
-  std::string model;  // "independent" or "interacting"
-  double alpha_b = 0;                                 // m⁵/N², calibrated to the stand-in drop
-  double shape_exponent = 0;                          // n of A0 − A ∝ Qⁿ
-  double endpoint_residual = 0;                       // rms of A(Q) off A0(1 − d (Q/Q_s)²), units A0 d
+  std::string model;                                 // "independent" or "interacting"
+  double alpha_b = 0;                                // m⁵/N², calibrated to the stand-in drop
+  double shape_exponent = 0;                         // n of A0 − A ∝ Qⁿ
+  double endpoint_residual = 0;                      // rms of A(Q) off A0(1 − d (Q/Q_s)²), units A0 d
   double residual_rms_m2 = 0, noise_rms_p95_m2 = 0;  // against a noisy parabola, and the noise's 95 %
   bool within_noise() const { return residual_rms_m2 <= noise_rms_p95_m2; }
 };
@@ -31,9 +31,9 @@ std::vector<TopographyShapeRow> read_topography_table(const std::filesystem::pat
 struct TopographyTally {
   int pairs = 0;
   double mean_dn = 0, min_dn = 0, max_dn = 0;  // shape exponent
-  int n_lower = 0;                              // pairs where interactions lower n
-  double max_abs_dres = 0;                      // endpoint residual, largest |difference|
-  int rows = 0, within_noise = 0;               // every row (either model), and those within noise
+  int n_lower = 0;                             // pairs where interactions lower n
+  double max_abs_dres = 0;                     // endpoint residual, largest |difference|
+  int rows = 0, within_noise = 0;              // every row (either model), and those within noise
 };
 TopographyTally tally_topography(const std::vector<TopographyShapeRow>& rows);
 

@@ -26,8 +26,8 @@ struct BoundedCgSettings {
 
 struct BoundedCgResult {
   int iterations = 0;
-  int products = 0;       // applications of K
-  double residual = 0;    // max_F |(Kq)_k − δ| / δ at the end
+  int products = 0;     // applications of K
+  double residual = 0;  // max_F |(Kq)_k − δ| / δ at the end
   bool converged = false;
 };
 

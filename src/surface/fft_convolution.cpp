@@ -40,10 +40,10 @@ PaddedConvolution::PaddedConvolution(std::size_t n, std::vector<double> even, pi
     const int rows = k == 0 ? static_cast<int>(kRows) : static_cast<int>(n_ % kRows);
     const int many = k == 0 ? static_cast<int>(kCols) : static_cast<int>(nc_ % kCols);
     if (rows > 0) {
-      rows_forward_[k] = fftw_plan_many_dft_r2c(1, &len, rows, row_buf_[0], nullptr, 1, len, spec_, nullptr, 1, cols,
-                                                FFTW_ESTIMATE);
-      rows_inverse_[k] = fftw_plan_many_dft_c2r(1, &len, rows, spec_, nullptr, 1, cols, row_buf_[0], nullptr, 1, len,
-                                                FFTW_ESTIMATE);
+      rows_forward_[k] =
+          fftw_plan_many_dft_r2c(1, &len, rows, row_buf_[0], nullptr, 1, len, spec_, nullptr, 1, cols, FFTW_ESTIMATE);
+      rows_inverse_[k] =
+          fftw_plan_many_dft_c2r(1, &len, rows, spec_, nullptr, 1, cols, row_buf_[0], nullptr, 1, len, FFTW_ESTIMATE);
     }
     if (many > 0) {
       cols_forward_[k] = fftw_plan_many_dft(1, &len, many, col_buf_[0], nullptr, 1, len, col_buf_[0], nullptr, 1, len,
@@ -78,7 +78,8 @@ void PaddedConvolution::apply(const std::vector<double>& in, std::vector<double>
         cb[c * N_ + i][0] = spec_[i * nc_ + c0 + c][0];
         cb[c * N_ + i][1] = spec_[i * nc_ + c0 + c][1];
       }
-    for (std::size_t c = 0; c < cols; ++c) std::memset(static_cast<void*>(cb + c * N_ + n_), 0, sizeof(fftw_complex) * (N_ - n_));
+    for (std::size_t c = 0; c < cols; ++c)
+      std::memset(static_cast<void*>(cb + c * N_ + n_), 0, sizeof(fftw_complex) * (N_ - n_));
     const int which = cols == kCols ? 0 : 1;
     fftw_execute_dft(cols_forward_[which], cb, cb);
     for (std::size_t c = 0; c < cols; ++c) {

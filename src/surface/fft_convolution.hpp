@@ -35,7 +35,8 @@ class PeriodicConvolution final : public Convolution {
     std::copy(in.begin(), in.end(), fft_.real());
     fft_.forward();
     fftw_complex* spec = fft_.spectrum();
-    pixel_loops::for_each_pixel(n_ * nc_, w_, [&](std::size_t k) { spec[k][0] *= kernel_[k], spec[k][1] *= kernel_[k]; });
+    pixel_loops::for_each_pixel(n_ * nc_, w_,
+                                [&](std::size_t k) { spec[k][0] *= kernel_[k], spec[k][1] *= kernel_[k]; });
     fft_.inverse();
     std::copy(fft_.real(), fft_.real() + n_ * n_, out.begin());
   }
@@ -70,10 +71,10 @@ class PaddedConvolution final : public Convolution {
 
   std::size_t n_, N_, nc_;
   pixel_loops::Workers& w_;
-  fftw_complex* spec_ = nullptr;           // the n wanted rows' spectra, nc each
-  std::vector<double*> row_buf_;           // per thread: kRows padded rows of N
-  std::vector<fftw_complex*> col_buf_;     // per thread: kCols columns of N
-  std::vector<double> kernel_;             // its real spectrum, column kx holding ky = 0..n, divided by N²
+  fftw_complex* spec_ = nullptr;        // the n wanted rows' spectra, nc each
+  std::vector<double*> row_buf_;        // per thread: kRows padded rows of N
+  std::vector<fftw_complex*> col_buf_;  // per thread: kCols columns of N
+  std::vector<double> kernel_;          // its real spectrum, column kx holding ky = 0..n, divided by N²
   // [0]: a whole block, [1]: the last, shorter one (if any)
   fftw_plan rows_forward_[2] = {}, rows_inverse_[2] = {}, cols_forward_[2] = {}, cols_inverse_[2] = {};
 };

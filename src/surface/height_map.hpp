@@ -8,8 +8,8 @@ namespace asperity {
 
 struct HeightMap {
   std::size_t n = 0;
-  double pixel_m = 0;           // side of one pixel
-  std::vector<double> h_m;      // n * n heights
+  double pixel_m = 0;       // side of one pixel
+  std::vector<double> h_m;  // n * n heights
   double length_m() const { return pixel_m * static_cast<double>(n); }
 };
 

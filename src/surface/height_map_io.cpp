@@ -64,8 +64,7 @@ HeightMap read_height_map_csv(const fs::path& csv, const std::string& display, d
 HeightMap read_height_map_binary(const fs::path& header_yaml, const std::string& display) {
   const YAML::Node root = scene_io::load_yaml_file(header_yaml, display);
   const MapView v(Source{display, nullptr}, root, "", {"n", "pixel_m", "data", "format"}, 1);
-  if (const auto f = v.find("format"))
-    v.enumeration<int>(*f, "format", {{"float64_le", 0}});
+  if (const auto f = v.find("format")) v.enumeration<int>(*f, "format", {{"float64_le", 0}});
   const YAML::Node nn = v.require("n");
   const int n_int = v.integer(nn, "n");
   if (n_int < 2 || static_cast<std::size_t>(n_int) > kMaxHeightMapSide)
@@ -84,13 +83,15 @@ HeightMap read_height_map_binary(const fs::path& header_yaml, const std::string&
   if (std::string why = scene_io::input_file_problem(data, bytes); !why.empty()) {
     std::error_code ec;
     if (why != "file not found" && fs::is_regular_file(data, ec)) why = "is larger than expected";
-    v.fail_at(dn, "data", "height file " + why + ": " + data.lexically_normal().string() + " (expected n^2 x 8 = " +
-                              std::to_string(bytes) + " bytes of float64 little-endian)");
+    v.fail_at(dn, "data",
+              "height file " + why + ": " + data.lexically_normal().string() +
+                  " (expected n^2 x 8 = " + std::to_string(bytes) + " bytes of float64 little-endian)");
   }
   const std::string raw = scene_io::read_input_file(data, data.lexically_normal().string(), bytes);
   if (raw.size() != bytes)
-    v.fail_at(dn, "data", "height file " + data.lexically_normal().string() + " has " + std::to_string(raw.size()) +
-                              " bytes, expected n^2 x 8 = " + std::to_string(bytes) + " (float64 little-endian)");
+    v.fail_at(dn, "data",
+              "height file " + data.lexically_normal().string() + " has " + std::to_string(raw.size()) +
+                  " bytes, expected n^2 x 8 = " + std::to_string(bytes) + " (float64 little-endian)");
   HeightMap map;
   map.n = n;
   map.pixel_m = pixel_m;
@@ -101,14 +102,16 @@ HeightMap read_height_map_binary(const fs::path& header_yaml, const std::string&
     for (int b = 7; b >= 0; --b) u = (u << 8) | static_cast<unsigned char>(raw[k * 8 + static_cast<std::size_t>(b)]);
     const double h = std::bit_cast<double>(u);
     if (!std::isfinite(h))
-      v.fail_at(dn, "data", "height at row " + std::to_string(k / n + 1) + ", column " + std::to_string(k % n + 1) +
-                                " of " + data.lexically_normal().string() + " is " + (std::isnan(h) ? "NaN" : "infinite") +
-                                "; every height must be finite");
+      v.fail_at(dn, "data",
+                "height at row " + std::to_string(k / n + 1) + ", column " + std::to_string(k % n + 1) + " of " +
+                    data.lexically_normal().string() + " is " + (std::isnan(h) ? "NaN" : "infinite") +
+                    "; every height must be finite");
     map.h_m[k] = h;
   }
   if (const auto p = height_range_problem(map))
-    v.fail_at(dn, "data", "row " + std::to_string(p->index / n + 1) + ", column " + std::to_string(p->index % n + 1) +
-                              " of " + data.lexically_normal().string() + ": " + p->message);
+    v.fail_at(dn, "data",
+              "row " + std::to_string(p->index / n + 1) + ", column " + std::to_string(p->index % n + 1) + " of " +
+                  data.lexically_normal().string() + ": " + p->message);
   return map;
 }
 

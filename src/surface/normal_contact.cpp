@@ -28,8 +28,8 @@ double love_rectangle(double x, double y, double a, double b) {
     if (s == 0) return 0.0;
     return s * std::log((t1 + std::hypot(t1, s)) / (t2 + std::hypot(t2, s)));
   };
-  const double F = term(x + a, y + b, y - b) + term(y + b, x + a, x - a) + term(x - a, y - b, y + b) +
-                   term(y - b, x - a, x + a);
+  const double F =
+      term(x + a, y + b, y - b) + term(y + b, x + a, x - a) + term(x - a, y - b, y + b) + term(y - b, x - a, x + a);
   return F / std::numbers::pi;
 }
 
@@ -138,7 +138,10 @@ std::unique_ptr<Convolution> make_convolution(const HeightMap& map, const Normal
 class DirectCorrection {
  public:
   DirectCorrection(std::size_t n, const std::vector<double>& influence, Workers& w, bool periodic)
-      : n_(n), influence_(influence), w_(w), acc_(static_cast<std::size_t>(w.count()), std::vector<double>(periodic ? 0 : n)) {}
+      : n_(n),
+        influence_(influence),
+        w_(w),
+        acc_(static_cast<std::size_t>(w.count()), std::vector<double>(periodic ? 0 : n)) {}
 
   void update(const std::vector<double>& p0, const std::vector<double>& t0, const std::vector<double>& g0,
               const std::vector<double>& r, double tau, double f, std::vector<double>& u) {

@@ -13,13 +13,13 @@
 namespace asperity {
 
 struct NormalContactSettings {
-  double E_star_Pa = 0;          // contact modulus E / (1 − ν²) of the elastic body (the flat is rigid)
+  double E_star_Pa = 0;  // contact modulus E / (1 − ν²) of the elastic body (the flat is rigid)
   // false: an isolated contact (a sphere), the grid zero-padded to 2n × 2n, pixel kernel of Love;
   // true: the map repeats periodically (a nominally flat rough surface), the spectral kernel
   // u(q) = 2 p(q) / (E* |q|) with the mean displacement left free (Stanley & Kato 1997).
   bool periodic = false;
-  double load_N = 0;             // total normal load
-  double tolerance = 1e-10;      // on Σ|Δp|A / P between two iterations
+  double load_N = 0;         // total normal load
+  double tolerance = 1e-10;  // on Σ|Δp|A / P between two iterations
   int max_iterations = 5000;
   // Threads of the FFTs and of the loops over pixels (the solve's own blocked workers; FFTW's threads
   // for the periodic kernel's transforms). The work is cut in fixed blocks and the sums are taken in

@@ -5,8 +5,8 @@
 
 namespace asperity {
 
-std::vector<ContactCluster> contact_clusters(const std::vector<unsigned char>& in_contact, std::size_t n, double pixel_m,
-                                             Connectivity connectivity) {
+std::vector<ContactCluster> contact_clusters(const std::vector<unsigned char>& in_contact, std::size_t n,
+                                             double pixel_m, Connectivity connectivity) {
   if (in_contact.size() != n * n) throw std::invalid_argument("contact_clusters: the mask is not n x n");
   std::vector<unsigned char> seen(n * n, 0);
   std::vector<std::size_t> stack;

@@ -19,7 +19,7 @@ struct ContactCluster {
 
 // Clusters of `in_contact` (n × n, row-major, nonzero = in contact) on a grid of `pixel_m`,
 // largest first (ties by centroid x, then y: a reproducible order). Not periodic.
-std::vector<ContactCluster> contact_clusters(const std::vector<unsigned char>& in_contact, std::size_t n, double pixel_m,
-                                             Connectivity connectivity);
+std::vector<ContactCluster> contact_clusters(const std::vector<unsigned char>& in_contact, std::size_t n,
+                                             double pixel_m, Connectivity connectivity);
 
 }  // namespace asperity

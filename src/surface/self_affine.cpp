@@ -37,7 +37,8 @@ HeightMap self_affine_surface(const SelfAffineSpec& s) {
     FftBuffers fft(n);  // c2r of the half spectrum (rows ky, columns kx ≥ 0)
     for (std::size_t i = 0; i < n; ++i)
       for (std::size_t j = 0; j < nc; ++j) {
-        const double ky = static_cast<double>(i <= n / 2 ? static_cast<long>(i) : static_cast<long>(i) - static_cast<long>(n));
+        const double ky =
+            static_cast<double>(i <= n / 2 ? static_cast<long>(i) : static_cast<long>(i) - static_cast<long>(n));
         const double q = qL * std::hypot(ky, static_cast<double>(j));
         double amp = 0;
         if (q >= qL * (1 - 1e-12) && q <= qs * (1 + 1e-12)) amp = std::pow(std::max(q, qr) / qr, -(1 + s.hurst));  // √C

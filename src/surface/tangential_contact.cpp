@@ -66,16 +66,19 @@ TangentialContact::TangentialContact(std::size_t n, double pixel_m, std::vector<
                                      const TangentialContactSettings& s)
     : n_(n), pixel_m_(pixel_m), bound_(std::move(bound_Pa)), settings_(s) {
   if (n < 2 || bound_.size() != n * n || !(pixel_m > 0) || !std::isfinite(pixel_m))
-    throw std::invalid_argument("tangential contact: n x n traction bounds with n >= 2 and a positive pixel size are needed");
+    throw std::invalid_argument(
+        "tangential contact: n x n traction bounds with n >= 2 and a positive pixel size are needed");
   if (s.nu != 0.5)
     throw std::invalid_argument(
         "tangential contact: only nu = 0.5 is solved (at other nu shear changes the normal pressures, a coupling this "
         "solver leaves out)");
-  if (!(s.E_Pa > 0) || !std::isfinite(s.E_Pa)) throw std::invalid_argument("tangential contact: E must be positive and finite");
+  if (!(s.E_Pa > 0) || !std::isfinite(s.E_Pa))
+    throw std::invalid_argument("tangential contact: E must be positive and finite");
   if (!(s.tolerance > 0) || s.max_iterations < 1)
     throw std::invalid_argument("tangential contact: the tolerance and the iteration limit must be positive");
   for (const double b : bound_)
-    if (!(b >= 0) || !std::isfinite(b)) throw std::invalid_argument("tangential contact: a traction bound is negative or not finite");
+    if (!(b >= 0) || !std::isfinite(b))
+      throw std::invalid_argument("tangential contact: a traction bound is negative or not finite");
   // The kernel at offsets (|di|, |dj|): even in both, as Cerruti's x-x kernel is.
   std::vector<double> influence((n + 1) * (n + 1));
   const double h = 0.5 * pixel_m;
@@ -95,8 +98,9 @@ void TangentialContact::iterate(double delta, const std::vector<unsigned char>& 
   cs.tolerance = settings_.tolerance;
   cs.max_iterations = settings_.max_iterations;
   PaddedConvolution& K = op_->K;
-  const BoundedCgResult r = bounded_cg([&](const std::vector<double>& in, std::vector<double>& out) { K.apply(in, out); },
-                                       delta, free, bounded ? &bound_ : nullptr, q, cs, op_->workers);
+  const BoundedCgResult r =
+      bounded_cg([&](const std::vector<double>& in, std::vector<double>& out) { K.apply(in, out); }, delta, free,
+                 bounded ? &bound_ : nullptr, q, cs, op_->workers);
   st.iterations = r.iterations;
   st.convolutions = r.products;
   st.residual = r.residual;
@@ -197,8 +201,10 @@ TangentialCurve tangential_curve(TangentialContact& contact, const std::vector<d
     TangentialCurvePoint p;
     p.displacement_m = delta;
     p.force_N = st.force_N;
-    p.tangent_stiffness_N_per_m = tangent_stiffness ? contact.tangent_stiffness_N_per_m() : std::numeric_limits<double>::quiet_NaN();
-    p.slip_area_fraction = st.contact_pixels ? static_cast<double>(st.slipping_pixels) / static_cast<double>(st.contact_pixels) : 0.0;
+    p.tangent_stiffness_N_per_m =
+        tangent_stiffness ? contact.tangent_stiffness_N_per_m() : std::numeric_limits<double>::quiet_NaN();
+    p.slip_area_fraction =
+        st.contact_pixels ? static_cast<double>(st.slipping_pixels) / static_cast<double>(st.contact_pixels) : 0.0;
     p.iterations = st.iterations;
     p.converged = st.converged;
     c.points.push_back(p);

@@ -53,7 +53,7 @@ struct TangentialState {
   std::size_t slipping_pixels = 0;  // |q| at its bound
   int iterations = 0;
   int convolutions = 0;
-  double residual = 0;        // max |u_x − δ| over the free pixels / δ at the end
+  double residual = 0;  // max |u_x − δ| over the free pixels / δ at the end
   bool converged = false;
 };
 
@@ -115,7 +115,7 @@ struct TangentialCurve {
   double initial_stiffness_N_per_m = 0;
   double full_sliding_force_N = 0;
   double full_sliding_displacement_m = 0;
-  bool monotone = true;  // no pixel's slip reversed (slip → stick) between two points
+  bool monotone = true;                               // no pixel's slip reversed (slip → stick) between two points
   std::vector<std::vector<unsigned char>> slip_maps;  // per point (slip_map()), when asked
 };
 

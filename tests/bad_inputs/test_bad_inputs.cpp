@@ -112,19 +112,19 @@ void check_refused(const fs::path& work, const std::vector<fs::path>& watched, c
   INFO("stderr: " << o.err);
   INFO("expected prefix: " << prefix);
   CHECK(o.status == 2);
-  CHECK(o.err.rfind(prefix, 0) == 0);                         // file:line: key: message, at the start
+  CHECK(o.err.rfind(prefix, 0) == 0);                        // file:line: key: message, at the start
   CHECK(std::count(o.err.begin(), o.err.end(), '\n') == 1);  // one line, no stack of noise
   CHECK(o.err.back() == '\n');
   CHECK(snapshot(watched) == before);  // nothing written, moved or touched
   CHECK(o.wall_s < 10.0);              // refused at load, not after a run
 }
 
-const char* kExperiment =
-    "name: wrapper\nmass: 0.1\nk_L: 9200\nv: 1e-4\nE: 1.6e6\nnu: 0.5\nsigma_exp: 230000\n";
+const char* kExperiment = "name: wrapper\nmass: 0.1\nk_L: 9200\nv: 1e-4\nE: 1.6e6\nnu: 0.5\nsigma_exp: 230000\n";
 
 }  // namespace
 
-TEST_CASE("bad-input corpus: each file is refused naming file, line and key, and nothing changes", "[scene][bad_inputs]") {
+TEST_CASE("bad-input corpus: each file is refused naming file, line and key, and nothing changes",
+          "[scene][bad_inputs]") {
   const fs::path src(ASPERITY_SOURCE_DIR);
   const fs::path dir = src / "tests/bad_inputs";
   const auto cases = corpus(dir);
@@ -168,7 +168,8 @@ TEST_CASE("bad-input corpus: each file is refused naming file, line and key, and
     } else if (c.file.rfind("force_", 0) == 0) {  // a Q(t) CSV named by a fit
       scene = work / "fit.yaml";
       write(scene, "objective: area_and_force\nexperiments:\n  - {scene: " + q(src / "scenes/paper/P0.98N.yaml") +
-                       ", force: " + q(file) + "}\nparameters:\n  model.alpha_b: {lo: 1e-16, hi: 3e-15, start: 7.25e-16}\n");
+                       ", force: " + q(file) +
+                       "}\nparameters:\n  model.alpha_b: {lo: 1e-16, hi: 3e-15, start: 7.25e-16}\n");
       command = "fit";
     } else if (c.file.rfind("topography_", 0) == 0) {
       scene = file;
@@ -202,11 +203,13 @@ TEST_CASE("inputs that are not regular files, or too large, are refused before r
   REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
   check_refused(work, {work}, "run", fifo, fifo.string() + ": is a FIFO (named pipe), not a regular file");
   write(work / "scene.yaml", "experiment: fifo.yaml\n");
-  check_refused(work, {work}, "run", work / "scene.yaml",
-                (work / "scene.yaml").string() + ":1: experiment: experiment file is a FIFO (named pipe), not a regular file");
+  check_refused(
+      work, {work}, "run", work / "scene.yaml",
+      (work / "scene.yaml").string() + ":1: experiment: experiment file is a FIFO (named pipe), not a regular file");
   // A directory as the scene.
   fs::create_directories(work / "folder.yaml");
-  check_refused(work, {work}, "run", work / "folder.yaml", (work / "folder.yaml").string() + ": is a directory, not a file");
+  check_refused(work, {work}, "run", work / "folder.yaml",
+                (work / "folder.yaml").string() + ": is a directory, not a file");
   // Files over the caps (sparse: no disk or time spent): 16 MiB of YAML, 256 MiB of CSV.
   {
     const fs::path big = work / "big.yaml";
@@ -222,9 +225,10 @@ TEST_CASE("inputs that are not regular files, or too large, are refused before r
     fs::resize_file(csv, (std::uintmax_t{256} << 20) + 1);
     write(work / "experiment.yaml", std::string(kExperiment) + "junctions: big.csv\n");
     write(work / "scene.yaml", "experiment: experiment.yaml\n");
-    check_refused(work, {work}, "run", work / "scene.yaml",
-                  (work / "experiment.yaml").string() +
-                      ":8: junctions: junctions CSV is 268 MB, more than the 256 MiB an input file of this kind may have");
+    check_refused(
+        work, {work}, "run", work / "scene.yaml",
+        (work / "experiment.yaml").string() +
+            ":8: junctions: junctions CSV is 268 MB, more than the 256 MiB an input file of this kind may have");
     fs::remove(csv);
   }
   // A --set value whose aliases nest (a "billion laughs" of a few hundred bytes): refused at
@@ -270,10 +274,12 @@ TEST_CASE("errors found once a scene is whole name the --set, or the file and li
   write(work / "inline.yaml",
         "experiment:\n  name: x\n  mass: 0.1\n  k_L: 9200\n  v: 1e-4\n  E: 1.6e6\n  nu: 0.5\n  sigma_exp: 230000\n"
         "  junctions: {area_m2: [1e-8, 1e-8], x_m: [0, 1e-5], y_m: [0, 0]}\nmodel: {interactions: elastic}\n");
-  check_refused(work, {work}, "run", work / "inline.yaml",
-                (work / "inline.yaml").string() + ":9: experiment.junctions: junctions 1 and 2 overlap (centres 1e-05 m apart");
+  check_refused(
+      work, {work}, "run", work / "inline.yaml",
+      (work / "inline.yaml").string() + ":9: experiment.junctions: junctions 1 and 2 overlap (centres 1e-05 m apart");
   // ... and in a junctions CSV: the file and the line of the second junction's row.
-  write(work / "overlap.csv", "# two junctions 10 um apart, radii 56 um\narea_m2,x_m,y_m\n1e-8,0,0\n# the second\n1e-8,1e-5,0\n");
+  write(work / "overlap.csv",
+        "# two junctions 10 um apart, radii 56 um\narea_m2,x_m,y_m\n1e-8,0,0\n# the second\n1e-8,1e-5,0\n");
   write(work / "experiment.yaml", std::string(kExperiment) + "junctions: overlap.csv\n");
   write(work / "csv.yaml", "experiment: experiment.yaml\nmodel: {interactions: elastic}\n");
   check_refused(work, {work}, "run", work / "csv.yaml",

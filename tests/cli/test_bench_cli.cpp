@@ -22,8 +22,8 @@ namespace {
 using asperity::testing::slurp;
 
 int run_cli(const std::string& args, const fs::path& work, std::string* err) {
-  const std::string cmd = "cd '" + work.string() + "' && '" + ASPERITY_BINARY + "' " + args +
-                          " >stdout.txt 2>stderr.txt";
+  const std::string cmd =
+      "cd '" + work.string() + "' && '" + ASPERITY_BINARY + "' " + args + " >stdout.txt 2>stderr.txt";
   const int rc = std::system(cmd.c_str());
   *err = slurp(work / "stderr.txt");
   return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
@@ -87,7 +87,8 @@ TEST_CASE("bench accuracy writes one row per scene and tolerance against the con
   fs::remove_all(w);
 }
 
-TEST_CASE("bench speed: whole-run ratios follow from the runs, the extrapolation counts the steps at C_t 1e4", "[bench][cli]") {
+TEST_CASE("bench speed: whole-run ratios follow from the runs, the extrapolation counts the steps at C_t 1e4",
+          "[bench][cli]") {
   const fs::path w = fs::temp_directory_path() / ("asperity-bench-speed-" + std::to_string(::getpid()));
   fs::remove_all(w);
   fs::create_directories(w);

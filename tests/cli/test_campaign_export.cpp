@@ -34,9 +34,12 @@ std::vector<std::vector<std::string>> query(const fs::path& db, const std::strin
     std::vector<std::string> r;
     for (int c = 0; c < sqlite3_column_count(st); ++c) {
       const int type = sqlite3_column_type(st, c);
-      if (type == SQLITE_NULL) r.push_back("NULL");
-      else if (type == SQLITE_FLOAT) r.push_back(scene_io::format_double(sqlite3_column_double(st, c)));  // exact
-      else r.push_back(reinterpret_cast<const char*>(sqlite3_column_text(st, c)));
+      if (type == SQLITE_NULL)
+        r.push_back("NULL");
+      else if (type == SQLITE_FLOAT)
+        r.push_back(scene_io::format_double(sqlite3_column_double(st, c)));  // exact
+      else
+        r.push_back(reinterpret_cast<const char*>(sqlite3_column_text(st, c)));
     }
     rows.push_back(r);
   }
@@ -49,7 +52,8 @@ double real_of(const std::string& s) { return std::stod(s); }
 
 }  // namespace
 
-TEST_CASE("export --sqlite: typed columns, SQL aggregates equal those of points.csv, never overwrites", "[campaign][export]") {
+TEST_CASE("export --sqlite: typed columns, SQL aggregates equal those of points.csv, never overwrites",
+          "[campaign][export]") {
   const fs::path d = asperity::testing::temp_path("asperity_export");
   fs::remove_all(d);
   fs::create_directories(d);
@@ -74,7 +78,9 @@ TEST_CASE("export --sqlite: typed columns, SQL aggregates equal those of points.
     at = nl + 1;
   }
   const std::vector<std::string> header = rows.front();
-  auto col = [&](const std::string& n) { return static_cast<std::size_t>(std::find(header.begin(), header.end(), n) - header.begin()); };
+  auto col = [&](const std::string& n) {
+    return static_cast<std::size_t>(std::find(header.begin(), header.end(), n) - header.begin());
+  };
   struct Group {
     int n = 0, q_n = 0;
     double q_sum = 0, steps = 0;
@@ -95,7 +101,9 @@ TEST_CASE("export --sqlite: typed columns, SQL aggregates equal those of points.
 
   // Measured: the SQL means equal these to the last bit (SQLite 3.40 sums in row order, as here);
   // the bound allows a few ulps for an SQLite that sums otherwise (compensated summation).
-  const auto got = query(d / "tiny.sqlite", "SELECT grid, COUNT(*), AVG(Q_s), SUM(steps), COUNT(Q_s) FROM points GROUP BY grid ORDER BY grid");
+  const auto got =
+      query(d / "tiny.sqlite",
+            "SELECT grid, COUNT(*), AVG(Q_s), SUM(steps), COUNT(Q_s) FROM points GROUP BY grid ORDER BY grid");
   REQUIRE(got.size() == 2);
   for (const auto& g : got) {
     INFO("grid " << g[0]);
@@ -113,9 +121,10 @@ TEST_CASE("export --sqlite: typed columns, SQL aggregates equal those of points.
   CHECK_THAT(plan.at(0).back(), Contains("USING INDEX points_by_1"));
 
   // Types: counts INTEGER, reals REAL, names TEXT, flags 0/1; a real that was nan is NULL.
-  const auto types = query(d / "tiny.sqlite",
-                           "SELECT typeof(\"index\"), typeof(hash), typeof(\"model.eta\"), typeof(steps), typeof(t_end), "
-                           "typeof(peak_found), peak_found IN (0, 1), typeof(status) FROM points WHERE \"index\" = 0");
+  const auto types =
+      query(d / "tiny.sqlite",
+            "SELECT typeof(\"index\"), typeof(hash), typeof(\"model.eta\"), typeof(steps), typeof(t_end), "
+            "typeof(peak_found), peak_found IN (0, 1), typeof(status) FROM points WHERE \"index\" = 0");
   CHECK(types.at(0) == std::vector<std::string>{"integer", "text", "real", "integer", "real", "integer", "1", "text"});
   CHECK(query(d / "tiny.sqlite", "SELECT COUNT(*) FROM store_files")[0][0] == "2");
 
@@ -131,7 +140,8 @@ TEST_CASE("export --sqlite: typed columns, SQL aggregates equal those of points.
   const auto missing = asperity::testing::run_argv(d, {"export", "store", "--sqlite", "missing_dir/x.db"});
   CHECK(missing.status == 2);
   CHECK(missing.err ==
-        "missing_dir/x.db: --sqlite: its folder missing_dir does not exist (export writes a file, it makes no folders)\n");
+        "missing_dir/x.db: --sqlite: its folder missing_dir does not exist (export writes a file, it makes no "
+        "folders)\n");
   CHECK_FALSE(fs::exists(d / "missing_dir"));
   // A store folder that is not a store: bad input.
   fs::create_directories(d / "not_a_store");
@@ -141,6 +151,7 @@ TEST_CASE("export --sqlite: typed columns, SQL aggregates equal those of points.
   CHECK(fresh.status == 0);
   CHECK_THAT(fresh.out, Contains("exported 11 points"));
   // No temporary left beside it.
-  for (const auto& e : fs::directory_iterator(d)) CHECK(e.path().filename().string().find(".tmp-") == std::string::npos);
+  for (const auto& e : fs::directory_iterator(d))
+    CHECK(e.path().filename().string().find(".tmp-") == std::string::npos);
   fs::remove_all(d);
 }

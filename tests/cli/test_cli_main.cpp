@@ -25,10 +25,10 @@ TEST_CASE("command-line errors exit 2 with one line naming the problem", "[cli_m
   };
   const std::vector<Case> cases{
       {{"run", "--no-such-flag", "x.yaml"}, "--no-such-flag"},  // CLI11: 109 (extras)
-      {{"run"}, "scene"},                                      // 106 (required positional)
-      {{"no-such-command"}, "no-such-command"},                // 109
-      {{"bench", "--repeats", "0", "speed"}, "--repeats"},     // 105 (validation)
-      {{"run", "x.yaml", "--set"}, "--set"},                   // 107 (argument missing)
+      {{"run"}, "scene"},                                       // 106 (required positional)
+      {{"no-such-command"}, "no-such-command"},                 // 109
+      {{"bench", "--repeats", "0", "speed"}, "--repeats"},      // 105 (validation)
+      {{"run", "x.yaml", "--set"}, "--set"},                    // 107 (argument missing)
   };
   for (const auto& c : cases) {
     const CliResult r = run_argv(work, c.args);

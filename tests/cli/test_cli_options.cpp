@@ -40,8 +40,9 @@ std::string values_of(const fs::path& store) {
 
 TEST_CASE("threads (-j, --threads) mean the same in every command and are checked the same", "[cli][options]") {
   const fs::path w = fs::temp_directory_path();
-  const std::vector<std::vector<std::string>> commands{{"run", "x.yaml"}, {"sweep", "x.yaml"}, {"fit", "x.yaml"},
-                                                        {"reproduce", "x.yaml"}, {"regress"}, {"bench", "savings"}};
+  const std::vector<std::vector<std::string>> commands{{"run", "x.yaml"}, {"sweep", "x.yaml"},
+                                                       {"fit", "x.yaml"}, {"reproduce", "x.yaml"},
+                                                       {"regress"},       {"bench", "savings"}};
   for (const auto& cmd : commands) {
     for (const char* opt : {"-j", "--threads"}) {
       std::vector<std::string> args = cmd;
@@ -79,7 +80,9 @@ TEST_CASE("sweep --set equals the value in the campaign and fit --set equals it 
   text.replace(text.find("set: {stop.time: 0.3}"), 21, "set: {stop.time: 0.3, model.c_min: 0.02}");
   text.replace(text.find("scenes: [tiny_scene.yaml]"), 25, "scenes: [" + (data / "tiny_scene.yaml").string() + "]");
   const fs::path edited = write_text(w / "tiny_cmin.yaml", text);
-  REQUIRE(run_argv(w, {"sweep", (data / "tiny.yaml").string(), "--out", "a", "-j", "1", "-q", "--set", "model.c_min=0.02"}).status == 0);
+  REQUIRE(
+      run_argv(w, {"sweep", (data / "tiny.yaml").string(), "--out", "a", "-j", "1", "-q", "--set", "model.c_min=0.02"})
+          .status == 0);
   REQUIRE(run_argv(w, {"sweep", edited.string(), "--out", "b", "-j", "1", "-q"}).status == 0);
   CHECK(values_of(w / "a") == values_of(w / "b"));
   REQUIRE(run_argv(w, {"sweep", (data / "tiny.yaml").string(), "--out", "d", "-j", "1", "-q"}).status == 0);
@@ -92,10 +95,14 @@ TEST_CASE("sweep --set equals the value in the campaign and fit --set equals it 
 
   const std::string scene = (kSource / "tests" / "data" / "scene" / "small_scene.yaml").string();
   write_text(w / "f1.yaml", "name: f1\nobjective: area_curve\nexperiments: [" + scene +
-                                "]\nparameters: {model.alpha_b: {lo: 1e-16, hi: 5e-15, start: 1e-15, scale: log}}\noptimizer: {certify: false}\n");
+                                "]\nparameters: {model.alpha_b: {lo: 1e-16, hi: 5e-15, start: 1e-15, scale: "
+                                "log}}\noptimizer: {certify: false}\n");
   write_text(w / "f2.yaml", "name: f2\nobjective: area_curve\nexperiments: [{scene: " + scene +
-                                ", set: {model.eta: 60}}]\nparameters: {model.alpha_b: {lo: 1e-16, hi: 5e-15, start: 1e-15, scale: log}}\noptimizer: {certify: false}\n");
-  REQUIRE(run_argv(w, {"fit", "f1.yaml", "--out", "o1", "-j", "1", "-q", "--no-profile", "--set", "model.eta=60"}).status == 0);
+                                ", set: {model.eta: 60}}]\nparameters: {model.alpha_b: {lo: 1e-16, hi: 5e-15, start: "
+                                "1e-15, scale: log}}\noptimizer: {certify: false}\n");
+  REQUIRE(
+      run_argv(w, {"fit", "f1.yaml", "--out", "o1", "-j", "1", "-q", "--no-profile", "--set", "model.eta=60"}).status ==
+      0);
   REQUIRE(run_argv(w, {"fit", "f2.yaml", "--out", "o2", "-j", "1", "-q", "--no-profile"}).status == 0);
   const auto best = [](const std::string& y) {
     const auto at = y.find("\"model.alpha_b\": {value: ");
@@ -127,8 +134,17 @@ TEST_CASE("Ctrl-C stops a run within a fraction of a second, exit 130, nothing w
   fs::remove_all(w);
   fs::create_directories(w);
   // About 10 s uninterrupted: the reference solver on 1,201 junctions for 0.3 s simulated.
-  std::vector<std::string> all{ASPERITY_BINARY, "run", (kSource / "scenes" / "paper" / "P4.00N.yaml").string(),
-                               "--out", (w / "r").string(), "--set", "solver.method=reference", "--set", "stop.time=0.3", "-j", "1"};
+  std::vector<std::string> all{ASPERITY_BINARY,
+                               "run",
+                               (kSource / "scenes" / "paper" / "P4.00N.yaml").string(),
+                               "--out",
+                               (w / "r").string(),
+                               "--set",
+                               "solver.method=reference",
+                               "--set",
+                               "stop.time=0.3",
+                               "-j",
+                               "1"};
   std::vector<char*> argv;
   for (auto& a : all) argv.push_back(a.data());
   argv.push_back(nullptr);
@@ -163,8 +179,9 @@ TEST_CASE("the progress line's ETA is elapsed x remaining / done", "[io][progres
 
 TEST_CASE("sweep --sync-every and --sync-seconds are checked in one line", "[cli][options]") {
   const fs::path w = fs::temp_directory_path();
-  for (const auto& [opt, value, range] : {std::tuple<const char*, const char*, const char*>{"--sync-every", "0", "1 to 1000000000"},
-                                          {"--sync-seconds", "-1", "0 to 86400"}}) {
+  for (const auto& [opt, value, range] :
+       {std::tuple<const char*, const char*, const char*>{"--sync-every", "0", "1 to 1000000000"},
+        {"--sync-seconds", "-1", "0 to 86400"}}) {
     const CliResult r = run_argv(w, {"sweep", "x.yaml", opt, value});
     INFO(opt);
     CHECK(r.status == 2);

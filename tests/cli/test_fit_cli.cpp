@@ -19,8 +19,8 @@ namespace {
 using asperity::testing::slurp;
 
 int asperity_in(const fs::path& work, const std::string& args, std::string* err = nullptr) {
-  const std::string cmd = "cd '" + work.string() + "' && '" + ASPERITY_BINARY + "' " + args +
-                          " >stdout.txt 2>stderr.txt";
+  const std::string cmd =
+      "cd '" + work.string() + "' && '" + ASPERITY_BINARY + "' " + args + " >stdout.txt 2>stderr.txt";
   const int rc = std::system(cmd.c_str());
   if (err) *err = slurp(work / "stderr.txt");
   return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
@@ -50,7 +50,8 @@ TEST_CASE("asperity fit writes the results directory", "[fit][cli]") {
   CHECK(y.find("key: experiment.E, shift: 100000") != std::string::npos);
   // Provenance: the command as typed, the fit file and the experiment's data by content.
   CHECK(y.find("command_line: \"asperity fit f.yaml --quiet --threads 2\"") != std::string::npos);
-  CHECK(y.find("{role: \"fit\", path: \"f.yaml\", fnv1a64: \"" + asperity::hex16(asperity::fnv1a64(slurp(c.dir / "f.yaml"))) + "\"}") != std::string::npos);
+  CHECK(y.find("{role: \"fit\", path: \"f.yaml\", fnv1a64: \"" +
+               asperity::hex16(asperity::fnv1a64(slurp(c.dir / "f.yaml"))) + "\"}") != std::string::npos);
   CHECK(y.find("{role: \"measured\"") != std::string::npos);
   // One CSV row per evaluation, as counted in fit.yaml.
   const auto at = y.find("\n    evaluations: ");
@@ -78,11 +79,13 @@ TEST_CASE("asperity fit writes the results directory", "[fit][cli]") {
   fs::remove_all(c.dir);
 }
 
-TEST_CASE("asperity fit certifies a multi-start optimum, and exits 1 on a mutant optimizer that stops at its first point",
-          "[fit][cli][convergence]") {
+TEST_CASE(
+    "asperity fit certifies a multi-start optimum, and exits 1 on a mutant optimizer that stops at its first point",
+    "[fit][cli][convergence]") {
   const FitCase c = make_fit_case("cli-conv", 0.7e-15, 1.5, 0.1, 40);
-  const std::string head = "objective: area_curve\nexperiments: [scene.yaml]\n"
-                           "parameters: {model.alpha_b: {lo: 1e-16, hi: 5e-15, start: 1e-15, scale: log}}\nprofile: false\n";
+  const std::string head =
+      "objective: area_curve\nexperiments: [scene.yaml]\n"
+      "parameters: {model.alpha_b: {lo: 1e-16, hi: 5e-15, start: 1e-15, scale: log}}\nprofile: false\n";
   // Three LN_BOBYQA starts on a one-basin objective: all reach it.
   write_text(c.dir / "good.yaml", head + "optimizer: {algorithm: LN_BOBYQA, starts: 3}\n");
   std::string err;
@@ -94,8 +97,9 @@ TEST_CASE("asperity fit certifies a multi-start optimum, and exits 1 on a mutant
   CHECK(y.find("      - {start: 3, from: [") != std::string::npos);
   // The mutant: DIRECT stopped at its first lattice point (the centre), each start's polish at
   // its start. The fit is written, says so, and fails the check: exit 1, one line.
-  write_text(c.dir / "mutant.yaml", head + "optimizer: {algorithm: GN_DIRECT_L, max_evaluations: 1, starts: 3, "
-                                           "polish: {algorithm: LN_BOBYQA, max_evaluations: 1}}\n");
+  write_text(c.dir / "mutant.yaml", head +
+                                        "optimizer: {algorithm: GN_DIRECT_L, max_evaluations: 1, starts: 3, "
+                                        "polish: {algorithm: LN_BOBYQA, max_evaluations: 1}}\n");
   CHECK(asperity_in(c.dir, "fit mutant.yaml --quiet --out mutant", &err) == 1);
   CHECK(err == "fit fit-cli-conv did not converge: only 1 of 3 starts reached the best objective " +
                    err.substr(err.find("objective ") + 10, err.find(" (within") - err.find("objective ") - 10) +
@@ -107,8 +111,9 @@ TEST_CASE("asperity fit certifies a multi-start optimum, and exits 1 on a mutant
   // optimizer.certify: false accepts it (exit 0, said unless --quiet).
   write_text(c.dir / "one.yaml", head + "optimizer: {algorithm: LN_BOBYQA}\n");
   CHECK(asperity_in(c.dir, "fit one.yaml --quiet --out one", &err) == 1);
-  CHECK(err == "fit fit-cli-conv is not certified: one start: nothing to compare its optimum with; set optimizer.starts "
-               ">= 2 to certify it, or optimizer.certify: false to accept it unconfirmed\n");
+  CHECK(err ==
+        "fit fit-cli-conv is not certified: one start: nothing to compare its optimum with; set optimizer.starts "
+        ">= 2 to certify it, or optimizer.certify: false to accept it unconfirmed\n");
   CHECK(slurp(c.dir / "one" / "fit.yaml").find("    converged: unverified") != std::string::npos);
   write_text(c.dir / "accepted.yaml", head + "optimizer: {algorithm: LN_BOBYQA, certify: false}\n");
   CHECK(asperity_in(c.dir, "fit accepted.yaml --quiet --out accepted", &err) == 0);

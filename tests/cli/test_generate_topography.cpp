@@ -17,13 +17,13 @@
 
 #include "cli_spawn.hpp"
 #include "generate/topography.hpp"
-#include "studies/continuum_rule.hpp"
 #include "io/input_error.hpp"
 #include "io/numbers.hpp"
 #include "scene/validate.hpp"
+#include "studies/continuum_rule.hpp"
+#include "support_files.hpp"
 #include "surface/height_map_io.hpp"
 #include "surface/segmentation.hpp"
-#include "support_files.hpp"
 
 using namespace asperity;
 namespace fs = std::filesystem;
@@ -184,7 +184,7 @@ TEST_CASE("the indexed merge of overlapping discs equals the one-pair-per-scan m
     total_merges += m;
   }
   CHECK(cases.back().size() == 1 + 32 * 32 / 2);  // the ring and 512 single pixels
-  CHECK(total_merges > 500);                       // cascades happened
+  CHECK(total_merges > 500);                      // cascades happened
   // The phase is bounded: past the work allowed, std::length_error.
   JunctionPopulation J = cases.back();
   CHECK_THROWS_AS(merge_overlapping_junctions(J, 1000), std::length_error);
@@ -269,15 +269,16 @@ TEST_CASE("topography recipes: bad values refused at their line", "[generate][to
     m.h_m.assign(m.n * m.n, 0.0);
     m.h_m[3 * m.n + 5] = spike;
     write_height_map_binary(d / "spike.yaml", "spike.f64", m);
-    const std::string expected = (d / "spike.yaml").string() + ":3: data: row 4, column 6 of " + (d / "spike.f64").string() +
-                                 ": height " + scene_io::format_double(spike) + " m: the heights span 1e+308 m";
+    const std::string expected = (d / "spike.yaml").string() + ":3: data: row 4, column 6 of " +
+                                 (d / "spike.f64").string() + ": height " + scene_io::format_double(spike) +
+                                 " m: the heights span 1e+308 m";
     CHECK(build_error(recipe_text("  file: spike.yaml\n")).rfind(expected, 0) == 0);
   }
   std::string once = recipe_text("  smooth:\n    n: 64\n    size_m: 5e-3\n");
   once.replace(once.find("max_iterations: 2000"), 20, "max_iterations: 1");
-  CHECK(build_error(once).rfind((d / "bad.yaml").string() +
-                                    ": contact.max_iterations: the normal contact did not converge in 1 iterations",
-                                0) == 0);
+  CHECK(build_error(once).rfind(
+            (d / "bad.yaml").string() + ": contact.max_iterations: the normal contact did not converge in 1 iterations",
+            0) == 0);
   fs::remove_all(d);
 }
 
@@ -337,8 +338,8 @@ TEST_CASE("topography recipe: same bytes twice, measured map = synthetic heights
 TEST_CASE("the committed topography example regenerates byte for byte", "[generate][topography][cli]") {
   const fs::path src(ASPERITY_SOURCE_DIR);
   const fs::path d = fresh_dir("asperity-topo-example");
-  const auto r = run_argv(d, {"generate", "--recipe", (src / "examples/topography/topo.yaml").string(), "--out",
-                              "generated", "--quiet"});
+  const auto r = run_argv(
+      d, {"generate", "--recipe", (src / "examples/topography/topo.yaml").string(), "--out", "generated", "--quiet"});
   INFO(r.err);
   REQUIRE(r.status == 0);
   CHECK(slurp(d / "generated/junctions.csv") == slurp(src / "examples/topography/generated/junctions.csv"));

@@ -62,12 +62,12 @@ fs::path hostile_case(const std::string& tag) {
   fs::copy_file(kExp / "measured.csv", w / "measured.csv");
   for (std::size_t i = 0; i < kHostile.size(); ++i) {
     write_text(w / (numbered("e", i, ".yaml")),
-          "# hostile name on line 2\nname: " + asperity::yaml_quoted(kHostile[i]) +
-              "\nmass: 0.1\nk_L: 9200\nv: 1.0e-4\nE: 1.6e6\nnu: 0.5\nsigma_exp: 0.23e6\n"
-              "junctions: junctions.csv\nmeasured: measured.csv\n");
+               "# hostile name on line 2\nname: " + asperity::yaml_quoted(kHostile[i]) +
+                   "\nmass: 0.1\nk_L: 9200\nv: 1.0e-4\nE: 1.6e6\nnu: 0.5\nsigma_exp: 0.23e6\n"
+                   "junctions: junctions.csv\nmeasured: measured.csv\n");
     write_text(w / (numbered("s", i, ".yaml")),
-          numbered("experiment: e", i, ".yaml\n") +
-              "solver: {method: event, tolerance: 1e-8}\nstop: {time: 0.3}\noutput: {series: [t, Q, A]}\n");
+               numbered("experiment: e", i, ".yaml\n") +
+                   "solver: {method: event, tolerance: 1e-8}\nstop: {time: 0.3}\noutput: {series: [t, Q, A]}\n");
   }
   return w;
 }
@@ -106,7 +106,10 @@ TEST_CASE("gnuplot_quote: gnuplot reads every byte back as written, control char
     if (c != 0x7f) all += static_cast<char>(c);
   std::vector<std::string> texts = kHostile;
   texts.push_back(all);
-  texts.push_back("a\nb\tc\rd\x01" "e\x7f" "f\\");
+  texts.push_back(
+      "a\nb\tc\rd\x01"
+      "e\x7f"
+      "f\\");
   std::ostringstream gp;
   gp << "set print 'got.txt'\n";
   for (const auto& t : texts) gp << "s = " << asperity::gnuplot_quote(t) << "\nprint s\n";
@@ -158,8 +161,9 @@ TEST_CASE("hostile names and paths through run --plot, reproduce, fit, sweep and
   {
     std::string fit = "name: hostile\nobjective: quadratic_alpha\nseparate: true\nexperiments: [";
     for (std::size_t i = 0; i < n; ++i) fit += (i ? ", s" : "s") + std::to_string(i) + ".yaml";
-    fit += "]\nparameters:\n  model.alpha_b: {lo: 0.1e-15, hi: 5.0e-15, start: 0.725e-15, scale: log}\n"
-           "optimizer: {algorithm: LN_BOBYQA, max_evaluations: 3, certify: false}\n";
+    fit +=
+        "]\nparameters:\n  model.alpha_b: {lo: 0.1e-15, hi: 5.0e-15, start: 0.725e-15, scale: log}\n"
+        "optimizer: {algorithm: LN_BOBYQA, max_evaluations: 3, certify: false}\n";
     write_text(w / "fit.yaml", fit);
     const std::string out = "fit \"'$(touch PWNED)";
     const auto r = run_argv(w, {"fit", "fit.yaml", "--out", out, "--no-profile", "--no-error-bars", "--quiet"});
@@ -226,15 +230,15 @@ TEST_CASE("names with control characters are refused at load with file:line: key
           "[cli][hostile]") {
   const fs::path w = hostile_case("ctl");
   write_text(w / "e_nl.yaml",
-        "# a newline in the name\nname: \"a\\nsystem(\\\"touch PWNED\\\")\"\nmass: 0.1\nk_L: 9200\nv: 1.0e-4\n"
-        "E: 1.6e6\nnu: 0.5\nsigma_exp: 0.23e6\njunctions: junctions.csv\nmeasured: measured.csv\n");
+             "# a newline in the name\nname: \"a\\nsystem(\\\"touch PWNED\\\")\"\nmass: 0.1\nk_L: 9200\nv: 1.0e-4\n"
+             "E: 1.6e6\nnu: 0.5\nsigma_exp: 0.23e6\njunctions: junctions.csv\nmeasured: measured.csv\n");
   write_text(w / "s_nl.yaml", "experiment: e_nl.yaml\nstop: {time: 0.3}\n");
   write_text(w / "fit_nl.yaml",
-        "objective: quadratic_alpha\nexperiments: [s_nl.yaml]\n"
-        "parameters: {model.alpha_b: {lo: 1e-16, hi: 5e-15, start: 1e-15}}\n");
+             "objective: quadratic_alpha\nexperiments: [s_nl.yaml]\n"
+             "parameters: {model.alpha_b: {lo: 1e-16, hi: 5e-15, start: 1e-15}}\n");
   write_text(w / "camp_tab.yaml", "name: \"c\\td\"\nscenes: [s0.yaml]\naxes: {model.eta: [0, 100]}\n");
   write_text(w / "camp_grid.yaml",
-        "name: cg\nscenes: [s0.yaml]\ngrids:\n  - name: \"g\\rh\"\n    axes: {model.eta: [0, 100]}\n");
+             "name: cg\nscenes: [s0.yaml]\ngrids:\n  - name: \"g\\rh\"\n    axes: {model.eta: [0, 100]}\n");
   write_text(w / "camp_exp.yaml", "name: ce\nscenes: [s_nl.yaml]\naxes: {model.eta: [0, 100]}\n");
   const auto before = snapshot(w);
 
@@ -244,7 +248,8 @@ TEST_CASE("names with control characters are refused at load with file:line: key
       {{"reproduce", "s_nl.yaml", "--out", "o2", "--no-claims"}, exp_prefix},
       {{"fit", "fit_nl.yaml", "--out", "o3"}, exp_prefix},
       {{"sweep", "camp_exp.yaml", "--out", "o4"}, exp_prefix},
-      {{"sweep", "camp_tab.yaml"}, "camp_tab.yaml:1: name: must be a plain folder name (no '/', no control characters)"},
+      {{"sweep", "camp_tab.yaml"},
+       "camp_tab.yaml:1: name: must be a plain folder name (no '/', no control characters)"},
       {{"sweep", "camp_grid.yaml"}, "camp_grid.yaml:4: grids[0].name: must not hold control characters"},
   };
   for (const auto& [args, prefix] : cases) {

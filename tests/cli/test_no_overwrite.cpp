@@ -8,8 +8,8 @@
 #include <sys/stat.h>
 
 #include <algorithm>
-#include <chrono>
 #include <catch2/catch.hpp>
+#include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -18,8 +18,8 @@
 #include <vector>
 
 #include "cli_spawn.hpp"
-#include "synthetic_support.hpp"
 #include "report/gnuplot.hpp"
+#include "synthetic_support.hpp"
 
 namespace fs = std::filesystem;
 using asperity::testing::CliResult;
@@ -51,13 +51,15 @@ fs::path make_case(const std::string& tag) {
   write_text(w / "e1.yaml", experiment_yaml("x y", 0.1));
   write_text(w / "e2.yaml", experiment_yaml("x_y", 0.12));
   for (const char* k : {"1", "2"})
-    write_text(w / (std::string("s") + k + ".yaml"),
-          std::string("experiment: e") + k + ".yaml\nsolver: {method: event, tolerance: 1e-8}\nstop: {time: 0.3}\n");
+    write_text(
+        w / (std::string("s") + k + ".yaml"),
+        std::string("experiment: e") + k + ".yaml\nsolver: {method: event, tolerance: 1e-8}\nstop: {time: 0.3}\n");
   write_text(w / "fit.yaml",
-        "name: xy\nobjective: quadratic_alpha\nseparate: true\nexperiments: [s1.yaml, s2.yaml]\n"
-        "parameters:\n  model.alpha_b: {lo: 0.1e-15, hi: 5.0e-15, start: 0.725e-15, scale: log}\n"
-        "optimizer: {algorithm: LN_BOBYQA, max_evaluations: 3, certify: false}\n");
-  write_text(w / "camp.yaml", "name: camp\nscenes: [s1.yaml]\naxes:\n  model.eta: [0, 100]\n  model.epsilon: [0.5, 0.9]\n");
+             "name: xy\nobjective: quadratic_alpha\nseparate: true\nexperiments: [s1.yaml, s2.yaml]\n"
+             "parameters:\n  model.alpha_b: {lo: 0.1e-15, hi: 5.0e-15, start: 0.725e-15, scale: log}\n"
+             "optimizer: {algorithm: LN_BOBYQA, max_evaluations: 3, certify: false}\n");
+  write_text(w / "camp.yaml",
+             "name: camp\nscenes: [s1.yaml]\naxes:\n  model.eta: [0, 100]\n  model.epsilon: [0.5, 0.9]\n");
   for (const char* f : {"thesis.tex", "table.csv", "points.csv", "summary.yaml", "scene.yaml", "REPORT.md"})
     write_text(w / "user" / f, std::string("the user's own ") + f + "\n");
   write_text(w / "user" / "fit.yaml", "# the user's fit file\nname: mine\n");
@@ -113,7 +115,8 @@ TEST_CASE("no command writes into a folder it did not create, and each replaces 
   fs::remove_all(w);
 }
 
-TEST_CASE("a rerun of run or fit keeps the user's files; a folder that only looks like theirs is refused", "[cli][overwrite]") {
+TEST_CASE("a rerun of run or fit keeps the user's files; a folder that only looks like theirs is refused",
+          "[cli][overwrite]") {
   const fs::path w = make_case("rerun");
   const std::vector<std::string> fit = {"fit", "fit.yaml", "--out", "f", "--quiet", "--no-profile", "--no-error-bars"};
   REQUIRE(run_argv(w, {"run", "s1.yaml", "--out", "r", "--quiet"}).status == 0);
@@ -133,7 +136,8 @@ TEST_CASE("a rerun of run or fit keeps the user's files; a folder that only look
   CHECK(fs::exists(w / "f" / "journal.csv"));  // the journal stays where it was
   // An output the user edited is not replaced: refused, naming it, nothing changed.
   write_text(w / "r" / "scene.yaml", slurp(w / "r" / "scene.yaml") + "# my edit\n");
-  check_refused(w, {"run", "s1.yaml", "--out", "r", "--quiet"}, (w / "r" / "scene.yaml").string() + ": --out: refusing to replace it");
+  check_refused(w, {"run", "s1.yaml", "--out", "r", "--quiet"},
+                (w / "r" / "scene.yaml").string() + ": --out: refusing to replace it");
   // A project folder holding a copied fit.yaml, or a copied marker without a file list: refused.
   fs::create_directories(w / "project");
   fs::copy_file(w / "f" / "fit.yaml", w / "project" / "fit.yaml");
@@ -175,7 +179,8 @@ TEST_CASE("merge --out and sweep --out only into a new or empty folder or a stor
   fs::remove_all(w);
 }
 
-TEST_CASE("plot --out writes only figure files (.png, .svg, .pdf) and replaces only those it drew", "[cli][overwrite][campaign]") {
+TEST_CASE("plot --out writes only figure files (.png, .svg, .pdf) and replaces only those it drew",
+          "[cli][overwrite][campaign]") {
   const fs::path w = make_case("plot");
   REQUIRE(run_argv(w, {"sweep", "camp.yaml", "--quiet", "-j", "1"}).status == 0);
   check_refused(w, plot_args("user/thesis.tex"), "user/thesis.tex: --out: must name a .png, .svg or .pdf file");
@@ -189,7 +194,8 @@ TEST_CASE("plot --out writes only figure files (.png, .svg, .pdf) and replaces o
   asperity::run_gnuplot(w / "user", "set terminal pngcairo size 200,100\nset output 'photo.png'\nplot x\n");
   REQUIRE(fs::file_size(w / "user" / "photo.png") > 100);
   CHECK_FALSE(asperity::png_is_ours(w / "user" / "photo.png"));
-  check_refused(w, plot_args("user/photo.png"), "user/photo.png: --out: refusing to replace a file asperity did not write");
+  check_refused(w, plot_args("user/photo.png"),
+                "user/photo.png: --out: refusing to replace a file asperity did not write");
   // Inside the store (asperity's folder) an untagged PNG is a heat map from before the tag.
   fs::copy_file(w / "user" / "photo.png", w / "results" / "camp" / "legacy.png");
   CHECK(run_argv(w, plot_args("results/camp/legacy.png")).status == 0);
@@ -241,8 +247,7 @@ TEST_CASE("experiments named \"x y\" and \"x_y\" get separate fit outputs", "[cl
     // Its own A(Q) files, named after its own experiment.
     std::size_t model_files = 0;
     for (const auto& e : fs::directory_iterator(w / "f" / dir))
-      model_files += e.path().filename().string().size() > 10 &&
-                     e.path().filename().string().ends_with("_model.csv");
+      model_files += e.path().filename().string().size() > 10 && e.path().filename().string().ends_with("_model.csv");
     CHECK(model_files == 1);
   }
   CHECK(folders.size() == 2);
@@ -256,7 +261,8 @@ TEST_CASE("generate and bench write only into folders they created", "[cli][over
   const std::string recipe = (src / "bench" / "recipe.yaml").string();
   write_text(w / "notes" / "README.md", "# my notes\n");
   const std::string refused = "refusing to write there: it is not empty and was not written by asperity ";
-  check_refused(w, {"generate", "--recipe", recipe, "--out", "notes", "--quiet"}, "notes: --out: " + refused + "generate");
+  check_refused(w, {"generate", "--recipe", recipe, "--out", "notes", "--quiet"},
+                "notes: --out: " + refused + "generate");
   check_refused(w, {"generate", "--recipe", recipe, "--out", "g", "--scenes", "user", "--quiet"},
                 "user: --scenes: " + refused + "generate");
   check_refused(w, {"bench", "savings", "--out", "user", "--quick"}, "user: --out: " + refused + "bench");
@@ -271,9 +277,12 @@ TEST_CASE("generate and bench write only into folders they created", "[cli][over
   fs::create_directories(old);
   fs::copy(src / "bench" / "data", old / "data", fs::copy_options::recursive);
   fs::copy(src / "bench" / "scenes", old / "scenes", fs::copy_options::recursive);
-  CHECK(run_argv(w, {"generate", "--recipe", recipe, "--out", "old/data", "--scenes", "old/scenes", "--quiet"}).status == 0);
+  CHECK(
+      run_argv(w, {"generate", "--recipe", recipe, "--out", "old/data", "--scenes", "old/scenes", "--quiet"}).status ==
+      0);
   fs::remove(old / "data" / ".asperity");
-  check_refused(w, {"generate", "--recipe", recipe, "--out", "old/data", "--quiet"}, "old/data: --out: " + refused + "generate");
+  check_refused(w, {"generate", "--recipe", recipe, "--out", "old/data", "--quiet"},
+                "old/data: --out: " + refused + "generate");
   fs::remove_all(w);
 }
 
@@ -307,7 +316,8 @@ TEST_CASE("a rerun of generate refuses to replace an output the user edited, and
   fs::remove_all(w);
 }
 
-TEST_CASE("links and FIFOs planted inside a store or fit folder are refused; nothing outside changes", "[cli][overwrite]") {
+TEST_CASE("links and FIFOs planted inside a store or fit folder are refused; nothing outside changes",
+          "[cli][overwrite]") {
   const fs::path w = make_case("links");
   const std::vector<std::string> sweep = {"sweep", "camp.yaml", "--out", "s", "--quiet", "-j1"};
   const std::vector<std::string> fit = {"fit", "fit.yaml", "--out", "f", "--quiet", "--no-profile", "--no-error-bars"};
@@ -427,7 +437,8 @@ TEST_CASE("outputs named with 250 or 255 bytes (legal names) are written by run,
     INFO(run.err);
     CHECK(run.status == 0);
     CHECK(fs::exists(w / run_dir / "summary.yaml"));
-    const CliResult fit = run_argv(w, {"fit", "fit.yaml", "--out", fit_dir, "--quiet", "--no-profile", "--no-error-bars"});
+    const CliResult fit =
+        run_argv(w, {"fit", "fit.yaml", "--out", fit_dir, "--quiet", "--no-profile", "--no-error-bars"});
     INFO(fit.err);
     CHECK(fit.status == 0);
     CHECK(fs::exists(w / fit_dir / "fit.yaml"));
@@ -438,7 +449,8 @@ TEST_CASE("outputs named with 250 or 255 bytes (legal names) are written by run,
     CHECK_THAT(exp.out, Catch::Contains("exported 4 points"));
     CHECK(fs::file_size(w / (db + ".db")) > 0);
     // Nothing left behind but the outputs.
-    for (const auto& e : fs::directory_iterator(w)) CHECK(e.path().filename().string().find(".tmp-") == std::string::npos);
+    for (const auto& e : fs::directory_iterator(w))
+      CHECK(e.path().filename().string().find(".tmp-") == std::string::npos);
   }
   fs::remove_all(w);
 }
@@ -448,12 +460,14 @@ TEST_CASE("study and regress write only what they created", "[cli][overwrite]") 
   const fs::path src(ASPERITY_SOURCE_DIR);
   const std::string refused = "refusing to write there: it is not empty and was not written by asperity ";
   check_refused(w, {"study", "recovery", "--out", "user", "--quiet"}, "user: --out: " + refused + "study recovery");
-  check_refused(w, {"study", "interactions", "--out", "user", "--quiet"}, "user: --out: " + refused + "study interactions");
+  check_refused(w, {"study", "interactions", "--out", "user", "--quiet"},
+                "user: --out: " + refused + "study interactions");
   // regress --update writes its golden file only over a golden file: a user's file named as the
   // golden is read first, refused at its line, and left as it was.
   const auto before = snapshot(w);
-  const CliResult r = run_argv(w, {"regress", "--update", "--reason", "test", "--suite",
-                                   (src / "scenes" / "regression" / "suite.yaml").string(), "--golden", "user/table.csv"});
+  const CliResult r =
+      run_argv(w, {"regress", "--update", "--reason", "test", "--suite",
+                   (src / "scenes" / "regression" / "suite.yaml").string(), "--golden", "user/table.csv"});
   INFO(r.err);
   CHECK(r.status == 2);
   CHECK(r.err.rfind("user/table.csv", 0) == 0);

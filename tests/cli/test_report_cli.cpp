@@ -23,8 +23,8 @@ std::string q(const fs::path& p) { return asperity::testing::shell_quoted(p); }
 // Runs the asperity binary with `args`; returns its exit status, stderr in `err`.
 int run_cli(const std::string& args, const fs::path& work, std::string* err = nullptr) {
   const fs::path errf = work / "stderr.txt";
-  const std::string cmd = "cd " + q(work) + " && " + q(ASPERITY_BINARY) + " " + args + " >" +
-                          q(work / "stdout.txt") + " 2>" + q(errf);
+  const std::string cmd =
+      "cd " + q(work) + " && " + q(ASPERITY_BINARY) + " " + args + " >" + q(work / "stdout.txt") + " 2>" + q(errf);
   const int rc = std::system(cmd.c_str());
   if (err) *err = slurp(errf);
   return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
@@ -50,11 +50,10 @@ fs::path make_case() {
   std::ofstream(w / "exp" / "experiment.yaml")
       << "name: cli-test\nmass: 0.1\nk_L: 9200\nv: 1.0e-4\nE: 1.6e6\nnu: 0.5\nsigma_exp: 0.23e6\n"
          "junctions: junctions.csv\n";
-  std::ofstream(w / "scenes" / "tiny.yaml")
-      << "experiment: ../exp/experiment.yaml\n"
-         "solver: {method: reference, Ct: 200}\n"
-         "stop: {time: 0.02}\n"
-         "output: {every: 1.0e-3}\n";
+  std::ofstream(w / "scenes" / "tiny.yaml") << "experiment: ../exp/experiment.yaml\n"
+                                               "solver: {method: reference, Ct: 200}\n"
+                                               "stop: {time: 0.02}\n"
+                                               "output: {every: 1.0e-3}\n";
   return w;
 }
 

@@ -72,8 +72,8 @@ TEST_CASE("a hostile name prints literally in every format and runs nothing", "[
   const fs::path w = temp_path("figures_hostile");
   fs::remove_all(w);
   fs::create_directories(w);
-  const std::string script = "set title " + gnuplot_text(kHostile) + "\nset xlabel " + gnuplot_quote(axis_markup("Q_s")) +
-                             "\nplot x title " + gnuplot_text(kHostile) + "\n";
+  const std::string script = "set title " + gnuplot_text(kHostile) + "\nset xlabel " +
+                             gnuplot_quote(axis_markup("Q_s")) + "\nplot x title " + gnuplot_text(kHostile) + "\n";
   std::string error;
   REQUIRE(render_figures(w / "hostile.png", script, 600, 400, parse_figure_formats("png,svg,pdf"), &error));
   CHECK(error.empty());
@@ -137,7 +137,8 @@ TEST_CASE("figure formats: png, svg and pdf files of the right kind, sized for a
   CHECK(parse_figure_formats("png") == FigureFormats{});
   CHECK(parse_figure_formats("pdf, svg") == FigureFormats{false, true, true});
   CHECK(parse_figure_formats("png,svg,pdf,png") == FigureFormats{true, true, true});
-  CHECK_THROWS_WITH(parse_figure_formats("jpeg"), Contains("unknown figure format 'jpeg'") && Contains("png, svg or pdf"));
+  CHECK_THROWS_WITH(parse_figure_formats("jpeg"),
+                    Contains("unknown figure format 'jpeg'") && Contains("png, svg or pdf"));
   CHECK_THROWS_WITH(parse_figure_formats(""), Contains("unknown figure format ''"));
   CHECK_THROWS(parse_figure_formats("png,"));
   CHECK(figure_files("d/f.png", {true, true, true}) == std::vector<fs::path>{"d/f.png", "d/f.svg", "d/f.pdf"});
@@ -170,7 +171,8 @@ TEST_CASE("figure formats: png, svg and pdf files of the right kind, sized for a
   fs::remove_all(w);
 }
 
-TEST_CASE("run --plot --figures chooses the formats of the plot, a bad list is a one-line usage error", "[cli][figures]") {
+TEST_CASE("run --plot --figures chooses the formats of the plot, a bad list is a one-line usage error",
+          "[cli][figures]") {
   if (!gnuplot_available()) {
     WARN("gnuplot not installed: nothing to draw");
     return;
@@ -179,8 +181,8 @@ TEST_CASE("run --plot --figures chooses the formats of the plot, a bad list is a
   fs::remove_all(w);
   fs::create_directories(w);
   const fs::path scene = fs::path(ASPERITY_SOURCE_DIR) / "tests" / "data" / "campaign" / "tiny_scene.yaml";
-  const CliResult r = run_argv(w, {"run", scene.string(), "--out", "r", "--set", "stop.time=0.2", "--plot", "--figures",
-                                   "svg,pdf", "-q"});
+  const CliResult r = run_argv(
+      w, {"run", scene.string(), "--out", "r", "--set", "stop.time=0.2", "--plot", "--figures", "svg,pdf", "-q"});
   CHECK(r.status == 0);
   CHECK(fs::file_size(w / "r" / "plot.svg") > 0);
   CHECK(bytes(w / "r" / "plot.pdf").compare(0, 5, "%PDF-") == 0);

@@ -1,7 +1,7 @@
 // libFuzzer: campaign files (load_campaign: YAML, grids and axes, base scenes, every axis value
 // checked against the first base scene), then the scenes of the first and last points.
-#include "fuzz_common.hpp"
 #include "campaign/campaign_load.hpp"
+#include "fuzz_common.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const auto path = asperity::fuzz::write_input("fuzzed_campaign.yaml", data, size);

@@ -21,34 +21,35 @@
 namespace asperity::fuzz {
 
 inline const std::filesystem::path& work_dir() {
-  static const std::filesystem::path dir = [] {
-    namespace fs = std::filesystem;
-    const auto root = fs::temp_directory_path() / ("asperity-fuzz-" + std::to_string(::getpid()));
-    const auto d = root / "a" / "b";
-    fs::create_directories(d);
+  static const std::filesystem::path dir =
+      [] {
+        namespace fs = std::filesystem;
+        const auto root = fs::temp_directory_path() / ("asperity-fuzz-" + std::to_string(::getpid()));
+        const auto d = root / "a" / "b";
+        fs::create_directories(d);
 #ifdef ASPERITY_SOURCE_DIR
-    const fs::path src(ASPERITY_SOURCE_DIR);
-    for (const auto& at : {root, root / "a"})
-      for (const char* sub : {"scenes", "data"}) {
-        std::error_code ec;
-        fs::create_directory_symlink(src / sub, at / sub, ec);
-      }
+        const fs::path src(ASPERITY_SOURCE_DIR);
+        for (const auto& at : {root, root / "a"})
+          for (const char* sub : {"scenes", "data"}) {
+            std::error_code ec;
+            fs::create_directory_symlink(src / sub, at / sub, ec);
+          }
 #endif
-    std::ofstream(d / "junctions.csv") << "area_m2\n1e-8\n2e-8\n3e-8\n";
-    std::ofstream(d / "measured.csv") << "Q_N,A_m2\n0,6e-8\n0.01,5.9e-8\n0.02,5.7e-8\n";
-    std::ofstream(d / "experiment.yaml")
-        << "name: f\nmass: 0.1\nk_L: 9200\nv: 1e-4\nE: 1.6e6\nnu: 0.5\nsigma_exp: 230000\n"
-           "junctions: junctions.csv\nmeasured: measured.csv\n";
-    std::ofstream(d / "base_scene.yaml") << "experiment: experiment.yaml\nmodel: {eta: 100, alpha_b: 7.25e-16}\n";
-    return d;
-  }();
+        std::ofstream(d / "junctions.csv") << "area_m2\n1e-8\n2e-8\n3e-8\n";
+        std::ofstream(d / "measured.csv") << "Q_N,A_m2\n0,6e-8\n0.01,5.9e-8\n0.02,5.7e-8\n";
+        std::ofstream(d / "experiment.yaml")
+            << "name: f\nmass: 0.1\nk_L: 9200\nv: 1e-4\nE: 1.6e6\nnu: 0.5\nsigma_exp: 230000\n"
+               "junctions: junctions.csv\nmeasured: measured.csv\n";
+        std::ofstream(d / "base_scene.yaml") << "experiment: experiment.yaml\nmodel: {eta: 100, alpha_b: 7.25e-16}\n";
+        return d;
+      }();
   return dir;
 }
 
 inline std::filesystem::path write_input(const char* name, const std::uint8_t* data, std::size_t size) {
   const auto p = work_dir() / name;
-  std::ofstream(p, std::ios::binary | std::ios::trunc).write(reinterpret_cast<const char*>(data),
-                                                             static_cast<std::streamsize>(size));
+  std::ofstream(p, std::ios::binary | std::ios::trunc)
+      .write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
   return p;
 }
 

@@ -52,8 +52,8 @@ class AdaptiveTeam {
  private:
   int max_;
   double min_work_;
-  bool wide_now_ = true;  // the current choice: the whole team
-  bool probing_ = false;  // this region tries the other choice
+  bool wide_now_ = true;       // the current choice: the whole team
+  bool probing_ = false;       // this region tries the other choice
   double cost_[2] = {-1, -1};  // s per unit of work, [0] one thread, [1] the team; < 0: unknown
   double last_s_[2] = {0, 0};  // the last measured region's duration, by choice
   double since_probe_s_ = 0;   // time spent in measured regions since the last probe

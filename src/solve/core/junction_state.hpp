@@ -10,12 +10,12 @@
 namespace asperity {
 
 struct JunctionState {
-  std::vector<double> A0;      // m², initial area
-  std::vector<double> anchor;  // m, x_i: the pinned junction's force is zero at X = x_i
-  std::vector<double> force;   // N, f_i
-  std::vector<double> area;    // m², A_i
-  std::vector<double> k;       // N/m, k_i(A_i)
-  std::vector<double> f_s;     // N, static threshold σ A_i
+  std::vector<double> A0;            // m², initial area
+  std::vector<double> anchor;        // m, x_i: the pinned junction's force is zero at X = x_i
+  std::vector<double> force;         // N, f_i
+  std::vector<double> area;          // m², A_i
+  std::vector<double> k;             // N/m, k_i(A_i)
+  std::vector<double> f_s;           // N, static threshold σ A_i
   std::vector<std::uint8_t> pinned;  // θ_i
   std::vector<std::uint8_t> intact;  // h_i: never slipped
 

@@ -13,14 +13,14 @@
 namespace asperity {
 
 struct Problem {
-  std::vector<double> A0;      // m², initial junction areas
-  ContactLaw law;              // σ = σ_exp/ε (docs/model.md §2)
+  std::vector<double> A0;  // m², initial junction areas
+  ContactLaw law;          // σ = σ_exp/ε (docs/model.md §2)
   AreaLaw area_law = AreaLaw::until_first_slip;
-  Slider slider;               // M, k_L, v, η
-  double c_min = 0;            // repinning when |Ẋ| < c_min v
-  double t_stop = 0;           // s, stop.time
-  SolverSettings solver;       // method, C_t, tolerance
-  RunLimits limits;            // checked every step or event
+  Slider slider;          // M, k_L, v, η
+  double c_min = 0;       // repinning when |Ẋ| < c_min v
+  double t_stop = 0;      // s, stop.time
+  SolverSettings solver;  // method, C_t, tolerance
+  RunLimits limits;       // checked every step or event
   // Derived once: Σ A0 [m²], Σ k_i(t = 0) [N/m], T0 = 2π / sqrt(K0/M) [s], dt = T0/C_t [s].
   double A0_sum = 0, K0 = 0, T0 = 0, dt = 0;
   // Elastic interactions (docs/model.md §8), when the scene asks for them: junction centres [m] and

@@ -44,8 +44,7 @@ std::pair<double, double> smallest_slip_distance(const Scene& scene) {
 
 }  // namespace
 
-std::string limit_message(const Scene& scene, const RunLimits& limits, LimitHit hit, double t_end,
-                          std::int64_t slips) {
+std::string limit_message(const Scene& scene, const RunLimits& limits, LimitHit hit, double t_end, std::int64_t slips) {
   const std::string at = " at simulated t = " + g(t_end) + " s of " + g(scene.stop.time) + " s";
   if (hit == LimitHit::wall_time)
     return "stop.wall_time: run stopped after " + g(limits.wall_time_s) + " s of wall time" + at +

@@ -44,9 +44,7 @@ inline std::chrono::steady_clock::time_point wall_deadline(const RunLimits& limi
 class LimitGuard {
  public:
   explicit LimitGuard(const RunLimits& limits)
-      : max_slips_(limits.max_slips),
-        deadline_(wall_deadline(limits)),
-        last_read_(std::chrono::steady_clock::now()) {}
+      : max_slips_(limits.max_slips), deadline_(wall_deadline(limits)), last_read_(std::chrono::steady_clock::now()) {}
 
   std::chrono::steady_clock::time_point deadline() const { return deadline_; }
 
@@ -80,7 +78,6 @@ class WallTimeReached : public std::runtime_error {
 // scene key, e.g. "stop.wall_time: run stopped after 3600 s of wall time at simulated t =
 // 0.0123 s of 10 s (raise stop.wall_time...)". For max_slips it names the smallest slip
 // distance of the population, the usual cause.
-std::string limit_message(const Scene& scene, const RunLimits& limits, LimitHit hit, double t_end,
-                          std::int64_t slips);
+std::string limit_message(const Scene& scene, const RunLimits& limits, LimitHit hit, double t_end, std::int64_t slips);
 
 }  // namespace asperity

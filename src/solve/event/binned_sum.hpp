@@ -31,20 +31,20 @@ class BinnedUniversalSum {
  public:
   // w [N/m] (ℓ0 E), c [1/m] (ψ per metre of displacement), A0 [m²], one entry per junction,
   // all initially present. `law` must outlive this object.
-  BinnedUniversalSum(const UniversalForceLaw& law, const std::vector<double>& w,
-                     const std::vector<double>& c, const std::vector<double>& A0, double rel_width);
+  BinnedUniversalSum(const UniversalForceLaw& law, const std::vector<double>& w, const std::vector<double>& c,
+                     const std::vector<double>& A0, double rel_width);
 
-  void remove(std::size_t i);      // junction i (index into the constructor's arrays) leaves
-  double force(double X) const;    // N, Σ_j w_j X g(c_j X) over present junctions
-  double area(double X) const;     // m², Σ_j A0_j (1 − φ_j²)
+  void remove(std::size_t i);    // junction i (index into the constructor's arrays) leaves
+  double force(double X) const;  // N, Σ_j w_j X g(c_j X) over present junctions
+  double area(double X) const;   // m², Σ_j A0_j (1 − φ_j²)
   std::size_t size() const { return present_; }
   std::size_t bins() const { return bins_.size(); }
 
  private:
   struct Bin {
-    double c_mid = 0;          // 1/m, expansion centre
-    double mw[4] = {};         // Σ w (c − c̄)ⁿ, n = 0..3
-    double ma[4] = {};         // Σ A0 (c − c̄)ⁿ
+    double c_mid = 0;                  // 1/m, expansion centre
+    double mw[4] = {};                 // Σ w (c − c̄)ⁿ, n = 0..3
+    double ma[4] = {};                 // Σ A0 (c − c̄)ⁿ
     std::uint32_t begin = 0, end = 0;  // members in the sorted arrays
     std::uint32_t count = 0;
   };

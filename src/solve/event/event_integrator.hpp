@@ -6,10 +6,10 @@
 // velocity crossing v (extrema of Q). Between events the state is smooth, so steps are long
 // during slow loading and short only where needed. Private to the event steppers' .cpp files
 // (keeps Boost.Odeint out of their headers).
-#include <boost/math/tools/roots.hpp>
-#include <boost/numeric/odeint.hpp>
 #include <algorithm>
 #include <array>
+#include <boost/math/tools/roots.hpp>
+#include <boost/numeric/odeint.hpp>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -53,7 +53,8 @@ struct EventIntegrator {
       : p(p),
         L(p.slider.v * p.T0),
         junctions(p, std::forward<Args>(junction_args)...),
-        stepper(boost::numeric::odeint::make_dense_output(p.solver.tolerance, p.solver.tolerance, boost::numeric::odeint::runge_kutta_dopri5<State>())) {}
+        stepper(boost::numeric::odeint::make_dense_output(p.solver.tolerance, p.solver.tolerance,
+                                                          boost::numeric::odeint::runge_kutta_dopri5<State>())) {}
 
   // Not const: a junction model may solve, and cache, as it is asked for F(X) and A(X).
   void rhs(const State& y, State& dy, double tt) {
@@ -63,24 +64,34 @@ struct EventIntegrator {
   }
   Sample sample_at(double ts, const State& st) {
     const double X = st[0] * L;
-    return Sample{ts, X, st[1] * p.slider.v, p.slider.loading_force(ts, X), junctions.area(X),
-                  junctions.n_slipping(), junctions.n_intact()};
+    return Sample{ts,
+                  X,
+                  st[1] * p.slider.v,
+                  p.slider.loading_force(ts, X),
+                  junctions.area(X),
+                  junctions.n_slipping(),
+                  junctions.n_intact()};
   }
   // Event function k on a state (scaled units).
   double value(Kind k, const State& st) const {
     const double v = p.slider.v;
     switch (k) {
-      case event_detail::kThreshold: return st[0] * L - junctions.next_threshold();  // fires upward
-      case event_detail::kThresholdBelow: return st[0] * L - junctions.next_threshold_below();  // downward
-      case event_detail::kSlowUp: return st[1] * v - p.repin_speed();                 // fires downward
-      case event_detail::kSlowDown: return st[1] * v + p.repin_speed();               // fires upward
-      case event_detail::kExtremumUp:                                                 // upward: Q maximum
-      case event_detail::kExtremumDown: return st[1] * v - v;                         // downward: Q minimum
+      case event_detail::kThreshold:
+        return st[0] * L - junctions.next_threshold();  // fires upward
+      case event_detail::kThresholdBelow:
+        return st[0] * L - junctions.next_threshold_below();  // downward
+      case event_detail::kSlowUp:
+        return st[1] * v - p.repin_speed();  // fires downward
+      case event_detail::kSlowDown:
+        return st[1] * v + p.repin_speed();  // fires upward
+      case event_detail::kExtremumUp:        // upward: Q maximum
+      case event_detail::kExtremumDown:
+        return st[1] * v - v;  // downward: Q minimum
     }
     return 0.0;
   }
   void advance(RunObserver& out);  // one accepted step, and every event inside it
-  void start(RunObserver& out) {    // the samples due at t = 0
+  void start(RunObserver& out) {   // the samples due at t = 0
     stepper.initialize(y, t, p.T0 / 100.0);
     while (out.next_sample_time() <= 0.0) out.sample(sample_at(0.0, y));
   }
@@ -114,7 +125,10 @@ void EventIntegrator<Junctions>::advance(RunObserver& out) {
     stepper.calc_state(tt, ys);
     return value(k, ys);
   };
-  struct Found { double t; Kind kind; };
+  struct Found {
+    double t;
+    Kind kind;
+  };
   const auto [t0, t1] = stepper.do_step(system);
   ++steps;
   double t_lo = t0;
@@ -124,7 +138,10 @@ void EventIntegrator<Junctions>::advance(RunObserver& out) {
     int n_active = 2;
     if (junctions.has_threshold()) active[n_active++] = kThreshold;
     if (junctions.has_threshold_below()) active[n_active++] = kThresholdBelow;
-    if (junctions.n_slipping() > 0) { active[n_active++] = kSlowUp; active[n_active++] = kSlowDown; }
+    if (junctions.n_slipping() > 0) {
+      active[n_active++] = kSlowUp;
+      active[n_active++] = kSlowDown;
+    }
     // Dense-output states at the probes, shared by every event function.
     double probe_t[kProbe + 1];
     State probe_y[kProbe + 1];
@@ -149,12 +166,19 @@ void EventIntegrator<Junctions>::advance(RunObserver& out) {
         if (!fires(k, ga, gb) && (x_max || x_min)) {
           boost::math::tools::eps_tolerance<double> etol(50);
           std::uintmax_t it = 100;
-          auto velocity = [&](double tt) { stepper.calc_state(tt, ys); return ys[1]; };
+          auto velocity = [&](double tt) {
+            stepper.calc_state(tt, ys);
+            return ys[1];
+          };
           const auto r = boost::math::tools::toms748_solve(velocity, probe_t[j - 1], probe_t[j], probe_y[j - 1][1],
                                                            probe_y[j][1], etol, it);
           for (const double t_turn : {r.first, r.second}) {  // either side of the turning point
             const double g_turn = eval(k, t_turn);
-            if (fires(k, ga, g_turn)) { gb = g_turn; t_b = t_turn; break; }
+            if (fires(k, ga, g_turn)) {
+              gb = g_turn;
+              t_b = t_turn;
+              break;
+            }
           }
         }
         if (fires(k, ga, gb)) {
@@ -189,13 +213,17 @@ void EventIntegrator<Junctions>::advance(RunObserver& out) {
     if (first->kind == kExtremumUp || first->kind == kExtremumDown) {
       const double X = y[0] * L;
       out.extremum({t, p.slider.loading_force(t, X), junctions.area(X), first->kind == kExtremumUp});
-      if (out.done()) { finished = true; break; }
+      if (out.done()) {
+        finished = true;
+        break;
+      }
       t_lo = t;
       continue;  // no discontinuity: keep the step
     }
     // A discontinuity of the force law: apply it and restart the integrator there.
     const double X = y[0] * L;
-    const std::int64_t new_slips = (first->kind == kThreshold || first->kind == kThresholdBelow) ? junctions.slip_crossed(X) : 0;
+    const std::int64_t new_slips =
+        (first->kind == kThreshold || first->kind == kThresholdBelow) ? junctions.slip_crossed(X) : 0;
     const bool stick = junctions.n_slipping() > 0 && std::abs(y[1] * v) < p.repin_speed();
     if (stick) junctions.repin_all(X);
     if (new_slips > 0 || stick) {
@@ -216,12 +244,12 @@ void EventIntegrator<Junctions>::advance(RunObserver& out) {
       throw SolverError(msg);
     }
     if (junctions.has_threshold_below() && junctions.next_threshold_below() >= X)
-      throw SolverError("event solver: a junction's slip position below X is at or above X = " + std::to_string(X) + " m");
+      throw SolverError("event solver: a junction's slip position below X is at or above X = " + std::to_string(X) +
+                        " m");
     stepper.initialize(y, t, stepper.current_time_step());
     break;
   }
   if (t >= t_stop) finished = true;
 }
-
 
 }  // namespace asperity

@@ -14,8 +14,13 @@ EventJunctions::EventJunctions(const Problem& problem)
       J_(problem.A0, problem.law) {
   const std::size_t N = J_.size();
   const bool always = area_law_ == AreaLaw::always;
-  w_.resize(N); c_.resize(N); d_s_.resize(N);
-  if (always) { f_sl_.resize(N); contact_sl_.resize(N); }
+  w_.resize(N);
+  c_.resize(N);
+  d_s_.resize(N);
+  if (always) {
+    f_sl_.resize(N);
+    contact_sl_.resize(N);
+  }
   nl_pos_.assign(N, npos);
   double psi_hi = 0;
   for (std::size_t i = 0; i < N; ++i) {
@@ -122,11 +127,18 @@ void EventJunctions::nl_remove(std::size_t i) {
   const std::size_t p = nl_pos_[i], last = nl_w_.size() - 1;
   if (p != last) {
     const std::uint32_t moved = nl_idx_[last];
-    nl_idx_[p] = moved; nl_w_[p] = nl_w_[last]; nl_c_[p] = nl_c_[last];
-    nl_x_[p] = nl_x_[last]; nl_A0_[p] = nl_A0_[last];
+    nl_idx_[p] = moved;
+    nl_w_[p] = nl_w_[last];
+    nl_c_[p] = nl_c_[last];
+    nl_x_[p] = nl_x_[last];
+    nl_A0_[p] = nl_A0_[last];
     nl_pos_[moved] = p;
   }
-  nl_idx_.pop_back(); nl_w_.pop_back(); nl_c_.pop_back(); nl_x_.pop_back(); nl_A0_.pop_back();
+  nl_idx_.pop_back();
+  nl_w_.pop_back();
+  nl_c_.pop_back();
+  nl_x_.pop_back();
+  nl_A0_.pop_back();
   nl_pos_[i] = npos;
 }
 
@@ -150,7 +162,10 @@ void EventJunctions::start_slip(std::uint32_t i) {
     S_p_ -= J_.k[i] * J_.anchor[i];
     ++updates_;
   }
-  if (J_.intact[i]) { J_.intact[i] = 0; --n_intact_; }
+  if (J_.intact[i]) {
+    J_.intact[i] = 0;
+    --n_intact_;
+  }
   J_.pinned[i] = 0;
   slipping_.push_back(i);
   // f_sl_ holds slipping_force() under always, computed once per junction.
@@ -166,10 +181,15 @@ void EventJunctions::maybe_resum() {
   double K = 0, S = 0, A = 0;
   for (std::size_t i = 0; i < J_.size(); ++i) {
     if (nl_pos_[i] != npos) continue;
-    if (J_.pinned[i]) { K += J_.k[i]; S += J_.k[i] * J_.anchor[i]; }
+    if (J_.pinned[i]) {
+      K += J_.k[i];
+      S += J_.k[i] * J_.anchor[i];
+    }
     A += J_.area[i];
   }
-  K_p_ = K; S_p_ = S; A_fixed_ = A;
+  K_p_ = K;
+  S_p_ = S;
+  A_fixed_ = A;
 }
 
 }  // namespace asperity

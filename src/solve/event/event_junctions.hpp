@@ -16,9 +16,9 @@
 #include <vector>
 
 #include "physics/universal_law.hpp"
-#include "solve/event/binned_sum.hpp"
 #include "solve/core/junction_state.hpp"
 #include "solve/core/problem.hpp"
+#include "solve/event/binned_sum.hpp"
 
 namespace asperity {
 
@@ -93,7 +93,7 @@ class EventJunctions {
   std::vector<std::uint32_t> nl_idx_;
   std::vector<double> nl_w_, nl_c_, nl_x_, nl_A0_;
   std::shared_ptr<const UniversalForceLaw> table_;  // process-wide (universal_force_law)
-  std::optional<BinnedUniversalSum> binned_;  // large N under until_first_slip
+  std::optional<BinnedUniversalSum> binned_;        // large N under until_first_slip
   using Entry = std::pair<double, std::uint32_t>;
   std::priority_queue<Entry, std::vector<Entry>, std::greater<>> heap_;
   std::vector<std::uint32_t> slipping_;

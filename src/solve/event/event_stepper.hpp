@@ -16,7 +16,7 @@ class EventStepper {
   explicit EventStepper(const Problem& problem);
   ~EventStepper();
 
-  void start(RunObserver& out);    // the samples due at t = 0
+  void start(RunObserver& out);  // the samples due at t = 0
   bool finished() const;
   std::int64_t slips() const;
   void advance(RunObserver& out);  // one accepted step, and every event inside it

@@ -12,9 +12,9 @@
 #include <memory>
 #include <vector>
 
-#include "solve/interacting/interaction_matrix.hpp"
 #include "solve/core/junction_state.hpp"
 #include "solve/core/problem.hpp"
+#include "solve/interacting/interaction_matrix.hpp"
 
 namespace asperity {
 

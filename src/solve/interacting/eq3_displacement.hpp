@@ -19,8 +19,8 @@ class Eq3Displacement {
   Eq3Displacement(const ContactLaw& law, const std::vector<double>& A0_m2);
 
   // u [m] and du/df [m/N] of junction i at force f [N].
-  void at(std::size_t i, double f, double& u, double& du);  // and keeps the warm start
-  double force_scale(std::size_t i) const { return s_[i]; }  // s [1/N]: φ = s f
+  void at(std::size_t i, double f, double& u, double& du);       // and keeps the warm start
+  double force_scale(std::size_t i) const { return s_[i]; }      // s [1/N]: φ = s f
   double slip_force(std::size_t i) const { return f_slip_[i]; }  // N: φ = φ_s
 
  private:

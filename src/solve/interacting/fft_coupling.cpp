@@ -80,16 +80,18 @@ struct FftCoupling::Fft {
 };
 
 FftCoupling::FftCoupling(const Problem& problem, FftCouplingSettings settings)
-    : FftCoupling(problem.x, problem.y,
-                  [&] {
-                    // (Checked before anything is built.)
-                    if (problem.interaction_cutoff > 0)
-                      throw std::invalid_argument("FftCoupling: a cut-off kernel is not translation invariant (the full kernel only)");
-                    std::vector<double> r(problem.size());
-                    for (std::size_t i = 0; i < r.size(); ++i) r[i] = disc_radius(problem.A0[i]);
-                    return r;
-                  }(),
-                  problem.law.E, problem.law.nu, problem.interaction_weighting, settings) {}
+    : FftCoupling(
+          problem.x, problem.y,
+          [&] {
+            // (Checked before anything is built.)
+            if (problem.interaction_cutoff > 0)
+              throw std::invalid_argument(
+                  "FftCoupling: a cut-off kernel is not translation invariant (the full kernel only)");
+            std::vector<double> r(problem.size());
+            for (std::size_t i = 0; i < r.size(); ++i) r[i] = disc_radius(problem.A0[i]);
+            return r;
+          }(),
+          problem.law.E, problem.law.nu, problem.interaction_weighting, settings) {}
 
 FftCoupling::~FftCoupling() = default;
 
@@ -151,7 +153,8 @@ FftCoupling::FftCoupling(const std::vector<double>& x, const std::vector<double>
   std::vector<double> kernel(M * M);
   for (std::size_t i = 0; i < M; ++i)
     for (std::size_t j = 0; j < M; ++j) {
-      const double di = i <= M / 2 ? double(i) : double(i) - double(M), dj = j <= M / 2 ? double(j) : double(j) - double(M);
+      const double di = i <= M / 2 ? double(i) : double(i) - double(M),
+                   dj = j <= M / 2 ? double(j) : double(j) - double(M);
       kernel[i * M + j] = (i == 0 && j == 0) ? 0.0 : cerruti_compliance(di * h_, dj * h_, E, nu);
     }
   fft_ = std::make_unique<Fft>(M);
@@ -205,7 +208,8 @@ FftCoupling::FftCoupling(const std::vector<double>& x, const std::vector<double>
 #pragma omp parallel for reduction(+ : pairs) schedule(dynamic, 64)
   for (std::size_t i = 0; i < n_; ++i) for_near(i, [&](std::size_t, double, double) { ++pairs; });
   if (pairs > kMaxNearPairs)
-    throw std::runtime_error("FftCoupling: " + std::to_string(pairs) + " exact pairs (the junctions are too clustered for the grid)");
+    throw std::runtime_error("FftCoupling: " + std::to_string(pairs) +
+                             " exact pairs (the junctions are too clustered for the grid)");
   std::vector<std::vector<std::pair<std::uint32_t, double>>> upper(n_);  // j > i
   std::vector<double> self(n_);
   std::atomic<bool> overlap{false};  // no exception may leave the parallel loop

@@ -58,11 +58,11 @@ class FftCoupling {
   std::size_t n_ = 0, M_ = 0;
   int p_ = 0;
   double h_ = 0;
-  std::vector<int> bx_, by_;       // each junction's patch: grid nodes bx … bx + p − 1 (and y)
-  std::vector<double> w_;          // its p × p weights, junction-major
-  std::vector<std::size_t> row_;   // near table (CSR, both triangles and the diagonal)
+  std::vector<int> bx_, by_;      // each junction's patch: grid nodes bx … bx + p − 1 (and y)
+  std::vector<double> w_;         // its p × p weights, junction-major
+  std::vector<std::size_t> row_;  // near table (CSR, both triangles and the diagonal)
   std::vector<std::uint32_t> col_;
-  std::vector<double> val_;        // exact C_ij minus the grid's own value of the pair
+  std::vector<double> val_;  // exact C_ij minus the grid's own value of the pair
   std::unique_ptr<Fft> fft_;
 };
 

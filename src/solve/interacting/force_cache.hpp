@@ -39,7 +39,7 @@ class ForceCache {
  private:
   static constexpr std::size_t npos = static_cast<std::size_t>(-1);
   bool piece_ok(std::size_t s) const;
-  std::size_t continuation_node(double X, double x_up) const;  // npos: none
+  std::size_t continuation_node(double X, double x_up) const;        // npos: none
   std::size_t covering_piece(double X, double x_up, double x_down);  // extends and refines to cover X
 
   Solve solve_;

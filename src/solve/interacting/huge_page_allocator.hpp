@@ -10,7 +10,7 @@
 
 namespace asperity {
 
-void* huge_page_allocate(std::size_t bytes);          // nullptr never: throws std::bad_alloc
+void* huge_page_allocate(std::size_t bytes);  // nullptr never: throws std::bad_alloc
 void huge_page_free(void* p, std::size_t bytes) noexcept;
 
 template <class T>
@@ -22,7 +22,9 @@ struct HugePageAllocator {
   T* allocate(std::size_t n) { return static_cast<T*>(huge_page_allocate(n * sizeof(T))); }
   void deallocate(T* p, std::size_t n) noexcept { huge_page_free(p, n * sizeof(T)); }
   template <class U>
-  bool operator==(const HugePageAllocator<U>&) const noexcept { return true; }
+  bool operator==(const HugePageAllocator<U>&) const noexcept {
+    return true;
+  }
 };
 
 }  // namespace asperity

@@ -6,10 +6,10 @@
 #include <cstdint>
 #include <memory>
 
-#include "solve/interacting/interacting_junctions.hpp"
 #include "solve/core/observer.hpp"
 #include "solve/core/problem.hpp"
 #include "solve/core/run_info.hpp"
+#include "solve/interacting/interacting_junctions.hpp"
 
 namespace asperity {
 
@@ -32,7 +32,7 @@ class InteractingEventStepper {
 
   const InteractingJunctions& junctions() const;
   InteractingJunctions& junctions();  // its forces at X solve (and cache)
-  double X() const;  // m, the slider position now
+  double X() const;                   // m, the slider position now
 
  private:
   struct Impl;

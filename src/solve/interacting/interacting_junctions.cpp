@@ -7,8 +7,8 @@
 #include <cstdio>
 
 #include "physics/interface_law.hpp"
-#include "solve/interacting/anderson.hpp"
 #include "solve/core/run_limits.hpp"
+#include "solve/interacting/anderson.hpp"
 #include "solve/interacting/solver_failure.hpp"
 
 namespace asperity {
@@ -47,8 +47,13 @@ InteractingJunctions::InteractingJunctions(const Problem& problem, std::size_t s
 }
 
 InteractingJunctions::Work InteractingJunctions::work() const {
-  Work w{solves_,          iterations_, pinned_.rank_one_updates(), pinned_.rebuilds(), overloaded_,
-         pinned_.single_passes(), pinned_.single_refreshes()};
+  Work w{solves_,
+         iterations_,
+         pinned_.rank_one_updates(),
+         pinned_.rebuilds(),
+         overloaded_,
+         pinned_.single_passes(),
+         pinned_.single_refreshes()};
   const PinnedCompliance::Timing t = pinned_.timing();
   w.pass_s = t.exact_s + t.single_s + t.deferred_s;
   w.fold_s = t.fold_s;
@@ -157,8 +162,10 @@ void InteractingJunctions::find_thresholds(double X) {
       continue;
     }
     const double Xt = refine_crossing(X, dir, best, k);
-    if (dir > 0) x_up_ = Xt, k_up_ = pinned_.junction(k);
-    else x_down_ = Xt, k_down_ = pinned_.junction(k);
+    if (dir > 0)
+      x_up_ = Xt, k_up_ = pinned_.junction(k);
+    else
+      x_down_ = Xt, k_down_ = pinned_.junction(k);
   }
 }
 
@@ -175,7 +182,10 @@ double InteractingJunctions::refine_crossing(double X, int dir, double best, std
       const std::size_t qk = k;  // positions do not move while no junction changes state
       const double thr = threshold(qk);
       const double r = m.f[qk] - thr;
-      if (r < 0) lo = Xt; else hi = Xt;
+      if (r < 0)
+        lo = Xt;
+      else
+        hi = Xt;
       if (std::abs(r) <= tol_ * thr) break;
       double next = Xt - r / m.a[qk];
       const bool inside = dir > 0 ? (next > lo && next < hi) : (next < lo && next > hi);
@@ -265,8 +275,10 @@ std::int64_t InteractingJunctions::settle(double X, std::size_t k) {
     }
     after_change(X);
     // A slip position at X itself (rounding): that junction slips now.
-    if (x_up_ <= X) k = k_up_;
-    else if (x_down_ >= X) k = k_down_;
+    if (x_up_ <= X)
+      k = k_up_;
+    else if (x_down_ >= X)
+      k = k_down_;
     if (k == npos) break;
   }
   return n;

@@ -149,7 +149,7 @@ class InteractingJunctions {
   // The iteration's start at X: f and df/dX per position of P (see the .cpp).
   void warm_start(double X, std::vector<double>& f, std::vector<double>& a) const;
   double threshold(std::size_t q) const;  // N, the slip force of position q
-  void after_change(double X);  // new event point: node, thresholds
+  void after_change(double X);            // new event point: node, thresholds
   // Junction k (npos: none) slips at X, then every pinned one at or over its threshold, one at a
   // time, most overloaded first; then the new slip positions. Returns how many slipped.
   std::int64_t settle(double X, std::size_t k);
@@ -181,12 +181,12 @@ class InteractingJunctions {
   double x_up_ = 0, x_down_ = 0;
   std::chrono::steady_clock::time_point deadline_ = std::chrono::steady_clock::time_point::max();
   std::size_t k_up_ = npos, k_down_ = npos;  // junctions of the next slips
-  std::vector<double> last_f_, last_a_;  // by junction: the last solve (warm start)
+  std::vector<double> last_f_, last_a_;      // by junction: the last solve (warm start)
   // After a slip at seed_X_: the new set's forces and slopes there, predicted (warm start).
   bool seed_valid_ = false;
   double seed_X_ = 0;
   std::vector<double> seed_f_, seed_a_, seed_c_;  // c: d²f/dX² (empty: unknown)
-  double seed_h_ = 0;  // m: the spacing of the old nodes the curvatures come from
+  double seed_h_ = 0;                             // m: the spacing of the old nodes the curvatures come from
   std::int64_t force_evals_ = 0, solves_ = 0, iterations_ = 0;
   // Chord passes that contracted slowly since G was last rebuilt (rebuild count slow_since_).
   std::int64_t slow_passes_ = 0, slow_since_ = -1;

@@ -14,13 +14,13 @@
 #include <chrono>
 #include <cstdint>
 
-#include "solve/interacting/coupled_forces.hpp"
-#include "solve/interacting/interaction_matrix.hpp"
 #include "solve/core/junction_state.hpp"
 #include "solve/core/observer.hpp"
 #include "solve/core/problem.hpp"
-#include "solve/reference/reference_scheme.hpp"
 #include "solve/core/run_info.hpp"
+#include "solve/interacting/coupled_forces.hpp"
+#include "solve/interacting/interaction_matrix.hpp"
+#include "solve/reference/reference_scheme.hpp"
 
 namespace asperity {
 

@@ -28,7 +28,8 @@ void InteractingJunctions::warm_start(double X, std::vector<double>& f, std::vec
   // force), then the last solution.
   const std::size_t m = cache_.nodes().size();
   if (m >= 2) {
-    auto it = std::lower_bound(cache_.nodes().begin(), cache_.nodes().end(), X, [](const ForceNode& k, double x) { return k.X < x; });
+    auto it = std::lower_bound(cache_.nodes().begin(), cache_.nodes().end(), X,
+                               [](const ForceNode& k, double x) { return k.X < x; });
     std::size_t hi = static_cast<std::size_t>(it - cache_.nodes().begin());
     hi = std::clamp<std::size_t>(hi, 1, m - 1);
     const ForceNode& n0 = cache_.nodes()[hi - 1];
@@ -36,8 +37,7 @@ void InteractingJunctions::warm_start(double X, std::vector<double>& f, std::vec
     const double h = n1.X - n0.X;
     const double t = (X - n0.X) / h;
     if (h > 0 && t >= -2.0 && t <= 3.0) {
-      for (std::size_t q = 0; q < n; ++q)
-        f[q] = hermite(n0.X, n1.X, n0.f[q], n0.a[q], n1.f[q], n1.a[q], X, &a[q]);
+      for (std::size_t q = 0; q < n; ++q) f[q] = hermite(n0.X, n1.X, n0.f[q], n0.a[q], n1.f[q], n1.a[q], X, &a[q]);
       return;
     }
   }
@@ -47,7 +47,8 @@ void InteractingJunctions::warm_start(double X, std::vector<double>& f, std::vec
       if (std::abs(k.X - X) < std::abs(near->X - X)) near = &k;
     // From the node a slip left, with the curvatures predicted there: second order.
     // (Within twice the old nodes' spacing, where that cubic's curvature holds.)
-    const bool curved = seed_valid_ && near->X == seed_X_ && seed_c_.size() == n && std::abs(X - near->X) <= 2 * seed_h_;
+    const bool curved =
+        seed_valid_ && near->X == seed_X_ && seed_c_.size() == n && std::abs(X - near->X) <= 2 * seed_h_;
     for (std::size_t q = 0; q < n; ++q) {
       const double d = X - near->X, c = curved ? seed_c_[q] : 0.0;
       f[q] = near->f[q] + (near->a[q] + 0.5 * c * d) * d;
@@ -135,7 +136,8 @@ int InteractingJunctions::chord_iteration(double X, const ChordPolicy& policy, F
       previous = HUGE_VAL;
       continue;
     }
-    if (iter >= ChordPolicy::kMaxIterations) interacting_solver_failure("the chord iteration did not converge in 200 iterations", X);
+    if (iter >= ChordPolicy::kMaxIterations)
+      interacting_solver_failure("the chord iteration did not converge in 200 iterations", X);
     previous = change;
   }
   return iter;

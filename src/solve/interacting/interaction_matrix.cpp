@@ -28,9 +28,9 @@ void fill_interaction_lower(const Problem& p, double* buffer, std::size_t ld) {
         overlap = true;
         continue;
       }
-      buffer[i * ld + j] =
-          dropped ? 0.0
-                  : disc_compliance_at_distance(dx, dy, d, radius[i], radius[j], p.law.E, p.law.nu, p.interaction_weighting);
+      buffer[i * ld + j] = dropped ? 0.0
+                                   : disc_compliance_at_distance(dx, dy, d, radius[i], radius[j], p.law.E, p.law.nu,
+                                                                 p.interaction_weighting);
     }
   if (overlap) throw std::invalid_argument("disc_compliance: discs overlap or radii are invalid");
 }

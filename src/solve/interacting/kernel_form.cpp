@@ -10,9 +10,12 @@ namespace asperity {
 
 const char* kernel_form_name(KernelForm form) {
   switch (form) {
-    case KernelForm::avx2: return "avx2";
-    case KernelForm::avx512: return "avx512";
-    default: return "portable";
+    case KernelForm::avx2:
+      return "avx2";
+    case KernelForm::avx512:
+      return "avx512";
+    default:
+      return "portable";
   }
 }
 

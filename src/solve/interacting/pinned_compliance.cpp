@@ -102,7 +102,10 @@ std::vector<std::size_t> PinnedCompliance::row_blocks() const {
   for (std::size_t b = 1, r = 0; b < B; ++b) {
     const double want = total * static_cast<double>(b) / static_cast<double>(B);
     // work before row r: r n − r(r − 1)/2
-    while (r < n && static_cast<double>(r) * static_cast<double>(n) - 0.5 * static_cast<double>(r) * (static_cast<double>(r) - 1.0) < want) ++r;
+    while (r < n && static_cast<double>(r) * static_cast<double>(n) -
+                            0.5 * static_cast<double>(r) * (static_cast<double>(r) - 1.0) <
+                        want)
+      ++r;
     edge[b] = r;
   }
   return edge;

@@ -55,7 +55,7 @@ class PinnedCompliance {
   double reference(std::size_t q) const { return D_[q]; }  // m/N
   double a0(std::size_t q) const { return a0_[q]; }        // df_q/dX of the linear system [N/m]
   double b0(std::size_t q) const { return b0_[q]; }        // N
-  double coupling(std::size_t i, std::size_t j) const {  // C_ij [m/N], junctions
+  double coupling(std::size_t i, std::size_t j) const {    // C_ij [m/N], junctions
     return i == j ? 0.0 : G_[std::max(i, j) * N_ + std::min(i, j)];
   }
 
@@ -100,8 +100,12 @@ class PinnedCompliance {
     double exact_s = 0, single_s = 0, deferred_s = 0, fold_s = 0, rebuild_s = 0, remove_s = 0;
   };
   Timing timing() const {
-    return {teams_.product.seconds(), teams_.single.seconds(), teams_.deferred.seconds(), teams_.fold.seconds(),
-            rebuild_s_, remove_s_};
+    return {teams_.product.seconds(),
+            teams_.single.seconds(),
+            teams_.deferred.seconds(),
+            teams_.fold.seconds(),
+            rebuild_s_,
+            remove_s_};
   }
   std::int64_t rank_one_updates() const { return rank_one_; }
   std::int64_t rebuilds() const { return rebuilds_; }
@@ -109,7 +113,7 @@ class PinnedCompliance {
  private:
   std::size_t N_ = 0, n_ = 0;
   std::size_t large_from_ = kSingleFrom;  // the constructor's single_from: removals wait 16 at a time from there
-  KernelForm form_;  // the SIMD kernels' form (kernel_form.hpp), chosen at construction
+  KernelForm form_;                       // the SIMD kernels' form (kernel_form.hpp), chosen at construction
   // The threads of each kind of parallel pass, chosen by measuring them (adaptive_team.hpp): a
   // loaded machine never makes a pass slower than one thread. Work: entries of the triangle
   // (removals kept aside × positions for the deferred correction); the thresholds are where two
@@ -118,8 +122,10 @@ class PinnedCompliance {
   static constexpr double kParallelWork = 200000;
   struct Teams {
     explicit Teams(int threads)
-        : product(threads, 2.0 * kParallelWork), single(threads, 2.0 * kParallelWork),
-          fold(threads, 2.0 * kParallelWork), deferred(threads, kParallelWork / 4.0) {}
+        : product(threads, 2.0 * kParallelWork),
+          single(threads, 2.0 * kParallelWork),
+          fold(threads, 2.0 * kParallelWork),
+          deferred(threads, kParallelWork / 4.0) {}
     AdaptiveTeam product, single, fold, deferred;
   };
   Teams teams_;
@@ -153,7 +159,8 @@ class PinnedCompliance {
   // the last exact pass.
   struct Single {
     std::vector<float, HugePageAllocator<float>> S;
-    std::vector<double> row_error, c1, c2, ref1, ref2, last1, last2;  // row_error: ‖T_r − S_r‖₂; last: the last pass's w
+    std::vector<double> row_error, c1, c2, ref1, ref2, last1,
+        last2;           // row_error: ‖T_r − S_r‖₂; last: the last pass's w
     bool valid = false;  // c, ref hold for the current triangle
     bool has_last = false;
     bool usable = false;  // S and row_error hold for the current triangle (and no entry overflowed)

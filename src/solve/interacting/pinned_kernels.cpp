@@ -21,18 +21,27 @@ struct HalfPair {
 inline HalfPair operator+(HalfPair a, HalfPair b) { return {a.lo + b.lo, a.hi + b.hi}; }
 inline HalfPair operator*(HalfPair a, HalfPair b) { return {a.lo * b.lo, a.hi * b.hi}; }
 inline HalfPair& operator+=(HalfPair& a, HalfPair b) { return a = a + b; }
-template <class V> inline V load(const double* p) {
+template <class V>
+inline V load(const double* p) {
   V v;
   std::memcpy(&v, p, sizeof v);
   return v;
 }
-template <class V> inline void store(double* p, V v) { std::memcpy(p, &v, sizeof v); }
-template <> inline HalfPair load<HalfPair>(const double* p) { return {load<Half>(p), load<Half>(p + 2)}; }
-template <> inline void store<HalfPair>(double* p, HalfPair v) {
+template <class V>
+inline void store(double* p, V v) {
+  std::memcpy(p, &v, sizeof v);
+}
+template <>
+inline HalfPair load<HalfPair>(const double* p) {
+  return {load<Half>(p), load<Half>(p + 2)};
+}
+template <>
+inline void store<HalfPair>(double* p, HalfPair v) {
   store(p, v.lo);
   store(p + 2, v.hi);
 }
-template <class V> inline V splat(double x) {
+template <class V>
+inline V splat(double x) {
   const double four[4] = {x, x, x, x};
   return load<V>(four);
 }
@@ -41,15 +50,21 @@ inline double sum(HalfPair v) { return (v.lo[0] + v.lo[1]) + (v.hi[0] + v.hi[1])
 
 // The stored triangle's entries as four doubles: read as they are, or widened from single
 // precision (the copy; exact, so every form reads the same values).
-template <class V> inline V entries(const double* p) { return load<V>(p); }
+template <class V>
+inline V entries(const double* p) {
+  return load<V>(p);
+}
 using Single4 = float __attribute__((vector_size(16)));
-template <class V> inline V entries(const float* p);
-template <> inline Quad entries<Quad>(const float* p) {
+template <class V>
+inline V entries(const float* p);
+template <>
+inline Quad entries<Quad>(const float* p) {
   Single4 s;
   std::memcpy(&s, p, sizeof s);
   return __builtin_convertvector(s, Quad);
 }
-template <> inline HalfPair entries<HalfPair>(const float* p) {
+template <>
+inline HalfPair entries<HalfPair>(const float* p) {
   return {Half{static_cast<double>(p[0]), static_cast<double>(p[1])},
           Half{static_cast<double>(p[2]), static_cast<double>(p[3])}};
 }
@@ -98,7 +113,8 @@ template <class V, class T>
 // Rows r .. r + 3 of product_rows (below).
 template <class V, class Rows>
 [[gnu::always_inline]] inline void four_rows(Rows rows, std::size_t n, std::size_t r, const double* __restrict w1,
-                                          const double* __restrict w2, double* __restrict p1, double* __restrict p2) {
+                                             const double* __restrict w2, double* __restrict p1,
+                                             double* __restrict p2) {
   const auto* __restrict A0 = rows(r);
   const auto* __restrict A1 = rows(r + 1);
   const auto* __restrict A2 = rows(r + 2);
@@ -160,7 +176,7 @@ template <class V, class Rows>
 // Rows r and r + 1 of product_rows (below).
 template <class V, class Rows>
 [[gnu::always_inline]] inline void two_rows(Rows rows, std::size_t n, std::size_t r, const double* __restrict w1,
-                                         const double* __restrict w2, double* __restrict p1, double* __restrict p2) {
+                                            const double* __restrict w2, double* __restrict p1, double* __restrict p2) {
   const auto* __restrict A = rows(r);
   const auto* __restrict Bw = rows(r + 1);
   const double a1 = w1[r], a2 = w2[r], b1 = w1[r + 1], b2 = w2[r + 1];
@@ -238,15 +254,15 @@ void product_rows_single_portable(const float* S, std::size_t N, std::size_t n, 
 #if defined(__x86_64__)
 // The same rows with AVX2 (x86-64-v3: every x86 CPU since about 2013), chosen at run time.
 __attribute__((target("arch=x86-64-v3"))) void product_rows_avx2(const double* G, std::size_t N, std::size_t n,
-                                                                   std::size_t r0, std::size_t r1, const double* w1,
-                                                                   const double* w2, double* p1, double* p2) {
+                                                                 std::size_t r0, std::size_t r1, const double* w1,
+                                                                 const double* w2, double* p1, double* p2) {
   product_rows<Quad>(DoubleRows{G, N}, n, r0, r1, w1, w2, p1, p2);
 }
 // From the single-precision copy.
 __attribute__((target("arch=x86-64-v3"))) void product_rows_single_avx2(const float* S, std::size_t N, std::size_t n,
-                                                                          std::size_t r0, std::size_t r1,
-                                                                          const double* w1, const double* w2,
-                                                                          double* p1, double* p2) {
+                                                                        std::size_t r0, std::size_t r1,
+                                                                        const double* w1, const double* w2, double* p1,
+                                                                        double* p2) {
   product_rows<Quad>(SingleRows{S, N}, n, r0, r1, w1, w2, p1, p2);
 }
 // The same four-double code again for CPUs with AVX-512 (x86-64-v4), for its 32 vector registers
@@ -254,19 +270,21 @@ __attribute__((target("arch=x86-64-v3"))) void product_rows_single_avx2(const fl
 // operations, so the same bits. Microbenchmark, one thread: 1.16-1.6x the AVX2 form on the
 // single-precision copy at n = 2,400-5,000, equal in double.
 __attribute__((target("arch=x86-64-v4"))) void product_rows_avx512(const double* G, std::size_t N, std::size_t n,
-                                                                     std::size_t r0, std::size_t r1, const double* w1,
-                                                                     const double* w2, double* p1, double* p2) {
+                                                                   std::size_t r0, std::size_t r1, const double* w1,
+                                                                   const double* w2, double* p1, double* p2) {
   product_rows<Quad>(DoubleRows{G, N}, n, r0, r1, w1, w2, p1, p2);
 }
-__attribute__((target("arch=x86-64-v4"))) void product_rows_single_avx512(const float* S, std::size_t N,
-                                                                            std::size_t n, std::size_t r0,
-                                                                            std::size_t r1, const double* w1,
-                                                                            const double* w2, double* p1, double* p2) {
+__attribute__((target("arch=x86-64-v4"))) void product_rows_single_avx512(const float* S, std::size_t N, std::size_t n,
+                                                                          std::size_t r0, std::size_t r1,
+                                                                          const double* w1, const double* w2,
+                                                                          double* p1, double* p2) {
   product_rows<Quad>(SingleRows{S, N}, n, r0, r1, w1, w2, p1, p2);
 }
 }  // namespace
 ProductRows product_rows_for(KernelForm form) {
-  return form == KernelForm::avx512 ? product_rows_avx512 : form == KernelForm::avx2 ? product_rows_avx2 : product_rows_portable;
+  return form == KernelForm::avx512 ? product_rows_avx512
+         : form == KernelForm::avx2 ? product_rows_avx2
+                                    : product_rows_portable;
 }
 SingleProductRows single_rows_for(KernelForm form) {
   return form == KernelForm::avx512 ? product_rows_single_avx512
@@ -356,14 +374,14 @@ void fold_rows_portable(double* G, std::size_t N, std::size_t n, std::size_t r0,
 }
 #if defined(__x86_64__)
 __attribute__((target("arch=x86-64-v3"))) void fold_rows_avx2(double* G, std::size_t N, std::size_t n, std::size_t r0,
-                                                                std::size_t r1, Removals rm, CopySums& cs, double* own) {
+                                                              std::size_t r1, Removals rm, CopySums& cs, double* own) {
   fold_rows<true>(G, N, n, r0, r1, rm, cs, own);
 }
 // Again for AVX-512's 32 registers (sixteen removals' weights can stay in them; whole runs
 // could not separate the two forms within this machine's noise): the same bits.
-__attribute__((target("arch=x86-64-v4"))) void fold_rows_avx512(double* G, std::size_t N, std::size_t n,
-                                                                  std::size_t r0, std::size_t r1, Removals rm,
-                                                                  CopySums& cs, double* own) {
+__attribute__((target("arch=x86-64-v4"))) void fold_rows_avx512(double* G, std::size_t N, std::size_t n, std::size_t r0,
+                                                                std::size_t r1, Removals rm, CopySums& cs,
+                                                                double* own) {
   fold_rows<true>(G, N, n, r0, r1, rm, cs, own);
 }
 }  // namespace
@@ -382,8 +400,8 @@ namespace {
 // whatever the number of threads.
 template <class T, class Kernel>
 void blocked_product(Kernel rows, const T* base, std::size_t N, std::size_t n, const std::vector<std::size_t>& edge,
-                      std::vector<double>& partial, const std::vector<double>& w1, const std::vector<double>& w2,
-                      std::vector<double>& y1, std::vector<double>& y2, AdaptiveTeam& team) {
+                     std::vector<double>& partial, const std::vector<double>& w1, const std::vector<double>& w2,
+                     std::vector<double>& y1, std::vector<double>& y2, AdaptiveTeam& team) {
   const std::size_t B = edge.size() - 1;
   const AdaptiveTeam::Region region(team, static_cast<double>(n) * static_cast<double>(n));
   const int threads = region.threads();

@@ -20,12 +20,12 @@ struct QuasiStaticJunctions {
   std::vector<double> area_m2, x_m, y_m;  // discs of these areas at these centres (disjoint if interacting)
   double E_Pa = 0;
   double nu = 0.5;
-  double shear_strength_Pa = 0;           // σ: junction i slips at σ A_i
+  double shear_strength_Pa = 0;  // σ: junction i slips at σ A_i
   bool interacting = false;
   TractionWeighting weighting = TractionWeighting::rigid;
-  double tolerance = 1e-10;               // of the bounded CG (relative to X)
-  int max_iterations = 100000;            // of the bounded CG per displacement; a point that
-                                          // reaches it is marked not converged
+  double tolerance = 1e-10;     // of the bounded CG (relative to X)
+  int max_iterations = 100000;  // of the bounded CG per displacement; a point that
+                                // reaches it is marked not converged
 };
 
 struct JunctionCurvePoint {
@@ -37,10 +37,10 @@ struct JunctionCurvePoint {
 
 struct JunctionCurve {
   std::vector<JunctionCurvePoint> points;
-  double initial_stiffness_N_per_m = 0;   // dF/dX at X → 0
-  double full_sliding_force_N = 0;        // Σ σ A_i
-  double full_sliding_displacement_m = 0; // the X from which every junction slips
-  bool monotone = true;                   // no junction stopped slipping between two points
+  double initial_stiffness_N_per_m = 0;    // dF/dX at X → 0
+  double full_sliding_force_N = 0;         // Σ σ A_i
+  double full_sliding_displacement_m = 0;  // the X from which every junction slips
+  bool monotone = true;                    // no junction stopped slipping between two points
 };
 
 // Largest population the interacting form takes (its dense N × N compliance: 3.2 GB at 20,000).

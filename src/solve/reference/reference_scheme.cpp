@@ -14,9 +14,9 @@ double reference_spectral_radius(double omega_dt, double eta_dt) {
   if (!std::isfinite(a) || !std::isfinite(b)) return std::numeric_limits<double>::infinity();
   Eigen::Matrix3d m;
   // x1 = x + u + g/2;  g1 = −a x1 − b u;  u1 = u + (g + g1)/2
-  m << 1, 1, 0.5,                           // x1
+  m << 1, 1, 0.5,                                       // x1
       -0.5 * a, 1 - 0.5 * a - 0.5 * b, 0.5 - 0.25 * a,  // u1
-      -a, -a - b, -0.5 * a;                 // g1
+      -a, -a - b, -0.5 * a;                             // g1
   return m.eigenvalues().cwiseAbs().maxCoeff();
 }
 
@@ -35,13 +35,14 @@ JunctionTotals junction_totals(const JunctionState& J, double sigma, double* max
 
 ReferenceScheme::ReferenceScheme(const Problem& problem) : p_(problem) {
   const double dt = p_.dt;
-  const double rho = reference_spectral_radius(std::sqrt((p_.K0 + p_.slider.k_L) / p_.slider.mass_kg) * dt,
-                                               p_.slider.eta * dt);
+  const double rho =
+      reference_spectral_radius(std::sqrt((p_.K0 + p_.slider.k_L) / p_.slider.mass_kg) * dt, p_.slider.eta * dt);
   if (rho > 1.0 + 1e-12) {
     char msg[200];
-    std::snprintf(msg, sizeof msg,
-                  "reference step unstable: spectral radius %.6g > 1 at dt = %.6g s (raise solver.Ct or lower model.eta)",
-                  rho, dt);
+    std::snprintf(
+        msg, sizeof msg,
+        "reference step unstable: spectral radius %.6g > 1 at dt = %.6g s (raise solver.Ct or lower model.eta)", rho,
+        dt);
     throw SolverError(msg);
   }
   n_end_ = static_cast<std::int64_t>(std::ceil(p_.t_stop / dt - 1e-9));
@@ -82,8 +83,10 @@ void ReferenceScheme::complete(RunObserver& out, const JunctionTotals& j, std::i
   const double v = p_.slider.v;
   const double Q = p_.slider.loading_force(t, X_);
   const double A = j.A;
-  if (prevV_ < v && V_ >= v) out.extremum(Q >= prevQ_ ? Extremum{t, Q, A, true} : Extremum{prevt_, prevQ_, prevA_, true});
-  if (prevV_ > v && V_ <= v) out.extremum(Q <= prevQ_ ? Extremum{t, Q, A, false} : Extremum{prevt_, prevQ_, prevA_, false});
+  if (prevV_ < v && V_ >= v)
+    out.extremum(Q >= prevQ_ ? Extremum{t, Q, A, true} : Extremum{prevt_, prevQ_, prevA_, true});
+  if (prevV_ > v && V_ <= v)
+    out.extremum(Q <= prevQ_ ? Extremum{t, Q, A, false} : Extremum{prevt_, prevQ_, prevA_, false});
   prevQ_ = Q;
   prevA_ = A;
   prevV_ = V_;

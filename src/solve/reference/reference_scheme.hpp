@@ -40,7 +40,8 @@ class ReferenceScheme {
   void emit_samples(RunObserver& out) const;
   // Ends the step at X = next_X() with the junctions' totals there: the slider's velocity and
   // acceleration, the statistics, the reports (population change, extrema of Q, samples).
-  void complete(RunObserver& out, const JunctionTotals& j, std::int64_t slips, bool any_repin, std::int64_t force_evals);
+  void complete(RunObserver& out, const JunctionTotals& j, std::int64_t slips, bool any_repin,
+                std::int64_t force_evals);
   void finish(RunInfo& info, double max_ratio) const;
   std::int64_t slips() const { return stats_.slips; }
 

@@ -57,5 +57,4 @@ void ReferenceStepper::advance(RunObserver& out) {
   scheme_.complete(out, junction_totals(J, law.sigma, &max_ratio_), slips, any_repin, 1);
 }
 
-
 }  // namespace asperity

@@ -8,8 +8,8 @@
 #include "solve/core/junction_state.hpp"
 #include "solve/core/observer.hpp"
 #include "solve/core/problem.hpp"
-#include "solve/reference/reference_scheme.hpp"
 #include "solve/core/run_info.hpp"
+#include "solve/reference/reference_scheme.hpp"
 
 namespace asperity {
 

@@ -33,13 +33,14 @@ TEST_CASE("parallel runner: every index once, progress counted to the end, slots
   std::atomic<std::size_t> last_done{0};
   std::mutex m;
   std::vector<std::size_t> done_counts;
-  runner.for_each(hits.size(), [&](std::size_t i) { ++hits[i]; },
-                  [&](std::size_t finished, std::size_t total) {
-                    CHECK(total == hits.size());
-                    const std::lock_guard<std::mutex> lock(m);
-                    done_counts.push_back(finished);
-                    last_done = std::max<std::size_t>(last_done, finished);
-                  });
+  runner.for_each(
+      hits.size(), [&](std::size_t i) { ++hits[i]; },
+      [&](std::size_t finished, std::size_t total) {
+        CHECK(total == hits.size());
+        const std::lock_guard<std::mutex> lock(m);
+        done_counts.push_back(finished);
+        last_done = std::max<std::size_t>(last_done, finished);
+      });
   CHECK(std::all_of(hits.begin(), hits.end(), [](const std::atomic<int>& h) { return h == 1; }));
   std::sort(done_counts.begin(), done_counts.end());
   CHECK(done_counts.size() == hits.size());
@@ -58,12 +59,15 @@ TEST_CASE("parallel runner: every index once, progress counted to the end, slots
 
 TEST_CASE("parallel runner: an exception of a body is rethrown; nested loops run inside a task", "[batch]") {
   const ParallelRunner runner(2);
-  CHECK_THROWS_WITH(runner.for_each(10, [](std::size_t i) {
-    if (i == 7) throw std::runtime_error("seven");
-  }), "seven");
+  CHECK_THROWS_WITH(runner.for_each(10,
+                                    [](std::size_t i) {
+                                      if (i == 7) throw std::runtime_error("seven");
+                                    }),
+                    "seven");
   std::vector<std::atomic<int>> cells(4 * 25);
   runner.for_each(4, [&](std::size_t i) {
-    for_each_nested(25, [&](std::size_t j) { ++cells[i * 25 + j]; }, i % 2 ? Nesting::isolated : Nesting::shared);
+    for_each_nested(
+        25, [&](std::size_t j) { ++cells[i * 25 + j]; }, i % 2 ? Nesting::isolated : Nesting::shared);
   });
   CHECK(std::all_of(cells.begin(), cells.end(), [](const std::atomic<int>& h) { return h == 1; }));
 }
@@ -115,8 +119,8 @@ TEST_CASE("stop flag: no flag never stops and has no monitor; a set flag is seen
 TEST_CASE("deal_by_cost: each item to the least loaded part, ties to the lower part", "[batch][shard]") {
   const std::vector<double> cost{5, 1, 1, 1, 1, 1, 3};
   std::vector<std::uint64_t> part(cost.size(), 99);
-  const std::vector<double> load =
-      deal_by_cost(cost.size(), 3, [&](std::uint64_t k) { return cost[k]; }, [&](std::uint64_t k, std::uint64_t p) { part[k] = p; });
+  const std::vector<double> load = deal_by_cost(
+      cost.size(), 3, [&](std::uint64_t k) { return cost[k]; }, [&](std::uint64_t k, std::uint64_t p) { part[k] = p; });
   CHECK(part == std::vector<std::uint64_t>{0, 1, 2, 1, 2, 1, 2});
   CHECK(load == std::vector<double>{5, 3, 5});
   // Equal costs in index order: round robin exactly.

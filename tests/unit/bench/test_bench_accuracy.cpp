@@ -17,9 +17,13 @@ namespace {
 constexpr std::array<double, n_robust> kMeasuredBound{1e-10, 1e-11, 1e-10, 5e-12, 1e-8, 1e-9};
 }  // namespace
 
-TEST_CASE("default tolerance agrees with a converged run to ~1e-11 (loading) and ~1e-9 (stick-slip) on stand-ins P0.98N and P1.52N", "[bench][accuracy]") {
+TEST_CASE(
+    "default tolerance agrees with a converged run to ~1e-11 (loading) and ~1e-9 (stick-slip) on stand-ins P0.98N and "
+    "P1.52N",
+    "[bench][accuracy]") {
   for (const char* name : {"P0.98N", "P1.52N"}) {
-    const std::filesystem::path path = std::filesystem::path(ASPERITY_SOURCE_DIR) / "scenes/paper" / (std::string(name) + ".yaml");
+    const std::filesystem::path path =
+        std::filesystem::path(ASPERITY_SOURCE_DIR) / "scenes/paper" / (std::string(name) + ".yaml");
     const std::vector<std::string> o{"stop.time=8", "stop.cycles=5", "output.series=[]", "solver.method=event"};
     const Scene scene = load_scene(path, o);
     auto oc = o;

@@ -27,7 +27,7 @@ TEST_CASE("bench speed: accuracy matching and ratio per simulated second", "[ben
   const SpeedRun ref = made_up("reference", 50.0, 5.0, {1e-5, 1e-5, 1e-5, 1e-4, nan, nan});
   const SpeedRun good = made_up("event", 0.1, 4.0, {1e-7, 1e-8, 1e-7, 1e-8, 1e-4, 1e-4});
   const SpeedRun loose = made_up("event", 0.05, 4.0, {1e-7, 1e-4, 1e-7, 1e-8, 1e-4, 1e-4});
-  CHECK(good.at_least_as_accurate_as(ref));    // finite beats a missing stick-slip
+  CHECK(good.at_least_as_accurate_as(ref));         // finite beats a missing stick-slip
   CHECK_FALSE(loose.at_least_as_accurate_as(ref));  // A_s 1e-4 > 1e-5
   CHECK_FALSE(ref.at_least_as_accurate_as(good));   // a missing observable never matches
   CHECK(good.max_loading_error() == 1e-7);

@@ -2,8 +2,8 @@
 // FFTs, the skipped convolutions and the threads must not change the answer beyond the tolerance.
 // Checked against a uniform start, against displacements summed directly from Love's rectangle,
 // and bit for bit across runs and thread counts.
-#include <catch2/catch.hpp>
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <cstring>
 #include <vector>
@@ -63,7 +63,8 @@ TEST_CASE("contact: the solved gaps match displacements summed directly from Lov
   std::vector<double> love(n * n);  // by |offset| (Love's rectangle is even in both)
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = 0; j < n; ++j)
-      love[i * n + j] = love_rectangle(static_cast<double>(j) * m.pixel_m, static_cast<double>(i) * m.pixel_m, half, half);
+      love[i * n + j] =
+          love_rectangle(static_cast<double>(j) * m.pixel_m, static_cast<double>(i) * m.pixel_m, half, half);
   std::vector<std::size_t> loaded;
   for (std::size_t k = 0; k < n * n; ++k)
     if (c.pressure_Pa[k] > 0) loaded.push_back(k);
@@ -76,8 +77,10 @@ TEST_CASE("contact: the solved gaps match displacements summed directly from Lov
     const double gap = u + (top - m.h_m[k]) - c.approach_m;
     scale = std::max(scale, std::abs(gap));
     worst_gap = std::max(worst_gap, std::abs(std::max(0.0, gap) - c.gap_m[k]));
-    if (c.pressure_Pa[k] > 0) worst_on = std::max(worst_on, std::abs(gap));
-    else most_negative = std::min(most_negative, gap);
+    if (c.pressure_Pa[k] > 0)
+      worst_on = std::max(worst_on, std::abs(gap));
+    else
+      most_negative = std::min(most_negative, gap);
   }
   INFO(loaded.size() << " pixels in contact; largest gap " << scale << " m; |gap - direct| " << worst_gap
                      << "; |gap| on the contact " << worst_on << "; most negative gap off it " << most_negative);

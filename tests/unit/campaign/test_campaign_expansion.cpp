@@ -1,8 +1,8 @@
 // src/campaign: lazy expansion of a campaign into points (mixed radix), spaces, shards.
 #include <catch2/catch.hpp>
-#include <map>
 #include <cmath>
 #include <cstdint>
+#include <map>
 #include <set>
 #include <vector>
 
@@ -144,13 +144,17 @@ TEST_CASE("shard auto (--shard auto) reads the SLURM array task", "[campaign][sl
   };
   CHECK_THROWS_WITH(parse_shard("auto", env), Catch::Contains("SLURM_ARRAY_TASK_ID is not set"));
   // sbatch --array=1-4, the third task: shard 2/4.
-  vars = {{"SLURM_ARRAY_TASK_ID", "3"}, {"SLURM_ARRAY_TASK_MIN", "1"}, {"SLURM_ARRAY_TASK_MAX", "4"},
+  vars = {{"SLURM_ARRAY_TASK_ID", "3"},
+          {"SLURM_ARRAY_TASK_MIN", "1"},
+          {"SLURM_ARRAY_TASK_MAX", "4"},
           {"SLURM_ARRAY_TASK_COUNT", "4"}};
   const Shard s = parse_shard("auto", env);
   CHECK(s.index == 2);
   CHECK(s.count == 4);
   // --array=0-6:2 (not contiguous) would leave points of no task: refused.
-  vars = {{"SLURM_ARRAY_TASK_ID", "2"}, {"SLURM_ARRAY_TASK_MIN", "0"}, {"SLURM_ARRAY_TASK_MAX", "6"},
+  vars = {{"SLURM_ARRAY_TASK_ID", "2"},
+          {"SLURM_ARRAY_TASK_MIN", "0"},
+          {"SLURM_ARRAY_TASK_MAX", "6"},
           {"SLURM_ARRAY_TASK_COUNT", "4"}};
   CHECK_THROWS_WITH(parse_shard("auto", env), Catch::Contains("must be contiguous"));
   vars["SLURM_ARRAY_TASK_COUNT"] = "x7";

@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
+#include "campaign/campaign_load.hpp"
 #include "campaign/merge.hpp"
 #include "campaign/store.hpp"
 #include "campaign/sweep.hpp"
-#include "campaign/campaign_load.hpp"
 #include "support_files.hpp"
 
 namespace fs = std::filesystem;
@@ -27,7 +27,8 @@ const fs::path kExperiment = fs::path(ASPERITY_SOURCE_DIR) / "tests" / "data" / 
 fs::path make_campaign(const fs::path& dir) {
   fs::remove_all(dir);
   fs::create_directories(dir / "exp");
-  for (const char* f : {"experiment.yaml", "junctions.csv", "measured.csv"}) fs::copy_file(kExperiment / f, dir / "exp" / f);
+  for (const char* f : {"experiment.yaml", "junctions.csv", "measured.csv"})
+    fs::copy_file(kExperiment / f, dir / "exp" / f);
   std::ofstream(dir / "scene.yaml") << "experiment: exp/experiment.yaml\nsolver: {method: event}\n"
                                        "stop: {time: 0.05}\noutput: {series: []}\n";
   std::ofstream(dir / "campaign.yaml") << "name: identity\nscenes: [scene.yaml]\naxes: {model.eta: [50, 100]}\n";
@@ -110,7 +111,8 @@ TEST_CASE("merge refuses stores whose rows disagree for one point", "[campaign][
   const std::string stale_hash = column(dir / "stale", "hash").at(0), fresh_hash = column(dir / "fresh", "hash").at(0);
   CHECK(stale_hash != fresh_hash);
   // Stale + fresh: refused before anything is written, naming the point and both hashes.
-  for (const auto& order : {std::vector<fs::path>{dir / "stale", dir / "fresh"}, std::vector<fs::path>{dir / "fresh", dir / "stale"}}) {
+  for (const auto& order :
+       {std::vector<fs::path>{dir / "stale", dir / "fresh"}, std::vector<fs::path>{dir / "fresh", dir / "stale"}}) {
     CHECK_THROWS_WITH(merge_stores(order, dir / "merged"),
                       Contains("point 0 (grid grid_0, experiment small) was computed from different scenes or data") &&
                           Contains(stale_hash) && Contains(fresh_hash));
@@ -131,7 +133,8 @@ TEST_CASE("merge refuses stores whose rows disagree for one point", "[campaign][
   fs::remove_all(dir);
 }
 
-TEST_CASE("a resume trusts stored hashes while every input is unchanged and re-hashes them otherwise", "[campaign][identity][store]") {
+TEST_CASE("a resume trusts stored hashes while every input is unchanged and re-hashes them otherwise",
+          "[campaign][identity][store]") {
   const fs::path dir = asperity::testing::temp_path("asperity_identity_trust");
   const fs::path campaign = make_campaign(dir);
   SweepOptions o;

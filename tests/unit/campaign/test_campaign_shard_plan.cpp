@@ -2,8 +2,8 @@
 // round robin when costs are equal, keep the greedy bound max − min ≤ the costliest point, and
 // deal a costly axis value evenly where round robin puts it on one shard; a sharded sweep under
 // the cost plan merges to the unsharded store, and a store keeps the plan it was started with.
-#include <catch2/catch.hpp>
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
 #include <numeric>
@@ -23,8 +23,8 @@
 
 namespace fs = std::filesystem;
 using namespace asperity;
-using Catch::Matchers::Contains;
 using asperity::testing::slurp;
+using Catch::Matchers::Contains;
 
 namespace {
 
@@ -94,7 +94,8 @@ TEST_CASE("a cost plan partitions the points and keeps the greedy bound", "[camp
   CHECK(rr0 - rr1 == 99.0 * 500);
 }
 
-TEST_CASE("a sweep deals reference points over both shards, merges to the unsharded store, and keeps its plan", "[campaign][shard]") {
+TEST_CASE("a sweep deals reference points over both shards, merges to the unsharded store, and keeps its plan",
+          "[campaign][shard]") {
   const fs::path d = asperity::testing::fresh_dir("asperity_shard_plan");
   const fs::path scene = fs::path(ASPERITY_SOURCE_DIR) / "tests" / "data" / "campaign" / "tiny_scene.yaml";
   {
@@ -107,7 +108,8 @@ TEST_CASE("a sweep deals reference points over both shards, merges to the unshar
   // The independent figure: each point's expected seconds from its own scene.
   const CampaignScenes scenes(c);
   std::vector<double> cost;
-  for (std::uint64_t i = 0; i < c.size(); ++i) cost.push_back(expected_run_seconds(make_problem(scenes.scene(point_at(c, i)))));
+  for (std::uint64_t i = 0; i < c.size(); ++i)
+    cost.push_back(expected_run_seconds(make_problem(scenes.scene(point_at(c, i)))));
   REQUIRE(cost[0] > 3 * cost[1]);  // reference ≫ event on these settings
   for (std::uint64_t s = 0; s < 2; ++s) {
     const ShardPlan rr = plan_shard(c, Shard{s, 2}, ShardBalance::index);
@@ -153,7 +155,8 @@ TEST_CASE("a sweep deals reference points over both shards, merges to the unshar
   const SweepReport old = sweep(d / "old", Shard{1, 2}, ShardBalance::index);
   CHECK(old.ran == 4);
   std::string prov = slurp(d / "old" / "provenance.yaml");
-  prov.erase(prov.find("shard_balance:"), prov.find('\n', prov.find("shard_balance:")) + 1 - prov.find("shard_balance:"));
+  prov.erase(prov.find("shard_balance:"),
+             prov.find('\n', prov.find("shard_balance:")) + 1 - prov.find("shard_balance:"));
   std::ofstream(d / "old" / "provenance.yaml", std::ios::binary) << prov;
   const SweepReport again = sweep(d / "old", Shard{1, 2}, std::nullopt);
   CHECK(again.balance == ShardBalance::index);

@@ -4,8 +4,8 @@
 #include <yaml-cpp/yaml.h>
 
 #include <catch2/catch.hpp>
-#include <cstdio>
 #include <cstdint>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -49,7 +49,8 @@ TEST_CASE("the provenance block names the build, the command and each input file
   const fs::path a = write_text(dir / "junctions.csv", "area_m2\n1e-9\n2e-9\n");
   const std::string command = "asperity run \"it's\" --set model.eta=5";
   const std::string text = provenance_yaml(
-      command, {{"junctions", a}, {"junctions", dir / "." / "junctions.csv"}, {"measured", dir / "missing.csv"}, {"none", ""}});
+      command,
+      {{"junctions", a}, {"junctions", dir / "." / "junctions.csv"}, {"measured", dir / "missing.csv"}, {"none", ""}});
   const YAML::Node p = YAML::Load(text)["provenance"];
   REQUIRE(p);
   CHECK(p["command_line"].as<std::string>() == command);  // quoted so that it reads back as is

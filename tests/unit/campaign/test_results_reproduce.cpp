@@ -45,10 +45,23 @@ const std::map<std::string, std::vector<std::uint64_t>> kNamed = {{"paper_explor
 
 const std::set<std::string> kWorkCounters = {"steps", "rejected", "force_evals"};
 // What an undamped run fixes before chaos sets in: the population and the loading branch.
-const std::set<std::string> kUpToPeak = {"N",     "A0",       "K0",    "T0",       "dt",
-                                         "Q_s",   "A_s",      "t_peak", "peak_found", "alpha",
-                                         "alpha_R2", "alpha_points", "shape_exponent", "shape_prefactor",
-                                         "area_drop_fraction", "alpha_measured", "alpha_measured_R2",
+const std::set<std::string> kUpToPeak = {"N",
+                                         "A0",
+                                         "K0",
+                                         "T0",
+                                         "dt",
+                                         "Q_s",
+                                         "A_s",
+                                         "t_peak",
+                                         "peak_found",
+                                         "alpha",
+                                         "alpha_R2",
+                                         "alpha_points",
+                                         "shape_exponent",
+                                         "shape_prefactor",
+                                         "area_drop_fraction",
+                                         "alpha_measured",
+                                         "alpha_measured_R2",
                                          "shape_exponent_measured"};
 
 std::string exact(double x) {
@@ -79,7 +92,8 @@ std::string provenance_value(const fs::path& file, const std::string& key) {
 
 }  // namespace
 
-TEST_CASE("every committed results/ store: a sample of its points rerun by this build gives its rows", "[results][heavy]") {
+TEST_CASE("every committed results/ store: a sample of its points rerun by this build gives its rows",
+          "[results][heavy]") {
   for (const std::string& n : kUpToPeak) CHECK_NOTHROW(observable_field(n));
   for (const std::string& n : kWorkCounters) CHECK_NOTHROW(observable_field(n));
   int stores = 0;

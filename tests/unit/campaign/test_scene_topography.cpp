@@ -77,7 +77,8 @@ TEST_CASE("a scene naming a recipe gives the experiment generate writes, exactly
   REQUIRE(g.junctions.size() >= 5);
 
   write_text(d / "named.yaml", "topography: topo.yaml\n" + kRun);
-  write_text(d / "inline.yaml", "topography:\n  name: topo-scene\n" + indented(kSurface, "  ") + indented(kRest, "  ") + kRun);
+  write_text(d / "inline.yaml",
+             "topography:\n  name: topo-scene\n" + indented(kSurface, "  ") + indented(kRest, "  ") + kRun);
   for (const char* file : {"named.yaml", "inline.yaml"}) {
     INFO(file);
     const Scene s = load_scene(d / file);
@@ -101,7 +102,8 @@ TEST_CASE("a smooth sphere through a scene: Hertz's area at two loads of a typed
   const fs::path d = fresh_dir("asperity-scene-topo-hertz");
   write_text(d / "smooth.yaml",
              "topography:\n  smooth: {n: 128, size_m: 5e-3}\n  sphere_radius_m: 0.01\n  E: 1.6e6\n  nu: 0.5\n"
-             "  load_N: 1\n" + kRun);
+             "  load_N: 1\n" +
+                 kRun);
   auto cache = std::make_shared<TopographyCache>();
   const TypedScene typed = typed_scene_from_tree(load_scene_tree(d / "smooth.yaml"), d / "smooth.yaml", cache);
   const double E_star = 1.6e6 / (1 - 0.25);
@@ -119,13 +121,15 @@ TEST_CASE("a smooth sphere through a scene: Hertz's area at two loads of a typed
   fs::remove_all(d);
 }
 
-TEST_CASE("a 2x2 sweep over a surface axis and a model axis solves each surface once", "[scene][topography][campaign]") {
+TEST_CASE("a 2x2 sweep over a surface axis and a model axis solves each surface once",
+          "[scene][topography][campaign]") {
   const fs::path d = fresh_dir("asperity-scene-topo-sweep");
   write_text(d / "topo.yaml", kRecipe);
   write_text(d / "scene.yaml", "topography: topo.yaml\n" + kRun);
-  write_text(d / "sweep.yaml",
-             "name: topo-sweep\nscenes: [scene.yaml]\n"
-             "grids:\n  - name: g\n    axes:\n      topography.self_affine.hurst: [0.6, 0.8]\n      model.eta: [50, 100]\n");
+  write_text(
+      d / "sweep.yaml",
+      "name: topo-sweep\nscenes: [scene.yaml]\n"
+      "grids:\n  - name: g\n    axes:\n      topography.self_affine.hurst: [0.6, 0.8]\n      model.eta: [50, 100]\n");
   const Campaign c = load_campaign(d / "sweep.yaml");
   REQUIRE(c.topography);
   SweepOptions o;
@@ -172,7 +176,8 @@ TEST_CASE("topography scenes: bad keys and values are one line naming file, line
     typed.with({{find_scene_key("topography.self_affine.hurst"), 1.0}});
     FAIL("no error");
   } catch (const InputError& e) {
-    CHECK(std::string(e.what()) == (d / "named.yaml").string() + ": topography.self_affine.hurst: must be in (0, 1), got 1");
+    CHECK(std::string(e.what()) ==
+          (d / "named.yaml").string() + ": topography.self_affine.hurst: must be in (0, 1), got 1");
   }
   fs::remove_all(d);
 }

@@ -58,8 +58,10 @@ FitResult fit_wells(const std::string& optimizer, FitJournal* journal = nullptr)
                             "parameters:\n"
                             "  model.eta: {lo: 30, hi: 300, start: 40, scale: log}\n"
                             "  model.epsilon: {lo: 0.5, hi: 0.99, start: 0.55}\n"
-                            "optimizer: " + optimizer + "\n"
-                            "profile: false\n");
+                            "optimizer: " +
+                                optimizer +
+                                "\n"
+                                "profile: false\n");
   FitLoadOptions lo;
   lo.user_objective = true;
   const FitSpec spec = load_fit(f, {}, lo);
@@ -75,7 +77,8 @@ FitResult fit_wells(const std::string& optimizer, FitJournal* journal = nullptr)
 
 }  // namespace
 
-TEST_CASE("sobol_starts: deterministic points inside the box, without the centre or the file's start", "[fit][convergence]") {
+TEST_CASE("sobol_starts: deterministic points inside the box, without the centre or the file's start",
+          "[fit][convergence]") {
   const auto a = sobol_starts(3, 7), b = sobol_starts(3, 7);
   REQUIRE(a.size() == 7);
   CHECK(a == b);
@@ -93,8 +96,9 @@ TEST_CASE("sobol_starts: deterministic points inside the box, without the centre
   CHECK(c.size() == 7);
 }
 
-TEST_CASE("judge_convergence: two starts in the best basin certify it, one start is unverified, a lone best is not converged",
-          "[fit][convergence]") {
+TEST_CASE(
+    "judge_convergence: two starts in the best basin certify it, one start is unverified, a lone best is not converged",
+    "[fit][convergence]") {
   const BasinRule rule{1e-3, 1e-3};
   SECTION("by objective") {
     const ConvergenceVerdict v = judge_convergence({{{0.1, 0.1}, 2.0}, {{0.8, 0.8}, 1.0}, {{0.81, 0.8}, 1.0009}}, rule);
@@ -105,7 +109,8 @@ TEST_CASE("judge_convergence: two starts in the best basin certify it, one start
     CHECK(v.spread == Approx(0.01));
   }
   SECTION("by distance, where the objective is near zero") {
-    const ConvergenceVerdict v = judge_convergence({{{0.5, 0.5}, 1e-12}, {{0.5, 0.5004}, 3e-12}, {{0.1, 0.1}, 0.3}}, rule);
+    const ConvergenceVerdict v =
+        judge_convergence({{{0.5, 0.5}, 1e-12}, {{0.5, 0.5004}, 3e-12}, {{0.1, 0.1}, 0.3}}, rule);
     CHECK(v.converged == Converged::yes);
     CHECK(v.in_basin == 2);
   }
@@ -126,8 +131,10 @@ TEST_CASE("judge_convergence: two starts in the best basin certify it, one start
   }
 }
 
-TEST_CASE("A two-well landscape: one local start stops in the wrong well, eight starts find the global minimum and certify it",
-          "[fit][convergence]") {
+TEST_CASE(
+    "A two-well landscape: one local start stops in the wrong well, eight starts find the global minimum and certify "
+    "it",
+    "[fit][convergence]") {
   const FitResult one = fit_wells("{algorithm: LN_BOBYQA, xtol_rel: 1e-6, max_evaluations: 200}");
   REQUIRE(one.fits.size() == 1);
   const Optimization& a = one.fits[0];
@@ -160,8 +167,9 @@ TEST_CASE("A two-well landscape: one local start stops in the wrong well, eight 
 TEST_CASE("A mutant optimizer that returns its first lattice point is reported not converged", "[fit][convergence]") {
   // DIRECT stopped at its first point (the centre) and every start's local stage at its start:
   // four optima that are just the four first points.
-  const FitResult r = fit_wells("{algorithm: GN_DIRECT_L, max_evaluations: 1, starts: 4, "
-                                "polish: {algorithm: LN_BOBYQA, max_evaluations: 1}}");
+  const FitResult r = fit_wells(
+      "{algorithm: GN_DIRECT_L, max_evaluations: 1, starts: 4, "
+      "polish: {algorithm: LN_BOBYQA, max_evaluations: 1}}");
   const Optimization& o = r.fits[0];
   INFO(o.failure << "; " << o.convergence);
   REQUIRE(o.ok());
@@ -174,7 +182,8 @@ TEST_CASE("A mutant optimizer that returns its first lattice point is reported n
   CHECK(o.convergence.find("only 1 of 4 starts") == 0);
 }
 
-TEST_CASE("A multi-start fit replays from its journal: the same starts, evaluations and verdict", "[fit][convergence][journal]") {
+TEST_CASE("A multi-start fit replays from its journal: the same starts, evaluations and verdict",
+          "[fit][convergence][journal]") {
   const fs::path d = fresh_dir("asperity-fitconv-journal");
   const std::string optimizer = "{algorithm: LN_BOBYQA, xtol_rel: 1e-6, max_evaluations: 200, starts: 4}";
   FitResult first, again;

@@ -11,9 +11,9 @@
 #include <sstream>
 
 #include "fit/fit.hpp"
+#include "fit/fit_load.hpp"
 #include "fit_support.hpp"
 #include "scene/csv.hpp"
-#include "fit/fit_load.hpp"
 
 using namespace asperity;
 using namespace asperity::testing;
@@ -22,8 +22,8 @@ namespace fs = std::filesystem;
 namespace {
 
 int asperity_in(const fs::path& work, const std::string& args, std::string* err) {
-  const std::string cmd = "cd '" + work.string() + "' && '" + ASPERITY_BINARY + "' " + args +
-                          " >stdout.txt 2>stderr.txt";
+  const std::string cmd =
+      "cd '" + work.string() + "' && '" + ASPERITY_BINARY + "' " + args + " >stdout.txt 2>stderr.txt";
   const int rc = std::system(cmd.c_str());
   *err = slurp(work / "stderr.txt");
   return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
@@ -75,15 +75,18 @@ void require_refused(const FitCase& c, const std::string& what) {
 TEST_CASE("A fit whose model runs end before the peak fails, with the reason", "[fit][failures]") {
   const FitCase c = make_fit_case("nopeak", 0.725e-15, 1.5, 0.1, 40);
   // Where the peak is at the fit's start value; the fit then runs to 60 % of that time only.
-  const Scene s = load_scene(c.dir / "scene.yaml", {"model.alpha_b=1e-15", "stop.at_first_peak=true", "output.series=[]"});
+  const Scene s =
+      load_scene(c.dir / "scene.yaml", {"model.alpha_b=1e-15", "stop.at_first_peak=true", "output.series=[]"});
   const Observables full = simulate(s).obs;
   REQUIRE(full.peak_found);
   const double t_stop = 0.6 * full.t_peak;
   const fs::path f = write_text(c.dir / "f.yaml",
                                 "objective: quadratic_alpha\n"
-                                "experiments: [{scene: scene.yaml, set: {stop.time: " + scene_io::format_double(t_stop) + "}}]\n"
-                                "parameters: {model.alpha_b: {lo: 1e-16, hi: 5e-15, start: 1e-15, scale: log}}\n"
-                                "profile: false\n");
+                                "experiments: [{scene: scene.yaml, set: {stop.time: " +
+                                    scene_io::format_double(t_stop) +
+                                    "}}]\n"
+                                    "parameters: {model.alpha_b: {lo: 1e-16, hi: 5e-15, start: 1e-15, scale: log}}\n"
+                                    "profile: false\n");
   const FitResult r = asperity::testing::run_fit_serial(f);
   const Optimization& o = r.fits[0];
   CHECK_FALSE(o.ok());
@@ -111,10 +114,11 @@ TEST_CASE("A fit whose objective is 0 at every evaluation fails: noise levels th
     force.Q_N.push_back(0.02 * k);
   }
   write_force_csv(c.dir / "force.csv", force, {"a short Q(t) (test_fit_failures.cpp)"});
-  const fs::path f = write_text(c.dir / "f.yaml",
-                                "objective: area_and_force\nexperiments: [{scene: scene.yaml, force: force.csv}]\n"
-                                "parameters: {model.alpha_b: {lo: 1e-16, hi: 5e-15, start: 1e-15, scale: log}}\n"
-                                "optimizer: {algorithm: LN_BOBYQA, max_evaluations: 4}\nprofile: false\nintervals: false\n");
+  const fs::path f =
+      write_text(c.dir / "f.yaml",
+                 "objective: area_and_force\nexperiments: [{scene: scene.yaml, force: force.csv}]\n"
+                 "parameters: {model.alpha_b: {lo: 1e-16, hi: 5e-15, start: 1e-15, scale: log}}\n"
+                 "optimizer: {algorithm: LN_BOBYQA, max_evaluations: 4}\nprofile: false\nintervals: false\n");
   FitSpec spec = load_fit(f);
   FitOptions options;
   options.threads = 1;
@@ -148,7 +152,8 @@ TEST_CASE("A measured A(Q) in mm² instead of m² is refused", "[fit][failures]"
   fs::remove_all(c.dir);
 }
 
-TEST_CASE("measured_curve_problem: decrease significant against noise, A(0) within 10 % of the sum", "[fit][failures]") {
+TEST_CASE("measured_curve_problem: decrease significant against noise, A(0) within 10 % of the sum",
+          "[fit][failures]") {
   // Stand-in-like curves: A = A0 (1 − d (Q/Qs)²) + Gaussian noise of 0.2 % of A0, 60 points.
   const double A0 = 4e-6, Qs = 0.75;
   std::mt19937_64 rng(12345);
@@ -162,8 +167,8 @@ TEST_CASE("measured_curve_problem: decrease significant against noise, A(0) with
     }
     return m;
   };
-  CHECK(measured_curve_problem(curve(0.15, 1.0), A0).empty());   // the stand-ins' smallest drop
-  CHECK(measured_curve_problem(curve(0.01, 1.0), A0).empty());   // 1 % drop: 5 x the noise, still seen
+  CHECK(measured_curve_problem(curve(0.15, 1.0), A0).empty());  // the stand-ins' smallest drop
+  CHECK(measured_curve_problem(curve(0.01, 1.0), A0).empty());  // 1 % drop: 5 x the noise, still seen
   CHECK(measured_curve_problem(curve(0.0, 1.0), A0).find("does not decrease") != std::string::npos);
   CHECK(measured_curve_problem(curve(-0.15, 1.0), A0).find("does not decrease") != std::string::npos);
   CHECK(measured_curve_problem(curve(0.15, 1.08), A0).empty());  // 8 % off: accepted

@@ -6,8 +6,8 @@
 #include <cmath>
 
 #include "fit/fit.hpp"
-#include "fit_support.hpp"
 #include "fit/fit_load.hpp"
+#include "fit_support.hpp"
 
 using namespace asperity;
 using namespace asperity::testing;
@@ -92,9 +92,10 @@ TEST_CASE("A joint fit of two experiments recovers one shared alpha_b to 5e-9", 
   const FitCase a = make_fit_case("j1", 0.8e-15, 1.5, 0.1, 100);
   const FitCase b = make_fit_case("j2", 0.8e-15, 1.5, 0.25, 160);
   const auto f = write_text(a.dir / "fit.yaml",
-                            "objective: quadratic_alpha\nexperiments: [scene.yaml, " + (b.dir / "scene.yaml").string() + "]\n"
-                            "parameters: {model.alpha_b: {lo: 1e-16, hi: 5e-15, start: 0.4e-15, scale: log}}\n"
-                            "optimizer: {xtol_rel: 1e-5}\nprofile: false\n");
+                            "objective: quadratic_alpha\nexperiments: [scene.yaml, " + (b.dir / "scene.yaml").string() +
+                                "]\n"
+                                "parameters: {model.alpha_b: {lo: 1e-16, hi: 5e-15, start: 0.4e-15, scale: log}}\n"
+                                "optimizer: {xtol_rel: 1e-5}\nprofile: false\n");
   const FitResult r = fit_file(f);
   const Optimization& o = r.fits[0];
   INFO(o.failure << " " << o.stop_reason << " evaluations " << o.evaluations);

@@ -11,8 +11,8 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
-#include <iterator>
 #include <fstream>
+#include <iterator>
 #include <random>
 
 #include "fit/fit.hpp"
@@ -34,9 +34,9 @@ struct Gauss {
 };
 
 struct JointCase {
-  FitCase base;              // dir with experiment.yaml, junctions.csv, measured.csv, scene.yaml
+  FitCase base;  // dir with experiment.yaml, junctions.csv, measured.csv, scene.yaml
   double alpha_b = 0, epsilon = 0, eta = 0;
-  double t_end = 0;          // s, last Q(t) sample
+  double t_end = 0;  // s, last Q(t) sample
   std::size_t force_samples = 0;
 };
 
@@ -54,12 +54,13 @@ JointCase make_joint_case(const std::string& tag, double alpha_b, double epsilon
     extra.insert(extra.begin(), truth_set.begin(), truth_set.end());
     return extra;
   };
-  const RunResult peak = simulate(load_scene(c.base.dir / "scene.yaml", with({"stop.at_first_peak=true", "output.series=[]"})));
+  const RunResult peak =
+      simulate(load_scene(c.base.dir / "scene.yaml", with({"stop.at_first_peak=true", "output.series=[]"})));
   REQUIRE(peak.obs.peak_found);
   c.t_end = 1.15 * peak.obs.t_peak;
-  const RunResult r = simulate(load_scene(c.base.dir / "scene.yaml",
-                                          with({"stop.at_first_peak=false", "stop.time=" + scene_io::format_double(c.t_end),
-                                                "output.every=0.005", "output.series=[t, Q]"})));
+  const RunResult r = simulate(load_scene(
+      c.base.dir / "scene.yaml", with({"stop.at_first_peak=false", "stop.time=" + scene_io::format_double(c.t_end),
+                                       "output.every=0.005", "output.series=[t, Q]"})));
   Gauss z(seed);
   MeasuredCurve m;
   std::vector<double> Q;
@@ -98,9 +99,10 @@ const char* kParameters =
 
 }  // namespace
 
-TEST_CASE("area_and_force recovers (alpha_b, epsilon, eta) of a noisy model-generated experiment within its own "
-          "error bars and profile intervals",
-          "[fit][joint][heavy]") {
+TEST_CASE(
+    "area_and_force recovers (alpha_b, epsilon, eta) of a noisy model-generated experiment within its own "
+    "error bars and profile intervals",
+    "[fit][joint][heavy]") {
   const JointCase c = make_joint_case("joint-noisy", 0.7e-15, 0.9, 100, 0.002, 20261125);
   const FitResult r = fit_text(c,
                                "objective: area_and_force\n"
@@ -132,8 +134,9 @@ TEST_CASE("area_and_force recovers (alpha_b, epsilon, eta) of a noisy model-gene
   CHECK(un.reduced_chi2 < 1.2);
   for (std::size_t i = 0; i < 3; ++i) {
     const double z = (o.best[i] - truth[i]) / un.sigma[i];
-    INFO(o.variables[i].label << " = " << o.best[i] << " (truth " << truth[i] << ", sigma " << un.sigma[i] << ", z " << z << ")");
-    CHECK(std::abs(z) < 1.96);                    // within the 95 % interval
+    INFO(o.variables[i].label << " = " << o.best[i] << " (truth " << truth[i] << ", sigma " << un.sigma[i] << ", z "
+                              << z << ")");
+    CHECK(std::abs(z) < 1.96);                      // within the 95 % interval
     CHECK(un.sigma[i] / std::abs(truth[i]) < 0.2);  // and the interval says something
     // The profile through the optimum (others fixed) is lowest at the fit, and its interval
     // (conditional: narrower than sigma's when parameters are correlated) brackets the fit.
@@ -159,7 +162,8 @@ TEST_CASE("area_and_force recovers (alpha_b, epsilon, eta) of a noise-free model
                                "objective: area_and_force\n"
                                "experiments: [{scene: scene.yaml, force: force.csv}]\n" +
                                    std::string(kParameters) +
-                                   "optimizer: {algorithm: GN_DIRECT_L, xtol_rel: 1e-6, max_evaluations: 300, polish: {algorithm: LN_BOBYQA, max_evaluations: 200}}\n"
+                                   "optimizer: {algorithm: GN_DIRECT_L, xtol_rel: 1e-6, max_evaluations: 300, polish: "
+                                   "{algorithm: LN_BOBYQA, max_evaluations: 200}}\n"
                                    "profile: false\nintervals: false\n",
                                false);
   const Optimization& o = r.fits[0];
@@ -167,24 +171,25 @@ TEST_CASE("area_and_force recovers (alpha_b, epsilon, eta) of a noise-free model
   REQUIRE(o.ok());
   const double truth[3] = {c.alpha_b, c.epsilon, c.eta};
   for (std::size_t i = 0; i < 3; ++i) {
-    INFO(o.variables[i].label << " = " << o.best[i] << " (truth " << truth[i] << ", rel " << o.best[i] / truth[i] - 1 << ")");
+    INFO(o.variables[i].label << " = " << o.best[i] << " (truth " << truth[i] << ", rel " << o.best[i] / truth[i] - 1
+                              << ")");
     CHECK(std::abs(o.best[i] / truth[i] - 1) < 1e-3);
   }
   std::filesystem::remove_all(c.base.dir);
 }
-
 
 // "J at a point" is a fit of one evaluation from that point. NLopt's BOBYQA first moves a start
 // that lies within its initial step (0.1 of the scaled box) of a bound: eta = 31 on [30, 300]
 // (log scale: 0.014 of the box) became 37.77 = 30 · 10^0.1 before one evaluation meant the start.
 TEST_CASE("a fit of one evaluation scores its start, even within the initial step of a bound", "[fit][joint]") {
   const JointCase c = make_joint_case("joint-one-evaluation", 0.7e-15, 0.9, 100, 0.002, 7);
-  const std::string head = "objective: area_and_force\nexperiments: [{scene: scene.yaml, force: force.csv}]\n"
-                           "parameters:\n"
-                           "  model.alpha_b: {lo: 1e-16, hi: 5e-15, start: 0.7e-15, scale: log}\n"
-                           "  model.epsilon: {lo: 0.5, hi: 0.99, start: 0.9}\n"
-                           "  model.eta: {lo: 30, hi: 300, start: 31, scale: log}\n"
-                           "profile: false\nintervals: false\n";
+  const std::string head =
+      "objective: area_and_force\nexperiments: [{scene: scene.yaml, force: force.csv}]\n"
+      "parameters:\n"
+      "  model.alpha_b: {lo: 1e-16, hi: 5e-15, start: 0.7e-15, scale: log}\n"
+      "  model.epsilon: {lo: 0.5, hi: 0.99, start: 0.9}\n"
+      "  model.eta: {lo: 30, hi: 300, start: 31, scale: log}\n"
+      "profile: false\nintervals: false\n";
   const FitResult b = fit_text(c, head + "optimizer: {algorithm: LN_BOBYQA, max_evaluations: 1}\n", false);
   const FitResult nm = fit_text(c, head + "optimizer: {algorithm: LN_NELDERMEAD, max_evaluations: 1}\n", false);
   for (const FitResult* r : {&b, &nm}) {
@@ -206,35 +211,46 @@ TEST_CASE("a fit of one evaluation scores its start, even within the initial ste
 TEST_CASE("measure: multi-start recovery of (alpha_b, epsilon, eta) on the noisy joint case", "[.][measure]") {
   const JointCase c = make_joint_case("joint-measure", 0.7e-15, 0.9, 100, 0.002, 20261125);
   const std::string head = "objective: area_and_force\nexperiments: [{scene: scene.yaml, force: force.csv}]\n";
-  const FitResult truth = fit_text(c, head +
-                                          "parameters:\n"
-                                          "  model.alpha_b: {lo: 1e-16, hi: 5e-15, start: 0.7e-15, scale: log}\n"
-                                          "  model.epsilon: {lo: 0.5, hi: 0.99, start: 0.9}\n"
-                                          "  model.eta: {lo: 30, hi: 300, start: 100, scale: log}\n"
-                                          "optimizer: {algorithm: LN_BOBYQA, max_evaluations: 1}\nprofile: false\nintervals: false\n",
-                                   false);
+  const FitResult truth =
+      fit_text(c,
+               head +
+                   "parameters:\n"
+                   "  model.alpha_b: {lo: 1e-16, hi: 5e-15, start: 0.7e-15, scale: log}\n"
+                   "  model.epsilon: {lo: 0.5, hi: 0.99, start: 0.9}\n"
+                   "  model.eta: {lo: 30, hi: 300, start: 100, scale: log}\n"
+                   "optimizer: {algorithm: LN_BOBYQA, max_evaluations: 1}\nprofile: false\nintervals: false\n",
+               false);
   const double j_truth = truth.fits[0].objective;
   std::printf("J at the truth: %.6g\n", j_truth);
   const char* variants[] = {
-      "{algorithm: GN_DIRECT_L, xtol_rel: 1e-4, max_evaluations: 300, polish: {algorithm: LN_SBPLX, max_evaluations: 200}}",
-      "{algorithm: GN_DIRECT_L, xtol_rel: 1e-4, max_evaluations: 300, polish: {algorithm: LN_SBPLX, max_evaluations: 200}, starts: 4}",
-      "{algorithm: GN_DIRECT_L, xtol_rel: 1e-4, max_evaluations: 300, polish: {algorithm: LN_SBPLX, max_evaluations: 200}, starts: 8}",
+      "{algorithm: GN_DIRECT_L, xtol_rel: 1e-4, max_evaluations: 300, polish: {algorithm: LN_SBPLX, max_evaluations: "
+      "200}}",
+      "{algorithm: GN_DIRECT_L, xtol_rel: 1e-4, max_evaluations: 300, polish: {algorithm: LN_SBPLX, max_evaluations: "
+      "200}, starts: 4}",
+      "{algorithm: GN_DIRECT_L, xtol_rel: 1e-4, max_evaluations: 300, polish: {algorithm: LN_SBPLX, max_evaluations: "
+      "200}, starts: 8}",
       "{algorithm: LN_SBPLX, xtol_rel: 1e-4, max_evaluations: 200, starts: 8}",
       "{algorithm: LN_SBPLX, xtol_rel: 1e-4, max_evaluations: 600, starts: 8}",
       "{algorithm: LN_BOBYQA, xtol_rel: 1e-4, max_evaluations: 300, starts: 8}",
       "{algorithm: LN_NELDERMEAD, xtol_rel: 1e-4, max_evaluations: 400, starts: 8}",
-      "{algorithm: GN_DIRECT_L, xtol_rel: 1e-4, max_evaluations: 300, polish: {algorithm: LN_NELDERMEAD, max_evaluations: 400}, starts: 8}",
-      "{algorithm: GN_DIRECT_L, xtol_rel: 1e-4, max_evaluations: 300, polish: {algorithm: LN_NELDERMEAD, max_evaluations: 400}, starts: 4}"};
+      "{algorithm: GN_DIRECT_L, xtol_rel: 1e-4, max_evaluations: 300, polish: {algorithm: LN_NELDERMEAD, "
+      "max_evaluations: 400}, starts: 8}",
+      "{algorithm: GN_DIRECT_L, xtol_rel: 1e-4, max_evaluations: 300, polish: {algorithm: LN_NELDERMEAD, "
+      "max_evaluations: 400}, starts: 4}"};
   const std::size_t first = std::getenv("MEASURE_FROM") ? std::stoul(std::getenv("MEASURE_FROM")) : 0;
   for (std::size_t k = first; k < std::size(variants); ++k) {
     const char* v = variants[k];
-    const FitResult r = fit_text(c, head + kParameters + "optimizer: " + v + "\nprofile: false\nintervals: false\n", false);
+    const FitResult r =
+        fit_text(c, head + kParameters + "optimizer: " + v + "\nprofile: false\nintervals: false\n", false);
     const Optimization& o = r.fits[0];
-    std::printf("%s\n  J = %.6g (J/J_truth - 1 = %.3g), converged %s, %d of %zu starts in the best basin (best: %zu), "
-                "spread %.3g, %d evaluations, %.1f s; alpha_b %.5g epsilon %.5g eta %.5g\n",
-                v, o.objective, o.objective / j_truth - 1, converged_name(o.converged), o.in_best_basin, o.starts.size(),
-                o.best_start + 1, o.spread, o.evaluations, o.wall_s, o.best[0], o.best[1], o.best[2]);
-    for (const StartRun& s : o.starts) std::printf("    start J = %.6g, %d evaluations, %s\n", s.objective, s.evaluations, s.in_best_basin ? "in" : "out");
+    std::printf(
+        "%s\n  J = %.6g (J/J_truth - 1 = %.3g), converged %s, %d of %zu starts in the best basin (best: %zu), "
+        "spread %.3g, %d evaluations, %.1f s; alpha_b %.5g epsilon %.5g eta %.5g\n",
+        v, o.objective, o.objective / j_truth - 1, converged_name(o.converged), o.in_best_basin, o.starts.size(),
+        o.best_start + 1, o.spread, o.evaluations, o.wall_s, o.best[0], o.best[1], o.best[2]);
+    for (const StartRun& s : o.starts)
+      std::printf("    start J = %.6g, %d evaluations, %s\n", s.objective, s.evaluations,
+                  s.in_best_basin ? "in" : "out");
     std::fflush(stdout);
   }
   std::filesystem::remove_all(c.base.dir);

@@ -1,8 +1,8 @@
 // The fit journal (fit/fit_journal.hpp): exact round trip of the evaluated values, torn and
 // damaged lines, replay through run_fit, and the split of a separate fit into array tasks.
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
-#include <algorithm>
 #include <cstring>
 #include <filesystem>
 #include <limits>
@@ -33,15 +33,17 @@ const fs::path kFixture = fs::path(ASPERITY_SOURCE_DIR) / "tests" / "data" / "fi
 
 }  // namespace
 
-TEST_CASE("fit journal: values read back bit for bit; a torn or damaged tail is dropped, damage before good lines refused",
-          "[fit][journal]") {
+TEST_CASE(
+    "fit journal: values read back bit for bit; a torn or damaged tail is dropped, damage before good lines refused",
+    "[fit][journal]") {
   const fs::path d = fresh_dir("lines");
   const fs::path file = d / "journal.csv";
   // Values whose shortest text is long or special: 0.1 + 0.2, the smallest subnormal, -0, a
   // value from exp/log as parameter_value makes them, and a failed evaluation (NaN objective).
   Evaluation a;
   a.index = 1;
-  a.values = {0.1 + 0.2, std::numeric_limits<double>::denorm_min(), -0.0, std::exp(std::log(0.1e-15) + 0.37 * std::log(50.0))};
+  a.values = {0.1 + 0.2, std::numeric_limits<double>::denorm_min(), -0.0,
+              std::exp(std::log(0.1e-15) + 0.37 * std::log(50.0))};
   a.objective = 1.0 / 3.0;
   a.residuals = {1.0 / 3.0};
   a.wall_s = 0.0123;
@@ -70,10 +72,10 @@ TEST_CASE("fit journal: values read back bit for bit; a torn or damaged tail is 
     REQUIRE(rb);
     CHECK(std::isnan(rb->objective));
     CHECK(rb->status == b.status);
-    CHECK_FALSE(j.find("fit", "m010", b.values));          // the other point
-    CHECK_FALSE(j.find("profile", "m010", a.values));      // another part
+    CHECK_FALSE(j.find("fit", "m010", b.values));      // the other point
+    CHECK_FALSE(j.find("profile", "m010", a.values));  // another part
     std::vector<double> next = a.values;
-    next[3] = std::nextafter(next[3], 1.0);                 // one ulp away: not journaled
+    next[3] = std::nextafter(next[3], 1.0);  // one ulp away: not journaled
     CHECK_FALSE(j.find("fit", "m010", next));
   }
   // A torn last line (kill -9 inside the write) and a damaged tail line are dropped, and cut off
@@ -105,7 +107,8 @@ TEST_CASE("fit journal: values read back bit for bit; a torn or damaged tail is 
   write_text(file, "index,hash\n");
   {
     FitJournal j;
-    CHECK_THROWS_WITH(j.open(file, false), Catch::StartsWith(file.string() + ":1: header: not an asperity fit journal"));
+    CHECK_THROWS_WITH(j.open(file, false),
+                      Catch::StartsWith(file.string() + ":1: header: not an asperity fit journal"));
   }
   // A torn header (damaged from outside: a write of ours ends with its newline) counts as an empty
   // journal: opened for appending it gets a whole header, and what is appended then reads back.
@@ -139,8 +142,9 @@ FitOptions m010_only() {
 }
 }  // namespace
 
-TEST_CASE("run_fit through a journal: a rerun replays every evaluation and gives the same fit; replay_only refuses a gap",
-          "[fit][journal]") {
+TEST_CASE(
+    "run_fit through a journal: a rerun replays every evaluation and gives the same fit; replay_only refuses a gap",
+    "[fit][journal]") {
   const FitSpec spec = load_fit(kFixture);
   const fs::path d = fresh_dir("replay");
   FitOptions o = m010_only();
@@ -193,7 +197,7 @@ TEST_CASE("array tasks of a separate fit: experiments dealt longest first to the
   CHECK(task_optimizations(spec, {0, 3}) == V{2});
   CHECK(task_optimizations(spec, {1, 3}) == V{1});
   CHECK(task_optimizations(spec, {2, 3}) == V{0});
-  CHECK(task_optimizations(spec, {3, 4}).empty());     // more tasks than experiments
+  CHECK(task_optimizations(spec, {3, 4}).empty());  // more tasks than experiments
   FitSpec joint = spec;
   joint.separate = false;
   CHECK_THROWS_AS(task_optimizations(joint, {0, 2}), std::invalid_argument);
@@ -201,7 +205,8 @@ TEST_CASE("array tasks of a separate fit: experiments dealt longest first to the
   CHECK_THROWS_WITH(parse_shard("3/3", {}, "--task"), Catch::StartsWith("--task 3/3: expected I/N"));
 }
 
-TEST_CASE("fit inputs.txt: a resume with another build, task, --set or file content is refused naming the key", "[fit][journal]") {
+TEST_CASE("fit inputs.txt: a resume with another build, task, --set or file content is refused naming the key",
+          "[fit][journal]") {
   const FitSpec spec = load_fit(kFixture);
   const fs::path d = fresh_dir("inputs");
   const fs::path file = d / "inputs.txt";
@@ -212,22 +217,30 @@ TEST_CASE("fit inputs.txt: a resume with another build, task, --set or file cont
   CHECK(std::count(mine.begin(), mine.end(), '\n') == 1 + 2 + 13);
   CHECK(mine.find("\nfile " + hex16(fnv1a64(slurp(kFixture))) + " fit fit.yaml\n") != std::string::npos);
   CHECK(mine.find(" measured m025/measured.csv\n") != std::string::npos);
-  CHECK_THROWS_WITH(check_fit_inputs(file, fit_inputs_text(spec, {}, "asperity 0.1.0 commit bbbbbbbbbbbb Release GCC 12.2.0", {0, 1})),
-                    Catch::StartsWith(file.string() + ":2: build: the journal was computed by 'asperity 0.1.0 commit aaaaaaaaaaaa"));
-  CHECK_THROWS_WITH(check_fit_inputs(file, fit_inputs_text(spec, {}, "asperity 0.1.0 commit aaaaaaaaaaaa Release GCC 12.2.0", {1, 2})),
-                    Catch::StartsWith(file.string() + ":3: task: the journal is array task 0/1, this run is 1/2"));
-  CHECK_THROWS_WITH(check_fit_inputs(file, fit_inputs_text(spec, {"model.eta=50"}, "asperity 0.1.0 commit aaaaaaaaaaaa Release GCC 12.2.0", {0, 1})),
-                    Catch::Contains("set: the journal was computed with 0 --set override(s), this run has 1"));
+  CHECK_THROWS_WITH(
+      check_fit_inputs(file,
+                       fit_inputs_text(spec, {}, "asperity 0.1.0 commit bbbbbbbbbbbb Release GCC 12.2.0", {0, 1})),
+      Catch::StartsWith(file.string() + ":2: build: the journal was computed by 'asperity 0.1.0 commit aaaaaaaaaaaa"));
+  CHECK_THROWS_WITH(
+      check_fit_inputs(file,
+                       fit_inputs_text(spec, {}, "asperity 0.1.0 commit aaaaaaaaaaaa Release GCC 12.2.0", {1, 2})),
+      Catch::StartsWith(file.string() + ":3: task: the journal is array task 0/1, this run is 1/2"));
+  CHECK_THROWS_WITH(
+      check_fit_inputs(file, fit_inputs_text(spec, {"model.eta=50"},
+                                             "asperity 0.1.0 commit aaaaaaaaaaaa Release GCC 12.2.0", {0, 1})),
+      Catch::Contains("set: the journal was computed with 0 --set override(s), this run has 1"));
   // A binary whose code cannot be named resumes nothing, even its own journal.
   const std::string anonymous = fit_inputs_text(spec, {}, "", {0, 1});
   write_text(file, anonymous);
-  CHECK_THROWS_WITH(check_fit_inputs(file, anonymous), Catch::StartsWith(file.string() + ":2: build: this binary's code cannot be identified"));
+  CHECK_THROWS_WITH(check_fit_inputs(file, anonymous),
+                    Catch::StartsWith(file.string() + ":2: build: this binary's code cannot be identified"));
   fs::remove_all(d);
 }
 
-TEST_CASE("fit journal: a best line forged with a valid digest is refused against its re-run; a legacy FNV journal is "
-          "read and rewritten with SHA-256",
-          "[fit][journal]") {
+TEST_CASE(
+    "fit journal: a best line forged with a valid digest is refused against its re-run; a legacy FNV journal is "
+    "read and rewritten with SHA-256",
+    "[fit][journal]") {
   const FitSpec spec = load_fit(kFixture);
   const fs::path d = fresh_dir("forged");
   FitOptions o = m010_only();
@@ -243,7 +256,8 @@ TEST_CASE("fit journal: a best line forged with a valid digest is refused agains
   // journal's own check passes, the re-run at the optimum does not.
   const std::string text = slurp(d / "journal.csv");
   std::vector<std::string> lines;
-  for (std::size_t at = 0, nl; (nl = text.find('\n', at)) != std::string::npos; at = nl + 1) lines.push_back(text.substr(at, nl - at));
+  for (std::size_t at = 0, nl; (nl = text.find('\n', at)) != std::string::npos; at = nl + 1)
+    lines.push_back(text.substr(at, nl - at));
   const std::string best_x = journal_values(f.best);
   int best_line = 0;
   std::string forged = lines[0] + "\n";

@@ -2,8 +2,8 @@
 #include <catch2/catch.hpp>
 #include <string>
 
-#include "fit_support.hpp"
 #include "fit/fit_load.hpp"
+#include "fit_support.hpp"
 
 using namespace asperity;
 using namespace asperity::testing;
@@ -25,11 +25,11 @@ const FitCase& shared_case() {
 }
 
 const char* kGood =
-    "objective: quadratic_alpha\n"                                                       // 1
-    "experiments: [scene.yaml]\n"                                                        // 2
-    "parameters:\n"                                                                      // 3
-    "  model.alpha_b: {lo: 1e-16, hi: 5e-15, start: 7e-16, scale: log}\n"               // 4
-    "optimizer: {algorithm: LN_BOBYQA}\n";                                               // 5
+    "objective: quadratic_alpha\n"                                         // 1
+    "experiments: [scene.yaml]\n"                                          // 2
+    "parameters:\n"                                                        // 3
+    "  model.alpha_b: {lo: 1e-16, hi: 5e-15, start: 7e-16, scale: log}\n"  // 4
+    "optimizer: {algorithm: LN_BOBYQA}\n";                                 // 5
 
 // The InputError of loading `text` as a fit file in the case folder.
 InputError load_error(const std::string& text) {
@@ -79,7 +79,8 @@ TEST_CASE("Building a scene variant leaves the template unchanged", "[fit][load]
   CHECK(t.build({{"experiment.E", 1.5e6}}).experiment.E == 1.5e6);
   CHECK(t.build().experiment.E == E0);
   // Loading a fit checks its bounds and error bars by building variants: still unchanged.
-  const FitSpec s = load_fit(write_text(shared_case().dir / "eb.yaml", std::string(kGood) + "error_bars: {experiment.E: 0.1e6}\n"));
+  const FitSpec s =
+      load_fit(write_text(shared_case().dir / "eb.yaml", std::string(kGood) + "error_bars: {experiment.E: 0.1e6}\n"));
   CHECK(s.experiments[0].scene.build().experiment.E == E0);
   CHECK(s.experiments[0].scene.build().model.alpha_b == alpha0);
 }
@@ -134,7 +135,8 @@ TEST_CASE("Fit file errors name file, line and key", "[fit][load]") {
   }
   SECTION("objective needs a measured curve") {
     write_text(shared_case().dir / "nomeas.yaml",
-               "name: no-measured\nmass: 0.1\nk_L: 9200\nv: 1e-4\nE: 1.6e6\nnu: 0.5\nsigma_exp: 0.23e6\njunctions: junctions.csv\n");
+               "name: no-measured\nmass: 0.1\nk_L: 9200\nv: 1e-4\nE: 1.6e6\nnu: 0.5\nsigma_exp: 0.23e6\njunctions: "
+               "junctions.csv\n");
     write_text(shared_case().dir / "nomeas_scene.yaml", "experiment: nomeas.yaml\n");
     const InputError e = load_error(with(kGood, "[scene.yaml]", "[nomeas_scene.yaml]"));
     CHECK(e.line == 2);
@@ -146,7 +148,8 @@ TEST_CASE("Fit file errors name file, line and key", "[fit][load]") {
     CHECK(e.message.find("target") != std::string::npos);
   }
   SECTION("target only with stick_slip") {
-    const InputError e = load_error(with(kGood, "[scene.yaml]", "[{scene: scene.yaml, target: {drop: 0.1, period: 0.1}}]"));
+    const InputError e =
+        load_error(with(kGood, "[scene.yaml]", "[{scene: scene.yaml, target: {drop: 0.1, period: 0.1}}]"));
     CHECK(e.key == "experiments[0].target");
   }
   SECTION("missing scene file") {
@@ -169,7 +172,8 @@ TEST_CASE("Fit file errors name file, line and key", "[fit][load]") {
     CHECK(e.message.find("Pa") != std::string::npos);
   }
   SECTION("per_experiment with separate fits") {
-    const InputError e = load_error(with(std::string(kGood) + "separate: true\n", "scale: log", "per_experiment: true"));
+    const InputError e =
+        load_error(with(std::string(kGood) + "separate: true\n", "scale: log", "per_experiment: true"));
     CHECK(e.key == "parameters.model.alpha_b.per_experiment");
   }
   SECTION("profile of a parameter that is not free") {

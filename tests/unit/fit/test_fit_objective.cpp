@@ -3,9 +3,9 @@
 #include <cmath>
 
 #include "fit/fit.hpp"
+#include "fit/fit_load.hpp"
 #include "fit/objective.hpp"
 #include "fit_support.hpp"
-#include "fit/fit_load.hpp"
 
 using namespace asperity;
 using namespace asperity::testing;
@@ -73,7 +73,7 @@ TEST_CASE("model_force_at interpolates Q(t) linearly; area_and_force terms are c
   loading[0].Q = 0, loading[0].A = 1e-6;
   loading[1].Q = 1, loading[1].A = 0.9e-6;
   FitNoise noise;
-  noise.area = 0.001;   // 1e-9 m²
+  noise.area = 0.001;  // 1e-9 m²
   noise.force = 0.01;
   fe.target = {0.1, 0.2};
   obs.ss_cycles = 2, obs.ss_drop = 0.11, obs.ss_period = 0.2;
@@ -163,7 +163,8 @@ TEST_CASE("loading_and_cycles scores the loading branch held at the peak, and th
   // measured drop 0.99 N and period 1 s; the model's sampled drop 0.79 − 0.3 = 0.49 N and
   // period 0.5 s. Deviations (objective.hpp): σ_Q = 0.0099 N, reloading 0.99 N/s, dt 0.01 s.
   const double sigma_Q = 0.0099, miss = 0.99 * 0.01;
-  const double sigma_drop = std::sqrt((2 * sigma_Q * sigma_Q + miss * miss / 6) / 5), sigma_period = 0.01 / (std::sqrt(3.0) * 4);
+  const double sigma_drop = std::sqrt((2 * sigma_Q * sigma_Q + miss * miss / 6) / 5),
+               sigma_period = 0.01 / (std::sqrt(3.0) * 4);
   CHECK(p.cycles == Approx(std::pow(0.5 / sigma_drop, 2) + std::pow(0.5 / sigma_period, 2)).epsilon(1e-6));
   CHECK(area_and_force_count(scene, fe, noise, ForceScore::loading_and_cycles) == 102);
   // Pointwise scores all 551 samples; the measured curve scored against itself is 0 either way.

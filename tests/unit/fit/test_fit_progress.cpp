@@ -57,7 +57,8 @@ TEST_CASE("fit progress: profile and refit runs are counted and the count ends a
   CHECK(finished == 1);
   CHECK(f.evaluations + 1 + 3 + refit_runs + unused == budget);
   REQUIRE(lines.size() == 1);
-  CHECK_THAT(lines[0], StartsWith("m010: best J = ") && Contains("converged: unverified (1 of 1 start(s) in the best basin)"));
+  CHECK_THAT(lines[0],
+             StartsWith("m010: best J = ") && Contains("converged: unverified (1 of 1 start(s) in the best basin)"));
 
   // Without profile and error bars neither is budgeted; over every experiment, three times one.
   FitOptions bare;

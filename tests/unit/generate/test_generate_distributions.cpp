@@ -112,9 +112,12 @@ TEST_CASE("mixture: component weights are recovered within binomial error bars",
   const JunctionPopulation pop = draw_population(d, n, 2024);
   std::size_t c0 = 0, c1 = 0, c2 = 0;
   for (double a : pop.area_m2) {
-    if (a == 1e-9) ++c0;
-    else if (a >= 2e-9 && a <= 1e-8) ++c1;
-    else if (a >= 2e-8 && a <= 1e-7) ++c2;
+    if (a == 1e-9)
+      ++c0;
+    else if (a >= 2e-9 && a <= 1e-8)
+      ++c1;
+    else if (a >= 2e-8 && a <= 1e-7)
+      ++c2;
   }
   REQUIRE(c0 + c1 + c2 == n);  // supports are disjoint: every draw is attributed
   const double counts[3] = {double(c0), double(c1), double(c2)};

@@ -9,8 +9,7 @@
 using namespace asperity;
 
 TEST_CASE("junctions are placed inside the disc without overlap, the same for the same seed", "[generate][positions]") {
-  const JunctionPopulation pop =
-      draw_population(Distribution{PowerLaw{1.5, 1e-9, 1e-7}}, 1200, 11);
+  const JunctionPopulation pop = draw_population(Distribution{PowerLaw{1.5, 1e-9, 1e-7}}, 1200, 11);
   const double R = 3.5e-3;
   const Positions a = place_in_contact_disc(pop.area_m2, R, 5), b = place_in_contact_disc(pop.area_m2, R, 5);
   CHECK(a.x_m == b.x_m);

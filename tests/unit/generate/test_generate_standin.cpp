@@ -3,12 +3,12 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "scene/validate.hpp"
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include "scene/validate.hpp"
 
 #include "generate/recipe.hpp"
 #include "generate/standin.hpp"
@@ -86,7 +86,8 @@ TEST_CASE("the committed recipe reads back with the paper's values", "[generate]
   const StandinRecipe r = load_recipe(kRecipe);
   REQUIRE(r.masses_kg.size() == 6);
   const double added[6] = {0, 0.055, 0.111, 0.215, 0.308, 0.552};
-  for (int i = 0; i < 6; ++i) CHECK(r.masses_kg[static_cast<std::size_t>(i)] == Approx(0.100 + added[i]).epsilon(1e-15));
+  for (int i = 0; i < 6; ++i)
+    CHECK(r.masses_kg[static_cast<std::size_t>(i)] == Approx(0.100 + added[i]).epsilon(1e-15));
   CHECK(r.k_L == 9200);
   CHECK(r.v == 1e-4);
   CHECK(r.E == 1.6e6);
@@ -122,18 +123,16 @@ TEST_CASE("recipe errors name file, line and key", "[generate]") {
 
   CHECK_THAT(recipe_error(dir, std::string(kMinimal) + "  colour: red\n"),
              Catch::Contains("recipe.yaml:16: measured.colour: unknown key"));
-  CHECK_THAT(recipe_error(dir, std::string("seed: -3\n") + (kMinimal + 8)),
-             Catch::Contains("recipe.yaml:1: seed:"));
+  CHECK_THAT(recipe_error(dir, std::string("seed: -3\n") + (kMinimal + 8)), Catch::Contains("recipe.yaml:1: seed:"));
 
-  const std::string mix =
-      std::string(kMinimal).substr(0, std::string(kMinimal).find("distribution:")) +
-      "distribution:\n"
-      "  family: mixture\n"
-      "  components:\n"
-      "    - {weight: 0.7, family: power_law, tau: 1.5, a_min: 1e-9, a_max: 1e-7}\n"
-      "    - {weight: 0.3, family: fixed, area: 3e-8, tau: 2}\n"
-      "measured:\n"
-      "  alpha_b: 0.725e-15\n";
+  const std::string mix = std::string(kMinimal).substr(0, std::string(kMinimal).find("distribution:")) +
+                          "distribution:\n"
+                          "  family: mixture\n"
+                          "  components:\n"
+                          "    - {weight: 0.7, family: power_law, tau: 1.5, a_min: 1e-9, a_max: 1e-7}\n"
+                          "    - {weight: 0.3, family: fixed, area: 3e-8, tau: 2}\n"
+                          "measured:\n"
+                          "  alpha_b: 0.725e-15\n";
   CHECK_THAT(recipe_error(dir, mix), Catch::Contains("recipe.yaml:13: distribution.components[1].tau: unknown key"));
 }
 
@@ -167,7 +166,8 @@ TEST_CASE("changing the seed changes a stand-in, keeping it the same size", "[ge
   CHECK(a.experiment.name == b.experiment.name);
 }
 
-TEST_CASE("contact-disc positions leave areas and measured curve unchanged and pass the overlap check", "[generate][positions]") {
+TEST_CASE("contact-disc positions leave areas and measured curve unchanged and pass the overlap check",
+          "[generate][positions]") {
   StandinRecipe r = load_recipe(kRecipe);
   const StandinExperiment plain = build_standin(r, 4);  // P4.00N
   r.contact_radius_m = 4.5e-3;
@@ -231,8 +231,8 @@ TEST_CASE("the committed stand-ins load and satisfy the §7 bookkeeping", "[gene
     for (double a : e.junctions.area_m2) A0 += a;
     // Area drop of the stand-in measured curve at Q_s (last point), up to the 0.2 % noise.
     const double drop = 1.0 - e.measured->A_m2.back() / A0;
-    const double target = 0.15 + 0.10 * (P - r.masses_kg.front() * r.gravity) /
-                                     ((r.masses_kg.back() - r.masses_kg.front()) * r.gravity);
+    const double target =
+        0.15 + 0.10 * (P - r.masses_kg.front() * r.gravity) / ((r.masses_kg.back() - r.masses_kg.front()) * r.gravity);
     CHECK(std::abs(drop - target) < 0.01);
     // Scene of the paper on this stand-in loads too.
     const Scene s = load_scene(kSource / "scenes" / "paper" / (name + ".yaml"));

@@ -17,7 +17,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const char* kFiles[] = {"experiment.yaml", "junctions.csv", "measured.csv", "measured_Qt.csv", "scene.yaml", "README.md"};
+const char* kFiles[] = {"experiment.yaml", "junctions.csv", "measured.csv",
+                        "measured_Qt.csv", "scene.yaml",    "README.md"};
 
 // The InputError a recipe text raises ("" when it loads).
 std::string recipe_error(const fs::path& dir, const std::string& text) {
@@ -37,7 +38,8 @@ TEST_CASE("a synthetic experiment holds A(Q) and Q(t) from one run, labelled, in
   const fs::path dir = fresh_dir("asperity-synthetic");
   write_base_scene(dir, 0.1, 40);
   const SyntheticTruth truth{0.8e-15, 0.85, 120, "none"};
-  const fs::path recipe_file = write_text(dir / "recipe.yaml", synthetic_recipe_text("base/scene.yaml", truth, 0.002, 7, 1.0));
+  const fs::path recipe_file =
+      write_text(dir / "recipe.yaml", synthetic_recipe_text("base/scene.yaml", truth, 0.002, 7, 1.0));
   const SyntheticRecipe r = load_synthetic_recipe(recipe_file);
   CHECK(r.scene.model.alpha_b == truth.alpha_b);
   CHECK(r.scene.model.epsilon == truth.epsilon);
@@ -63,7 +65,8 @@ TEST_CASE("a synthetic experiment holds A(Q) and Q(t) from one run, labelled, in
     INFO(f);
     CHECK(slurp(dir / "a" / f).find(label) != std::string::npos);
   }
-  CHECK(slurp(dir / "a" / "README.md").find("alpha_b = 8e-16 m^5/N^2, epsilon = 0.85, eta = 120 1/s") != std::string::npos);
+  CHECK(slurp(dir / "a" / "README.md").find("alpha_b = 8e-16 m^5/N^2, epsilon = 0.85, eta = 120 1/s") !=
+        std::string::npos);
 
   // The written scene reproduces the run at the truth, and its experiment reads back.
   const Scene s = load_scene(dir / "a" / "scene.yaml");
@@ -75,9 +78,11 @@ TEST_CASE("a synthetic experiment holds A(Q) and Q(t) from one run, labelled, in
   CHECK(s.experiment.junctions.area_m2 == r.scene.experiment.junctions.area_m2);
 
   // Another seed, other noise; no noise, the model's own curves.
-  const SyntheticRecipe other = load_synthetic_recipe(write_text(dir / "r2.yaml", synthetic_recipe_text("base/scene.yaml", truth, 0.002, 8, 1.0)));
+  const SyntheticRecipe other = load_synthetic_recipe(
+      write_text(dir / "r2.yaml", synthetic_recipe_text("base/scene.yaml", truth, 0.002, 8, 1.0)));
   CHECK(build_synthetic(other).experiment.measured->A_m2 != x.experiment.measured->A_m2);
-  const SyntheticRecipe exact = load_synthetic_recipe(write_text(dir / "r3.yaml", synthetic_recipe_text("base/scene.yaml", truth, 0, 7, 1.0)));
+  const SyntheticRecipe exact =
+      load_synthetic_recipe(write_text(dir / "r3.yaml", synthetic_recipe_text("base/scene.yaml", truth, 0, 7, 1.0)));
   const SyntheticExperiment xe = build_synthetic(exact);
   CHECK(xe.experiment.measured->A_m2.front() == xe.model.A0);  // Q = 0: no junction has moved
   fs::remove_all(dir);
@@ -102,13 +107,17 @@ TEST_CASE("the synthetic recipe reader refuses unknown keys, keys it does not ow
   CHECK_THAT(replaced("model.interactions: none", "model.interactions: springs"),
              Catch::Contains("bad.yaml:7: synthetic.set.model.interactions:"));
   CHECK_THAT(replaced("model.eta: 100", "model.etta: 100"), Catch::Contains("bad.yaml:6: synthetic.set.model.etta:"));
-  CHECK_THAT(replaced("noise: {area: 0.002", "noise: {area: 0.5"), Catch::Contains("bad.yaml:9: synthetic.noise.area: must be in [0, 0.1)"));
+  CHECK_THAT(replaced("noise: {area: 0.002", "noise: {area: 0.5"),
+             Catch::Contains("bad.yaml:9: synthetic.noise.area: must be in [0, 0.1)"));
   CHECK_THAT(replaced("points: 40", "points: 1"), Catch::Contains("synthetic.measured.points: must be at least 2"));
-  CHECK_THAT(replaced("end: 1", "end: 0.005"), Catch::Contains("synthetic.measured_force.end: must be at least two samples"));
-  CHECK_THAT(replaced("scene: base/scene.yaml", "scene: nowhere.yaml"), Catch::Contains("bad.yaml:2: synthetic.scene: scene file not found"));
+  CHECK_THAT(replaced("end: 1", "end: 0.005"),
+             Catch::Contains("synthetic.measured_force.end: must be at least two samples"));
+  CHECK_THAT(replaced("scene: base/scene.yaml", "scene: nowhere.yaml"),
+             Catch::Contains("bad.yaml:2: synthetic.scene: scene file not found"));
   CHECK_THAT(replaced("  seed: 1\n", ""), Catch::Contains("synthetic.seed"));
   // A window that ends before the peak is the recipe's to fix.
-  const fs::path short_window = write_text(dir / "short.yaml", synthetic_recipe_text("base/scene.yaml", SyntheticTruth{}, 0.002, 1, 0.05));
+  const fs::path short_window =
+      write_text(dir / "short.yaml", synthetic_recipe_text("base/scene.yaml", SyntheticTruth{}, 0.002, 1, 0.05));
   CHECK_THROWS_WITH(build_synthetic(load_synthetic_recipe(short_window)),
                     Catch::Contains("short.yaml:11: synthetic.measured_force.end: the run showed no confirmed peak"));
   fs::remove_all(dir);

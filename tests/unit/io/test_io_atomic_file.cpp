@@ -85,13 +85,14 @@ TEST_CASE("store AtomicFileWriter streams pieces across its buffer and publishes
   std::string expected;
   {
     AtomicFileWriter w(p, Durability::synced);
-    for (std::size_t n : {std::size_t{1}, std::size_t{1000}, std::size_t{1} << 20, std::size_t{3} << 19, std::size_t{524287}}) {
+    for (std::size_t n :
+         {std::size_t{1}, std::size_t{1000}, std::size_t{1} << 20, std::size_t{3} << 19, std::size_t{524287}}) {
       const std::string piece(n, static_cast<char>('a' + expected.size() % 26));
       w.write(piece);
       expected += piece;
     }
     CHECK(asperity::testing::slurp(p) == "old\n");  // not yet published
-    CHECK(entries(d) == 2);                          // the file and the temporary
+    CHECK(entries(d) == 2);                         // the file and the temporary
     w.commit();
   }
   CHECK(expected.size() == 3146728);  // 1 + 1000 + 1048576 + 1572864 + 524287

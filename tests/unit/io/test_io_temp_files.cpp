@@ -136,7 +136,7 @@ TEST_CASE("temporaries of names up to 255 bytes stay within NAME_MAX and are fou
     const std::string p = temp_prefix(name), t = temp_name(name);
     CHECK(t.rfind(p + "tmp-", 0) == 0);
     CHECK(t.size() <= 255);
-    CHECK(p == temp_prefix(name));                                 // the same name, the same prefix
+    CHECK(p == temp_prefix(name));                                    // the same name, the same prefix
     CHECK(p != temp_prefix(name.substr(0, name.size() - 2) + "zz"));  // another name, another one
     const std::string kept = p.substr(1, p.find('~') - 1);
     CHECK(kept.size() >= 140);

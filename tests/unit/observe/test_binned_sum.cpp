@@ -25,7 +25,10 @@ Pop make_pop(std::size_t n, const ContactLaw& law) {
     const double w = initial_diameter(A0) * law.E, c = w * law.force_scale(A0);
     const double phi_s = law.slip_phi(A0);
     const double psi_s = phi_s / stiffness_factor(1.0 - phi_s * phi_s, law.nu, law.shape);
-    p.A0.push_back(A0); p.w.push_back(w); p.c.push_back(c); p.d_s.push_back(psi_s / c);
+    p.A0.push_back(A0);
+    p.w.push_back(w);
+    p.c.push_back(c);
+    p.d_s.push_back(psi_s / c);
     p.psi_hi = std::max(p.psi_hi, psi_s);
   }
   return p;
@@ -41,7 +44,10 @@ std::pair<double, double> worst_error(const Pop& p, const UniversalForceLaw& U, 
   for (int k = 1; k <= 60; ++k) {
     const double X = d_sorted[d_sorted.size() * k / 64] * 0.999;
     for (std::size_t i = 0; i < p.A0.size(); ++i)
-      if (present[i] && p.d_s[i] < X) { present[i] = 0; B.remove(i); }
+      if (present[i] && p.d_s[i] < X) {
+        present[i] = 0;
+        B.remove(i);
+      }
     double F = 0, A = 0, Fscale = 0;
     for (std::size_t i = 0; i < p.A0.size(); ++i) {
       if (!present[i]) continue;
@@ -102,7 +108,10 @@ TEST_CASE("binned sums: a junction removed twice counts once, an emptied bin is 
 #include "observe/observables.hpp"
 #include "support.hpp"
 
-TEST_CASE("event solver: 20 copies of each junction with 20x mass and spring give the same run scaled by 20 (binned vs direct sums)", "[solve][binned]") {
+TEST_CASE(
+    "event solver: 20 copies of each junction with 20x mass and spring give the same run scaled by 20 (binned vs "
+    "direct sums)",
+    "[solve][binned]") {
   // n = 1000 junctions use the direct sum; 20 000 use the binned sums. Replicating every
   // junction and scaling M and k_L by 20 leaves X(t) unchanged and scales Q and A by 20.
   using namespace asperity::testing;

@@ -5,9 +5,9 @@
 
 #include <boost/math/tools/roots.hpp>
 #include <catch2/catch.hpp>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <chrono>
 #include <limits>
 
 #include "observe/simulate.hpp"
@@ -64,8 +64,10 @@ bool all_finite(const Recorder& r) {
 Outcome run_with(Scene s, SolverMethod m, double Ct_or_tol) {
   if (m == SolverMethod::reference) omp_set_num_threads(1);
   s.solver.method = m;
-  if (m == SolverMethod::reference) s.solver.Ct = Ct_or_tol;
-  else s.solver.tolerance = Ct_or_tol;
+  if (m == SolverMethod::reference)
+    s.solver.Ct = Ct_or_tol;
+  else
+    s.solver.tolerance = Ct_or_tol;
   return run(s);
 }
 
@@ -113,7 +115,8 @@ TEST_CASE("alpha_b to 0 converges to the linear model at first order in alpha_b"
   CHECK_THAT((A0 - a1.A) / (A0 - a2.A), WithinRel(10.0, 0.05));
 }
 
-TEST_CASE("very large alpha_b keeps the area above the explicit slip-point bound and both solvers agree", "[extremes]") {
+TEST_CASE("very large alpha_b keeps the area above the explicit slip-point bound and both solvers agree",
+          "[extremes]") {
   Scene s = paper_scene(spread_areas(20, 1e-9, 1e-7), 0.1);
   s.model.alpha_b = 1e-10;  // ×1.4e5 the paper's: junctions shrink to ~0.1–1 % before slipping (e → 1)
   s.stop.time = 0.05;
@@ -187,7 +190,10 @@ double trough_closed_form(const Scene& s, const Peak& p) {
   return Q_eq - (p.max.Q - Q_eq) * std::exp(-s.model.eta * M_PI / (2.0 * wd));
 }
 
-TEST_CASE("epsilon = 1 slides smoothly at the kinetic level and the first drop matches the closed form at epsilon = 0.1 and 0.9", "[extremes]") {
+TEST_CASE(
+    "epsilon = 1 slides smoothly at the kinetic level and the first drop matches the closed form at epsilon = 0.1 and "
+    "0.9",
+    "[extremes]") {
   {
     Scene s = paper_scene(spread_areas(40, 1e-9, 1e-7), 0.1);
     s.model.epsilon = 1.0;
@@ -196,9 +202,10 @@ TEST_CASE("epsilon = 1 slides smoothly at the kinetic level and the first drop m
     REQUIRE(all_finite(out.rec));
     CHECK(out.rec.peaks().size() <= 1);  // no stick-slip
     const Sample& e = out.rec.last();
-    REQUIRE(e.n_slipping == 40);         // steady sliding: every junction slips
+    REQUIRE(e.n_slipping == 40);  // steady sliding: every junction slips
     // Steady sliding at V = v: Q = Σ ε f_s + M η v = σ_exp A + M η v.
-    CHECK_THAT(e.Q, WithinRel(s.experiment.sigma_exp * e.A + s.experiment.mass_kg * s.model.eta * s.experiment.v, 1e-4));
+    CHECK_THAT(e.Q,
+               WithinRel(s.experiment.sigma_exp * e.A + s.experiment.mass_kg * s.model.eta * s.experiment.v, 1e-4));
     CHECK_THAT(e.V, WithinRel(s.experiment.v, 1e-3));
   }
   for (double eps : {0.1, 0.9}) {
@@ -342,7 +349,10 @@ TEST_CASE("one junction slips at the instant the closed-form oscillator reaches 
   auto g = [&](double t) { return k0 * oscillator_X(t, 0.2, s.model.eta, s.experiment.k_L, k0, s.experiment.v) - f_s; };
   // Bracket the first crossing on a fine grid, then solve (the oscillation decays: X rises ~monotonically).
   double a = 0.01, b = 0.01;
-  while (g(b) < 0) { a = b; b += 1e-3; }
+  while (g(b) < 0) {
+    a = b;
+    b += 1e-3;
+  }
   boost::math::tools::eps_tolerance<double> tol(50);
   std::uintmax_t it = 100;
   const auto r = boost::math::tools::toms748_solve(g, a, b, tol, it);
@@ -374,7 +384,8 @@ TEST_CASE("a million junctions run in bounded memory per junction", "[extremes][
   getrusage(RUSAGE_SELF, &after);
   const double bytes_per_junction = (static_cast<double>(after.ru_maxrss) - before.ru_maxrss) * 1024.0 / N;
   std::printf("N = 1e6: %lld steps, t_end = %g s, peak RSS %.1f MB, %.0f bytes per junction\n",
-              static_cast<long long>(out.info.stats.steps), out.info.t_end, after.ru_maxrss / 1024.0, bytes_per_junction);
+              static_cast<long long>(out.info.stats.steps), out.info.t_end, after.ru_maxrss / 1024.0,
+              bytes_per_junction);
   REQUIRE(out.info.t_end == s.stop.time);
   CHECK(std::isfinite(out.rec.last().Q));
   CHECK(out.info.stats.slips == 0);  // far below every slip threshold

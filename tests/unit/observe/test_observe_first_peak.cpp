@@ -75,10 +75,11 @@ ClosedFormPeak closed_form_peak(const Scene& s, std::size_t N, double A0) {
   const Oscillator pre{e.mass_kg, s.model.eta, e.k_L + n * k, e.k_L, e.v, 0, 0, 0, 0};
   const double T = 2 * M_PI / pre.wd();
   const double t_slip = first_upcrossing([&](double t) { return k * pre.X(t) - sigma * A0; }, 0, 100, T / 2000);
-  const Oscillator post{e.mass_kg, s.model.eta, e.k_L, e.k_L, e.v, n * s.model.epsilon * sigma * A0,
-                        t_slip, pre.X(t_slip), pre.V(t_slip)};
+  const Oscillator post{e.mass_kg, s.model.eta,   e.k_L,        e.k_L, e.v, n * s.model.epsilon * sigma * A0,
+                        t_slip,    pre.X(t_slip), pre.V(t_slip)};
   const double Tp = 2 * M_PI / post.wd();
-  const double t_peak = first_upcrossing([&](double t) { return post.V(t) - e.v; }, t_slip, t_slip + 10 * Tp, Tp / 2000);
+  const double t_peak =
+      first_upcrossing([&](double t) { return post.V(t) - e.v; }, t_slip, t_slip + 10 * Tp, Tp / 2000);
   return {t_slip, t_peak, e.k_L * (e.v * t_peak - post.X(t_peak))};
 }
 
@@ -96,9 +97,9 @@ Scene equal_junctions(std::size_t N, double A0, double mass, double E) {
 
 TEST_CASE("first peak: maxima before the first slip are start-up ringing, not peaks", "[observe][peak]") {
   Recorder rec(1e-3, false, 0.02, false, -1);
-  rec.extremum({0.01, 5.0, 0, true});   // ringing maximum, higher than anything later
+  rec.extremum({0.01, 5.0, 0, true});  // ringing maximum, higher than anything later
   rec.extremum({0.02, 1.0, 0, false});
-  rec.population(slip(0.10, 0));        // the only junction slips
+  rec.population(slip(0.10, 0));  // the only junction slips
   rec.extremum({0.20, 2.0, 0, true});
   REQUIRE(rec.peaks().size() == 1);
   CHECK(rec.peaks()[0].max.t == 0.20);
@@ -114,10 +115,10 @@ TEST_CASE("first peak: precursor drops and sticks before the whole interface sli
   rec.population(stick(0.22, 3));        // ... and a stick: three junctions never slipped
   rec.extremum({0.30, 1.010, 0, true});  // the peak: a 0.3 % drop, far below min_drop
   rec.extremum({0.31, 1.007, 0, false});
-  rec.population(slip(0.315, 0));        // the last junctions give way
-  rec.extremum({0.32, 1.008, 0, false}); // (a minimum reported twice is harmless)
+  rec.population(slip(0.315, 0));         // the last junctions give way
+  rec.extremum({0.32, 1.008, 0, false});  // (a minimum reported twice is harmless)
   CHECK(rec.peaks().empty());
-  rec.population(stick(0.34, 0));        // the slider sticks: the first macroscopic slip is over
+  rec.population(stick(0.34, 0));  // the slider sticks: the first macroscopic slip is over
   REQUIRE(rec.peaks().size() == 1);
   CHECK(rec.peaks()[0].max.t == 0.30);
   CHECK(rec.peaks()[0].min.t == 0.31);
@@ -201,7 +202,8 @@ TEST_CASE("first peak of N equal junctions against the closed-form motion", "[ob
   }
 }
 
-TEST_CASE("first peak of 60 lognormal junctions: one peak for every tolerance and for the reference", "[observe][peak][solver]") {
+TEST_CASE("first peak of 60 lognormal junctions: one peak for every tolerance and for the reference",
+          "[observe][peak][solver]") {
   Scene s = load_scene(std::filesystem::path(ASPERITY_SOURCE_DIR) / "tests/data/peak/ln60_scene.yaml");
   s.stop.at_first_peak = true;
   double dt = 0;

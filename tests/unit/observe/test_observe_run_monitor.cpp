@@ -9,8 +9,7 @@
 using namespace asperity;
 using namespace asperity::testing;
 
-TEST_CASE("a monitor that lets the run go changes nothing and sees simulated time advance",
-          "[observe][monitor]") {
+TEST_CASE("a monitor that lets the run go changes nothing and sees simulated time advance", "[observe][monitor]") {
   Scene s = paper_scene(spread_areas(200, 1e-10, 5e-9));
   s.stop.time = 0.5;
   const RunResult plain = simulate(s);
@@ -39,12 +38,18 @@ TEST_CASE("a monitor that says stop interrupts the run early", "[observe][monito
   int polls = 0;
   RunMonitor m;
   m.period_s = 0;
-  m.poll = [&](double t, double) { ++polls; return t < 0.1; };
+  m.poll = [&](double t, double) {
+    ++polls;
+    return t < 0.1;
+  };
   REQUIRE_THROWS_AS(simulate(s, 0, &m), RunInterrupted);
   // Stopped at the first poll past 0.1 s, far before stop.time (the run needs ~10^4 steps).
   CHECK(polls >= 2);
   Scene again = s;
   int polls_again = 0;
-  m.poll = [&](double t, double) { ++polls_again; return t < 0.1; };
+  m.poll = [&](double t, double) {
+    ++polls_again;
+    return t < 0.1;
+  };
   CHECK_THROWS_WITH(simulate(again, 0, &m), Catch::Contains("run interrupted at simulated t = "));
 }

@@ -12,8 +12,9 @@ TEST_CASE("series.csv header is all series in canonical order", "[observe][csv]"
   std::ostringstream out;
   Sample s{0.5, 1e-6, 2e-5, 0.25, 1.25e-5, 7, 1200};
   write_series_csv(out, {s}, {"n_intact", "t", "A", "X", "Q", "V", "n_slipping"});
-  CHECK(out.str() == "t,X,V,Q,A,n_slipping,n_intact\n0.5,9.9999999999999995e-07,2.0000000000000002e-05,"
-                     "0.25,1.2500000000000001e-05,7,1200\n");
+  CHECK(out.str() ==
+        "t,X,V,Q,A,n_slipping,n_intact\n0.5,9.9999999999999995e-07,2.0000000000000002e-05,"
+        "0.25,1.2500000000000001e-05,7,1200\n");
   std::ostringstream sub;
   write_series_csv(sub, {s}, {"A", "t"});
   CHECK(sub.str() == "t,A\n0.5,1.2500000000000001e-05\n");

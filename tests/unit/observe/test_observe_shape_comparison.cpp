@@ -86,7 +86,7 @@ TEST_CASE("shape bootstrap: its spreads match a Monte Carlo over the noise", "[o
   INFO("alpha sd: Monte Carlo " << mc_alpha << ", bootstrap " << boot_alpha << "; n sd: Monte Carlo " << mc_n
                                 << ", bootstrap " << boot_n);
   CHECK_THAT(boot_alpha, Catch::Matchers::WithinRel(mc_alpha, 0.03));  // measured 0.5 %
-  CHECK_THAT(boot_n, Catch::Matchers::WithinRel(mc_n, 0.06));  // measured 1.5 %
+  CHECK_THAT(boot_n, Catch::Matchers::WithinRel(mc_n, 0.06));          // measured 1.5 %
   // The exponent of an exact parabola with this noise spreads widely: the reason a verdict on
   // n alone cannot be trusted (issue 22).
   CHECK(mc_n > 0.05);

@@ -99,7 +99,7 @@ TEST_CASE("Recorder stops at the first peak and cuts the loading branch there", 
   rec.extremum({0.09, 0.5, 1e-5, false});
   rec.population({0.092, 1, false, 0});  // the last junction gives way
   CHECK_FALSE(rec.done());
-  rec.population({0.095, 0, true, 0});   // and the slider sticks
+  rec.population({0.095, 0, true, 0});  // and the slider sticks
   CHECK(rec.done());
   REQUIRE(rec.peaks().size() == 1);
   // Samples after the peak time were dropped from the loading branch, kept in the series.

@@ -107,9 +107,9 @@ TEST_CASE("integrate: a stop inside a step ends the run as a wall-time limit, wi
   const auto before = std::chrono::steady_clock::now();
   const RunInfo info = integrate(st, p, obs);
   CHECK(info.stopped_by == LimitHit::wall_time);
-  CHECK(info.stats.steps == 3);          // the three steps before the one that stopped
+  CHECK(info.stats.steps == 3);  // the three steps before the one that stopped
   CHECK(obs.changes == 3);
-  CHECK_FALSE(st.stopped_early);         // its time stays at the event where it stopped
+  CHECK_FALSE(st.stopped_early);  // its time stays at the event where it stopped
   // The deadline handed to the stepper is the run's, an hour from the start, and is taken back
   // after the run (the stepper may serve its caller afterwards).
   REQUIRE(st.deadlines.size() == 1);

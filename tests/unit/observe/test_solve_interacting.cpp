@@ -38,7 +38,8 @@ TEST_CASE("two pinned junctions share the load as the 2x2 closed form says", "[s
   forces.solve(J, {1, 1}, X);
   // [1/k1 c; c 1/k2] f = (X − x): f = adj · (X − x) / det.
   const double a = 1 / J.k[0], d = 1 / J.k[1], c = C(0, 1);
-  REQUIRE(c == disc_compliance(-8e-5, -3e-5, std::sqrt(1e-9 / M_PI), std::sqrt(2.5e-9 / M_PI), s.experiment.E, s.experiment.nu));
+  REQUIRE(c == disc_compliance(-8e-5, -3e-5, std::sqrt(1e-9 / M_PI), std::sqrt(2.5e-9 / M_PI), s.experiment.E,
+                               s.experiment.nu));
   const double det = a * d - c * c, u0 = X - 1e-7, u1 = X + 2e-7;
   CHECK_THAT(J.force[0], WithinRel((d * u0 - c * u1) / det, 1e-12));
   CHECK_THAT(J.force[1], WithinRel((a * u1 - c * u0) / det, 1e-12));
@@ -79,7 +80,8 @@ TEST_CASE("never-slipped coupled junctions satisfy Eq. (3) and the coupled equat
 TEST_CASE("junctions far apart reproduce the independent model on every observable", "[solve][interacting]") {
   const std::vector<double> areas = spread_areas(12, 3e-10, 6e-9);
   std::vector<double> x, y;
-  for (std::size_t i = 0; i < areas.size(); ++i) x.push_back(1e7 * static_cast<double>(i % 4)), y.push_back(1e7 * static_cast<double>(i / 4));
+  for (std::size_t i = 0; i < areas.size(); ++i)
+    x.push_back(1e7 * static_cast<double>(i % 4)), y.push_back(1e7 * static_cast<double>(i / 4));
   Scene inter = interacting_scene(areas, x, y);
   inter.stop.time = 0.4;
   Scene indep = inter;

@@ -12,9 +12,9 @@
 #include "observe/simulate.hpp"
 #include "physics/elastic_interaction.hpp"
 #include "scene/load.hpp"
-#include "solve/interacting/interacting_junctions.hpp"
 #include "solve/integrate.hpp"
 #include "solve/interacting/interacting_event_stepper.hpp"
+#include "solve/interacting/interacting_junctions.hpp"
 #include "solve/interacting/interacting_reference_stepper.hpp"
 #include "solve/interacting/interaction_matrix.hpp"
 #include "support_scenes.hpp"
@@ -393,7 +393,8 @@ TEST_CASE("event solver: chord passes on G's single-precision copy keep every sl
   // Slip positions relative to themselves, then forces relative to the slip forces.
   double x_single = 0, x_double = 0, f_single = 0, f_double = 0, x_apart = 0, f_apart = 0;
   for (std::size_t k = 0; k < ref.size(); ++k) {
-    (k < 40 ? x_apart : f_apart) = std::max(k < 40 ? x_apart : f_apart, std::abs(sgl[k] - dbl[k]) / (k < 40 ? std::abs(ref[k]) : 1.0));
+    (k < 40 ? x_apart : f_apart) =
+        std::max(k < 40 ? x_apart : f_apart, std::abs(sgl[k] - dbl[k]) / (k < 40 ? std::abs(ref[k]) : 1.0));
     const double scale = k < 40 ? std::abs(ref[k]) : 1.0;
     double& es = k < 40 ? x_single : f_single;
     double& ed = k < 40 ? x_double : f_double;

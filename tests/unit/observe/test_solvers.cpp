@@ -55,7 +55,7 @@ TEST_CASE("one linear junction follows the damped oscillator until it slips", "[
   const double e3 = max_abs_error_vs_oscillator(s, run(s).rec, 0.2);
   s.solver.Ct = 1e4;
   const double e4 = max_abs_error_vs_oscillator(s, run(s).rec, 0.2);
-  CHECK(e4 < 5e-5);  // η dt ≈ 6e-5 here; measured 1.3e-5
+  CHECK(e4 < 5e-5);       // η dt ≈ 6e-5 here; measured 1.3e-5
   CHECK(e3 / e4 > 5.0);   // converges as dt → 0 ...
   CHECK(e3 / e4 < 20.0);  // ... at first order
 }
@@ -78,7 +78,9 @@ TEST_CASE("equal junction areas give an exactly quadratic A(Q) up to the peak (c
   const double Meta = s.experiment.mass_kg * s.model.eta;
   for (const auto& x : lb) {
     const double F = x.Q - Meta * x.V;
-    sqa += F * F * (N * A0 - x.A); sq4 += std::pow(F, 4); mean += x.A;
+    sqa += F * F * (N * A0 - x.A);
+    sq4 += std::pow(F, 4);
+    mean += x.A;
   }
   mean /= static_cast<double>(lb.size());
   const double alpha = sqa / sq4;
@@ -88,7 +90,7 @@ TEST_CASE("equal junction areas give an exactly quadratic A(Q) up to the peak (c
     ss_tot += std::pow(x.A - mean, 2);
   }
   CHECK_THAT(alpha, WithinRel(alpha_theory, 1e-4));  // measured 9.1e-5 (the F ≈ Q − MηẊ approximation)
-  CHECK(1 - ss_res / ss_tot > 1 - 4e-6);  // measured 1 − R² = 8.7e-7: M Ẍ of the start-up ringing
+  CHECK(1 - ss_res / ss_tot > 1 - 4e-6);             // measured 1 − R² = 8.7e-7: M Ẍ of the start-up ringing
 }
 
 TEST_CASE("model forces exceed σ_exp A transiently but never σ A (claim 7)", "[solver][claims]") {

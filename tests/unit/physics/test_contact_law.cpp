@@ -33,8 +33,7 @@ TEST_CASE("(K−E)/e² is finite and exact at e = 0 and e = 1e-8", "[physics]") 
   CHECK_THAT(boost::math::ellint_d(1e-8), WithinRel(M_PI / 4, 1e-15));
   // Our stiffness at r = A/A0 giving e = 1e-8 equals the circle value (no 0/0).
   const double e = 1e-8, r = std::sqrt(1 - e * e);
-  CHECK_THAT(stiffness_factor(r, 0.5, JunctionShape::elliptic),
-             WithinRel(1.0 / (1.5 * 0.75), 1e-15));
+  CHECK_THAT(stiffness_factor(r, 0.5, JunctionShape::elliptic), WithinRel(1.0 / (1.5 * 0.75), 1e-15));
   CHECK(std::isfinite(stiffness_factor(1.0, 0.5, JunctionShape::elliptic)));
 }
 
@@ -65,7 +64,7 @@ TEST_CASE("bisection force satisfies f = k(A(f)) δ and is odd in δ", "[physics
       const double delta = f_true / law.stiffness(A0, law.area(A0, f_true));
       const double f = law.solve_pinned_force(A0, delta);
       CHECK_THAT(f, WithinRel(law.stiffness(A0, law.area(A0, f)) * delta, 1e-13));  // measured 2.9e-14
-      CHECK_THAT(f, WithinRel(f_true, 1e-15));  // measured 2.2e-16
+      CHECK_THAT(f, WithinRel(f_true, 1e-15));                                      // measured 2.2e-16
       CHECK(law.solve_pinned_force(A0, -delta) == -f);
       CHECK(f <= k0 * delta);
     }

@@ -75,14 +75,18 @@ TEST_CASE("Cerruti's point compliance: its closed form and its symmetries", "[ph
 
 TEST_CASE("the disc-averaged compliance equals a direct integration over two uniformly loaded discs",
           "[physics][interaction]") {
-  struct Case { double dx, dy, a, b, tol; int n_theta = 48; };
+  struct Case {
+    double dx, dy, a, b, tol;
+    int n_theta = 48;
+  };
   // Separated discs: both agree to ~1e-13 (measured ≤ 1.6e-13 at gap ≥ a, ≤ 8e-13 at gap 0.2a);
   // touching discs (gap 0) are nearly singular at the contact point, where the quadrature's
   // 80 × 160 nodes per disc (80 × 96 at gap ≤ 0.4a, 80 × 48 elsewhere) leave ~1e-5 (measured 8.8e-6 and 1.9e-6).
   const Case cases[] = {
-      {3e-5, 0, 1e-5, 1e-5, 5e-13},   {0, 3e-5, 1e-5, 1e-5, 5e-13},     {2e-5, 2e-5, 1e-5, 5e-6, 5e-13},
-      {1.8e-5, 0.6e-5, 1e-5, 0.4e-5, 3e-12, 96}, {2.4e-5, 0, 1e-5, 1e-5, 3e-12, 96}, {0, 2.2e-5, 1e-5, 1e-5, 3e-12, 96},
-      {2e-5, 0, 1e-5, 1e-5, 3e-5, 160}, {0, 2e-5, 1e-5, 1e-5, 3e-5, 160},
+      {3e-5, 0, 1e-5, 1e-5, 5e-13},       {0, 3e-5, 1e-5, 1e-5, 5e-13},
+      {2e-5, 2e-5, 1e-5, 5e-6, 5e-13},    {1.8e-5, 0.6e-5, 1e-5, 0.4e-5, 3e-12, 96},
+      {2.4e-5, 0, 1e-5, 1e-5, 3e-12, 96}, {0, 2.2e-5, 1e-5, 1e-5, 3e-12, 96},
+      {2e-5, 0, 1e-5, 1e-5, 3e-5, 160},   {0, 2e-5, 1e-5, 1e-5, 3e-5, 160},
   };
   for (const Case& k : cases) {
     const double direct = direct_disc_average(k.dx, k.dy, k.a, k.b, k.n_theta);
@@ -126,7 +130,8 @@ TEST_CASE("the disc average is symmetric and tends to the point kernel for small
   CHECK_THROWS_AS(disc_compliance(1.5e-5, 0, 1e-5, 1e-5, kE, kNu), std::invalid_argument);
 }
 
-TEST_CASE("the tractions' radial moments are the closed-form averages of |ξ|^2m over the disc", "[physics][interaction]") {
+TEST_CASE("the tractions' radial moments are the closed-form averages of |ξ|^2m over the disc",
+          "[physics][interaction]") {
   // Uniform: ∫ r^2m 2r dr / a² = a^2m/(m+1). Rigid punch: ∫ r^2m r dr / (a sqrt(a² − r²)) = a^2m
   // 2^m m!/(2m+1)!!, here by Gauss–Legendre in r = a sin θ (smooth in θ).
   using G = boost::math::quadrature::gauss<double, 40>;
@@ -147,7 +152,8 @@ TEST_CASE("rigid weighting: the punch's traction displaces its own disc uniforml
   const double mindlin = (2 - kNu) / (8 * G * a);
   for (const double nu : {0.0, 0.3, kNu}) {
     const double Gn = kE / (2 * (1 + nu));
-    for (const auto& [x, y] : std::vector<std::pair<double, double>>{{0, 0}, {0.5e-5, 0}, {0, 0.7e-5}, {0.6e-5, -0.6e-5}}) {
+    for (const auto& [x, y] :
+         std::vector<std::pair<double, double>>{{0, 0}, {0.5e-5, 0}, {0, 0.7e-5}, {0.6e-5, -0.6e-5}}) {
       INFO("nu " << nu << " at (" << x << ", " << y << ")");
       CHECK_THAT(rigid_punch_displacement(x, y, a, kE, nu), WithinRel((2 - nu) / (8 * Gn * a), 1e-13));
     }
@@ -158,12 +164,16 @@ TEST_CASE("rigid weighting: the punch's traction displaces its own disc uniforml
 
 TEST_CASE("rigid weighting: the series equals a direct integration over two punch tractions",
           "[physics][interaction]") {
-  struct Case { double dx, dy, a, b, tol; int n_theta; };
+  struct Case {
+    double dx, dy, a, b, tol;
+    int n_theta;
+  };
   // Gaps ≥ 0.2 radii (1e-8 asked by issue 22). Measured: ≤ 2.7e-13 at a gap of one radius or
   // more (64 angles), ≤ 1.0e-12 at 0.2 radii (128 angles): the quadrature's limit.
   const Case cases[] = {
-      {3e-5, 0, 1e-5, 1e-5, 1e-12, 64},  {0, 3e-5, 1e-5, 1e-5, 1e-12, 64},   {2e-5, 2e-5, 1e-5, 5e-6, 1e-12, 64},
-      {2.2e-5, 0, 1e-5, 1e-5, 4e-12, 128}, {0, 2.2e-5, 1e-5, 1e-5, 4e-12, 128}, {1.8e-5, 0.6e-5, 1e-5, 0.4e-5, 4e-12, 128},
+      {3e-5, 0, 1e-5, 1e-5, 1e-12, 64},    {0, 3e-5, 1e-5, 1e-5, 1e-12, 64},
+      {2e-5, 2e-5, 1e-5, 5e-6, 1e-12, 64}, {2.2e-5, 0, 1e-5, 1e-5, 4e-12, 128},
+      {0, 2.2e-5, 1e-5, 1e-5, 4e-12, 128}, {1.8e-5, 0.6e-5, 1e-5, 0.4e-5, 4e-12, 128},
   };
   for (const Case& k : cases) {
     const double direct = direct_rigid_average(k.dx, k.dy, k.a, k.b, k.n_theta);

@@ -13,10 +13,10 @@
 #include <string>
 #include <vector>
 
-#include "support_files.hpp"
 #include "io/input_error.hpp"
 #include "regress/regress.hpp"
 #include "scene/load.hpp"
+#include "support_files.hpp"
 
 using namespace asperity;
 namespace fs = std::filesystem;
@@ -50,7 +50,8 @@ TEST_CASE("regress: tolerance is 10x the tightening change, floored at 10x the s
   fs::remove(f);
 }
 
-TEST_CASE("asperity regress passes on the committed golden results and catches an injected drift", "[regress][cli][heavy]") {
+TEST_CASE("asperity regress passes on the committed golden results and catches an injected drift",
+          "[regress][cli][heavy]") {
   const fs::path src(ASPERITY_SOURCE_DIR);
   const fs::path work = asperity::testing::temp_path("asperity_test_regress");
   fs::remove_all(work);
@@ -69,10 +70,11 @@ TEST_CASE("asperity regress passes on the committed golden results and catches a
   std::string text = s.str();
   const std::string from = "../paper/P0.98N.yaml, set: [stop.cycles=5]";
   REQUIRE(text.find(from) != std::string::npos);
-  text.replace(text.find(from), from.size(), "'" + (src / "scenes/paper/P0.98N.yaml").string() +
-                                                 "', set: [stop.cycles=5, model.eta=100.5]");
+  text.replace(text.find(from), from.size(),
+               "'" + (src / "scenes/paper/P0.98N.yaml").string() + "', set: [stop.cycles=5, model.eta=100.5]");
   // Other scene paths are relative to the suite: keep the copy beside the original.
-  const fs::path drift = src / "scenes/regression" / asperity::testing::temp_path(".drift_test_suite", ".yaml").filename();
+  const fs::path drift =
+      src / "scenes/regression" / asperity::testing::temp_path(".drift_test_suite", ".yaml").filename();
   std::ofstream(drift) << text;
   const int rc = run("--suite '" + drift.string() + "'");
   fs::remove(drift);

@@ -2,8 +2,8 @@
 // and 2 threads and for merged shards, and record failing points.
 #include <unistd.h>
 
-#include <catch2/catch.hpp>
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -12,16 +12,16 @@
 #include <string>
 #include <vector>
 
+#include "campaign/campaign_load.hpp"
+#include "campaign/campaign_scenes.hpp"
 #include "campaign/merge.hpp"
 #include "campaign/store.hpp"
 #include "campaign/sweep.hpp"
-#include "report/heatmap.hpp"
-#include "campaign/campaign_load.hpp"
-#include "campaign/campaign_scenes.hpp"
-#include "observe/series_csv.hpp"
-#include "observe/simulate.hpp"
 #include "io/digest.hpp"
 #include "io/hash.hpp"
+#include "observe/series_csv.hpp"
+#include "observe/simulate.hpp"
+#include "report/heatmap.hpp"
 #include "support_files.hpp"
 
 namespace fs = std::filesystem;
@@ -312,7 +312,8 @@ std::map<std::uint64_t, std::string> series_truth(const Campaign& c) {
 
 }  // namespace
 
-TEST_CASE("series: one append-only file per store, read back per point, torn tail cut off, merged", "[campaign][series]") {
+TEST_CASE("series: one append-only file per store, read back per point, torn tail cut off, merged",
+          "[campaign][series]") {
   const fs::path d = temp_dir();
   std::ofstream(d / "series.yaml") << "name: series\nscenes: [" << (kData / "tiny_scene.yaml").string() << "]\n"
                                    << "series: true\naxes: {model.eta: [50, 100, 150]}\n";
@@ -320,7 +321,7 @@ TEST_CASE("series: one append-only file per store, read back per point, torn tai
   const auto truth = series_truth(c);
   const fs::path s = d / "s";
   REQUIRE(sweep(c, s, 1).ok == 3);
-  CHECK_FALSE(fs::exists(s / "series"));  // no file per point
+  CHECK_FALSE(fs::exists(s / "series"));               // no file per point
   CHECK(read_point_series(s, {0, 1, 2, 7}) == truth);  // 7: no such point
   // One CSV: a header, every sample of every point, a trailer (a comment to pandas) per point.
   const std::string full = slurp(s / "series.csv");
@@ -467,9 +468,10 @@ TEST_CASE("the row index holds 16 bytes a row and keeps the last row written of 
   CHECK(idx.find(7)->ok());
 }
 
-TEST_CASE("store journal: SHA-256 lines; a legacy FNV-1a journal is read and rewritten; an FNV line in a SHA-256 "
-          "journal is damage",
-          "[campaign][store]") {
+TEST_CASE(
+    "store journal: SHA-256 lines; a legacy FNV-1a journal is read and rewritten; an FNV line in a SHA-256 "
+    "journal is damage",
+    "[campaign][store]") {
   const fs::path d = temp_dir();
   {
     Journal j(d, kHeader);

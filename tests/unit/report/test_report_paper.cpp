@@ -11,10 +11,10 @@
 #include <sstream>
 #include <string>
 
-#include "support_files.hpp"
 #include "observe/simulate.hpp"
 #include "report/paper_figures.hpp"
 #include "scene/load.hpp"
+#include "support_files.hpp"
 
 using namespace asperity;
 namespace fs = std::filesystem;
@@ -33,9 +33,9 @@ TEST_CASE("asperity reproduce: table rows equal single runs, figures written", "
   fs::remove_all(work);
   fs::create_directories(work);
   const fs::path s1 = src / "scenes/paper/P0.98N.yaml", s2 = src / "scenes/paper/P1.52N.yaml";
-  const std::string cmd = std::string("'") + ASPERITY_BINARY + "' reproduce '" + s2.string() + "' '" +
-                          s1.string() + "' --out '" + (work / "out").string() +
-                          "' --set stop.at_first_peak=true --quiet 2>'" + (work / "err").string() + "'";
+  const std::string cmd = std::string("'") + ASPERITY_BINARY + "' reproduce '" + s2.string() + "' '" + s1.string() +
+                          "' --out '" + (work / "out").string() + "' --set stop.at_first_peak=true --quiet 2>'" +
+                          (work / "err").string() + "'";
   const int rc = std::system(cmd.c_str());
   REQUIRE(WIFEXITED(rc));
   REQUIRE(WEXITSTATUS(rc) == 0);

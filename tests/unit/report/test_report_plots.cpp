@@ -23,12 +23,12 @@ using Catch::Matchers::WithinRel;
 
 TEST_CASE("axes: log scale for logspace or wide values, cells between the values", "[report][plots]") {
   using namespace plot_detail;
-  CHECK(log_axis({1e-4, 1e-3, 1e-2}));             // logspace
-  CHECK(log_axis({3e-16, 6e-16, 1.2e-15}));        // logspace, less than two decades
-  CHECK_FALSE(log_axis({150, 180, 200}));          // irregular, narrow
-  CHECK_FALSE(log_axis({0.5, 0.6, 0.7}));          // linspace
-  CHECK(log_axis({1e-5, 1e-2}));                   // two values, three decades
-  CHECK_FALSE(log_axis({0, 50, 100}));             // not positive
+  CHECK(log_axis({1e-4, 1e-3, 1e-2}));       // logspace
+  CHECK(log_axis({3e-16, 6e-16, 1.2e-15}));  // logspace, less than two decades
+  CHECK_FALSE(log_axis({150, 180, 200}));    // irregular, narrow
+  CHECK_FALSE(log_axis({0.5, 0.6, 0.7}));    // linspace
+  CHECK(log_axis({1e-5, 1e-2}));             // two values, three decades
+  CHECK_FALSE(log_axis({0, 50, 100}));       // not positive
   const auto lin = cell_edges({150, 180, 200}, false);
   CHECK(lin[0] == std::pair<double, double>{135, 165});
   CHECK(lin[1] == std::pair<double, double>{165, 190});
@@ -55,9 +55,9 @@ TEST_CASE("heat map and line plot of a logspace grid: log axis, units, one line 
   fs::remove_all(w);
   fs::create_directories(w);
   const fs::path data = fs::path(ASPERITY_SOURCE_DIR) / "tests" / "data" / "campaign";
-  const fs::path campaign = write_text(
-      w / "c.yaml", "name: logs\nscenes: [" + (data / "tiny_scene.yaml").string() +
-                        "]\nset: {stop.time: 0.3}\naxes:\n  model.c_min: {logspace: [1.0e-4, 1.0e-2, 3]}\n  model.eta: [0, 100, 250]\n");
+  const fs::path campaign = write_text(w / "c.yaml", "name: logs\nscenes: [" + (data / "tiny_scene.yaml").string() +
+                                                         "]\nset: {stop.time: 0.3}\naxes:\n  model.c_min: {logspace: "
+                                                         "[1.0e-4, 1.0e-2, 3]}\n  model.eta: [0, 100, 250]\n");
   SweepOptions o;
   o.out = w / "store";
   o.threads = 1;

@@ -1,5 +1,6 @@
 #include <yaml-cpp/yaml.h>
 
+#include <unistd.h>
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -8,7 +9,6 @@
 #include <fstream>
 #include <limits>
 #include <sstream>
-#include <unistd.h>
 
 #include "report/run_writer.hpp"
 
@@ -126,7 +126,8 @@ TEST_CASE("run writer: files, header, summary round trip with identical doubles"
   fs::remove_all(dir);
 }
 
-TEST_CASE("run writer replaces the files of its last run, keeps the user's and omits an empty series", "[report][observe]") {
+TEST_CASE("run writer replaces the files of its last run, keeps the user's and omits an empty series",
+          "[report][observe]") {
   const fs::path dir = fresh_dir("run2");
   {
     Recorder rec(0.01, true, 1e-3, false, -1);
@@ -155,7 +156,8 @@ TEST_CASE("run writer replaces the files of its last run, keeps the user's and o
   fs::remove_all(dir.parent_path());
 }
 
-TEST_CASE("run writer refuses a folder whose marker was copied or lists no files, touching nothing", "[report][observe]") {
+TEST_CASE("run writer refuses a folder whose marker was copied or lists no files, touching nothing",
+          "[report][observe]") {
   const fs::path dir = fresh_dir("copied");
   fs::create_directories(dir);
   std::ofstream(dir / "series.csv") << "my own series\n";
@@ -169,7 +171,8 @@ TEST_CASE("run writer refuses a folder whose marker was copied or lists no files
   const fs::path real = fresh_dir("realrun");
   write_run(real, small_scene(), Observables{}, rec);
   fs::copy_file(real / ".asperity", dir / ".asperity", fs::copy_options::overwrite_existing);
-  CHECK_THROWS_WITH(write_run(dir, small_scene(), Observables{}, rec), Catch::Contains("series.csv: --out: refusing to replace it"));
+  CHECK_THROWS_WITH(write_run(dir, small_scene(), Observables{}, rec),
+                    Catch::Contains("series.csv: --out: refusing to replace it"));
   CHECK(slurp(dir / "series.csv") == "my own series\n");
   fs::remove_all(dir.parent_path());
   fs::remove_all(real.parent_path());
@@ -180,8 +183,7 @@ TEST_CASE("run writer refuses to replace a directory that is not a run", "[repor
   fs::create_directories(dir);
   std::ofstream(dir / "thesis.tex") << "precious\n";
   Recorder rec(0.01, true, 1e-3, false, -1);
-  CHECK_THROWS_WITH(write_run(dir, small_scene(), Observables{}, rec),
-                    Catch::Contains("not written by asperity run"));
+  CHECK_THROWS_WITH(write_run(dir, small_scene(), Observables{}, rec), Catch::Contains("not written by asperity run"));
   CHECK(fs::exists(dir / "thesis.tex"));
   CHECK_FALSE(fs::exists(dir / "summary.yaml"));
   for (const auto& e : fs::directory_iterator(dir.parent_path()))

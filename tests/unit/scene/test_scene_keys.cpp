@@ -49,7 +49,8 @@ TEST_CASE("scene keys: number defaults are the struct defaults and the writer pr
   for (const SceneKey& k : scene_keys()) {
     INFO(k.name);
     const std::string v = k.text(s);
-    if (k.written && !k.written(s) && k.section() == "topography") {  // no section at all (its E, nu are experiment's leaves too)
+    if (k.written && !k.written(s) &&
+        k.section() == "topography") {  // no section at all (its E, nu are experiment's leaves too)
       CHECK(text.find("\ntopography:") == std::string::npos);
       continue;
     }
@@ -57,7 +58,8 @@ TEST_CASE("scene keys: number defaults are the struct defaults and the writer pr
       CHECK(text.find("  " + k.leaf() + ": ") == std::string::npos);
       continue;
     }
-    CHECK(text.find("  " + k.leaf() + ": " + (k.kind == KeyKind::text ? yaml_quoted(v) : v) + "\n") != std::string::npos);
+    CHECK(text.find("  " + k.leaf() + ": " + (k.kind == KeyKind::text ? yaml_quoted(v) : v) + "\n") !=
+          std::string::npos);
   }
   CHECK(scene_value_text(s, "model.eta") == "50");
   CHECK(scene_value_text(s, "stop.max_slips") == "7");
@@ -77,17 +79,17 @@ TEST_CASE("scene keys: a typed variant equals the tree with the same values, err
       {{{"model.eta", 75}}},
       {{{"experiment.mass", 0.1 + 0.2}}},
       {{{"stop.time", 0.25}, {"model.p", 2}, {"solver.Ct", 500}}},
-      {{{"model.eta", 1}, {"model.eta", 2}}},            // the later value wins
-      {{{"model.epsilon", 1.5}}},                        // out of range
-      {{{"experiment.nu", 0.7}}},                        // out of range, an experiment value
-      {{{"stop.max_slips", 2.5}}},                       // not whole
-      {{{"stop.cycles", 3}}},                            // not a number key: text path only
-      {{{"output.every", 0.5}, {"model.epsilon", 0}}},   // the first bad key in file order is named
-      {{{"stop.time", 1e5}, {"output.every", 1}}},       // eta * time: blames model.eta at its file line
+      {{{"model.eta", 1}, {"model.eta", 2}}},                          // the later value wins
+      {{{"model.epsilon", 1.5}}},                                      // out of range
+      {{{"experiment.nu", 0.7}}},                                      // out of range, an experiment value
+      {{{"stop.max_slips", 2.5}}},                                     // not whole
+      {{{"stop.cycles", 3}}},                                          // not a number key: text path only
+      {{{"output.every", 0.5}, {"model.epsilon", 0}}},                 // the first bad key in file order is named
+      {{{"stop.time", 1e5}, {"output.every", 1}}},                     // eta * time: blames model.eta at its file line
       {{{"stop.time", 1e5}, {"output.every", 1}, {"model.eta", 20}}},  // all set: model.eta, no line
-      {{{"output.every", 1e-9}}},                        // too many samples
-      {{{"solver.Ct", 1e12}}},                           // too many reference steps
-      {{{"model.alpha_b", 1.0}}},                        // area law outside its domain
+      {{{"output.every", 1e-9}}},                                      // too many samples
+      {{{"solver.Ct", 1e12}}},                                         // too many reference steps
+      {{{"model.alpha_b", 1.0}}},                                      // area law outside its domain
       {{{"model.epsilon", 0.5}, {"model.alpha_b", 1.0}}},  // blames the first one set of p, alpha_b, epsilon
   };
   int errors = 0;
@@ -119,7 +121,9 @@ TEST_CASE("scene keys: a typed variant equals the tree with the same values, err
   // A bound broken by a value the variant set names the key the file gave, at its line.
   const SceneKey* time = find_scene_key("stop.time");
   const SceneKey* every = find_scene_key("output.every");
-  CHECK_THAT(outcome([&] { return typed.with({{time, 1e5}, {every, 1}}); }),
+  CHECK_THAT(outcome([&] {
+               return typed.with({{time, 1e5}, {every, 1}});
+             }),
              Catch::Matchers::Contains("small_scene.yaml:4: model.eta: too strong damping"));
   // The base is untouched by its variants.
   CHECK(scene_to_yaml(typed.scene()) == scene_to_yaml(scene_from_tree(tree, kScene)));

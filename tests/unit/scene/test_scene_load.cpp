@@ -14,8 +14,8 @@
 #include <string>
 #include <vector>
 
-#include "support_files.hpp"
 #include "scene/load.hpp"
+#include "support_files.hpp"
 
 namespace fs = std::filesystem;
 using namespace asperity;
@@ -52,15 +52,23 @@ bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
 // The fixture experiment as text, one key per line (line numbers below are relied upon):
 // 1 name, 2 description, 3 mass, 4 k_L, 5 v, 6 E, 7 nu, 8 sigma_exp, 9 junctions, 10 measured.
 std::string experiment_text(const std::map<std::string, std::string>& replace = {}) {
-  const std::vector<std::pair<std::string, std::string>> lines{
-      {"name", "small"}, {"description", "\"fixture\""}, {"mass", "0.1"},     {"k_L", "9200"},
-      {"v", "1.0e-4"},   {"E", "1.6e6"},                 {"nu", "0.5"},       {"sigma_exp", "0.23e6"},
-      {"junctions", "junctions.csv"},                    {"measured", "measured.csv"}};
+  const std::vector<std::pair<std::string, std::string>> lines{{"name", "small"},
+                                                               {"description", "\"fixture\""},
+                                                               {"mass", "0.1"},
+                                                               {"k_L", "9200"},
+                                                               {"v", "1.0e-4"},
+                                                               {"E", "1.6e6"},
+                                                               {"nu", "0.5"},
+                                                               {"sigma_exp", "0.23e6"},
+                                                               {"junctions", "junctions.csv"},
+                                                               {"measured", "measured.csv"}};
   std::string s;
   for (const auto& [k, v] : lines) {
     auto it = replace.find(k);
-    if (it == replace.end()) s += k + ": " + v + "\n";
-    else if (!it->second.empty()) s += it->second + "\n";  // whole line replaced ("" drops it)
+    if (it == replace.end())
+      s += k + ": " + v + "\n";
+    else if (!it->second.empty())
+      s += it->second + "\n";  // whole line replaced ("" drops it)
   }
   return s;
 }
@@ -119,7 +127,8 @@ std::string expect_error(const Sandbox& box, const std::function<void()>& load,
 std::string expect_scene_error(const std::string& rest, const std::vector<std::string>& fragments) {
   Sandbox box;
   const fs::path s = box.scene("experiment: exp/experiment.yaml\n" + rest);
-  return expect_error(box, [&] { load_scene(s); }, fragments);
+  return expect_error(
+      box, [&] { load_scene(s); }, fragments);
 }
 
 // The sandbox experiment file rewritten with some lines replaced (see experiment_text).
@@ -128,7 +137,8 @@ std::string expect_experiment_error(const std::map<std::string, std::string>& re
   Sandbox box;
   box.file("exp/experiment.yaml", experiment_text(replace));
   const fs::path s = box.scene("experiment: exp/experiment.yaml\n");
-  return expect_error(box, [&] { load_scene(s); }, fragments);
+  return expect_error(
+      box, [&] { load_scene(s); }, fragments);
 }
 
 // The sandbox junction CSV replaced by `csv`.
@@ -136,20 +146,23 @@ std::string expect_junctions_error(const std::string& csv, const std::vector<std
   Sandbox box;
   box.file("exp/junctions.csv", csv);
   const fs::path s = box.scene("experiment: exp/experiment.yaml\n");
-  return expect_error(box, [&] { load_scene(s); }, fragments);
+  return expect_error(
+      box, [&] { load_scene(s); }, fragments);
 }
 
 std::string expect_measured_error(const std::string& csv, const std::vector<std::string>& fragments) {
   Sandbox box;
   box.file("exp/measured.csv", csv);
   const fs::path s = box.scene("experiment: exp/experiment.yaml\n");
-  return expect_error(box, [&] { load_scene(s); }, fragments);
+  return expect_error(
+      box, [&] { load_scene(s); }, fragments);
 }
 
 std::string expect_override_error(const std::vector<std::string>& sets, const std::vector<std::string>& fragments) {
   Sandbox box;
   const fs::path s = box.scene("experiment: exp/experiment.yaml\n");
-  return expect_error(box, [&] { load_scene(s, sets); }, fragments);
+  return expect_error(
+      box, [&] { load_scene(s, sets); }, fragments);
 }
 
 void check_same_scene(const Scene& a, const Scene& b) {
@@ -312,13 +325,13 @@ TEST_CASE("scene: scene_to_yaml -> file -> load_scene is bit-identical", "[scene
 
 TEST_CASE("scene: overrides change values", "[scene]") {
   Sandbox box;
-  box.file("other/experiment.yaml", experiment_text({{"name", "name: other"}, {"mass", "mass: 0.5"},
+  box.file("other/experiment.yaml", experiment_text({{"name", "name: other"},
+                                                     {"mass", "mass: 0.5"},
                                                      {"junctions", "junctions: ../exp/junctions.csv"},
                                                      {"measured", ""}}));
   const fs::path p = box.scene("experiment: exp/experiment.yaml\nmodel: {eta: 100}\n");
-  const Scene s = load_scene(p, {"model.eta=50", "solver.Ct=200", "solver.method=reference",
-                                 "experiment.mass=0.2", "output.series=[t,Q,A]", "stop.at_first_peak=true",
-                                 "model.junction_shape=circular"});
+  const Scene s = load_scene(p, {"model.eta=50", "solver.Ct=200", "solver.method=reference", "experiment.mass=0.2",
+                                 "output.series=[t,Q,A]", "stop.at_first_peak=true", "model.junction_shape=circular"});
   CHECK(s.model.eta == 50);
   CHECK(s.solver.Ct == 200);
   CHECK(s.solver.method == SolverMethod::reference);
@@ -472,7 +485,8 @@ TEST_CASE("scene error: malformed YAML", "[scene]") {
 }
 
 TEST_CASE("scene error: malformed experiment YAML", "[scene]") {
-  expect_experiment_error({{"k_L", "k_L: [9200"}}, {"experiment.yaml:5:", "malformed YAML: end of sequence flow not found"});
+  expect_experiment_error({{"k_L", "k_L: [9200"}},
+                          {"experiment.yaml:5:", "malformed YAML: end of sequence flow not found"});
 }
 
 TEST_CASE("scene error: unknown top-level key suggests the closest", "[scene]") {
@@ -480,7 +494,8 @@ TEST_CASE("scene error: unknown top-level key suggests the closest", "[scene]") 
 }
 
 TEST_CASE("scene error: unknown nested key", "[scene]") {
-  const std::string w = expect_scene_error("model:\n  eta: 50\n  etaa: 3\n", {"scene.yaml:4: model.etaa:", "did you mean 'eta'"});
+  const std::string w =
+      expect_scene_error("model:\n  eta: 50\n  etaa: 3\n", {"scene.yaml:4: model.etaa:", "did you mean 'eta'"});
   CHECK_THAT(w, Contains("valid keys here: eta, epsilon"));
   expect_scene_error("output: {zzz: 1}\n", {"scene.yaml:2: output.zzz: unknown key 'zzz'; valid keys here"});
 }
@@ -497,7 +512,8 @@ TEST_CASE("scene error: unknown key in the experiment map", "[scene]") {
 }
 
 TEST_CASE("scene error: duplicate key", "[scene]") {
-  expect_scene_error("model:\n  eta: 50\n  eta: 60\n", {"scene.yaml:4: model.eta: duplicate key (first given at line 3)"});
+  expect_scene_error("model:\n  eta: 50\n  eta: 60\n",
+                     {"scene.yaml:4: model.eta: duplicate key (first given at line 3)"});
 }
 
 TEST_CASE("scene error: wrong types", "[scene]") {
@@ -509,12 +525,12 @@ TEST_CASE("scene error: wrong types", "[scene]") {
   expect_experiment_error({{"name", "name: {a: 1}"}}, {"experiment.yaml:1: name: expected text, got a map"});
   Sandbox box;
   const fs::path s = box.scene("experiment: [a, b]\n");
-  expect_error(box, [&] { load_scene(s); },
-               {"scene.yaml:1: experiment: expected the path of an experiment file"});
+  expect_error(box, [&] { load_scene(s); }, {"scene.yaml:1: experiment: expected the path of an experiment file"});
 }
 
 TEST_CASE("scene error: non-numeric value", "[scene]") {
-  expect_scene_error("model:\n  eta: abc\n", {"scene.yaml:3: model.eta: expected a number in SI units (1/s), got 'abc'"});
+  expect_scene_error("model:\n  eta: abc\n",
+                     {"scene.yaml:3: model.eta: expected a number in SI units (1/s), got 'abc'"});
 }
 
 TEST_CASE("scene error: NaN value", "[scene]") {
@@ -550,8 +566,7 @@ TEST_CASE("scene error: missing required experiment value", "[scene]") {
   expect_experiment_error({{"junctions", ""}}, {"experiment.yaml:1: junctions: missing required key"});
   Sandbox box;
   const fs::path s = box.scene("experiment: {mass: 0.2}\n");
-  expect_error(box, [&] { load_scene(s); },
-               {"scene.yaml:1: experiment.file: missing required key"});
+  expect_error(box, [&] { load_scene(s); }, {"scene.yaml:1: experiment.file: missing required key"});
 }
 
 TEST_CASE("scene error: missing value", "[scene]") {
@@ -617,7 +632,8 @@ TEST_CASE("scene error: nu outside -1 < nu <= 0.5", "[scene]") {
 TEST_CASE("scene error: negative junction area names the CSV line and column", "[scene]") {
   expect_junctions_error("# areas\ny_m,area_m2,x_m\n0,1e-8,0\n0,-1e-8,0\n",
                          {"junctions.csv:4:2: area_m2: junction area must be in [1e-20, 1] m^2, got -1e-08"});
-  expect_junctions_error("area_m2\n1e-8\n0\n", {"junctions.csv:3:1: area_m2: junction area must be in [1e-20, 1] m^2, got 0"});
+  expect_junctions_error("area_m2\n1e-8\n0\n",
+                         {"junctions.csv:3:1: area_m2: junction area must be in [1e-20, 1] m^2, got 0"});
 }
 
 TEST_CASE("scene error: NaN junction area", "[scene]") {
@@ -674,7 +690,8 @@ TEST_CASE("scene error: Ct <= 0", "[scene]") {
 
 TEST_CASE("scene error: tolerance outside 0 < tolerance <= 0.1", "[scene]") {
   expect_scene_error("solver:\n  tolerance: 0\n", {"scene.yaml:3: solver.tolerance: must be in [1e-14, 0.1], got 0"});
-  expect_scene_error("solver:\n  tolerance: 0.5\n", {"scene.yaml:3: solver.tolerance: must be in [1e-14, 0.1], got 0.5"});
+  expect_scene_error("solver:\n  tolerance: 0.5\n",
+                     {"scene.yaml:3: solver.tolerance: must be in [1e-14, 0.1], got 0.5"});
 }
 
 TEST_CASE("scene error: stop.time <= 0", "[scene]") {
@@ -696,7 +713,8 @@ TEST_CASE("scene error: output.peak_min_drop outside (0, 1)", "[scene]") {
 TEST_CASE("scene error: unknown series name", "[scene]") {
   expect_scene_error("output:\n  series:\n    - t\n    - F\n",
                      {"scene.yaml:5: output.series: unknown series 'F'; valid: t, X, V, Q, A, n_slipping, n_intact"});
-  expect_scene_error("output: {series: [t, q]}\n", {"scene.yaml:2: output.series: unknown series 'q' (did you mean 'Q'?)"});
+  expect_scene_error("output: {series: [t, q]}\n",
+                     {"scene.yaml:2: output.series: unknown series 'q' (did you mean 'Q'?)"});
   expect_scene_error("output: {series: [t, Q, t]}\n", {"scene.yaml:2: output.series: series 't' listed twice"});
 }
 
@@ -711,8 +729,9 @@ TEST_CASE("scene error: unknown area_law", "[scene]") {
 }
 
 TEST_CASE("scene error: unknown solver method suggests the closest", "[scene]") {
-  expect_scene_error("solver:\n  method: refrence\n",
-                     {"scene.yaml:3: solver.method: unknown value 'refrence' (did you mean 'reference'?); valid: reference, event"});
+  expect_scene_error(
+      "solver:\n  method: refrence\n",
+      {"scene.yaml:3: solver.method: unknown value 'refrence' (did you mean 'reference'?); valid: reference, event"});
 }
 
 TEST_CASE("scene error: measured Q_N < 0", "[scene]") {
@@ -732,7 +751,8 @@ TEST_CASE("scene error: override with a non-numeric value", "[scene]") {
 TEST_CASE("scene error: override with an unknown key", "[scene]") {
   expect_override_error({"model.etta=5"}, {"--set model.etta=5: model.etta: unknown key 'etta' (did you mean 'eta'?)"});
   expect_override_error({"foo.bar=1"}, {"--set foo.bar=1: foo: unknown key 'foo'"});
-  expect_override_error({"experiment.junctions=x.csv"}, {"--set experiment.junctions=x.csv: experiment.junctions: unknown key"});
+  expect_override_error({"experiment.junctions=x.csv"},
+                        {"--set experiment.junctions=x.csv: experiment.junctions: unknown key"});
 }
 
 TEST_CASE("scene error: malformed override", "[scene]") {
@@ -740,10 +760,12 @@ TEST_CASE("scene error: malformed override", "[scene]") {
   expect_override_error({"output.series=[t,Q"}, {"--set output.series=[t,Q: output.series: malformed YAML value"});
   expect_override_error({"model..eta=1"}, {"--set model..eta=1: model..eta: malformed key"});
   expect_override_error({"model.eta="}, {"--set model.eta=: model.eta: missing value"});
-  expect_override_error({"model.eta.x=1"}, {"--set model.eta.x=1: model.eta: expected a number in SI units (1/s), got a map"});
-  expect_override_error({"experiment.file.x=1"},
-                        {"--set experiment.file.x=1: experiment.file.x: cannot set experiment.file.x: experiment.file is the value "
-                         "'exp/experiment.yaml', not a map"});
+  expect_override_error({"model.eta.x=1"},
+                        {"--set model.eta.x=1: model.eta: expected a number in SI units (1/s), got a map"});
+  expect_override_error(
+      {"experiment.file.x=1"},
+      {"--set experiment.file.x=1: experiment.file.x: cannot set experiment.file.x: experiment.file is the value "
+       "'exp/experiment.yaml', not a map"});
 }
 
 TEST_CASE("scene error: override naming a missing experiment file", "[scene]") {

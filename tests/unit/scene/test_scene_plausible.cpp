@@ -24,7 +24,9 @@ const fs::path kScene = kSource / "tests" / "data" / "scene" / "small_scene.yaml
 struct CapturedWarnings {
   std::vector<std::string> texts;
   WarningSink previous;
-  CapturedWarnings() { previous = set_warning_sink([this](const std::string& t) { texts.push_back(t); }); }
+  CapturedWarnings() {
+    previous = set_warning_sink([this](const std::string& t) { texts.push_back(t); });
+  }
   ~CapturedWarnings() { set_warning_sink(std::move(previous)); }
 };
 
@@ -38,7 +40,8 @@ TEST_CASE("plausible ranges: the unit slip is named, the paper's values pass", "
   CHECK(implausible_message(mass, 408) ==
         "experiment.mass = 408 kg is far above a slider's 0.001 to 10 kg; was it meant in g (0.408 kg)?");
   // Of two units that land in range, the one nearer the paper's value: 100 meant in um/s, not mm/s.
-  CHECK_THAT(implausible_message(*find_scene_key("experiment.v"), 100), Catch::Matchers::EndsWith("um/s (0.0001 m/s)?"));
+  CHECK_THAT(implausible_message(*find_scene_key("experiment.v"), 100),
+             Catch::Matchers::EndsWith("um/s (0.0001 m/s)?"));
   // No unit explains it: said without a guess.
   CHECK(implausible_message(E, 1e12) == "experiment.E = 1e+12 Pa is far above an elastomer's 1e+05 to 1e+08 Pa");
   CHECK(implausible_message(*find_scene_key("model.epsilon"), 0.01) ==
@@ -59,25 +62,29 @@ TEST_CASE("plausible ranges: one warning from the loader for --set and for file 
     const Scene s = load_scene(kScene, {"experiment.E=1.6"});
     CHECK(s.experiment.E == 1.6);
     REQUIRE(w.texts.size() == 1);
-    CHECK(w.texts[0] == "--set experiment.E=1.6: experiment.E = 1.6 Pa is far below an elastomer's 1e+05 to 1e+08 Pa; "
-                        "was it meant in MPa (1.6e+06 Pa)?");
+    CHECK(w.texts[0] ==
+          "--set experiment.E=1.6: experiment.E = 1.6 Pa is far below an elastomer's 1e+05 to 1e+08 Pa; "
+          "was it meant in MPa (1.6e+06 Pa)?");
   }
   SECTION("--set experiment.mass=408 (grams)") {
     CapturedWarnings w;
     load_scene(kScene, {"experiment.mass=408"});
     REQUIRE(w.texts.size() == 1);
-    CHECK_THAT(w.texts[0], Catch::Matchers::StartsWith("--set experiment.mass=408: experiment.mass = 408 kg is far above"));
+    CHECK_THAT(w.texts[0],
+               Catch::Matchers::StartsWith("--set experiment.mass=408: experiment.mass = 408 kg is far above"));
     CHECK_THAT(w.texts[0], Catch::Matchers::EndsWith("was it meant in g (0.408 kg)?"));
   }
   SECTION("a scene file's value: FILE:LINE") {
     const fs::path dir = testing::fresh_dir("plausible-scene");
     const fs::path scene = testing::write_text(
-        dir / "scene.yaml", "experiment:\n  file: " + (kScene.parent_path() / "exp_small" / "experiment.yaml").string() +
-                                "\n  mass: 408\nmodel: {eta: 50}\n");
+        dir / "scene.yaml",
+        "experiment:\n  file: " + (kScene.parent_path() / "exp_small" / "experiment.yaml").string() +
+            "\n  mass: 408\nmodel: {eta: 50}\n");
     CapturedWarnings w;
     load_scene(scene);
     REQUIRE(w.texts.size() == 1);
-    CHECK_THAT(w.texts[0], Catch::Matchers::StartsWith(scene.lexically_normal().string() + ":3: experiment.mass = 408 kg"));
+    CHECK_THAT(w.texts[0],
+               Catch::Matchers::StartsWith(scene.lexically_normal().string() + ":3: experiment.mass = 408 kg"));
     fs::remove_all(dir);
   }
   SECTION("an experiment file's value: its FILE:LINE") {

@@ -59,26 +59,30 @@ TEST_CASE("interaction keys load, round-trip, and stay out of scenes that do not
   const Scene off = load_scene(scene, {"model.interactions=none"});
   CHECK(scene_to_yaml(off).find("  interaction") == std::string::npos);
   // A negative cut-off is out of range.
-  CHECK_THAT(error_of(scene, {"model.interaction_cutoff=-1"}), Contains("model.interaction_cutoff") && Contains(">= 0"));
+  CHECK_THAT(error_of(scene, {"model.interaction_cutoff=-1"}),
+             Contains("model.interaction_cutoff") && Contains(">= 0"));
   fs::remove_all(dir);
 }
 
-TEST_CASE("interactions are refused with one line for overlapping or unplaced junctions",
-          "[scene][interacting]") {
+TEST_CASE("interactions are refused with one line for overlapping or unplaced junctions", "[scene][interacting]") {
   const fs::path dir = temp_path("scene_interactions_bad");
   fs::remove_all(dir);
   // The fixture's junctions 3 (at 0, 0, radius 69 µm) and 5 (at 100 µm, radius 40 µm) overlap.
   fs::create_directories(dir);
-  const fs::path fixture = write_text(dir / "fixture.yaml", "experiment: " + (kExp / "experiment.yaml").string() +
-                                                               "\nmodel: {interactions: elastic}\nsolver: {method: reference}\n");
+  const fs::path fixture =
+      write_text(dir / "fixture.yaml", "experiment: " + (kExp / "experiment.yaml").string() +
+                                           "\nmodel: {interactions: elastic}\nsolver: {method: reference}\n");
   CHECK_THAT(error_of(fixture), Contains("junctions.csv") && Contains("junctions 3 and 5 overlap"));
   // No positions.
   experiment_with(dir / "bare", "area_m2\n1e-8\n2e-8\n");
-  const fs::path bare = write_text(dir / "bare.yaml", "experiment: bare/experiment.yaml\nmodel: {interactions: elastic}\nsolver: {method: reference}\n");
+  const fs::path bare =
+      write_text(dir / "bare.yaml",
+                 "experiment: bare/experiment.yaml\nmodel: {interactions: elastic}\nsolver: {method: reference}\n");
   CHECK_THAT(error_of(bare), Contains("bare.yaml:2") && Contains("model.interactions") && Contains("no x_m and y_m"));
   // Separate, placed junctions load with either solver (the event solver is the default).
   experiment_with(dir / "ok", "area_m2,x_m,y_m\n1e-8,0,0\n2e-8,3e-4,0\n");
-  const fs::path event = write_text(dir / "event.yaml", "experiment: ok/experiment.yaml\nmodel: {interactions: elastic}\n");
+  const fs::path event =
+      write_text(dir / "event.yaml", "experiment: ok/experiment.yaml\nmodel: {interactions: elastic}\n");
   CHECK(error_of(event).empty());
   fs::remove_all(dir);
 }
@@ -97,8 +101,10 @@ TEST_CASE("interactions are refused with one line beyond 20,000 junctions (the d
   fs::remove_all(dir);
   experiment_with(dir / "most", lattice(20000));
   experiment_with(dir / "over", lattice(20001));
-  const fs::path most = write_text(dir / "most.yaml", "experiment: most/experiment.yaml\nmodel: {interactions: elastic}\n");
-  const fs::path over = write_text(dir / "over.yaml", "experiment: over/experiment.yaml\nmodel: {interactions: elastic}\n");
+  const fs::path most =
+      write_text(dir / "most.yaml", "experiment: most/experiment.yaml\nmodel: {interactions: elastic}\n");
+  const fs::path over =
+      write_text(dir / "over.yaml", "experiment: over/experiment.yaml\nmodel: {interactions: elastic}\n");
   CHECK(error_of(most).empty());
   CHECK_THAT(error_of(over), Contains("over.yaml:2") && Contains("model.interactions") && Contains("N = 20001") &&
                                  Contains("more than 20000"));
@@ -136,8 +142,7 @@ TEST_CASE("model.position_scale multiplies the centres the run uses and is check
   CHECK(s.experiment.junctions.x_m[1] == 4e-4);  // the population itself is untouched
   // Written when interactions are on (the default scale is not written without them).
   CHECK(scene_to_yaml(s).find("position_scale: 2.5") != std::string::npos);
-  CHECK(scene_to_yaml(load_scene(scene, {"model.interactions=none"})).find("  position_scale:") ==
-        std::string::npos);
+  CHECK(scene_to_yaml(load_scene(scene, {"model.interactions=none"})).find("  position_scale:") == std::string::npos);
   // 0.5 keeps them apart (150 µm > 56 + 80 µm); 0.4 makes them overlap: one line naming the key.
   CHECK(error_of(scene, {"model.position_scale=0.5"}).empty());
   CHECK_THAT(error_of(scene, {"model.position_scale=0.4"}),

@@ -92,6 +92,8 @@ TEST_CASE("kernel form: ASPERITY_KERNEL picks any form this CPU has and refuses 
     setenv("ASPERITY_KERNEL", "avx512", 1);
     CHECK_THROWS_AS(kernel_form(), InputError);
   }
-  if (before) setenv("ASPERITY_KERNEL", saved.c_str(), 1);
-  else unsetenv("ASPERITY_KERNEL");
+  if (before)
+    setenv("ASPERITY_KERNEL", saved.c_str(), 1);
+  else
+    unsetenv("ASPERITY_KERNEL");
 }

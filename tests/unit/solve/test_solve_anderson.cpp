@@ -29,7 +29,8 @@ int iterate(const Eigen::MatrixXd& B, const Eigen::VectorXd& c, std::vector<doub
 
 }  // namespace
 
-TEST_CASE("Anderson: a linear map in three dimensions is solved exactly within n + 3 evaluations", "[solve][anderson]") {
+TEST_CASE("Anderson: a linear map in three dimensions is solved exactly within n + 3 evaluations",
+          "[solve][anderson]") {
   // Type-II Anderson with depth m on a linear map is GMRES in disguise: with m = n = 3 the
   // fixed point (I − B)⁻¹ c is reached after at most n + 1 differences (to rounding).
   Eigen::MatrixXd B(3, 3);
@@ -46,7 +47,8 @@ TEST_CASE("Anderson: a linear map in three dimensions is solved exactly within n
   CHECK(iterate(B, c, plain, false, 1e-13) > 40);  // spectral radius ≈ 0.88: slow without
 }
 
-TEST_CASE("Anderson: the chord iteration's kind of map converges to the same point in fewer evaluations", "[solve][anderson]") {
+TEST_CASE("Anderson: the chord iteration's kind of map converges to the same point in fewer evaluations",
+          "[solve][anderson]") {
   // A symmetric contraction of 200 dimensions with a spread spectrum (|λ| ≤ 0.3, like the
   // interacting solver's chord map): same fixed point as the direct solve, fewer evaluations.
   const int n = 200;

@@ -39,12 +39,12 @@ TEST_CASE("chord policy: a change stalled at rounding stops the solve", "[intera
 
 TEST_CASE("chord policy: slow passes, and when a rebuild is worth them", "[interacting][chord_policy]") {
   const ChordPolicy p{1e-8};
-  CHECK(p.slow(3, 0.3, 1.0));                 // contracting by 0.3, far from the tolerance
+  CHECK(p.slow(3, 0.3, 1.0));  // contracting by 0.3, far from the tolerance
   CHECK_FALSE(p.slow(3, 0.1, 1.0));
-  CHECK_FALSE(p.slow(2, 0.3, 1.0));           // not before the third pass
-  CHECK(p.slow(3, 6e-8, 1e-7));               // by 0.6 within ten times the tolerance
+  CHECK_FALSE(p.slow(2, 0.3, 1.0));  // not before the third pass
+  CHECK(p.slow(3, 6e-8, 1e-7));      // by 0.6 within ten times the tolerance
   CHECK_FALSE(p.slow(3, 3e-8, 1e-7));
-  CHECK_FALSE(p.slow(3, 0.9e-8, 1e-8));       // within the tolerance: not slow
+  CHECK_FALSE(p.slow(3, 0.9e-8, 1e-8));  // within the tolerance: not slow
   // Rent or buy: the slow passes pay for a rebuild (n/8 passes) first.
   CHECK_FALSE(ChordPolicy::rebuild_worth(124, 1000, 0.5, 1.0, 5));
   CHECK(ChordPolicy::rebuild_worth(125, 1000, 0.5, 1.0, 5));

@@ -1,8 +1,8 @@
 // solve/event/event_integrator.hpp: the event method's integrator. Here: a slip position crossed and
 // re-crossed inside one of the integrator's probe intervals (the slider turning back, η = 0) is
 // found, so no pinned junction is ever carried beyond its slip position.
-#include <catch2/catch.hpp>
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <limits>
 
@@ -38,7 +38,8 @@ struct OverloadWatch final : RunObserver {
 
 }  // namespace
 
-TEST_CASE("event integrator: a slip position reached while the slider turns back fires (eta = 0)", "[solve][event][heavy]") {
+TEST_CASE("event integrator: a slip position reached while the slider turns back fires (eta = 0)",
+          "[solve][event][heavy]") {
   // Stand-in P6.40N without damping: the slider overshoots after each slip and turns back; on
   // the build of this test's commit, without the turning-point check, X passed a slip position
   // between two probes at t = 11.64 s and the run stopped with "slip distance is below the

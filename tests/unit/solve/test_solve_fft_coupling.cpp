@@ -1,8 +1,8 @@
 // solve/interacting/fft_coupling.hpp: the precorrected-FFT product y = C x of the junctions'
 // coupling, against the dense product of the same kernel (physics/elastic_interaction.hpp,
 // evaluated pair by pair: the second method).
-#include <catch2/catch.hpp>
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <filesystem>
 #include <random>
@@ -11,8 +11,8 @@
 #include "physics/elastic_interaction.hpp"
 #include "scene/load.hpp"
 #include "solve/core/problem.hpp"
-#include "solve/interacting/interaction_matrix.hpp"
 #include "solve/interacting/fft_coupling.hpp"
+#include "solve/interacting/interaction_matrix.hpp"
 
 namespace {
 
@@ -47,7 +47,8 @@ std::vector<double> dense_product(const Population& p, const std::vector<double>
   std::vector<double> y(n, 0.0);
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = 0; j < n; ++j)
-      if (i != j) y[i] += asperity::disc_compliance(p.x[i] - p.x[j], p.y[i] - p.y[j], p.a[i], p.a[j], kE, kNu, w) * f[j];
+      if (i != j)
+        y[i] += asperity::disc_compliance(p.x[i] - p.x[j], p.y[i] - p.y[j], p.a[i], p.a[j], kE, kNu, w) * f[j];
   return y;
 }
 
@@ -64,13 +65,15 @@ double error(const FftCoupling& c, const std::vector<double>& f, const std::vect
   std::vector<double> y(f.size());
   c.apply(f.data(), y.data());
   double e = 0, s = 0;
-  for (std::size_t i = 0; i < y.size(); ++i) e = std::max(e, std::abs(y[i] - exact[i])), s = std::max(s, std::abs(exact[i]));
+  for (std::size_t i = 0; i < y.size(); ++i)
+    e = std::max(e, std::abs(y[i] - exact[i])), s = std::max(s, std::abs(exact[i]));
   return e / s;
 }
 
 }  // namespace
 
-TEST_CASE("FFT coupling: the product converges to the dense one as the exact near radius grows", "[solve][fft_coupling]") {
+TEST_CASE("FFT coupling: the product converges to the dense one as the exact near radius grows",
+          "[solve][fft_coupling]") {
   // Error ∝ (h/R)^p in the far field: order 8 on a grid of half the junction spacing. Measured
   // (uniform; rigid within 3 %): near 8 cells 8.9e-8, 12: 3.3e-9, 16: 3.9e-10, 24: 1.6e-11, an
   // observed order of 7.5-8.1 in R, the stencil's 8.
@@ -96,7 +99,8 @@ TEST_CASE("FFT coupling: the product converges to the dense one as the exact nea
   }
 }
 
-TEST_CASE("FFT coupling: a finer grid at the same exact radius, and a higher order, are more accurate", "[solve][fft_coupling]") {
+TEST_CASE("FFT coupling: a finer grid at the same exact radius, and a higher order, are more accurate",
+          "[solve][fft_coupling]") {
   const Population p = population(900, 7);
   const auto f = forces(p.x.size(), 11);
   const auto exact = dense_product(p, f, TractionWeighting::uniform);
@@ -117,7 +121,8 @@ TEST_CASE("FFT coupling: a finer grid at the same exact radius, and a higher ord
   CHECK(o8 < c2 / 5);
 }
 
-TEST_CASE("FFT coupling: every pair within the exact radius, or clusters far apart, change nothing", "[solve][fft_coupling]") {
+TEST_CASE("FFT coupling: every pair within the exact radius, or clusters far apart, change nothing",
+          "[solve][fft_coupling]") {
   // All pairs near: the grid's own values cancel exactly (up to the FFT's rounding).
   const Population p = population(150, 3);
   const auto f = forces(p.x.size(), 5);
@@ -130,7 +135,8 @@ TEST_CASE("FFT coupling: every pair within the exact radius, or clusters far apa
   // Two such clusters 10 km apart: the grid coarsens to keep its size, each cluster within the
   // exact radius, and the clusters' coupling (10⁶ times weaker) interpolated at (h/d)^p.
   Population two = p;
-  for (std::size_t i = 0; i < p.x.size(); ++i) two.x.push_back(p.x[i] + 1e4), two.y.push_back(p.y[i]), two.a.push_back(p.a[i]);
+  for (std::size_t i = 0; i < p.x.size(); ++i)
+    two.x.push_back(p.x[i] + 1e4), two.y.push_back(p.y[i]), two.a.push_back(p.a[i]);
   const auto f2 = forces(two.x.size(), 6);
   const auto exact2 = dense_product(two, f2, TractionWeighting::uniform);
   const FftCoupling far(two.x, two.y, two.a, kE, kNu, TractionWeighting::uniform);
@@ -152,17 +158,20 @@ TEST_CASE("FFT coupling: the product is symmetric, as C is", "[solve][fft_coupli
 
 TEST_CASE("FFT coupling: impossible settings are refused", "[solve][fft_coupling]") {
   const Population p = population(20, 1);
-  for (const FftCouplingSettings s : {FftCouplingSettings{5, 8, 0.5}, FftCouplingSettings{14, 8, 0.5}, FftCouplingSettings{8, 0.5, 0.5},
-                                      FftCouplingSettings{8, 8, 0}, FftCouplingSettings{8, std::nan(""), 0.5}})
+  for (const FftCouplingSettings s :
+       {FftCouplingSettings{5, 8, 0.5}, FftCouplingSettings{14, 8, 0.5}, FftCouplingSettings{8, 0.5, 0.5},
+        FftCouplingSettings{8, 8, 0}, FftCouplingSettings{8, std::nan(""), 0.5}})
     CHECK_THROWS_AS(FftCoupling(p.x, p.y, p.a, kE, kNu, TractionWeighting::uniform, s), std::invalid_argument);
-  CHECK_THROWS_AS(FftCoupling(p.x, p.y, std::vector<double>(3, 1e-5), kE, kNu, TractionWeighting::uniform), std::invalid_argument);
+  CHECK_THROWS_AS(FftCoupling(p.x, p.y, std::vector<double>(3, 1e-5), kE, kNu, TractionWeighting::uniform),
+                  std::invalid_argument);
 }
 
-TEST_CASE("FFT coupling: a stand-in's junctions at the defaults, against the solver's dense C", "[solve][fft_coupling]") {
+TEST_CASE("FFT coupling: a stand-in's junctions at the defaults, against the solver's dense C",
+          "[solve][fft_coupling]") {
   // The stand-in P4.00N (STAND-IN data): 1,201 junctions, radii 18-181 µm, its closest pairs
   // 8e-8 m apart. Measured at the defaults: 3.9e-9 (results/bench/fft_coupling.csv).
-  const asperity::Scene scene = asperity::load_scene(std::filesystem::path(ASPERITY_SOURCE_DIR) / "scenes/paper/P4.00N.yaml",
-                                                     {"model.interactions=elastic"});
+  const asperity::Scene scene = asperity::load_scene(
+      std::filesystem::path(ASPERITY_SOURCE_DIR) / "scenes/paper/P4.00N.yaml", {"model.interactions=elastic"});
   const asperity::Problem problem = asperity::make_problem(scene);
   const asperity::InteractionMatrix C = asperity::interaction_matrix(problem);
   const std::size_t n = problem.size();
@@ -173,7 +182,8 @@ TEST_CASE("FFT coupling: a stand-in's junctions at the defaults, against the sol
   const FftCoupling fast(problem);
   CHECK(error(fast, f, exact) < 1.5e-8);
   // A cut-off kernel is not translation invariant: refused.
-  const asperity::Scene cut = asperity::load_scene(std::filesystem::path(ASPERITY_SOURCE_DIR) / "scenes/paper/P4.00N.yaml",
-                                                   {"model.interactions=elastic", "model.interaction_cutoff=5e-4"});
+  const asperity::Scene cut =
+      asperity::load_scene(std::filesystem::path(ASPERITY_SOURCE_DIR) / "scenes/paper/P4.00N.yaml",
+                           {"model.interactions=elastic", "model.interaction_cutoff=5e-4"});
   CHECK_THROWS_AS(FftCoupling(asperity::make_problem(cut)), std::invalid_argument);
 }

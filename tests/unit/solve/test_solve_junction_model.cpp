@@ -4,9 +4,9 @@
 #include <catch2/catch.hpp>
 #include <cstdint>
 
+#include "solve/core/junction_model.hpp"
 #include "solve/event/event_junctions.hpp"
 #include "solve/interacting/interacting_junctions.hpp"
-#include "solve/core/junction_model.hpp"
 
 using namespace asperity;
 
@@ -30,9 +30,7 @@ struct Model {
   std::int64_t slips() const { return 0; }
   std::int64_t repins() const { return 0; }
   std::int64_t slip_crossed(double) { return 0; }
-  void repin_all(double)
-    requires Repin
-  {}
+  void repin_all(double) requires Repin {}
 };
 using Complete = Model<true>;
 using NoRepin = Model<false>;

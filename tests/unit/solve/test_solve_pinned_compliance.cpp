@@ -3,8 +3,8 @@
 // Eigen's LLT (the second method), before and after junctions leave the set (removals are kept
 // aside and folded into the stored triangle eight at a time: the sizes below leave some pending),
 // and every CPU form of the product kernel against the portable one, bit for bit.
-#include <catch2/catch.hpp>
 #include <omp.h>
+#include <catch2/catch.hpp>
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -112,9 +112,10 @@ TEST_CASE("pinned compliance: G's products equal the dense inverse's, as junctio
   }
 }
 
-TEST_CASE("pinned compliance: a pass on the single-precision copy stays within its error bound, and the "
-          "reference follows removals",
-          "[solve][pinned]") {
+TEST_CASE(
+    "pinned compliance: a pass on the single-precision copy stays within its error bound, and the "
+    "reference follows removals",
+    "[solve][pinned]") {
   // The stand-in P0.98N (STAND-IN data) with the copy kept at any size. Truth: the dense inverse
   // of M by Eigen's LLT, whose rows' 2-norms give the bound 2⁻²⁴ ‖G_r‖₂ ‖w − ref‖₂ on row r.
   const StandIn t;
@@ -172,7 +173,8 @@ TEST_CASE("pinned compliance: a pass on the single-precision copy stays within i
     Eigen::MatrixXd M(n, n);
     for (std::size_t r = 0; r < n; ++r)
       for (std::size_t s = 0; s < n; ++s) M(r, s) = r == s ? D[P.junction(r)] : C(P.junction(r), P.junction(s));
-    const Eigen::MatrixXd inv = M.llt().solve(Eigen::MatrixXd::Identity(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n)));
+    const Eigen::MatrixXd inv =
+        M.llt().solve(Eigen::MatrixXd::Identity(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n)));
     const Eigen::VectorXd x1 = inv * Eigen::Map<Eigen::VectorXd>(v1.data(), static_cast<Eigen::Index>(n));
     double d1 = 0;
     for (std::size_t q = 0; q < n; ++q) d1 += (v1[q] - w1[q]) * (v1[q] - w1[q]);

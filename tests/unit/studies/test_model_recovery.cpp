@@ -29,13 +29,13 @@ namespace {
 
 struct RecoveryCase {
   std::string tag;
-  double mass = 0.1;          // kg: the load
-  std::size_t n = 60;         // junctions besides the six large ones
-  double pitch = 0;           // m, positions (interacting model)
+  double mass = 0.1;   // kg: the load
+  std::size_t n = 60;  // junctions besides the six large ones
+  double pitch = 0;    // m, positions (interacting model)
   SyntheticTruth truth;
   std::uint64_t seed = 1;
   int starts = 8;
-  double window = 1.15;       // the Q(t) window, in units of the truth's t_peak
+  double window = 1.15;        // the Q(t) window, in units of the truth's t_peak
   std::string score = "auto";  // force_score
 };
 
@@ -60,11 +60,11 @@ void check_recovery(const RecoveryCase& c) {
   const double noise = 0.002;
   // The window: to `window` times the first peak at the truth (1.15 as test_fit_joint.cpp's),
   // found by a run that stops there.
-  const RunResult peak = simulate(load_scene(base, {"model.alpha_b=" + scene_io::format_double(c.truth.alpha_b),
-                                                    "model.epsilon=" + scene_io::format_double(c.truth.epsilon),
-                                                    "model.eta=" + scene_io::format_double(c.truth.eta),
-                                                    "model.interactions=" + c.truth.interactions,
-                                                    "stop.at_first_peak=true", "output.series=[]"}));
+  const RunResult peak = simulate(load_scene(
+      base,
+      {"model.alpha_b=" + scene_io::format_double(c.truth.alpha_b),
+       "model.epsilon=" + scene_io::format_double(c.truth.epsilon), "model.eta=" + scene_io::format_double(c.truth.eta),
+       "model.interactions=" + c.truth.interactions, "stop.at_first_peak=true", "output.series=[]"}));
   REQUIRE(peak.obs.peak_found);
   const double end = std::ceil(c.window * peak.obs.t_peak / 0.005) * 0.005;
   const SyntheticRecipe recipe = load_synthetic_recipe(
@@ -72,32 +72,45 @@ void check_recovery(const RecoveryCase& c) {
   const SyntheticExperiment x = build_synthetic(recipe);
   write_synthetic_experiment(recipe, x, dir / "syn");
 
-  const std::string head = "objective: area_and_force\nexperiments: [{scene: scene.yaml, force: measured_Qt.csv}]\n"
-                           "noise: {area: 0.002, force: 0.002}\nprofile: false\nforce_score: " + c.score + "\n";
+  const std::string head =
+      "objective: area_and_force\nexperiments: [{scene: scene.yaml, force: measured_Qt.csv}]\n"
+      "noise: {area: 0.002, force: 0.002}\nprofile: false\nforce_score: " +
+      c.score + "\n";
   const double truth[3] = {c.truth.alpha_b, c.truth.epsilon, c.truth.eta};
   // J at the truth: one evaluation started there.
-  const FitResult at_truth = fit_text(dir / "syn" / "truth.yaml",
-                                      head + "intervals: false\nparameters:\n"
-                                             "  model.alpha_b: {lo: 1e-16, hi: 5e-15, start: " + scene_io::format_double(truth[0]) + ", scale: log}\n"
-                                             "  model.epsilon: {lo: 0.5, hi: 0.99, start: " + scene_io::format_double(truth[1]) + "}\n"
-                                             "  model.eta: {lo: 30, hi: 300, start: " + scene_io::format_double(truth[2]) + ", scale: log}\n"
-                                             "optimizer: {algorithm: LN_BOBYQA, max_evaluations: 1}\n");
+  const FitResult at_truth =
+      fit_text(dir / "syn" / "truth.yaml", head +
+                                               "intervals: false\nparameters:\n"
+                                               "  model.alpha_b: {lo: 1e-16, hi: 5e-15, start: " +
+                                               scene_io::format_double(truth[0]) +
+                                               ", scale: log}\n"
+                                               "  model.epsilon: {lo: 0.5, hi: 0.99, start: " +
+                                               scene_io::format_double(truth[1]) +
+                                               "}\n"
+                                               "  model.eta: {lo: 30, hi: 300, start: " +
+                                               scene_io::format_double(truth[2]) +
+                                               ", scale: log}\n"
+                                               "optimizer: {algorithm: LN_BOBYQA, max_evaluations: 1}\n");
   const double j_truth = at_truth.fits.at(0).objective;
   // The joint fit as fits/joint_independent.yaml runs it (DIRECT, then Nelder-Mead polishes from
   // several starts), fewer starts: two in one basin certify.
   const FitResult r = fit_text(dir / "syn" / "fit.yaml",
                                head + kParameters +
                                    "optimizer: {algorithm: GN_DIRECT_L, xtol_rel: 1e-4, max_evaluations: 300, "
-                                   "polish: {algorithm: LN_NELDERMEAD, max_evaluations: 400}, starts: " + std::to_string(c.starts) + "}\n");
+                                   "polish: {algorithm: LN_NELDERMEAD, max_evaluations: 400}, starts: " +
+                                   std::to_string(c.starts) + "}\n");
   REQUIRE(r.fits.size() == 1);
   const Optimization& o = r.fits[0];
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  std::printf("recovery %s: N = %zu, J_truth = %.6g, J_fit = %.6g, converged %s (%d of %zu starts), %d evaluations, %.1f s\n",
-              c.tag.c_str(), x.experiment.junctions.size(), j_truth, o.objective, converged_name(o.converged),
-              o.in_best_basin, o.starts.size(), o.evaluations, wall);
+  std::printf(
+      "recovery %s: N = %zu, J_truth = %.6g, J_fit = %.6g, converged %s (%d of %zu starts), %d evaluations, %.1f s\n",
+      c.tag.c_str(), x.experiment.junctions.size(), j_truth, o.objective, converged_name(o.converged), o.in_best_basin,
+      o.starts.size(), o.evaluations, wall);
   for (const StartRun& st : o.starts)
-    std::printf("  start: J = %.6g, %d evaluations, %s\n", st.objective, st.evaluations, st.in_best_basin ? "in" : "out");
-  INFO(o.failure << " " << o.stop_reason << "; " << o.convergence << "; J_truth " << j_truth << ", J_fit " << o.objective);
+    std::printf("  start: J = %.6g, %d evaluations, %s\n", st.objective, st.evaluations,
+                st.in_best_basin ? "in" : "out");
+  INFO(o.failure << " " << o.stop_reason << "; " << o.convergence << "; J_truth " << j_truth << ", J_fit "
+                 << o.objective);
   REQUIRE(o.ok());
   CHECK(o.certified());
   CHECK(o.objective <= j_truth * (1 + 1e-3));
@@ -108,7 +121,8 @@ void check_recovery(const RecoveryCase& c) {
     const double z = (o.best[i] - truth[i]) / un.sigma[i];
     std::printf("  %s = %.6g (truth %.6g, sigma %.3g, z %.2f)\n", o.variables[i].label.c_str(), o.best[i], truth[i],
                 un.sigma[i], z);
-    INFO(o.variables[i].label << " = " << o.best[i] << " (truth " << truth[i] << ", sigma " << un.sigma[i] << ", z " << z << ")");
+    INFO(o.variables[i].label << " = " << o.best[i] << " (truth " << truth[i] << ", sigma " << un.sigma[i] << ", z "
+                              << z << ")");
     CHECK(std::abs(z) <= 2.0);
   }
   std::fflush(stdout);
@@ -165,10 +179,12 @@ TEST_CASE("the interacting model's (alpha_b, epsilon, eta) are recovered from it
 //   build/asperity_tests_studies "[recovery_open]" -s
 TEST_CASE("open: recovery of truth b at the light load, both models", "[.][recovery_open]") {
   SECTION("independent") {
-    check_recovery({"b-light", 0.1, 30, 0, SyntheticTruth{1.5e-15, 0.75, 60, "none"}, 23, 16, 1.15, "loading_and_peaks"});
+    check_recovery(
+        {"b-light", 0.1, 30, 0, SyntheticTruth{1.5e-15, 0.75, 60, "none"}, 23, 16, 1.15, "loading_and_peaks"});
   }
   SECTION("interacting") {
-    check_recovery({"elastic-b-light", 0.1, 30, 4e-4, SyntheticTruth{1.5e-15, 0.75, 60, "elastic"}, 41, 16, 1.15, "loading_and_peaks"});
+    check_recovery({"elastic-b-light", 0.1, 30, 4e-4, SyntheticTruth{1.5e-15, 0.75, 60, "elastic"}, 41, 16, 1.15,
+                    "loading_and_peaks"});
   }
 }
 
@@ -216,8 +232,8 @@ TEST_CASE("the peaks paired by time keep the Q(t) score at the truth a chi-squar
   }
   INFO("by time, per residual: mean " << by_time / n << ", largest " << worst_by_time << "; by order, largest "
                                       << by_order << " (" << changed << " seeds above 10)");
-  CHECK(changed >= 3);             // the case does change the peaks found (6 of 10 measured)
-  CHECK(by_time / n < 0.5);        // a chi-square per residual: at most 1 on average (0.17 measured)
-  CHECK(worst_by_time < 1.0);      // 0.34 measured
+  CHECK(changed >= 3);         // the case does change the peaks found (6 of 10 measured)
+  CHECK(by_time / n < 0.5);    // a chi-square per residual: at most 1 on average (0.17 measured)
+  CHECK(worst_by_time < 1.0);  // 0.34 measured
   fs::remove_all(dir);
 }

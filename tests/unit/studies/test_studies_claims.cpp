@@ -319,7 +319,8 @@ TEST_CASE("REPORT.md says no evidence for a failed variant and a failed calibrat
   }
   std::vector<VariantRun> variants;
   for (const auto& b : base) {
-    for (const char* label : {"eta=0", "eta=50", "eta=150", "eta=160", "c_min=1e-5", "equal_areas", "circular", "area_law=always"})
+    for (const char* label :
+         {"eta=0", "eta=50", "eta=150", "eta=160", "c_min=1e-5", "equal_areas", "circular", "area_law=always"})
       variants.push_back({b.scene.experiment.name, label, good_run(), ""});
     for (const char* label : {"eta=180", "eta=200", "eta=220", "eta=250"})
       variants.push_back({b.scene.experiment.name, label, without_stick_slip(), ""});
@@ -341,7 +342,8 @@ TEST_CASE("REPORT.md says no evidence for a failed variant and a failed calibrat
   const std::string md = claims_report(base, variants, cal, "");
   CHECK(md.find("First half: **No evidence**") != std::string::npos);
   // Claim 3's bracket per load: E20 lacks its eta = 50 run, the others have the whole scan.
-  CHECK(md.find("| E20 | 5 (0.050) | – | 5 (0.050) | 5 (0.050) | 5 (0.050) | 0 (–) | 0 (–) | 0 (–) | 0 (–) | (160, 180] | No evidence |") != std::string::npos);
+  CHECK(md.find("| E20 | 5 (0.050) | – | 5 (0.050) | 5 (0.050) | 5 (0.050) | 0 (–) | 0 (–) | 0 (–) | 0 (–) | (160, "
+                "180] | No evidence |") != std::string::npos);
   CHECK(md.find("| (160, 180] | Reproduced |") != std::string::npos);
   CHECK(md.find("Second half: **No evidence**") != std::string::npos);
   CHECK(md.find("**Calibration of E20 failed**") != std::string::npos);

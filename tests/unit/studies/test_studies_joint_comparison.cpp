@@ -42,7 +42,7 @@ TEST_CASE("the Q(t) misfit of a linear model against samples offset by +-d is d"
   const ForceMisfit g = force_misfit(series, m, 0.002);
   CHECK(g.n == 41);
   CHECK_THAT(g.rms, WithinRel(std::sqrt((40 * d * d) / 41), 1e-12));  // the last residual is 1.0 − 1.0 = 0
-  CHECK(std::isnan(force_misfit({}, m, 0.002).rms));                   // no series: no number
+  CHECK(std::isnan(force_misfit({}, m, 0.002).rms));                  // no series: no number
 }
 
 TEST_CASE("the noise's 95 % rms follows the chi-square quantile", "[joint_comparison]") {
@@ -51,7 +51,9 @@ TEST_CASE("the noise's 95 % rms follows the chi-square quantile", "[joint_compar
   const struct {
     int n;
     double q, tol;
-  } cases[] = {{10, 18.307038053275146, 1e-13}, {100, 124.34211340400407, 1e-13}, {294, 334.9898387219035, 1e-13},
+  } cases[] = {{10, 18.307038053275146, 1e-13},
+               {100, 124.34211340400407, 1e-13},
+               {294, 334.9898387219035, 1e-13},
                {1000, 1074.679448803441, 1e-13}};
   for (const auto& c : cases) {
     INFO("n = " << c.n);
@@ -99,7 +101,8 @@ TEST_CASE("the rms misfit's spread matches a Monte Carlo over the noise", "[join
   CHECK_THAT(rms_spread(1.0, 1.0, 50), WithinRel(1.0 / std::sqrt(100.0), 1e-14));  // d = 0: σ / sqrt(2n)
 }
 
-TEST_CASE("joint fits are read from fit.yaml: the first ok fit of a load kept, a failed one only without it", "[joint_comparison]") {
+TEST_CASE("joint fits are read from fit.yaml: the first ok fit of a load kept, a failed one only without it",
+          "[joint_comparison]") {
   const auto dir = fresh_dir("joint_comparison");
   const auto a = write_text(dir / "a" / "fit.yaml", R"(fit_file: "fits/a.yaml"
 fits:

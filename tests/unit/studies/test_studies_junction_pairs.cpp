@@ -7,15 +7,16 @@
 #include <vector>
 
 #include "physics/elastic_interaction.hpp"
-#include "studies/junction_pairs.hpp"
 #include "solve/core/problem.hpp"
+#include "studies/junction_pairs.hpp"
 #include "support_scenes.hpp"
 
 using namespace asperity;
 using namespace asperity::testing;
 using Catch::Matchers::WithinRel;
 
-TEST_CASE("junction traces follow the 2x2 closed form of a linear pair, then slip at the threshold", "[report][pairs]") {
+TEST_CASE("junction traces follow the 2x2 closed form of a linear pair, then slip at the threshold",
+          "[report][pairs]") {
   Scene s = interacting_scene({1e-9, 2.5e-9}, {0, 8e-5}, {0, 3e-5}, SolverMethod::event);
   s.model.alpha_b = 0;
   const Problem p = make_problem(s);

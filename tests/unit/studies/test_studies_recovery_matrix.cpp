@@ -38,7 +38,8 @@ RecoveryCell cell(const std::string& load, const std::string& data, const std::s
 
 }  // namespace
 
-TEST_CASE("recovery matrix: a row is won beyond twice the chi-square's scatter, 2 sqrt(2N)", "[studies][recovery_matrix]") {
+TEST_CASE("recovery matrix: a row is won beyond twice the chi-square's scatter, 2 sqrt(2N)",
+          "[studies][recovery_matrix]") {
   // N = 400: 2 sqrt(800) = 56.5685...
   const RecoveryCell diag = cell("L", "independent", "independent", 420);
   CHECK(decide_row(diag, cell("L", "independent", "interacting", 420 + 56.6)) == RowDecision::diagonal_wins);
@@ -47,8 +48,8 @@ TEST_CASE("recovery matrix: a row is won beyond twice the chi-square's scatter, 
   CHECK(decide_row(diag, cell("L", "independent", "interacting", 420 - 56.6)) == RowDecision::off_diagonal_wins);
   // A J not shown to be a minimum compares nothing, however large the gap.
   CHECK(decide_row(diag, cell("L", "independent", "interacting", 1e9, "no")) == RowDecision::no_evidence);
-  CHECK(decide_row(cell("L", "independent", "independent", 420, "unverified"), cell("L", "independent", "interacting", 1e9)) ==
-        RowDecision::no_evidence);
+  CHECK(decide_row(cell("L", "independent", "independent", 420, "unverified"),
+                   cell("L", "independent", "interacting", 1e9)) == RowDecision::no_evidence);
   RecoveryCell failed = cell("L", "independent", "interacting", 1e9);
   failed.status = "failed: a run threw";
   CHECK(decide_row(diag, failed) == RowDecision::no_evidence);
@@ -56,7 +57,8 @@ TEST_CASE("recovery matrix: a row is won beyond twice the chi-square's scatter, 
   CHECK(cell("L", "a", "a", 397 * 1.5).reduced_chi2() == Approx(1.5).epsilon(1e-15));
 }
 
-TEST_CASE("recovery matrix: a load tells the models apart only where the diagonal wins every row", "[studies][recovery_matrix]") {
+TEST_CASE("recovery matrix: a load tells the models apart only where the diagonal wins every row",
+          "[studies][recovery_matrix]") {
   std::vector<RecoveryCell> cells = {
       cell("A", "independent", "independent", 400), cell("A", "independent", "interacting", 2e6),
       cell("A", "interacting", "independent", 3e6), cell("A", "interacting", "interacting", 410),
@@ -76,7 +78,8 @@ TEST_CASE("recovery matrix: a load tells the models apart only where the diagona
   CHECK(v[3].rows.at(1) == "interacting data: no evidence");
 }
 
-TEST_CASE("recovery matrix: matrix.csv is read by its columns; a bad field names its line and column", "[studies][recovery_matrix]") {
+TEST_CASE("recovery matrix: matrix.csv is read by its columns; a bad field names its line and column",
+          "[studies][recovery_matrix]") {
   const fs::path dir = fresh_dir("asperity-recovery-matrix");
   CHECK(read_recovery_matrix(dir / "absent.csv").empty());
   std::ostringstream none;
@@ -105,8 +108,9 @@ TEST_CASE("recovery matrix: matrix.csv is read by its columns; a bad field names
   CHECK(!cells[1].certified());
 
   try {
-    read_recovery_matrix(write_text(dir / "bad.csv", head + "L,0.25,36,interacting,interacting,ok,4x2,442.7,411,4,1,yes,2,8,"
-                                                             "2402,46,7e-16,1e-18,7e-16,0.9,0.001,0.9,100,2,100,1,0.01,1\n"));
+    read_recovery_matrix(
+        write_text(dir / "bad.csv", head + "L,0.25,36,interacting,interacting,ok,4x2,442.7,411,4,1,yes,2,8,"
+                                           "2402,46,7e-16,1e-18,7e-16,0.9,0.001,0.9,100,2,100,1,0.01,1\n"));
     FAIL("no error");
   } catch (const InputError& e) {
     CHECK(std::string(e.what()).find("bad.csv:3:7: objective") != std::string::npos);
@@ -123,7 +127,8 @@ TEST_CASE("recovery matrix: at the heavy load each model recovers its own data a
   const fs::path src = ASPERITY_SOURCE_DIR;
   const fs::path dir = fresh_dir("asperity-recovery-matrix-heavy");
   RecoveryMatrixOptions o;
-  o.recipes = {src / "examples/recovery/recipe_heavy_independent.yaml", src / "examples/recovery/recipe_heavy_interacting.yaml"};
+  o.recipes = {src / "examples/recovery/recipe_heavy_independent.yaml",
+               src / "examples/recovery/recipe_heavy_interacting.yaml"};
   for (RecoveryModel& m : o.models) m.fit_template = src / m.fit_template;
   o.out = dir / "out";
   o.threads = 2;

@@ -17,14 +17,16 @@ const std::string kHeader =
     "seed,P_N,N,clusters,model,alpha_b,n,endpoint_residual,residual_rms_m2,noise_rms_p95_m2,peak_rule\n";
 }
 
-TEST_CASE("topography table: rows read, interacting minus independent tallied per seed and load", "[topography_comparison]") {
+TEST_CASE("topography table: rows read, interacting minus independent tallied per seed and load",
+          "[topography_comparison]") {
   const auto dir = fresh_dir("topography_comparison");
-  const auto file = write_text(dir / "table.csv", kHeader +
-                                                      "2019,0.98,621,637,independent,2.1e-16,1.5,0.10,2e-08,3e-09,all_slipped\n"
-                                                      "2019,0.98,621,637,interacting,2.1e-16,1.3,0.13,3e-08,3e-09,all_slipped\n"
-                                                      "2019,4,917,1002,independent,8.7e-16,1.0,0.33,4e-07,1e-06,all_slipped\n"
-                                                      "2019,4,917,1002,interacting,8.7e-16,1.1,0.29,3e-07,1e-06,all_slipped\n"
-                                                      "2020,0.98,600,610,independent,2.0e-16,1.6,0.09,2e-08,3e-09,all_slipped\n");
+  const auto file =
+      write_text(dir / "table.csv", kHeader +
+                                        "2019,0.98,621,637,independent,2.1e-16,1.5,0.10,2e-08,3e-09,all_slipped\n"
+                                        "2019,0.98,621,637,interacting,2.1e-16,1.3,0.13,3e-08,3e-09,all_slipped\n"
+                                        "2019,4,917,1002,independent,8.7e-16,1.0,0.33,4e-07,1e-06,all_slipped\n"
+                                        "2019,4,917,1002,interacting,8.7e-16,1.1,0.29,3e-07,1e-06,all_slipped\n"
+                                        "2020,0.98,600,610,independent,2.0e-16,1.6,0.09,2e-08,3e-09,all_slipped\n");
   const auto rows = read_topography_table(file);
   REQUIRE(rows.size() == 5);
   CHECK(rows[1].model == "interacting");
@@ -47,7 +49,8 @@ TEST_CASE("topography table: absent means no rows, and a bad field or model is r
           "[topography_comparison]") {
   const auto dir = fresh_dir("topography_comparison_bad");
   CHECK(read_topography_table(dir / "absent.csv").empty());
-  const auto nan = write_text(dir / "nan.csv", kHeader + "2019,0.98,621,637,independent,2.1e-16,nan,0.1,2e-08,3e-09,x\n");
+  const auto nan =
+      write_text(dir / "nan.csv", kHeader + "2019,0.98,621,637,independent,2.1e-16,nan,0.1,2e-08,3e-09,x\n");
   try {
     read_topography_table(nan);
     FAIL("a NaN shape exponent was accepted");
@@ -56,7 +59,8 @@ TEST_CASE("topography table: absent means no rows, and a bad field or model is r
     CHECK(e.column == 7);
     CHECK(e.key == "n");
   }
-  const auto model = write_text(dir / "model.csv", kHeader + "2019,0.98,621,637,coupled,2.1e-16,1.2,0.1,2e-08,3e-09,x\n");
+  const auto model =
+      write_text(dir / "model.csv", kHeader + "2019,0.98,621,637,coupled,2.1e-16,1.2,0.1,2e-08,3e-09,x\n");
   CHECK_THROWS_AS(read_topography_table(model), InputError);
   const auto short_row = write_text(dir / "short.csv", kHeader + "2019,0.98,621\n");
   CHECK_THROWS_AS(read_topography_table(short_row), InputError);

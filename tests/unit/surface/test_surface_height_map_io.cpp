@@ -9,8 +9,8 @@
 #include <string>
 
 #include "io/input_error.hpp"
-#include "surface/height_map_io.hpp"
 #include "support_files.hpp"
+#include "surface/height_map_io.hpp"
 
 using namespace asperity;
 namespace fs = std::filesystem;
@@ -87,7 +87,8 @@ TEST_CASE("height maps: bad CSV maps are refused at their line", "[surface][heig
   CHECK(csv_error(wide + "\n") == "h.csv:1:8193: h_m: row of 8193 values, more than the 8192 allowed");
   // Not a regular file: a folder and a FIFO (never opened, so never waited on).
   fs::create_directories(d / "dir.csv");
-  CHECK(error_of([&] { read_height_map_csv(d / "dir.csv", "dir.csv", 1e-6); }) == "dir.csv: is a directory, not a file");
+  CHECK(error_of([&] { read_height_map_csv(d / "dir.csv", "dir.csv", 1e-6); }) ==
+        "dir.csv: is a directory, not a file");
   REQUIRE(::mkfifo((d / "fifo.csv").c_str(), 0600) == 0);
   CHECK(error_of([&] { read_height_map_csv(d / "fifo.csv", "fifo.csv", 1e-6); }) ==
         "fifo.csv: is a FIFO (named pipe), not a regular file");
@@ -104,13 +105,17 @@ TEST_CASE("height maps: bad float64 maps and headers are refused at the header's
   // n is capped before anything is allocated or read.
   CHECK(header_error("n: 100000\npixel_m: 1e-6\ndata: ok.f64\n") == "h.yaml:1: n: must be in [2, 8192], got 100000");
   CHECK(header_error("n: 5\npixel_m: 1e-6\ndata: ok.f64\n")
-            .rfind("h.yaml:3: data: height file " + (d / "ok.f64").string() + " has 128 bytes, expected n^2 x 8 = 200", 0) == 0);
+            .rfind("h.yaml:3: data: height file " + (d / "ok.f64").string() + " has 128 bytes, expected n^2 x 8 = 200",
+                   0) == 0);
   CHECK(header_error("n: 3\npixel_m: 1e-6\ndata: ok.f64\n")
             .rfind("h.yaml:3: data: height file is larger than expected: ", 0) == 0);
-  CHECK(header_error("n: 4\npixel_m: 0\ndata: ok.f64\n") == "h.yaml:2: pixel_m: pixel size must be in [1e-10, 1] m, got 0");
+  CHECK(header_error("n: 4\npixel_m: 0\ndata: ok.f64\n") ==
+        "h.yaml:2: pixel_m: pixel size must be in [1e-10, 1] m, got 0");
   CHECK(header_error("n: 4\npixel_m: 1e-200\ndata: ok.f64\n") ==
         "h.yaml:2: pixel_m: pixel size must be in [1e-10, 1] m, got 1e-200");
-  CHECK(header_error("n: 4\npixel_m: 1e-6\ndata: missing.f64\n").rfind("h.yaml:3: data: height file file not found", 0) == 0);
+  CHECK(
+      header_error("n: 4\npixel_m: 1e-6\ndata: missing.f64\n").rfind("h.yaml:3: data: height file file not found", 0) ==
+      0);
   CHECK(header_error("n: 4\npixel_m: 1e-6\ndata: ok.f64\nformat: float32\n")
             .rfind("h.yaml:4: format: unknown value 'float32'", 0) == 0);
   CHECK(header_error("n: 4\npixel_m: 1e-6\n") == "h.yaml:1: data: missing required key");

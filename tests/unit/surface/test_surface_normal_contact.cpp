@@ -5,10 +5,10 @@
 #include <numbers>
 #include <vector>
 
+#include "hertz_support.hpp"
 #include "surface/height_map.hpp"
 #include "surface/normal_contact.hpp"
 #include "surface/self_affine.hpp"
-#include "hertz_support.hpp"
 
 using namespace asperity;
 
@@ -29,8 +29,14 @@ HertzCase hertz(std::size_t n) {
   REQUIRE(c.converged);
   double total = 0, pmax = 0;
   for (const double p : c.pressure_Pa) total += p * m.pixel_m * m.pixel_m, pmax = std::max(pmax, p);
-  return {std::sqrt(c.area_m2 / std::numbers::pi), a, pmax, 3 * P / (2 * std::numbers::pi * a * a), c.approach_m, a * a / R,
-          std::abs(total - P) / P, c.iterations};
+  return {std::sqrt(c.area_m2 / std::numbers::pi),
+          a,
+          pmax,
+          3 * P / (2 * std::numbers::pi * a * a),
+          c.approach_m,
+          a * a / R,
+          std::abs(total - P) / P,
+          c.iterations};
 }
 
 }  // namespace
@@ -43,7 +49,8 @@ TEST_CASE("Love's rectangle tends to the point force far away", "[surface][conta
     CHECK(std::abs(exact / point - 1) < 3 * (h * h) / (r * r));  // the quadrupole correction is O((h/r)²)
   }
   // At the centre of a square of side 2h: u E* = (8h/π) ln(1 + √2) ≈ 2.24 h (Johnson §3.4).
-  CHECK_THAT(love_rectangle(0, 0, h, h), Catch::Matchers::WithinRel(8 * h / std::numbers::pi * std::log(1 + std::sqrt(2.0)), 1e-14));
+  CHECK_THAT(love_rectangle(0, 0, h, h),
+             Catch::Matchers::WithinRel(8 * h / std::numbers::pi * std::log(1 + std::sqrt(2.0)), 1e-14));
 }
 
 TEST_CASE("a sphere on a flat gives Hertz's contact radius, central pressure and approach", "[surface][contact]") {
@@ -55,15 +62,17 @@ TEST_CASE("a sphere on a flat gives Hertz's contact radius, central pressure and
   const double ep64 = std::abs(c64.p0_num / c64.p0_hertz - 1), ep128 = std::abs(c128.p0_num / c128.p0_hertz - 1);
   const double ed64 = std::abs(c64.d_num / c64.d_hertz - 1), ed128 = std::abs(c128.d_num / c128.d_hertz - 1);
   INFO("Hertz at 64/128/256: radius error " << ea[0] << " / " << ea[1] << " / " << ea[2] << "; p0 " << ep64 << " / "
-       << ep128 << " / " << ep << "; approach " << ed64 << " / " << ed128 << " / " << ed << "; iterations "
-       << c64.iterations << " / " << c128.iterations << " / " << c256.iterations);
+                                            << ep128 << " / " << ep << "; approach " << ed64 << " / " << ed128 << " / "
+                                            << ed << "; iterations " << c64.iterations << " / " << c128.iterations
+                                            << " / " << c256.iterations);
   // Measured: radius (from the contact area: a staircase of pixels) 3.3e-3 / 9.1e-4 / 1.2e-3;
   // central pressure 3.3e-4 / 8.6e-5 / 2.1e-5 and approach 4.7e-4 / 1.2e-4 / 2.9e-5, both of
   // second order in the pixel size (1.92, 2.05 and 1.95, 2.04 per halving).
   CHECK(ea[2] < 0.005);
   CHECK(ep < 1e-4);
   CHECK(ed < 1.5e-4);
-  for (const double order : {std::log2(ep64 / ep128), std::log2(ep128 / ep), std::log2(ed64 / ed128), std::log2(ed128 / ed)})
+  for (const double order :
+       {std::log2(ep64 / ep128), std::log2(ep128 / ep), std::log2(ed64 / ed128), std::log2(ed128 / ed)})
     CHECK(std::abs(order - 2) < 0.2);
 }
 
@@ -78,7 +87,8 @@ TEST_CASE("periodic: a wavy surface gives Westergaard's pressure in full contact
   m.pixel_m = L / static_cast<double>(n);
   m.h_m.resize(n * n);
   for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t j = 0; j < n; ++j) m.h_m[i * n + j] = D * std::cos(2 * std::numbers::pi * static_cast<double>(j) / static_cast<double>(n));
+    for (std::size_t j = 0; j < n; ++j)
+      m.h_m[i * n + j] = D * std::cos(2 * std::numbers::pi * static_cast<double>(j) / static_cast<double>(n));
   NormalContactSettings s;
   s.E_star_Pa = Es;
   s.periodic = true;
@@ -88,7 +98,8 @@ TEST_CASE("periodic: a wavy surface gives Westergaard's pressure in full contact
   REQUIRE(full.converged);
   double worst = 0;
   for (std::size_t j = 0; j < n; ++j) {
-    const double exact = 2 * pstar + pstar * std::cos(2 * std::numbers::pi * static_cast<double>(j) / static_cast<double>(n));
+    const double exact =
+        2 * pstar + pstar * std::cos(2 * std::numbers::pi * static_cast<double>(j) / static_cast<double>(n));
     worst = std::max(worst, std::abs(full.pressure_Pa[j] - exact) / pstar);
   }
   INFO("full contact: worst pressure error " << worst << " p*, " << full.iterations << " iterations");
@@ -134,13 +145,16 @@ TEST_CASE("self-affine surfaces at small loads: contact area linear in load, kap
         const NormalContact r = solve_normal_contact(m, c);
         REQUIRE(r.converged);
         const double kappa = r.area_m2 / (s.length_m * s.length_m) / load;
-        if (n == 512) kappa_fine[k] = kappa;
-        else if (k == 1) kappa_coarse = kappa;
+        if (n == 512)
+          kappa_fine[k] = kappa;
+        else if (k == 1)
+          kappa_coarse = kappa;
       }
     }
-    INFO("H " << H << ": kappa " << kappa_fine[0] << " / " << kappa_fine[1] << " at 512^2; " << kappa_coarse << " at 256^2");
+    INFO("H " << H << ": kappa " << kappa_fine[0] << " / " << kappa_fine[1] << " at 512^2; " << kappa_coarse
+              << " at 256^2");
     for (const double k : kappa_fine) CHECK((k > 1.8 && k < 2.6));
     CHECK(std::abs(kappa_fine[1] / kappa_fine[0] - 1) < 0.1);  // linear: κ changes little as the load doubles
-    CHECK(kappa_fine[1] < kappa_coarse);                        // and falls as λ_s is better resolved
+    CHECK(kappa_fine[1] < kappa_coarse);                       // and falls as λ_s is better resolved
   }
 }

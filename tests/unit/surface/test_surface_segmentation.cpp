@@ -15,8 +15,8 @@ TEST_CASE("contact clusters: areas, centroids, order and connectivity", "[surfac
   auto set = [&](std::size_t i, std::size_t j) { m[i * n + j] = 1; };
   for (std::size_t i = 1; i <= 3; ++i)
     for (std::size_t j = 1; j <= 3; ++j) set(i, j);  // a 3 × 3 block: centroid pixel (2, 2)
-  set(6, 6), set(7, 7);                            // two pixels touching by a corner
-  set(8, 1);                                       // one pixel
+  set(6, 6), set(7, 7);                              // two pixels touching by a corner
+  set(8, 1);                                         // one pixel
   const auto eight = contact_clusters(m, n, px, Connectivity::eight);
   REQUIRE(eight.size() == 3);
   CHECK(eight[0].pixels == 9);

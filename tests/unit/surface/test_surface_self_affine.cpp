@@ -23,7 +23,8 @@ double psd_slope(const HeightMap& m, double q_lo, double q_hi) {
   const double qL = 2 * std::numbers::pi / m.length_m();
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = 0; j < nc; ++j) {
-      const double ky = static_cast<double>(i <= n / 2 ? static_cast<long>(i) : static_cast<long>(i) - static_cast<long>(n));
+      const double ky =
+          static_cast<double>(i <= n / 2 ? static_cast<long>(i) : static_cast<long>(i) - static_cast<long>(n));
       const double kq = std::hypot(ky, static_cast<double>(j));
       const auto ring = static_cast<std::size_t>(std::lround(kq));
       if (ring >= n) continue;
@@ -60,7 +61,8 @@ TEST_CASE("self-affine surface: rms as prescribed, PSD slope -2(1+H), reproducib
     // Between q_r and q_s the averaged power falls as q^(−2(1+H)); below q_r it is flat.
     // Measured (seed 1): slopes −2.611 and −3.611 against −2.6 and −3.6, plateau slope −0.034.
     const double qr = 2 * std::numbers::pi / s.rolloff_wavelength_m, qs = 2 * std::numbers::pi / s.short_wavelength_m;
-    const double slope = psd_slope(m, 1.2 * qr, 0.9 * qs), plateau = psd_slope(m, 2 * std::numbers::pi / s.length_m * 1.5, 0.85 * qr);
+    const double slope = psd_slope(m, 1.2 * qr, 0.9 * qs),
+                 plateau = psd_slope(m, 2 * std::numbers::pi / s.length_m * 1.5, 0.85 * qr);
     INFO("H " << H << ": slope " << slope << " (expected " << -2 * (1 + H) << "), plateau slope " << plateau);
     CHECK(std::abs(slope + 2 * (1 + H)) < 0.05);
     CHECK(std::abs(plateau) < 0.15);

@@ -7,18 +7,18 @@
 #include <numbers>
 #include <vector>
 
+#include "hertz_support.hpp"
 #include "physics/elastic_interaction.hpp"
 #include "surface/height_map.hpp"
 #include "surface/normal_contact.hpp"
 #include "surface/tangential_contact.hpp"
-#include "hertz_support.hpp"
 
 using namespace asperity;
 
 namespace {
 
-constexpr double kE = 1.6e6, kNu = 0.5;       // PDMS-like
-constexpr double kG = kE / (2 * (1 + kNu));   // shear modulus
+constexpr double kE = 1.6e6, kNu = 0.5;      // PDMS-like
+constexpr double kG = kE / (2 * (1 + kNu));  // shear modulus
 
 TangentialContactSettings settings() {
   TangentialContactSettings s;
@@ -37,8 +37,8 @@ std::vector<double> disc_bounds(std::size_t n, double pixel_m, const std::vector
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = 0; j < n; ++j)
       for (const Disc& d : discs)
-        if (std::hypot((static_cast<double>(j) + 0.5) * pixel_m - d.x_m, (static_cast<double>(i) + 0.5) * pixel_m - d.y_m) <
-            d.radius_m)
+        if (std::hypot((static_cast<double>(j) + 0.5) * pixel_m - d.x_m,
+                       (static_cast<double>(i) + 0.5) * pixel_m - d.y_m) < d.radius_m)
           b[i * n + j] = sigma_Pa;
   return b;
 }
@@ -56,7 +56,8 @@ TEST_CASE("the pixel's Cerruti compliance: Love's rectangle at nu = 0, the point
   const double h = 1e-6;
   // ν = 0: (1/πE) ∫∫ 1/r, which love_rectangle (another closed form) gives times π/E... divided by E.
   for (const auto& [x, y] : {std::pair{0.0, 0.0}, {3e-6, 0.0}, {0.7e-6, 2.1e-6}, {5e-6, -4e-6}})
-    CHECK_THAT(cerruti_pixel_compliance(x, y, h, h, kE, 0.0), Catch::Matchers::WithinRel(love_rectangle(x, y, h, h) / kE, 1e-13));
+    CHECK_THAT(cerruti_pixel_compliance(x, y, h, h, kE, 0.0),
+               Catch::Matchers::WithinRel(love_rectangle(x, y, h, h) / kE, 1e-13));
   // Far away the pixel acts as a point force 4h² (Cerruti): the correction is O((h/r)²).
   for (const auto& [x, y] : {std::pair{60e-6, 0.0}, {0.0, 60e-6}, {40e-6, 45e-6}}) {
     const double r = std::hypot(x, y);
@@ -115,12 +116,13 @@ TEST_CASE("two distant patches: independent but for Cerruti's coupling of two ri
   for (const bool along_x : {true, false})
     for (const double d : {52 * pixel, 90 * pixel}) {  // whole pixels: each disc has the same staircase
       const double dx = along_x ? d : 0, dy = along_x ? 0 : d;
-      const auto two = disc_bounds(n, pixel, {{0.5 * (L - dx), 0.5 * (L - dy), a}, {0.5 * (L + dx), 0.5 * (L + dy), a}}, 1e5);
+      const auto two =
+          disc_bounds(n, pixel, {{0.5 * (L - dx), 0.5 * (L - dy), a}, {0.5 * (L + dx), 0.5 * (L + dy), a}}, 1e5);
       const double k2 = TangentialContact(n, pixel, two, settings()).initial_stiffness_N_per_m();
       const double c = disc_compliance(dx, dy, ae, ae, kE, kNu, TractionWeighting::rigid);
       const double coupling = 1 - k2 / (2 * k1), predicted = 1 - 1 / (1 + k1 * c);
-      INFO((along_x ? "along x" : "along y") << ", d/a " << d / a << ": 1 − k_pair/2k = " << coupling << ", predicted "
-                                              << predicted);
+      INFO((along_x ? "along x" : "along y")
+           << ", d/a " << d / a << ": 1 − k_pair/2k = " << coupling << ", predicted " << predicted);
       // Measured: 4.5e-3 / 8.9e-4 along x, 2.8e-3 / 6.5e-4 along y (d/a 5.1 / 8.8).
       CHECK(std::abs(coupling / predicted - 1) < 0.015);
     }
@@ -196,7 +198,8 @@ TEST_CASE("a sphere with Coulomb friction follows Cattaneo-Mindlin", "[surface][
   CHECK(c64.k_err < 0.03);
   CHECK(c128.k_err < 0.01);
   INFO("worst |Q/μP − CM| at 64² / 128²: " << c64.q_err << " / " << c128.q_err << " (order " << q_order
-       << "); |c/a − CM| " << c64.c_err << " / " << c128.c_err << " (order " << c_order << ")");
+                                           << "); |c/a − CM| " << c64.c_err << " / " << c128.c_err << " (order "
+                                           << c_order << ")");
   // Measured: Q 3.1e-5 / 3.2e-6, order 3.3; the stick radius (from the stick zone's pixel count, a
   // staircase) 6.6e-3 / 3.3e-3, order 1.0.
   CHECK(c64.q_err < 1e-4);
