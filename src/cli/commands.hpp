@@ -59,7 +59,7 @@ Command add_export_command(CLI::App& app);  // export_command.cpp
 // asperity plot STORE --x KEY --y KEY --z COLUMN [--where COL=VALUE]... [--out FILE.png]
 Command add_plot_command(CLI::App& app);  // plot_command.cpp
 
-// asperity study interactions [SCENE...] [--out results/interactions] [--fit-independent F] ...
+// asperity study STUDY.yaml [--out DIR] [-j N] [--figures F] [--quiet]
 Command add_study_command(CLI::App& app);  // study_command.cpp
 
 }  // namespace asperity::cli

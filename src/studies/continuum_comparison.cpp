@@ -1,4 +1,5 @@
 #include "studies/continuum_comparison.hpp"
+#include "studies/study_file.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -218,7 +219,7 @@ std::string plot_script(const ContinuumStudy& s, const std::optional<StiffnessRu
 void write_files(const ContinuumStudyOptions& o, const ContinuumStudy& s, const std::string& recipe_text) {
   fs::create_directories(o.out);
   std::ostringstream t;
-  t << "# " << kSynthetic << " (" << o.recipe.filename().string() << "): `asperity study continuum`\n"
+  t << "# " << kSynthetic << " (" << o.recipe.filename().string() << "): `" << study_command(o.study_file) << "`\n"
     << "load_N,junctions,contact_area_m2,pixels_per_junction,coverage_hertz,coverage_population,stiffness_ratio,model,"
        "initial_stiffness_N_per_m,"
        "stiffness_error,q10_over_qfull,q50_over_qfull,full_sliding_displacement_m,full_sliding_error,rms_error,"
@@ -233,8 +234,8 @@ void write_files(const ContinuumStudyOptions& o, const ContinuumStudy& s, const 
       << ',' << (r.monotone ? "true" : "false") << '\n';
   scene_io::write_text_file(o.out / "table.csv", t.str());
   std::ostringstream c;
-  c << "# " << kSynthetic
-    << ": Q(delta) of each model, `asperity study continuum`\nload_N,model,displacement_m,force_N,slip_area_fraction\n";
+  c << "# " << kSynthetic << ": Q(delta) of each model, `" << study_command(o.study_file)
+    << "`\nload_N,model,displacement_m,force_N,slip_area_fraction\n";
   for (const ContinuumCurvePoint& p : s.curves)
     c << csv_number(p.load_N) << ',' << p.model << ',' << csv_number(p.displacement_m) << ',' << csv_number(p.force_N)
       << ',' << csv_number(p.slip_area_fraction) << '\n';
@@ -245,9 +246,8 @@ void write_files(const ContinuumStudyOptions& o, const ContinuumStudy& s, const 
     if (r.model == "independent") cov.push_back(r.stiffness_ratio), err.push_back(std::abs(r.stiffness_error));
   const std::optional<StiffnessRule> rule = fit_stiffness_rule(cov, err);
   std::ostringstream rl;
-  rl << "# " << kSynthetic
-     << ": |stiffness error of independent junctions| = prefactor * stiffness_ratio^exponent, `asperity study "
-        "continuum`\n"
+  rl << "# " << kSynthetic << ": |stiffness error of independent junctions| = prefactor * stiffness_ratio^exponent, `"
+     << study_command(o.study_file) << "`\n"
      << "prefactor,exponent,ratio_min,ratio_max,points\n";
   if (rule)
     rl << csv_number(rule->prefactor) << ',' << csv_number(rule->exponent) << ',' << csv_number(rule->ratio_min) << ','
@@ -256,8 +256,8 @@ void write_files(const ContinuumStudyOptions& o, const ContinuumStudy& s, const 
 
   std::ostringstream md;
   md << "# Junction models against the continuum\n\n**" << kSynthetic
-     << ".** The surface is a seeded self-affine one, not a measured topography. Made by `asperity study continuum` "
-        "(docs/continuum.md) from this recipe, at each load of the table:\n\n```yaml\n"
+     << ".** The surface is a seeded self-affine one, not a measured topography. Made by `"
+     << study_command(o.study_file) << "` (docs/continuum.md) from this recipe, at each load of the table:\n\n```yaml\n"
      << recipe_text << "```\n\n"
      << "The continuum is the tangential contact on the normal solve's contact map (FFT boundary elements, constant "
         "shear strength σ = σ_exp per unit area); the junction models take the junctions the same map makes, with "

@@ -1,5 +1,5 @@
 #pragma once
-// `asperity study continuum`: the junction models against the continuum they approximate, on the
+// `asperity study studies/continuum.yaml`: the junction models against the continuum they approximate, on the
 // same contact map (docs/continuum.md). For a topography recipe at several loads: the normal
 // contact (surface/normal_contact.hpp) gives the contact map and, through its clusters, the
 // junctions (scene/topography_junctions.hpp); the continuum reference is the tangential contact on
@@ -24,9 +24,10 @@ struct ContinuumStudyOptions {
   std::filesystem::path recipe;  // a topography recipe (its load_N is replaced by each load)
   std::vector<double> loads_N;
   std::filesystem::path out;
-  int points = 32;          // displacements of each Q(δ), up to 1.25 × the continuum's full sliding
-  double tolerance = 1e-8;  // of the tangential and junction solves (relative to δ)
-  int threads = 1;          // of the contact solves (the numbers do not depend on it)
+  std::filesystem::path study_file;  // the study file these options came from (provenance; may be empty)
+  int points = 32;                   // displacements of each Q(δ), up to 1.25 × the continuum's full sliding
+  double tolerance = 1e-8;           // of the tangential and junction solves (relative to δ)
+  int threads = 1;                   // of the contact solves (the numbers do not depend on it)
   FigureFormats figures;
   std::ostream* log = nullptr;
 };

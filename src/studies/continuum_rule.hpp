@@ -1,5 +1,5 @@
 #pragma once
-// When do interactions matter? The rule `asperity study continuum` measures (docs/continuum.md):
+// When do interactions matter? The rule the continuum study (studies/continuum.yaml) measures (docs/continuum.md):
 // the independent model's error in the initial tangential stiffness against the continuum, as a
 // power law of the junction population's stiffness ratio, fitted over the study's loads.
 // `asperity run` applies it to a scene whose junctions have positions.

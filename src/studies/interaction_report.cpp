@@ -1,4 +1,5 @@
 #include "studies/interaction_report.hpp"
+#include "studies/study_file.hpp"
 
 #include <algorithm>
 #include <array>
@@ -118,7 +119,7 @@ void write_verdict_md(std::ostream& md, const InteractionStudyOptions& opt, cons
      << "**STAND-IN DATA.** Every number here comes from the stand-in experiments of `data/standin/` (areas, "
         "positions and \"measured\" curves generated, not measured): it tests the model on made-up data of the right "
         "size, not the real experiments.\n\n"
-     << "Written by `asperity study interactions` from the runs of that command (calibrations read from `"
+     << "Written by `" << study_command(opt.study_file) << "` from the runs of that command (calibrations read from `"
      << opt.fit_independent.generic_string() << "` and `" << opt.fit_interacting.generic_string()
      << "`, the joint calibrations from `"
      << (opt.joint_independent.empty() ? fs::path() : opt.joint_independent.front()).generic_string() << "` and `"
@@ -127,7 +128,8 @@ void write_verdict_md(std::ostream& md, const InteractionStudyOptions& opt, cons
      << "/points.csv`, the recovery matrix from `" << opt.recovery_matrix.generic_string() << "`).\n\n"
      << "## What the joint calibration can tell apart: the recovery matrix\n\n"
      << "**SYNTHETIC DATA** (read from `" << opt.recovery_matrix.generic_string()
-     << "`, written by `asperity study recovery`): experiments made by each model at a known truth, each fitted by "
+     << "`, written by a recovery study, `study: recovery`): experiments made by each model at a known truth, each "
+        "fitted by "
         "each model at equal budgets. Only where the model that made the data wins its row can a joint fit between "
         "the models decide anything.\n\n"
      << recovery << "## Verdict on the stand-ins\n\n**" << verdict << ".** ";

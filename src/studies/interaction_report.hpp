@@ -1,5 +1,5 @@
 #pragma once
-// What `asperity study interactions` writes (interaction_study.hpp): table.csv, joint.csv,
+// What the interaction study (studies/interactions.yaml) writes (interaction_study.hpp): table.csv, joint.csv,
 // forces_at_peak.csv, the force-spread figure and REPORT.md, from the rows its runs filled and the
 // verdicts of interaction_verdicts.hpp. The sections taken from other studies' files (the
 // recovery matrix, the sweep store, the topography table) are read here, as REPORT.md is written.

@@ -1,5 +1,5 @@
 #pragma once
-// `asperity study interactions`: does elastic coupling between junctions (docs/model.md §8) make A(Q)
+// `asperity study studies/interactions.yaml`: does elastic coupling between junctions (docs/model.md §8) make A(Q)
 // quadratic? For each experiment, the independent model at its own
 // calibrated α_b and the interacting model at its recalibrated α_b (the paper's method, per
 // load), side by side: shape exponent n of A0 − A ∝ Qⁿ, area decay, incipient slope, stick-slip;
@@ -20,21 +20,23 @@
 namespace asperity {
 
 struct InteractionStudyOptions {
-  std::vector<std::filesystem::path> scenes;  // the experiments (scenes/paper/P*.yaml)
-  std::filesystem::path fit_independent = "results/fits/paper_alpha_b/fit.yaml";
-  std::filesystem::path fit_interacting = "results/fits/interactions_alpha_b/fit.yaml";
+  // The inputs and the output folder come from a study file (studies/study_load.hpp).
+  std::vector<std::filesystem::path> scenes;  // the experiments
+  std::filesystem::path fit_independent;      // fit.yaml of each model's α_b calibration
+  std::filesystem::path fit_interacting;
   // The joint calibrations of (α_b, ε, η) against A(Q) and Q(t), per model: fit.yaml files read
   // in order (a load found in an earlier file is not replaced); absent: no evidence.
-  std::vector<std::filesystem::path> joint_independent = {"results/fits/joint_independent/fit.yaml"};
-  std::vector<std::filesystem::path> joint_interacting = {"results/fits/joint_interacting/fit.yaml"};
-  std::filesystem::path sweep_store = "results/interactions_sweep";  // sweeps/interactions.yaml
+  std::vector<std::filesystem::path> joint_independent;
+  std::vector<std::filesystem::path> joint_interacting;
+  std::filesystem::path sweep_store;  // of the crowding and cut-off sweep; absent: no evidence
   // The topography study's table (scripts/topography_study.py; SYNTHETIC surfaces): both models
   // on junctions from contact mechanics (studies/topography_comparison.hpp); absent: no evidence.
-  std::filesystem::path topography_table = "results/topography/table.csv";
-  // The recovery matrix (`asperity study recovery`; SYNTHETIC experiments): what the joint
+  std::filesystem::path topography_table;
+  // The recovery matrix (studies/recovery_matrix.hpp; SYNTHETIC experiments): what the joint
   // method can tell apart, which the report leads with; absent: no evidence.
-  std::filesystem::path recovery_matrix = "results/recovery/matrix.csv";
-  std::filesystem::path out = "results/interactions";
+  std::filesystem::path recovery_matrix;
+  std::filesystem::path out;
+  std::filesystem::path study_file;  // the study file these options came from (provenance; may be empty)
   std::string spread_experiment = "P4.00N";
   int threads = 2;
   std::ostream* log = nullptr;

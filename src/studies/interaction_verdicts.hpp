@@ -1,5 +1,5 @@
 #pragma once
-// The verdicts of `asperity study interactions` (interaction_study.hpp) as pure functions of what
+// The verdicts of the interaction study (interaction_study.hpp) as pure functions of what
 // its runs measured: each model's A(Q) against the measured curve at its noise, per load and over
 // the loads, and what the joint calibrations match. interaction_study.cpp runs the models and fills
 // the rows; interaction_report.cpp writes them and these verdicts.

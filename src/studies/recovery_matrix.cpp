@@ -1,4 +1,5 @@
 #include "studies/recovery_matrix.hpp"
+#include "studies/study_file.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -110,7 +111,7 @@ std::string cell_fit_text(const std::string& template_text, const std::string& n
                           const std::string& interactions) {
   std::string t = template_text;
   if (!t.empty() && t.back() != '\n') t += '\n';
-  return t + "# Added by `asperity study recovery`: this cell's data.\nname: " + name +
+  return t + "# Added by the recovery study: this cell's data.\nname: " + name +
          "\nexperiments:\n  - {scene: " + data_rel + "/scene.yaml, force: " + data_rel +
          "/measured_Qt.csv, set: {model.interactions: " + interactions + "}}\n";
 }
@@ -147,7 +148,10 @@ RecoveryCell fit_cell(const FitSpec& spec, const SyntheticRecipe& recipe, const 
 // J at the truth: the same spec, one evaluation started at the generating values.
 double objective_at_truth(FitSpec spec, const SyntheticRecipe& recipe, int threads) {
   for (FitParameter& p : spec.parameters) p.start = scene_value(recipe.scene, p.key);
-  spec.max_evaluations = 1;  // one evaluation: at the start, whatever the algorithm (fit.cpp)
+  // One evaluation of a local algorithm is the objective at its start (fit.cpp); a global one,
+  // the template's DIRECT, would evaluate the box's centre instead.
+  spec.algorithm = "LN_NELDERMEAD";
+  spec.max_evaluations = 1;
   spec.polish_algorithm.clear();
   spec.starts = 1;
   spec.intervals = false;
@@ -164,10 +168,9 @@ const char* kColumns =
     "reduced_chi2,converged,in_best_basin,starts,evaluations,wall_s";
 const char* kParameterKeys[] = {"model.alpha_b", "model.epsilon", "model.eta", "model.position_scale"};
 
-void write_matrix_csv(const fs::path& file, const std::vector<RecoveryCell>& cells) {
+void write_matrix_csv(const fs::path& file, const std::vector<RecoveryCell>& cells, const std::string& command) {
   std::ostringstream t;
-  t << "# SYNTHETIC experiments (examples/recovery/), each fitted by each model: `asperity study recovery`\n"
-    << kColumns;
+  t << "# SYNTHETIC experiments (examples/recovery/), each fitted by each model: `" << command << "`\n" << kColumns;
   for (const char* k : kParameterKeys) {
     const std::string leaf = std::string(k).substr(6);
     t << ',' << leaf << ',' << leaf << "_sigma," << leaf << "_truth";
@@ -259,7 +262,8 @@ std::vector<RecoveryCell> run_recovery_matrix(const RecoveryMatrixOptions& opt) 
                  << " of " << c.starts << "), " << scene_io::format_cell("%.1f", c.wall_s) << " s\n"
                  << std::flush;
       cells.push_back(std::move(c));
-      write_matrix_csv(opt.out / "matrix.csv", cells);  // after every cell: a killed study keeps what it fitted
+      write_matrix_csv(opt.out / "matrix.csv", cells,
+                       study_command(opt.study_file));  // after every cell: a killed study keeps what it fitted
     }
   }
   std::ostringstream md;
@@ -267,7 +271,7 @@ std::vector<RecoveryCell> run_recovery_matrix(const RecoveryMatrixOptions& opt) 
         "truth, with the noise its recipe states (the recipes: examples/recovery/ by default), then fitted by each "
         "model. It shows what the "
         "joint calibration can tell apart, not what the real experiments say.\n\n"
-     << "Written by `asperity study recovery`; the budget of every fit: " << first_budget
+     << "Written by `" << study_command(opt.study_file) << "`; the budget of every fit: " << first_budget
      << ". Each cell's fit file is in `fits/`, its data in `data/`.\n\n";
   write_recovery_matrix_md(md, cells);
   scene_io::write_text_file(opt.out / "REPORT.md", md.str());

@@ -1,5 +1,5 @@
 #pragma once
-// `asperity study recovery`: the recovery matrix (docs/calibration.md, "The recovery matrix").
+// `asperity study studies/recovery.yaml`: the recovery matrix (docs/calibration.md, "The recovery matrix").
 // Synthetic experiments made by each model at a known truth (generate/synthetic.hpp; one recipe
 // per load and generating model), each fitted by each model from that model's fit template with
 // the same optimizer budget. Per cell: the objective J, the reduced chi-square, the parameters
@@ -23,13 +23,11 @@ struct RecoveryModel {
 };
 
 struct RecoveryMatrixOptions {
-  // Synthetic recipes (generate/synthetic_recipe.hpp), one per load and generating model.
-  std::vector<std::filesystem::path> recipes = {
-      "examples/recovery/recipe_light_independent.yaml", "examples/recovery/recipe_light_interacting.yaml",
-      "examples/recovery/recipe_heavy_independent.yaml", "examples/recovery/recipe_heavy_interacting.yaml"};
-  std::vector<RecoveryModel> models = {{"independent", "none", "examples/recovery/fit_independent.yaml"},
-                                       {"interacting", "elastic", "examples/recovery/fit_interacting.yaml"}};
-  std::filesystem::path out = "results/recovery";
+  // The inputs and the output folder come from a study file (studies/study_load.hpp).
+  std::vector<std::filesystem::path> recipes;  // synthetic recipes, one per load and generating model
+  std::vector<RecoveryModel> models;           // the fitting models
+  std::filesystem::path out;
+  std::filesystem::path study_file;  // the study file these options came from (provenance; may be empty)
   int threads = 2;
   std::ostream* log = nullptr;
 };

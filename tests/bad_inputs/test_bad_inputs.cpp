@@ -152,6 +152,9 @@ TEST_CASE("bad-input corpus: each file is refused naming file, line and key, and
     } else if (c.file.rfind("fit_", 0) == 0) {
       scene = file;
       command = "fit";
+    } else if (c.file.rfind("study_", 0) == 0) {
+      scene = file;
+      command = "study";
     } else if (c.file.rfind("scene_", 0) == 0) {
       scene = file;
     } else if (c.file.rfind("experiment_", 0) == 0) {

@@ -459,9 +459,9 @@ TEST_CASE("study and regress write only what they created", "[cli][overwrite]") 
   const fs::path w = make_case("study");
   const fs::path src(ASPERITY_SOURCE_DIR);
   const std::string refused = "refusing to write there: it is not empty and was not written by asperity ";
-  check_refused(w, {"study", "recovery", "--out", "user", "--quiet"}, "user: --out: " + refused + "study recovery");
-  check_refused(w, {"study", "interactions", "--out", "user", "--quiet"},
-                "user: --out: " + refused + "study interactions");
+  for (const std::string kind : {"recovery", "interactions", "continuum"})
+    check_refused(w, {"study", (src / "studies" / (kind + ".yaml")).string(), "--out", "user", "--quiet"},
+                  "user: --out: " + refused + "study " + kind);
   // regress --update writes its golden file only over a golden file: a user's file named as the
   // golden is read first, refused at its line, and left as it was.
   const auto before = snapshot(w);

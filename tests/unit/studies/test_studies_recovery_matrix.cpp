@@ -11,6 +11,7 @@
 
 #include "io/input_error.hpp"
 #include "studies/recovery_matrix.hpp"
+#include "studies/study_load.hpp"
 #include "support_files.hpp"
 
 using namespace asperity;
@@ -122,14 +123,30 @@ TEST_CASE("recovery matrix: matrix.csv is read by its columns; a bad field names
 // recovered (certified, J ≤ J at truth (1 + 1e-3), every parameter within 2σ of its truth, the
 // interacting model's position scale included), and the method tells the models apart there.
 // About 3 min on one thread of the shared 2-core machine (results/recovery/REPORT.md).
+// The committed matrix (results/recovery/): on the diagonal, J at the truth is a chi-square of the
+// cell's N residuals, so it lies within a few sqrt(2N) of N; the fits' J lie at or below it.
+TEST_CASE("recovery matrix: the committed J at the truth is a chi-square of its residuals",
+          "[studies][recovery_matrix]") {
+  const std::vector<RecoveryCell> cells =
+      read_recovery_matrix(fs::path(ASPERITY_SOURCE_DIR) / "results/recovery/matrix.csv");
+  int diagonal = 0;
+  for (const RecoveryCell& c : cells) {
+    if (c.data_model != c.fit_model) continue;
+    ++diagonal;
+    INFO(c.load << " " << c.data_model << ": J at truth " << c.objective_at_truth << ", N " << c.residuals);
+    CHECK(std::abs(c.objective_at_truth - c.residuals) < 4 * std::sqrt(2.0 * c.residuals));
+    CHECK(c.objective <= c.objective_at_truth * (1 + 1e-3));
+  }
+  CHECK(diagonal == 4);
+}
+
 TEST_CASE("recovery matrix: at the heavy load each model recovers its own data and the diagonal wins",
           "[studies][recovery_matrix][heavy]") {
   const fs::path src = ASPERITY_SOURCE_DIR;
   const fs::path dir = fresh_dir("asperity-recovery-matrix-heavy");
-  RecoveryMatrixOptions o;
+  RecoveryMatrixOptions o = std::get<RecoveryMatrixOptions>(load_study(src / "studies/recovery.yaml").options);
   o.recipes = {src / "examples/recovery/recipe_heavy_independent.yaml",
                src / "examples/recovery/recipe_heavy_interacting.yaml"};
-  for (RecoveryModel& m : o.models) m.fit_template = src / m.fit_template;
   o.out = dir / "out";
   o.threads = 2;
   const std::vector<RecoveryCell> cells = run_recovery_matrix(o);
@@ -142,6 +159,8 @@ TEST_CASE("recovery matrix: at the heavy load each model recovers its own data a
     INFO(c.data_model << ": " << c.status << ", converged " << c.converged);
     CHECK(c.certified());
     CHECK(c.objective <= c.objective_at_truth * (1 + 1e-3));
+    // J at the truth is a chi-square of N residuals: N ± sqrt(2N) (not the box centre's J).
+    CHECK(std::abs(c.objective_at_truth - c.residuals) < 4 * std::sqrt(2.0 * c.residuals));
     CHECK(c.parameters.size() == (c.fit_model == "interacting" ? 4u : 3u));
     for (const RecoveryParameter& p : c.parameters) {
       const double z = (p.value - p.truth) / p.sigma;
@@ -166,9 +185,8 @@ TEST_CASE("recovery matrix: templates with different budgets stop the study befo
           "[studies][recovery_matrix]") {
   const fs::path src = ASPERITY_SOURCE_DIR;
   const fs::path dir = fresh_dir("asperity-recovery-matrix-budget");
-  RecoveryMatrixOptions o;
+  RecoveryMatrixOptions o = std::get<RecoveryMatrixOptions>(load_study(src / "studies/recovery.yaml").options);
   o.recipes = {src / "examples/recovery/recipe_light_independent.yaml"};
-  o.models[0].fit_template = src / "examples/recovery/fit_independent.yaml";
   std::ifstream in(src / "examples/recovery/fit_interacting.yaml");
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   const std::size_t at = text.find("starts: 8");
