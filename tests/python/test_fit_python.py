@@ -266,3 +266,27 @@ def test_python_objective_is_journaled_under_its_source(source, tmp_path):
     with pytest.raises(asperity.InputError, match=r"inputs.txt:\d+: objective: the journal was computed with another"):
         asperity.fit(spec(), base=base, out=out, threads=1, objective=area_term_edited, progress=False)
     assert (out / "inputs.txt").read_text() == inputs  # nothing rewritten
+
+
+def test_scene_objects_fit_as_their_files(source, tmp_path):
+    """A Scene object where a fit takes a scene file (alone, or as an entry's "scene"): the same
+    optimum, to the last bit, as the file it was loaded from; the same Scene resumes a journal
+    in `out`, and a Scene that differs is refused by the journal's inputs check."""
+    base = source / "tests" / "data" / "scene"
+    by_file = asperity.fit(spec(), base=base, threads=1, objective=area_term, progress=False)
+    scene = asperity.load_scene(small_scene(source))
+    for entry in (scene, {"scene": scene}):
+        by_object = asperity.fit(spec(experiments=[entry]), base=base, threads=1, objective=area_term,
+                                 progress=False)
+        assert by_object["fits"][0]["best"] == by_file["fits"][0]["best"]
+        assert by_object["fits"][0]["objective"] == by_file["fits"][0]["objective"]
+    out = tmp_path / "o"
+    first = asperity.fit(spec(experiments=[scene]), base=base, out=out, threads=1, objective=area_term,
+                         progress=False)
+    again = asperity.fit(spec(experiments=[scene]), base=base, out=out, threads=1, objective=area_term,
+                         progress=False)
+    assert first["computed"] > 0 and again["computed"] == 0
+    assert again["replayed"] == first["computed"] + first["replayed"]
+    other = asperity.load_scene(small_scene(source), {"model.eta": 60})
+    with pytest.raises(asperity.InputError, match="inputs.txt"):
+        asperity.fit(spec(experiments=[other]), base=base, out=out, threads=1, objective=area_term, progress=False)

@@ -228,6 +228,54 @@ def _objective_term(objective, series: bool):
     return term
 
 
+def _scene_file(scene: Scene) -> str:
+    """A Scene given where a fit takes a scene file, as a file: its to_yaml() text (every value
+    explicit, numbers exact) in a folder of the temporary directory private to this user, named
+    by the text's SHA-256. The same scene is the same file, so a fit journaled in `out` resumes;
+    another scene is another file, so it does not."""
+    import hashlib  # only needed here
+    import stat
+    import tempfile
+    text = scene.to_yaml()
+    folder = _os.path.join(tempfile.gettempdir(), f"asperity-scenes-{_os.getuid()}")
+    try:
+        _os.mkdir(folder, 0o700)
+    except FileExistsError:
+        pass
+    st = _os.lstat(folder)
+    if not stat.S_ISDIR(st.st_mode) or st.st_uid != _os.getuid() or st.st_mode & 0o077:
+        raise InputError(f"{folder}: not a folder private to this user (a symlink, another owner or open "
+                         "permissions); remove it to let asperity.fit write Scene objects there")
+    path = _os.path.join(folder, hashlib.sha256(text.encode()).hexdigest()[:32] + ".yaml")
+    try:
+        with open(path, encoding="utf-8") as f:
+            if f.read() == text:
+                return path
+    except FileNotFoundError:
+        pass
+    fd, tmp = tempfile.mkstemp(dir=folder, suffix=".tmp")
+    with _os.fdopen(fd, "w", encoding="utf-8") as f:
+        f.write(text)
+    _os.replace(tmp, path)
+    return path
+
+
+def _with_scene_files(spec: dict) -> dict:
+    """The fit spec with every Scene object among its experiments (an entry, or an entry's
+    "scene") replaced by _scene_file's path."""
+    experiments = spec.get("experiments")
+    if not isinstance(experiments, (list, tuple)):
+        return spec
+    out = []
+    for e in experiments:
+        if isinstance(e, Scene):
+            e = _scene_file(e)
+        elif isinstance(e, _Mapping) and isinstance(e.get("scene"), Scene):
+            e = {**e, "scene": _scene_file(e["scene"])}
+        out.append(e)
+    return {**spec, "experiments": out}
+
+
 def _callable_id(objective) -> str:
     """An identity of the caller's objective for a fit's journal: the SHA-256 of its source
     (inspect.getsource), else of its code object (a callable without source file, e.g. typed at a
@@ -301,7 +349,10 @@ def fit(spec: _Union[_PathLike, _Mapping[str, _Any]], out: _PathLike = "", threa
     """Runs a calibration (as `asperity fit`, with its defaults: every hardware thread, the
     profile and the error-bar refits the spec asks for). `spec`: a fit YAML file, or a dict of
     the same keys checked by the same loader (one-line errors naming the key, located at
-    "asperity.fit"; scene paths relative to `base`, default the working directory).
+    "asperity.fit"; scene paths relative to `base`, default the working directory). An
+    experiment may be a Scene object (from load_scene or Scene.from_dict), alone or as the
+    "scene" of an entry: it is passed as its to_yaml() text in a file named by its SHA-256 in a
+    private folder of the temporary directory, which error messages then name.
     `objective`: your own objective, a callable given each run's summary (a dict of every
     observable, plus "experiment": its name) -- and with `series=True` the run's series as a
     DataFrame too -- returning a float; the fit minimises the sum over the experiments with the
@@ -323,7 +374,7 @@ def fit(spec: _Union[_PathLike, _Mapping[str, _Any]], out: _PathLike = "", threa
     `progress`: a tqdm counter of the optimizations' evaluations when tqdm is installed (False:
     none; a callable: called as progress(evaluations, 0) every 0.1 s and at the end)."""
     if isinstance(spec, _Mapping):
-        spec = dict(spec)
+        spec = _with_scene_files(dict(spec))
     else:
         spec = _os.fspath(spec)
     if objective is not None and not callable(objective):
