@@ -128,6 +128,26 @@ std::string profile_csv(const std::vector<ProfilePoint>& points) {
   return c.str();
 }
 
+// The tic format of an axis spanning the values `v`: as many digits as tell tics about a fifth
+// of the span apart (gnuplot's default keeps too few for a narrow span far from zero, e.g. a
+// profile of α_b ± 10 %, and repeats one label), short %g otherwise ("7.2e-16", not "7.2x10^{-16}").
+std::string tic_format(const char* axis, const std::vector<double>& v) {
+  double lo = INFINITY, hi = -INFINITY;
+  for (const double x : v)
+    if (std::isfinite(x)) lo = std::min(lo, x), hi = std::max(hi, x);
+  int digits = 3;
+  if (hi > lo)
+    digits = std::clamp(
+        static_cast<int>(std::ceil(std::log10(std::max(std::abs(lo), std::abs(hi)) / ((hi - lo) / 5)))) + 1, 3, 12);
+  return std::string("set format ") + axis + " '%." + std::to_string(digits) + "g'\n";
+}
+
+std::vector<double> profile_values(const std::vector<ProfilePoint>& points) {
+  std::vector<double> v;
+  for (const auto& p : points) v.push_back(p.value);
+  return v;
+}
+
 // Writes the files of one optimization into `d` (plots when `plots`).
 void write_optimization(const fs::path& d, const FitSpec& spec, const Optimization& o, bool plots,
                         const FigureFormats& figures) {
@@ -191,9 +211,10 @@ void write_optimization(const fs::path& d, const FitSpec& spec, const Optimizati
          << "set title " << gnuplot_text(o.label) << " . " << gnuplot_quote(": objective around the optimum, ") << " . "
          << gnuplot_quote(column_symbol(key)) << " . " << gnuplot_quote(" varied (others fixed)") << "\nset xlabel "
          << gnuplot_quote(axis_markup(key)) << "\nset ylabel 'objective [1] (dimensionless)'\nset key off\n"
-         << "set rmargin 6\n"  // room for the last x tic label (10^{-16}-style labels are wide)
+         << "set rmargin 6\n"  // room for the last x tic label
+         << tic_format("x", profile_values(o.profile))
          << "plot 'profile.csv' skip 1 using 2:($3 == $3 ? $3 : 1/0) with linespoints pt 7 lw 1.5\n"
-         << "set rmargin -1\n";
+         << "set rmargin -1\nset format x '% h'\n";
     }
     for (std::size_t q = 1; q < o.profiles.size(); ++q) {
       const std::string& key = spec.parameters[o.profiles[q].parameter].key;
@@ -203,9 +224,9 @@ void write_optimization(const fs::path& d, const FitSpec& spec, const Optimizati
          << gnuplot_quote(column_symbol(key)) << " . " << gnuplot_quote(" varied (others fixed)") << "\nset xlabel "
          << gnuplot_quote(axis_markup(key)) << "\nset ylabel 'objective [1] (dimensionless)'\nset key off\n"
          << "set rmargin 6\n"
-         << "plot " << gnuplot_quote(stem + ".csv")
+         << tic_format("x", profile_values(o.profiles[q].points)) << "plot " << gnuplot_quote(stem + ".csv")
          << " skip 1 using 2:($3 == $3 ? $3 : 1/0) with linespoints pt 7 lw 1.5\n"
-         << "set rmargin -1\n";
+         << "set rmargin -1\nset format x '% h'\n";
     }
     for (const auto& r : o.best_runs) {
       if (!r.force) continue;
@@ -238,13 +259,15 @@ void write_optimization(const fs::path& d, const FitSpec& spec, const Optimizati
   plot_quietly(d, script, "plots.gp");
 }
 
-// fitted.png's key, drawn by hand: gnuplot's key sample of yerrorbars is a horizontal bar, the
-// figure's are vertical. A vertical bar with caps and its point, then the text.
+// fitted.png's key, drawn by hand above the plot (the fitted values may fill any corner):
+// gnuplot's key sample of yerrorbars is a horizontal bar, the figure's are vertical. A vertical
+// bar with caps and its point, then the text.
 constexpr const char* kErrorBarKey =
-    "set arrow 98 from graph 0.04, graph 0.89 to graph 0.04, graph 0.97 heads size screen 0.006,90 nofilled "
+    "set tmargin 5.5\nset title offset 0, 1.8\n"
+    "set arrow 98 from graph 0.03, graph 1.025 to graph 0.03, graph 1.085 heads size screen 0.006,90 nofilled "
     "lc rgb '#1f4e9a' lw 1\n"
-    "set label 97 '' at graph 0.04, graph 0.93 point pt 7 lc rgb '#1f4e9a'\n"
-    "set label 96 'fit (bars: error-bar range)' at graph 0.07, graph 0.93 left\n";
+    "set label 97 '' at graph 0.03, graph 1.055 point pt 7 lc rgb '#1f4e9a'\n"
+    "set label 96 'fit (bars: error-bar range)' at graph 0.06, graph 1.055 left\n";
 
 constexpr const char* kFitHeader = "# asperity fit results (SI units: m, m², N, s; alpha_b in m^(2p+2)/N²)";
 
@@ -563,6 +586,8 @@ void write_fit(const fs::path& dir, const FitSpec& spec, const FitResult& result
       // First parameter against the load, with the error-bar range when computed.
       // The numbers travel in a data block: fitted.csv's quoted names may hold commas.
       std::string script = gnuplot_block("fitted", first);
+      std::vector<double> values;  // of the y axis: values and bar ends
+      for (const auto& row : first) values.insert(values.end(), row.begin() + 1, row.end());
       bool stand_in = false;
       for (const auto& o : result.fits)
         for (const auto& r : o.best_runs) stand_in = stand_in || r.stand_in;
@@ -572,7 +597,8 @@ void write_fit(const fs::path& dir, const FitSpec& spec, const FitResult& result
            << stand_in_mark(stand_in) << "set title " << gnuplot_text(spec.name) << " . "
            << gnuplot_quote(": fitted " + column_symbol(spec.parameters[0].key) + " per experiment")
            << "\nset xlabel 'P = M g [N]'\nset ylabel " << gnuplot_quote(axis_markup(spec.parameters[0].key)) << "\n"
-           << kErrorBarKey << "plot $fitted using 1:2:3:4 with yerrorbars pt 7 lc rgb '#1f4e9a' notitle\n";
+           << kErrorBarKey << tic_format("y", values)
+           << "plot $fitted using 1:2:3:4 with yerrorbars pt 7 lc rgb '#1f4e9a' notitle\n";
         script += terminal_for(probe, kFitPlotWidth, kFitPlotHeight) + "\n" + script_for_terminal(probe, gp.str());
       }
       plot_quietly(tmp, script, "fitted.gp");
