@@ -228,7 +228,7 @@ def figures(rows, ccdf_rows, aq_rows, formats=("png",)):
             y = [float(r["ccdf"]) for r in ccdf_rows if float(r["P_N"]) == P]
             ax.loglog(x, y, label=f"{P:.2f} N")
         ax.set_xlabel(plot.label("A0")); ax.set_ylabel("fraction with area ≥ $A_0$ [1]")
-        ax.set_title("synthetic surface (seed 2019): junction areas"); ax.legend(title="load $P$")
+        ax.set_title("synthetic surface, seed 2019"); ax.legend(title="load $P$")
         for ext in formats:
             fig.savefig(os.path.join(HERE, f"fig_ccdf.{ext}"), dpi=200)
         plt.close(fig)

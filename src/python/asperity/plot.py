@@ -89,6 +89,9 @@ def mark_stand_in(fig, stand_in: bool = True):
     for t in fig.texts:
         if t.get_gid() == "stand-in-mark":
             return t
+    engine = fig.get_layout_engine() if hasattr(fig, "get_layout_engine") else None
+    if engine is not None and hasattr(engine, "set") and "rect" in engine.get():
+        engine.set(rect=(0, 0.045, 1, 0.955))  # a strip below the axes for the mark
     return fig.text(0.995, 0.005, _asperity.STAND_IN_MARK, ha="right", va="bottom", color=_MARK_COLOUR,
                     fontsize=FONT_PT - 1.5, gid="stand-in-mark")
 
