@@ -53,13 +53,15 @@ def ink(path):  # the share of pixels that are not (near) white
 
 
 # Each kept script (NAME.gp, a fit's plots.gp and fitted.gp) with its svg terminal swapped for
-# pngcairo (same size, font and fontscale) draws the PNG twin of each of its SVGs.
+# pngcairo (same size and font) draws the PNG twin of each of its SVGs.
 scripts = {}
 for gp in sorted(out.rglob("*.gp")):
     if gp.name.endswith(".twin.gp"):
         continue
     script = gp.read_text()
-    twin = re.sub(r"^set terminal svg ", "set terminal pngcairo ", script, flags=re.M)
+    # pngcairo takes points at 96 per inch already: the svg terminal's fontscale (points to CSS
+    # pixels) would draw its text a third larger than the browser does.
+    twin = re.sub(r"^set terminal svg (.*?)(?: fontscale [0-9.]+)?$", r"set terminal pngcairo \1", script, flags=re.M)
     twin = re.sub(r"^set output '([^']*)\.svg'", r"set output '\1.twin.png'", twin, flags=re.M)
     if twin == script:
         continue

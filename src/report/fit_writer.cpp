@@ -264,7 +264,7 @@ void write_optimization(const fs::path& d, const FitSpec& spec, const Optimizati
 // bar with caps and its point, then the text.
 constexpr const char* kErrorBarKey =
     "set tmargin 5.5\nset title offset 0, 1.8\n"
-    "set arrow 98 from graph 0.03, graph 1.025 to graph 0.03, graph 1.085 heads size screen 0.006,90 nofilled "
+    "set arrow 98 from graph 0.03, graph 1.01 to graph 0.03, graph 1.10 heads size screen 0.006,90 nofilled "
     "lc rgb '#1f4e9a' lw 1\n"
     "set label 97 '' at graph 0.03, graph 1.055 point pt 7 lc rgb '#1f4e9a'\n"
     "set label 96 'fit (bars: error-bar range)' at graph 0.06, graph 1.055 left\n";
