@@ -4,7 +4,7 @@
 Run from the repository root after a build:
     PYTHONPATH=build/python nice -n 5 /usr/bin/python3 scripts/topography_study.py
 Writes results/topography/{table.csv, stand_ins.csv, ccdf.csv, AQ.csv, fig_ccdf.png, fig_AQ.png}
-and regenerates the junctions under results/topography/generated/ (byte-identical per recipe).
+(`--figures [png svg ...]`: only the figures again, from those CSVs) and regenerates the junctions under results/topography/generated/ (byte-identical per recipe).
 
 Protocol (REPORT.md): per load, per seed, per model (independent / interacting), alpha_b is
 calibrated so that the model's area drop at its first peak equals that load's stand-in
@@ -212,33 +212,56 @@ def main():
     print(f"study wall {time.time() - t_all:.1f} s")
 
 
-def figures(rows, ccdf_rows, aq_rows):
+def figures(rows, ccdf_rows, aq_rows, formats=("png",)):
+    """fig_ccdf and fig_AQ in the style of every asperity figure (asperity.plot.figure: journal
+    size and text; units from the engine's table: areas in mm²; the stand-in mark on fig_AQ,
+    whose dashed curves are the stand-ins')."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    fig, ax = plt.subplots(figsize=(4.2, 3.2), dpi=110)
-    for P in LOADS:
-        x = [r["area_m2"] * 1e12 for r in ccdf_rows if r["P_N"] == P]
-        y = [r["ccdf"] for r in ccdf_rows if r["P_N"] == P]
-        ax.loglog(x, y, label=f"{P:.2f} N")
-    ax.set_xlabel("junction area A0 [µm²]"); ax.set_ylabel("fraction with area ≥ A0")
-    ax.set_title("SYNTHETIC surface (seed 2019)", fontsize=8); ax.legend(fontsize=6)
-    fig.tight_layout(); fig.savefig(os.path.join(HERE, "fig_ccdf.png")); plt.close(fig)
-    fig, axs = plt.subplots(1, 2, figsize=(6.4, 3.0), dpi=110, sharey=True)
-    for ax, P in zip(axs, (0.98, 4.00)):
-        for src, ls in (("topography", "-"), ("stand-in", "--")):
-            for model, c in (("independent", "C0"), ("interacting", "C3")):
-                pts = [(r["Q_over_Qs"], r["A_over_A0"]) for r in aq_rows if r["source"] == src and r["model"] == model and abs(r["P_N"] - P) < 0.02]
-                if pts:
-                    q, a = zip(*pts)
-                    ax.plot(q, a, ls, color=c, lw=1, label=f"{src}, {model}")
-        d = target_drop(P)
-        q = np.linspace(0, 1, 50)
-        ax.plot(q, 1 - d * q ** 2, ":", color="k", lw=1, label="parabola, target drop")
-        ax.set_title(f"P = {P:.2f} N (synthetic / stand-in)", fontsize=8); ax.set_xlabel("Q / Q_s")
-    axs[0].set_ylabel("A / A0"); axs[0].legend(fontsize=5)
-    fig.tight_layout(); fig.savefig(os.path.join(HERE, "fig_AQ.png")); plt.close(fig)
+    plot = asperity.plot
+    with plt.rc_context({"font.size": plot.FONT_PT, "legend.fontsize": plot.FONT_PT - 2}):
+        fig, ax = plot.figure(height=0.75)
+        scale = plot.unit("A0")[1]
+        for P in LOADS:
+            x = [float(r["area_m2"]) * scale for r in ccdf_rows if float(r["P_N"]) == P]
+            y = [float(r["ccdf"]) for r in ccdf_rows if float(r["P_N"]) == P]
+            ax.loglog(x, y, label=f"{P:.2f} N")
+        ax.set_xlabel(plot.label("A0")); ax.set_ylabel("fraction with area ≥ $A_0$ [1]")
+        ax.set_title("synthetic surface, seed 2019"); ax.legend(title="load $P$")
+        for ext in formats:
+            fig.savefig(os.path.join(HERE, f"fig_ccdf.{ext}"), dpi=200)
+        plt.close(fig)
+        fig, axs = plot.figure(ncols=2, height=0.42, sharey=True)
+        for ax, P in zip(axs, (0.98, 4.00)):
+            for src, ls in (("topography", "-"), ("stand-in", "--")):
+                for model, c in (("independent", "C0"), ("interacting", "C3")):
+                    pts = [(float(r["Q_over_Qs"]), float(r["A_over_A0"])) for r in aq_rows
+                           if r["source"] == src and r["model"] == model and abs(float(r["P_N"]) - P) < 0.02]
+                    if pts:
+                        q, a = zip(*pts)
+                        ax.plot(q, a, ls, color=c, lw=1, label=f"{src}, {model}")
+            d = target_drop(P)
+            q = np.linspace(0, 1, 50)
+            ax.plot(q, 1 - d * q ** 2, ":", color="k", lw=1, label="parabola, target drop")
+            ax.set_title(f"$P$ = {P:.2f} N: synthetic surface and stand-in"); ax.set_xlabel("$Q/Q_s$ [1]")
+        axs[0].set_ylabel("$A/A_0$ [1]"); axs[0].legend()
+        plot.mark_stand_in(fig, any(r["source"] == "stand-in" for r in aq_rows))
+        for ext in formats:
+            fig.savefig(os.path.join(HERE, f"fig_AQ.{ext}"), dpi=200)
+        plt.close(fig)
+
+
+def redraw(formats=("png",)):
+    """The figures again from the committed CSVs (no run): `topography_study.py --figures [svg]`."""
+    def read(name):
+        with open(os.path.join(HERE, name), newline="") as fh:
+            return list(csv.DictReader(fh))
+    figures(read("table.csv"), read("ccdf.csv"), read("AQ.csv"), formats)
 
 
 if __name__ == "__main__":
-    main()
+    if len(sys.argv) > 1 and sys.argv[1] == "--figures":
+        redraw(tuple(sys.argv[2:]) or ("png",))
+    else:
+        main()

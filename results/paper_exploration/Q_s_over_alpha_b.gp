@@ -1,7 +1,8 @@
 # asperity plot script: `gnuplot Q_s_over_alpha_b.gp` redraws Q_s_over_alpha_b.png (data inline; restyle freely)
 set terminal pngcairo size 1000,650 enhanced
 set output 'Q_s_over_alpha_b.png'
-set title 'Q_s over α_b, grid=alpha\_b' . "\n" . 'STAND-IN experiments, not measurements'
+set label 99 'STAND-IN data, not measurements' at screen 0.995, 0.012 right front textcolor rgb '#b2182b' font ',8'
+set title 'Q_s over α_b'
 set grid
 set key outside right
 set xlabel 'α_b [m^{2p+2} N^{-2}]'

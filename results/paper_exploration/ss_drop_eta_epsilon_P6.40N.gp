@@ -1,7 +1,9 @@
 # asperity plot script: `gnuplot ss_drop_eta_epsilon_P6.40N.gp` redraws ss_drop_eta_epsilon_P6.40N.png (data inline; restyle freely)
 set terminal pngcairo size 900,700 enhanced
 set output 'ss_drop_eta_epsilon_P6.40N.png'
-set title 'stick-slip drop ΔQ_{ss} over η × ε, experiment=P6.40N, grid=eta\_epsilon' . "\n" . 'STAND-IN experiments, not measurements' . "\n" . '(blank: no value: NaN, e.g. no stick-slip cycle, or failed/missing point)'
+set label 99 'STAND-IN data, not measurements' at screen 0.995, 0.012 right front textcolor rgb '#b2182b' font ',8'
+set title 'stick-slip drop ΔQ_{ss} over η × ε, P6.40N' . "\n" . '(blank: no value (NaN), or a failed point)'
+set rmargin at screen 0.74
 set cblabel 'stick-slip drop ΔQ_{ss} [N]'
 set palette defined (0 '#440154', 1 '#3b528b', 2 '#21908d', 3 '#5dc963', 4 '#fde725')
 set xlabel 'η [s^{-1}]'

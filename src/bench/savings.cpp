@@ -72,6 +72,7 @@ std::vector<SavingRow> run_savings(const SavingsOptions& opt) {
         const Scene& scene = j == 0 ? sa : sb;
         SavingRow r;
         r.experiment = scene.experiment.name;
+        r.stand_in = is_stand_in(scene.experiment);
         r.saving = k.saving;
         r.variant = k.variant;
         r.baseline = k.baseline;
@@ -122,8 +123,8 @@ void write_savings(const fs::path& dir, const std::vector<SavingRow>& rows, cons
        << ' ' << g((rows[i + 1].cpu_s + rows[i + 1].write_s) * 1e3, 5) << '\n';
   }
   gp << "EOD\n"
-     << "set title " << gnuplot_text("Model only what a scene requires: " + exp + " (stand-in)") << " . \"\\n\" . "
-     << gnuplot_quote("CPU time of integration + writing the run directory") << "\n"
+     << stand_in_mark(rows.front().stand_in) << "set title " << gnuplot_text("Model only what a scene requires: " + exp)
+     << " . \"\\n\" . " << gnuplot_quote("CPU time of integration + writing the run directory") << "\n"
      << "set style data histograms\nset style histogram clustered gap 1\nset style fill solid 0.8 border -1\n"
      << "set xtics noenhanced\n"  // the tic labels are scene settings (output.series=[]), not markup
      << "set bmargin 5\nset boxwidth 0.9\nset ylabel 'CPU time [ms]'\nset grid ytics\nset yrange [0:*]\nset key top "

@@ -25,9 +25,10 @@ struct SavingsOptions {
 struct SavingRow {
   std::string experiment, saving, variant;  // variant: what differs from the scene's defaults
   bool baseline = false;
-  double wall_s = 0;   // median integration wall time [s]
-  double cpu_s = 0;    // median process CPU time of the same runs [s]
-  double write_s = 0;  // writing the run directory (series.csv, summary, scene) [s]
+  bool stand_in = false;  // the scene's experiment is a stand-in (is_stand_in): the figure says so
+  double wall_s = 0;      // median integration wall time [s]
+  double cpu_s = 0;       // median process CPU time of the same runs [s]
+  double write_s = 0;     // writing the run directory (series.csv, summary, scene) [s]
   int repeats = 1;
   double t_end = 0;  // simulated [s]
   std::int64_t steps = 0, force_evals = 0;

@@ -57,6 +57,7 @@ TradeoffResult run_tradeoff(const TradeoffOptions& opt) {
   };
   const Scene probe = scene_with(opt.scene, base, {});
   const std::string name = probe.experiment.name;
+  res.stand_in = is_stand_in(probe.experiment);
 
   // Converged solution and its check.
   log("converged: event, tolerance " + g(opt.converged_tolerance) + " ... ");
@@ -166,12 +167,12 @@ std::string plot_script(const TradeoffResult& r) {
       range[method == "event"] = g(rows.front()->setting) + (rows.size() > 1 ? " … " + g(rows.back()->setting) : "");
   }
   const std::string exp = r.rows.empty() ? "" : r.rows.front().experiment;
-  gp << "set multiplot layout 2,3 title "
+  gp << stand_in_mark(r.stand_in) << "set multiplot layout 2,3 title "
      << gnuplot_text("Work-precision on bench experiment " + exp +
-                     " (60 junctions, stand-in recipe): error vs converged event run (tol 1e-12)")
+                     " (60 junctions): error vs converged event run (tol 1e-12)")
      << "\n"
      << "set logscale xy\nset format y '10^{%T}'\nset format x '10^{%T}'\nset grid\n"
-     << "set xlabel 'wall time [s]'\nset ylabel 'relative error'\nset key bmargin center horizontal font ',9'\n";
+     << "set xlabel 'wall time [s]'\nset ylabel 'relative error [1]'\nset key bmargin center horizontal font ',9'\n";
   for (std::size_t i = 0; i < n_robust; ++i) {
     const int c = static_cast<int>(i) + 3;
     gp << "set title " << gnuplot_quote(column_symbol(robust_names()[i])) << "\n"

@@ -52,6 +52,7 @@ struct OrderRow {
 };
 
 struct TradeoffResult {
+  bool stand_in = false;               // the experiment is a stand-in (is_stand_in): the figure says so
   std::vector<WorkPrecisionRow> rows;  // converged and check runs included (method "event")
   std::vector<OrderRow> orders;
 };

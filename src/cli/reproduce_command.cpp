@@ -98,9 +98,8 @@ void write_paper_outputs(const std::filesystem::path& out, const std::vector<Pap
   scene_io::write_text_file(out / "table.csv", paper_table_csv(runs));
   if (runs.empty()) return;
   for (const auto& [name, error] :
-       {std::pair<const char*, std::string>{"fig3_Q_A_t.png",
-                                            write_figure3(out, runs.front(), runs.back(), label, figures)},
-        {"fig4_A_Q.png", write_figure4(out, runs, label, figures)}})
+       {std::pair<const char*, std::string>{"fig3_Q_A_t.png", write_figure3(out, runs.front(), runs.back(), figures)},
+        {"fig4_A_Q.png", write_figure4(out, runs, figures)}})
     if (!error.empty())
       std::fprintf(stderr, "reproduce: %s not drawn: %s (its script, data inline, is kept beside it)\n", name,
                    error.c_str());

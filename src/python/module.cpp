@@ -38,6 +38,7 @@
 #include "python/campaign_in_store.hpp"
 #include "python/topography_bindings.hpp"
 #include "report/fit_writer.hpp"
+#include "report/gnuplot.hpp"
 #include "report/run_writer.hpp"
 #include "report/units.hpp"
 #include "scene/load.hpp"
@@ -355,12 +356,7 @@ PYBIND11_MODULE(_asperity, m) {
       .def_property_readonly("file", [](const Scene& s) { return s.file.string(); })
       .def_property_readonly("experiment", [](const Scene& s) { return s.experiment.name; })
       .def_property_readonly("junctions", [](const Scene& s) { return s.experiment.junctions.size(); })
-      .def_property_readonly("stand_in",
-                             [](const Scene& s) {
-                               std::string d = s.experiment.description;
-                               for (char& c : d) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-                               return d.find("stand-in") != std::string::npos;
-                             })
+      .def_property_readonly("stand_in", [](const Scene& s) { return is_stand_in(s.experiment); })
       .def(
           "to_yaml", [](const Scene& s) { return scene_to_yaml(s); },
           "The scene as `asperity run` writes scene.yaml (junctions inline when it has no experiment file); "
@@ -609,4 +605,14 @@ PYBIND11_MODULE(_asperity, m) {
     d["observables"] = observables, d["series"] = series, d["scene_keys"] = keys;
     return d;
   });
+  // A column's unit as the figures show it (report/units.hpp figure_unit: areas in mm²): the unit
+  // text, its figure markup (gnuplot enhanced text, asperity.plot turns it into mathtext) and the
+  // factor from the SI value.
+  m.def("figure_unit", [](const std::string& column) {
+    const FigureUnit u = figure_unit(column);
+    py::dict d;
+    d["unit"] = u.unit, d["markup"] = unit_markup(u.unit), d["scale"] = u.scale;
+    return d;
+  });
+  m.attr("STAND_IN_MARK") = kStandInMark;  // the text every stand-in figure carries
 }

@@ -128,6 +128,26 @@ std::string profile_csv(const std::vector<ProfilePoint>& points) {
   return c.str();
 }
 
+// The tic format of an axis spanning the values `v`: as many digits as tell tics about a fifth
+// of the span apart (gnuplot's default keeps too few for a narrow span far from zero, e.g. a
+// profile of α_b ± 10 %, and repeats one label), short %g otherwise ("7.2e-16", not "7.2x10^{-16}").
+std::string tic_format(const char* axis, const std::vector<double>& v) {
+  double lo = INFINITY, hi = -INFINITY;
+  for (const double x : v)
+    if (std::isfinite(x)) lo = std::min(lo, x), hi = std::max(hi, x);
+  int digits = 3;
+  if (hi > lo)
+    digits = std::clamp(
+        static_cast<int>(std::ceil(std::log10(std::max(std::abs(lo), std::abs(hi)) / ((hi - lo) / 5)))) + 1, 3, 12);
+  return std::string("set format ") + axis + " '%." + std::to_string(digits) + "g'\n";
+}
+
+std::vector<double> profile_values(const std::vector<ProfilePoint>& points) {
+  std::vector<double> v;
+  for (const auto& p : points) v.push_back(p.value);
+  return v;
+}
+
 // Writes the files of one optimization into `d` (plots when `plots`).
 void write_optimization(const fs::path& d, const FitSpec& spec, const Optimization& o, bool plots,
                         const FigureFormats& figures) {
@@ -164,12 +184,15 @@ void write_optimization(const fs::path& d, const FitSpec& spec, const Optimizati
     }
   }
   if (!plots) return;
+  bool stand_in = false;
+  for (const auto& r : o.best_runs) stand_in = stand_in || r.stand_in;
   // The figures of every chosen format, each format's terminal before its figures.
   std::string script;
+  const std::string area_scale = scene_io::format_double(figure_unit("A").scale);
   for (const fs::path& probe : figure_files("convergence.png", figures)) {
     const std::string ext = probe.extension().string();
     std::ostringstream gp;
-    gp << "set datafile separator ','\nset grid\n";
+    gp << "set datafile separator ','\nset grid\n" << stand_in_mark(stand_in);
     gp << "set output " << gnuplot_quote("convergence" + ext) << "\n"
        << "set title "
        << gnuplot_text(spec.name + " / " + o.label + ": objective (" + objective_name(spec.objective) + ")")
@@ -188,9 +211,10 @@ void write_optimization(const fs::path& d, const FitSpec& spec, const Optimizati
          << "set title " << gnuplot_text(o.label) << " . " << gnuplot_quote(": objective around the optimum, ") << " . "
          << gnuplot_quote(column_symbol(key)) << " . " << gnuplot_quote(" varied (others fixed)") << "\nset xlabel "
          << gnuplot_quote(axis_markup(key)) << "\nset ylabel 'objective [1] (dimensionless)'\nset key off\n"
-         << "set rmargin 6\n"  // room for the last x tic label (10^{-16}-style labels are wide)
+         << "set rmargin 6\n"  // room for the last x tic label
+         << tic_format("x", profile_values(o.profile))
          << "plot 'profile.csv' skip 1 using 2:($3 == $3 ? $3 : 1/0) with linespoints pt 7 lw 1.5\n"
-         << "set rmargin -1\n";
+         << "set rmargin -1\nset format x '% h'\n";
     }
     for (std::size_t q = 1; q < o.profiles.size(); ++q) {
       const std::string& key = spec.parameters[o.profiles[q].parameter].key;
@@ -200,17 +224,18 @@ void write_optimization(const fs::path& d, const FitSpec& spec, const Optimizati
          << gnuplot_quote(column_symbol(key)) << " . " << gnuplot_quote(" varied (others fixed)") << "\nset xlabel "
          << gnuplot_quote(axis_markup(key)) << "\nset ylabel 'objective [1] (dimensionless)'\nset key off\n"
          << "set rmargin 6\n"
-         << "plot " << gnuplot_quote(stem + ".csv")
+         << tic_format("x", profile_values(o.profiles[q].points)) << "plot " << gnuplot_quote(stem + ".csv")
          << " skip 1 using 2:($3 == $3 ? $3 : 1/0) with linespoints pt 7 lw 1.5\n"
-         << "set rmargin -1\n";
+         << "set rmargin -1\nset format x '% h'\n";
     }
     for (const auto& r : o.best_runs) {
       if (!r.force) continue;
       const std::string name = spec.experiments[r.experiment].name;
       const std::string qstem = "Qt_" + file_stem(name);
       gp << "set output " << gnuplot_quote(qstem + ext) << "\n"
-         << "set title " << gnuplot_text(name + (r.stand_in ? " (STAND-IN data)" : "") + ": Q(t) at the fit")
-         << "\nset xlabel 't [s]'\nset ylabel 'Q [N]'\nset key top left\n"
+         << "set title " << gnuplot_text(name + ": Q(t) at the fit") << "\nset xlabel "
+         << gnuplot_quote(axis_markup("t")) << "\nset ylabel " << gnuplot_quote(axis_markup("Q"))
+         << "\nset key top left\n"
          << "plot " << gnuplot_quote(qstem + "_measured.csv") << " skip 1 using 1:2 with points pt 7 ps 0.3 title '"
          << (r.stand_in ? "stand-in measurement" : "measurement") << "', " << gnuplot_quote(qstem + "_model.csv")
          << " skip 1 using 1:2 with lines lw 1.5 title 'model (fitted)'\n";
@@ -219,21 +244,30 @@ void write_optimization(const fs::path& d, const FitSpec& spec, const Optimizati
       const std::string name = spec.experiments[r.experiment].name;
       const std::string stem = "AQ_" + file_stem(name);
       gp << "set output " << gnuplot_quote(stem + ext) << "\n"
-         << "set title "
-         << gnuplot_text(name + (r.stand_in ? " (STAND-IN data)" : "") + ": A(Q) on the loading branch at the fit")
-         << "\nset xlabel 'Q [N]'\nset ylabel 'A [mm^2]'\nset key bottom left\n"
-         << "plot " << gnuplot_quote(stem + "_model.csv")
-         << " skip 1 using 1:($2*1e6) with lines lw 2 title 'model (fitted)'";
+         << "set title " << gnuplot_text(name + ": A(Q) on the loading branch at the fit") << "\nset xlabel "
+         << gnuplot_quote(axis_markup("Q")) << "\nset ylabel " << gnuplot_quote(axis_markup("A"))
+         << "\nset key bottom left\n"
+         << "plot " << gnuplot_quote(stem + "_model.csv") << " skip 1 using 1:($2*" << area_scale
+         << ") with lines lw 2 title 'model (fitted)'";
       if (r.measured)
-        gp << ", " << gnuplot_quote(stem + "_measured.csv")
-           << " skip 1 using 1:($2*1e6) with points pt 7 ps 0.7 title '"
-           << (r.stand_in ? "stand-in measurement" : "measurement") << "'";
+        gp << ", " << gnuplot_quote(stem + "_measured.csv") << " skip 1 using 1:($2*" << area_scale
+           << ") with points pt 7 ps 0.7 title '" << (r.stand_in ? "stand-in measurement" : "measurement") << "'";
       gp << "\n";
     }
     script += terminal_for(probe, kFitPlotWidth, kFitPlotHeight) + "\n" + script_for_terminal(probe, gp.str());
   }
   plot_quietly(d, script, "plots.gp");
 }
+
+// fitted.png's key, drawn by hand above the plot (the fitted values may fill any corner):
+// gnuplot's key sample of yerrorbars is a horizontal bar, the figure's are vertical. A vertical
+// bar with caps and its point, then the text.
+constexpr const char* kErrorBarKey =
+    "set tmargin 5.5\nset title offset 0, 1.8\n"
+    "set arrow 98 from graph 0.03, graph 1.01 to graph 0.03, graph 1.10 heads size screen 0.006,90 nofilled "
+    "lc rgb '#1f4e9a' lw 1\n"
+    "set label 97 '' at graph 0.03, graph 1.055 point pt 7 lc rgb '#1f4e9a'\n"
+    "set label 96 'fit (bars: error-bar range)' at graph 0.06, graph 1.055 left\n";
 
 constexpr const char* kFitHeader = "# asperity fit results (SI units: m, m², N, s; alpha_b in m^(2p+2)/N²)";
 
@@ -330,18 +364,9 @@ void write_convergence(std::ostream& y, const Optimization& o) {
   }
 }
 
-}  // namespace
-
-std::string fit_yaml(const FitSpec& spec, const FitResult& result, const std::string& command_line) {
-  std::ostringstream y;
+// fit.yaml's settings: the header, the fit file, the algorithm and its stopping rules, wall times.
+void write_fit_settings(std::ostream& y, const FitSpec& spec, const FitResult& result, bool stand_in) {
   auto num = [](double x) { return yaml_double(x); };
-  bool stand_in = false;
-  for (const auto& o : result.fits)
-    for (const auto& r : o.best_runs) stand_in = stand_in || r.stand_in;
-  y << kFitHeader << "\n";
-  if (stand_in)
-    y << "# STAND-IN DATA: the experiments fitted here are stand-ins generated by `asperity generate`,\n"
-         "# not measurements. The fitted values are properties of the stand-ins, not of the real experiments.\n";
   y << "asperity_version: " << yaml_quoted(build_info().version) << "\n";
   y << "fit_file: " << yaml_quoted(display_path(spec.file)) << "\n";
   y << "name: " << yaml_quoted(spec.name) << "\n";
@@ -369,6 +394,98 @@ std::string fit_yaml(const FitSpec& spec, const FitResult& result, const std::st
   int total = 0;
   for (const auto& o : result.fits) total += o.evaluations;
   y << "evaluations: " << total << "   # of the optimizations (without profiles and refits)\n";
+}
+
+// The best run of each experiment of one optimization.
+void write_best_runs(std::ostream& y, const FitSpec& spec, const Optimization& o) {
+  auto num = [](double x) { return yaml_double(x); };
+  y << "    runs:   # the best run of each experiment\n";
+  for (const auto& r : o.best_runs) {
+    const Observables& b = r.obs;
+    y << "      " << yaml_quoted(spec.experiments[r.experiment].name) << ":\n";
+    y << "        stand_in: " << (r.stand_in ? "true" : "false") << "\n";
+    y << "        mass: " << num(r.mass_kg) << "\n";
+    y << "        term: " << num(r.residual) << "\n";
+    if (spec.objective == FitObjective::area_and_force)
+      y << "        chi2: {area: " << num(r.terms.area) << ", n_area: " << r.terms.n_area
+        << ", force: " << num(r.terms.force) << ", n_force: " << r.terms.n_force
+        << ", score: " << force_score_name(r.terms.score) << ", cycles: " << num(r.terms.cycles)
+        << ", n_cycles: " << r.terms.n_cycles << ", stick_slip: " << num(r.terms.stick_slip)
+        << ", n_stick_slip: " << r.terms.n_stick_slip << "}\n";
+    for (const char* name : kFitYamlObservables) {
+      const ObservableField& f = observable_field(name);
+      y << "        " << f.name << ": " << observable_text(f, b, yaml_double) << "\n";
+    }
+    y << "        run_wall_s: " << num(b.wall_s) << "\n";
+  }
+}
+
+// The objective profiles of one optimization (the first, then the further parameters).
+void write_profiles(std::ostream& y, const FitSpec& spec, const Optimization& o) {
+  auto num = [](double x) { return yaml_double(x); };
+  if (!o.profile.empty()) {
+    const ProfileSettings& ps = spec.profile_settings;
+    double fmin = Observables::nan, fmin_at = Observables::nan;
+    for (const auto& p : o.profile)
+      if (std::isfinite(p.objective) && !(p.objective >= fmin)) fmin = p.objective, fmin_at = p.factor;
+    y << "    profile:\n";
+    y << "      parameter: " << spec.parameters[ps.parameter].key << "\n";
+    y << "      span: " << num(ps.span) << "\n      points: " << o.profile.size() << "\n";
+    const std::string sub = fit_subdir(spec, o);
+    y << "      file: " << yaml_quoted(sub.empty() ? "profile.csv" : sub + "/profile.csv") << "\n";
+    y << "      lowest_objective_at_factor: " << num(fmin_at) << "   # 1: the fit is the profile's minimum\n";
+    y << "      wall_s: " << num(o.profile_wall_s) << "\n";
+  }
+  for (std::size_t q = 1; q < o.profiles.size(); ++q) {
+    if (q == 1) y << "    more_profiles:   # the further profiled parameters (same span and points)\n";
+    const std::string& key = spec.parameters[o.profiles[q].parameter].key;
+    const std::string sub = fit_subdir(spec, o);
+    const std::string file = "profile_" + file_stem(key) + ".csv";
+    y << "      - {parameter: " << key << ", file: " << yaml_quoted(sub.empty() ? file : sub + "/" + file) << "}\n";
+  }
+}
+
+// The error-bar refits of one optimization and the ranges they give.
+void write_error_bars(std::ostream& y, const Optimization& o) {
+  auto num = [](double x) { return yaml_double(x); };
+  if (o.refits.empty()) return;
+  y << "    error_bars:\n";
+  y << "      method: \"one at a time: refit (from the optimum) with each quantity at nominal - bar and nominal + "
+       "bar, "
+       "the others nominal; min/max over the fit and all refits; sigma = quadrature sum over quantities of "
+       "|x(+bar) - x(-bar)|/2 (linear propagation of independent errors)\"\n";
+  y << "      wall_s: " << num(o.refits_wall_s) << "\n";
+  y << "      refits:\n";
+  for (const auto& rf : o.refits) {
+    y << "        - {key: " << rf.key << ", shift: " << num(rf.sign * rf.bar);
+    for (std::size_t i = 0; i < o.variables.size(); ++i)
+      y << ", " << yaml_quoted(o.variables[i].label) << ": " << num(rf.best[i]);
+    y << ", objective: " << num(rf.objective) << ", evaluations: " << rf.evaluations
+      << ", stop_reason: " << rf.stop_reason;
+    if (!rf.failure.empty()) y << ", failure: " << yaml_quoted(rf.failure);
+    y << "}\n";
+  }
+  const std::vector<Range> ranges = error_bar_ranges(o);
+  y << "      ranges:\n";
+  for (std::size_t i = 0; i < ranges.size(); ++i)
+    y << "        " << yaml_quoted(o.variables[i].label) << ": {value: " << num(ranges[i].value)
+      << ", min: " << num(ranges[i].min) << ", max: " << num(ranges[i].max) << ", sigma: " << num(ranges[i].sigma)
+      << ", sigma_relative: " << num(ranges[i].sigma / std::abs(ranges[i].value)) << "}\n";
+}
+
+}  // namespace
+
+std::string fit_yaml(const FitSpec& spec, const FitResult& result, const std::string& command_line) {
+  std::ostringstream y;
+  auto num = [](double x) { return yaml_double(x); };
+  bool stand_in = false;
+  for (const auto& o : result.fits)
+    for (const auto& r : o.best_runs) stand_in = stand_in || r.stand_in;
+  y << kFitHeader << "\n";
+  if (stand_in)
+    y << "# STAND-IN DATA: the experiments fitted here are stand-ins generated by `asperity generate`,\n"
+         "# not measurements. The fitted values are properties of the stand-ins, not of the real experiments.\n";
+  write_fit_settings(y, spec, result, stand_in);
   y << "fits:\n";
   for (const auto& o : result.fits) {
     y << "  - label: " << yaml_quoted(o.label) << "\n";
@@ -393,70 +510,10 @@ std::string fit_yaml(const FitSpec& spec, const FitResult& result, const std::st
       const bool at_bound = o.best[i] == p.lo || o.best[i] == p.hi;
       y << ", at_bound: " << (at_bound ? "true" : "false") << "}\n";
     }
-    y << "    runs:   # the best run of each experiment\n";
-    for (const auto& r : o.best_runs) {
-      const Observables& b = r.obs;
-      y << "      " << yaml_quoted(spec.experiments[r.experiment].name) << ":\n";
-      y << "        stand_in: " << (r.stand_in ? "true" : "false") << "\n";
-      y << "        mass: " << num(r.mass_kg) << "\n";
-      y << "        term: " << num(r.residual) << "\n";
-      if (spec.objective == FitObjective::area_and_force)
-        y << "        chi2: {area: " << num(r.terms.area) << ", n_area: " << r.terms.n_area
-          << ", force: " << num(r.terms.force) << ", n_force: " << r.terms.n_force
-          << ", score: " << force_score_name(r.terms.score) << ", cycles: " << num(r.terms.cycles)
-          << ", n_cycles: " << r.terms.n_cycles << ", stick_slip: " << num(r.terms.stick_slip)
-          << ", n_stick_slip: " << r.terms.n_stick_slip << "}\n";
-      for (const char* name : kFitYamlObservables) {
-        const ObservableField& f = observable_field(name);
-        y << "        " << f.name << ": " << observable_text(f, b, yaml_double) << "\n";
-      }
-      y << "        run_wall_s: " << num(b.wall_s) << "\n";
-    }
-    if (!o.profile.empty()) {
-      const ProfileSettings& ps = spec.profile_settings;
-      double fmin = Observables::nan, fmin_at = Observables::nan;
-      for (const auto& p : o.profile)
-        if (std::isfinite(p.objective) && !(p.objective >= fmin)) fmin = p.objective, fmin_at = p.factor;
-      y << "    profile:\n";
-      y << "      parameter: " << spec.parameters[ps.parameter].key << "\n";
-      y << "      span: " << num(ps.span) << "\n      points: " << o.profile.size() << "\n";
-      const std::string sub = fit_subdir(spec, o);
-      y << "      file: " << yaml_quoted(sub.empty() ? "profile.csv" : sub + "/profile.csv") << "\n";
-      y << "      lowest_objective_at_factor: " << num(fmin_at) << "   # 1: the fit is the profile's minimum\n";
-      y << "      wall_s: " << num(o.profile_wall_s) << "\n";
-    }
-    for (std::size_t q = 1; q < o.profiles.size(); ++q) {
-      if (q == 1) y << "    more_profiles:   # the further profiled parameters (same span and points)\n";
-      const std::string& key = spec.parameters[o.profiles[q].parameter].key;
-      const std::string sub = fit_subdir(spec, o);
-      const std::string file = "profile_" + file_stem(key) + ".csv";
-      y << "      - {parameter: " << key << ", file: " << yaml_quoted(sub.empty() ? file : sub + "/" + file) << "}\n";
-    }
+    write_best_runs(y, spec, o);
+    write_profiles(y, spec, o);
     if (spec.objective == FitObjective::area_and_force && spec.intervals) write_uncertainty(y, o);
-    if (!o.refits.empty()) {
-      y << "    error_bars:\n";
-      y << "      method: \"one at a time: refit (from the optimum) with each quantity at nominal - bar and nominal + "
-           "bar, "
-           "the others nominal; min/max over the fit and all refits; sigma = quadrature sum over quantities of "
-           "|x(+bar) - x(-bar)|/2 (linear propagation of independent errors)\"\n";
-      y << "      wall_s: " << num(o.refits_wall_s) << "\n";
-      y << "      refits:\n";
-      for (const auto& rf : o.refits) {
-        y << "        - {key: " << rf.key << ", shift: " << num(rf.sign * rf.bar);
-        for (std::size_t i = 0; i < o.variables.size(); ++i)
-          y << ", " << yaml_quoted(o.variables[i].label) << ": " << num(rf.best[i]);
-        y << ", objective: " << num(rf.objective) << ", evaluations: " << rf.evaluations
-          << ", stop_reason: " << rf.stop_reason;
-        if (!rf.failure.empty()) y << ", failure: " << yaml_quoted(rf.failure);
-        y << "}\n";
-      }
-      const std::vector<Range> ranges = error_bar_ranges(o);
-      y << "      ranges:\n";
-      for (std::size_t i = 0; i < ranges.size(); ++i)
-        y << "        " << yaml_quoted(o.variables[i].label) << ": {value: " << num(ranges[i].value)
-          << ", min: " << num(ranges[i].min) << ", max: " << num(ranges[i].max) << ", sigma: " << num(ranges[i].sigma)
-          << ", sigma_relative: " << num(ranges[i].sigma / std::abs(ranges[i].value)) << "}\n";
-    }
+    write_error_bars(y, o);
   }
   // Provenance: the build, the command, and the fit file and every experiment's input files.
   std::vector<DataFile> files{{"fit", spec.file}};
@@ -529,13 +586,19 @@ void write_fit(const fs::path& dir, const FitSpec& spec, const FitResult& result
       // First parameter against the load, with the error-bar range when computed.
       // The numbers travel in a data block: fitted.csv's quoted names may hold commas.
       std::string script = gnuplot_block("fitted", first);
+      std::vector<double> values;  // of the y axis: values and bar ends
+      for (const auto& row : first) values.insert(values.end(), row.begin() + 1, row.end());
+      bool stand_in = false;
+      for (const auto& o : result.fits)
+        for (const auto& r : o.best_runs) stand_in = stand_in || r.stand_in;
       for (const fs::path& probe : figure_files("fitted.png", figures)) {
         std::ostringstream gp;
-        gp << "set grid\nset output " << gnuplot_quote(probe.string()) << "\nset key top left\n"
-           << "set title " << gnuplot_text(spec.name) << " . "
+        gp << "set grid\nset output " << gnuplot_quote(probe.string()) << "\n"
+           << stand_in_mark(stand_in) << "set title " << gnuplot_text(spec.name) << " . "
            << gnuplot_quote(": fitted " + column_symbol(spec.parameters[0].key) + " per experiment")
            << "\nset xlabel 'P = M g [N]'\nset ylabel " << gnuplot_quote(axis_markup(spec.parameters[0].key)) << "\n"
-           << "plot $fitted using 1:2:3:4 with yerrorbars pt 7 title 'fit (bars: error-bar range)'\n";
+           << kErrorBarKey << tic_format("y", values)
+           << "plot $fitted using 1:2:3:4 with yerrorbars pt 7 lc rgb '#1f4e9a' notitle\n";
         script += terminal_for(probe, kFitPlotWidth, kFitPlotHeight) + "\n" + script_for_terminal(probe, gp.str());
       }
       plot_quietly(tmp, script, "fitted.gp");

@@ -116,6 +116,12 @@ std::string enhanced_literal(const std::string& text) {
 
 std::string gnuplot_text(const std::string& text) { return gnuplot_quote(enhanced_literal(text)); }
 
+std::string stand_in_mark(bool stand_in) {
+  if (!stand_in) return "";
+  return "set label 99 " + gnuplot_text(kStandInMark) +
+         " at screen 0.995, 0.012 right front textcolor rgb '#b2182b' font ',8'\n";
+}
+
 FigureFormats parse_figure_formats(const std::string& list) {
   FigureFormats f{false, false, false};
   std::size_t begin = 0;

@@ -23,6 +23,69 @@ namespace fs = std::filesystem;
 
 using namespace plot_detail;
 
+namespace {
+
+using Row = std::vector<std::string>;
+using Cells = std::map<std::pair<std::size_t, std::size_t>, const Row*>;
+
+// The point of each (x rank, y rank) cell; two points on one cell that differ in a descriptive
+// column (before status) → InputError naming a --where filter that picks one.
+Cells cells_of(const StoreTable& t, const std::vector<Row>& rows, const HeatmapOptions& opt,
+               const std::vector<std::string>& xs, const std::vector<std::string>& ys) {
+  const std::size_t cx = t.column(opt.x, "--x"), cy = t.column(opt.y, "--y");
+  const std::size_t cstatus = t.column("status", "status");
+  auto rank = [](const std::vector<std::string>& v, const std::string& text) {
+    for (std::size_t i = 0; i < v.size(); ++i)
+      if (same_value(v[i], text)) return i;
+    return v.size();
+  };
+  Cells cell;
+  for (const auto& r : rows) {
+    const auto key = std::make_pair(rank(xs, r[cx]), rank(ys, r[cy]));
+    const auto [it, fresh] = cell.emplace(key, &r);
+    if (fresh) continue;
+    std::string differ;  // descriptive columns (before status) where the two points differ
+    std::size_t first = 0;
+    for (std::size_t c = 2; c < cstatus; ++c)
+      if (c != cx && c != cy && !same_value((*it->second)[c], r[c])) {
+        differ += (differ.empty() ? "" : ", ") + t.cols[c];
+        if (!first) first = c;
+      }
+    if (!differ.empty())
+      throw InputError("asperity plot", 0, "--where",
+                       "several points fall on " + opt.x + " = " + r[cx] + ", " + opt.y + " = " + r[cy] +
+                           "; they differ in " + differ + ": pick one, e.g. --where " + t.cols[first] + "=" + r[first]);
+  }
+  return cell;
+}
+
+// The store texts' values in the column's figure unit.
+std::vector<double> figure_values(const std::vector<std::string>& texts, const std::string& column) {
+  const double scale = figure_unit(column).scale;
+  std::vector<double> v(texts.size());
+  for (std::size_t i = 0; i < texts.size(); ++i) number_of(texts[i], v[i]), v[i] *= scale;
+  return v;
+}
+
+// Title, mark, colour bar and palette of the heat map.
+std::string heatmap_head(const fs::path& store, const HeatmapOptions& opt) {
+  std::ostringstream gp;
+  // Every text from the store or the command line enters the script as a gnuplot_quote literal
+  // (and its markup through enhanced_literal); line breaks of the title are gnuplot's "\n" between them.
+  const std::string title =
+      column_symbol(opt.z) + " over " + column_symbol(opt.x) + " × " + column_symbol(opt.y) + where_title(opt.where);
+  gp << stand_in_mark(store_is_stand_in(store)) << "set title " << gnuplot_quote(title);
+  gp << " . \"\\n\" . " << gnuplot_quote("(blank: no value (NaN), or a failed point)") << "\n";
+  // Room for the colour box, its tics and its label: at one journal column's width gnuplot
+  // left the label out of the SVG and PDF.
+  gp << "set rmargin at screen 0.74\n";
+  gp << "set cblabel " << gnuplot_quote(axis_markup(opt.z)) << "\n";
+  gp << "set palette defined (0 '#440154', 1 '#3b528b', 2 '#21908d', 3 '#5dc963', 4 '#fde725')\n";
+  return gp.str();
+}
+
+}  // namespace
+
 HeatmapReport plot_heatmap(const fs::path& store, const HeatmapOptions& opt) {
   const fs::path png =
       opt.out.empty()
@@ -32,71 +95,22 @@ HeatmapReport plot_heatmap(const fs::path& store, const HeatmapOptions& opt) {
   const StoreTable t(store, opt.where);
   const std::size_t cx = t.column(opt.x, "--x"), cy = t.column(opt.y, "--y"), cz = t.column(opt.z, "--z");
   const std::size_t cstatus = t.column("status", "status"), cgrid = t.column("grid", "grid");
-  const std::vector<std::string>& cols = t.cols;
-  std::vector<std::vector<std::string>> rows = t.rows_with_numbers({cx, cy});
+  std::vector<Row> rows = t.rows_with_numbers({cx, cy});
   if (rows.empty())
     throw InputError("asperity plot", 0, "--where", "no point of the store matches (or x/y are not numbers)");
 
   HeatmapReport rep;
-  // Prefer the grids in which both x and y vary (the one-at-a-time grids would pile up at the
-  // base values otherwise).
-  {
-    std::map<std::string, std::pair<std::set<std::string>, std::set<std::string>>> seen;
-    for (const auto& r : rows) seen[r[cgrid]].first.insert(r[cx]), seen[r[cgrid]].second.insert(r[cy]);
-    std::set<std::string> both;
-    for (const auto& [g, xy] : seen)
-      if (xy.first.size() > 1 && xy.second.size() > 1) both.insert(g);
-    if (!both.empty() && both.size() < seen.size()) {
-      std::erase_if(rows, [&](const auto& r) { return !both.count(r[cgrid]); });
-      for (const auto& g : both) rep.used_grid += (rep.used_grid.empty() ? "" : ",") + g;
-    }
-  }
-
+  // Prefer the grids in which both x and y vary.
+  rep.used_grid = keep_grids_varying(rows, cgrid, {cx, cy});
   const std::vector<std::string> xs = distinct_sorted(rows, cx), ys = distinct_sorted(rows, cy);
-  auto rank = [](const std::vector<std::string>& v, const std::string& t) {
-    for (std::size_t i = 0; i < v.size(); ++i)
-      if (same_value(v[i], t)) return i;
-    return v.size();
-  };
-  std::map<std::pair<std::size_t, std::size_t>, const std::vector<std::string>*> cell;
-  for (const auto& r : rows) {
-    const auto key = std::make_pair(rank(xs, r[cx]), rank(ys, r[cy]));
-    const auto [it, fresh] = cell.emplace(key, &r);
-    if (fresh) continue;
-    std::string differ;  // descriptive columns (before status) where the two points differ
-    std::size_t first = 0;
-    for (std::size_t c = 2; c < cstatus; ++c)
-      if (c != cx && c != cy && !same_value((*it->second)[c], r[c])) {
-        differ += (differ.empty() ? "" : ", ") + cols[c];
-        if (!first) first = c;
-      }
-    if (!differ.empty())
-      throw InputError("asperity plot", 0, "--where",
-                       "several points fall on " + opt.x + " = " + r[cx] + ", " + opt.y + " = " + r[cy] +
-                           "; they differ in " + differ + ": pick one, e.g. --where " + cols[first] + "=" + r[first]);
-  }
+  const Cells cell = cells_of(t, rows, opt, xs, ys);
 
-  const bool stand_in = read_file_text(store / "provenance.yaml").find("stand_in_data: true") != std::string::npos;
   std::ostringstream gp;
-  // Every text from the store or the command line enters the script as a gnuplot_quote literal
-  // (and its markup through enhanced_literal); line breaks of the title are gnuplot's "\n" between them.
-  // Markup: the columns' symbols; the --where filters as they were typed.
-  std::string title = column_symbol(opt.z) + " over " + column_symbol(opt.x) + " × " + column_symbol(opt.y);
-  for (const std::string& w : opt.where) title += ", " + enhanced_literal(w);
-  gp << "set title " << gnuplot_quote(title);
-  if (stand_in) gp << " . \"\\n\" . " << gnuplot_quote("STAND-IN experiments, not measurements");
-  gp << " . \"\\n\" . " << gnuplot_quote("(blank: no value: NaN, e.g. no stick-slip cycle, or failed/missing point)")
-     << "\n";
-  gp << "set cblabel " << gnuplot_quote(axis_markup(opt.z)) << "\n";
-  gp << "set palette defined (0 '#440154', 1 '#3b528b', 2 '#21908d', 3 '#5dc963', 4 '#fde725')\n";
+  gp << heatmap_head(store, opt);
   // Numeric axes: each cell spans the values between its neighbours, so η = 150, 180, 200 sit
   // where they are, and a logspace axis (α_b, c_min) is drawn on a log scale.
-  const auto values = [&](const std::vector<std::string>& texts) {
-    std::vector<double> v(texts.size());
-    for (std::size_t i = 0; i < texts.size(); ++i) number_of(texts[i], v[i]);
-    return v;
-  };
-  const std::vector<double> xv = values(xs), yv = values(ys);
+  const std::vector<double> xv = figure_values(xs, opt.x), yv = figure_values(ys, opt.y);
+  const double zscale = figure_unit(opt.z).scale;
   const bool xlog = log_axis(xv), ylog = log_axis(yv);
   const auto xe = cell_edges(xv, xlog), ye = cell_edges(yv, ylog);
   gp << axis_settings("x", opt.x, xs, xe, xlog) << axis_settings("y", opt.y, ys, ye, ylog);
@@ -114,7 +128,7 @@ HeatmapReport plot_heatmap(const fs::path& store, const HeatmapOptions& opt) {
       }
       const auto f = [](double x) { return scene_io::format_double(x); };
       gp << f(xv[i]) << ' ' << f(yv[j]) << ' ' << f(xe[i].first) << ' ' << f(xe[i].second) << ' ' << f(ye[j].first)
-         << ' ' << f(ye[j].second) << ' ' << f(z) << '\n';
+         << ' ' << f(ye[j].second) << ' ' << f(z * zscale) << '\n';
     }
   gp << "EOD\n";
   if (rep.blank < rep.cells)

@@ -18,32 +18,17 @@ namespace asperity {
 namespace fs = std::filesystem;
 using namespace plot_detail;
 
-LinePlotReport plot_lines(const fs::path& store, const LinePlotOptions& opt) {
-  const fs::path figure =
-      opt.out.empty() ? store / ("line_" + file_part(opt.y) + "_over_" + file_part(opt.x) + ".png") : opt.out;
-  check_png_target(figure, store, !opt.out.empty());
-  const StoreTable t(store, opt.where);
-  const std::size_t cx = t.column(opt.x, "--x"), cy = t.column(opt.y, "--y");
-  const std::size_t cstatus = t.column("status", "status"), cgrid = t.column("grid", "grid"),
-                    cexp = t.column("experiment", "experiment");
-  std::vector<std::vector<std::string>> rows = t.rows_with_numbers({cx});
-  if (rows.empty())
-    throw InputError("asperity plot", 0, "--where", "no point of the store matches (or x is not a number)");
+namespace {
 
-  LinePlotReport rep;
-  {  // Prefer the grids in which x varies (the others would pile up at their base value).
-    std::map<std::string, std::set<std::string>> seen;
-    for (const auto& r : rows) seen[r[cgrid]].insert(r[cx]);
-    std::set<std::string> varying;
-    for (const auto& [g, xs] : seen)
-      if (xs.size() > 1) varying.insert(g);
-    if (!varying.empty() && varying.size() < seen.size()) {
-      std::erase_if(rows, [&](const auto& r) { return !varying.count(r[cgrid]); });
-      for (const auto& g : varying) rep.used_grid += (rep.used_grid.empty() ? "" : ",") + g;
-    }
-  }
-  // One line per experiment, points sorted by x; one point per (experiment, x).
-  std::map<std::string, std::map<double, const std::vector<std::string>*>> lines;
+using Row = std::vector<std::string>;
+using Lines = std::map<std::string, std::map<double, const Row*>>;
+
+// One line per experiment, points sorted by x; one point per (experiment, x): two that differ
+// in a descriptive column → InputError naming a --where filter that picks one.
+Lines lines_of(const StoreTable& t, const std::vector<Row>& rows, const LinePlotOptions& opt) {
+  const std::size_t cx = t.column(opt.x, "--x"), cstatus = t.column("status", "status"),
+                    cexp = t.column("experiment", "experiment");
+  Lines lines;
   for (const auto& r : rows) {
     double x = 0;
     number_of(r[cx], x);
@@ -55,18 +40,15 @@ LinePlotReport plot_lines(const fs::path& store, const LinePlotOptions& opt) {
                          "several points of " + r[cexp] + " fall on " + opt.x + " = " + r[cx] + "; they differ in " +
                              t.cols[c] + ": pick one, e.g. --where " + t.cols[c] + "=" + r[c]);
   }
-  std::vector<std::string> xtexts = distinct_sorted(rows, cx);
-  std::vector<double> xv(xtexts.size());
-  for (std::size_t i = 0; i < xtexts.size(); ++i) number_of(xtexts[i], xv[i]);
-  const bool xlog = log_axis(xv);
+  return lines;
+}
 
-  const bool stand_in = read_file_text(store / "provenance.yaml").find("stand_in_data: true") != std::string::npos;
+// Title, mark and axes of the line plot.
+std::string line_head(const fs::path& store, const LinePlotOptions& opt, const std::vector<std::string>& xtexts,
+                      const std::vector<double>& xv, bool xlog) {
   std::ostringstream gp;
-  // Markup: the columns' symbols; the --where filters as they were typed.
-  std::string title = column_symbol(opt.y) + " over " + column_symbol(opt.x);
-  for (const std::string& w : opt.where) title += ", " + enhanced_literal(w);
-  gp << "set title " << gnuplot_quote(title);
-  if (stand_in) gp << " . \"\\n\" . " << gnuplot_quote("STAND-IN experiments, not measurements");
+  gp << stand_in_mark(store_is_stand_in(store)) << "set title "
+     << gnuplot_quote(column_symbol(opt.y) + " over " + column_symbol(opt.x) + where_title(opt.where));
   gp << "\nset grid\nset key outside right\n";
   gp << axis_settings("x", opt.x, xtexts, {}, xlog);
   gp << "set ylabel " << gnuplot_quote(axis_markup(opt.y)) << "\n";
@@ -74,6 +56,34 @@ LinePlotReport plot_lines(const fs::path& store, const LinePlotOptions& opt) {
   if (xlog && xv.size() > 1)
     gp << "set xrange [" << scene_io::format_double(xv.front() / std::pow(xv.back() / xv.front(), 0.03)) << ":"
        << scene_io::format_double(xv.back() * std::pow(xv.back() / xv.front(), 0.03)) << "]\n";
+  return gp.str();
+}
+
+}  // namespace
+
+LinePlotReport plot_lines(const fs::path& store, const LinePlotOptions& opt) {
+  const fs::path figure =
+      opt.out.empty() ? store / ("line_" + file_part(opt.y) + "_over_" + file_part(opt.x) + ".png") : opt.out;
+  check_png_target(figure, store, !opt.out.empty());
+  const StoreTable t(store, opt.where);
+  const std::size_t cx = t.column(opt.x, "--x"), cy = t.column(opt.y, "--y");
+  const std::size_t cstatus = t.column("status", "status"), cgrid = t.column("grid", "grid");
+  t.column("experiment", "experiment");
+  std::vector<Row> rows = t.rows_with_numbers({cx});
+  if (rows.empty())
+    throw InputError("asperity plot", 0, "--where", "no point of the store matches (or x is not a number)");
+
+  LinePlotReport rep;
+  rep.used_grid = keep_grids_varying(rows, cgrid, {cx});  // the grids in which x varies
+  const Lines lines = lines_of(t, rows, opt);
+  std::vector<std::string> xtexts = distinct_sorted(rows, cx);
+  const double xscale = figure_unit(opt.x).scale, yscale = figure_unit(opt.y).scale;
+  std::vector<double> xv(xtexts.size());
+  for (std::size_t i = 0; i < xtexts.size(); ++i) number_of(xtexts[i], xv[i]), xv[i] *= xscale;
+  const bool xlog = log_axis(xv);
+
+  std::ostringstream gp;
+  gp << line_head(store, opt, xtexts, xv, xlog);
   std::size_t k = 0;
   std::string plot = "plot ";
   for (const auto& [experiment, points] : lines) {
@@ -87,7 +97,7 @@ LinePlotReport plot_lines(const fs::path& store, const LinePlotOptions& opt) {
         gp << "\n";  // a gap in the line
         continue;
       }
-      gp << scene_io::format_double(x) << ' ' << scene_io::format_double(y) << '\n';
+      gp << scene_io::format_double(x * xscale) << ' ' << scene_io::format_double(y * yscale) << '\n';
     }
     gp << "EOD\n";
     plot += std::string(k ? ", " : "") + "$line" + std::to_string(k) +

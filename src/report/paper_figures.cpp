@@ -7,6 +7,7 @@
 #include "io/csv.hpp"
 #include "io/numbers.hpp"
 #include "report/gnuplot.hpp"
+#include "report/units.hpp"
 
 namespace asperity {
 namespace fs = std::filesystem;
@@ -26,20 +27,30 @@ double loading_time_at(const std::vector<Sample>& loading, double Q) {
 
 namespace {
 
+// The axis label of a series column in its figure unit (A in mm², report/units.hpp).
+std::string label_of(const char* column) { return gnuplot_quote(axis_markup(column)); }
+double area_scale() { return figure_unit("A").scale; }
+
+bool any_stand_in(const std::vector<const PaperRun*>& runs) {
+  for (const PaperRun* r : runs)
+    if (is_stand_in(r->scene.experiment)) return true;
+  return false;
+}
+
 std::vector<std::vector<double>> series_rows(const std::vector<Sample>& s) {
   std::vector<std::vector<double>> rows;
   rows.reserve(s.size());
-  for (const Sample& x : s) rows.push_back({x.t, x.Q, x.A * 1e6});
+  for (const Sample& x : s) rows.push_back({x.t, x.Q, x.A * area_scale()});
   return rows;
 }
 
-// Measured samples as (t at equal model Q, Q, A [mm²]).
+// Measured samples as (t at equal model Q, Q, A in its figure unit).
 std::vector<std::vector<double>> measured_rows(const PaperRun& r) {
   std::vector<std::vector<double>> rows;
   if (!r.scene.experiment.measured) return rows;
   const auto& m = *r.scene.experiment.measured;
   for (std::size_t i = 0; i < m.Q_N.size(); ++i)
-    rows.push_back({loading_time_at(r.loading, m.Q_N[i]), m.Q_N[i], m.A_m2[i] * 1e6});
+    rows.push_back({loading_time_at(r.loading, m.Q_N[i]), m.Q_N[i], m.A_m2[i] * area_scale()});
   return rows;
 }
 
@@ -51,25 +62,25 @@ const char* kColors[] = {"#1b9e77", "#d95f02", "#7570b3", "#e7298a", "#66a61e", 
 }  // namespace
 
 std::string write_figure3(const fs::path& out_dir, const PaperRun& small, const PaperRun& large,
-                          const std::string& label, const FigureFormats& formats) {
+                          const FigureFormats& formats) {
   std::ostringstream gp;
   gp << gnuplot_block("ms", series_rows(small.series)) << gnuplot_block("me", measured_rows(small))
      << gnuplot_block("ls", series_rows(large.series)) << gnuplot_block("le", measured_rows(large));
-  gp << kScreenFont << "set grid\n"
+  gp << kScreenFont << stand_in_mark(any_stand_in({&small, &large})) << "set grid\n"
      << "set multiplot layout 2,2 title "
-     << gnuplot_text(label +
-                     ": Figure 3 analogue. Measured A(Q) has no time axis: its samples sit at the model time "
-                     "of equal Q (loading branch).")
+     << gnuplot_text(
+            "Figure 3 analogue. Measured A(Q) has no time axis: its samples sit at the model time of equal Q "
+            "(loading branch).")
      << "\n";
   auto panel = [&](const PaperRun& r, const char* model, const char* meas, bool area) {
     // Q rises from the lower left, A falls from the upper left (the measured points start
     // there): each key sits in the corner its curves leave empty.
     gp << "set title " << gnuplot_text(r.scene.experiment.name + " (N = " + std::to_string(r.obs.N) + ")") << "\n"
        << "set key " << (area ? "bottom left" : "top left") << " opaque box\n"
-       << "set xlabel 't [s]'\nset ylabel '" << (area ? "A [mm^2]" : "Q [N]") << "'\n"
+       << "set xlabel " << label_of("t") << "\nset ylabel " << label_of(area ? "A" : "Q") << "\n"
        << "plot $" << model << " using 1:" << (area ? 3 : 2) << " with lines lw 1.5 lc rgb '#1f4e9a' title 'model'";
     if (area && r.scene.experiment.measured)
-      gp << ", $" << meas << " using 1:3 with points pt 7 ps 0.6 lc rgb '#d95f02' title 'measured (stand-in)'";
+      gp << ", $" << meas << " using 1:3 with points pt 7 ps 0.6 lc rgb '#d95f02' title 'measured'";
     gp << "\n";
   };
   panel(small, "ms", "me", false);
@@ -82,29 +93,30 @@ std::string write_figure3(const fs::path& out_dir, const PaperRun& small, const 
   return "";
 }
 
-std::string write_figure4(const fs::path& out_dir, const std::vector<PaperRun>& runs, const std::string& label,
-                          const FigureFormats& formats) {
+std::string write_figure4(const fs::path& out_dir, const std::vector<PaperRun>& runs, const FigureFormats& formats) {
   std::ostringstream gp;
   for (std::size_t k = 0; k < runs.size(); ++k) {
     const PaperRun& r = runs[k];
     std::vector<std::vector<double>> model, meas;
-    for (const Sample& s : r.loading) model.push_back({s.Q, s.A * 1e6, s.Q / r.obs.Q_s, s.A / r.obs.A0});
+    for (const Sample& s : r.loading) model.push_back({s.Q, s.A * area_scale(), s.Q / r.obs.Q_s, s.A / r.obs.A0});
     if (r.scene.experiment.measured) {
       const auto& m = *r.scene.experiment.measured;
       for (std::size_t i = 0; i < m.Q_N.size(); ++i)
-        meas.push_back({m.Q_N[i], m.A_m2[i] * 1e6, m.Q_N[i] / r.obs.Q_s, m.A_m2[i] / r.obs.A0});
+        meas.push_back({m.Q_N[i], m.A_m2[i] * area_scale(), m.Q_N[i] / r.obs.Q_s, m.A_m2[i] / r.obs.A0});
     }
     const std::string id = std::to_string(k);
     gp << gnuplot_block(std::string("m").append(id), model) << gnuplot_block(std::string("e").append(id), meas);
   }
-  gp << kScreenFont << "set grid\nset key outside right\n"
+  std::vector<const PaperRun*> all;
+  for (const PaperRun& r : runs) all.push_back(&r);
+  gp << kScreenFont << stand_in_mark(any_stand_in(all)) << "set grid\nset key outside right\n"
      << "set multiplot layout 1,2 title "
-     << gnuplot_text(label + ": Figure 4 analogue. Lines: model loading branch; points: measured (stand-in).") << "\n";
+     << gnuplot_text("Figure 4 analogue. Lines: model loading branch; points: measured.") << "\n";
   for (int panel = 0; panel < 2; ++panel) {
     const int cx = panel == 0 ? 1 : 3, cy = panel == 0 ? 2 : 4;
-    gp << (panel == 0 ? "set xlabel 'Q [N]'\nset ylabel 'A [mm^2]'\nset title 'A(Q)'\n"
-                      : "set xlabel 'Q/Q_s'\nset ylabel 'A/A_0'\nset title 'normalised: a straight line is "
-                        "quasi-linear, a parabola quadratic'\n");
+    gp << (panel == 0 ? "set xlabel " + label_of("Q") + "\nset ylabel " + label_of("A") + "\nset title 'A(Q)'\n"
+                      : std::string("set xlabel 'Q/Q_s [1]'\nset ylabel 'A/A_0 [1]'\nset title 'normalised: a "
+                                    "straight line is quasi-linear, a parabola quadratic'\n"));
     gp << "plot ";
     for (std::size_t k = 0; k < runs.size(); ++k) {
       const char* col = kColors[k % 8];

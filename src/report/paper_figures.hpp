@@ -28,13 +28,14 @@ struct PaperRun {
 // Time at which the loading branch first reaches Q (linear interpolation); NaN beyond it.
 double loading_time_at(const std::vector<Sample>& loading, double Q);
 
-// `label` marks the data's origin on every figure (e.g. "STAND-IN data"). Each returns "" when
-// drawn, else why not (gnuplot missing or failing); the script is kept beside the PNG either way.
-// Each figure in every format of `formats` (fig3_Q_A_t.svg, .pdf: report/gnuplot.hpp).
+// Each figure carries the stand-in mark (report/gnuplot.hpp) when any run's experiment is a
+// stand-in (is_stand_in). Each returns "" when drawn, else why not (gnuplot missing or failing);
+// the script is kept beside the PNG either way. Each figure in every format of `formats`
+// (fig3_Q_A_t.svg, .pdf: report/gnuplot.hpp).
 std::string write_figure3(const std::filesystem::path& out_dir, const PaperRun& smallest, const PaperRun& largest,
-                          const std::string& label, const FigureFormats& formats = {});
+                          const FigureFormats& formats = {});
 std::string write_figure4(const std::filesystem::path& out_dir, const std::vector<PaperRun>& runs,
-                          const std::string& label, const FigureFormats& formats = {});
+                          const FigureFormats& formats = {});
 // table.csv: a header line (kPaperTableHeader), then one row per run (names CSV-quoted).
 std::string paper_table_csv(const std::vector<PaperRun>& runs);
 inline constexpr const char* kPaperTableHeader =

@@ -5,10 +5,12 @@
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 #include <system_error>
 
 #include "campaign/store.hpp"
+#include "io/atomic_file.hpp"
 #include "io/csv.hpp"
 #include "io/input_error.hpp"
 #include "io/numbers.hpp"
@@ -72,6 +74,45 @@ void check_png_target(const fs::path& png, const fs::path& store, bool from_out)
                    "choose a new name");
 }
 
+std::string keep_grids_varying(std::vector<std::vector<std::string>>& rows, std::size_t grid_column,
+                               const std::vector<std::size_t>& columns) {
+  std::map<std::string, std::vector<std::set<std::string>>> seen;
+  for (const auto& r : rows) {
+    auto& sets = seen[r[grid_column]];
+    sets.resize(columns.size());
+    for (std::size_t k = 0; k < columns.size(); ++k) sets[k].insert(r[columns[k]]);
+  }
+  std::set<std::string> varying;
+  for (const auto& [g, sets] : seen)
+    if (std::all_of(sets.begin(), sets.end(), [](const auto& s) { return s.size() > 1; })) varying.insert(g);
+  std::string used;
+  if (varying.empty() || varying.size() == seen.size()) return used;
+  std::erase_if(rows, [&](const auto& r) { return !varying.count(r[grid_column]); });
+  for (const auto& g : varying) used += (used.empty() ? "" : ",") + g;
+  return used;
+}
+
+bool store_is_stand_in(const fs::path& store) {
+  return read_file_text(store / "provenance.yaml").find("stand_in_data: true") != std::string::npos;
+}
+
+std::string where_title(const std::vector<std::string>& where) {
+  std::string title;
+  for (const std::string& w : where) {
+    const std::size_t eq = w.find('=');
+    const std::string column = eq == std::string::npos ? w : w.substr(0, eq);
+    const std::string value = eq == std::string::npos ? "" : w.substr(eq + 1);
+    if (column == "grid") continue;
+    if (column == "experiment")
+      title += ", " + enhanced_literal(value);
+    else if (has_column_symbol(column))
+      title += ", " + column_symbol(column) + " = " + enhanced_literal(value);
+    else
+      title += ", " + enhanced_literal(w);
+  }
+  return title;
+}
+
 // Whether an axis reads better on a log scale: positive values that are geometrically spaced
 // (three or more, equal ratios to 1e-6 and not equally spaced, as `logspace` makes them) or
 // that span two decades or more (e.g. c_min ∈ {1e-5, 1e-2}).
@@ -112,10 +153,12 @@ std::string axis_settings(const char* axis, const std::string& column, const std
   gp << "set " << axis << "label " << gnuplot_quote(axis_markup(column)) << "\n";
   if (log) gp << "set logscale " << axis << "\n";
   if (texts.size() <= 12) {
+    const double scale = figure_unit(column).scale;
     gp << "set " << axis << "tics (";
     for (std::size_t i = 0; i < texts.size(); ++i) {
       double v = 0;
       number_of(texts[i], v);
+      v *= scale;
       // Labels to 6 digits (the store's exact texts can be 17); positions exact.
       gp << (i ? ", " : "") << gnuplot_text(scene_io::format_short(v)) << " " << scene_io::format_double(v);
     }

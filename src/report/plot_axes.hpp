@@ -38,6 +38,22 @@ std::vector<std::string> distinct_sorted(const std::vector<std::vector<std::stri
 // PNG (heat maps drawn before the tag existed, e.g. the committed ones). InputError otherwise.
 void check_png_target(const std::filesystem::path& figure, const std::filesystem::path& store, bool from_out);
 
+// Keeps, when some grids vary every one of `columns` and others do not, only the rows of those
+// that do (a one-at-a-time grid would pile up at its base values otherwise); returns their
+// names, comma-separated ("" when every row was kept).
+std::string keep_grids_varying(std::vector<std::vector<std::string>>& rows, std::size_t grid_column,
+                               const std::vector<std::size_t>& columns);
+
+// Whether the store ran on stand-in experiments (its provenance.yaml says stand_in_data: true):
+// its figures carry the stand-in mark.
+bool store_is_stand_in(const std::filesystem::path& store);
+
+// The --where filters as a title says them (enhanced text), each after ", ": the physics, not
+// the store's key names: "model.eta=100" → "η = 100", "experiment=P4.00N" → "P4.00N"; a grid
+// filter (grid=alpha_b, which one-at-a-time grid of the campaign) is left out: the axes say what
+// varies. A column without a symbol prints as typed.
+std::string where_title(const std::vector<std::string>& where);
+
 // Whether an axis reads better on a log scale: positive values that are geometrically spaced
 // (three or more, equal ratios to 1e-6 and not equally spaced, as `logspace` makes them) or
 // that span two decades or more (e.g. c_min ∈ {1e-5, 1e-2}).
@@ -49,7 +65,8 @@ std::vector<std::pair<double, double>> cell_edges(const std::vector<double>& sor
 
 // gnuplot settings of a numeric axis ("x" or "y"): the label with its unit, log scale when
 // `log`, tics at the values (their store texts) when there are at most 12, the range `edges`
-// span (none when `edges` is empty).
+// span (none when `edges` is empty). Values and edges are in the column's figure unit
+// (figure_unit: the store's SI value times its scale).
 std::string axis_settings(const char* axis, const std::string& column, const std::vector<std::string>& texts,
                           const std::vector<std::pair<double, double>>& edges, bool log);
 

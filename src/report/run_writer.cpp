@@ -13,6 +13,7 @@
 #include "observe/series_csv.hpp"
 #include "report/gnuplot.hpp"
 #include "report/output_dir.hpp"
+#include "report/units.hpp"
 #include "scene/input_files.hpp"
 #include "scene/load.hpp"
 
@@ -93,14 +94,14 @@ void write_run(const fs::path& dir, const Scene& scene, const Observables& obs, 
     scene_io::write_text_file(tmp / "scene.yaml", scene_text);
     if (opt.plot) {
       std::string error;
-      if (!write_run_plot(tmp, &error, opt.figures))
+      if (!write_run_plot(tmp, &error, opt.figures, is_stand_in(scene.experiment)))
         std::fprintf(stderr, "%s: plot.png not drawn: %s (plot.gp is kept: `gnuplot plot.gp` in the run folder)\n",
                      dir.string().c_str(), error.c_str());
     }
   });
 }
 
-bool write_run_plot(const fs::path& dir, std::string* error, const FigureFormats& formats) {
+bool write_run_plot(const fs::path& dir, std::string* error, const FigureFormats& formats, bool stand_in) {
   const fs::path csv = dir / "series.csv";
   std::ifstream in(csv);
   std::string header;
@@ -121,17 +122,20 @@ bool write_run_plot(const fs::path& dir, std::string* error, const FigureFormats
     return false;
   }
   const std::string t = std::to_string(ct), q = std::to_string(cq), a = std::to_string(ca);
+  // Labels and the area's unit (mm²) from the units table, as every figure.
+  const auto label = [](const char* column) { return gnuplot_quote(axis_markup(column)); };
+  const std::string area = "($" + a + "*" + scene_io::format_double(figure_unit("A").scale) + ")";
   std::ostringstream gp;
   gp << "set datafile separator ','\n"
-     << "set key off\n"
+     << stand_in_mark(stand_in) << "set key off\n"
      << "set grid\n"
      << "set multiplot layout 3,1\n"
-     << "set xlabel 't [s]'\nset ylabel 'Q [N]'\n"
+     << "set xlabel " << label("t") << "\nset ylabel " << label("Q") << "\n"
      << "plot 'series.csv' skip 1 using " << t << ":" << q << " with lines lw 1.5\n"
-     << "set ylabel 'A [mm^2]'\n"
-     << "plot 'series.csv' skip 1 using " << t << ":($" << a << "*1e6) with lines lw 1.5\n"
-     << "set xlabel 'Q [N]'\nset ylabel 'A [mm^2]'\n"
-     << "plot 'series.csv' skip 1 using " << q << ":($" << a << "*1e6) with lines lw 1.5\n"
+     << "set ylabel " << label("A") << "\n"
+     << "plot 'series.csv' skip 1 using " << t << ":" << area << " with lines lw 1.5\n"
+     << "set xlabel " << label("Q") << "\nset ylabel " << label("A") << "\n"
+     << "plot 'series.csv' skip 1 using " << q << ":" << area << " with lines lw 1.5\n"
      << "unset multiplot\n";
   return render_figures(dir / "plot.png", gp.str(), 900, 1000, formats, error);
 }

@@ -44,7 +44,9 @@ void check_run_dir(const std::filesystem::path& dir);
 
 // Renders DIR/plot.png from DIR/series.csv (needs columns t, Q, A) and keeps its script as
 // DIR/plot.gp. Returns false when the series lacks a column, gnuplot is missing or fails (why in
-// *error); write_run says so on stderr.
-bool write_run_plot(const std::filesystem::path& dir, std::string* error = nullptr, const FigureFormats& formats = {});
+// *error); write_run says so on stderr. `stand_in`: the figure carries the stand-in mark
+// (write_run passes is_stand_in of the scene's experiment).
+bool write_run_plot(const std::filesystem::path& dir, std::string* error = nullptr, const FigureFormats& formats = {},
+                    bool stand_in = false);
 
 }  // namespace asperity

@@ -151,9 +151,15 @@ std::string unit_markup(const std::string& unit) {
   return factor_markup(num, false) + " " + factor_markup(den, true);
 }
 
-std::string axis_markup(const std::string& column) {
+FigureUnit figure_unit(const std::string& column) {
   std::string unit = column_unit(column);
   if (unit.empty()) unit = series_unit(column);
+  if (unit == "m^2" && (column == "A" || column == "A0" || column == "A_s")) return {"mm^2", 1e6};
+  return {unit, 1};
+}
+
+std::string axis_markup(const std::string& column) {
+  const std::string unit = figure_unit(column).unit;
   return unit.empty() ? column_symbol(column) : column_symbol(column) + " [" + unit_markup(unit) + "]";
 }
 

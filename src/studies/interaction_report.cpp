@@ -14,6 +14,7 @@
 #include "io/csv.hpp"
 #include "io/numbers.hpp"
 #include "report/gnuplot.hpp"
+#include "report/units.hpp"
 #include "studies/recovery_matrix.hpp"
 #include "studies/topography_comparison.hpp"
 
@@ -80,13 +81,14 @@ std::string force_spread_plot(const Spread& sp) {
   for (const auto& v : indep)
     if (std::isfinite(v[0]))
       lo = std::isnan(lo) ? v[0] : std::min(lo, v[0]), hi = std::isnan(hi) ? v[0] : std::max(hi, v[0]);
+  const FigureUnit area = figure_unit("A0");  // areas as every figure shows them (mm²)
   std::ostringstream gp;
   gp << gnuplot_block("crowded", crowded) << gnuplot_block("sparse", sparse) << gnuplot_block("indep", indep)
-     << "set title " << gnuplot_text("STAND-IN " + sp.experiment) << " . "
+     << stand_in_mark(is_stand_in(sp.inter.experiment)) << "set title " << gnuplot_text(sp.experiment) << " . "
      << gnuplot_quote(": f/(σA) at half the time of the first peak")
      << " . \"\\n\" . "  // two lines: one column wide in a PDF
-     << gnuplot_quote("junctions of equal area (" + scene_io::format_cell("%.3g", sp.area_lo) + "–" +
-                      scene_io::format_cell("%.3g", sp.area_hi) + " m^2)")
+     << gnuplot_quote("junctions of equal area (" + scene_io::format_cell("%.3g", sp.area_lo * area.scale) + "–" +
+                      scene_io::format_cell("%.3g", sp.area_hi * area.scale) + " " + unit_markup(area.unit) + ")")
      << "\nset xlabel " << gnuplot_quote("f_i / (σ A_i) [1]") << "\nset ylabel " << gnuplot_quote("junctions [1]")
      << "\nbin(x) = 0.02*floor(x/0.02) + 0.01\nset style fill transparent solid 0.5\nset boxwidth 0.02\nset key top "
         "right\n"

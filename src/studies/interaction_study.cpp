@@ -181,6 +181,7 @@ std::string write_pairs(const InteractionStudyOptions& opt, const Spread& sp) {
     if (sp.equal[i]) candidates.push_back(i);
   JunctionPairsEvidence ev;
   ev.experiment = sp.experiment;
+  ev.stand_in = is_stand_in(sp.inter.experiment);
   ev.sigma_Pa = make_problem(sp.inter).law.sigma;  // σ of the threshold f = σA
   ev.t_peak_interacting_s = sp.t_peak_inter;
   ev.t_peak_independent_s = sp.t_peak_indep;

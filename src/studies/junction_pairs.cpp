@@ -9,6 +9,7 @@
 #include "io/csv.hpp"
 #include "io/numbers.hpp"
 #include "report/gnuplot.hpp"
+#include "report/units.hpp"
 #include "solve/integrate.hpp"
 #include "solve/interacting/interacting_event_stepper.hpp"
 
@@ -126,6 +127,8 @@ void write_pairs_csv(const fs::path& out, const JunctionPairsEvidence& e) {
 }
 
 // The plot command of one panel (column 2: f/(σA0), 3: A/A0) over every trace's data block.
+// The curves carry no key entry of their own (twelve near-identical ones could not be read): the
+// top panel's key names each pair by its colour, then the four line styles in black.
 std::string plot_command(const JunctionPairsEvidence& e, int column) {
   const std::size_t P = e.pairs.size();
   const char* colours[] = {"#1b6ca8", "#c0392b", "#27ae60", "#8e44ad", "#d68910"};
@@ -136,14 +139,19 @@ std::string plot_command(const JunctionPairsEvidence& e, int column) {
     for (int m = 0; m < 2; ++m)
       for (int sp = 0; sp < 2; ++sp) {
         const std::string name = block_name(k, m, sp);
-        const JunctionTrace& tr = trace_of(e, m == 0, k, sp == 1);
-        std::string title = m == 0 ? "interacting, " : "independent, ";
-        title += sp ? "sparse #" : "crowded #";
-        title += std::to_string(tr.junction + 1);
         c << (first ? "" : ", ") << "$" << name << " using 1:" << column << " with lines lw " << (m == 0 ? 2 : 1)
-          << " dt " << (sp ? 2 : 1) << " lc rgb '" << colours[k % 5] << "' title " << gnuplot_text(title);
+          << " dt " << (sp ? 2 : 1) << " lc rgb '" << colours[k % 5] << "' notitle";
         first = false;
       }
+  if (column != 2) return c.str();
+  for (std::size_t k = 0; k < P; ++k)
+    c << ", keyentry with lines lw 4 lc rgb '" << colours[k % 5] << "' title "
+      << gnuplot_text("pair " + std::to_string(k + 1) + ": #" + std::to_string(e.pairs[k].crowded + 1) + ", #" +
+                      std::to_string(e.pairs[k].sparse + 1));
+  for (int m = 0; m < 2; ++m)
+    for (int sp = 0; sp < 2; ++sp)
+      c << ", keyentry with lines lw " << (m == 0 ? 2 : 1) << " dt " << (sp ? 2 : 1) << " lc rgb 'black' title "
+        << gnuplot_quote(std::string(m == 0 ? "interacting, " : "independent, ") + (sp ? "sparse" : "crowded"));
   return c.str();
 }
 
@@ -162,11 +170,11 @@ std::string pairs_plot(const JunctionPairsEvidence& e) {
           rows.push_back({tr.t_s[j], tr.f_N[j] / (e.sigma_Pa * A0), tr.A_m2[j] / A0});
         gp << gnuplot_block(block_name(k, m, sp), rows);
       }
-  gp << "set multiplot layout 2,1 title "
-     << gnuplot_quote("STAND-IN " + enhanced_literal(e.experiment) +
+  gp << stand_in_mark(e.stand_in) << "set multiplot layout 2,1 title "
+     << gnuplot_quote(enhanced_literal(e.experiment) +
                       ": equal-area junction pairs, crowded (solid) vs sparse (dashed)")
      << " . \"\\n\" . " << gnuplot_quote("thick: interacting, thin: independent; dotted: the first peaks")
-     << "\nset key outside right top font ',8'\nset grid\nset xlabel 't [s]'\n"
+     << "\nset key outside right top\nset grid\nset xlabel " << gnuplot_quote(axis_markup("t")) << "\n"
      << "set ylabel 'f_i / (σ A_{0,i}) [1]'\n"
      << "set arrow from " << csv_number(e.t_peak_interacting_s) << ", graph 0 to " << csv_number(e.t_peak_interacting_s)
      << ", graph 1 nohead dt 3 lc rgb 'black'\n"

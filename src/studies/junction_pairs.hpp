@@ -40,7 +40,8 @@ std::vector<JunctionPair> crowded_sparse_pairs(std::vector<std::size_t> candidat
 // What the study shows of the pairs: the traces of every pair's junctions in both models.
 struct JunctionPairsEvidence {
   std::string experiment;
-  double sigma_Pa = 0;  // the interfacial shear strength σ of f/(σA)
+  bool stand_in = false;  // the experiment is a stand-in (is_stand_in): the figure says so
+  double sigma_Pa = 0;    // the interfacial shear strength σ of f/(σA)
   double t_peak_interacting_s = NAN, t_peak_independent_s = NAN;
   std::vector<JunctionPair> pairs;
   std::vector<double> A0_m2, crowding;                  // every junction's, by index

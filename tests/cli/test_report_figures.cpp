@@ -94,20 +94,20 @@ TEST_CASE("every column a figure can show has a label with its quantity and unit
     if (k.kind == KeyKind::number || k.kind == KeyKind::integer) {
       INFO(k.name);
       CHECK(has_column_symbol(k.name));
-      CHECK(axis_markup(k.name) == column_symbol(k.name) + " [" + unit_markup(column_unit(k.name)) + "]");
+      CHECK(axis_markup(k.name) == column_symbol(k.name) + " [" + unit_markup(figure_unit(k.name).unit) + "]");
       ++n;
     }
   for (const ObservableField& f : observable_fields())
     if (f.kind == ObservableKind::real || f.kind == ObservableKind::count) {
       INFO(f.name);
       CHECK(has_column_symbol(f.name));
-      CHECK(axis_markup(f.name) == column_symbol(f.name) + " [" + unit_markup(column_unit(f.name)) + "]");
+      CHECK(axis_markup(f.name) == column_symbol(f.name) + " [" + unit_markup(figure_unit(f.name).unit) + "]");
       ++n;
     }
   for (const std::string& c : all_series()) {
     INFO(c);
     CHECK(has_column_symbol(c));
-    CHECK(axis_markup(c) == column_symbol(c) + " [" + unit_markup(series_unit(c)) + "]");
+    CHECK(axis_markup(c) == column_symbol(c) + " [" + unit_markup(figure_unit(c).unit) + "]");
     ++n;
   }
   CHECK(n > 40);
@@ -122,12 +122,19 @@ TEST_CASE("every column a figure can show has a label with its quantity and unit
   CHECK(axis_markup("model.epsilon") == "ε [1]");
   CHECK(axis_markup("experiment.k_L") == "k_L [N/m]");
   CHECK(axis_markup("Q_s") == "Q_s [N]");
-  CHECK(axis_markup("A_s") == "A_s [m^2]");
+  CHECK(axis_markup("A_s") == "A_s [mm^2]");  // areas in mm² (figure_unit)
   CHECK(axis_markup("t_peak") == "t_{peak} [s]");
   CHECK(axis_markup("alpha") == "α [m^2 N^{-2}]");
   CHECK(axis_markup("shape_prefactor") == "shape prefactor c_n [m^2 N^{-n}]");
   CHECK(axis_markup("ss_drop") == "stick-slip drop ΔQ_{ss} [N]");
-  CHECK(axis_markup("A") == "A [m^2]");
+  CHECK(axis_markup("A") == "A [mm^2]");
+  CHECK(axis_markup("A0") == "A_0 [mm^2]");
+  // Figure units: SI but the contact areas; the factor from the SI value.
+  CHECK(figure_unit("A0").unit == "mm^2");
+  CHECK(figure_unit("A0").scale == 1e6);
+  CHECK(figure_unit("alpha").unit == "m^2/N^2");  // an area per force², not an area: SI
+  CHECK(figure_unit("Q_s").scale == 1);
+  CHECK(figure_unit("experiment").unit.empty());
   // A column no table knows (a store's text columns) prints as itself.
   CHECK(axis_markup("experiment") == "experiment");
   CHECK(column_symbol("my_col^2") == "my\\_col\\^2");

@@ -31,17 +31,18 @@ def test_area_vs_force_and_force_vs_time_draw_the_run(source):
     measured = asperity.measured(scene)
     ax = asperity.plot.area_vs_force(run, measured=measured)
     model, peak, points = ax.lines
-    assert list(model.get_xdata()) == list(run.series["Q"]) and list(model.get_ydata()) == list(run.series["A"])
-    assert (peak.get_xdata()[0], peak.get_ydata()[0]) == (run.summary["Q_s"], run.summary["A_s"])
-    assert list(points.get_xdata()) == list(measured["Q"]) and list(points.get_ydata()) == list(measured["A"])
+    mm2 = 1e6  # areas in mm², as every figure shows them
+    assert list(model.get_xdata()) == list(run.series["Q"]) and list(model.get_ydata()) == list(run.series["A"] * mm2)
+    assert (peak.get_xdata()[0], peak.get_ydata()[0]) == (run.summary["Q_s"], run.summary["A_s"] * mm2)
+    assert list(points.get_xdata()) == list(measured["Q"]) and list(points.get_ydata()) == list(measured["A"] * mm2)
     assert ax.get_xlabel() == "tangential force $Q$ [N]"
-    assert ax.get_ylabel() == "real contact area $A$ [m$^{2}$]"
+    assert ax.get_ylabel() == "real contact area $A$ [mm$^{2}$]"
     assert [t.get_text() for t in ax.get_legend().get_texts()] == ["model", "peak $(Q_s, A_s)$", "measured"]
     # The same from a DataFrame (Result.frame) into given axes; measured as the CSV's columns.
     fig, (a1, a2) = plt.subplots(1, 2)
     frame = run.frame()
     assert asperity.plot.area_vs_force(frame, measured={"Q_N": measured["Q"], "A_m2": measured["A"]}, ax=a1) is a1
-    assert list(a1.lines[0].get_ydata()) == list(run.series["A"]) and len(a1.lines) == 2
+    assert list(a1.lines[0].get_ydata()) == list(run.series["A"] * mm2) and len(a1.lines) == 2
     ax = asperity.plot.force_vs_time(run, ax=a2)
     assert ax is a2 and ax.get_xlabel() == "time $t$ [s]" and ax.get_ylabel() == "tangential force $Q$ [N]"
     assert list(ax.lines[0].get_xdata()) == list(run.series["t"]) and list(ax.lines[0].get_ydata()) == list(run.series["Q"])
@@ -51,12 +52,16 @@ def test_area_vs_force_and_force_vs_time_draw_the_run(source):
 
 
 def test_labels_carry_the_engines_units():
-    assert asperity.plot.label("model.alpha_b") == r"$\alpha_b$ [m$^{2p+2}$/N$^{2}$]"
+    # The unit as the command line's figures write it (report/units.cpp unit_markup), in mathtext.
+    assert asperity.plot.label("model.alpha_b") == r"$\alpha_b$ [m$^{2p+2}$ N$^{-2}$]"
     assert asperity.units("model.alpha_b") == "m^(2p+2)/N^2"
-    assert asperity.plot.label("alpha") == r"area decay $\alpha$ (model) [m$^{2}$/N$^{2}$]"
-    assert asperity.plot.label("model.epsilon") == r"$\epsilon$"  # dimensionless: no unit
-    assert asperity.plot.label("model.eta") == r"damping $\eta$ [1/s]"
-    assert asperity.plot.label("steps") == "steps"  # a count, named by its key
+    assert asperity.plot.label("alpha") == r"area decay $\alpha$ (model) [m$^{2}$ N$^{-2}$]"
+    assert asperity.plot.label("model.epsilon") == r"$\epsilon$ [1]"  # dimensionless, as gnuplot's
+    assert asperity.plot.label("model.eta") == r"damping $\eta$ [s$^{-1}$]"
+    assert asperity.plot.label("steps") == "steps [1]"  # a count, named by its key
+    assert asperity.plot.label("A0") == "initial contact area $A_0$ [mm$^{2}$]"
+    assert asperity.plot.unit("A0") == ("mm$^{2}$", 1e6) and asperity.plot.unit("Q_s") == ("N", 1.0)
+    assert asperity.plot.label("experiment") == "experiment"  # a name: no unit
 
 
 def test_heatmap_of_a_store(source, tmp_path):
@@ -76,7 +81,7 @@ def test_heatmap_of_a_store(source, tmp_path):
         assert cells[i, j] == row["Q_s"]  # exactly the store's number
     assert [t.get_text() for t in ax.get_xticklabels()] == ["0", "100", "250"]
     assert [t.get_text() for t in ax.get_yticklabels()] == ["0.5", "0.7", "0.9"]
-    assert ax.get_xlabel() == r"damping $\eta$ [1/s]" and ax.get_ylabel() == r"$\epsilon$"
+    assert ax.get_xlabel() == r"damping $\eta$ [s$^{-1}$]" and ax.get_ylabel() == r"$\epsilon$ [1]"
     colorbar = ax.figure.axes[-1]
     assert colorbar.get_ylabel() == "static friction force $Q_s$ [N]"
     # where= picks the same slice from the whole store, as a dict or as --where strings.

@@ -25,13 +25,13 @@ from dataclasses import dataclass as _dataclass, field as _field
 from typing import Any as _Any, Mapping as _Mapping, Optional as _Optional, Sequence as _Sequence, Union as _Union
 
 from . import _asperity
-from ._asperity import InputError, Scene, SolverError
+from ._asperity import InputError, Scene, SolverError, STAND_IN_MARK
 from . import plot  # figures with matplotlib (imported when a function draws)
 
 __version__: str = _asperity.__version__  # the number `asperity --version` prints
 
 __all__ = ["InputError", "SolverError", "Scene", "Result", "load_scene", "run", "measured", "sweep",
-           "fit", "FitResult", "read_store", "read_series", "generate_junctions", "tangential_contact", "units", "version", "plot"]
+           "fit", "FitResult", "read_store", "read_series", "generate_junctions", "tangential_contact", "units", "version", "plot", "STAND_IN_MARK"]
 
 _PathLike = _Union[str, _os.PathLike]
 
@@ -120,18 +120,22 @@ class Result:
     """One run: `summary` (every observable of summary.yaml, SI units), `series` (NumPy arrays
     t [s], X [m], V [m/s], Q [N], A [m²], n_slipping, n_intact), `peaks` (confirmed stick-slip
     peaks and troughs), `summary_yaml` (the text `asperity run` would write), `units` ({name:
-    unit} of every summary and series entry, from the engine's tables)."""
+    unit} of every summary and series entry, from the engine's tables), `stand_in` (the scene's
+    experiment is a stand-in, Scene.stand_in: asperity.plot marks its figures)."""
     summary: dict
     series: dict
     peaks: list
     summary_yaml: str = _field(repr=False)
     units: dict = _field(default_factory=dict, repr=False)
+    stand_in: bool = False
 
     def frame(self):
-        """The series as a pandas DataFrame, one row per sample, units in df.attrs["units"]."""
+        """The series as a pandas DataFrame, one row per sample, units in df.attrs["units"],
+        Result.stand_in in df.attrs["stand_in"]."""
         import pandas as pd  # only needed here
         df = pd.DataFrame(self.series)
         df.attrs["units"] = _units_of(df.columns, "series")
+        df.attrs["stand_in"] = self.stand_in
         return df
 
 
@@ -144,7 +148,7 @@ def run(scene: _Union[Scene, str, _os.PathLike], overrides=None) -> Result:
     r = _asperity.run(scene)
     units_ = _units_of(r["summary"], "observables")
     units_.update(_units_of(r["series"], "series"))
-    return Result(r["summary"], r["series"], r["peaks"], r["summary_yaml"], units_)
+    return Result(r["summary"], r["series"], r["peaks"], r["summary_yaml"], units_, scene.stand_in)
 
 
 def generate_junctions(heights, pixel_m: float, *, sphere_radius_m: float, load_N: float, E: float = 1.6e6,

@@ -40,8 +40,9 @@ class Result:
     peaks: list[dict[str, float]]
     summary_yaml: str
     units: dict[str, str]
+    stand_in: bool
     def __init__(self, summary: dict[str, Any], series: dict[str, np.ndarray], peaks: list[dict[str, float]],
-                 summary_yaml: str, units: dict[str, str] = ...) -> None: ...
+                 summary_yaml: str, units: dict[str, str] = ..., stand_in: bool = ...) -> None: ...
     def frame(self) -> Any: ...  # pandas.DataFrame
 
 def load_scene(path: _PathLike, overrides: Union[Mapping[str, Any], Sequence[str], None] = None) -> Scene: ...
@@ -71,4 +72,5 @@ def fit(spec: Union[_PathLike, Mapping[str, Any]], out: _PathLike = "", threads:
 def read_store(path: _PathLike) -> Any: ...  # pandas.DataFrame
 def read_series(path: _PathLike, index: int) -> Any: ...  # pandas.DataFrame
 def units(column: str) -> str: ...
+STAND_IN_MARK: str
 def version() -> str: ...
