@@ -96,7 +96,7 @@ std::string accuracy_csv(const std::vector<AccuracyRow>& rows) {
 
 void write_accuracy(const fs::path& dir, const std::vector<AccuracyRow>& rows) {
   fs::create_directories(dir);
-  scene_io::write_text_file(dir / "accuracy.csv", accuracy_csv(rows));
+  io::write_text_file(dir / "accuracy.csv", accuracy_csv(rows));
 }
 
 }  // namespace asperity

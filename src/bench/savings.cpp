@@ -107,7 +107,7 @@ void write_savings(const fs::path& dir, const std::vector<SavingRow>& rows, cons
     o << r.experiment << ',' << r.saving << ',' << r.variant << ',' << (r.baseline ? "yes" : "no") << ','
       << g(r.wall_s, 4) << ',' << g(r.cpu_s, 4) << ',' << g(r.write_s, 4) << ',' << g(r.total_s(), 4) << ','
       << r.repeats << ',' << g(r.t_end, 6) << ',' << r.steps << ',' << r.force_evals << ',' << r.series_bytes << '\n';
-  scene_io::write_text_file(dir / "savings.csv", o.str());
+  io::write_text_file(dir / "savings.csv", o.str());
   if (rows.empty()) return;
 
   // Bar chart of the first scene: baseline and variant side by side per saving, in ms of CPU

@@ -217,8 +217,8 @@ std::string speed_ratio_csv(const SpeedResult& r) {
 
 void write_speed(const fs::path& dir, const SpeedResult& r) {
   fs::create_directories(dir);
-  scene_io::write_text_file(dir / "speed_ratio.csv", speed_ratio_csv(r));
-  scene_io::write_text_file(dir / "speed_runs.csv", speed_runs_csv(r));
+  io::write_text_file(dir / "speed_ratio.csv", speed_ratio_csv(r));
+  io::write_text_file(dir / "speed_runs.csv", speed_runs_csv(r));
 }
 
 }  // namespace asperity

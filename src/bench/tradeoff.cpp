@@ -190,8 +190,8 @@ std::string plot_script(const TradeoffResult& r) {
 
 void write_tradeoff(const fs::path& dir, const TradeoffResult& r, const FigureFormats& figures) {
   fs::create_directories(dir);
-  scene_io::write_text_file(dir / "work_precision.csv", work_precision_csv(r.rows));
-  scene_io::write_text_file(dir / "reference_order.csv", order_csv(r.orders));
+  io::write_text_file(dir / "work_precision.csv", work_precision_csv(r.rows));
+  io::write_text_file(dir / "reference_order.csv", order_csv(r.orders));
   render_figures(dir / "work_precision.png", plot_script(r), 1500, 900, figures);
 }
 

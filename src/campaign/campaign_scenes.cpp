@@ -14,7 +14,7 @@
 namespace asperity {
 
 namespace fs = std::filesystem;
-using scene_io::format_double;
+using io::format_double;
 
 // A scene tree error caused by an override, re-reported at the campaign line that set it.
 [[noreturn]] void rethrow_at_campaign_line(const InputError& e, const std::string& campaign_file, int line,
@@ -85,7 +85,7 @@ std::vector<BaseScene> base_scenes(const Campaign& c) {
   for (const fs::path& p : c.scenes) {
     load_scene_tree(p);
     // Read again with the same bounded reader (a file swapped since is caught, never unbounded).
-    out.push_back({p, scene_io::read_input_file(p, p.lexically_normal().string(), scene_io::kMaxYamlBytes)});
+    out.push_back({p, io::read_input_file(p, p.lexically_normal().string(), io::kMaxYamlBytes)});
   }
   return out;
 }

@@ -38,7 +38,7 @@ namespace {
 std::string num(double x) {
   if (std::isnan(x)) return "nan";
   if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
-  return scene_io::format_double(x);
+  return io::format_double(x);
 }
 
 struct Job {

@@ -44,7 +44,7 @@ std::string interaction_advice(const Scene& scene) {
   const PopulationMeasures m = population_measures(J.area_m2, x, y);
   if (!std::isfinite(m.stiffness_ratio)) return "";
   const StiffnessRule rule = independent_stiffness_rule();
-  const auto g = [](const char* f, double x) { return scene_io::format_printf(f, x); };
+  const auto g = [](const char* f, double x) { return io::format_printf(f, x); };
   const double percent = 100 * rule.error_at(m.stiffness_ratio);
   const bool outside = m.stiffness_ratio < rule.ratio_min || m.stiffness_ratio > rule.ratio_max;
   return "independent junctions: estimated stiffness error " + g(percent < 10 ? "%.2g" : "%.0f", percent) + " %" +
@@ -83,7 +83,7 @@ void print_summary(const Scene& scene, const Observables& o, const std::filesyst
 // Q_s is the highest Q after the first slip (recorder.hpp): NaN means no junction slipped.
 std::string missing_peak_reason(const Scene& scene, const Observables& o) {
   if (!std::isnan(o.Q_s)) return "";
-  const auto g = [](double x) { return scene_io::format_printf("%.6g", x); };
+  const auto g = [](double x) { return io::format_printf("%.6g", x); };
   const std::string head = scene.file.string() + ": Q_s = nan: ";
   if (o.slips == 0)
     return head + "no junction slipped before the run ended at t = " + g(o.t_end) + " s (stop.time " +

@@ -11,7 +11,7 @@
 
 namespace asperity {
 
-using namespace scene_io;
+using namespace io;
 
 const char* objective_name(FitObjective o) {
   switch (o) {

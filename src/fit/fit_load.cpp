@@ -19,7 +19,7 @@
 namespace asperity {
 
 namespace fs = std::filesystem;
-using namespace scene_io;
+using namespace io;
 
 namespace {
 
@@ -305,7 +305,7 @@ FitExperiment read_experiment(const ExperimentContext& cx, const YAML::Node& en,
                       "force CSV not found: " + quote(frel) + " (looked for " + input_path(force_file) + ")");
     if (!fs::is_regular_file(st))
       x.view->fail_at(*fn, "force", "force CSV is not a regular file: " + input_path(force_file));
-    force = scene_io::read_force_csv(force_file, input_path(force_file));
+    force = read_force_csv(force_file, input_path(force_file));
   } else if (spec.objective == FitObjective::area_and_force) {
     sv.fail_at(
         en[i], x.view ? "force" : skey,

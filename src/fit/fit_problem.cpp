@@ -117,7 +117,7 @@ Evaluation evaluate(const Problem& pb, const std::vector<double>& x, std::vector
 std::string values_text(const Problem& pb, const std::vector<double>& x, bool every_digit) {
   std::string s;
   for (std::size_t i = 0; i < x.size(); ++i)
-    s += (i ? ", " : "") + pb.vars[i].label + " = " + (every_digit ? scene_io::format_double(x[i]) : g6(x[i]));
+    s += (i ? ", " : "") + pb.vars[i].label + " = " + (every_digit ? io::format_double(x[i]) : g6(x[i]));
   return s;
 }
 

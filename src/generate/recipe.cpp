@@ -25,28 +25,28 @@ std::uint64_t force_seed(std::uint64_t experiment_seed) { return splitmix64(expe
 
 namespace {
 
-using scene_io::MapView;
-using scene_io::Source;
+using io::MapView;
+using io::Source;
 
 // Number with a range check, reported at the value's line.
 double positive(const MapView& m, const std::string& k, const char* unit) {
   const YAML::Node n = m.require(k);
   const double x = m.number(n, k, unit);
-  if (!(x > 0.0)) m.fail_at(n, k, "must be > 0, got " + scene_io::format_double(x));
+  if (!(x > 0.0)) m.fail_at(n, k, "must be > 0, got " + io::format_double(x));
   return x;
 }
 
 void get_positive(const MapView& m, const std::string& k, double& out, const char* unit) {
   if (auto n = m.find(k)) {
     out = m.number(*n, k, unit);
-    if (!(out > 0.0)) m.fail_at(*n, k, "must be > 0, got " + scene_io::format_double(out));
+    if (!(out > 0.0)) m.fail_at(*n, k, "must be > 0, got " + io::format_double(out));
   }
 }
 
 void get_fraction(const MapView& m, const std::string& k, double& out) {
   if (auto n = m.find(k)) {
     out = m.number(*n, k, nullptr);
-    if (!(out > 0.0 && out < 1.0)) m.fail_at(*n, k, "must be between 0 and 1, got " + scene_io::format_double(out));
+    if (!(out > 0.0 && out < 1.0)) m.fail_at(*n, k, "must be between 0 and 1, got " + io::format_double(out));
   }
 }
 
@@ -122,7 +122,7 @@ Distribution read_distribution(const Source& src, const YAML::Node& node, const 
   const YAML::Node list = m.require("components");
   if (!list.IsSequence() || list.size() == 0)
     m.fail_at(list, "components",
-              "expected a non-empty list of {weight, family, ...} maps, got " + scene_io::node_kind(list));
+              "expected a non-empty list of {weight, family, ...} maps, got " + io::node_kind(list));
   for (std::size_t j = 0; j < list.size(); ++j) {
     const YAML::Node c = list[j];
     const std::string cpath = m.key("components") + "[" + std::to_string(j) + "]";
@@ -141,7 +141,7 @@ Distribution read_distribution(const Source& src, const YAML::Node& node, const 
 
 StandinRecipe load_recipe(const std::filesystem::path& path) {
   const std::string display = path.lexically_normal().string();
-  const YAML::Node root = scene_io::load_yaml_file(path, display);
+  const YAML::Node root = io::load_yaml_file(path, display);
   const Source src{display, nullptr};
   StandinRecipe r;
   r.file = path;
@@ -153,12 +153,12 @@ StandinRecipe load_recipe(const std::filesystem::path& path) {
   {
     const YAML::Node ml = top.require("masses_kg");
     if (!ml.IsSequence() || ml.size() == 0)
-      top.fail_at(ml, "masses_kg", "expected a non-empty list of masses in kg, got " + scene_io::node_kind(ml));
+      top.fail_at(ml, "masses_kg", "expected a non-empty list of masses in kg, got " + io::node_kind(ml));
     for (std::size_t i = 0; i < ml.size(); ++i) {
       const std::string k = "masses_kg[" + std::to_string(i) + "]";
       const YAML::Node n = ml[i];
       const YAML::Node at = n.Mark().is_null() ? ml : n;
-      if (!n.IsScalar()) top.fail_at(at, k, "expected a number in SI units (kg), got " + scene_io::node_kind(n));
+      if (!n.IsScalar()) top.fail_at(at, k, "expected a number in SI units (kg), got " + io::node_kind(n));
       const double M = top.number(n, k, "kg");
       if (!(M > 0.0)) top.fail_at(at, k, "must be > 0");
       if (!r.masses_kg.empty() && !(M > r.masses_kg.back()))

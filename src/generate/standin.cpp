@@ -23,7 +23,7 @@ double contact_radius(const StandinRecipe& r, double P) {
   return r.contact_radius_m * std::cbrt(P / r.contact_reference_load_N);
 }
 
-const auto fmt = scene_io::format_printf;
+const auto fmt = io::format_printf;
 
 std::string g6(double x) { return fmt("%.6g", x); }
 
@@ -179,7 +179,7 @@ StandinExperiment build_standin(const StandinRecipe& r, std::size_t i) {
 }
 
 std::string standin_scene_yaml(const StandinRecipe& r, const StandinExperiment& x, const std::string& rel) {
-  auto num = [](double v) { return scene_io::format_double(v); };
+  auto num = [](double v) { return io::format_double(v); };
   std::string y;
   y += "# Paper parameters (docs/model.md §2) on the stand-in experiment " + x.experiment.name + ".\n";
   y += "# STAND-IN data, not a measurement (see data/standin/README.md).\n";
@@ -312,10 +312,9 @@ void write_standin_experiments(const StandinRecipe& r, const std::vector<Standin
     write_junctions_csv(dir / "junctions.csv", x.experiment.junctions);
     write_measured_csv(dir / "measured.csv", *x.experiment.measured);
     if (!x.force.t_s.empty()) write_force_csv(dir / "measured_Qt.csv", x.force, x.force_header);
-    scene_io::write_text_file(dir / "experiment.yaml",
-                              experiment_to_yaml(x.experiment, "junctions.csv", "measured.csv"));
+    io::write_text_file(dir / "experiment.yaml", experiment_to_yaml(x.experiment, "junctions.csv", "measured.csv"));
   }
-  scene_io::write_text_file(out_dir / "README.md", standin_readme(r, xs));
+  io::write_text_file(out_dir / "README.md", standin_readme(r, xs));
 }
 
 void write_standin_scenes(const StandinRecipe& r, const std::vector<StandinExperiment>& xs,
@@ -326,7 +325,7 @@ void write_standin_scenes(const StandinRecipe& r, const std::vector<StandinExper
     const std::string rel = abs_norm(experiments_final / x.experiment.name / "experiment.yaml")
                                 .lexically_relative(abs_norm(scenes_final))
                                 .generic_string();
-    scene_io::write_text_file(scenes_dir / (x.experiment.name + ".yaml"), standin_scene_yaml(r, x, rel));
+    io::write_text_file(scenes_dir / (x.experiment.name + ".yaml"), standin_scene_yaml(r, x, rel));
   }
 }
 

@@ -13,7 +13,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string num(double x) { return scene_io::format_double(x); }
+std::string num(double x) { return io::format_double(x); }
 
 // One line of the provenance header per call: "# " + text.
 void comment(std::string& s, const std::string& text) { s += "# " + text + "\n"; }
@@ -22,8 +22,7 @@ void comment(std::string& s, const std::string& text) { s += "# " + text + "\n";
 
 TopographyJunctions build_topography_junctions(const TopographyRecipe& r, int threads) {
   TopographyJunctions t;
-  t.recipe_sha256 =
-      sha256_hex(scene_io::read_input_file(r.file, r.file.lexically_normal().string(), scene_io::kMaxYamlBytes));
+  t.recipe_sha256 = sha256_hex(io::read_input_file(r.file, r.file.lexically_normal().string(), io::kMaxYamlBytes));
   static_cast<TopographyContact&>(t) = solve_topography_contact(r, threads);
   t.experiment = topography_experiment(r, t,
                                        "Written by `asperity generate` from " + r.file.filename().string() +

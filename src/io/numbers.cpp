@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <system_error>
 
-namespace asperity::scene_io {
+namespace asperity::io {
 
 std::string format_double(double x) {
   char buf[64];
@@ -93,4 +93,4 @@ std::string quote(std::string_view s) {
   return "'" + q + "'";
 }
 
-}  // namespace asperity::scene_io
+}  // namespace asperity::io

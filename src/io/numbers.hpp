@@ -3,7 +3,7 @@
 #include <string>
 #include <string_view>
 
-namespace asperity::scene_io {
+namespace asperity::io {
 
 // Shortest text that reads back to exactly x (std::to_chars), e.g. 0.1 → "0.1", 7.25e-16.
 std::string format_double(double x);
@@ -44,4 +44,4 @@ inline bool has_control_char(std::string_view s) {
   return false;
 }
 
-}  // namespace asperity::scene_io
+}  // namespace asperity::io

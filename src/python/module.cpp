@@ -185,7 +185,7 @@ YAML::Node yaml_node(const py::handle& v, const std::string& key) {
   if (PyBool_Check(v.ptr())) return YAML::Node(v.ptr() == Py_True ? "true" : "false");
   if (py::isinstance<py::str>(v)) return YAML::Node(v.cast<std::string>());
   if (PyLong_Check(v.ptr())) return YAML::Node(std::string(py::str(v)));
-  if (PyFloat_Check(v.ptr())) return YAML::Node(scene_io::format_double(v.cast<double>()));
+  if (PyFloat_Check(v.ptr())) return YAML::Node(io::format_double(v.cast<double>()));
   if (py::isinstance<py::dict>(v)) {
     YAML::Node m(YAML::NodeType::Map);
     for (const auto& [k, x] : v.cast<py::dict>()) {
@@ -204,7 +204,7 @@ YAML::Node yaml_node(const py::handle& v, const std::string& key) {
   }
   if (py::hasattr(v, "__index__"))
     return YAML::Node(std::string(py::str(py::int_(py::reinterpret_borrow<py::object>(v)))));
-  if (py::hasattr(v, "__float__")) return YAML::Node(scene_io::format_double(v.cast<double>()));  // numpy floats
+  if (py::hasattr(v, "__float__")) return YAML::Node(io::format_double(v.cast<double>()));  // numpy floats
   throw py::type_error(key + ": expected a number, text, bool, list or dict, got " +
                        std::string(py::str(v.get_type().attr("__name__"))));
 }
@@ -225,7 +225,7 @@ YAML::Node junction_column(const py::object& column, const std::string& where, c
         "expected one value per junction (one dimension), got " + std::to_string(a.ndim()) + " dimensions");
   YAML::Node s(YAML::NodeType::Sequence);
   const auto r = a.unchecked<1>();
-  for (py::ssize_t i = 0; i < r.shape(0); ++i) s.push_back(YAML::Node(scene_io::format_double(r(i))));
+  for (py::ssize_t i = 0; i < r.shape(0); ++i) s.push_back(YAML::Node(io::format_double(r(i))));
   return s;
 }
 
@@ -236,7 +236,7 @@ YAML::Node measured_node(const py::object& measured, const std::string& where) {
   for (const py::handle c : columns) {
     const std::string n = py::str(c);
     if (n != "Q_N" && n != "A_m2")
-      throw InputError(where, 0, "measured", "unknown column " + scene_io::quote(n) + "; valid: Q_N, A_m2");
+      throw InputError(where, 0, "measured", "unknown column " + io::quote(n) + "; valid: Q_N, A_m2");
     m[n] = junction_column(py::object(measured[c]), where, n);
   }
   return m;
@@ -257,9 +257,8 @@ Scene scene_from_dict(const py::dict& d, py::object areas, py::object x, py::obj
     for (const py::handle c : df.attr("columns")) {
       const std::string n = py::str(c);
       if (std::find(valid.begin(), valid.end(), n) == valid.end())
-        throw InputError(
-            where, 0, "areas",
-            "unknown column " + scene_io::quote(n) + scene_io::did_you_mean(n, valid) + "; valid: area_m2, x_m, y_m");
+        throw InputError(where, 0, "areas",
+                         "unknown column " + io::quote(n) + io::did_you_mean(n, valid) + "; valid: area_m2, x_m, y_m");
       (n == "area_m2" ? areas : n == "x_m" ? x : y) = py::object(df[c]);
     }
     if (areas.is_none()) throw InputError(where, 0, "areas", "missing column 'area_m2'");
@@ -376,7 +375,7 @@ PYBIND11_MODULE(_asperity, m) {
           "from_yaml",
           [](const std::string& text) -> Scene {
             const std::string where = "Scene.from_yaml";
-            return scene_from_memory(scene_io::load_yaml_document(text, where), std::filesystem::current_path(), where);
+            return scene_from_memory(io::load_yaml_document(text, where), std::filesystem::current_path(), where);
           },
           py::arg("text"), "A scene from scene-file text (paths relative to the working directory)")
       .def("__repr__", [](const Scene& s) {

@@ -72,8 +72,8 @@ LinePlotReport plot_lines(const fs::path& store, const LinePlotOptions& opt) {
   gp << "set ylabel " << gnuplot_quote(axis_markup(opt.y)) << "\n";
   if (xtexts.size() > 8) gp << "set xtics rotate by 60 right\n";
   if (xlog && xv.size() > 1)
-    gp << "set xrange [" << scene_io::format_double(xv.front() / std::pow(xv.back() / xv.front(), 0.03)) << ":"
-       << scene_io::format_double(xv.back() * std::pow(xv.back() / xv.front(), 0.03)) << "]\n";
+    gp << "set xrange [" << io::format_double(xv.front() / std::pow(xv.back() / xv.front(), 0.03)) << ":"
+       << io::format_double(xv.back() * std::pow(xv.back() / xv.front(), 0.03)) << "]\n";
   std::size_t k = 0;
   std::string plot = "plot ";
   for (const auto& [experiment, points] : lines) {
@@ -87,7 +87,7 @@ LinePlotReport plot_lines(const fs::path& store, const LinePlotOptions& opt) {
         gp << "\n";  // a gap in the line
         continue;
       }
-      gp << scene_io::format_double(x) << ' ' << scene_io::format_double(y) << '\n';
+      gp << io::format_double(x) << ' ' << io::format_double(y) << '\n';
     }
     gp << "EOD\n";
     plot += std::string(k ? ", " : "") + "$line" + std::to_string(k) +

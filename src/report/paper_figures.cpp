@@ -125,7 +125,7 @@ std::string write_figure4(const fs::path& out_dir, const std::vector<PaperRun>& 
 std::string paper_table_csv(const std::vector<PaperRun>& runs) {
   std::ostringstream s;
   s << kPaperTableHeader << '\n';
-  const auto g = [](double x) { return scene_io::format_g17(x); };
+  const auto g = [](double x) { return io::format_g17(x); };
   for (const PaperRun& r : runs) {
     const Observables& o = r.obs;
     s << csv_field(r.scene.experiment.name) << ',' << o.N << ',' << g(o.A0) << ',' << g(o.dt) << ',' << g(o.Q_s) << ','

@@ -43,7 +43,7 @@ void check_run_dir(const fs::path& dir) { check_publishable(dir, "run", "--out")
 std::string yaml_double(double x) {
   if (std::isnan(x)) return ".nan";
   if (std::isinf(x)) return x > 0 ? ".inf" : "-.inf";
-  return scene_io::format_g17(x);
+  return io::format_g17(x);
 }
 
 std::string summary_yaml(const Scene& scene, const Observables& o, const std::vector<Peak>& peaks,
@@ -87,10 +87,10 @@ void write_run(const fs::path& dir, const Scene& scene, const Observables& obs, 
     if (!scene.output.series.empty()) {
       std::ostringstream csv;
       write_series_csv(csv, rec.series(), scene.output.series);
-      scene_io::write_text_file(tmp / "series.csv", csv.str());
+      io::write_text_file(tmp / "series.csv", csv.str());
     }
-    scene_io::write_text_file(tmp / "summary.yaml", summary_text);
-    scene_io::write_text_file(tmp / "scene.yaml", scene_text);
+    io::write_text_file(tmp / "summary.yaml", summary_text);
+    io::write_text_file(tmp / "scene.yaml", scene_text);
     if (opt.plot) {
       std::string error;
       if (!write_run_plot(tmp, &error, opt.figures))

@@ -17,7 +17,7 @@ constexpr double kRequired = std::numeric_limits<double>::quiet_NaN();
 
 std::string num(double x) {
   if (!std::isfinite(x)) throw std::invalid_argument("cannot write a non-finite number to a scene file");
-  return scene_io::format_double(x);
+  return io::format_double(x);
 }
 
 const char* name_of(JunctionShape s) { return s == JunctionShape::circular ? "circular" : "elliptic"; }
@@ -268,16 +268,15 @@ double scene_value(const Scene& scene, const std::string& key) {
 
 std::string out_of_range_message(const SceneKey& key, double x) {
   const std::string why = key.why ? key.why : "";
-  return "must be " + std::string(key.range) + ", got " + scene_io::format_double(x) +
-         (why.empty() ? "" : " (" + why + ")");
+  return "must be " + std::string(key.range) + ", got " + io::format_double(x) + (why.empty() ? "" : " (" + why + ")");
 }
 
 std::string implausible_message(const SceneKey& key, double x) {
   const PlausibleRange& p = key.plausible;
   if (!(p.lo < p.hi) || (x >= p.lo && x <= p.hi)) return "";
-  using scene_io::format_short;
+  using io::format_short;
   const std::string unit = key.unit ? std::string(" ") + key.unit : "";
-  std::string m = std::string(key.name) + " = " + scene_io::format_double(x) + unit + " is far " +
+  std::string m = std::string(key.name) + " = " + io::format_double(x) + unit + " is far " +
                   (x < p.lo ? "below " : "above ") + p.of + " " + format_short(p.lo) + " to " + format_short(p.hi) +
                   unit;
   // The units a value of this SI unit is often written in by mistake, and their factor to SI.

@@ -30,7 +30,7 @@ namespace fs = std::filesystem;
 namespace {
 
 std::string display_of(const fs::path& p) { return p.lexically_normal().string(); }
-std::string num(double x) { return scene_io::format_double(x); }
+std::string num(double x) { return io::format_double(x); }
 
 std::string heights_sha256(const HeightMap& m) {
   Sha256 h;
@@ -233,8 +233,8 @@ TopographyContact solve_surface_contact(HeightMap map, const TopographyRecipe& r
   if (!c.converged)
     throw InputError(r.display, 0, r.file.empty() ? "topography.contact.max_iterations" : "contact.max_iterations",
                      "the normal contact did not converge in " + std::to_string(c.iterations) +
-                         " iterations (residual " + scene_io::format_short(c.residual) + " > tolerance " +
-                         num(r.tolerance) + "); raise contact.max_iterations or contact.tolerance");
+                         " iterations (residual " + io::format_short(c.residual) + " > tolerance " + num(r.tolerance) +
+                         "); raise contact.max_iterations or contact.tolerance");
   t.iterations = c.iterations;
   t.residual = c.residual;
   t.contact_area_m2 = c.area_m2;
@@ -264,17 +264,16 @@ TopographyContact solve_surface_contact(HeightMap map, const TopographyRecipe& r
   } catch (const std::length_error&) {
     throw InputError(r.display, r.topography_line, "topography",
                      "merging the overlapping discs of the " + std::to_string(t.clusters) +
-                         " contact clusters needs more than " +
-                         scene_io::format_short(static_cast<double>(kMaxMergeWork)) +
+                         " contact clusters needs more than " + io::format_short(static_cast<double>(kMaxMergeWork)) +
                          " disc comparisons: use contact.connectivity 8 or a coarser map");
   }
   // The junctions must pass what a junctions file's rows pass (what generate writes is read back
   // as one): a pixel of 1e-11 m or a map of 1e5 m pixels makes areas no command accepts.
   const JunctionPopulation& J = t.junctions;
   for (std::size_t i = 0; i < J.size(); ++i) {
-    std::string why = scene_io::junction_area_problem(J.area_m2[i]);
+    std::string why = junction_area_problem(J.area_m2[i]);
     for (const double v : {J.x_m[i], J.y_m[i]})
-      if (why.empty()) why = scene_io::junction_coordinate_problem(v);
+      if (why.empty()) why = junction_coordinate_problem(v);
     if (!why.empty())
       throw InputError(r.display, r.topography_line, "topography",
                        "junction " + std::to_string(i + 1) + " of the " + std::to_string(J.size()) +

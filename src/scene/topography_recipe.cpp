@@ -12,7 +12,7 @@ namespace {
 
 std::string num(double x) {
   if (!std::isfinite(x)) throw std::invalid_argument("cannot write a non-finite number to a scene file");
-  return scene_io::format_double(x);
+  return io::format_double(x);
 }
 
 }  // namespace
@@ -35,9 +35,7 @@ std::optional<RecipeProblem> topography_recipe_problem(const TopographyRecipe& r
 std::string topography_number_problem(const std::string& key, double x) {
   // A value from Python may be NaN or infinite (a file's never reaches here so): shown as given,
   // where num refuses it.
-  const auto got = [](double v) {
-    return std::isfinite(v) ? scene_io::format_double(v) : scene_io::format_printf("%g", v);
-  };
+  const auto got = [](double v) { return std::isfinite(v) ? io::format_double(v) : io::format_printf("%g", v); };
   if (key == "sphere_radius_m" || key == "E" || key == "load_N")
     return x > 0.0 && std::isfinite(x) ? "" : "must be > 0, got " + got(x);
   if (key == "nu") return x >= 0.0 && x <= 0.5 ? "" : "must be in [0, 0.5], got " + got(x);

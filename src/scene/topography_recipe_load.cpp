@@ -10,13 +10,13 @@
 namespace asperity {
 
 namespace fs = std::filesystem;
-using scene_io::MapView;
-using scene_io::Source;
+using io::MapView;
+using io::Source;
 
 namespace {
 
 std::string display_of(const fs::path& p) { return p.lexically_normal().string(); }
-std::string num(double x) { return scene_io::format_double(x); }
+std::string num(double x) { return io::format_double(x); }
 
 double positive(const MapView& m, const std::string& k, const char* unit) {
   const YAML::Node n = m.require(k);
@@ -100,18 +100,17 @@ void read_surface(const MapView& t, const YAML::Node& tn, const fs::path& base_d
   } else {
     r.kind = TopographyKind::measured;
     const std::string rel = t.string(*fi, "file");
-    if (scene_io::trim(rel).empty()) t.fail_at(*fi, "file", "empty path (expected a height map)");
+    if (io::trim(rel).empty()) t.fail_at(*fi, "file", "empty path (expected a height map)");
     r.map_file = base_dir / fs::path(rel);
     const std::string ext = r.map_file.extension().string();
     const bool csv = ext == ".csv", header = ext == ".yaml" || ext == ".yml";
     if (!csv && !header)
       t.fail_at(*fi, "file",
-                "expected a .csv matrix of heights or a .yaml header of a float64 file, got " + scene_io::quote(rel));
-    const std::string why =
-        scene_io::input_file_problem(r.map_file, csv ? scene_io::kMaxCsvBytes : scene_io::kMaxYamlBytes);
+                "expected a .csv matrix of heights or a .yaml header of a float64 file, got " + io::quote(rel));
+    const std::string why = io::input_file_problem(r.map_file, csv ? io::kMaxCsvBytes : io::kMaxYamlBytes);
     if (why == "file not found")
       t.fail_at(*fi, "file",
-                "height map not found: " + scene_io::quote(rel) + " (looked for " + display_of(r.map_file) + ")");
+                "height map not found: " + io::quote(rel) + " (looked for " + display_of(r.map_file) + ")");
     if (!why.empty()) t.fail_at(*fi, "file", "height map " + why + ": " + display_of(r.map_file));
     if (csv)
       r.pixel_m = pixel_checked(t, "pixel_m", positive(t, "pixel_m", "m"));
@@ -125,8 +124,7 @@ void read_rest(const MapView& top, TopographyRecipe& r) {
   const Source& src = top.source();
   if (const auto n = top.find("name")) {
     r.name = top.string(*n, "name");
-    if (r.name.empty() || scene_io::has_control_char(r.name))
-      top.fail_at(*n, "name", "must be a non-empty single-line name");
+    if (r.name.empty() || io::has_control_char(r.name)) top.fail_at(*n, "name", "must be a non-empty single-line name");
   }
   // Ranges: topography_number_problem (topography_recipe.hpp), shared with the Python bindings.
   const auto in_range = [](const MapView& m, const YAML::Node& n, const std::string& key, const std::string& checked,
@@ -171,10 +169,10 @@ YAML::Node lifted_file_tree(const YAML::Node& root) {
   for (auto it = root.begin(); it != root.end(); ++it) {
     const std::string k = it->first.Scalar();
     if (k != "topography")
-      out[k] = scene_io::strip_marks(it->second);
+      out[k] = io::strip_marks(it->second);
     else
       for (auto jt = it->second.begin(); jt != it->second.end(); ++jt)
-        out[jt->first.Scalar()] = scene_io::strip_marks(jt->second);
+        out[jt->first.Scalar()] = io::strip_marks(jt->second);
   }
   return out;
 }
@@ -202,7 +200,7 @@ YAML::Node merged(const YAML::Node& base, const YAML::Node& over) {
 }  // namespace
 
 bool is_topography_recipe(const fs::path& path) {
-  const YAML::Node root = scene_io::load_yaml_file(path, display_of(path));
+  const YAML::Node root = io::load_yaml_file(path, display_of(path));
   if (!root.IsMap()) return false;
   for (auto it = root.begin(); it != root.end(); ++it)
     if (it->first.IsScalar() && it->first.Scalar() == "topography") return true;
@@ -211,7 +209,7 @@ bool is_topography_recipe(const fs::path& path) {
 
 TopographyRecipe load_topography_recipe(const fs::path& path) {
   const std::string display = display_of(path);
-  const YAML::Node root = scene_io::load_yaml_file(path, display);
+  const YAML::Node root = io::load_yaml_file(path, display);
   const Source src{display, nullptr};
   TopographyRecipe r;
   r.file = path;
@@ -236,15 +234,15 @@ TopographyRecipe topography_recipe_from_scene(const Source& src, const YAML::Nod
   if (const auto rn = top.find("recipe")) {
     // The file alone first, so that its own errors name it and its lines; then the scene's values over it.
     const std::string rel = top.string(*rn, "recipe");
-    if (scene_io::trim(rel).empty()) top.fail_at(*rn, "recipe", "empty path (expected a topography recipe)");
+    if (io::trim(rel).empty()) top.fail_at(*rn, "recipe", "empty path (expected a topography recipe)");
     const fs::path p = base_dir / fs::path(rel);
-    if (const std::string why = scene_io::input_file_problem(p, scene_io::kMaxYamlBytes); !why.empty())
+    if (const std::string why = io::input_file_problem(p, io::kMaxYamlBytes); !why.empty())
       top.fail_at(*rn, "recipe", "topography recipe " + why + ": " + display_of(p));
     r = load_topography_recipe(p);
     YAML::Node over(YAML::NodeType::Map);
     for (auto it = section.begin(); it != section.end(); ++it)
       if (it->first.Scalar() != "recipe") over[it->first] = it->second;
-    tree = merged(lifted_file_tree(scene_io::load_yaml_file(p, display_of(p))), over);
+    tree = merged(lifted_file_tree(io::load_yaml_file(p, display_of(p))), over);
     map_dir = p.parent_path();  // a height map named in the file is relative to it
     const fs::path file = r.file;
     r = TopographyRecipe{};

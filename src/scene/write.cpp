@@ -16,7 +16,7 @@ namespace {
 
 std::string num(double x) {
   if (!std::isfinite(x)) throw std::invalid_argument("cannot write a non-finite number to a scene file");
-  return scene_io::format_double(x);
+  return io::format_double(x);
 }
 
 // The data of an experiment given in memory (no file), as the loader reads them inline: the
