@@ -59,7 +59,7 @@ std::string store_provenance_yaml(const Campaign& c, const std::string& campaign
   std::ostringstream y;
   y << kStoreProvenanceFirstLine << '\n';
   y << "campaign: " << yaml_quoted(c.name) << '\n';
-  y << "campaign_file: " << yaml_quoted(display_path(c.file)) << '\n';
+  y << "campaign_file: " << yaml_quoted(result_path(c.file)) << '\n';
   y << "campaign_fnv1a64: " << yaml_quoted(hex16(fnv1a64(campaign_text))) << '\n';
   y << "points: " << c.size() << '\n';
   y << "shard: " << yaml_quoted(std::to_string(opt.shard.index) + "/" + std::to_string(opt.shard.count)) << '\n';

@@ -81,13 +81,12 @@ MeasuredForce synthetic_force(const SyntheticRecipe& r, const std::vector<Sample
 [[noreturn]] void fail_at_end(const SyntheticRecipe& r, const std::string& message) {
   int line = 0;
   try {
-    const YAML::Node n =
-        io::load_yaml_file(r.file, r.file.lexically_normal().string())["synthetic"]["measured_force"]["end"];
+    const YAML::Node n = io::load_yaml_file(r.file, input_path(r.file))["synthetic"]["measured_force"]["end"];
     if (n.IsDefined()) line = n.Mark().line + 1;
   } catch (const std::exception&) {
     // read a moment ago; without it the message keeps no line
   }
-  throw InputError(r.file.lexically_normal().string(), line, "synthetic.measured_force.end", message);
+  throw InputError(input_path(r.file), line, "synthetic.measured_force.end", message);
 }
 
 }  // namespace

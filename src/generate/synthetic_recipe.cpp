@@ -16,8 +16,6 @@ namespace {
 using io::MapView;
 using io::Source;
 
-std::string display_of(const fs::path& p) { return p.lexically_normal().string(); }
-
 double positive(const MapView& m, const YAML::Node& n, const std::string& k, const char* unit) {
   const double x = m.number(n, k, unit);
   if (!(x > 0.0)) m.fail_at(n, k, "must be > 0, got " + io::format_double(x));
@@ -39,7 +37,7 @@ bool settable(const std::string& key) { return key.rfind("model.", 0) == 0 || ke
 
 // The base scene with `set` applied. A bad value is reported at its line in the recipe.
 Scene truth_scene(const MapView& top, SyntheticRecipe& r, const YAML::Node& scene_node, const YAML::Node* set_node) {
-  YAML::Node tree = io::load_yaml_file(r.scene_file, display_of(r.scene_file));
+  YAML::Node tree = io::load_yaml_file(r.scene_file, input_path(r.scene_file));
   std::vector<std::pair<std::string, YAML::Node>> entries;
   if (set_node) {
     if (!set_node->IsMap() || set_node->size() == 0)
@@ -74,7 +72,7 @@ Scene truth_scene(const MapView& top, SyntheticRecipe& r, const YAML::Node& scen
 }  // namespace
 
 bool is_synthetic_recipe(const fs::path& path) {
-  const YAML::Node root = io::load_yaml_file(path, display_of(path));
+  const YAML::Node root = io::load_yaml_file(path, input_path(path));
   if (!root.IsMap()) return false;
   for (auto it = root.begin(); it != root.end(); ++it)
     if (it->first.IsScalar() && it->first.Scalar() == "synthetic") return true;
@@ -82,7 +80,7 @@ bool is_synthetic_recipe(const fs::path& path) {
 }
 
 SyntheticRecipe load_synthetic_recipe(const fs::path& path) {
-  const std::string display = display_of(path);
+  const std::string display = input_path(path);
   const YAML::Node root = io::load_yaml_file(path, display);
   const Source src{display, nullptr};
   const MapView outer(src, root, "", {"synthetic"});
@@ -98,7 +96,7 @@ SyntheticRecipe load_synthetic_recipe(const fs::path& path) {
     std::error_code ec;
     if (!fs::is_regular_file(r.scene_file, ec))
       top.fail_at(sn, "scene",
-                  "scene file not found: " + io::quote(r.scene_rel) + " (looked for " + display_of(r.scene_file) + ")");
+                  "scene file not found: " + io::quote(r.scene_rel) + " (looked for " + input_path(r.scene_file) + ")");
   }
   const auto set_node = top.find("set");
   r.scene = truth_scene(top, r, sn, set_node ? &*set_node : nullptr);

@@ -99,17 +99,13 @@ MeasuredForce read_force_csv(const std::filesystem::path& csv, const std::string
   return f;
 }
 
-MeasuredForce read_force_csv(const std::filesystem::path& csv) {
-  return read_force_csv(csv, csv.lexically_normal().string());
-}
+MeasuredForce read_force_csv(const std::filesystem::path& csv) { return read_force_csv(csv, input_path(csv)); }
 
 JunctionPopulation read_junctions_csv(const std::filesystem::path& csv) {
-  return read_junctions_csv(csv, csv.lexically_normal().string());
+  return read_junctions_csv(csv, input_path(csv));
 }
 
-MeasuredCurve read_measured_csv(const std::filesystem::path& csv) {
-  return read_measured_csv(csv, csv.lexically_normal().string());
-}
+MeasuredCurve read_measured_csv(const std::filesystem::path& csv) { return read_measured_csv(csv, input_path(csv)); }
 
 void write_junctions_csv(const std::filesystem::path& csv, const JunctionPopulation& j) {
   const bool xy = !j.x_m.empty() || !j.y_m.empty();

@@ -15,13 +15,10 @@ using io::Source;
 
 namespace {
 
-std::string display_of(const fs::path& p) { return p.lexically_normal().string(); }
-std::string num(double x) { return io::format_double(x); }
-
 double positive(const MapView& m, const std::string& k, const char* unit) {
   const YAML::Node n = m.require(k);
   const double x = m.number(n, k, unit);
-  if (!(x > 0.0)) m.fail_at(n, k, "must be > 0, got " + num(x));
+  if (!(x > 0.0)) m.fail_at(n, k, "must be > 0, got " + io::format_double(x));
   return x;
 }
 
@@ -54,7 +51,7 @@ double pixel_of(const MapView& m, std::size_t n) {
   if (p) return pixel_checked(m, "pixel_m", positive(m, "pixel_m", "m"));
   const double size = positive(m, "size_m", "m");
   return pixel_checked(m, "size_m", size / static_cast<double>(n),
-                       "gives pixels of " + num(size / static_cast<double>(n)) + " m (size_m / n): ");
+                       "gives pixels of " + io::format_double(size / static_cast<double>(n)) + " m (size_m / n): ");
 }
 
 const std::vector<std::string> kSurfaceKeys{"smooth", "self_affine", "file", "pixel_m"};
@@ -85,7 +82,7 @@ void read_surface(const MapView& t, const YAML::Node& tn, const fs::path& base_d
     s.length_m = r.pixel_m * static_cast<double>(r.n);
     const YAML::Node hn = m.require("hurst");
     s.hurst = m.number(hn, "hurst", nullptr);
-    if (!(s.hurst > 0 && s.hurst < 1)) m.fail_at(hn, "hurst", "must be in (0, 1), got " + num(s.hurst));
+    if (!(s.hurst > 0 && s.hurst < 1)) m.fail_at(hn, "hurst", "must be in (0, 1), got " + io::format_double(s.hurst));
     get_positive(m, "rolloff_wavelength_m", s.rolloff_wavelength_m, "m");
     get_positive(m, "short_wavelength_m", s.short_wavelength_m, "m");
     const auto hr = m.find("rms_height_m"), sl = m.find("rms_slope");
@@ -110,8 +107,8 @@ void read_surface(const MapView& t, const YAML::Node& tn, const fs::path& base_d
     const std::string why = io::input_file_problem(r.map_file, csv ? io::kMaxCsvBytes : io::kMaxYamlBytes);
     if (why == "file not found")
       t.fail_at(*fi, "file",
-                "height map not found: " + io::quote(rel) + " (looked for " + display_of(r.map_file) + ")");
-    if (!why.empty()) t.fail_at(*fi, "file", "height map " + why + ": " + display_of(r.map_file));
+                "height map not found: " + io::quote(rel) + " (looked for " + input_path(r.map_file) + ")");
+    if (!why.empty()) t.fail_at(*fi, "file", "height map " + why + ": " + input_path(r.map_file));
     if (csv)
       r.pixel_m = pixel_checked(t, "pixel_m", positive(t, "pixel_m", "m"));
     else if (const auto p = t.find("pixel_m"))
@@ -200,7 +197,7 @@ YAML::Node merged(const YAML::Node& base, const YAML::Node& over) {
 }  // namespace
 
 bool is_topography_recipe(const fs::path& path) {
-  const YAML::Node root = io::load_yaml_file(path, display_of(path));
+  const YAML::Node root = io::load_yaml_file(path, input_path(path));
   if (!root.IsMap()) return false;
   for (auto it = root.begin(); it != root.end(); ++it)
     if (it->first.IsScalar() && it->first.Scalar() == "topography") return true;
@@ -208,7 +205,7 @@ bool is_topography_recipe(const fs::path& path) {
 }
 
 TopographyRecipe load_topography_recipe(const fs::path& path) {
-  const std::string display = display_of(path);
+  const std::string display = input_path(path);
   const YAML::Node root = io::load_yaml_file(path, display);
   const Source src{display, nullptr};
   TopographyRecipe r;
@@ -237,12 +234,12 @@ TopographyRecipe topography_recipe_from_scene(const Source& src, const YAML::Nod
     if (io::trim(rel).empty()) top.fail_at(*rn, "recipe", "empty path (expected a topography recipe)");
     const fs::path p = base_dir / fs::path(rel);
     if (const std::string why = io::input_file_problem(p, io::kMaxYamlBytes); !why.empty())
-      top.fail_at(*rn, "recipe", "topography recipe " + why + ": " + display_of(p));
+      top.fail_at(*rn, "recipe", "topography recipe " + why + ": " + input_path(p));
     r = load_topography_recipe(p);
     YAML::Node over(YAML::NodeType::Map);
     for (auto it = section.begin(); it != section.end(); ++it)
       if (it->first.Scalar() != "recipe") over[it->first] = it->second;
-    tree = merged(lifted_file_tree(io::load_yaml_file(p, display_of(p))), over);
+    tree = merged(lifted_file_tree(io::load_yaml_file(p, input_path(p))), over);
     map_dir = p.parent_path();  // a height map named in the file is relative to it
     const fs::path file = r.file;
     r = TopographyRecipe{};

@@ -84,13 +84,13 @@ HeightMap read_height_map_binary(const fs::path& header_yaml, const std::string&
     std::error_code ec;
     if (why != "file not found" && fs::is_regular_file(data, ec)) why = "is larger than expected";
     v.fail_at(dn, "data",
-              "height file " + why + ": " + data.lexically_normal().string() +
-                  " (expected n^2 x 8 = " + std::to_string(bytes) + " bytes of float64 little-endian)");
+              "height file " + why + ": " + input_path(data) + " (expected n^2 x 8 = " + std::to_string(bytes) +
+                  " bytes of float64 little-endian)");
   }
-  const std::string raw = io::read_input_file(data, data.lexically_normal().string(), bytes);
+  const std::string raw = io::read_input_file(data, input_path(data), bytes);
   if (raw.size() != bytes)
     v.fail_at(dn, "data",
-              "height file " + data.lexically_normal().string() + " has " + std::to_string(raw.size()) +
+              "height file " + input_path(data) + " has " + std::to_string(raw.size()) +
                   " bytes, expected n^2 x 8 = " + std::to_string(bytes) + " (float64 little-endian)");
   HeightMap map;
   map.n = n;
@@ -104,14 +104,13 @@ HeightMap read_height_map_binary(const fs::path& header_yaml, const std::string&
     if (!std::isfinite(h))
       v.fail_at(dn, "data",
                 "height at row " + std::to_string(k / n + 1) + ", column " + std::to_string(k % n + 1) + " of " +
-                    data.lexically_normal().string() + " is " + (std::isnan(h) ? "NaN" : "infinite") +
-                    "; every height must be finite");
+                    input_path(data) + " is " + (std::isnan(h) ? "NaN" : "infinite") + "; every height must be finite");
     map.h_m[k] = h;
   }
   if (const auto p = height_range_problem(map))
     v.fail_at(dn, "data",
               "row " + std::to_string(p->index / n + 1) + ", column " + std::to_string(p->index % n + 1) + " of " +
-                  data.lexically_normal().string() + ": " + p->message);
+                  input_path(data) + ": " + p->message);
   return map;
 }
 

@@ -79,9 +79,9 @@ TEST_CASE("the build's commit is the checkout's HEAD", "[io][provenance]") {
   CHECK_THAT(version_line(), Catch::Contains("commit " + commit));
 }
 
-TEST_CASE("display_path is relative inside the working directory and as given outside", "[io][provenance]") {
-  CHECK(display_path(fs::current_path() / "a" / "b.csv") == "a/b.csv");
-  CHECK(display_path("/nonexistent_root_dir/x.csv") == "/nonexistent_root_dir/x.csv");
+TEST_CASE("result_path is relative inside the working directory and as given outside", "[io][provenance]") {
+  CHECK(result_path(fs::current_path() / "a" / "b.csv") == "a/b.csv");
+  CHECK(result_path("/nonexistent_root_dir/x.csv") == "/nonexistent_root_dir/x.csv");
 }
 
 TEST_CASE("a store's provenance names the command and the data each base scene reads", "[io][provenance][campaign]") {
