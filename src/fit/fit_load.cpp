@@ -270,6 +270,36 @@ struct ExperimentContext {
   const FitLoadOptions& options;
 };
 
+// The measured Q(t) of experiment i (`force:`, read from `force_file`), which the area_and_force
+// objective needs and no other takes.
+std::optional<MeasuredForce> read_experiment_force(const ExperimentContext& cx, const ExperimentEntry& x,
+                                                   const YAML::Node& en, std::size_t i, const FitSpec& spec,
+                                                   fs::path& force_file) {
+  const MapView& sv = x.view ? *x.view : cx.root;
+  const std::string skey = x.view ? "scene" : "experiments[" + std::to_string(i) + "]";
+  if (const auto fn = x.view ? x.view->find("force") : std::nullopt) {
+    if (spec.objective != FitObjective::area_and_force)
+      x.view->fail_at(*fn, "force",
+                      std::string("a measured Q(t) is used by the area_and_force objective only, not ") +
+                          objective_name(spec.objective));
+    const std::string frel = x.view->string(*fn, "force");
+    force_file = cx.base / fs::path(frel);
+    std::error_code e3;
+    const auto st = fs::status(force_file, e3);
+    if (!fs::exists(st))
+      x.view->fail_at(*fn, "force",
+                      "force CSV not found: " + quote(frel) + " (looked for " + input_path(force_file) + ")");
+    if (!fs::is_regular_file(st))
+      x.view->fail_at(*fn, "force", "force CSV is not a regular file: " + input_path(force_file));
+    return read_force_csv(force_file, input_path(force_file));
+  }
+  if (spec.objective == FitObjective::area_and_force)
+    sv.fail_at(
+        en[i], x.view ? "force" : skey,
+        "the area_and_force objective needs force: CSV of the measured Q(t) (columns t_s, Q_N) for every experiment");
+  return std::nullopt;
+}
+
 // Experiment i of `experiments:` (en): its scene template with every setting, checked.
 FitExperiment read_experiment(const ExperimentContext& cx, const YAML::Node& en, std::size_t i, const FitSpec& spec,
                               const std::vector<ParamNodes>& pnodes) {
@@ -289,28 +319,8 @@ FitExperiment read_experiment(const ExperimentContext& cx, const YAML::Node& en,
   if (spec.objective == FitObjective::stick_slip && !x.has_target)
     sv.fail_at(en[i], x.view ? "target" : skey,
                "the stick_slip objective needs target: {drop: N, period: s} for every experiment");
-  std::optional<MeasuredForce> force;
   fs::path force_file;
-  if (const auto fn = x.view ? x.view->find("force") : std::nullopt) {
-    if (spec.objective != FitObjective::area_and_force)
-      x.view->fail_at(*fn, "force",
-                      std::string("a measured Q(t) is used by the area_and_force objective only, not ") +
-                          objective_name(spec.objective));
-    const std::string frel = x.view->string(*fn, "force");
-    force_file = cx.base / fs::path(frel);
-    std::error_code e3;
-    const auto st = fs::status(force_file, e3);
-    if (!fs::exists(st))
-      x.view->fail_at(*fn, "force",
-                      "force CSV not found: " + quote(frel) + " (looked for " + input_path(force_file) + ")");
-    if (!fs::is_regular_file(st))
-      x.view->fail_at(*fn, "force", "force CSV is not a regular file: " + input_path(force_file));
-    force = read_force_csv(force_file, input_path(force_file));
-  } else if (spec.objective == FitObjective::area_and_force) {
-    sv.fail_at(
-        en[i], x.view ? "force" : skey,
-        "the area_and_force objective needs force: CSV of the measured Q(t) (columns t_s, Q_N) for every experiment");
-  }
+  std::optional<MeasuredForce> force = read_experiment_force(cx, x, en, i, spec, force_file);
   if (!cx.overrides.empty()) {                   // before the objective's forced settings, which win
     (void)load_scene(scene_path, cx.overrides);  // each --set checked on this scene, with its message
     for (const std::string& o : cx.overrides) {
