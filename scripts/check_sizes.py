@@ -103,8 +103,19 @@ def function_name(header):
                 cut = k
                 break
         head = h[:cut]
-    m = re.search(r"((?:[A-Za-z_~][\w]*(?:<[^()]*?>)?::)*(?:operator\s*\S+|~?[A-Za-z_]\w*))\s*$", head.strip())
-    return m.group(1) if m else head.strip()
+    # The last word of the head at template depth 0: the qualified name, without the return type.
+    head = head.strip()
+    depth, k = 0, len(head)
+    while k > 0:
+        ch = head[k - 1]
+        if ch == ">":
+            depth += 1
+        elif ch == "<":
+            depth -= 1
+        elif ch.isspace() and depth == 0 and not head[:k].rstrip().endswith("operator"):
+            break
+        k -= 1
+    return head[k:]
 
 
 def functions(text):
@@ -140,8 +151,11 @@ def functions(text):
                 stack.append("scope")
                 start = i + 1
             elif "(" in label and ")" in label and not NOT_FUNCTION.search(label.split("(")[0]) and "=" not in label.split("(")[0].replace("operator", "").replace("==", ""):
-                # A constructor's initialiser list may hold braces (x_{1}): they belong to the header.
-                if re.search(r"\)\s*(noexcept\s*)?:[^:]", label) and re.search(r"[\w>]\s*$", label):
+                # A constructor's initialiser list may hold braces (x_{1}, a lambda inside an
+                # argument list): they belong to the header.
+                in_init_list = re.search(r"\)\s*(noexcept\s*)?:[^:]", label)
+                open_parens = label.count("(") - label.count(")")
+                if in_init_list and (open_parens > 0 or re.search(r"[\w>]\s*$", label)):
                     depth, j = 0, i
                     while j < n:
                         if code[j] == "{":
