@@ -52,9 +52,9 @@ inline FitCase make_fit_case(const std::string& tag, double alpha_b, double p, d
     std::ofstream(c.dir / "scene.yaml") << "experiment: experiment.yaml\nstop: {time: 3}\n";
   }
   // The truth: loading branch of the model at (alpha_b, p), as the measured curve.
-  const Scene truth = load_scene(
-      c.dir / "scene.yaml", {"model.alpha_b=" + scene_io::format_double(alpha_b),
-                             "model.p=" + scene_io::format_double(p), "stop.at_first_peak=true", "output.series=[]"});
+  const Scene truth = load_scene(c.dir / "scene.yaml",
+                                 {"model.alpha_b=" + io::format_double(alpha_b), "model.p=" + io::format_double(p),
+                                  "stop.at_first_peak=true", "output.series=[]"});
   const RunResult r = simulate(truth);
   MeasuredCurve m;
   for (const auto& s : r.recorder.loading_branch())

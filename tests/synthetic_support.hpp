@@ -46,7 +46,7 @@ struct SyntheticTruth {
 // The recipe text: `scene` relative to the recipe, the truth set, noise on both curves.
 inline std::string synthetic_recipe_text(const std::string& scene, const SyntheticTruth& t, double noise,
                                          std::uint64_t seed, double end, double every = 0.005, int points = 40) {
-  const auto num = [](double x) { return scene_io::format_double(x); };
+  const auto num = [](double x) { return io::format_double(x); };
   return "synthetic:\n"
          "  scene: " +
          scene +

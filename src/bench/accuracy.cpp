@@ -16,7 +16,7 @@ namespace fs = std::filesystem;
 
 namespace {
 using bench_text::exact;
-using bench_text::g;
+using io::format_significant;
 }  // namespace
 
 bool AccuracyRow::within_targets() const {
@@ -66,9 +66,11 @@ std::vector<AccuracyRow> run_accuracy(const AccuracyOptions& opt) {
       rows.push_back(accuracy_row(scene.experiment.name, tol, run.obs, conv.obs));
       if (opt.log) {
         const auto& r = rows.back();
-        *opt.log << "  " << r.experiment << " (stand-in) tol " << g(r.tolerance) << " vs " << g(opt.converged_tolerance)
-                 << ", " << r.cycles << " cycles, " << g(r.wall_s, 3) << " s:";
-        for (std::size_t i = 0; i < n_robust; ++i) *opt.log << ' ' << robust_names()[i] << ' ' << g(r.error[i], 2);
+        *opt.log << "  " << r.experiment << " (stand-in) tol " << format_significant(r.tolerance) << " vs "
+                 << format_significant(opt.converged_tolerance) << ", " << r.cycles << " cycles, "
+                 << format_significant(r.wall_s, 3) << " s:";
+        for (std::size_t i = 0; i < n_robust; ++i)
+          *opt.log << ' ' << robust_names()[i] << ' ' << format_significant(r.error[i], 2);
         *opt.log << (r.within_targets() ? "  (within targets)" : "  (TARGET MISSED)") << '\n' << std::flush;
       }
     }
@@ -84,11 +86,11 @@ std::string accuracy_csv(const std::vector<AccuracyRow>& rows) {
   for (const auto& n : robust_names()) o << ",relerr_" << n;
   o << ",within_targets\n";
   for (const auto& r : rows) {
-    o << r.experiment << ',' << g(r.tolerance) << ',' << g(r.wall_s, 4) << ',' << g(r.converged_wall_s, 4) << ','
-      << r.cycles << ',' << r.converged_cycles;
+    o << r.experiment << ',' << format_significant(r.tolerance) << ',' << format_significant(r.wall_s, 4) << ','
+      << format_significant(r.converged_wall_s, 4) << ',' << r.cycles << ',' << r.converged_cycles;
     for (double x : r.value) o << ',' << exact(x);
     for (double x : r.converged) o << ',' << exact(x);
-    for (double x : r.error) o << ',' << g(x, 4);
+    for (double x : r.error) o << ',' << format_significant(x, 4);
     o << ',' << (r.within_targets() ? "yes" : "no") << '\n';
   }
   return o.str();
@@ -96,7 +98,7 @@ std::string accuracy_csv(const std::vector<AccuracyRow>& rows) {
 
 void write_accuracy(const fs::path& dir, const std::vector<AccuracyRow>& rows) {
   fs::create_directories(dir);
-  scene_io::write_text_file(dir / "accuracy.csv", accuracy_csv(rows));
+  io::write_text_file(dir / "accuracy.csv", accuracy_csv(rows));
 }
 
 }  // namespace asperity

@@ -17,7 +17,7 @@ Scene bench_scene(const fs::path& path, const std::vector<std::string>& override
   return load_scene(path, overrides);
 }
 
-std::string set_number(const std::string& key, double value) { return key + "=" + scene_io::format_double(value); }
+std::string set_number(const std::string& key, double value) { return key + "=" + io::format_double(value); }
 
 std::vector<fs::path> paper_scenes(const fs::path& dir) {
   if (!fs::is_directory(dir))

@@ -136,7 +136,7 @@ void write_contact_bench(const fs::path& dir, const std::vector<ContactBenchRow>
       << r.tangential_iterations << ',' << r.tangential_convolutions << ','
       << (r.tangential_converged ? "true" : "false") << ',' << r.max_rss_kB << '\n';
   fs::create_directories(dir);
-  scene_io::write_text_file(dir / "contact.csv", o.str());
+  io::write_text_file(dir / "contact.csv", o.str());
 }
 
 }  // namespace asperity

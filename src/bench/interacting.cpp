@@ -201,7 +201,7 @@ void write_interacting_bench(const fs::path& dir, const std::vector<InteractingB
       << r.rank_one << ',' << r.rebuilds << ',' << r.samples << ',' << r.max_rss_kB << ',' << csv_number(r.bound_kB)
       << ',' << r.single_passes << ',' << r.single_refreshes << '\n';
   fs::create_directories(dir);
-  scene_io::write_text_file(dir / "interacting.csv", o.str());
+  io::write_text_file(dir / "interacting.csv", o.str());
 }
 
 }  // namespace asperity
@@ -256,7 +256,7 @@ void write_interacting_tradeoff(const fs::path& dir, const std::vector<Interacti
     o << '\n';
   }
   fs::create_directories(dir);
-  scene_io::write_text_file(dir / "interacting_tradeoff.csv", o.str());
+  io::write_text_file(dir / "interacting_tradeoff.csv", o.str());
 }
 
 }  // namespace asperity

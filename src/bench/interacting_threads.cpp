@@ -88,7 +88,7 @@ void write_threads_bench(const fs::path& dir, const std::vector<ThreadsBenchRow>
       << csv_number(r.law_s) << ',' << csv_number(r.update_s) << ',' << csv_number(r.rest_s()) << ',' << r.slips << ','
       << r.iterations << ',' << csv_number(r.Q_s) << ',' << csv_number(r.A_s) << ',' << csv_number(r.t_peak) << '\n';
   fs::create_directories(dir);
-  scene_io::write_text_file(dir / "interacting_threads.csv", o.str());
+  io::write_text_file(dir / "interacting_threads.csv", o.str());
 }
 
 std::string threads_bench_table(const std::vector<ThreadsBenchRow>& rows) {

@@ -8,6 +8,7 @@
 #include "bench/bench_scene.hpp"
 #include "bench/timed_run.hpp"
 #include "io/atomic_file.hpp"
+#include "io/numbers.hpp"
 #include "observe/simulate.hpp"
 #include "report/gnuplot.hpp"
 #include "report/run_writer.hpp"
@@ -19,7 +20,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-using bench_text::g;
+using io::format_significant;
 
 // Median time of writing the run directory of `scene` (what `asperity run` does after the
 // integration) into `scratch`.
@@ -87,9 +88,9 @@ std::vector<SavingRow> run_savings(const SavingsOptions& opt) {
         rows.push_back(r);
         if (opt.log)
           *opt.log << "  " << r.experiment << " (stand-in) " << r.saving << ": " << r.variant << ": integrate "
-                   << g(r.wall_s * 1e3, 4) << " ms wall (" << g(r.cpu_s * 1e3, 4) << " ms CPU) + write "
-                   << g(r.write_s * 1e3, 4) << " ms, t_end " << g(r.t_end, 5) << " s, series " << r.series_bytes
-                   << " B\n"
+                   << format_significant(r.wall_s * 1e3, 4) << " ms wall (" << format_significant(r.cpu_s * 1e3, 4)
+                   << " ms CPU) + write " << format_significant(r.write_s * 1e3, 4) << " ms, t_end "
+                   << format_significant(r.t_end, 5) << " s, series " << r.series_bytes << " B\n"
                    << std::flush;
       }
     }
@@ -106,9 +107,10 @@ void write_savings(const fs::path& dir, const std::vector<SavingRow>& rows, cons
        "bytes\n";
   for (const auto& r : rows)
     o << r.experiment << ',' << r.saving << ',' << r.variant << ',' << (r.baseline ? "yes" : "no") << ','
-      << g(r.wall_s, 4) << ',' << g(r.cpu_s, 4) << ',' << g(r.write_s, 4) << ',' << g(r.total_s(), 4) << ','
-      << r.repeats << ',' << g(r.t_end, 6) << ',' << r.steps << ',' << r.force_evals << ',' << r.series_bytes << '\n';
-  scene_io::write_text_file(dir / "savings.csv", o.str());
+      << format_significant(r.wall_s, 4) << ',' << format_significant(r.cpu_s, 4) << ','
+      << format_significant(r.write_s, 4) << ',' << format_significant(r.total_s(), 4) << ',' << r.repeats << ','
+      << format_significant(r.t_end, 6) << ',' << r.steps << ',' << r.force_evals << ',' << r.series_bytes << '\n';
+  io::write_text_file(dir / "savings.csv", o.str());
   if (rows.empty()) return;
 
   // Bar chart of the first scene: baseline and variant side by side per saving, in ms of CPU
@@ -119,8 +121,9 @@ void write_savings(const fs::path& dir, const std::vector<SavingRow>& rows, cons
   for (std::size_t i = 0; i + 1 < rows.size(); i += 2) {
     if (rows[i].experiment != exp) break;
     gp << '"' << rows[i].saving << "\\n"
-       << rows[i + 1].variant << "\\nvs " << rows[i].variant << "\" " << g((rows[i].cpu_s + rows[i].write_s) * 1e3, 5)
-       << ' ' << g((rows[i + 1].cpu_s + rows[i + 1].write_s) * 1e3, 5) << '\n';
+       << rows[i + 1].variant << "\\nvs " << rows[i].variant << "\" "
+       << format_significant((rows[i].cpu_s + rows[i].write_s) * 1e3, 5) << ' '
+       << format_significant((rows[i + 1].cpu_s + rows[i + 1].write_s) * 1e3, 5) << '\n';
   }
   gp << "EOD\n"
      << stand_in_mark(rows.front().stand_in) << "set title " << gnuplot_text("Model only what a scene requires: " + exp)

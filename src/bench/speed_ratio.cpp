@@ -10,13 +10,14 @@
 #include "bench/number_text.hpp"
 #include "bench/timed_run.hpp"
 #include "io/atomic_file.hpp"
+#include "io/numbers.hpp"
 
 namespace asperity {
 namespace fs = std::filesystem;
 
 namespace {
 
-using bench_text::g;
+using io::format_significant;
 
 // NaN-propagating max over errors [from, to).
 double max_error(const std::array<double, n_robust>& e, std::size_t from, std::size_t to) {
@@ -29,7 +30,8 @@ double max_error(const std::array<double, n_robust>& e, std::size_t from, std::s
 }
 
 std::string describe(const SpeedRun& r) {
-  return r.method + (r.method == "event" ? " tol " : " C_t ") + g(r.setting) + (r.whole ? "" : " (window)");
+  return r.method + (r.method == "event" ? " tol " : " C_t ") + format_significant(r.setting) +
+         (r.whole ? "" : " (window)");
 }
 
 }  // namespace
@@ -49,83 +51,104 @@ double SpeedComparison::ratio_wall() const {
 }
 double SpeedComparison::ratio_cpu() const { return (reference.cpu_s / reference.t_end) / (event.cpu_s / event.t_end); }
 
-SpeedResult run_speed(const SpeedOptions& opt) {
-  SpeedResult res;
-  res.threads = omp_get_max_threads();
-  auto log = [&](const std::string& s) {
+namespace {
+
+// The scenes, the log and the record of one speed comparison; `truth` is set by run_truth and
+// every whole run's errors are measured against it.
+struct SpeedBench {
+  const SpeedOptions& opt;
+  SpeedResult& res;
+  TimedRun truth;
+
+  void log(const std::string& s) const {
     if (opt.log) *opt.log << s << std::flush;
-  };
+  }
   // Every run stops after the peak and `cycles` cycles (a window: at its end); no series (the
   // loading branch is kept regardless).
-  auto scene = [&](double stop_time, int cycles, std::vector<std::string> extra) {
+  Scene scene(double stop_time, int cycles, std::vector<std::string> extra) const {
     std::vector<std::string> o{set_number("stop.time", stop_time), "stop.cycles=" + std::to_string(cycles),
                                "stop.at_first_peak=false", "output.series=[]"};
     o.insert(o.end(), extra.begin(), extra.end());
     return bench_scene(opt.scene, o);
-  };
-  auto event_scene = [&](double tol) {
+  }
+  Scene event_scene(double tol) const {
     return scene(opt.stop_time, opt.cycles, {"solver.method=event", set_number("solver.tolerance", tol)});
-  };
-  auto reference_scene = [&](double Ct, bool whole) {
+  }
+  Scene reference_scene(double Ct, bool whole) const {
     // A whole reference run spans the truth's T_run (a coarse C_t may lose the stick-slip and
     // run on to stop_time otherwise): the same simulated span as the run extrapolated to.
     return whole ? scene(res.T_run, opt.cycles, {"solver.method=reference", set_number("solver.Ct", Ct)})
                  : scene(opt.window_s, -1, {"solver.method=reference", set_number("solver.Ct", Ct)});
-  };
+  }
+  SpeedRun record(const std::string& method, double setting, bool whole, const TimedRun& t) const;
+};
 
-  // The truth: a tight event run through the whole run.
-  log("truth: event, tolerance " + g(opt.truth_tolerance) + " ... ");
-  const TimedRun truth = timed_run(event_scene(opt.truth_tolerance), 1);
-  res.experiment = scene(opt.stop_time, opt.cycles, {}).experiment.name;
-  res.T_run = truth.obs.t_end;
-  log(g(truth.wall_s, 3) + " s, t_end " + g(res.T_run) + " s, " + std::to_string(truth.obs.ss_cycles) + " cycles\n");
+SpeedRun SpeedBench::record(const std::string& method, double setting, bool whole, const TimedRun& t) const {
+  SpeedRun r;
+  r.method = method;
+  r.setting = setting;
+  r.whole = whole;
+  r.t_end = t.obs.t_end;
+  r.wall_s = t.wall_s;
+  r.cpu_s = t.cpu_s;
+  r.steps = t.obs.steps;
+  r.cycles = t.obs.ss_cycles;
+  r.repeats = t.repeats;
+  r.error.fill(std::nan(""));
+  if (whole) r.error = relative_errors(t.obs, truth.obs);
+  std::string line = "  " + describe(r) + ": " + format_significant(r.wall_s, 4) + " s wall, " +
+                     format_significant(r.cpu_s, 4) + " s CPU (" + std::to_string(r.repeats) + " runs), " +
+                     std::to_string(r.steps) + " steps, t_end " + format_significant(r.t_end, 6) + " s";
+  if (whole)
+    line += ", " + std::to_string(r.cycles) + " cycles, max error loading " +
+            format_significant(r.max_loading_error(), 2) + ", stick-slip " +
+            format_significant(r.max_stick_slip_error(), 2);
+  log(line + "\n");
+  return r;
+}
 
-  auto record = [&](const std::string& method, double setting, bool whole, const TimedRun& t) {
-    SpeedRun r;
-    r.method = method;
-    r.setting = setting;
-    r.whole = whole;
-    r.t_end = t.obs.t_end;
-    r.wall_s = t.wall_s;
-    r.cpu_s = t.cpu_s;
-    r.steps = t.obs.steps;
-    r.cycles = t.obs.ss_cycles;
-    r.repeats = t.repeats;
-    r.error.fill(std::nan(""));
-    if (whole) r.error = relative_errors(t.obs, truth.obs);
-    std::string line = "  " + describe(r) + ": " + g(r.wall_s, 4) + " s wall, " + g(r.cpu_s, 4) + " s CPU (" +
-                       std::to_string(r.repeats) + " runs), " + std::to_string(r.steps) + " steps, t_end " +
-                       g(r.t_end, 6) + " s";
-    if (whole)
-      line += ", " + std::to_string(r.cycles) + " cycles, max error loading " + g(r.max_loading_error(), 2) +
-              ", stick-slip " + g(r.max_stick_slip_error(), 2);
-    log(line + "\n");
-    return r;
-  };
-  res.truth = record("event", opt.truth_tolerance, true, truth);
+// The truth: a tight event run through the whole run.
+void run_truth(SpeedBench& b) {
+  const SpeedOptions& opt = b.opt;
+  b.log("truth: event, tolerance " + format_significant(opt.truth_tolerance) + " ... ");
+  b.truth = timed_run(b.event_scene(opt.truth_tolerance), 1);
+  b.res.experiment = b.scene(opt.stop_time, opt.cycles, {}).experiment.name;
+  b.res.T_run = b.truth.obs.t_end;
+  b.log(format_significant(b.truth.wall_s, 3) + " s, t_end " + format_significant(b.res.T_run) + " s, " +
+        std::to_string(b.truth.obs.ss_cycles) + " cycles\n");
+  b.res.truth = b.record("event", opt.truth_tolerance, true, b.truth);
+}
 
-  // Event solver: the scene's own tolerance, then the accuracy ladder.
-  const double default_tol = scene(opt.stop_time, opt.cycles, {}).solver.tolerance;  // the shipped default
-  const SpeedRun ev_default = record("event", default_tol, true, timed_run(event_scene(default_tol), opt.repeats));
-  res.runs.push_back(ev_default);
+// Event solver: the scene's own tolerance (`ev_default`), then the accuracy ladder; returns every
+// event run, loosest tolerance first.
+std::vector<SpeedRun> run_event_ladder(SpeedBench& b, SpeedRun& ev_default) {
+  const SpeedOptions& opt = b.opt;
+  const double default_tol = b.scene(opt.stop_time, opt.cycles, {}).solver.tolerance;  // the shipped default
+  ev_default = b.record("event", default_tol, true, timed_run(b.event_scene(default_tol), opt.repeats));
+  b.res.runs.push_back(ev_default);
   std::vector<SpeedRun> ladder;
   for (double tol : opt.event_tolerances)
-    ladder.push_back(record("event", tol, true, timed_run(event_scene(tol), opt.repeats)));
-  res.runs.insert(res.runs.end(), ladder.begin(), ladder.end());
+    ladder.push_back(b.record("event", tol, true, timed_run(b.event_scene(tol), opt.repeats)));
+  b.res.runs.insert(b.res.runs.end(), ladder.begin(), ladder.end());
   ladder.push_back(ev_default);
   std::sort(ladder.begin(), ladder.end(), [](const SpeedRun& a, const SpeedRun& b) { return a.setting > b.setting; });
+  return ladder;
+}
 
-  // Reference: whole runs at the coarse C_t, the early window at target and first coarse C_t.
+// Reference: whole runs at the coarse C_t (returned, coarsest first), the early window at target
+// and first coarse C_t (`window_target`), and the per-step cost ratios they give.
+std::vector<SpeedRun> run_reference(SpeedBench& b, SpeedRun& window_target) {
+  const SpeedOptions& opt = b.opt;
+  SpeedResult& res = b.res;
   std::vector<SpeedRun> whole;
   for (double Ct : opt.whole_run_Ct) {
-    log("reference, C_t = " + g(Ct) + ", whole run ...\n");
-    whole.push_back(record("reference", Ct, true, timed_run(reference_scene(Ct, true), opt.repeats)));
+    b.log("reference, C_t = " + format_significant(Ct) + ", whole run ...\n");
+    whole.push_back(b.record("reference", Ct, true, timed_run(b.reference_scene(Ct, true), opt.repeats)));
   }
-  log("reference, early window of " + g(opt.window_s) + " s ...\n");
-  const SpeedRun window_target =
-      record("reference", opt.target_Ct, false, timed_run(reference_scene(opt.target_Ct, false), 1));
-  const SpeedRun window_coarse = record("reference", opt.whole_run_Ct.front(), false,
-                                        timed_run(reference_scene(opt.whole_run_Ct.front(), false), opt.repeats));
+  b.log("reference, early window of " + format_significant(opt.window_s) + " s ...\n");
+  window_target = b.record("reference", opt.target_Ct, false, timed_run(b.reference_scene(opt.target_Ct, false), 1));
+  const SpeedRun window_coarse = b.record("reference", opt.whole_run_Ct.front(), false,
+                                          timed_run(b.reference_scene(opt.whole_run_Ct.front(), false), opt.repeats));
   res.runs.insert(res.runs.end(), whole.begin(), whole.end());
   res.runs.push_back(window_target);
   res.runs.push_back(window_coarse);
@@ -133,21 +156,12 @@ SpeedResult run_speed(const SpeedOptions& opt) {
   res.target_steps = static_cast<std::int64_t>(std::ceil(res.T_run / res.dt_target - 1e-9));
   if (whole.size() >= 2) res.whole_per_step_ratio = whole[1].cpu_per_step() / whole[0].cpu_per_step();
   res.window_per_step_ratio = window_target.cpu_per_step() / window_coarse.cpu_per_step();
+  return whole;
+}
 
-  // The comparisons. The measured reference is the finest whole run.
-  const SpeedRun& ref = whole.back();
-  res.comparisons.push_back({"whole run: reference at C_t " + g(ref.setting) + " vs event at its default tolerance",
-                             "measured, both over the whole run", ref, ev_default});
-  const SpeedRun* matched = nullptr;  // loosest tolerance at least as accurate as the reference
-  for (const SpeedRun& e : ladder)
-    if (e.at_least_as_accurate_as(ref)) {
-      matched = &e;
-      break;
-    }
-  if (matched)
-    res.comparisons.push_back({"whole run at equal accuracy: reference at C_t " + g(ref.setting) +
-                                   " vs the loosest event tolerance at least as accurate on all six observables",
-                               "measured, both over the whole run", ref, *matched});
+// The reference at the paper's C_t, not run: the per-step cost of the finest whole run `ref` times
+// the step count at target_Ct.
+SpeedRun extrapolated_reference(const SpeedOptions& opt, const SpeedResult& res, const SpeedRun& ref) {
   SpeedRun extrapolated = ref;
   extrapolated.setting = opt.target_Ct;
   extrapolated.steps = res.target_steps;
@@ -155,20 +169,54 @@ SpeedResult run_speed(const SpeedOptions& opt) {
   extrapolated.wall_s = ref.wall_per_step() * static_cast<double>(res.target_steps);
   extrapolated.cpu_s = ref.cpu_per_step() * static_cast<double>(res.target_steps);
   extrapolated.error.fill(std::nan(""));  // not run: its accuracy is not measured here
-  res.comparisons.push_back({"whole run: reference at C_t " + g(opt.target_Ct) + " vs event at its default tolerance",
-                             "reference extrapolated: per-step cost of its whole run at C_t " + g(ref.setting) +
-                                 " x the step count at C_t " + g(opt.target_Ct) +
-                                 " (T_run/dt, T_run of the tight "
-                                 "event run); per-step CPU cost vs C_t: whole run at C_t " +
-                                 g(opt.whole_run_Ct.back()) + " / at " + g(opt.whole_run_Ct.front()) + " = " +
-                                 g(res.whole_per_step_ratio, 3) + ", first " + g(opt.window_s) + " s at C_t " +
-                                 g(opt.target_Ct) + " / at " + g(opt.whole_run_Ct.front()) + " = " +
-                                 g(res.window_per_step_ratio, 3) + "; its accuracy is not measured; event measured",
-                             extrapolated, ev_default});
-  res.comparisons.push_back({"early window (the previous definition): reference at C_t " + g(opt.target_Ct) +
-                                 " over its first " + g(opt.window_s) + " s vs event over the whole run",
-                             "measured; the window (every junction bisected) is not representative of the run",
-                             window_target, ev_default});
+  return extrapolated;
+}
+
+// The comparisons. The measured reference is the finest whole run.
+void add_comparisons(const SpeedOptions& opt, SpeedResult& res, const std::vector<SpeedRun>& whole,
+                     const std::vector<SpeedRun>& ladder, const SpeedRun& ev_default, const SpeedRun& window_target) {
+  const SpeedRun& ref = whole.back();
+  res.comparisons.push_back(
+      {"whole run: reference at C_t " + format_significant(ref.setting) + " vs event at its default tolerance",
+       "measured, both over the whole run", ref, ev_default});
+  const SpeedRun* matched = nullptr;  // loosest tolerance at least as accurate as the reference
+  for (const SpeedRun& e : ladder)
+    if (e.at_least_as_accurate_as(ref)) {
+      matched = &e;
+      break;
+    }
+  if (matched)
+    res.comparisons.push_back({"whole run at equal accuracy: reference at C_t " + format_significant(ref.setting) +
+                                   " vs the loosest event tolerance at least as accurate on all six observables",
+                               "measured, both over the whole run", ref, *matched});
+  res.comparisons.push_back(
+      {"whole run: reference at C_t " + format_significant(opt.target_Ct) + " vs event at its default tolerance",
+       "reference extrapolated: per-step cost of its whole run at C_t " + format_significant(ref.setting) +
+           " x the step count at C_t " + format_significant(opt.target_Ct) +
+           " (T_run/dt, T_run of the tight "
+           "event run); per-step CPU cost vs C_t: whole run at C_t " +
+           format_significant(opt.whole_run_Ct.back()) + " / at " + format_significant(opt.whole_run_Ct.front()) +
+           " = " + format_significant(res.whole_per_step_ratio, 3) + ", first " + format_significant(opt.window_s) +
+           " s at C_t " + format_significant(opt.target_Ct) + " / at " + format_significant(opt.whole_run_Ct.front()) +
+           " = " + format_significant(res.window_per_step_ratio, 3) + "; its accuracy is not measured; event measured",
+       extrapolated_reference(opt, res, ref), ev_default});
+  res.comparisons.push_back(
+      {"early window (the previous definition): reference at C_t " + format_significant(opt.target_Ct) +
+           " over its first " + format_significant(opt.window_s) + " s vs event over the whole run",
+       "measured; the window (every junction bisected) is not representative of the run", window_target, ev_default});
+}
+
+}  // namespace
+
+SpeedResult run_speed(const SpeedOptions& opt) {
+  SpeedResult res;
+  res.threads = omp_get_max_threads();
+  SpeedBench bench{opt, res, {}};
+  run_truth(bench);
+  SpeedRun ev_default, window_target;
+  const std::vector<SpeedRun> ladder = run_event_ladder(bench, ev_default);
+  const std::vector<SpeedRun> whole = run_reference(bench, window_target);
+  add_comparisons(opt, res, whole, ladder, ev_default, window_target);
   return res;
 }
 
@@ -186,10 +234,11 @@ std::string speed_runs_csv(const SpeedResult& r) {
   for (const auto& n : robust_names()) o << ",relerr_" << n;
   o << '\n';
   auto row = [&](const SpeedRun& x) {
-    o << r.experiment << ',' << x.method << ',' << g(x.setting) << ',' << (x.whole ? "whole run" : "window") << ','
-      << g(x.t_end, 8) << ',' << x.steps << ',' << x.cycles << ',' << x.repeats << ',' << g(x.wall_s, 4) << ','
-      << g(x.cpu_s, 4) << ',' << g(x.wall_per_step(), 4) << ',' << g(x.cpu_per_step(), 4);
-    for (double e : x.error) o << ',' << g(e, 3);
+    o << r.experiment << ',' << x.method << ',' << format_significant(x.setting) << ','
+      << (x.whole ? "whole run" : "window") << ',' << format_significant(x.t_end, 8) << ',' << x.steps << ','
+      << x.cycles << ',' << x.repeats << ',' << format_significant(x.wall_s, 4) << ',' << format_significant(x.cpu_s, 4)
+      << ',' << format_significant(x.wall_per_step(), 4) << ',' << format_significant(x.cpu_per_step(), 4);
+    for (double e : x.error) o << ',' << format_significant(e, 3);
     o << '\n';
   };
   row(r.truth);
@@ -206,19 +255,20 @@ std::string speed_ratio_csv(const SpeedResult& r) {
   auto quoted = [](const std::string& s) { return '"' + s + '"'; };
   for (const auto& c : r.comparisons) {
     const SpeedRun &a = c.reference, &b = c.event;
-    o << r.experiment << ',' << quoted(c.comparison) << ',' << quoted(c.basis) << ',' << g(a.setting) << ','
-      << (a.whole ? "whole run" : "window") << ',' << a.steps << ',' << g(a.t_end, 6) << ',' << g(a.wall_s, 4) << ','
-      << g(a.cpu_s, 4) << ',' << errors_text(a) << ',' << g(b.setting) << ',' << g(b.t_end, 6) << ',' << g(b.wall_s, 4)
-      << ',' << g(b.cpu_s, 4) << ',' << errors_text(b) << ',' << g(c.ratio_wall(), 3) << ',' << g(c.ratio_cpu(), 3)
-      << '\n';
+    o << r.experiment << ',' << quoted(c.comparison) << ',' << quoted(c.basis) << ',' << format_significant(a.setting)
+      << ',' << (a.whole ? "whole run" : "window") << ',' << a.steps << ',' << format_significant(a.t_end, 6) << ','
+      << format_significant(a.wall_s, 4) << ',' << format_significant(a.cpu_s, 4) << ',' << errors_text(a) << ','
+      << format_significant(b.setting) << ',' << format_significant(b.t_end, 6) << ','
+      << format_significant(b.wall_s, 4) << ',' << format_significant(b.cpu_s, 4) << ',' << errors_text(b) << ','
+      << format_significant(c.ratio_wall(), 3) << ',' << format_significant(c.ratio_cpu(), 3) << '\n';
   }
   return o.str();
 }
 
 void write_speed(const fs::path& dir, const SpeedResult& r) {
   fs::create_directories(dir);
-  scene_io::write_text_file(dir / "speed_ratio.csv", speed_ratio_csv(r));
-  scene_io::write_text_file(dir / "speed_runs.csv", speed_runs_csv(r));
+  io::write_text_file(dir / "speed_ratio.csv", speed_ratio_csv(r));
+  io::write_text_file(dir / "speed_runs.csv", speed_runs_csv(r));
 }
 
 }  // namespace asperity

@@ -20,7 +20,7 @@ namespace fs = std::filesystem;
 namespace {
 
 using bench_text::exact;
-using bench_text::g;
+using io::format_significant;
 
 // Scene overrides shared by every run of one experiment: stop after the peak and `cycles`
 // stick-slip cycles; no series (the loading branch the fit needs is kept regardless).
@@ -60,26 +60,27 @@ TradeoffResult run_tradeoff(const TradeoffOptions& opt) {
   res.stand_in = is_stand_in(probe.experiment);
 
   // Converged solution and its check.
-  log("converged: event, tolerance " + g(opt.converged_tolerance) + " ... ");
+  log("converged: event, tolerance " + format_significant(opt.converged_tolerance) + " ... ");
   const TimedRun conv = timed_run(
       scene_with(opt.scene, base, {"solver.method=event", set_number("solver.tolerance", opt.converged_tolerance)}),
       opt.repeats);
-  log(g(conv.wall_s, 3) + " s, t_end = " + g(conv.obs.t_end) + " s, " + std::to_string(conv.obs.ss_cycles) +
-      " cycles\n");
+  log(format_significant(conv.wall_s, 3) + " s, t_end = " + format_significant(conv.obs.t_end) + " s, " +
+      std::to_string(conv.obs.ss_cycles) + " cycles\n");
   const Observables& ref_obs = conv.obs;
 
   auto add = [&](const std::string& method, double setting, const TimedRun& t) {
     WorkPrecisionRow r = make_row(name, method, setting, t);
     r.error = relative_errors(t.obs, ref_obs);
-    std::string line = "  " + method + " " + g(setting) + ": wall " + g(r.wall_s, 3) + " s (" +
-                       std::to_string(r.repeats) + " runs), errors";
-    for (std::size_t i = 0; i < n_robust; ++i) line += " " + robust_names()[i] + " " + g(r.error[i], 2);
+    std::string line = "  " + method + " " + format_significant(setting) + ": wall " + format_significant(r.wall_s, 3) +
+                       " s (" + std::to_string(r.repeats) + " runs), errors";
+    for (std::size_t i = 0; i < n_robust; ++i)
+      line += " " + robust_names()[i] + " " + format_significant(r.error[i], 2);
     log(line + "\n");
     res.rows.push_back(r);
     if (opt.on_setting) opt.on_setting(res.rows.size(), 2 + opt.tolerances.size() + opt.Ct.size());
   };
   add("event", opt.converged_tolerance, conv);
-  log("check: event, tolerance " + g(opt.check_tolerance) + "\n");
+  log("check: event, tolerance " + format_significant(opt.check_tolerance) + "\n");
   add("event", opt.check_tolerance,
       timed_run(
           scene_with(opt.scene, base, {"solver.method=event", set_number("solver.tolerance", opt.check_tolerance)}),
@@ -91,7 +92,7 @@ TradeoffResult run_tradeoff(const TradeoffOptions& opt) {
                   opt.repeats));
   std::vector<const WorkPrecisionRow*> ref_rows;
   for (double Ct : opt.Ct) {
-    log("reference, C_t = " + g(Ct) + " ...\n");
+    log("reference, C_t = " + format_significant(Ct) + " ...\n");
     add("reference", Ct,
         timed_run(scene_with(opt.scene, base, {"solver.method=reference", set_number("solver.Ct", Ct)}), opt.repeats));
   }
@@ -115,10 +116,11 @@ std::string work_precision_csv(const std::vector<WorkPrecisionRow>& rows) {
   for (const auto& n : robust_names()) o << ",relerr_" << n;
   o << '\n';
   for (const auto& r : rows) {
-    o << r.experiment << ',' << r.method << ',' << g(r.setting) << ',' << g(r.wall_s, 4) << ',' << g(r.cpu_s, 4) << ','
-      << r.repeats << ',' << g(r.t_end, 10) << ',' << r.steps;
+    o << r.experiment << ',' << r.method << ',' << format_significant(r.setting) << ','
+      << format_significant(r.wall_s, 4) << ',' << format_significant(r.cpu_s, 4) << ',' << r.repeats << ','
+      << format_significant(r.t_end, 10) << ',' << r.steps;
     for (double x : r.value) o << ',' << exact(x);
-    for (double x : r.error) o << ',' << g(x, 4);
+    for (double x : r.error) o << ',' << format_significant(x, 4);
     o << '\n';
   }
   return o.str();
@@ -130,7 +132,8 @@ std::string order_csv(const std::vector<OrderRow>& rows) {
   std::ostringstream o;
   o << "observable,Ct_lo,Ct_hi,order\n";
   for (const auto& r : rows)
-    o << r.observable << ',' << g(r.Ct_lo) << ',' << g(r.Ct_hi) << ',' << g(r.order, 3) << '\n';
+    o << r.observable << ',' << format_significant(r.Ct_lo) << ',' << format_significant(r.Ct_hi) << ','
+      << format_significant(r.order, 3) << '\n';
   return o.str();
 }
 
@@ -157,14 +160,15 @@ std::string plot_script(const TradeoffResult& r) {
     for (std::size_t i = 0; i < rows.size(); ++i) {
       const auto& row = *rows[i];
       std::ostringstream line;
-      line << g(row.wall_s, 6) << ' ' << g(row.setting);
-      for (double e : row.error) line << ' ' << g(std::isfinite(e) ? std::max(e, 1e-16) : NAN, 6);
+      line << format_significant(row.wall_s, 6) << ' ' << format_significant(row.setting);
+      for (double e : row.error) line << ' ' << format_significant(std::isfinite(e) ? std::max(e, 1e-16) : NAN, 6);
       gp << line.str() << '\n';
       if (i == 0 || i + 1 == rows.size()) ends << line.str() << '\n';
     }
     gp << "EOD\n$" << method << "_ends << EOD\n" << ends.str() << "EOD\n";
     if (!rows.empty())
-      range[method == "event"] = g(rows.front()->setting) + (rows.size() > 1 ? " … " + g(rows.back()->setting) : "");
+      range[method == "event"] = format_significant(rows.front()->setting) +
+                                 (rows.size() > 1 ? " … " + format_significant(rows.back()->setting) : "");
   }
   const std::string exp = r.rows.empty() ? "" : r.rows.front().experiment;
   gp << stand_in_mark(r.stand_in) << "set multiplot layout 2,3 title "
@@ -191,8 +195,8 @@ std::string plot_script(const TradeoffResult& r) {
 
 void write_tradeoff(const fs::path& dir, const TradeoffResult& r, const FigureFormats& figures) {
   fs::create_directories(dir);
-  scene_io::write_text_file(dir / "work_precision.csv", work_precision_csv(r.rows));
-  scene_io::write_text_file(dir / "reference_order.csv", order_csv(r.orders));
+  io::write_text_file(dir / "work_precision.csv", work_precision_csv(r.rows));
+  io::write_text_file(dir / "reference_order.csv", order_csv(r.orders));
   render_figures(dir / "work_precision.png", plot_script(r), 1500, 900, figures);
 }
 

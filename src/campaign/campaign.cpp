@@ -21,7 +21,7 @@ AxisValue Axis::value(std::uint64_t i) const {
       x = kind == Kind::linspace ? a + (b - a) * f : a * std::pow(b / a, f);
     }
   }
-  return AxisValue{true, false, x, scene_io::format_double(x)};
+  return AxisValue{true, false, x, io::format_double(x)};
 }
 
 std::uint64_t Grid::size() const {

@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <limits>
 
+#include "io/input_error.hpp"
 #include "io/numbers.hpp"
 #include "io/yaml_util.hpp"
 #include "scene/load.hpp"
@@ -14,7 +15,7 @@
 namespace asperity {
 
 namespace fs = std::filesystem;
-using namespace scene_io;
+using namespace io;
 
 namespace {
 
@@ -181,9 +182,7 @@ void read_base_scenes(const MapView& m, const fs::path& yaml, Campaign& c) {
     const fs::path p = yaml.parent_path() / scene_texts[i];
     std::error_code ec;
     if (!fs::is_regular_file(p, ec))
-      m.fail_at(
-          at, k,
-          "scene file not found: " + quote(scene_texts[i]) + " (looked for " + p.lexically_normal().string() + ")");
+      m.fail_at(at, k, "scene file not found: " + quote(scene_texts[i]) + " (looked for " + input_path(p) + ")");
     for (const auto& q : c.scenes)
       if (fs::equivalent(q, p, ec)) m.fail_at(at, k, "scene " + quote(scene_texts[i]) + " listed twice");
     c.scenes.push_back(p.lexically_normal());
@@ -259,7 +258,7 @@ void probe_axes(const Campaign& c, const std::string& display) {
 }  // namespace
 
 Campaign load_campaign(const fs::path& yaml) {
-  const std::string display = yaml.lexically_normal().string();
+  const std::string display = input_path(yaml);
   const Source src{display, nullptr};
   const YAML::Node root = load_yaml_file(yaml, display);
   const MapView m(src, root, "", kCampaignKeys, 1);

@@ -5,6 +5,7 @@
 #include <map>
 #include <optional>
 
+#include "io/input_error.hpp"
 #include "io/numbers.hpp"
 #include "io/yaml_util.hpp"
 #include "scene/load.hpp"
@@ -14,7 +15,7 @@
 namespace asperity {
 
 namespace fs = std::filesystem;
-using scene_io::format_double;
+using io::format_double;
 
 // A scene tree error caused by an override, re-reported at the campaign line that set it.
 [[noreturn]] void rethrow_at_campaign_line(const InputError& e, const std::string& campaign_file, int line,
@@ -53,8 +54,7 @@ YAML::Node parse_base(const BaseScene& b) {
   try {
     return YAML::Load(b.text);  // the text passed load_scene_tree's checks when it was read
   } catch (const YAML::Exception& e) {
-    throw InputError(b.file.lexically_normal().string(), e.mark.is_null() ? 0 : e.mark.line + 1, "",
-                     "malformed YAML: " + e.msg);
+    throw InputError(input_path(b.file), e.mark.is_null() ? 0 : e.mark.line + 1, "", "malformed YAML: " + e.msg);
   }
 }
 
@@ -72,7 +72,7 @@ YAML::Node base_tree(const Campaign& c, const BaseScene& b, const std::vector<in
       if (set_lines) scene_from_tree(tree, b.file, cache);
     } catch (const InputError& e) {
       if (!set_lines) throw;
-      rethrow_at_campaign_line(e, c.file.lexically_normal().string(), (*set_lines)[i], "set." + key);
+      rethrow_at_campaign_line(e, input_path(c.file), (*set_lines)[i], "set." + key);
     }
   }
   return tree;
@@ -85,7 +85,7 @@ std::vector<BaseScene> base_scenes(const Campaign& c) {
   for (const fs::path& p : c.scenes) {
     load_scene_tree(p);
     // Read again with the same bounded reader (a file swapped since is caught, never unbounded).
-    out.push_back({p, scene_io::read_input_file(p, p.lexically_normal().string(), scene_io::kMaxYamlBytes)});
+    out.push_back({p, io::read_input_file(p, input_path(p), io::kMaxYamlBytes)});
   }
   return out;
 }

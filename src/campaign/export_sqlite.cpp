@@ -50,7 +50,7 @@ bool store_number(const std::string& s, double& x) {
     x = s == "nan" ? NAN : (s == "inf" ? INFINITY : -INFINITY);
     return true;
   }
-  return scene_io::parse_double(s, x) == scene_io::NumberParse::ok;
+  return io::parse_double(s, x) == io::NumberParse::ok;
 }
 
 class Db {

@@ -35,12 +35,6 @@ using namespace sweep_detail;
 
 namespace {
 
-std::string num(double x) {
-  if (std::isnan(x)) return "nan";
-  if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
-  return scene_io::format_double(x);
-}
-
 struct Job {
   Point point;
   std::optional<Scene> scene;
@@ -185,8 +179,8 @@ std::string series_block_rows(std::uint64_t index, const RunResult& r, const std
 // Why a finished run counts as failed (empty: it did not).
 std::string run_failure(const Campaign& c, const RunResult& r) {
   if (r.recorder.timed_out())
-    return "per-point time limit of " + num(c.time_limit_s) +
-           " s exceeded at simulated t = " + num(r.recorder.last().t) + " s";
+    return "per-point time limit of " + io::format_exact(c.time_limit_s) +
+           " s exceeded at simulated t = " + io::format_exact(r.recorder.last().t) + " s";
   // A run that ends before any junction slips has no peak (Q_s = NaN) and is not a failure.
   const bool peak = r.obs.peak_found;
   for (const auto& [name, x] : {std::pair<const char*, double>{"Q_s", peak ? r.obs.Q_s : 0.0},
@@ -206,8 +200,9 @@ std::string job_row(const Campaign& c, const Job& job, const std::optional<RunRe
   for (const std::string& v : job.varied) row.append(",").append(csv_field(v));
   row += job.failed ? ",failed," + csv_field(job.error) : ",ok,";
   for (const ObservableField& f : observable_fields())
-    if (f.per_point) row.append(",").append(r && !job.failed ? observable_text(f, r->obs, num) : std::string());
-  return row + "," + num(wall);
+    if (f.per_point)
+      row.append(",").append(r && !job.failed ? observable_text(f, r->obs, io::format_exact) : std::string());
+  return row + "," + io::format_exact(wall);
 }
 
 // The three stages of the sweep's pipeline over one shard (sweep.hpp) and what they share.

@@ -59,7 +59,7 @@ std::string store_provenance_yaml(const Campaign& c, const std::string& campaign
   std::ostringstream y;
   y << kStoreProvenanceFirstLine << '\n';
   y << "campaign: " << yaml_quoted(c.name) << '\n';
-  y << "campaign_file: " << yaml_quoted(display_path(c.file)) << '\n';
+  y << "campaign_file: " << yaml_quoted(result_path(c.file)) << '\n';
   y << "campaign_fnv1a64: " << yaml_quoted(hex16(fnv1a64(campaign_text))) << '\n';
   y << "points: " << c.size() << '\n';
   y << "shard: " << yaml_quoted(std::to_string(opt.shard.index) + "/" + std::to_string(opt.shard.count)) << '\n';
@@ -171,7 +171,7 @@ std::string inputs_text(const Campaign& c, const std::string& build_id, const Sh
   // The effective `set` (the campaign's, then --set): --set changes points without changing the campaign text.
   for (const auto& [key, v] : c.set)
     t.add("set", hex16(fnv1a64(key + "\n" + std::to_string(v.is_number) + std::to_string(v.is_yaml) + "\n" +
-                               scene_io::format_double(v.number) + "\n" + v.text)));
+                               io::format_double(v.number) + "\n" + v.text)));
   const fs::path base = fs::absolute(c.file.parent_path()).lexically_normal();
   for (const fs::path& f : files)
     t.add_file("", f.lexically_relative(base).generic_string(), [&] { return hashes.of(f); });

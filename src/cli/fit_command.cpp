@@ -161,7 +161,7 @@ class EvaluationProgress {
       if (fits_ > 1)
         extra = std::to_string(finished_) + " of " + std::to_string(fits_) + " fits done";
       else if (best_ < HUGE_VAL)
-        extra = "best J so far " + scene_io::format_printf("%.4g", best_);
+        extra = "best J so far " + io::format_printf("%.4g", best_);
     }
     line_.update(done, extra);
   }

@@ -45,7 +45,7 @@ int generate_topography(const GenerateCliOptions& o) {
     double total = 0;
     for (const double A : t.experiment.junctions.area_m2) total += A;
     std::cout << "wrote " << t.experiment.junctions.size() << " junctions (" << t.clusters << " contact clusters, "
-              << t.merges << " merges of overlapping discs, total area " << scene_io::format_short(total)
+              << t.merges << " merges of overlapping discs, total area " << io::format_short(total)
               << " m^2; contact solve " << t.iterations << " iterations) to " << o.out
               << "/junctions.csv and experiment.yaml\n";
   }
@@ -66,8 +66,8 @@ int generate_synthetic(const GenerateCliOptions& o) {
               [&](const std::filesystem::path& tmp) { write_synthetic_experiment(recipe, x, tmp); });
   if (!o.quiet)
     std::cout << "wrote the SYNTHETIC experiment " << x.experiment.name << " (" << x.experiment.junctions.size()
-              << " junctions, Q_s = " << scene_io::format_short(x.model.Q_s)
-              << " N at t = " << scene_io::format_short(x.model.t_peak) << " s; " << x.experiment.measured->Q_N.size()
+              << " junctions, Q_s = " << io::format_short(x.model.Q_s)
+              << " N at t = " << io::format_short(x.model.t_peak) << " s; " << x.experiment.measured->Q_N.size()
               << " A(Q) and " << x.force.t_s.size() << " Q(t) samples) to " << o.out << "\n";
   return exit_ok;
 }

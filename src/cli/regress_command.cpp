@@ -59,7 +59,7 @@ int regress(const RegressOptions& opt) {
     history.push_back({today(), build_info().version, opt.reason});
     const Golden fresh = bless(results, history);
     fs::create_directories(fs::path(opt.golden).parent_path());
-    scene_io::write_text_file(opt.golden, golden_to_yaml(fresh));
+    io::write_text_file(opt.golden, golden_to_yaml(fresh));
     if (!opt.quiet)
       std::printf("blessed %zu entries in %.1f s wall (%d threads) -> %s\n", results.size(), wall, threads,
                   opt.golden.c_str());

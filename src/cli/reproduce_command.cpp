@@ -95,7 +95,7 @@ void run_paper(std::vector<PaperRun>& runs, const std::vector<std::filesystem::p
 void write_paper_outputs(const std::filesystem::path& out, const std::vector<PaperRun>& runs, const std::string& label,
                          const FigureFormats& figures) {
   std::filesystem::remove(out / "REPORT.md");  // a previous one would describe other runs
-  scene_io::write_text_file(out / "table.csv", paper_table_csv(runs));
+  io::write_text_file(out / "table.csv", paper_table_csv(runs));
   if (runs.empty()) return;
   for (const auto& [name, error] :
        {std::pair<const char*, std::string>{"fig3_Q_A_t.png", write_figure3(out, runs.front(), runs.back(), figures)},
@@ -154,7 +154,7 @@ std::size_t write_claims(const std::filesystem::path& out, const std::vector<Pap
   std::size_t n_runs = variants.size();
   const Calibration calibration =
       opt.fit.empty() ? Calibration{} : calibrate(spec_of_fit, opt.fit, threads, opt.quiet, n_runs);
-  scene_io::write_text_file(out / "REPORT.md", claims_report(runs, variants, calibration, label));
+  io::write_text_file(out / "REPORT.md", claims_report(runs, variants, calibration, label));
   return n_runs;
 }
 

@@ -44,13 +44,13 @@ std::string interaction_advice(const Scene& scene) {
   const PopulationMeasures m = population_measures(J.area_m2, x, y);
   if (!std::isfinite(m.stiffness_ratio)) return "";
   const StiffnessRule rule = independent_stiffness_rule();
-  const auto g = [](const char* f, double x) { return scene_io::format_printf(f, x); };
   const double percent = 100 * rule.error_at(m.stiffness_ratio);
   const bool outside = m.stiffness_ratio < rule.ratio_min || m.stiffness_ratio > rule.ratio_max;
-  return "independent junctions: estimated stiffness error " + g(percent < 10 ? "%.2g" : "%.0f", percent) + " %" +
-         (outside ? " (extrapolated)" : "") + " at stiffness ratio " + g("%.3g", m.stiffness_ratio) + " (coverage " +
-         g("%.3g", m.coverage) + "; docs/continuum.md, SYNTHETIC surfaces); interactions recommended above ratio " +
-         g("%.2g", rule.ratio_for(0.05)) + " (error 5 %)";
+  return "independent junctions: estimated stiffness error " +
+         io::format_printf(percent < 10 ? "%.2g" : "%.0f", percent) + " %" + (outside ? " (extrapolated)" : "") +
+         " at stiffness ratio " + io::format_short(m.stiffness_ratio) + " (coverage " + io::format_short(m.coverage) +
+         "; docs/continuum.md, SYNTHETIC surfaces); interactions recommended above ratio " +
+         io::format_printf("%.2g", rule.ratio_for(0.05)) + " (error 5 %)";
 }
 
 void print_summary(const Scene& scene, const Observables& o, const std::filesystem::path& out) {
@@ -83,13 +83,13 @@ void print_summary(const Scene& scene, const Observables& o, const std::filesyst
 // Q_s is the highest Q after the first slip (recorder.hpp): NaN means no junction slipped.
 std::string missing_peak_reason(const Scene& scene, const Observables& o) {
   if (!std::isnan(o.Q_s)) return "";
-  const auto g = [](double x) { return scene_io::format_printf("%.6g", x); };
   const std::string head = scene.file.string() + ": Q_s = nan: ";
   if (o.slips == 0)
-    return head + "no junction slipped before the run ended at t = " + g(o.t_end) + " s (stop.time " +
-           g(scene.stop.time) + " s); raise stop.time, or check the scene's values and their units";
-  return head + "no peak found (" + std::to_string(o.slips) + " slips) before the run ended at t = " + g(o.t_end) +
-         " s";
+    return head + "no junction slipped before the run ended at t = " + io::format_significant(o.t_end) +
+           " s (stop.time " + io::format_significant(scene.stop.time) +
+           " s); raise stop.time, or check the scene's values and their units";
+  return head + "no peak found (" + std::to_string(o.slips) +
+         " slips) before the run ended at t = " + io::format_significant(o.t_end) + " s";
 }
 
 int run(const RunOptions& opt, const Invocation& inv) {

@@ -80,8 +80,8 @@ int sweep(const SweepArgs& a, const Invocation& inv) {
     if (r.ran > 0) std::fprintf(stderr, " (%.2f points/s)", static_cast<double>(r.ran) / r.wall_s);
     if (std::isfinite(r.expected_s))
       std::fprintf(stderr, "\n  balanced by expected cost: this shard %s s on one core, shards %s to %s s",
-                   scene_io::format_short(r.expected_s).c_str(), scene_io::format_short(r.expected_min_s).c_str(),
-                   scene_io::format_short(r.expected_max_s).c_str());
+                   io::format_short(r.expected_s).c_str(), io::format_short(r.expected_min_s).c_str(),
+                   io::format_short(r.expected_max_s).c_str());
     std::fprintf(
         stderr, "\n  store %s: %llu ok, %llu failed%s; %s\n", (r.store / "points.csv").string().c_str(),
         static_cast<unsigned long long>(r.ok), static_cast<unsigned long long>(r.failed),
@@ -124,11 +124,11 @@ Command add_sweep_command(CLI::App& app) {
       ->check(CLI::Range(1u, 1000000000u));
   sub->add_option("--sync-seconds", a->sync.seconds,
                   "... or sooner, at the first point journaled S seconds after the last fdatasync (default " +
-                      scene_io::format_short(a->sync.seconds) + "; 0: no time bound)")
+                      io::format_short(a->sync.seconds) + "; 0: no time bound)")
       ->check(CLI::Validator(
           [](std::string& v) -> std::string {
             double x = -1;
-            return scene_io::parse_double(v, x) == scene_io::NumberParse::ok && x >= 0 && x <= 86400
+            return io::parse_double(v, x) == io::NumberParse::ok && x >= 0 && x <= 86400
                        ? ""
                        : "Value " + v + " not in range 0 to 86400";
           },

@@ -74,9 +74,9 @@ ConvergenceVerdict judge_convergence(const std::vector<StartEnd>& ends, const Ba
     v.spread = std::max(v.spread, d);
   }
   const std::string counted = std::to_string(v.in_basin) + " of " + std::to_string(ends.size()) +
-                              " starts reached the best objective " + scene_io::format_double(best) + " (within " +
-                              scene_io::format_double(rule.relative) + " relative, or " +
-                              scene_io::format_double(rule.distance) + " in the scaled coordinates)";
+                              " starts reached the best objective " + io::format_double(best) + " (within " +
+                              io::format_double(rule.relative) + " relative, or " + io::format_double(rule.distance) +
+                              " in the scaled coordinates)";
   if (ends.size() < 2) {
     v.converged = Converged::unverified;
     v.reason = "one start: nothing to compare its optimum with; set optimizer.starts >= 2 to certify it";

@@ -16,6 +16,7 @@
 #include "fit/fit_problem.hpp"
 #include "fit/fit_uncertainty.hpp"
 #include "io/input_error.hpp"
+#include "io/numbers.hpp"
 #include "observe/run_monitor.hpp"
 
 namespace asperity::fit_detail {
@@ -283,10 +284,10 @@ std::string done_line(const Problem& pb, const Optimization& o) {
   if (o.best.empty() || !std::isfinite(o.objective))
     line += "no successful evaluation";
   else
-    line += "best J = " + g6(o.objective) + " at " + values_text(pb, o.best);
+    line += "best J = " + io::format_significant(o.objective) + " at " + values_text(pb, o.best);
   line += ", converged: " + std::string(converged_name(o.converged)) + " (" + std::to_string(o.in_best_basin) + " of " +
           std::to_string(o.starts.size()) + " start(s) in the best basin), " + std::to_string(o.evaluations) +
-          " evaluations, " + o.stop_reason + ", " + g6(o.wall_s) + " s";
+          " evaluations, " + o.stop_reason + ", " + io::format_significant(o.wall_s) + " s";
   if (!o.failure.empty()) line += "; FAILED: " + o.failure;
   return line;
 }

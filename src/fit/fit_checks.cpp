@@ -11,7 +11,7 @@
 
 namespace asperity {
 
-using namespace scene_io;
+using namespace io;
 
 const char* objective_name(FitObjective o) {
   switch (o) {
@@ -43,14 +43,6 @@ const char* force_score_name(ForceScore s) {
   return "unknown";
 }
 
-namespace {
-std::string g4(double x) {  // message numbers: 4 significant digits
-  char b[40];
-  std::snprintf(b, sizeof b, "%.4g", x);
-  return b;
-}
-}  // namespace
-
 std::string measured_curve_problem(const MeasuredCurve& curve, double A0_sum) {
   // Least squares of A = a + b x with x = Q² (b = −α), over the finite points.
   std::vector<double> x, y;
@@ -80,12 +72,14 @@ std::string measured_curve_problem(const MeasuredCurve& curve, double A0_sum) {
   const double se_alpha = std::sqrt(ss_res / static_cast<double>(n - 2) / sxx);
   const double alpha = -b;
   if (!(alpha > kMeasuredAlphaMinSigmas * se_alpha))
-    return "measured A(Q) does not decrease with Q: the fit A = a - alpha Q^2 gives alpha = " + g4(alpha) + " +- " +
-           g4(se_alpha) + " m^2/N^2 (a fit needs alpha > " + g4(kMeasuredAlphaMinSigmas) + " standard errors)";
+    return "measured A(Q) does not decrease with Q: the fit A = a - alpha Q^2 gives alpha = " +
+           format_significant(alpha, 4) + " +- " + format_significant(se_alpha, 4) + " m^2/N^2 (a fit needs alpha > " +
+           format_significant(kMeasuredAlphaMinSigmas, 4) + " standard errors)";
   if (!(std::abs(a / A0_sum - 1) <= kMeasuredA0Tolerance))
-    return "measured A(Q = 0) = " + g4(a) + " m^2 (intercept of A = a - alpha Q^2) is " + g4(a / A0_sum) +
-           " x the sum of the junction areas, " + g4(A0_sum) + " m^2 (allowed: within " +
-           g4(kMeasuredA0Tolerance * 100) + " %; wrong unit or wrong file?)";
+    return "measured A(Q = 0) = " + format_significant(a, 4) + " m^2 (intercept of A = a - alpha Q^2) is " +
+           format_significant(a / A0_sum, 4) + " x the sum of the junction areas, " + format_significant(A0_sum, 4) +
+           " m^2 (allowed: within " + format_significant(kMeasuredA0Tolerance * 100, 4) +
+           " %; wrong unit or wrong file?)";
   return "";
 }
 

@@ -68,18 +68,17 @@ Evaluation parse_evaluation(const std::vector<std::string>& f, const std::string
     throw InputError(name, lineno, f.size() < 8 ? kColumns[f.size()] : "check",
                      "expected 8 fields and a checksum, got " + std::to_string(f.size()) + " fields");
   Evaluation ev;
-  if (!scene_io::parse_int(f[2], ev.index) || ev.index < 1)
-    throw InputError(name, lineno, "evaluation", "not a positive whole number: " + scene_io::quote(f[2]));
+  if (!io::parse_int(f[2], ev.index) || ev.index < 1)
+    throw InputError(name, lineno, "evaluation", "not a positive whole number: " + io::quote(f[2]));
   if (!parse_list(f[3], ev.values) || ev.values.empty())
-    throw InputError(name, lineno, "x", "not a ';'-separated list of numbers: " + scene_io::quote(f[3]));
+    throw InputError(name, lineno, "x", "not a ';'-separated list of numbers: " + io::quote(f[3]));
   if (!parse_number(f[4], ev.objective))
-    throw InputError(name, lineno, "objective", "not a number: " + scene_io::quote(f[4]));
+    throw InputError(name, lineno, "objective", "not a number: " + io::quote(f[4]));
   if (!parse_list(f[5], ev.residuals))
-    throw InputError(name, lineno, "terms", "not a ';'-separated list of numbers: " + scene_io::quote(f[5]));
+    throw InputError(name, lineno, "terms", "not a ';'-separated list of numbers: " + io::quote(f[5]));
   if (f[6].empty()) throw InputError(name, lineno, "status", "empty");
   ev.status = f[6];
-  if (!parse_number(f[7], ev.wall_s))
-    throw InputError(name, lineno, "wall_s", "not a number: " + scene_io::quote(f[7]));
+  if (!parse_number(f[7], ev.wall_s)) throw InputError(name, lineno, "wall_s", "not a number: " + io::quote(f[7]));
   return ev;
 }
 

@@ -10,6 +10,7 @@
 #include "batch/stop_flag.hpp"
 #include "fit/fit_journal.hpp"
 #include "fit/objective.hpp"
+#include "io/numbers.hpp"
 #include "io/provenance.hpp"
 #include "observe/simulate.hpp"
 
@@ -41,17 +42,19 @@ ExperimentEval run_experiment(const FitSpec& spec, std::size_t e, const std::vec
     if (std::isnan(out.residual) && spec.objective == FitObjective::user) {
       out.error = "objective term of " + fe.name + " is NaN (the user objective returned nan)";
     } else if (std::isnan(out.residual)) {
-      out.error = "objective term of " + fe.name + " is NaN (model alpha = " + g6(r.obs.alpha) +
-                  ", measured alpha = " + g6(r.obs.alpha_measured) + ", Q_s = " + g6(r.obs.Q_s) +
+      out.error = "objective term of " + fe.name + " is NaN (model alpha = " + io::format_significant(r.obs.alpha) +
+                  ", measured alpha = " + io::format_significant(r.obs.alpha_measured) +
+                  ", Q_s = " + io::format_significant(r.obs.Q_s) +
                   ", loading-branch points = " + std::to_string(r.recorder.loading_branch().size()) + ")";
     } else if (!r.obs.peak_found && spec.objective != FitObjective::area_and_force) {
       // (area_and_force compares the whole measured Q(t) window, peak or not: a model without a
       // peak there is a poor fit, scored as such, not a broken run.)
       // Without a confirmed peak, Q_s, the loading branch and every objective built on them
       // come from wherever the run stopped: a number, but not the one the fit is about.
-      out.error = fe.name + " (" + display_path(scene.experiment.file) +
-                  "): no confirmed static friction peak before stop.time = " + g6(scene.stop.time) + " s (highest Q " +
-                  g6(r.obs.Q_s) + " N at t = " + g6(r.obs.t_peak) +
+      out.error = fe.name + " (" + result_path(scene.experiment.file) +
+                  "): no confirmed static friction peak before stop.time = " + io::format_significant(scene.stop.time) +
+                  " s (highest Q " + io::format_significant(r.obs.Q_s) +
+                  " N at t = " + io::format_significant(r.obs.t_peak) +
                   " s); the objective would use an unfinished loading branch: raise stop.time";
     }
     if (keep) {
@@ -107,7 +110,8 @@ Evaluation evaluate(const Problem& pb, const std::vector<double>& x, std::vector
     ev.objective += e.residual;
     if (!e.error.empty() && ev.status == "ok") ev.status = e.error;
   }
-  if (ev.status == "ok" && !std::isfinite(ev.objective)) ev.status = "objective is not finite: " + g6(ev.objective);
+  if (ev.status == "ok" && !std::isfinite(ev.objective))
+    ev.status = "objective is not finite: " + io::format_significant(ev.objective);
   if (ev.status != "ok") ev.objective = Observables::nan;
   ev.wall_s = seconds_since(t0);
   if (runs) *runs = std::move(r);
@@ -117,7 +121,8 @@ Evaluation evaluate(const Problem& pb, const std::vector<double>& x, std::vector
 std::string values_text(const Problem& pb, const std::vector<double>& x, bool every_digit) {
   std::string s;
   for (std::size_t i = 0; i < x.size(); ++i)
-    s += (i ? ", " : "") + pb.vars[i].label + " = " + (every_digit ? scene_io::format_double(x[i]) : g6(x[i]));
+    s += (i ? ", " : "") + pb.vars[i].label + " = " +
+         (every_digit ? io::format_double(x[i]) : io::format_significant(x[i]));
   return s;
 }
 

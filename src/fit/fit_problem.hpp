@@ -25,7 +25,6 @@ using Clock = std::chrono::steady_clock;
 inline double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 // Six significant digits: the numbers of the fit's messages and progress lines.
-inline std::string g6(double x) { return scene_io::format_printf("%.6g", x); }
 
 // One experiment run at given settings: its residual and what the report needs.
 struct ExperimentEval {

@@ -10,6 +10,7 @@
 
 #include "batch/parallel_runner.hpp"
 #include "fit/objective.hpp"
+#include "io/numbers.hpp"
 #include "scene/scene_keys.hpp"
 
 namespace asperity::fit_detail {
@@ -105,8 +106,8 @@ std::string hessian_start(const FitSpec& spec, const Optimization& o, std::vecto
       dxdu[i] = p.hi - p.lo;
     }
     if (u0[i] - h[i] < 0 || u0[i] + h[i] > 1)
-      return o.variables[i].label + " = " + g6(o.best[i]) + " is within one step (" + g6(spec.hessian_step) +
-             " relative) of its bound: no central difference";
+      return o.variables[i].label + " = " + io::format_significant(o.best[i]) + " is within one step (" +
+             io::format_significant(spec.hessian_step) + " relative) of its bound: no central difference";
   }
   return "";
 }
@@ -265,7 +266,7 @@ void run_uncertainty(const FitSpec& spec, const Problem& pb, Optimization& o) {
       rows += i ? "; " : "";
       for (Eigen::Index j = 0; j < H.cols(); ++j) {
         if (j) rows += " ";  // (two appends: GCC 12's -Wrestrict misreads " " + string here)
-        rows += g6(H(i, j));
+        rows += io::format_significant(H(i, j));
       }
     }
     un.failure =

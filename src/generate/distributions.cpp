@@ -2,8 +2,9 @@
 
 #include <boost/math/distributions/normal.hpp>
 #include <cmath>
-#include <cstdio>
 #include <stdexcept>
+
+#include "io/numbers.hpp"
 
 namespace asperity {
 
@@ -32,12 +33,6 @@ double power_integral(double lo, double hi, double q) {
   const double L = std::log(hi / lo);
   if (q == 0.0) return L;
   return std::pow(lo, q) * std::expm1(q * L) / q;
-}
-
-std::string fmt(double x) {
-  char b[64];
-  std::snprintf(b, sizeof b, "%.6g", x);
-  return b;
 }
 
 }  // namespace
@@ -103,15 +98,17 @@ double component_cdf(const Component& c, double a) {
 std::string describe(const Component& c) {
   struct V {
     std::string operator()(const PowerLaw& d) const {
-      return "power law tau=" + fmt(d.tau) + " on [" + fmt(d.a_min) + ", " + fmt(d.a_max) + "] m^2";
+      return "power law tau=" + io::format_significant(d.tau) + " on [" + io::format_significant(d.a_min) + ", " +
+             io::format_significant(d.a_max) + "] m^2";
     }
     std::string operator()(const LogNormal& d) const {
-      std::string s = "lognormal median=" + fmt(d.median) + " m^2 sigma_ln=" + fmt(d.sigma_ln);
+      std::string s = "lognormal median=" + io::format_significant(d.median) +
+                      " m^2 sigma_ln=" + io::format_significant(d.sigma_ln);
       if (d.a_min > 0.0 || std::isfinite(d.a_max))
-        s += " truncated to [" + fmt(d.a_min) + ", " + fmt(d.a_max) + "] m^2";
+        s += " truncated to [" + io::format_significant(d.a_min) + ", " + io::format_significant(d.a_max) + "] m^2";
       return s;
     }
-    std::string operator()(const Fixed& d) const { return "fixed area=" + fmt(d.area) + " m^2"; }
+    std::string operator()(const Fixed& d) const { return "fixed area=" + io::format_significant(d.area) + " m^2"; }
   };
   return std::visit(V{}, c);
 }
@@ -169,7 +166,7 @@ std::string Distribution::describe() const {
   if (const auto* m = std::get_if<Mixture>(&family)) {
     std::string s = "mixture of";
     for (std::size_t j = 0; j < m->components.size(); ++j)
-      s += (j ? "; " : " ") + fmt(m->weight(j)) + " x " + asperity::describe(m->components[j]);
+      s += (j ? "; " : " ") + io::format_significant(m->weight(j)) + " x " + asperity::describe(m->components[j]);
     return s;
   }
   return std::visit(

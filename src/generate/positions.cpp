@@ -49,8 +49,8 @@ Positions place_in_contact_disc(const std::vector<double>& areas, double R, std:
     }
     if (!placed)
       throw std::invalid_argument("no room for junction " + std::to_string(i + 1) + " (area " +
-                                  scene_io::format_short(areas[i]) + " m^2) in a contact disc of radius " +
-                                  scene_io::format_short(R) + " m after " + std::to_string(max_tries) +
+                                  io::format_short(areas[i]) + " m^2) in a contact disc of radius " +
+                                  io::format_short(R) + " m after " + std::to_string(max_tries) +
                                   " draws: the junctions cover too much of it; raise the contact radius");
   }
   return p;

@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 
+#include "io/input_error.hpp"
 #include "io/numbers.hpp"
 #include "io/yaml_util.hpp"
 
@@ -25,28 +26,28 @@ std::uint64_t force_seed(std::uint64_t experiment_seed) { return splitmix64(expe
 
 namespace {
 
-using scene_io::MapView;
-using scene_io::Source;
+using io::MapView;
+using io::Source;
 
 // Number with a range check, reported at the value's line.
 double positive(const MapView& m, const std::string& k, const char* unit) {
   const YAML::Node n = m.require(k);
   const double x = m.number(n, k, unit);
-  if (!(x > 0.0)) m.fail_at(n, k, "must be > 0, got " + scene_io::format_double(x));
+  if (!(x > 0.0)) m.fail_at(n, k, "must be > 0, got " + io::format_double(x));
   return x;
 }
 
 void get_positive(const MapView& m, const std::string& k, double& out, const char* unit) {
   if (auto n = m.find(k)) {
     out = m.number(*n, k, unit);
-    if (!(out > 0.0)) m.fail_at(*n, k, "must be > 0, got " + scene_io::format_double(out));
+    if (!(out > 0.0)) m.fail_at(*n, k, "must be > 0, got " + io::format_double(out));
   }
 }
 
 void get_fraction(const MapView& m, const std::string& k, double& out) {
   if (auto n = m.find(k)) {
     out = m.number(*n, k, nullptr);
-    if (!(out > 0.0 && out < 1.0)) m.fail_at(*n, k, "must be between 0 and 1, got " + scene_io::format_double(out));
+    if (!(out > 0.0 && out < 1.0)) m.fail_at(*n, k, "must be between 0 and 1, got " + io::format_double(out));
   }
 }
 
@@ -122,7 +123,7 @@ Distribution read_distribution(const Source& src, const YAML::Node& node, const 
   const YAML::Node list = m.require("components");
   if (!list.IsSequence() || list.size() == 0)
     m.fail_at(list, "components",
-              "expected a non-empty list of {weight, family, ...} maps, got " + scene_io::node_kind(list));
+              "expected a non-empty list of {weight, family, ...} maps, got " + io::node_kind(list));
   for (std::size_t j = 0; j < list.size(); ++j) {
     const YAML::Node c = list[j];
     const std::string cpath = m.key("components") + "[" + std::to_string(j) + "]";
@@ -137,47 +138,26 @@ Distribution read_distribution(const Source& src, const YAML::Node& node, const 
   return Distribution{mix};
 }
 
-}  // namespace
-
-StandinRecipe load_recipe(const std::filesystem::path& path) {
-  const std::string display = path.lexically_normal().string();
-  const YAML::Node root = scene_io::load_yaml_file(path, display);
-  const Source src{display, nullptr};
-  StandinRecipe r;
-  r.file = path;
-  MapView top(src, root, "",
-              {"seed", "gravity", "masses_kg", "k_L", "v", "E", "nu", "sigma_exp", "junctions_per_newton",
-               "distribution", "positions", "measured", "measured_force", "model_run", "scenes"});
-  r.seed = seed_value(top, "seed");
-  get_positive(top, "gravity", r.gravity, "m/s^2");
-  {
-    const YAML::Node ml = top.require("masses_kg");
-    if (!ml.IsSequence() || ml.size() == 0)
-      top.fail_at(ml, "masses_kg", "expected a non-empty list of masses in kg, got " + scene_io::node_kind(ml));
-    for (std::size_t i = 0; i < ml.size(); ++i) {
-      const std::string k = "masses_kg[" + std::to_string(i) + "]";
-      const YAML::Node n = ml[i];
-      const YAML::Node at = n.Mark().is_null() ? ml : n;
-      if (!n.IsScalar()) top.fail_at(at, k, "expected a number in SI units (kg), got " + scene_io::node_kind(n));
-      const double M = top.number(n, k, "kg");
-      if (!(M > 0.0)) top.fail_at(at, k, "must be > 0");
-      if (!r.masses_kg.empty() && !(M > r.masses_kg.back()))
-        top.fail_at(at, k, "masses must be listed in increasing order");
-      r.masses_kg.push_back(M);
-    }
+// masses_kg: a non-empty list, increasing.
+void read_masses(const MapView& top, StandinRecipe& r) {
+  const YAML::Node ml = top.require("masses_kg");
+  if (!ml.IsSequence() || ml.size() == 0)
+    top.fail_at(ml, "masses_kg", "expected a non-empty list of masses in kg, got " + io::node_kind(ml));
+  for (std::size_t i = 0; i < ml.size(); ++i) {
+    const std::string k = "masses_kg[" + std::to_string(i) + "]";
+    const YAML::Node n = ml[i];
+    const YAML::Node at = n.Mark().is_null() ? ml : n;
+    if (!n.IsScalar()) top.fail_at(at, k, "expected a number in SI units (kg), got " + io::node_kind(n));
+    const double M = top.number(n, k, "kg");
+    if (!(M > 0.0)) top.fail_at(at, k, "must be > 0");
+    if (!r.masses_kg.empty() && !(M > r.masses_kg.back()))
+      top.fail_at(at, k, "masses must be listed in increasing order");
+    r.masses_kg.push_back(M);
   }
-  r.k_L = positive(top, "k_L", "N/m");
-  r.v = positive(top, "v", "m/s");
-  r.E = positive(top, "E", "Pa");
-  {
-    const YAML::Node n = top.require("nu");
-    r.nu = top.number(n, "nu", nullptr);
-    if (!(r.nu >= 0.0 && r.nu <= 0.5)) top.fail_at(n, "nu", "must be in [0, 0.5]");
-  }
-  r.sigma_exp = positive(top, "sigma_exp", "Pa");
-  r.junctions_per_newton = positive(top, "junctions_per_newton", "1/N");
-  r.distribution = read_distribution(src, top.require("distribution"), "distribution");
+}
 
+// The section `positions`, if any: a square or a contact disc, not both.
+void read_positions(const Source& src, const MapView& top, StandinRecipe& r) {
   if (auto pn = top.find("positions")) {
     MapView p(src, *pn, "positions", {"square_side_m", "contact_radius_m", "reference_load_N"});
     if (p.find("square_side_m")) r.square_side_m = positive(p, "square_side_m", "m");
@@ -186,23 +166,27 @@ StandinRecipe load_recipe(const std::filesystem::path& path) {
     if ((r.square_side_m > 0) == (r.contact_radius_m > 0))
       p.fail_at(*pn, "positions", "give either square_side_m or contact_radius_m (with optional reference_load_N)");
   }
+}
 
-  {
-    MapView m(src, top.require("measured"), "measured",
-              {"alpha_b", "area_drop_smallest_load", "area_drop_largest_load", "points", "noise_relative"});
-    r.alpha_b = positive(m, "alpha_b", "m^5/N^2");
-    get_fraction(m, "area_drop_smallest_load", r.drop_smallest);
-    get_fraction(m, "area_drop_largest_load", r.drop_largest);
-    if (auto n = m.find("points")) {
-      r.points = m.integer(*n, "points");
-      if (r.points < 2) m.fail_at(*n, "points", "must be at least 2");
-    }
-    if (auto n = m.find("noise_relative")) {
-      r.noise_relative = m.number(*n, "noise_relative", nullptr);
-      if (!(r.noise_relative >= 0.0 && r.noise_relative < 0.1)) m.fail_at(*n, "noise_relative", "must be in [0, 0.1)");
-    }
+// The section `measured`: how the measured A(Q) curves are made.
+void read_measured(const Source& src, const MapView& top, StandinRecipe& r) {
+  MapView m(src, top.require("measured"), "measured",
+            {"alpha_b", "area_drop_smallest_load", "area_drop_largest_load", "points", "noise_relative"});
+  r.alpha_b = positive(m, "alpha_b", "m^5/N^2");
+  get_fraction(m, "area_drop_smallest_load", r.drop_smallest);
+  get_fraction(m, "area_drop_largest_load", r.drop_largest);
+  if (auto n = m.find("points")) {
+    r.points = m.integer(*n, "points");
+    if (r.points < 2) m.fail_at(*n, "points", "must be at least 2");
   }
+  if (auto n = m.find("noise_relative")) {
+    r.noise_relative = m.number(*n, "noise_relative", nullptr);
+    if (!(r.noise_relative >= 0.0 && r.noise_relative < 0.1)) m.fail_at(*n, "noise_relative", "must be in [0, 0.1)");
+  }
+}
 
+// The section `measured_force`, if any: how the measured Q(t) curves are made.
+void read_measured_force(const Source& src, const MapView& top, StandinRecipe& r) {
   if (auto fn = top.find("measured_force")) {
     MapView m(src, *fn, "measured_force", {"every", "after_peak", "noise_relative"});
     r.force_every = positive(m, "every", "s");
@@ -216,7 +200,11 @@ StandinRecipe load_recipe(const std::filesystem::path& path) {
         m.fail_at(*n, "noise_relative", "must be in [0, 0.1)");
     }
   }
+}
 
+// The sections `model_run` (the model runs the curves are made from) and `scenes` (the scenes
+// written), if any.
+void read_runs(const Source& src, const MapView& top, StandinRecipe& r) {
   if (auto rn = top.find("model_run")) {
     MapView m(src, *rn, "model_run", {"solver", "stop_time", "every", "peak_min_drop"});
     if (auto sn = m.find("solver")) {
@@ -231,12 +219,42 @@ StandinRecipe load_recipe(const std::filesystem::path& path) {
     get_positive(m, "every", r.run_every, "s");
     get_fraction(m, "peak_min_drop", r.run_peak_min_drop);
   }
-
   if (auto sn = top.find("scenes")) {
     MapView m(src, *sn, "scenes", {"stop_time", "every"});
     get_positive(m, "stop_time", r.scene_stop_time, "s");
     get_positive(m, "every", r.scene_every, "s");
   }
+}
+
+}  // namespace
+
+StandinRecipe load_recipe(const std::filesystem::path& path) {
+  const std::string display = input_path(path);
+  const YAML::Node root = io::load_yaml_file(path, display);
+  const Source src{display, nullptr};
+  StandinRecipe r;
+  r.file = path;
+  MapView top(src, root, "",
+              {"seed", "gravity", "masses_kg", "k_L", "v", "E", "nu", "sigma_exp", "junctions_per_newton",
+               "distribution", "positions", "measured", "measured_force", "model_run", "scenes"});
+  r.seed = seed_value(top, "seed");
+  get_positive(top, "gravity", r.gravity, "m/s^2");
+  read_masses(top, r);
+  r.k_L = positive(top, "k_L", "N/m");
+  r.v = positive(top, "v", "m/s");
+  r.E = positive(top, "E", "Pa");
+  {
+    const YAML::Node n = top.require("nu");
+    r.nu = top.number(n, "nu", nullptr);
+    if (!(r.nu >= 0.0 && r.nu <= 0.5)) top.fail_at(n, "nu", "must be in [0, 0.5]");
+  }
+  r.sigma_exp = positive(top, "sigma_exp", "Pa");
+  r.junctions_per_newton = positive(top, "junctions_per_newton", "1/N");
+  r.distribution = read_distribution(src, top.require("distribution"), "distribution");
+  read_positions(src, top, r);
+  read_measured(src, top, r);
+  read_measured_force(src, top, r);
+  read_runs(src, top, r);
   return r;
 }
 

@@ -20,7 +20,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-using scene_io::format_double;
+using io::format_double;
 
 std::string model_text(const ModelSettings& m) {
   return m.interactions == Interactions::elastic ? "interacting junctions (model.interactions = elastic)"
@@ -81,13 +81,12 @@ MeasuredForce synthetic_force(const SyntheticRecipe& r, const std::vector<Sample
 [[noreturn]] void fail_at_end(const SyntheticRecipe& r, const std::string& message) {
   int line = 0;
   try {
-    const YAML::Node n =
-        scene_io::load_yaml_file(r.file, r.file.lexically_normal().string())["synthetic"]["measured_force"]["end"];
+    const YAML::Node n = io::load_yaml_file(r.file, input_path(r.file))["synthetic"]["measured_force"]["end"];
     if (n.IsDefined()) line = n.Mark().line + 1;
   } catch (const std::exception&) {
     // read a moment ago; without it the message keeps no line
   }
-  throw InputError(r.file.lexically_normal().string(), line, "synthetic.measured_force.end", message);
+  throw InputError(input_path(r.file), line, "synthetic.measured_force.end", message);
 }
 
 }  // namespace
@@ -154,8 +153,8 @@ std::string scene_text(const SyntheticRecipe& r) {
   return "# " + label(r) +
          "\n# The scene that generated this folder's data (the truth); written by `asperity generate`, regenerate "
          "rather than edit.\nexperiment: experiment.yaml\n" +
-         model_solver_yaml(r.scene.model, r.scene.solver) + "stop:\n  time: " + scene_io::format_double(r.force_end) +
-         "\noutput:\n  every: " + scene_io::format_double(r.force_every) + "\n";
+         model_solver_yaml(r.scene.model, r.scene.solver) + "stop:\n  time: " + io::format_double(r.force_end) +
+         "\noutput:\n  every: " + io::format_double(r.force_every) + "\n";
 }
 
 std::string readme_text(const SyntheticRecipe& r, const SyntheticExperiment& x) {
@@ -190,16 +189,15 @@ std::string readme_text(const SyntheticRecipe& r, const SyntheticExperiment& x) 
 void write_synthetic_experiment(const SyntheticRecipe& r, const SyntheticExperiment& x, const fs::path& out_dir) {
   fs::create_directories(out_dir);
   const std::string l = label(r);
-  scene_io::write_text_file(out_dir / "junctions.csv", junctions_text(l, x.experiment.junctions));
-  scene_io::write_text_file(out_dir / "measured.csv",
-                            labelled_csv(l, "Q_N,A_m2", {&x.experiment.measured->Q_N, &x.experiment.measured->A_m2}));
+  io::write_text_file(out_dir / "junctions.csv", junctions_text(l, x.experiment.junctions));
+  io::write_text_file(out_dir / "measured.csv",
+                      labelled_csv(l, "Q_N,A_m2", {&x.experiment.measured->Q_N, &x.experiment.measured->A_m2}));
   write_force_csv(out_dir / "measured_Qt.csv", x.force,
                   {l, "The run's Q(t) (series every " + format_double(r.force_every) + " s to " +
                           format_double(r.force_end) + " s) plus noise; columns t_s [s], Q_N [N]. See README.md."});
-  scene_io::write_text_file(out_dir / "experiment.yaml",
-                            experiment_to_yaml(x.experiment, "junctions.csv", "measured.csv"));
-  scene_io::write_text_file(out_dir / "scene.yaml", scene_text(r));
-  scene_io::write_text_file(out_dir / "README.md", readme_text(r, x));
+  io::write_text_file(out_dir / "experiment.yaml", experiment_to_yaml(x.experiment, "junctions.csv", "measured.csv"));
+  io::write_text_file(out_dir / "scene.yaml", scene_text(r));
+  io::write_text_file(out_dir / "README.md", readme_text(r, x));
 }
 
 }  // namespace asperity

@@ -13,14 +13,12 @@ namespace fs = std::filesystem;
 
 namespace {
 
-using scene_io::MapView;
-using scene_io::Source;
-
-std::string display_of(const fs::path& p) { return p.lexically_normal().string(); }
+using io::MapView;
+using io::Source;
 
 double positive(const MapView& m, const YAML::Node& n, const std::string& k, const char* unit) {
   const double x = m.number(n, k, unit);
-  if (!(x > 0.0)) m.fail_at(n, k, "must be > 0, got " + scene_io::format_double(x));
+  if (!(x > 0.0)) m.fail_at(n, k, "must be > 0, got " + io::format_double(x));
   return x;
 }
 
@@ -29,7 +27,7 @@ double noise_level(const MapView& m, const std::string& k, double fallback) {
   const auto n = m.find(k);
   if (!n) return fallback;
   const double x = m.number(*n, k, nullptr);
-  if (!(x >= 0.0 && x < 0.1)) m.fail_at(*n, k, "must be in [0, 0.1), got " + scene_io::format_double(x));
+  if (!(x >= 0.0 && x < 0.1)) m.fail_at(*n, k, "must be in [0, 0.1), got " + io::format_double(x));
   return x;
 }
 
@@ -39,13 +37,13 @@ bool settable(const std::string& key) { return key.rfind("model.", 0) == 0 || ke
 
 // The base scene with `set` applied. A bad value is reported at its line in the recipe.
 Scene truth_scene(const MapView& top, SyntheticRecipe& r, const YAML::Node& scene_node, const YAML::Node* set_node) {
-  YAML::Node tree = scene_io::load_yaml_file(r.scene_file, display_of(r.scene_file));
+  YAML::Node tree = io::load_yaml_file(r.scene_file, input_path(r.scene_file));
   std::vector<std::pair<std::string, YAML::Node>> entries;
   if (set_node) {
     if (!set_node->IsMap() || set_node->size() == 0)
       top.fail_at(
           *set_node, "set",
-          "expected a map of dotted scene keys, e.g. {model.alpha_b: 0.7e-15}, got " + scene_io::node_kind(*set_node));
+          "expected a map of dotted scene keys, e.g. {model.alpha_b: 0.7e-15}, got " + io::node_kind(*set_node));
     for (auto it = set_node->begin(); it != set_node->end(); ++it) {
       const std::string key = it->first.Scalar();
       if (!settable(key))
@@ -74,7 +72,7 @@ Scene truth_scene(const MapView& top, SyntheticRecipe& r, const YAML::Node& scen
 }  // namespace
 
 bool is_synthetic_recipe(const fs::path& path) {
-  const YAML::Node root = scene_io::load_yaml_file(path, display_of(path));
+  const YAML::Node root = io::load_yaml_file(path, input_path(path));
   if (!root.IsMap()) return false;
   for (auto it = root.begin(); it != root.end(); ++it)
     if (it->first.IsScalar() && it->first.Scalar() == "synthetic") return true;
@@ -82,8 +80,8 @@ bool is_synthetic_recipe(const fs::path& path) {
 }
 
 SyntheticRecipe load_synthetic_recipe(const fs::path& path) {
-  const std::string display = display_of(path);
-  const YAML::Node root = scene_io::load_yaml_file(path, display);
+  const std::string display = input_path(path);
+  const YAML::Node root = io::load_yaml_file(path, display);
   const Source src{display, nullptr};
   const MapView outer(src, root, "", {"synthetic"});
   const MapView top(src, outer.require("synthetic"), "synthetic",
@@ -97,9 +95,8 @@ SyntheticRecipe load_synthetic_recipe(const fs::path& path) {
   {
     std::error_code ec;
     if (!fs::is_regular_file(r.scene_file, ec))
-      top.fail_at(
-          sn, "scene",
-          "scene file not found: " + scene_io::quote(r.scene_rel) + " (looked for " + display_of(r.scene_file) + ")");
+      top.fail_at(sn, "scene",
+                  "scene file not found: " + io::quote(r.scene_rel) + " (looked for " + input_path(r.scene_file) + ")");
   }
   const auto set_node = top.find("set");
   r.scene = truth_scene(top, r, sn, set_node ? &*set_node : nullptr);

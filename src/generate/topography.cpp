@@ -3,6 +3,7 @@
 #include "io/atomic_file.hpp"
 #include "io/csv.hpp"
 #include "io/digest.hpp"
+#include "io/input_error.hpp"
 #include "io/numbers.hpp"
 #include "io/yaml_util.hpp"
 #include "scene/load.hpp"
@@ -13,8 +14,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string num(double x) { return scene_io::format_double(x); }
-
 // One line of the provenance header per call: "# " + text.
 void comment(std::string& s, const std::string& text) { s += "# " + text + "\n"; }
 
@@ -22,8 +21,7 @@ void comment(std::string& s, const std::string& text) { s += "# " + text + "\n";
 
 TopographyJunctions build_topography_junctions(const TopographyRecipe& r, int threads) {
   TopographyJunctions t;
-  t.recipe_sha256 =
-      sha256_hex(scene_io::read_input_file(r.file, r.file.lexically_normal().string(), scene_io::kMaxYamlBytes));
+  t.recipe_sha256 = sha256_hex(io::read_input_file(r.file, input_path(r.file), io::kMaxYamlBytes));
   static_cast<TopographyContact&>(t) = solve_topography_contact(r, threads);
   t.experiment = topography_experiment(r, t,
                                        "Written by `asperity generate` from " + r.file.filename().string() +
@@ -43,18 +41,19 @@ std::string topography_junctions_csv(const TopographyRecipe& r, const Topography
   comment(s, "surface: " + topography_surface_text(r));
   comment(
       s, std::string("seed: ") + (r.kind == TopographyKind::self_affine ? std::to_string(r.self_affine.seed) : "none"));
-  comment(s, "n: " + std::to_string(n) + ", pixel_m: " + num(t.pixel_m) +
-                 ", size_m: " + num(t.pixel_m * static_cast<double>(n)));
-  comment(s, "rms_height_m: " + num(t.rms_height_m) + ", rms_slope: " + num(t.rms_slope) +
+  comment(s, "n: " + std::to_string(n) + ", pixel_m: " + io::format_double(t.pixel_m) +
+                 ", size_m: " + io::format_double(t.pixel_m * static_cast<double>(n)));
+  comment(s, "rms_height_m: " + io::format_double(t.rms_height_m) + ", rms_slope: " + io::format_double(t.rms_slope) +
                  " (before the sphere; heights sha256 " + t.heights_sha256 + ", float64 LE row-major)");
-  comment(s, "sphere_radius_m: " + num(r.sphere_radius_m) + ", E: " + num(r.E_Pa) + " Pa, nu: " + num(r.nu) +
-                 ", rigid counter-surface");
-  comment(s, "load_N: " + num(r.load_N) + ", solver iterations: " + std::to_string(t.iterations) +
-                 ", residual: " + num(t.residual) + " (tolerance " + num(r.tolerance) + ")");
+  comment(s, "sphere_radius_m: " + io::format_double(r.sphere_radius_m) + ", E: " + io::format_double(r.E_Pa) +
+                 " Pa, nu: " + io::format_double(r.nu) + ", rigid counter-surface");
+  comment(s, "load_N: " + io::format_double(r.load_N) + ", solver iterations: " + std::to_string(t.iterations) +
+                 ", residual: " + io::format_double(t.residual) + " (tolerance " + io::format_double(r.tolerance) +
+                 ")");
   comment(s, "clusters: " + std::to_string(t.clusters) + " (connectivity " +
                  (r.connectivity == Connectivity::four ? "4" : "8") +
                  "), merges of overlapping equivalent discs: " + std::to_string(t.merges));
-  comment(s, "junctions: " + std::to_string(J.size()) + ", total area_m2: " + num(total));
+  comment(s, "junctions: " + std::to_string(J.size()) + ", total area_m2: " + io::format_double(total));
   s += "area_m2,x_m,y_m\n";
   for (std::size_t i = 0; i < J.size(); ++i)
     s += csv_number(J.area_m2[i]) + ',' + csv_number(J.x_m[i]) + ',' + csv_number(J.y_m[i]) + '\n';

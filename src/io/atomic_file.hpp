@@ -57,11 +57,11 @@ bool write_fully(int fd, std::string_view bytes);
 // Reads a whole file (std::runtime_error when it cannot).
 std::string read_file_text(const std::filesystem::path& path);
 
-namespace scene_io {
+namespace io {
 // Temp sibling + rename, no fsync (CSVs, YAML and reports a command writes once).
 inline void write_text_file(const std::filesystem::path& path, const std::string& text) {
   write_file_atomically(path, text, Durability::unsynced);
 }
-}  // namespace scene_io
+}  // namespace io
 
 }  // namespace asperity

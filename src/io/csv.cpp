@@ -11,7 +11,7 @@
 
 namespace asperity {
 
-using namespace scene_io;
+using namespace io;
 
 std::string csv_field(std::string_view in) {
   std::string s(in);

@@ -23,8 +23,7 @@ struct InputError : std::runtime_error {
 };
 
 // A file as InputError::file and the loaders' messages name it: as the user gave it, lexically
-// normalised (display_path of io/provenance.hpp is the other meaning: relative to the working
-// directory, for results).
+// normalised. (A result names a file otherwise: result_path of io/provenance.hpp.)
 std::string input_path(const std::filesystem::path& file);
 
 }  // namespace asperity

@@ -5,14 +5,26 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 #include <system_error>
 
-namespace asperity::scene_io {
+namespace asperity::io {
 
 std::string format_double(double x) {
   char buf[64];
   const auto r = std::to_chars(buf, buf + sizeof buf, x);
   return std::string(buf, r.ptr);
+}
+
+std::string format_exact(double x) {
+  if (std::isnan(x)) return "nan";
+  if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
+  return format_double(x);
+}
+
+std::string format_scene_number(double x) {
+  if (!std::isfinite(x)) throw std::invalid_argument("cannot write a non-finite number to a scene file");
+  return format_double(x);
 }
 
 std::string format_g17(double x) {
@@ -29,10 +41,16 @@ std::string format_printf(const char* format, double x) {
 
 std::string format_cell(const char* format, double x) { return std::isfinite(x) ? format_printf(format, x) : "–"; }
 
-std::string format_short(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", x);
+std::string format_significant(double x, int digits) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*g", digits, x);
   return buf;
+}
+
+std::string format_short(double x) { return format_significant(x, 3); }
+
+std::string format_count(double x) {
+  return x == std::floor(x) && std::abs(x) < 1e15 ? format_printf("%.0f", x) : format_short(x);
 }
 
 std::string_view trim(std::string_view s) {
@@ -93,4 +111,4 @@ std::string quote(std::string_view s) {
   return "'" + q + "'";
 }
 
-}  // namespace asperity::scene_io
+}  // namespace asperity::io

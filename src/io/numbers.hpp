@@ -3,10 +3,17 @@
 #include <string>
 #include <string_view>
 
-namespace asperity::scene_io {
+namespace asperity::io {
 
 // Shortest text that reads back to exactly x (std::to_chars), e.g. 0.1 → "0.1", 7.25e-16.
 std::string format_double(double x);
+
+// format_double, or "nan", "inf", "-inf" when not finite: a store row keeps a failed value.
+std::string format_exact(double x);
+
+// format_double for a scene file, which has no spelling for NaN or infinity: throws
+// std::invalid_argument when x is not finite.
+std::string format_scene_number(double x);
 
 // %.17g: round-trips too, in the longer spelling series.csv, summary.yaml and the fit tables
 // have always used (their bytes must not change); "nan"/"inf" when not finite.
@@ -18,8 +25,14 @@ std::string format_printf(const char* format, double x);
 // format_printf, or "–" when x is not finite: a report table's cell with no value.
 std::string format_cell(const char* format, double x);
 
+// %.<digits>g: `digits` significant digits for text meant to be read (printf's %g is 6).
+std::string format_significant(double x, int digits = 6);
+
 // Three significant digits for derived values in messages, e.g. 1.5e+07, 0.000209.
 std::string format_short(double x);
+
+// A count as a whole number ("%.0f") when it is one, else three significant digits ("%.3g").
+std::string format_count(double x);
 
 enum class NumberParse { ok, empty, not_a_number, has_unit, not_finite };
 
@@ -44,4 +57,4 @@ inline bool has_control_char(std::string_view s) {
   return false;
 }
 
-}  // namespace asperity::scene_io
+}  // namespace asperity::io

@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <mutex>
 
+#include "io/numbers.hpp"
+
 namespace asperity {
 
 namespace {
@@ -80,10 +82,9 @@ void ProgressLine::set_total(double total) {
 
 std::string ProgressLine::text(double done, double elapsed_s, const std::string& extra) const {
   char buf[256];
-  const auto num = [](double x) { return x == std::floor(x) && std::abs(x) < 1e15 ? "%.0f" : "%.3g"; };
-  std::string fmt = std::string("%s: ") + num(done) + "/" + num(total_) + " %s, %s elapsed, ETA %s";
-  std::snprintf(buf, sizeof buf, fmt.c_str(), what_.c_str(), done, total_, unit_.c_str(),
-                duration_text(elapsed_s).c_str(), duration_text(eta_seconds(elapsed_s, done, total_)).c_str());
+  std::snprintf(buf, sizeof buf, "%s: %s/%s %s, %s elapsed, ETA %s", what_.c_str(), io::format_count(done).c_str(),
+                io::format_count(total_).c_str(), unit_.c_str(), duration_text(elapsed_s).c_str(),
+                duration_text(eta_seconds(elapsed_s, done, total_)).c_str());
   std::string line = buf;
   if (!extra.empty()) line += ", " + extra;
   return line;

@@ -56,7 +56,7 @@ std::string version_line() {
   return "asperity " + b.version + " (commit " + b.git_commit + ", " + b.build_type + ", " + b.compiler + ")";
 }
 
-std::string display_path(const fs::path& file) {
+std::string result_path(const fs::path& file) {
   std::error_code ec;
   const fs::path rel = fs::relative(file, ec);
   const bool inside = !ec && !rel.empty() && rel.begin()->string() != "..";
@@ -78,7 +78,7 @@ std::string provenance_yaml(const std::string& command_line, const std::vector<D
   bool any = false;
   for (const DataFile& f : files) {
     if (f.path.empty()) continue;
-    const std::string shown = display_path(f.path);
+    const std::string shown = result_path(f.path);
     if (!seen.insert(fs::absolute(f.path).lexically_normal().string()).second) continue;
     std::string hash = "unreadable";
     try {

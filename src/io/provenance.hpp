@@ -35,8 +35,9 @@ std::string code_build_id();
 std::string version_line();
 
 // A file as a result names it: relative to the working directory when inside it (a committed
-// result names no machine path), else as given.
-std::string display_path(const std::filesystem::path& file);
+// result names no machine path), else as given. (Messages name a file otherwise: input_path of
+// io/input_error.hpp.)
+std::string result_path(const std::filesystem::path& file);
 
 // One input file of a result and the FNV-1a 64 hash of its bytes.
 struct DataFile {

@@ -21,7 +21,7 @@
 #include "io/numbers.hpp"
 #include "io/warnings.hpp"
 
-namespace asperity::scene_io {
+namespace asperity::io {
 
 namespace {
 
@@ -505,7 +505,7 @@ std::vector<std::string> MapView::string_list(const YAML::Node& n, const std::st
   return out;
 }
 
-}  // namespace asperity::scene_io
+}  // namespace asperity::io
 
 namespace asperity {
 

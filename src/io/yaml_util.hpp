@@ -14,7 +14,7 @@
 #include "io/input_error.hpp"
 #include "io/numbers.hpp"
 
-namespace asperity::scene_io {
+namespace asperity::io {
 
 // A command-line override as applied to a scene tree.
 struct SetRecord {
@@ -129,7 +129,7 @@ class MapView {
   std::vector<std::pair<std::string, std::pair<YAML::Node, YAML::Node>>> entries_;  // key → (key node, value)
 };
 
-}  // namespace asperity::scene_io
+}  // namespace asperity::io
 
 namespace asperity {
 // A double-quoted YAML scalar with escapes (the one quoting used for every file we write;

@@ -26,19 +26,19 @@ void write_series_csv(std::ostream& out, const std::vector<Sample>& samples, con
       if (j) line += ',';
       switch (cols[j]) {
         case 0:
-          line += scene_io::format_g17(s.t);
+          line += io::format_g17(s.t);
           break;
         case 1:
-          line += scene_io::format_g17(s.X);
+          line += io::format_g17(s.X);
           break;
         case 2:
-          line += scene_io::format_g17(s.V);
+          line += io::format_g17(s.V);
           break;
         case 3:
-          line += scene_io::format_g17(s.Q);
+          line += io::format_g17(s.Q);
           break;
         case 4:
-          line += scene_io::format_g17(s.A);
+          line += io::format_g17(s.A);
           break;
         case 5:
           line += std::to_string(s.n_slipping);

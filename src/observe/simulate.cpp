@@ -74,7 +74,7 @@ RunResult simulate(const Scene& scene, double wall_limit_s, const RunMonitor* mo
     MonitoredRecorder watched(rec, *monitor, scene.stop.time);
     info = integrate(scene, watched, limits);
     if (watched.interrupted())
-      throw RunInterrupted("run interrupted at simulated t = " + scene_io::format_double(info.t_end) + " s");
+      throw RunInterrupted("run interrupted at simulated t = " + io::format_double(info.t_end) + " s");
   } else {
     info = integrate(scene, rec, limits);
   }

@@ -43,7 +43,7 @@ struct SeriesFactors {
 // fast one), so that hi is x^m correctly rounded but within ~m·2^-104 of a tie; std::pow's is
 // within 0.52 ulp, so the two agree but in rare cases. A plain running product drifts by
 // ~sqrt(m) ulps: that moved C by one ulp on one pair of P3.09N's 430,000, which was enough to
-// change a sensitive test's chord iterations (tests/unit/observe/test_solve_interacting_event.cpp,
+// change a sensitive test's chord iterations (tests/unit/solve/test_solve_interacting_event.cpp,
 // "driven far past its slip force"). Veltkamp's split below must not be contracted into FMAs (the
 // build is ISO C++, where GCC does not contract).
 class RunningPower {

@@ -36,6 +36,7 @@
 #include "io/temp_files.hpp"
 #include "observe/simulate.hpp"
 #include "python/campaign_in_store.hpp"
+#include "python/scene_from_dict.hpp"
 #include "python/topography_bindings.hpp"
 #include "report/fit_writer.hpp"
 #include "report/gnuplot.hpp"
@@ -177,116 +178,6 @@ int threads_argument(const py::object& value, const char* argument, int fallback
   return checked_threads(std::string(py::str(value)), argument);
 }
 
-// --- Scenes from Python objects ----------------------------------------------------------------
-// A Python value as the YAML node its text would parse to, so that the scene loader checks a dict
-// exactly as it checks a file: dicts → maps, lists/tuples/arrays → lists, bool → true/false,
-// numbers → their shortest round-trip text (read back bit for bit), str as is, None → null.
-YAML::Node yaml_node(const py::handle& v, const std::string& key) {
-  if (v.is_none()) return YAML::Node(YAML::NodeType::Null);
-  if (PyBool_Check(v.ptr())) return YAML::Node(v.ptr() == Py_True ? "true" : "false");
-  if (py::isinstance<py::str>(v)) return YAML::Node(v.cast<std::string>());
-  if (PyLong_Check(v.ptr())) return YAML::Node(std::string(py::str(v)));
-  if (PyFloat_Check(v.ptr())) return YAML::Node(scene_io::format_double(v.cast<double>()));
-  if (py::isinstance<py::dict>(v)) {
-    YAML::Node m(YAML::NodeType::Map);
-    for (const auto& [k, x] : v.cast<py::dict>()) {
-      if (!py::isinstance<py::str>(k))
-        throw py::type_error(key + ": keys must be str, got " + std::string(py::repr(k)));
-      const std::string name = k.cast<std::string>();
-      m[name] = yaml_node(x, key.empty() ? name : key + "." + name);
-    }
-    return m;
-  }
-  if (py::isinstance<py::list>(v) || py::isinstance<py::tuple>(v) || py::isinstance<py::array>(v)) {
-    YAML::Node s(YAML::NodeType::Sequence);
-    for (const py::handle x : py::isinstance<py::array>(v) ? v.attr("tolist")() : py::reinterpret_borrow<py::object>(v))
-      s.push_back(yaml_node(x, key));
-    return s;
-  }
-  if (py::hasattr(v, "__index__"))
-    return YAML::Node(std::string(py::str(py::int_(py::reinterpret_borrow<py::object>(v)))));
-  if (py::hasattr(v, "__float__")) return YAML::Node(scene_io::format_double(v.cast<double>()));  // numpy floats
-  throw py::type_error(key + ": expected a number, text, bool, list or dict, got " +
-                       std::string(py::str(v.get_type().attr("__name__"))));
-}
-
-// One junction column (array, list, pandas Series) as the inline list the loader checks value by
-// value, as it checks the rows of a junctions CSV.
-YAML::Node junction_column(const py::object& column, const std::string& where, const std::string& name) {
-  using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
-  Array a = Array::ensure(column);
-  if (!a) {
-    PyErr_Clear();
-    throw py::type_error(name + ": expected numbers (a NumPy array, a list or a pandas column), got " +
-                         std::string(py::str(column.get_type().attr("__name__"))));
-  }
-  if (a.ndim() != 1)
-    throw InputError(
-        where, 0, name,
-        "expected one value per junction (one dimension), got " + std::to_string(a.ndim()) + " dimensions");
-  YAML::Node s(YAML::NodeType::Sequence);
-  const auto r = a.unchecked<1>();
-  for (py::ssize_t i = 0; i < r.shape(0); ++i) s.push_back(YAML::Node(scene_io::format_double(r(i))));
-  return s;
-}
-
-// The measured curve (a DataFrame or a mapping with Q_N and A_m2) as experiment.measured.
-YAML::Node measured_node(const py::object& measured, const std::string& where) {
-  const py::object columns = py::hasattr(measured, "columns") ? measured.attr("columns") : measured.attr("keys")();
-  YAML::Node m(YAML::NodeType::Map);
-  for (const py::handle c : columns) {
-    const std::string n = py::str(c);
-    if (n != "Q_N" && n != "A_m2")
-      throw InputError(where, 0, "measured", "unknown column " + scene_io::quote(n) + "; valid: Q_N, A_m2");
-    m[n] = junction_column(py::object(measured[c]), where, n);
-  }
-  return m;
-}
-
-// Scene.from_dict: the dict as a scene tree; junction arrays (or a DataFrame with the junctions
-// CSV's columns area_m2, x_m, y_m) go in as experiment.junctions, a measured curve as
-// experiment.measured; then the loader's own checks.
-Scene scene_from_dict(const py::dict& d, py::object areas, py::object x, py::object y, const py::object& measured) {
-  const std::string where = "Scene.from_dict";
-  YAML::Node tree = yaml_node(d, "");
-  if (py::hasattr(areas, "columns")) {  // a pandas DataFrame
-    if (!x.is_none() || !y.is_none())
-      throw InputError(where, 0, "x", "give x_m and y_m as columns of the DataFrame or as arrays, not both");
-    const py::object df = areas;
-    areas = py::none();
-    const std::vector<std::string> valid{"area_m2", "x_m", "y_m"};
-    for (const py::handle c : df.attr("columns")) {
-      const std::string n = py::str(c);
-      if (std::find(valid.begin(), valid.end(), n) == valid.end())
-        throw InputError(
-            where, 0, "areas",
-            "unknown column " + scene_io::quote(n) + scene_io::did_you_mean(n, valid) + "; valid: area_m2, x_m, y_m");
-      (n == "area_m2" ? areas : n == "x_m" ? x : y) = py::object(df[c]);
-    }
-    if (areas.is_none()) throw InputError(where, 0, "areas", "missing column 'area_m2'");
-  }
-  if (areas.is_none()) {
-    if (!x.is_none() || !y.is_none()) throw InputError(where, 0, "areas", "x and y need the junction areas");
-    if (!measured.is_none()) throw InputError(where, 0, "measured", "needs the junction areas too");
-  } else {
-    const YAML::Node& view = tree;
-    if (!view["experiment"].IsDefined() || view["experiment"].IsNull())
-      tree["experiment"] = YAML::Node(YAML::NodeType::Map);
-    YAML::Node e = tree["experiment"];
-    if (!e.IsMap())
-      throw InputError(where, 0, "experiment",
-                       "with junction arrays, the experiment is a map of its values {name, mass, k_L, v, E, nu, "
-                       "sigma_exp}, not a file");
-    YAML::Node j(YAML::NodeType::Map);
-    j["area_m2"] = junction_column(areas, where, "area_m2");
-    if (!x.is_none()) j["x_m"] = junction_column(x, where, "x_m");
-    if (!y.is_none()) j["y_m"] = junction_column(y, where, "y_m");
-    e["junctions"] = j;
-    if (!measured.is_none()) e["measured"] = measured_node(measured, where);
-  }
-  return scene_from_memory(tree, std::filesystem::current_path(), where);
-}
-
 // Runs `work` (engine only: it never touches Python) on a worker thread, the GIL released, while
 // the calling thread takes the GIL every 0.1 s to run Python's signal handlers. When a handler
 // raises (Ctrl-C: KeyboardInterrupt), `stop` tells the engine, which stops within a fraction of a
@@ -362,7 +253,7 @@ PYBIND11_MODULE(_asperity, m) {
           "The scene as `asperity run` writes scene.yaml (junctions inline when it has no experiment file); "
           "Scene.from_yaml of it, or asperity.load_scene of it saved, gives the same scene")
       .def_static(
-          "from_dict", &scene_from_dict, py::arg("d"), py::arg("areas") = py::none(), py::arg("x") = py::none(),
+          "from_dict", &python::scene_from_dict, py::arg("d"), py::arg("areas") = py::none(), py::arg("x") = py::none(),
           py::arg("y") = py::none(), py::arg("measured") = py::none(),
           "A scene from a dict shaped as a scene file, checked as one; the experiment a map of its values with "
           "junction `areas` [m²] and optional centres `x`, `y` [m] (NumPy arrays, lists, or a pandas DataFrame "
@@ -372,7 +263,7 @@ PYBIND11_MODULE(_asperity, m) {
           "from_yaml",
           [](const std::string& text) -> Scene {
             const std::string where = "Scene.from_yaml";
-            return scene_from_memory(scene_io::load_yaml_document(text, where), std::filesystem::current_path(), where);
+            return scene_from_memory(io::load_yaml_document(text, where), std::filesystem::current_path(), where);
           },
           py::arg("text"), "A scene from scene-file text (paths relative to the working directory)")
       .def("__repr__", [](const Scene& s) {
@@ -412,7 +303,7 @@ PYBIND11_MODULE(_asperity, m) {
         check_no_nul(out, "out");
         std::string campaign;  // the campaign file (a dict's: written into the store, campaign_in_store.hpp)
         if (py::isinstance<py::dict>(campaign_arg)) {
-          campaign = python::campaign_into_store(yaml_node(campaign_arg, ""), base_dir(base), out).string();
+          campaign = python::campaign_into_store(python::yaml_node(campaign_arg, ""), base_dir(base), out).string();
         } else {
           if (!base.is_none())
             throw InputError("", 0, "base", "is for a dict campaign; a file's paths are relative to the file");
@@ -474,7 +365,7 @@ PYBIND11_MODULE(_asperity, m) {
         std::string what;  // the spec, as the provenance's command line names it
         FitSpec spec;
         if (py::isinstance<py::dict>(fit_spec)) {
-          spec = fit_from_memory(yaml_node(fit_spec, ""), base_dir(base), "asperity.fit", {}, lo);
+          spec = fit_from_memory(python::yaml_node(fit_spec, ""), base_dir(base), "asperity.fit", {}, lo);
           what = "dict";
         } else {
           if (!base.is_none())

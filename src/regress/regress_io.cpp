@@ -10,12 +10,12 @@
 
 namespace asperity {
 namespace fs = std::filesystem;
-using scene_io::MapView;
-using scene_io::Source;
+using io::MapView;
+using io::Source;
 
 RegressSuite load_regress_suite(const fs::path& yaml) {
   const std::string display = yaml.string();
-  const YAML::Node root = scene_io::load_yaml_file(yaml, display);
+  const YAML::Node root = io::load_yaml_file(yaml, display);
   const Source src{display};
   const MapView top(src, root, "", {"entries"}, 1);
   const YAML::Node list = top.require("entries");
@@ -43,7 +43,7 @@ RegressSuite load_regress_suite(const fs::path& yaml) {
 
 Golden load_golden(const fs::path& yaml) {
   const std::string display = yaml.string();
-  const YAML::Node root = scene_io::load_yaml_file(yaml, display);
+  const YAML::Node root = io::load_yaml_file(yaml, display);
   const Source src{display};
   const MapView top(src, root, "", {"history", "entries"}, 1);
   Golden g;
@@ -101,9 +101,8 @@ std::string golden_to_yaml(const Golden& g) {
   for (const auto& [name, obs] : g.entries) {
     s << "  " << name << ":\n";
     for (const auto& [key, v] : obs)
-      s << "    " << key
-        << ": {value: " << (std::isnan(v.value) ? std::string(".nan") : scene_io::format_double(v.value))
-        << ", tolerance: " << scene_io::format_double(v.tolerance) << "}\n";
+      s << "    " << key << ": {value: " << (std::isnan(v.value) ? std::string(".nan") : io::format_double(v.value))
+        << ", tolerance: " << io::format_double(v.tolerance) << "}\n";
   }
   return s.str();
 }

@@ -31,7 +31,7 @@ namespace fs = std::filesystem;
 namespace {
 
 // Numbers of the fit tables: %.17g round-trips, "nan" for NaN (gnuplot and CSV readers parse it).
-using scene_io::format_g17;
+using io::format_g17;
 constexpr double kGravity = 9.81;  // m/s², P = M g (as the stand-in recipe)
 
 // File-name stem for an experiment (names are free text). A name made only of letters, digits,
@@ -152,35 +152,35 @@ std::vector<double> profile_values(const std::vector<ProfilePoint>& points) {
 void write_optimization(const fs::path& d, const FitSpec& spec, const Optimization& o, bool plots,
                         const FigureFormats& figures) {
   fs::create_directories(d);
-  scene_io::write_text_file(d / "evaluations.csv", evaluations_csv(o, spec));
-  if (!o.profile.empty()) scene_io::write_text_file(d / "profile.csv", profile_csv(o.profile));
+  io::write_text_file(d / "evaluations.csv", evaluations_csv(o, spec));
+  if (!o.profile.empty()) io::write_text_file(d / "profile.csv", profile_csv(o.profile));
   // Every further profiled parameter: profile_<key>.csv (the first one is profile.csv).
   for (std::size_t q = 1; q < o.profiles.size(); ++q)
-    scene_io::write_text_file(d / ("profile_" + file_stem(spec.parameters[o.profiles[q].parameter].key) + ".csv"),
-                              profile_csv(o.profiles[q].points));
+    io::write_text_file(d / ("profile_" + file_stem(spec.parameters[o.profiles[q].parameter].key) + ".csv"),
+                        profile_csv(o.profiles[q].points));
   for (const auto& r : o.best_runs) {
     const std::string stem = "AQ_" + file_stem(spec.experiments[r.experiment].name);
     std::ostringstream m;
     m << "Q_N,A_m2\n";
     for (const auto& s : r.loading) m << format_g17(s.Q) << "," << format_g17(s.A) << "\n";
-    scene_io::write_text_file(d / (stem + "_model.csv"), m.str());
+    io::write_text_file(d / (stem + "_model.csv"), m.str());
     if (r.measured) {
       std::ostringstream x;
       x << "Q_N,A_m2\n";
       for (std::size_t j = 0; j < r.measured->Q_N.size(); ++j)
         x << format_g17(r.measured->Q_N[j]) << "," << format_g17(r.measured->A_m2[j]) << "\n";
-      scene_io::write_text_file(d / (stem + "_measured.csv"), x.str());
+      io::write_text_file(d / (stem + "_measured.csv"), x.str());
     }
     if (r.force) {  // area_and_force: the model's Q(t) at the fit and the measured Q(t)
       const std::string qstem = "Qt_" + file_stem(spec.experiments[r.experiment].name);
       std::ostringstream mq, xq;
       mq << "t_s,Q_N\n";
       for (const auto& s : r.series) mq << format_g17(s.t) << "," << format_g17(s.Q) << "\n";
-      scene_io::write_text_file(d / (qstem + "_model.csv"), mq.str());
+      io::write_text_file(d / (qstem + "_model.csv"), mq.str());
       xq << "t_s,Q_N\n";
       for (std::size_t k = 0; k < r.force->t_s.size(); ++k)
         xq << format_g17(r.force->t_s[k]) << "," << format_g17(r.force->Q_N[k]) << "\n";
-      scene_io::write_text_file(d / (qstem + "_measured.csv"), xq.str());
+      io::write_text_file(d / (qstem + "_measured.csv"), xq.str());
     }
   }
   if (!plots) return;
@@ -188,7 +188,7 @@ void write_optimization(const fs::path& d, const FitSpec& spec, const Optimizati
   for (const auto& r : o.best_runs) stand_in = stand_in || r.stand_in;
   // The figures of every chosen format, each format's terminal before its figures.
   std::string script;
-  const std::string area_scale = scene_io::format_double(figure_unit("A").scale);
+  const std::string area_scale = io::format_double(figure_unit("A").scale);
   for (const fs::path& probe : figure_files("convergence.png", figures)) {
     const std::string ext = probe.extension().string();
     std::ostringstream gp;
@@ -368,7 +368,7 @@ void write_convergence(std::ostream& y, const Optimization& o) {
 void write_fit_settings(std::ostream& y, const FitSpec& spec, const FitResult& result, bool stand_in) {
   auto num = [](double x) { return yaml_double(x); };
   y << "asperity_version: " << yaml_quoted(build_info().version) << "\n";
-  y << "fit_file: " << yaml_quoted(display_path(spec.file)) << "\n";
+  y << "fit_file: " << yaml_quoted(result_path(spec.file)) << "\n";
   y << "name: " << yaml_quoted(spec.name) << "\n";
   y << "description: " << yaml_quoted(spec.description) << "\n";
   y << "data: " << (stand_in ? "stand-in" : "measured") << "\n";
@@ -581,7 +581,7 @@ void write_fit(const fs::path& dir, const FitSpec& spec, const FitResult& result
           << (o.ok() ? "ok" : "failed") << "\n";
       }
     }
-    scene_io::write_text_file(tmp / "fitted.csv", c.str());
+    io::write_text_file(tmp / "fitted.csv", c.str());
     if (plots && spec.separate && result.fits.size() > 1) {
       // First parameter against the load, with the error-bar range when computed.
       // The numbers travel in a data block: fitted.csv's quoted names may hold commas.
@@ -603,7 +603,7 @@ void write_fit(const fs::path& dir, const FitSpec& spec, const FitResult& result
       }
       plot_quietly(tmp, script, "fitted.gp");
     }
-    scene_io::write_text_file(tmp / "fit.yaml", fit_yaml(spec, result, command_line));
+    io::write_text_file(tmp / "fit.yaml", fit_yaml(spec, result, command_line));
   });
 }
 

@@ -12,6 +12,7 @@
 #include <utility>
 
 #include "io/atomic_file.hpp"
+#include "io/numbers.hpp"
 
 namespace asperity {
 namespace fs = std::filesystem;
@@ -155,15 +156,13 @@ std::vector<fs::path> figure_files(const fs::path& figure, const FigureFormats& 
 
 std::string gnuplot_block(const std::string& name, const std::vector<std::vector<double>>& rows) {
   std::string s = "$" + name + " << EOD\n";
-  char buf[32];
   for (const auto& r : rows) {
     bool bad = false;
     for (double x : r) bad = bad || !std::isfinite(x);
     if (!bad) {
       for (std::size_t j = 0; j < r.size(); ++j) {
-        std::snprintf(buf, sizeof buf, "%.10g", r[j]);
         if (j) s += ' ';
-        s += buf;
+        s += io::format_significant(r[j], 10);
       }
     }
     s += '\n';

@@ -126,7 +126,7 @@ HeatmapReport plot_heatmap(const fs::path& store, const HeatmapOptions& opt) {
         ++rep.blank;
         continue;
       }
-      const auto f = [](double x) { return scene_io::format_double(x); };
+      const auto f = [](double x) { return io::format_double(x); };
       gp << f(xv[i]) << ' ' << f(yv[j]) << ' ' << f(xe[i].first) << ' ' << f(xe[i].second) << ' ' << f(ye[j].first)
          << ' ' << f(ye[j].second) << ' ' << f(z * zscale) << '\n';
     }

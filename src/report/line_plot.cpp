@@ -54,8 +54,8 @@ std::string line_head(const fs::path& store, const LinePlotOptions& opt, const s
   gp << "set ylabel " << gnuplot_quote(axis_markup(opt.y)) << "\n";
   if (xtexts.size() > 8) gp << "set xtics rotate by 60 right\n";
   if (xlog && xv.size() > 1)
-    gp << "set xrange [" << scene_io::format_double(xv.front() / std::pow(xv.back() / xv.front(), 0.03)) << ":"
-       << scene_io::format_double(xv.back() * std::pow(xv.back() / xv.front(), 0.03)) << "]\n";
+    gp << "set xrange [" << io::format_double(xv.front() / std::pow(xv.back() / xv.front(), 0.03)) << ":"
+       << io::format_double(xv.back() * std::pow(xv.back() / xv.front(), 0.03)) << "]\n";
   return gp.str();
 }
 
@@ -97,7 +97,7 @@ LinePlotReport plot_lines(const fs::path& store, const LinePlotOptions& opt) {
         gp << "\n";  // a gap in the line
         continue;
       }
-      gp << scene_io::format_double(x * xscale) << ' ' << scene_io::format_double(y * yscale) << '\n';
+      gp << io::format_double(x * xscale) << ' ' << io::format_double(y * yscale) << '\n';
     }
     gp << "EOD\n";
     plot += std::string(k ? ", " : "") + "$line" + std::to_string(k) +

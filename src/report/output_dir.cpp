@@ -74,8 +74,7 @@ void write_marker_files(const fs::path& dir, const std::string& command,
 }  // namespace
 
 void write_marker(const fs::path& dir, const std::string& command, bool file_list) {
-  scene_io::write_text_file(dir / kMarkerFile,
-                            file_list ? marker_head(command) : "created by asperity " + command + "\n");
+  io::write_text_file(dir / kMarkerFile, file_list ? marker_head(command) : "created by asperity " + command + "\n");
 }
 
 bool has_marker(const fs::path& dir, const std::string& command) {

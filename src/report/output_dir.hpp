@@ -6,7 +6,7 @@
 #include <functional>
 #include <string>
 
-#include "io/atomic_file.hpp"  // scene_io::write_text_file: the files inside such a directory
+#include "io/atomic_file.hpp"  // io::write_text_file: the files inside such a directory
 
 namespace asperity {
 

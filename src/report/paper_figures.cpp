@@ -137,13 +137,14 @@ std::string write_figure4(const fs::path& out_dir, const std::vector<PaperRun>& 
 std::string paper_table_csv(const std::vector<PaperRun>& runs) {
   std::ostringstream s;
   s << kPaperTableHeader << '\n';
-  const auto g = [](double x) { return scene_io::format_g17(x); };
   for (const PaperRun& r : runs) {
     const Observables& o = r.obs;
-    s << csv_field(r.scene.experiment.name) << ',' << o.N << ',' << g(o.A0) << ',' << g(o.dt) << ',' << g(o.Q_s) << ','
-      << g(o.A_s) << ',' << g(o.t_peak) << ',' << g(o.alpha) << ',' << g(o.alpha_R2) << ',' << g(o.alpha_measured)
-      << ',' << g(o.shape_exponent) << ',' << g(o.shape_exponent_measured) << ',' << g(o.area_drop_fraction) << ','
-      << o.ss_cycles << ',' << g(o.ss_drop) << ',' << g(o.ss_period) << '\n';
+    s << csv_field(r.scene.experiment.name) << ',' << o.N << ',' << io::format_g17(o.A0) << ',' << io::format_g17(o.dt)
+      << ',' << io::format_g17(o.Q_s) << ',' << io::format_g17(o.A_s) << ',' << io::format_g17(o.t_peak) << ','
+      << io::format_g17(o.alpha) << ',' << io::format_g17(o.alpha_R2) << ',' << io::format_g17(o.alpha_measured) << ','
+      << io::format_g17(o.shape_exponent) << ',' << io::format_g17(o.shape_exponent_measured) << ','
+      << io::format_g17(o.area_drop_fraction) << ',' << o.ss_cycles << ',' << io::format_g17(o.ss_drop) << ','
+      << io::format_g17(o.ss_period) << '\n';
   }
   return s.str();
 }

@@ -25,7 +25,7 @@ bool number_of(const std::string& s, double& x) {
     x = s == "nan" ? NAN : (s == "inf" ? INFINITY : -INFINITY);
     return true;
   }
-  return scene_io::parse_double(s, x) == scene_io::NumberParse::ok;
+  return io::parse_double(s, x) == io::NumberParse::ok;
 }
 
 bool same_value(const std::string& a, const std::string& b) {
@@ -160,13 +160,13 @@ std::string axis_settings(const char* axis, const std::string& column, const std
       number_of(texts[i], v);
       v *= scale;
       // Labels to 6 digits (the store's exact texts can be 17); positions exact.
-      gp << (i ? ", " : "") << gnuplot_text(scene_io::format_short(v)) << " " << scene_io::format_double(v);
+      gp << (i ? ", " : "") << gnuplot_text(io::format_short(v)) << " " << io::format_double(v);
     }
     gp << ")\n";
   }
   if (!edges.empty())
-    gp << "set " << axis << "range [" << scene_io::format_double(edges.front().first) << ":"
-       << scene_io::format_double(edges.back().second) << "]\n";
+    gp << "set " << axis << "range [" << io::format_double(edges.front().first) << ":"
+       << io::format_double(edges.back().second) << "]\n";
   return gp.str();
 }
 

@@ -44,7 +44,7 @@ void check_run_dir(const fs::path& dir) { check_publishable(dir, "run", "--out")
 std::string yaml_double(double x) {
   if (std::isnan(x)) return ".nan";
   if (std::isinf(x)) return x > 0 ? ".inf" : "-.inf";
-  return scene_io::format_g17(x);
+  return io::format_g17(x);
 }
 
 std::string summary_yaml(const Scene& scene, const Observables& o, const std::vector<Peak>& peaks,
@@ -88,10 +88,10 @@ void write_run(const fs::path& dir, const Scene& scene, const Observables& obs, 
     if (!scene.output.series.empty()) {
       std::ostringstream csv;
       write_series_csv(csv, rec.series(), scene.output.series);
-      scene_io::write_text_file(tmp / "series.csv", csv.str());
+      io::write_text_file(tmp / "series.csv", csv.str());
     }
-    scene_io::write_text_file(tmp / "summary.yaml", summary_text);
-    scene_io::write_text_file(tmp / "scene.yaml", scene_text);
+    io::write_text_file(tmp / "summary.yaml", summary_text);
+    io::write_text_file(tmp / "scene.yaml", scene_text);
     if (opt.plot) {
       std::string error;
       if (!write_run_plot(tmp, &error, opt.figures, is_stand_in(scene.experiment)))
@@ -124,7 +124,7 @@ bool write_run_plot(const fs::path& dir, std::string* error, const FigureFormats
   const std::string t = std::to_string(ct), q = std::to_string(cq), a = std::to_string(ca);
   // Labels and the area's unit (mm²) from the units table, as every figure.
   const auto label = [](const char* column) { return gnuplot_quote(axis_markup(column)); };
-  const std::string area = "($" + a + "*" + scene_io::format_double(figure_unit("A").scale) + ")";
+  const std::string area = "($" + a + "*" + io::format_double(figure_unit("A").scale) + ")";
   std::ostringstream gp;
   gp << "set datafile separator ','\n"
      << stand_in_mark(stand_in) << "set key off\n"

@@ -36,7 +36,7 @@ std::string cell(std::string s) {
 std::string plausible_text(const SceneKey& k) {
   const PlausibleRange& p = k.plausible;
   if (!(p.lo < p.hi)) return "";
-  return scene_io::format_short(p.lo) + " to " + scene_io::format_short(p.hi) + " (" + p.of + ")";
+  return io::format_short(p.lo) + " to " + io::format_short(p.hi) + " (" + p.of + ")";
 }
 
 }  // namespace
@@ -64,7 +64,7 @@ std::string scene_keys_markdown() {
     std::string unit = numeric ? (k.unit ? k.unit : "1") : "";
     std::string def;
     if (numeric)
-      def = std::isnan(k.default_value) ? "required" : scene_io::format_double(k.default_value);
+      def = std::isnan(k.default_value) ? "required" : io::format_double(k.default_value);
     else if (k.text)
       def = k.text(defaults);
     if (std::string(k.name).rfind("experiment.", 0) == 0 && !numeric) def = "(from the experiment file)";

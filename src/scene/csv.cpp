@@ -10,9 +10,7 @@
 
 namespace asperity {
 
-using namespace scene_io;
-
-namespace scene_io {
+using namespace io;
 
 std::string junction_area_problem(double a) {
   // 1e-20 m² (0.01 nm², below one atom) to 1 m²: outside it the contact law has no meaning,
@@ -101,19 +99,13 @@ MeasuredForce read_force_csv(const std::filesystem::path& csv, const std::string
   return f;
 }
 
-}  // namespace scene_io
-
-MeasuredForce read_force_csv(const std::filesystem::path& csv) {
-  return scene_io::read_force_csv(csv, csv.lexically_normal().string());
-}
+MeasuredForce read_force_csv(const std::filesystem::path& csv) { return read_force_csv(csv, input_path(csv)); }
 
 JunctionPopulation read_junctions_csv(const std::filesystem::path& csv) {
-  return scene_io::read_junctions_csv(csv, csv.lexically_normal().string());
+  return read_junctions_csv(csv, input_path(csv));
 }
 
-MeasuredCurve read_measured_csv(const std::filesystem::path& csv) {
-  return scene_io::read_measured_csv(csv, csv.lexically_normal().string());
-}
+MeasuredCurve read_measured_csv(const std::filesystem::path& csv) { return read_measured_csv(csv, input_path(csv)); }
 
 void write_junctions_csv(const std::filesystem::path& csv, const JunctionPopulation& j) {
   const bool xy = !j.x_m.empty() || !j.y_m.empty();
@@ -130,7 +122,7 @@ void write_junctions_csv(const std::filesystem::path& csv, const JunctionPopulat
     }
     s += '\n';
   }
-  scene_io::write_text_file(csv, s);
+  io::write_text_file(csv, s);
 }
 
 void write_measured_csv(const std::filesystem::path& csv, const MeasuredCurve& m) {
@@ -142,7 +134,7 @@ void write_measured_csv(const std::filesystem::path& csv, const MeasuredCurve& m
     s += csv_number(m.A_m2[i]);
     s += '\n';
   }
-  scene_io::write_text_file(csv, s);
+  io::write_text_file(csv, s);
 }
 
 void write_force_csv(const std::filesystem::path& csv, const MeasuredForce& f,
@@ -157,7 +149,7 @@ void write_force_csv(const std::filesystem::path& csv, const MeasuredForce& f,
     s += csv_number(f.Q_N[i]);
     s += '\n';
   }
-  scene_io::write_text_file(csv, s);
+  io::write_text_file(csv, s);
 }
 
 }  // namespace asperity

@@ -34,7 +34,6 @@ void write_measured_csv(const std::filesystem::path& csv, const MeasuredCurve& c
 void write_force_csv(const std::filesystem::path& csv, const MeasuredForce& force,
                      const std::vector<std::string>& comment = {});
 
-namespace scene_io {
 // The one rule for a junction's values, whether from a CSV row or from columns given in memory
 // (a scene's inline experiment.junctions): "" when allowed, else the message.
 std::string junction_area_problem(double area_m2);        // must be in [1e-20, 1] m^2
@@ -50,6 +49,5 @@ JunctionPopulation read_junctions_csv(const std::filesystem::path& csv, const st
                                       std::vector<int>& lines);
 MeasuredCurve read_measured_csv(const std::filesystem::path& csv, const std::string& display);
 MeasuredForce read_force_csv(const std::filesystem::path& csv, const std::string& display);
-}  // namespace scene_io
 
 }  // namespace asperity

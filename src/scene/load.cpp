@@ -21,7 +21,7 @@
 namespace asperity {
 
 namespace fs = std::filesystem;
-using namespace scene_io;
+using namespace io;
 
 namespace {
 
@@ -192,12 +192,12 @@ Experiment load_experiment_impl(const fs::path& path, const std::string& display
     const YAML::Node n = f.require("junctions");
     const fs::path csv = referenced_file(f, n, "junctions", base, "junctions CSV", kMaxCsvBytes);
     e.junctions_file = resolved(csv);
-    e.junctions = scene_io::read_junctions_csv(csv, input_path(csv));
+    e.junctions = read_junctions_csv(csv, input_path(csv));
   }
   if (auto n = f.find("measured")) {
     const fs::path csv = referenced_file(f, *n, "measured", base, "measured CSV", kMaxCsvBytes);
     e.measured_file = resolved(csv);
-    e.measured = scene_io::read_measured_csv(csv, input_path(csv));
+    e.measured = read_measured_csv(csv, input_path(csv));
   }
   return std::move(e);
 }
@@ -306,7 +306,7 @@ void read_topography(const MapView& root, const YAML::Node& tn, const fs::path& 
     // out of range) may come of a value a --set gave: named as a key's own check names it (the
     // --set, or the section's line), not as the scene without a line.
     if (e.file != root.source().file || e.column != 0) throw;
-    scene_io::fail(root.source(), tn, e.key, e.message, e.line);
+    io::fail(root.source(), tn, e.key, e.message, e.line);
   }
   s.experiment = topography_experiment(r, *contact, scene_made_by(r));
   s.topography = std::move(r);

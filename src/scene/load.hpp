@@ -41,7 +41,7 @@
 // stop.time/output.every ≤ 1e6 samples; model.eta·stop.time ≤ 1e6; ≤ 1e6 slider periods
 // 2π sqrt(M/(k_L+K0)) in stop.time; ≤ 1e9 reference steps; solver.Ct ≥ 1; model.p ≤ 10; junction
 // areas in [1e-20, 1] m²; every junction keeps ≥ 1e-6 of its area at its first slip. Input files
-// must be regular files of at most 16 MiB (YAML) or 256 MiB (CSV) (scene_io::read_input_file).
+// must be regular files of at most 16 MiB (YAML) or 256 MiB (CSV) (io::read_input_file).
 #include <yaml-cpp/yaml.h>
 
 #include <filesystem>

@@ -8,7 +8,7 @@
 
 namespace asperity {
 
-using namespace scene_io;
+using namespace io;
 
 namespace {
 

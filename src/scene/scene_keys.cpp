@@ -15,11 +15,6 @@ namespace {
 
 constexpr double kRequired = std::numeric_limits<double>::quiet_NaN();
 
-std::string num(double x) {
-  if (!std::isfinite(x)) throw std::invalid_argument("cannot write a non-finite number to a scene file");
-  return scene_io::format_double(x);
-}
-
 const char* name_of(JunctionShape s) { return s == JunctionShape::circular ? "circular" : "elliptic"; }
 const char* name_of(AreaLaw a) { return a == AreaLaw::always ? "always" : "until_first_slip"; }
 const char* name_of(Interactions i) { return i == Interactions::elastic ? "elastic" : "none"; }
@@ -41,7 +36,7 @@ const char* name_of(SolverMethod m) { return m == SolverMethod::reference ? "ref
   SceneKey {                                                                                              \
     NAME, KeyKind::number, UNIT, RANGE, [](double x) { return CHECK; }, WHY, DEFAULT, FIT,                \
         [](const Scene& s) { return static_cast<double>(FIELD); }, [](Scene& s, double x) { FIELD = x; }, \
-        [](const Scene& s) { return num(FIELD); }, nullptr, PlausibleRange {}                             \
+        [](const Scene& s) { return io::format_scene_number(FIELD); }, nullptr, PlausibleRange {}         \
   }
 // Any other row: TEXT is a std::string expression of `s`.
 #define OTHER(NAME, KIND, TEXT)                                                      \
@@ -148,13 +143,19 @@ std::vector<SceneKey> make_table() {
     }
     // Empty for a scene without topography (the macro's text would throw there).
     if (n == "topography.sphere_radius_m")
-      k.text = [](const Scene& s) { return s.topography ? num(s.topography->sphere_radius_m) : std::string(); };
+      k.text = [](const Scene& s) {
+        return s.topography ? io::format_scene_number(s.topography->sphere_radius_m) : std::string();
+      };
     if (n == "topography.E")
-      k.text = [](const Scene& s) { return s.topography ? num(s.topography->E_Pa) : std::string(); };
+      k.text = [](const Scene& s) {
+        return s.topography ? io::format_scene_number(s.topography->E_Pa) : std::string();
+      };
     if (n == "topography.nu")
-      k.text = [](const Scene& s) { return s.topography ? num(s.topography->nu) : std::string(); };
+      k.text = [](const Scene& s) { return s.topography ? io::format_scene_number(s.topography->nu) : std::string(); };
     if (n == "topography.load_N")
-      k.text = [](const Scene& s) { return s.topography ? num(s.topography->load_N) : std::string(); };
+      k.text = [](const Scene& s) {
+        return s.topography ? io::format_scene_number(s.topography->load_N) : std::string();
+      };
     if (n == "topography.self_affine.seed") {
       k.set = [](Scene& s, double x) { recipe_of(s).self_affine.seed = static_cast<std::uint64_t>(x); };
       k.text = [](const Scene& s) {
@@ -162,7 +163,9 @@ std::vector<SceneKey> make_table() {
       };
     }
     if (n == "topography.self_affine.hurst")
-      k.text = [](const Scene& s) { return s.topography ? num(s.topography->self_affine.hurst) : std::string(); };
+      k.text = [](const Scene& s) {
+        return s.topography ? io::format_scene_number(s.topography->self_affine.hurst) : std::string();
+      };
     // One of rms height and rms slope sets the surface's amplitude: setting one drops the other.
     if (n == "topography.self_affine.rms_height_m") {
       k.set = [](Scene& s, double x) {
@@ -170,8 +173,9 @@ std::vector<SceneKey> make_table() {
         recipe_of(s).self_affine.rms_slope = 0;
       };
       k.text = [](const Scene& s) {
-        return s.topography && s.topography->self_affine.rms_height_m > 0 ? num(s.topography->self_affine.rms_height_m)
-                                                                          : std::string();
+        return s.topography && s.topography->self_affine.rms_height_m > 0
+                   ? io::format_scene_number(s.topography->self_affine.rms_height_m)
+                   : std::string();
       };
     }
     if (n == "topography.self_affine.rms_slope") {
@@ -180,8 +184,9 @@ std::vector<SceneKey> make_table() {
         recipe_of(s).self_affine.rms_height_m = 0;
       };
       k.text = [](const Scene& s) {
-        return s.topography && s.topography->self_affine.rms_height_m == 0 ? num(s.topography->self_affine.rms_slope)
-                                                                           : std::string();
+        return s.topography && s.topography->self_affine.rms_height_m == 0
+                   ? io::format_scene_number(s.topography->self_affine.rms_slope)
+                   : std::string();
       };
     }
     // Limits only when set: a default one leaves the text (and so the sweep store's scene hash)
@@ -268,16 +273,15 @@ double scene_value(const Scene& scene, const std::string& key) {
 
 std::string out_of_range_message(const SceneKey& key, double x) {
   const std::string why = key.why ? key.why : "";
-  return "must be " + std::string(key.range) + ", got " + scene_io::format_double(x) +
-         (why.empty() ? "" : " (" + why + ")");
+  return "must be " + std::string(key.range) + ", got " + io::format_double(x) + (why.empty() ? "" : " (" + why + ")");
 }
 
 std::string implausible_message(const SceneKey& key, double x) {
   const PlausibleRange& p = key.plausible;
   if (!(p.lo < p.hi) || (x >= p.lo && x <= p.hi)) return "";
-  using scene_io::format_short;
+  using io::format_short;
   const std::string unit = key.unit ? std::string(" ") + key.unit : "";
-  std::string m = std::string(key.name) + " = " + scene_io::format_double(x) + unit + " is far " +
+  std::string m = std::string(key.name) + " = " + io::format_double(x) + unit + " is far " +
                   (x < p.lo ? "below " : "above ") + p.of + " " + format_short(p.lo) + " to " + format_short(p.hi) +
                   unit;
   // The units a value of this SI unit is often written in by mistake, and their factor to SI.

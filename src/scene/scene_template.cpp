@@ -52,7 +52,7 @@ Scene SceneTemplate::build(const std::vector<SceneSetting>& settings) const {
   // handle refers to, which would change the template itself.
   YAML::Node tree;
   tree.reset(impl_->tree);
-  for (const auto& s : settings) tree.reset(apply_override(tree, s.key, YAML::Node(scene_io::format_double(s.value))));
+  for (const auto& s : settings) tree.reset(apply_override(tree, s.key, YAML::Node(io::format_double(s.value))));
   return scene_from_tree(tree, impl_->file);
 }
 

@@ -29,9 +29,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string display_of(const fs::path& p) { return p.lexically_normal().string(); }
-std::string num(double x) { return scene_io::format_double(x); }
-
 std::string heights_sha256(const HeightMap& m) {
   Sha256 h;
   std::string bytes(8, '\0');
@@ -52,10 +49,12 @@ std::string topography_surface_text(const TopographyRecipe& r) {
     case TopographyKind::self_affine: {
       const SelfAffineSpec& a = r.self_affine;
       return "generated from a synthetic surface: self-affine (Fourier filtering, surface/self_affine.hpp), seed " +
-             std::to_string(a.seed) + ", hurst " + num(a.hurst) + ", rolloff_wavelength_m " +
-             (a.rolloff_wavelength_m > 0 ? num(a.rolloff_wavelength_m) : "none (= size)") + ", short_wavelength_m " +
-             (a.short_wavelength_m > 0 ? num(a.short_wavelength_m) : "2 pixels") +
-             (a.rms_height_m > 0 ? ", rms_height_m " + num(a.rms_height_m) : ", rms_slope " + num(a.rms_slope));
+             std::to_string(a.seed) + ", hurst " + io::format_double(a.hurst) + ", rolloff_wavelength_m " +
+             (a.rolloff_wavelength_m > 0 ? io::format_double(a.rolloff_wavelength_m) : "none (= size)") +
+             ", short_wavelength_m " +
+             (a.short_wavelength_m > 0 ? io::format_double(a.short_wavelength_m) : "2 pixels") +
+             (a.rms_height_m > 0 ? ", rms_height_m " + io::format_double(a.rms_height_m)
+                                 : ", rms_slope " + io::format_double(a.rms_slope));
     }
     case TopographyKind::measured:
       return "measured height map " + r.map_file.filename().string();
@@ -84,111 +83,169 @@ HeightMap topography_surface(const TopographyRecipe& r) {
         throw InputError(r.display, r.topography_line, "topography.self_affine", e.what());
       }
     case TopographyKind::measured:
-      if (r.map_file.extension() == ".csv") return read_height_map_csv(r.map_file, display_of(r.map_file), r.pixel_m);
-      return read_height_map_binary(r.map_file, display_of(r.map_file));
+      if (r.map_file.extension() == ".csv") return read_height_map_csv(r.map_file, input_path(r.map_file), r.pixel_m);
+      return read_height_map_binary(r.map_file, input_path(r.map_file));
   }
   throw std::logic_error("topography_surface: unknown kind");
 }
 
-std::size_t merge_overlapping_junctions(JunctionPopulation& J, std::uint64_t max_work) {
-  if (J.x_m.size() != J.size() || J.y_m.size() != J.size())
-    throw std::invalid_argument("merge_overlapping_junctions: junctions need positions");
-  const std::size_t n = J.size();
-  std::size_t merges = 0;
-  std::vector<unsigned char> alive(n, 1);
-  if (n >= 2) {
-    // The pair merged next is the one a full scan would find first (scene/validate.cpp
-    // first_overlap: the lowest index with an overlapping disc of a higher index, and of those
-    // discs the first in its grid's cell order), so the result is that of merging one pair per
-    // scan; only the discs a merge changed are looked at again. A junction keeps its index (the
-    // lower of a pair lives on, as the erase of the other kept it), so index order is the scan's.
-    std::vector<double> r(n);
-    for (std::size_t k = 0; k < n; ++k) r[k] = disc_radius(J.area_m2[k]);
-    const auto reach_of = [&](std::size_t k) { return std::max(std::abs(J.x_m[k]), std::abs(J.y_m[k])); };
-    std::multiset<double> reach;  // of the living discs: the scan's grid extent
-    for (std::size_t k = 0; k < n; ++k) reach.insert(reach_of(k));
-    double r_max = *std::max_element(r.begin(), r.end());
-    // Discs of up to half a cell (twice the median radius) in a grid, searched in the cells
-    // their radius reaches; the few larger ones (a merge grows them) apart, checked one by one.
-    std::vector<double> by_size = r;
-    std::nth_element(by_size.begin(), by_size.begin() + static_cast<std::ptrdiff_t>(n / 2), by_size.end());
-    NeighbourGrid grid(2 * by_size[n / 2], *reach.rbegin());
-    const double h = grid.cell();
-    std::vector<std::size_t> big;
-    const auto place = [&](std::size_t k) {
-      if (2 * r[k] > h)
-        big.push_back(k);
-      else
-        grid.insert(k, J.x_m[k], J.y_m[k]);
-    };
-    const auto unplace = [&](std::size_t k) {
-      if (2 * r[k] > h)
-        big.erase(std::find(big.begin(), big.end(), k));
-      else
-        grid.erase(k, J.x_m[k], J.y_m[k]);
-    };
-    for (std::size_t k = 0; k < n; ++k) place(k);
-    std::uint64_t work = 0;
-    // visit(b) for each living disc b that overlaps disc k, as first_overlap tests it.
-    const auto for_each_overlap = [&](std::size_t k, auto&& visit) {
-      const auto test = [&](std::size_t b) {
-        ++work;
-        if (b != k && alive[b] && std::hypot(J.x_m[k] - J.x_m[b], J.y_m[k] - J.y_m[b]) < r[k] + r[b]) visit(b);
-        return true;
-      };
-      const double rings = std::floor((r[k] + 0.5 * h) / h) + 1;
-      grid.for_each_near(J.x_m[k], J.y_m[k], static_cast<std::int64_t>(std::min(rings, 1e9)), test);
-      for (const std::size_t b : big) test(b);
-      if (work > max_work) throw std::length_error("merge_overlapping_junctions: more than the work allowed");
-    };
-    std::set<std::size_t> pending;  // discs that may overlap one of a higher index
-    for (std::size_t k = 0; k < n; ++k)
+namespace {
+
+// Merges the overlapping discs of a population (two or more junctions, with positions) in place.
+// The pair merged next is the one a full scan would find first (scene/validate.cpp first_overlap:
+// the lowest index with an overlapping disc of a higher index, and of those discs the first in its
+// grid's cell order), so the result is that of merging one pair per scan; only the discs a merge
+// changed are looked at again. A junction keeps its index (the lower of a pair lives on, as the
+// erase of the other kept it), so index order is the scan's.
+class DiscMerger {
+ public:
+  DiscMerger(JunctionPopulation& J, std::uint64_t max_work)
+      : J_(J),
+        n_(J.size()),
+        max_work_(max_work),
+        alive_(n_, 1),
+        r_(radii(J)),
+        reach_(reaches(J)),
+        r_max_(*std::max_element(r_.begin(), r_.end())),
+        grid_(2 * median(r_), *reach_.rbegin()),
+        h_(grid_.cell()) {
+    for (std::size_t k = 0; k < n_; ++k) place(k);
+  }
+
+  // Merges pairs until no disc overlaps another; returns the count of merges.
+  std::size_t merge_all() {
+    for (std::size_t k = 0; k < n_; ++k)
       for_each_overlap(k, [&](std::size_t b) {
-        if (b > k) pending.insert(k);
+        if (b > k) pending_.insert(k);
       });
-    using CellKey = std::tuple<std::int64_t, std::int64_t, std::size_t>;
-    while (!pending.empty()) {
-      const std::size_t i = *pending.begin();
-      // The scan's grid: cells of the largest diameter (no smaller than 1e-12 of the extent).
-      const double cell = std::max(2 * r_max, *reach.rbegin() * 1e-12);
-      const auto cell_of = [&](double v) { return static_cast<std::int64_t>(std::floor(v / cell)); };
-      std::optional<CellKey> first;
-      for_each_overlap(i, [&](std::size_t b) {
-        if (b < i) return;
-        const CellKey key{cell_of(J.x_m[b]), cell_of(J.y_m[b]), b};
-        if (!first || key < *first) first = key;
-      });
-      if (!first) {
-        pending.erase(pending.begin());
+    std::size_t merges = 0;
+    while (!pending_.empty()) {
+      const std::size_t i = *pending_.begin();
+      const std::optional<std::size_t> j = first_partner(i);
+      if (!j) {
+        pending_.erase(pending_.begin());
         continue;
       }
-      const std::size_t j = std::get<2>(*first);
-      unplace(i), unplace(j);
-      reach.erase(reach.find(reach_of(i))), reach.erase(reach.find(reach_of(j)));
-      const double A = J.area_m2[i] + J.area_m2[j];
-      J.x_m[i] = (J.area_m2[i] * J.x_m[i] + J.area_m2[j] * J.x_m[j]) / A;
-      J.y_m[i] = (J.area_m2[i] * J.y_m[i] + J.area_m2[j] * J.y_m[j]) / A;
-      J.area_m2[i] = A;
-      r[i] = disc_radius(A);
-      r_max = std::max(r_max, r[i]);
-      alive[j] = 0;
-      pending.erase(j);
-      reach.insert(reach_of(i));
-      place(i);
+      merge_pair(i, *j);
       ++merges;
-      // The grown disc may overlap discs of lower index (now pending) and of higher.
-      bool higher = false;
-      for_each_overlap(i, [&](std::size_t b) {
-        if (b < i)
-          pending.insert(b);
-        else
-          higher = true;
-      });
-      if (!higher) pending.erase(i);
+      requeue(i);
     }
+    return merges;
   }
+
+  const std::vector<unsigned char>& alive() const { return alive_; }
+
+ private:
+  static std::vector<double> radii(const JunctionPopulation& J) {
+    std::vector<double> r(J.size());
+    for (std::size_t k = 0; k < J.size(); ++k) r[k] = disc_radius(J.area_m2[k]);
+    return r;
+  }
+  static double reach_of(const JunctionPopulation& J, std::size_t k) {
+    return std::max(std::abs(J.x_m[k]), std::abs(J.y_m[k]));
+  }
+  static std::multiset<double> reaches(const JunctionPopulation& J) {
+    std::multiset<double> reach;
+    for (std::size_t k = 0; k < J.size(); ++k) reach.insert(reach_of(J, k));
+    return reach;
+  }
+  static double median(std::vector<double> by_size) {
+    const std::size_t n = by_size.size();
+    std::nth_element(by_size.begin(), by_size.begin() + static_cast<std::ptrdiff_t>(n / 2), by_size.end());
+    return by_size[n / 2];
+  }
+
+  // Discs of up to half a cell (twice the median radius) in a grid, searched in the cells their
+  // radius reaches; the few larger ones (a merge grows them) apart, checked one by one.
+  void place(std::size_t k) {
+    if (2 * r_[k] > h_)
+      big_.push_back(k);
+    else
+      grid_.insert(k, J_.x_m[k], J_.y_m[k]);
+  }
+  void unplace(std::size_t k) {
+    if (2 * r_[k] > h_)
+      big_.erase(std::find(big_.begin(), big_.end(), k));
+    else
+      grid_.erase(k, J_.x_m[k], J_.y_m[k]);
+  }
+
+  // visit(b) for each living disc b that overlaps disc k, as first_overlap tests it.
+  template <class Visit>
+  void for_each_overlap(std::size_t k, Visit&& visit) {
+    const auto test = [&](std::size_t b) {
+      ++work_;
+      if (b != k && alive_[b] && std::hypot(J_.x_m[k] - J_.x_m[b], J_.y_m[k] - J_.y_m[b]) < r_[k] + r_[b]) visit(b);
+      return true;
+    };
+    const double rings = std::floor((r_[k] + 0.5 * h_) / h_) + 1;
+    grid_.for_each_near(J_.x_m[k], J_.y_m[k], static_cast<std::int64_t>(std::min(rings, 1e9)), test);
+    for (const std::size_t b : big_) test(b);
+    if (work_ > max_work_) throw std::length_error("merge_overlapping_junctions: more than the work allowed");
+  }
+
+  // The disc of higher index than i that the scan would merge with i first, if any.
+  std::optional<std::size_t> first_partner(std::size_t i) {
+    using CellKey = std::tuple<std::int64_t, std::int64_t, std::size_t>;
+    // The scan's grid: cells of the largest diameter (no smaller than 1e-12 of the extent).
+    const double cell = std::max(2 * r_max_, *reach_.rbegin() * 1e-12);
+    const auto cell_of = [&](double v) { return static_cast<std::int64_t>(std::floor(v / cell)); };
+    std::optional<CellKey> first;
+    for_each_overlap(i, [&](std::size_t b) {
+      if (b < i) return;
+      const CellKey key{cell_of(J_.x_m[b]), cell_of(J_.y_m[b]), b};
+      if (!first || key < *first) first = key;
+    });
+    if (!first) return std::nullopt;
+    return std::get<2>(*first);
+  }
+
+  // Disc j joins disc i at their area-weighted centre.
+  void merge_pair(std::size_t i, std::size_t j) {
+    unplace(i), unplace(j);
+    reach_.erase(reach_.find(reach_of(J_, i))), reach_.erase(reach_.find(reach_of(J_, j)));
+    const double A = J_.area_m2[i] + J_.area_m2[j];
+    J_.x_m[i] = (J_.area_m2[i] * J_.x_m[i] + J_.area_m2[j] * J_.x_m[j]) / A;
+    J_.y_m[i] = (J_.area_m2[i] * J_.y_m[i] + J_.area_m2[j] * J_.y_m[j]) / A;
+    J_.area_m2[i] = A;
+    r_[i] = disc_radius(A);
+    r_max_ = std::max(r_max_, r_[i]);
+    alive_[j] = 0;
+    pending_.erase(j);
+    reach_.insert(reach_of(J_, i));
+    place(i);
+  }
+
+  // The grown disc i may overlap discs of lower index (now pending) and of higher.
+  void requeue(std::size_t i) {
+    bool higher = false;
+    for_each_overlap(i, [&](std::size_t b) {
+      if (b < i)
+        pending_.insert(b);
+      else
+        higher = true;
+    });
+    if (!higher) pending_.erase(i);
+  }
+
+  JunctionPopulation& J_;
+  const std::size_t n_;
+  const std::uint64_t max_work_;
+  std::vector<unsigned char> alive_;
+  std::vector<double> r_;
+  std::multiset<double> reach_;  // of the living discs: the scan's grid extent
+  double r_max_;
+  NeighbourGrid grid_;
+  const double h_;
+  std::vector<std::size_t> big_;
+  std::uint64_t work_ = 0;
+  std::set<std::size_t> pending_;  // discs that may overlap one of a higher index
+};
+
+// The living junctions, largest first (ties: by x, then y).
+JunctionPopulation living_by_size(const JunctionPopulation& J, const std::vector<unsigned char>& alive) {
   std::vector<std::size_t> order;
-  for (std::size_t k = 0; k < n; ++k)
+  for (std::size_t k = 0; k < J.size(); ++k)
     if (alive[k]) order.push_back(k);
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
     if (J.area_m2[a] != J.area_m2[b]) return J.area_m2[a] > J.area_m2[b];
@@ -200,7 +257,22 @@ std::size_t merge_overlapping_junctions(JunctionPopulation& J, std::uint64_t max
     sorted.x_m.push_back(J.x_m[k]);
     sorted.y_m.push_back(J.y_m[k]);
   }
-  J = std::move(sorted);
+  return sorted;
+}
+
+}  // namespace
+
+std::size_t merge_overlapping_junctions(JunctionPopulation& J, std::uint64_t max_work) {
+  if (J.x_m.size() != J.size() || J.y_m.size() != J.size())
+    throw std::invalid_argument("merge_overlapping_junctions: junctions need positions");
+  std::vector<unsigned char> alive(J.size(), 1);
+  std::size_t merges = 0;
+  if (J.size() >= 2) {
+    DiscMerger merger(J, max_work);
+    merges = merger.merge_all();
+    alive = merger.alive();
+  }
+  J = living_by_size(J, alive);
   return merges;
 }
 
@@ -233,8 +305,8 @@ TopographyContact solve_surface_contact(HeightMap map, const TopographyRecipe& r
   if (!c.converged)
     throw InputError(r.display, 0, r.file.empty() ? "topography.contact.max_iterations" : "contact.max_iterations",
                      "the normal contact did not converge in " + std::to_string(c.iterations) +
-                         " iterations (residual " + scene_io::format_short(c.residual) + " > tolerance " +
-                         num(r.tolerance) + "); raise contact.max_iterations or contact.tolerance");
+                         " iterations (residual " + io::format_short(c.residual) + " > tolerance " +
+                         io::format_double(r.tolerance) + "); raise contact.max_iterations or contact.tolerance");
   t.iterations = c.iterations;
   t.residual = c.residual;
   t.contact_area_m2 = c.area_m2;
@@ -264,17 +336,16 @@ TopographyContact solve_surface_contact(HeightMap map, const TopographyRecipe& r
   } catch (const std::length_error&) {
     throw InputError(r.display, r.topography_line, "topography",
                      "merging the overlapping discs of the " + std::to_string(t.clusters) +
-                         " contact clusters needs more than " +
-                         scene_io::format_short(static_cast<double>(kMaxMergeWork)) +
+                         " contact clusters needs more than " + io::format_short(static_cast<double>(kMaxMergeWork)) +
                          " disc comparisons: use contact.connectivity 8 or a coarser map");
   }
   // The junctions must pass what a junctions file's rows pass (what generate writes is read back
   // as one): a pixel of 1e-11 m or a map of 1e5 m pixels makes areas no command accepts.
   const JunctionPopulation& J = t.junctions;
   for (std::size_t i = 0; i < J.size(); ++i) {
-    std::string why = scene_io::junction_area_problem(J.area_m2[i]);
+    std::string why = junction_area_problem(J.area_m2[i]);
     for (const double v : {J.x_m[i], J.y_m[i]})
-      if (why.empty()) why = scene_io::junction_coordinate_problem(v);
+      if (why.empty()) why = junction_coordinate_problem(v);
     if (!why.empty())
       throw InputError(r.display, r.topography_line, "topography",
                        "junction " + std::to_string(i + 1) + " of the " + std::to_string(J.size()) +
@@ -295,10 +366,11 @@ Experiment topography_experiment(const TopographyRecipe& r, const TopographyCont
   e.nu = r.nu;
   e.sigma_exp = r.sigma_exp;
   e.junctions = t.junctions;
-  e.description = "Junctions from topography: the contact clusters of a sphere of R = " + num(r.sphere_radius_m) +
-                  " m on a rigid flat at P = " + num(r.load_N) + " N, merged where their equivalent discs overlap (" +
-                  std::to_string(t.clusters) + " clusters, " + std::to_string(e.junctions.size()) +
-                  " junctions); surface " + topography_surface_text(r) + ". " + made_by;
+  e.description =
+      "Junctions from topography: the contact clusters of a sphere of R = " + io::format_double(r.sphere_radius_m) +
+      " m on a rigid flat at P = " + io::format_double(r.load_N) + " N, merged where their equivalent discs overlap (" +
+      std::to_string(t.clusters) + " clusters, " + std::to_string(e.junctions.size()) + " junctions); surface " +
+      topography_surface_text(r) + ". " + made_by;
   return e;
 }
 

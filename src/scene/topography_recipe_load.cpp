@@ -10,18 +10,15 @@
 namespace asperity {
 
 namespace fs = std::filesystem;
-using scene_io::MapView;
-using scene_io::Source;
+using io::MapView;
+using io::Source;
 
 namespace {
-
-std::string display_of(const fs::path& p) { return p.lexically_normal().string(); }
-std::string num(double x) { return scene_io::format_double(x); }
 
 double positive(const MapView& m, const std::string& k, const char* unit) {
   const YAML::Node n = m.require(k);
   const double x = m.number(n, k, unit);
-  if (!(x > 0.0)) m.fail_at(n, k, "must be > 0, got " + num(x));
+  if (!(x > 0.0)) m.fail_at(n, k, "must be > 0, got " + io::format_double(x));
   return x;
 }
 
@@ -54,7 +51,7 @@ double pixel_of(const MapView& m, std::size_t n) {
   if (p) return pixel_checked(m, "pixel_m", positive(m, "pixel_m", "m"));
   const double size = positive(m, "size_m", "m");
   return pixel_checked(m, "size_m", size / static_cast<double>(n),
-                       "gives pixels of " + num(size / static_cast<double>(n)) + " m (size_m / n): ");
+                       "gives pixels of " + io::format_double(size / static_cast<double>(n)) + " m (size_m / n): ");
 }
 
 const std::vector<std::string> kSurfaceKeys{"smooth", "self_affine", "file", "pixel_m"};
@@ -85,7 +82,7 @@ void read_surface(const MapView& t, const YAML::Node& tn, const fs::path& base_d
     s.length_m = r.pixel_m * static_cast<double>(r.n);
     const YAML::Node hn = m.require("hurst");
     s.hurst = m.number(hn, "hurst", nullptr);
-    if (!(s.hurst > 0 && s.hurst < 1)) m.fail_at(hn, "hurst", "must be in (0, 1), got " + num(s.hurst));
+    if (!(s.hurst > 0 && s.hurst < 1)) m.fail_at(hn, "hurst", "must be in (0, 1), got " + io::format_double(s.hurst));
     get_positive(m, "rolloff_wavelength_m", s.rolloff_wavelength_m, "m");
     get_positive(m, "short_wavelength_m", s.short_wavelength_m, "m");
     const auto hr = m.find("rms_height_m"), sl = m.find("rms_slope");
@@ -100,19 +97,18 @@ void read_surface(const MapView& t, const YAML::Node& tn, const fs::path& base_d
   } else {
     r.kind = TopographyKind::measured;
     const std::string rel = t.string(*fi, "file");
-    if (scene_io::trim(rel).empty()) t.fail_at(*fi, "file", "empty path (expected a height map)");
+    if (io::trim(rel).empty()) t.fail_at(*fi, "file", "empty path (expected a height map)");
     r.map_file = base_dir / fs::path(rel);
     const std::string ext = r.map_file.extension().string();
     const bool csv = ext == ".csv", header = ext == ".yaml" || ext == ".yml";
     if (!csv && !header)
       t.fail_at(*fi, "file",
-                "expected a .csv matrix of heights or a .yaml header of a float64 file, got " + scene_io::quote(rel));
-    const std::string why =
-        scene_io::input_file_problem(r.map_file, csv ? scene_io::kMaxCsvBytes : scene_io::kMaxYamlBytes);
+                "expected a .csv matrix of heights or a .yaml header of a float64 file, got " + io::quote(rel));
+    const std::string why = io::input_file_problem(r.map_file, csv ? io::kMaxCsvBytes : io::kMaxYamlBytes);
     if (why == "file not found")
       t.fail_at(*fi, "file",
-                "height map not found: " + scene_io::quote(rel) + " (looked for " + display_of(r.map_file) + ")");
-    if (!why.empty()) t.fail_at(*fi, "file", "height map " + why + ": " + display_of(r.map_file));
+                "height map not found: " + io::quote(rel) + " (looked for " + input_path(r.map_file) + ")");
+    if (!why.empty()) t.fail_at(*fi, "file", "height map " + why + ": " + input_path(r.map_file));
     if (csv)
       r.pixel_m = pixel_checked(t, "pixel_m", positive(t, "pixel_m", "m"));
     else if (const auto p = t.find("pixel_m"))
@@ -125,8 +121,7 @@ void read_rest(const MapView& top, TopographyRecipe& r) {
   const Source& src = top.source();
   if (const auto n = top.find("name")) {
     r.name = top.string(*n, "name");
-    if (r.name.empty() || scene_io::has_control_char(r.name))
-      top.fail_at(*n, "name", "must be a non-empty single-line name");
+    if (r.name.empty() || io::has_control_char(r.name)) top.fail_at(*n, "name", "must be a non-empty single-line name");
   }
   // Ranges: topography_number_problem (topography_recipe.hpp), shared with the Python bindings.
   const auto in_range = [](const MapView& m, const YAML::Node& n, const std::string& key, const std::string& checked,
@@ -171,10 +166,10 @@ YAML::Node lifted_file_tree(const YAML::Node& root) {
   for (auto it = root.begin(); it != root.end(); ++it) {
     const std::string k = it->first.Scalar();
     if (k != "topography")
-      out[k] = scene_io::strip_marks(it->second);
+      out[k] = io::strip_marks(it->second);
     else
       for (auto jt = it->second.begin(); jt != it->second.end(); ++jt)
-        out[jt->first.Scalar()] = scene_io::strip_marks(jt->second);
+        out[jt->first.Scalar()] = io::strip_marks(jt->second);
   }
   return out;
 }
@@ -202,7 +197,7 @@ YAML::Node merged(const YAML::Node& base, const YAML::Node& over) {
 }  // namespace
 
 bool is_topography_recipe(const fs::path& path) {
-  const YAML::Node root = scene_io::load_yaml_file(path, display_of(path));
+  const YAML::Node root = io::load_yaml_file(path, input_path(path));
   if (!root.IsMap()) return false;
   for (auto it = root.begin(); it != root.end(); ++it)
     if (it->first.IsScalar() && it->first.Scalar() == "topography") return true;
@@ -210,8 +205,8 @@ bool is_topography_recipe(const fs::path& path) {
 }
 
 TopographyRecipe load_topography_recipe(const fs::path& path) {
-  const std::string display = display_of(path);
-  const YAML::Node root = scene_io::load_yaml_file(path, display);
+  const std::string display = input_path(path);
+  const YAML::Node root = io::load_yaml_file(path, display);
   const Source src{display, nullptr};
   TopographyRecipe r;
   r.file = path;
@@ -236,15 +231,15 @@ TopographyRecipe topography_recipe_from_scene(const Source& src, const YAML::Nod
   if (const auto rn = top.find("recipe")) {
     // The file alone first, so that its own errors name it and its lines; then the scene's values over it.
     const std::string rel = top.string(*rn, "recipe");
-    if (scene_io::trim(rel).empty()) top.fail_at(*rn, "recipe", "empty path (expected a topography recipe)");
+    if (io::trim(rel).empty()) top.fail_at(*rn, "recipe", "empty path (expected a topography recipe)");
     const fs::path p = base_dir / fs::path(rel);
-    if (const std::string why = scene_io::input_file_problem(p, scene_io::kMaxYamlBytes); !why.empty())
-      top.fail_at(*rn, "recipe", "topography recipe " + why + ": " + display_of(p));
+    if (const std::string why = io::input_file_problem(p, io::kMaxYamlBytes); !why.empty())
+      top.fail_at(*rn, "recipe", "topography recipe " + why + ": " + input_path(p));
     r = load_topography_recipe(p);
     YAML::Node over(YAML::NodeType::Map);
     for (auto it = section.begin(); it != section.end(); ++it)
       if (it->first.Scalar() != "recipe") over[it->first] = it->second;
-    tree = merged(lifted_file_tree(scene_io::load_yaml_file(p, display_of(p))), over);
+    tree = merged(lifted_file_tree(io::load_yaml_file(p, input_path(p))), over);
     map_dir = p.parent_path();  // a height map named in the file is relative to it
     const fs::path file = r.file;
     r = TopographyRecipe{};

@@ -21,7 +21,7 @@ TopographyRecipe load_topography_recipe(const std::filesystem::path& path);
 // A scene's `topography:` map (the recipe's keys with its surface section lifted: smooth,
 // self_affine or file next to sphere_radius_m, load_N, ...), checked as a recipe file is; errors
 // name `src` and the keys as topography.KEY. Paths (file:) resolve against base_dir.
-TopographyRecipe topography_recipe_from_scene(const scene_io::Source& src, const YAML::Node& section,
+TopographyRecipe topography_recipe_from_scene(const io::Source& src, const YAML::Node& section,
                                               const std::filesystem::path& base_dir);
 
 }  // namespace asperity

@@ -13,8 +13,8 @@
 
 namespace asperity {
 
-using scene_io::format_double;
-using scene_io::format_short;
+using io::format_double;
+using io::format_short;
 
 namespace {
 
@@ -155,7 +155,7 @@ void check_interactions(const Scene& s, const KeyOrigins& o) {
     // The CSV's row of the second junction (read again: only on this error path).
     std::vector<int> lines;
     try {
-      (void)scene_io::read_junctions_csv(s.experiment.junctions_file, csv, lines);
+      (void)read_junctions_csv(s.experiment.junctions_file, csv, lines);
     } catch (const std::exception&) {  // changed since it was read: no line then
       lines.clear();
     }

@@ -14,18 +14,14 @@ namespace asperity {
 
 namespace {
 
-std::string num(double x) {
-  if (!std::isfinite(x)) throw std::invalid_argument("cannot write a non-finite number to a scene file");
-  return scene_io::format_double(x);
-}
-
 // The data of an experiment given in memory (no file), as the loader reads them inline: the
 // junctions and the measured curve as flow maps of columns, ten numbers a line.
 std::string inline_data_yaml(const Experiment& e) {
   std::string y;
   auto column = [&](const char* name, const std::vector<double>& c) {
     y += std::string(y.back() == '{' ? "" : ",\n      ") + name + ": [";
-    for (std::size_t i = 0; i < c.size(); ++i) y += (i ? (i % 10 ? ", " : ",\n        ") : "") + num(c[i]);
+    for (std::size_t i = 0; i < c.size(); ++i)
+      y += (i ? (i % 10 ? ", " : ",\n        ") : "") + io::format_scene_number(c[i]);
     y += "]";
   };
   const JunctionPopulation& j = e.junctions;
@@ -84,7 +80,7 @@ std::string experiment_to_yaml(const Experiment& e, const std::string& junctions
   y += "name: " + yaml_quoted(e.name) + "\n";
   if (!e.description.empty()) y += "description: " + yaml_quoted(e.description) + "\n";
   auto field = [&](const char* key, double x, const char* unit) {
-    std::string l = std::string(key) + ": " + num(x);
+    std::string l = std::string(key) + ": " + io::format_scene_number(x);
     if (unit) l += std::string(l.size() < 28 ? 28 - l.size() : 1, ' ') + "# " + unit;
     y += l + "\n";
   };

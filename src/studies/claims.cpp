@@ -17,7 +17,7 @@ namespace asperity {
 
 namespace {
 
-const auto fmt = scene_io::format_printf;
+const auto fmt = io::format_printf;
 
 // Numbers of a table cell; "–" for unknown.
 std::string cell(const char* f, double x) { return std::isnan(x) ? std::string("–") : fmt(f, x); }

@@ -156,9 +156,7 @@ ContinuumStudy run_continuum_study(const ContinuumStudyOptions& o) {
 
 namespace {
 
-std::string fixed(double v, int digits) {
-  return scene_io::format_cell(("%." + std::to_string(digits) + "f").c_str(), v);
-}
+std::string fixed(double v, int digits) { return io::format_cell(("%." + std::to_string(digits) + "f").c_str(), v); }
 
 std::string plot_script(const ContinuumStudy& s, const std::optional<StiffnessRule>& rule) {
   std::ostringstream gp;
@@ -232,14 +230,14 @@ void write_files(const ContinuumStudyOptions& o, const ContinuumStudy& s, const 
       << ',' << csv_number(r.q50) << ',' << csv_number(r.full_sliding_displacement_m) << ','
       << csv_number(r.full_sliding_error) << ',' << csv_number(r.rms_error) << ',' << (r.converged ? "true" : "false")
       << ',' << (r.monotone ? "true" : "false") << '\n';
-  scene_io::write_text_file(o.out / "table.csv", t.str());
+  io::write_text_file(o.out / "table.csv", t.str());
   std::ostringstream c;
   c << "# " << kSynthetic << ": Q(delta) of each model, `" << study_command(o.study_file)
     << "`\nload_N,model,displacement_m,force_N,slip_area_fraction\n";
   for (const ContinuumCurvePoint& p : s.curves)
     c << csv_number(p.load_N) << ',' << p.model << ',' << csv_number(p.displacement_m) << ',' << csv_number(p.force_N)
       << ',' << csv_number(p.slip_area_fraction) << '\n';
-  scene_io::write_text_file(o.out / "curves.csv", c.str());
+  io::write_text_file(o.out / "curves.csv", c.str());
 
   std::vector<double> cov, err;
   for (const ContinuumRow& r : s.rows)
@@ -252,7 +250,7 @@ void write_files(const ContinuumStudyOptions& o, const ContinuumStudy& s, const 
   if (rule)
     rl << csv_number(rule->prefactor) << ',' << csv_number(rule->exponent) << ',' << csv_number(rule->ratio_min) << ','
        << csv_number(rule->ratio_max) << ',' << rule->points << '\n';
-  scene_io::write_text_file(o.out / "rule.csv", rl.str());
+  io::write_text_file(o.out / "rule.csv", rl.str());
 
   std::ostringstream md;
   md << "# Junction models against the continuum\n\n**" << kSynthetic
@@ -270,18 +268,18 @@ void write_files(const ContinuumStudyOptions& o, const ContinuumStudy& s, const 
        << fixed(r.coverage_population, 3) << " | " << fixed(r.coverage_hertz, 3) << " | " << fixed(r.stiffness_ratio, 2)
        << " | " << r.model << (r.converged ? "" : " (NOT converged)")
        << (r.monotone ? "" : " (a slip stopped between two points)") << " | "
-       << scene_io::format_cell("%.4g", r.initial_stiffness_N_per_m) << " | " << fixed(100 * r.stiffness_error, 1)
-       << " % | " << fixed(r.q10, 3) << " | " << fixed(r.q50, 3) << " | " << fixed(100 * r.full_sliding_error, 1)
-       << " % | " << fixed(100 * r.rms_error, 2) << " % |\n";
+       << io::format_cell("%.4g", r.initial_stiffness_N_per_m) << " | " << fixed(100 * r.stiffness_error, 1) << " % | "
+       << fixed(r.q10, 3) << " | " << fixed(r.q50, 3) << " | " << fixed(100 * r.full_sliding_error, 1) << " % | "
+       << fixed(100 * r.rms_error, 2) << " % |\n";
   md << "\n## The rule\n\n";
   if (rule) {
-    md << "|k0 error of independent junctions| = " << scene_io::format_cell("%.4g", rule->prefactor)
-       << " · (stiffness ratio)^" << scene_io::format_cell("%.3g", rule->exponent) << ", fitted over stiffness ratios "
+    md << "|k0 error of independent junctions| = " << io::format_cell("%.4g", rule->prefactor)
+       << " · (stiffness ratio)^" << io::format_cell("%.3g", rule->exponent) << ", fitted over stiffness ratios "
        << fixed(rule->ratio_min, 2) << " to " << fixed(rule->ratio_max, 2) << " (" << rule->points
        << " loads; `rule.csv`). It reaches\n\n";
     for (const double e : {0.01, 0.05, 0.2}) {
       const double c = rule->ratio_for(e);
-      md << "- " << fixed(100 * e, 0) << " % at stiffness ratio " << scene_io::format_cell("%.3g", c)
+      md << "- " << fixed(100 * e, 0) << " % at stiffness ratio " << io::format_cell("%.3g", c)
          << (c < rule->ratio_min || c > rule->ratio_max ? " (extrapolated: outside the ratios measured)" : "") << "\n";
     }
   } else {
@@ -292,7 +290,7 @@ void write_files(const ContinuumStudyOptions& o, const ContinuumStudy& s, const 
     md << "\ncontinuum.png not drawn: " << error << "\n";
   else
     md << "\n![errors against coverage; Q(δ) at the heaviest load](continuum.png)\n";
-  scene_io::write_text_file(o.out / "REPORT.md", md.str());
+  io::write_text_file(o.out / "REPORT.md", md.str());
 }
 
 }  // namespace

@@ -87,8 +87,8 @@ std::string force_spread_plot(const Spread& sp) {
      << stand_in_mark(is_stand_in(sp.inter.experiment)) << "set title " << gnuplot_text(sp.experiment) << " . "
      << gnuplot_quote(": f/(σA) at half the time of the first peak")
      << " . \"\\n\" . "  // two lines: one column wide in a PDF
-     << gnuplot_quote("junctions of equal area (" + scene_io::format_cell("%.3g", sp.area_lo * area.scale) + "–" +
-                      scene_io::format_cell("%.3g", sp.area_hi * area.scale) + " " + unit_markup(area.unit) + ")")
+     << gnuplot_quote("junctions of equal area (" + io::format_cell("%.3g", sp.area_lo * area.scale) + "–" +
+                      io::format_cell("%.3g", sp.area_hi * area.scale) + " " + unit_markup(area.unit) + ")")
      << "\nset xlabel " << gnuplot_quote("f_i / (σ A_i) [1]") << "\nset ylabel " << gnuplot_quote("junctions [1]")
      << "\nbin(x) = 0.02*floor(x/0.02) + 0.01\nset style fill transparent solid 0.5\nset boxwidth 0.02\nset key top "
         "right\n"
@@ -96,19 +96,18 @@ std::string force_spread_plot(const Spread& sp) {
      // than a bin): a band and a line across the plot, not a bar as tall as all the junctions
      // (which squashed the histograms); the y range is the histograms'.
      << "set yrange [0:*]\nset offsets 0, 0, graph 0.1, 0\n"
-     << (std::isfinite(lo)
-             ? "set object 1 rect from first " + scene_io::format_cell("%.10g", lo) + ", graph 0 to first " +
-                   scene_io::format_cell("%.10g", hi) +
-                   ", graph 1 behind fc rgb '#56b4e9' fs solid 0.35 noborder\nset arrow 1 from first " +
-                   scene_io::format_cell("%.10g", 0.5 * (lo + hi)) + ", graph 0 to first " +
-                   scene_io::format_cell("%.10g", 0.5 * (lo + hi)) + ", graph 1 nohead lw 3 lc rgb '#56b4e9'\n"
-             : std::string())
+     << (std::isfinite(lo) ? "set object 1 rect from first " + io::format_cell("%.10g", lo) + ", graph 0 to first " +
+                                 io::format_cell("%.10g", hi) +
+                                 ", graph 1 behind fc rgb '#56b4e9' fs solid 0.35 noborder\nset arrow 1 from first " +
+                                 io::format_cell("%.10g", 0.5 * (lo + hi)) + ", graph 0 to first " +
+                                 io::format_cell("%.10g", 0.5 * (lo + hi)) + ", graph 1 nohead lw 3 lc rgb '#56b4e9'\n"
+                           : std::string())
      << "plot $crowded using (bin($1)):(1) smooth frequency with boxes title "
      << gnuplot_quote("interacting, crowded (k_i Σ_j C_{ij} ≥ median)")
      << ", $sparse using (bin($1)):(1) smooth frequency "
      << "with boxes title " << gnuplot_quote("interacting, sparse") << ", NaN with lines lw 3 lc rgb '#56b4e9' title "
-     << gnuplot_quote("independent model (same junctions): " + scene_io::format_cell("%.3g", lo) +
-                      (hi > lo ? "–" + scene_io::format_cell("%.3g", hi) : ""))
+     << gnuplot_quote("independent model (same junctions): " + io::format_cell("%.3g", lo) +
+                      (hi > lo ? "–" + io::format_cell("%.3g", hi) : ""))
      << "\n";
   return gp.str();
 }
@@ -140,7 +139,7 @@ void write_verdict_md(std::ostream& md, const InteractionStudyOptions& opt, cons
        << "the interacting model is closer than the independent one at " << t.closer << of << ", farther at "
        << t.farther << ", and the difference is within its spread (no evidence either way) at " << t.undecided << ". ";
   if (t.dn_count > 0)
-    md << "Interactions change the shape exponent n by " << scene_io::format_cell("%+.3f", t.dn_sum / t.dn_count)
+    md << "Interactions change the shape exponent n by " << io::format_cell("%+.3f", t.dn_sum / t.dn_count)
        << " on average (interacting − independent, each at its own calibrated α_b); the stand-in \"measured\" "
           "curves are parabolas plus noise by construction, and their own n spreads by ±0.1 or more over that noise "
           "(table), so n alone decides nothing.";
@@ -166,15 +165,14 @@ void write_loads_md(std::ostream& md, const std::vector<StudyRow>& rows) {
         md << "| " << r.name << " | " << model << " | no calibration: no evidence | | | | | | | | | | |\n";
         continue;
       }
-      md << "| " << r.name << " | " << model << " | " << scene_io::format_cell("%.4f", s->alpha_b * 1e15) << " | "
-         << scene_io::format_cell("%.3f", s->obs.shape_exponent) << " | "
-         << scene_io::format_cell("%.3f", s->areas.n_measured) << " | "
-         << scene_io::format_cell("%.3f", s->areas.decay_model) << " | "
-         << scene_io::format_cell("%.3f", s->areas.decay_measured) << " | "
-         << scene_io::format_cell("%.3f", s->areas.slope_model * 1e6) << " | "
-         << scene_io::format_cell("%.3f", s->areas.slope_measured * 1e6) << " | "
-         << scene_io::format_cell("%.4f", s->obs.Q_s) << " | " << scene_io::format_cell("%.3f", s->obs.t_peak) << " | "
-         << s->obs.ss_cycles << " | " << scene_io::format_cell("%.1f", s->wall_s) << " |\n";
+      md << "| " << r.name << " | " << model << " | " << io::format_cell("%.4f", s->alpha_b * 1e15) << " | "
+         << io::format_cell("%.3f", s->obs.shape_exponent) << " | " << io::format_cell("%.3f", s->areas.n_measured)
+         << " | " << io::format_cell("%.3f", s->areas.decay_model) << " | "
+         << io::format_cell("%.3f", s->areas.decay_measured) << " | "
+         << io::format_cell("%.3f", s->areas.slope_model * 1e6) << " | "
+         << io::format_cell("%.3f", s->areas.slope_measured * 1e6) << " | " << io::format_cell("%.4f", s->obs.Q_s)
+         << " | " << io::format_cell("%.3f", s->obs.t_peak) << " | " << s->obs.ss_cycles << " | "
+         << io::format_cell("%.1f", s->wall_s) << " |\n";
     }
   md << "\n(n: exponent of A0 − A = c Qⁿ on the loading branch; area decay 1 − A_s/A0; incipient slope: least-squares "
         "dA/dQ over Q ≤ 0.3 Q_max; runs to five stick-slip cycles or 12 s, 20 s with interactions.)\n\n";
@@ -191,15 +189,13 @@ void write_shape_md(std::ostream& md, const std::vector<StudyRow>& rows) {
       if (!s->ran || !std::isfinite(s->shape.residual_rms)) continue;
       const ShapeComparison& c = s->shape;
       md << "| " << r.name << " | " << (s == &r.indep ? "independent" : "interacting") << " | "
-         << scene_io::format_cell("%.4f", c.residual_rms * 1e6) << " | "
-         << scene_io::format_cell("%.4f", c.residual_rms_sd * 1e6) << " | "
-         << scene_io::format_cell("%.4f", c.noise_rms * 1e6) << " | "
-         << scene_io::format_cell("%.4f", c.noise_rms_p95 * 1e6) << " | " << (c.residual_exceeds_noise() ? "no" : "yes")
-         << " | " << scene_io::format_cell("%.4f", c.alpha_model * 1e6) << " | "
-         << scene_io::format_cell("%.4f", c.alpha_measured * 1e6) << " ± "
-         << scene_io::format_cell("%.4f", c.alpha_measured_sd * 1e6) << " | "
-         << scene_io::format_cell("%.3f", c.n_measured) << " ± " << scene_io::format_cell("%.3f", c.n_measured_sd)
-         << " | " << c.points_used << " |\n";
+         << io::format_cell("%.4f", c.residual_rms * 1e6) << " | " << io::format_cell("%.4f", c.residual_rms_sd * 1e6)
+         << " | " << io::format_cell("%.4f", c.noise_rms * 1e6) << " | "
+         << io::format_cell("%.4f", c.noise_rms_p95 * 1e6) << " | " << (c.residual_exceeds_noise() ? "no" : "yes")
+         << " | " << io::format_cell("%.4f", c.alpha_model * 1e6) << " | "
+         << io::format_cell("%.4f", c.alpha_measured * 1e6) << " ± "
+         << io::format_cell("%.4f", c.alpha_measured_sd * 1e6) << " | " << io::format_cell("%.3f", c.n_measured)
+         << " ± " << io::format_cell("%.3f", c.n_measured_sd) << " | " << c.points_used << " |\n";
     }
   md << "\n(Residual: rms of A_model − A_measured at the measured Q the model's loading branch reaches; noise: rms of "
         "the measured points about their own parabola A0 − αQ², and its 95th percentile over the bootstrap. α: "
@@ -224,9 +220,9 @@ void write_spread_md(std::ostream& md, const InteractionStudyOptions& opt, const
     };
     md << "The paper's Figure 2 argument: two junctions of similar area carry very different forces, presumably "
           "because crowded neighbourhoods evolve differently. Junctions of equal area ("
-       << scene_io::format_cell("%.3g", sp.area_lo) << "–" << scene_io::format_cell("%.3g", sp.area_hi)
+       << io::format_cell("%.3g", sp.area_lo) << "–" << io::format_cell("%.3g", sp.area_hi)
        << " m², the stand-ins' cluster) at the first peak, "
-       << "split at the median of their crowding k_i Σ_j C_ij (" << scene_io::format_cell("%.3f", sp.crowding_median)
+       << "split at the median of their crowding k_i Σ_j C_ij (" << io::format_cell("%.3f", sp.crowding_median)
        << ", the compliance the neighbours add relative to the junction's own), at half the time of the first peak "
           "and at the peak:\n\n"
        << "| when | set | junctions | mean f/(σA) | sd | min | max |\n|---|---|---|---|---|---|---|\n";
@@ -235,8 +231,8 @@ void write_spread_md(std::ostream& md, const InteractionStudyOptions& opt, const
       const char* names[3] = {"interacting, crowded", "interacting, sparse", "independent (same junctions)"};
       for (int k = 0; k < 3; ++k)
         md << "| " << (w == 0 ? "half t_peak" : "t_peak") << " | " << names[k] << " | " << st[k].n << " | "
-           << scene_io::format_cell("%.4f", st[k].mean) << " | " << scene_io::format_cell("%.4f", st[k].sd) << " | "
-           << scene_io::format_cell("%.4f", st[k].lo) << " | " << scene_io::format_cell("%.4f", st[k].hi) << " |\n";
+           << io::format_cell("%.4f", st[k].mean) << " | " << io::format_cell("%.4f", st[k].sd) << " | "
+           << io::format_cell("%.4f", st[k].lo) << " | " << io::format_cell("%.4f", st[k].hi) << " |\n";
     }
     md << "\n"
        << "![force spread](force_spread.png)\n\n"
@@ -265,13 +261,12 @@ void write_sweep_md(std::ostream& md, const InteractionStudyOptions& opt) {
         return it == r.end() ? std::string() : it->second;
       };
       md << "| " << g("experiment") << " | " << g("grid") << " | " << g("model.position_scale") << " | "
-         << (num(r, "model.interaction_cutoff") > 0
-                 ? scene_io::format_cell("%.2f", num(r, "model.interaction_cutoff") * 1e3)
-                 : "every pair")
-         << " | " << scene_io::format_cell("%.3f", num(r, "shape_exponent")) << " | "
-         << scene_io::format_cell("%.3f", num(r, "area_drop_fraction")) << " | "
-         << scene_io::format_cell("%.4f", num(r, "Q_s")) << " | " << scene_io::format_cell("%.3f", num(r, "t_peak"))
-         << " | " << g("ss_cycles") << " | " << g("status") << " |\n";
+         << (num(r, "model.interaction_cutoff") > 0 ? io::format_cell("%.2f", num(r, "model.interaction_cutoff") * 1e3)
+                                                    : "every pair")
+         << " | " << io::format_cell("%.3f", num(r, "shape_exponent")) << " | "
+         << io::format_cell("%.3f", num(r, "area_drop_fraction")) << " | " << io::format_cell("%.4f", num(r, "Q_s"))
+         << " | " << io::format_cell("%.3f", num(r, "t_peak")) << " | " << g("ss_cycles") << " | " << g("status")
+         << " |\n";
     }
     md << "\n(Position scale s: the same arrangement in an apparent contact s times as wide, 1/s² as crowded; 1000: "
           "practically independent. A cut-off drops the pairs farther apart.)\n\n";
@@ -296,29 +291,28 @@ void write_topography_md(std::ostream& md, const InteractionStudyOptions& opt) {
         "surfaces are synthetic and it has no measured Q(t), so no joint calibration is made there. ";
   if (t.pairs > 0)
     md << "Over the " << t.pairs << " loads (and surface realisations) where both models ran, interactions change "
-       << "the shape exponent n by " << scene_io::format_cell("%+.3f", t.mean_dn) << " on average (from "
-       << scene_io::format_cell("%+.3f", t.min_dn) << " to " << scene_io::format_cell("%+.3f", t.max_dn)
-       << "; lower at " << t.n_lower << " of " << t.pairs << ") and the endpoint residual (distance from a parabola "
-       << "through the same end points, in units of the drop) by at most "
-       << scene_io::format_cell("%.3f", t.max_abs_dres) << ". ";
+       << "the shape exponent n by " << io::format_cell("%+.3f", t.mean_dn) << " on average (from "
+       << io::format_cell("%+.3f", t.min_dn) << " to " << io::format_cell("%+.3f", t.max_dn) << "; lower at "
+       << t.n_lower << " of " << t.pairs << ") and the endpoint residual (distance from a parabola "
+       << "through the same end points, in units of the drop) by at most " << io::format_cell("%.3f", t.max_abs_dres)
+       << ". ";
   md << t.within_noise << " of " << t.rows << " model curves are within the noise of a stand-in-like measured "
      << "parabola (residual at most the noise's 95th percentile).\n\n"
      << "| seed | load [N] | N | model | α_b [1e-15] | n | endpoint residual | residual [mm²] | noise 95 % [mm²] | "
         "within noise |\n|---|---|---|---|---|---|---|---|---|---|\n";
   for (const TopographyShapeRow& r : rows)
-    md << "| " << r.seed << " | " << scene_io::format_cell("%.2f", r.load_N) << " | " << r.junctions << " | " << r.model
-       << " | " << scene_io::format_cell("%.4f", r.alpha_b * 1e15) << " | "
-       << scene_io::format_cell("%.3f", r.shape_exponent) << " | " << scene_io::format_cell("%.3f", r.endpoint_residual)
-       << " | " << scene_io::format_cell("%.4f", r.residual_rms_m2 * 1e6) << " | "
-       << scene_io::format_cell("%.4f", r.noise_rms_p95_m2 * 1e6) << " | " << (r.within_noise() ? "yes" : "no")
-       << " |\n";
+    md << "| " << r.seed << " | " << io::format_cell("%.2f", r.load_N) << " | " << r.junctions << " | " << r.model
+       << " | " << io::format_cell("%.4f", r.alpha_b * 1e15) << " | " << io::format_cell("%.3f", r.shape_exponent)
+       << " | " << io::format_cell("%.3f", r.endpoint_residual) << " | "
+       << io::format_cell("%.4f", r.residual_rms_m2 * 1e6) << " | " << io::format_cell("%.4f", r.noise_rms_p95_m2 * 1e6)
+       << " | " << (r.within_noise() ? "yes" : "no") << " |\n";
   md << "\n";
 }
 
 // A parameter's 95 % interval as a table cell ("n/a" where the fit gave none).
 std::string interval_cell(const JointParameter& p, double scale, const char* f) {
   if (!std::isfinite(p.lo95)) return "n/a";
-  return "[" + scene_io::format_cell(f, p.lo95 * scale) + ", " + scene_io::format_cell(f, p.hi95 * scale) + "]";
+  return "[" + io::format_cell(f, p.lo95 * scale) + ", " + io::format_cell(f, p.hi95 * scale) + "]";
 }
 
 // REPORT.md: the joint calibrations' values per load and model.
@@ -367,14 +361,14 @@ void write_joint_values_md(std::ostream& md, const InteractionStudyOptions& opt,
       const double s2_value = std::isfinite(s->fit.reduced_chi2) ? s->fit.reduced_chi2
                               : dof > 0                          ? s->fit.objective / dof
                                                                  : ForceMisfit::nan;
-      const std::string s2 = scene_io::format_cell("%.1f", s2_value);
-      md << "| " << r.name << " | " << model << " | " << scene_io::format_cell("%.4f", a.value * 1e15) << bound(a)
-         << " | " << interval_cell(a, 1e15, "%.4f") << " | " << scene_io::format_cell("%.4f", a.profile_sigma * 1e15)
-         << " | " << scene_io::format_cell("%.4f", e.value) << bound(e) << " | " << interval_cell(e, 1, "%.4f") << " | "
-         << scene_io::format_cell("%.4f", e.profile_sigma) << " | " << scene_io::format_cell("%.2f", h.value)
-         << bound(h) << " | " << interval_cell(h, 1, "%.2f") << " | " << scene_io::format_cell("%.2f", h.profile_sigma)
-         << " | " << (std::isfinite(ps.value) ? scene_io::format_cell("%.4f", ps.value) + bound(ps) : std::string("–"))
-         << " | " << (certified ? s2 : "(" + s2 + ")") << " | "
+      const std::string s2 = io::format_cell("%.1f", s2_value);
+      md << "| " << r.name << " | " << model << " | " << io::format_cell("%.4f", a.value * 1e15) << bound(a) << " | "
+         << interval_cell(a, 1e15, "%.4f") << " | " << io::format_cell("%.4f", a.profile_sigma * 1e15) << " | "
+         << io::format_cell("%.4f", e.value) << bound(e) << " | " << interval_cell(e, 1, "%.4f") << " | "
+         << io::format_cell("%.4f", e.profile_sigma) << " | " << io::format_cell("%.2f", h.value) << bound(h) << " | "
+         << interval_cell(h, 1, "%.2f") << " | " << io::format_cell("%.2f", h.profile_sigma) << " | "
+         << (std::isfinite(ps.value) ? io::format_cell("%.4f", ps.value) + bound(ps) : std::string("–")) << " | "
+         << (certified ? s2 : "(" + s2 + ")") << " | "
          << (s->fit.converged.empty() ? std::string("–")
                                       : s->fit.converged + " (" + std::to_string(s->fit.in_best_basin) + " of " +
                                             std::to_string(s->fit.starts) + ")")
@@ -403,15 +397,14 @@ void write_joint_reruns_md(std::ostream& md, const std::vector<JointRow>& rows) 
         continue;
       }
       const ForceMisfit& f = s->force;
-      md << "| " << r.name << " | " << model << " | " << scene_io::format_cell("%.3f", s->obs.t_peak)
-         << (s->obs.peak_found ? "" : " (no peak)") << " | " << scene_io::format_cell("%.4f", s->obs.Q_s) << " | "
-         << scene_io::format_cell("%.2f", f.rms * 1e3) << " | " << scene_io::format_cell("%.2f", f.rms_sd * 1e3)
-         << " | " << scene_io::format_cell("%.2f", f.noise * 1e3) << " | "
-         << scene_io::format_cell("%.2f", f.noise_p95 * 1e3) << " | " << (q_within(*s) ? "yes" : "no") << " | "
-         << scene_io::format_cell("%.4f", s->shape.residual_rms * 1e6) << " | "
-         << scene_io::format_cell("%.4f", s->shape.noise_rms_p95 * 1e6) << " | " << (a_within(*s) ? "yes" : "no")
-         << " | " << scene_io::format_cell("%.6f", s->objective / s->fit.objective) << " | "
-         << scene_io::format_cell("%.1f", s->wall_s) << " |\n";
+      md << "| " << r.name << " | " << model << " | " << io::format_cell("%.3f", s->obs.t_peak)
+         << (s->obs.peak_found ? "" : " (no peak)") << " | " << io::format_cell("%.4f", s->obs.Q_s) << " | "
+         << io::format_cell("%.2f", f.rms * 1e3) << " | " << io::format_cell("%.2f", f.rms_sd * 1e3) << " | "
+         << io::format_cell("%.2f", f.noise * 1e3) << " | " << io::format_cell("%.2f", f.noise_p95 * 1e3) << " | "
+         << (q_within(*s) ? "yes" : "no") << " | " << io::format_cell("%.4f", s->shape.residual_rms * 1e6) << " | "
+         << io::format_cell("%.4f", s->shape.noise_rms_p95 * 1e6) << " | " << (a_within(*s) ? "yes" : "no") << " | "
+         << io::format_cell("%.6f", s->objective / s->fit.objective) << " | " << io::format_cell("%.1f", s->wall_s)
+         << " |\n";
     }
   md << "\nPer load (from the table above: which model matches within the noise; no comparison between the "
         "models, see the verdict):\n\n"
@@ -441,7 +434,7 @@ void write_noise_md(std::ostream& md, const std::vector<StudyRow>& rows, const s
      << "| experiment | A(Q) independent | A(Q) interacting | joint: Q(t) independent | joint: Q(t) interacting | "
         "joint: A(Q) independent | joint: A(Q) interacting |\n|---|---|---|---|---|---|---|\n";
   auto k = [](double misfit, double p95) {
-    return std::isfinite(misfit) && std::isfinite(p95) && p95 > 0 ? scene_io::format_cell("%.1f", misfit / p95)
+    return std::isfinite(misfit) && std::isfinite(p95) && p95 > 0 ? io::format_cell("%.1f", misfit / p95)
                                                                   : std::string("no evidence");
   };
   for (const StudyRow& r : rows) {
@@ -486,7 +479,7 @@ void write_table_csv(const fs::path& out, const std::vector<StudyRow>& rows) {
         << csv_number(s->shape.residual_rms_sd) << ',' << csv_number(s->shape.noise_rms) << ','
         << csv_number(s->shape.noise_rms_p95) << ',' << s->shape.points_used << '\n';
     }
-  scene_io::write_text_file(out / "table.csv", t.str());
+  io::write_text_file(out / "table.csv", t.str());
 }
 
 void write_forces_csv(const fs::path& out, const Spread& sp) {
@@ -498,7 +491,7 @@ void write_forces_csv(const fs::path& out, const Spread& sp) {
       << csv_number(sp.crowding[i]) << ',' << int(sp.equal[i]) << ',' << csv_number(sp.ratio_inter[i]) << ','
       << csv_number(sp.ratio_indep[i]) << ',' << csv_number(sp.half_inter[i]) << ',' << csv_number(sp.half_indep[i])
       << '\n';
-  scene_io::write_text_file(out / "forces_at_peak.csv", t.str());
+  io::write_text_file(out / "forces_at_peak.csv", t.str());
 }
 
 std::string draw_force_spread(const InteractionStudyOptions& opt, const Spread& sp) {
@@ -532,7 +525,7 @@ void write_joint_csv(const fs::path& out, const std::vector<JointRow>& rows) {
         << csv_number(s->shape.noise_rms_p95) << ',' << (a_within(*s) ? "true" : "false") << ','
         << csv_number(s->wall_s) << '\n';
     }
-  scene_io::write_text_file(out / "joint.csv", t.str());
+  io::write_text_file(out / "joint.csv", t.str());
 }
 
 void write_report_md(const InteractionStudyOptions& opt, const std::vector<StudyRow>& rows, const Tally& tally,
@@ -549,7 +542,7 @@ void write_report_md(const InteractionStudyOptions& opt, const std::vector<Study
   write_spread_md(md, opt, sp, fig_note, pairs_md);
   write_sweep_md(md, opt);
   write_topography_md(md, opt);
-  scene_io::write_text_file(opt.out / "REPORT.md", md.str());
+  io::write_text_file(opt.out / "REPORT.md", md.str());
 }
 
 }  // namespace asperity::interaction_detail

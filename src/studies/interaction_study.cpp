@@ -37,7 +37,7 @@ std::map<std::string, double> calibrated_alpha_b(const fs::path& fit_yaml) {
   std::map<std::string, double> out;
   if (!fs::exists(fit_yaml)) return out;
   try {
-    const YAML::Node root = scene_io::load_yaml_file(fit_yaml, fit_yaml.string());  // the hardened reader
+    const YAML::Node root = io::load_yaml_file(fit_yaml, fit_yaml.string());  // the hardened reader
     for (const auto& f : root["fits"]) {
       if (f["status"].as<std::string>("") != "ok") continue;
       const YAML::Node p = f["parameters"]["model.alpha_b"];
@@ -163,10 +163,10 @@ std::vector<StudyRow> run_rows(const InteractionStudyOptions& opt, const std::ma
     r.indep = run_side(f, {}, find(alpha_indep), 12.0);
     r.inter = run_side(f, {"model.interactions=elastic"}, find(alpha_inter), 20.0);
     if (opt.log)
-      *opt.log << "  " << name << ": n independent " << scene_io::format_cell("%.3f", r.indep.obs.shape_exponent)
-               << ", interacting " << scene_io::format_cell("%.3f", r.inter.obs.shape_exponent) << ", measured "
-               << scene_io::format_cell("%.3f", r.inter.areas.n_measured) << " ("
-               << scene_io::format_cell("%.1f", r.inter.wall_s) << " s)" << std::endl;
+      *opt.log << "  " << name << ": n independent " << io::format_cell("%.3f", r.indep.obs.shape_exponent)
+               << ", interacting " << io::format_cell("%.3f", r.inter.obs.shape_exponent) << ", measured "
+               << io::format_cell("%.3f", r.inter.areas.n_measured) << " (" << io::format_cell("%.1f", r.inter.wall_s)
+               << " s)" << std::endl;
     if (name == opt.spread_experiment) spread_scene = f;
     rows.push_back(std::move(r));
   }
@@ -250,12 +250,10 @@ std::vector<JointRow> run_joint_rows(const InteractionStudyOptions& opt, const s
   for (const StudyRow& sr : rows) {
     JointRow r{sr.name, run_joint_side(sr.name, indep, specs), run_joint_side(sr.name, inter, specs)};
     if (opt.log)
-      *opt.log << "  " << r.name << " joint: Q(t) rms independent "
-               << scene_io::format_cell("%.2f", r.indep.force.rms * 1e3) << " mN, interacting "
-               << scene_io::format_cell("%.2f", r.inter.force.rms * 1e3) << " mN (noise 95 % "
-               << scene_io::format_cell("%.2f",
-                                        r.indep.ran ? r.indep.force.noise_p95 * 1e3 : r.inter.force.noise_p95 * 1e3)
-               << " mN; " << scene_io::format_cell("%.1f", r.inter.wall_s) << " s)" << std::endl;
+      *opt.log << "  " << r.name << " joint: Q(t) rms independent " << io::format_cell("%.2f", r.indep.force.rms * 1e3)
+               << " mN, interacting " << io::format_cell("%.2f", r.inter.force.rms * 1e3) << " mN (noise 95 % "
+               << io::format_cell("%.2f", r.indep.ran ? r.indep.force.noise_p95 * 1e3 : r.inter.force.noise_p95 * 1e3)
+               << " mN; " << io::format_cell("%.1f", r.inter.wall_s) << " s)" << std::endl;
     out.push_back(std::move(r));
   }
   return out;

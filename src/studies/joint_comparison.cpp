@@ -61,7 +61,7 @@ std::map<std::string, JointFitEntry> read_joint_fits(const std::vector<fs::path>
   for (const fs::path& file : fit_yamls) {
     if (!fs::exists(file)) continue;
     try {
-      const YAML::Node root = scene_io::load_yaml_file(file, file.string());  // the hardened reader
+      const YAML::Node root = io::load_yaml_file(file, file.string());  // the hardened reader
       const std::string fit_file = root["fit_file"].as<std::string>("");
       for (const auto& f : root["fits"]) {
         JointFitEntry e;

@@ -123,7 +123,7 @@ void write_pairs_csv(const fs::path& out, const JunctionPairsEvidence& e) {
             << csv_number(tr.t_s[j]) << ',' << csv_number(tr.f_N[j]) << ',' << csv_number(tr.A_m2[j]) << ','
             << csv_number(tr.f_N[j] / (e.sigma_Pa * tr.A_m2[j])) << ',' << csv_number(tr.A_m2[j] / A0) << '\n';
       }
-  scene_io::write_text_file(out / "junction_pairs.csv", t.str());
+  io::write_text_file(out / "junction_pairs.csv", t.str());
 }
 
 // The plot command of one panel (column 2: f/(σA0), 3: A/A0) over every trace's data block.
@@ -195,8 +195,8 @@ std::string pairs_section(const JunctionPairsEvidence& e, const std::string& not
         "the k-th least crowded (crowding k_i Σ_j C_ij), their force and area from the start of loading to past the "
         "interacting model's first peak, in both models (the independent one through the same solver, the arrangement "
         "10⁶ times wider). First slip: the time each junction first reaches its threshold (t_peak: "
-     << scene_io::format_cell("%.3f", e.t_peak_interacting_s) << " s interacting, "
-     << scene_io::format_cell("%.3f", e.t_peak_independent_s) << " s independent).\n\n"
+     << io::format_cell("%.3f", e.t_peak_interacting_s) << " s interacting, "
+     << io::format_cell("%.3f", e.t_peak_independent_s) << " s independent).\n\n"
      << "| pair | neighbourhood | junction | A0 [m²] | crowding | model | first slip [s] | first slip / t_peak | "
         "f/(σA) at ½ t_peak | f/(σA) at t_peak | A/A0 at t_peak |\n|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (std::size_t k = 0; k < P; ++k)
@@ -207,12 +207,11 @@ std::string pairs_section(const JunctionPairsEvidence& e, const std::string& not
         const double A0 = e.A0_m2[tr.junction];
         auto ratio = [&](double x) { return at(tr.t_s, tr.f_N, x) / (e.sigma_Pa * at(tr.t_s, tr.A_m2, x)); };
         md << "| " << k + 1 << " | " << (sp ? "sparse" : "crowded") << " | " << tr.junction + 1 << " | "
-           << scene_io::format_cell("%.4g", A0) << " | " << scene_io::format_cell("%.2f", e.crowding[tr.junction])
-           << " | " << (m == 0 ? "interacting" : "independent") << " | "
-           << scene_io::format_cell("%.3f", tr.first_slip_s) << " | "
-           << scene_io::format_cell("%.3f", tr.first_slip_s / tp) << " | "
-           << scene_io::format_cell("%.3f", ratio(0.5 * tp)) << " | " << scene_io::format_cell("%.3f", ratio(tp))
-           << " | " << scene_io::format_cell("%.4f", at(tr.t_s, tr.A_m2, tp) / A0) << " |\n";
+           << io::format_cell("%.4g", A0) << " | " << io::format_cell("%.2f", e.crowding[tr.junction]) << " | "
+           << (m == 0 ? "interacting" : "independent") << " | " << io::format_cell("%.3f", tr.first_slip_s) << " | "
+           << io::format_cell("%.3f", tr.first_slip_s / tp) << " | " << io::format_cell("%.3f", ratio(0.5 * tp))
+           << " | " << io::format_cell("%.3f", ratio(tp)) << " | "
+           << io::format_cell("%.4f", at(tr.t_s, tr.A_m2, tp) / A0) << " |\n";
       }
   md << "\n![junction pairs](junction_pairs.png)\n\n"
      << (note.empty() ? "" : note + "\n\n")

@@ -102,7 +102,7 @@ std::string model_label(const std::vector<RecoveryModel>& models, const std::str
 std::string budget_text(const FitSpec& s) {
   return s.algorithm + " " + std::to_string(s.max_evaluations) + ", polish " +
          (s.polish_algorithm.empty() ? "none" : s.polish_algorithm + " " + std::to_string(s.polish_max_evaluations)) +
-         ", starts " + std::to_string(s.starts) + ", xtol_rel " + scene_io::format_double(s.xtol_rel);
+         ", starts " + std::to_string(s.starts) + ", xtol_rel " + io::format_double(s.xtol_rel);
 }
 
 // The template's text with the cell's name and experiment appended (so that its own lines keep
@@ -189,7 +189,7 @@ void write_matrix_csv(const fs::path& file, const std::vector<RecoveryCell>& cel
     }
     t << '\n';
   }
-  scene_io::write_text_file(file, t.str());
+  io::write_text_file(file, t.str());
 }
 
 // Diagonal cells: J ≤ J at truth (1 + 1e-3) and every parameter within 2σ of its truth.
@@ -204,9 +204,7 @@ std::string recovered_text(const RecoveryCell& c) {
   return "yes";
 }
 
-std::string cell_number(const char* format, double x) {
-  return std::isfinite(x) ? scene_io::format_cell(format, x) : "–";
-}
+std::string cell_number(const char* format, double x) { return std::isfinite(x) ? io::format_cell(format, x) : "–"; }
 
 }  // namespace
 
@@ -214,8 +212,7 @@ std::vector<RecoveryCell> run_recovery_matrix(const RecoveryMatrixOptions& opt) 
   // Templates first (a bad one fails before any run), with equal budgets.
   std::vector<std::string> templates;
   for (const RecoveryModel& m : opt.models)
-    templates.push_back(
-        scene_io::read_input_file(m.fit_template, m.fit_template.generic_string(), scene_io::kMaxYamlBytes));
+    templates.push_back(io::read_input_file(m.fit_template, m.fit_template.generic_string(), io::kMaxYamlBytes));
   fs::create_directories(opt.out / "data");
   fs::create_directories(opt.out / "fits");
   std::vector<RecoveryCell> cells;
@@ -236,7 +233,7 @@ std::vector<RecoveryCell> run_recovery_matrix(const RecoveryMatrixOptions& opt) 
       const RecoveryModel& model = opt.models[m];
       const std::string name = data_dir + "_by_" + model.label;
       const fs::path fit_file = opt.out / "fits" / (name + ".yaml");
-      scene_io::write_text_file(fit_file, cell_fit_text(templates[m], name, "../data/" + data_dir, model.interactions));
+      io::write_text_file(fit_file, cell_fit_text(templates[m], name, "../data/" + data_dir, model.interactions));
       specs.push_back(load_fit(fit_file));
       const std::string budget = budget_text(specs.back());
       if (first_budget.empty()) first_budget = budget;
@@ -257,9 +254,9 @@ std::vector<RecoveryCell> run_recovery_matrix(const RecoveryMatrixOptions& opt) 
       c.fit_model = model.label;
       if (model.label == data_model) c.objective_at_truth = objective_at_truth(spec, recipe, opt.threads);
       if (opt.log)
-        *opt.log << "  J = " << scene_io::format_short(c.objective) << ", reduced chi2 "
-                 << scene_io::format_short(c.reduced_chi2()) << ", converged " << c.converged << " (" << c.in_best_basin
-                 << " of " << c.starts << "), " << scene_io::format_cell("%.1f", c.wall_s) << " s\n"
+        *opt.log << "  J = " << io::format_short(c.objective) << ", reduced chi2 " << io::format_short(c.reduced_chi2())
+                 << ", converged " << c.converged << " (" << c.in_best_basin << " of " << c.starts << "), "
+                 << io::format_cell("%.1f", c.wall_s) << " s\n"
                  << std::flush;
       cells.push_back(std::move(c));
       write_matrix_csv(opt.out / "matrix.csv", cells,
@@ -274,7 +271,7 @@ std::vector<RecoveryCell> run_recovery_matrix(const RecoveryMatrixOptions& opt) 
      << "Written by `" << study_command(opt.study_file) << "`; the budget of every fit: " << first_budget
      << ". Each cell's fit file is in `fits/`, its data in `data/`.\n\n";
   write_recovery_matrix_md(md, cells);
-  scene_io::write_text_file(opt.out / "REPORT.md", md.str());
+  io::write_text_file(opt.out / "REPORT.md", md.str());
   return cells;
 }
 
@@ -293,7 +290,7 @@ void write_recovery_matrix_md(std::ostream& md, const std::vector<RecoveryCell>&
     int junctions = 0;
     for (const RecoveryCell& c : cells)
       if (c.load == v.load) junctions = c.junctions;
-    md << "| " << v.load << " | " << scene_io::format_short(v.mass_kg) << " | " << junctions << " | **" << v.verdict
+    md << "| " << v.load << " | " << io::format_short(v.mass_kg) << " | " << junctions << " | **" << v.verdict
        << "** | ";
     for (std::size_t i = 0; i < v.rows.size(); ++i) md << (i ? "; " : "") << v.rows[i];
     md << " |\n";
@@ -334,7 +331,7 @@ std::vector<RecoveryCell> read_recovery_matrix(const fs::path& file) {
       const std::size_t c = t.column(name);
       double x = 0;
       if (f[c] == "nan") return std::numeric_limits<double>::quiet_NaN();
-      if (scene_io::parse_double(f[c], x) != scene_io::NumberParse::ok)
+      if (io::parse_double(f[c], x) != io::NumberParse::ok)
         throw InputError(t.display, t.lines[r], name, "not a number: '" + f[c] + "'", static_cast<int>(c) + 1);
       return x;
     };

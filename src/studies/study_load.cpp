@@ -12,7 +12,7 @@
 namespace asperity {
 
 namespace fs = std::filesystem;
-using namespace scene_io;
+using namespace io;
 
 namespace {
 

@@ -25,7 +25,7 @@ std::vector<TopographyShapeRow> read_topography_table(const std::filesystem::pat
     const std::vector<std::string>& f = t.rows[i];
     auto number = [&](std::size_t c) {
       double x = 0;
-      if (scene_io::parse_double(f[c], x) != scene_io::NumberParse::ok || !std::isfinite(x))
+      if (io::parse_double(f[c], x) != io::NumberParse::ok || !std::isfinite(x))
         throw InputError(t.display, t.lines[i], t.columns[c], "not a finite number: '" + f[c] + "'",
                          static_cast<int>(c) + 1);
       return x;

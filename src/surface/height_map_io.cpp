@@ -16,13 +16,13 @@
 namespace asperity {
 
 namespace fs = std::filesystem;
-using scene_io::MapView;
-using scene_io::Source;
+using io::MapView;
+using io::Source;
 
 std::string pixel_size_problem(double pixel_m) {
   if (pixel_m >= kMinPixel_m && pixel_m <= kMaxPixel_m) return "";
-  return "pixel size must be in [" + scene_io::format_double(kMinPixel_m) + ", " +
-         scene_io::format_double(kMaxPixel_m) + "] m, got " + scene_io::format_double(pixel_m);
+  return "pixel size must be in [" + io::format_double(kMinPixel_m) + ", " + io::format_double(kMaxPixel_m) +
+         "] m, got " + io::format_double(pixel_m);
 }
 
 std::optional<HeightRangeProblem> height_range_problem(const HeightMap& map) {
@@ -37,9 +37,9 @@ std::optional<HeightRangeProblem> height_range_problem(const HeightMap& map) {
   const auto far = median - *lo > *hi - median ? lo : hi;  // (differences of finite doubles: no NaN)
   HeightRangeProblem p;
   p.index = static_cast<std::size_t>(far - map.h_m.begin());
-  p.message = "height " + scene_io::format_double(*far) + " m: the heights span " + scene_io::format_short(*hi - *lo) +
-              " m (from " + scene_io::format_short(*lo) + " to " + scene_io::format_short(*hi) +
-              "), more than the map's side n x pixel_m = " + scene_io::format_short(side) +
+  p.message = "height " + io::format_double(*far) + " m: the heights span " + io::format_short(*hi - *lo) +
+              " m (from " + io::format_short(*lo) + " to " + io::format_short(*hi) +
+              "), more than the map's side n x pixel_m = " + io::format_short(side) +
               " m; a contact solve needs heights within the map's size";
   return p;
 }
@@ -62,7 +62,7 @@ HeightMap read_height_map_csv(const fs::path& csv, const std::string& display, d
 }
 
 HeightMap read_height_map_binary(const fs::path& header_yaml, const std::string& display) {
-  const YAML::Node root = scene_io::load_yaml_file(header_yaml, display);
+  const YAML::Node root = io::load_yaml_file(header_yaml, display);
   const MapView v(Source{display, nullptr}, root, "", {"n", "pixel_m", "data", "format"}, 1);
   if (const auto f = v.find("format")) v.enumeration<int>(*f, "format", {{"float64_le", 0}});
   const YAML::Node nn = v.require("n");
@@ -76,21 +76,21 @@ HeightMap read_height_map_binary(const fs::path& header_yaml, const std::string&
 
   const YAML::Node dn = v.require("data");
   const std::string rel = v.string(dn, "data");
-  if (scene_io::trim(rel).empty()) v.fail_at(dn, "data", "empty path (expected the float64 height file)");
+  if (io::trim(rel).empty()) v.fail_at(dn, "data", "empty path (expected the float64 height file)");
   const fs::path data = header_yaml.parent_path() / fs::path(rel);
   const std::uintmax_t bytes = static_cast<std::uintmax_t>(n) * n * sizeof(double);
   // Checked by path before opening (a FIFO is never opened), at the line that names the file.
-  if (std::string why = scene_io::input_file_problem(data, bytes); !why.empty()) {
+  if (std::string why = io::input_file_problem(data, bytes); !why.empty()) {
     std::error_code ec;
     if (why != "file not found" && fs::is_regular_file(data, ec)) why = "is larger than expected";
     v.fail_at(dn, "data",
-              "height file " + why + ": " + data.lexically_normal().string() +
-                  " (expected n^2 x 8 = " + std::to_string(bytes) + " bytes of float64 little-endian)");
+              "height file " + why + ": " + input_path(data) + " (expected n^2 x 8 = " + std::to_string(bytes) +
+                  " bytes of float64 little-endian)");
   }
-  const std::string raw = scene_io::read_input_file(data, data.lexically_normal().string(), bytes);
+  const std::string raw = io::read_input_file(data, input_path(data), bytes);
   if (raw.size() != bytes)
     v.fail_at(dn, "data",
-              "height file " + data.lexically_normal().string() + " has " + std::to_string(raw.size()) +
+              "height file " + input_path(data) + " has " + std::to_string(raw.size()) +
                   " bytes, expected n^2 x 8 = " + std::to_string(bytes) + " (float64 little-endian)");
   HeightMap map;
   map.n = n;
@@ -104,14 +104,13 @@ HeightMap read_height_map_binary(const fs::path& header_yaml, const std::string&
     if (!std::isfinite(h))
       v.fail_at(dn, "data",
                 "height at row " + std::to_string(k / n + 1) + ", column " + std::to_string(k % n + 1) + " of " +
-                    data.lexically_normal().string() + " is " + (std::isnan(h) ? "NaN" : "infinite") +
-                    "; every height must be finite");
+                    input_path(data) + " is " + (std::isnan(h) ? "NaN" : "infinite") + "; every height must be finite");
     map.h_m[k] = h;
   }
   if (const auto p = height_range_problem(map))
     v.fail_at(dn, "data",
               "row " + std::to_string(p->index / n + 1) + ", column " + std::to_string(p->index % n + 1) + " of " +
-                  data.lexically_normal().string() + ": " + p->message);
+                  input_path(data) + ": " + p->message);
   return map;
 }
 
@@ -136,7 +135,7 @@ void write_height_map_binary(const fs::path& header_yaml, const std::string& dat
   }
   write_file_atomically(header_yaml.parent_path() / data_name, raw, Durability::unsynced);
   write_file_atomically(header_yaml,
-                        "n: " + std::to_string(map.n) + "\npixel_m: " + scene_io::format_double(map.pixel_m) +
+                        "n: " + std::to_string(map.n) + "\npixel_m: " + io::format_double(map.pixel_m) +
                             "\ndata: " + yaml_quoted(data_name) + "\nformat: float64_le\n",
                         Durability::unsynced);
 }

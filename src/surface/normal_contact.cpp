@@ -182,124 +182,195 @@ class DirectCorrection {
   std::vector<std::vector<double>> acc_;  // per thread: one row of K δ
 };
 
-}  // namespace
+// The conjugate-gradient iteration of Polonsky & Keer on the pressures `out.pressure_Pa`, with
+// u = K p kept up to date between iterations.
+class PressureCg {
+ public:
+  PressureCg(const HeightMap& map, const NormalContactSettings& s, Workers& W, Convolution& K,
+             const std::vector<double>& influence, NormalContact& out)
+      : s_(s),
+        nn_(map.n * map.n),
+        A_(map.pixel_m * map.pixel_m),
+        W_(W),
+        K_(K),
+        out_(out),
+        p_(out.pressure_Pa),
+        h0_(separation_from_top(map)),
+        u_(nn_),
+        g_(nn_),
+        t_(nn_, 0.0),
+        r_(nn_),
+        p_old_(nn_),
+        direct_max_(std::max(2.0, static_cast<double>(std::bit_width(map.n)) * 4.0)),
+        direct_(map.n, influence, W, s.periodic) {
+    K_.apply(p_, u_);
+    out_.convolutions = 1;
+  }
 
-NormalContact solve_normal_contact(const HeightMap& map, const NormalContactSettings& s) {
-  check_inputs(map, s);
-  const std::size_t n = map.n, nn = n * n;
-  Workers W(s.threads);
-  const double A = map.pixel_m * map.pixel_m;
+  // Iteration `it`; true once the pressures have converged.
+  bool iterate(int it) {
+    double count = 0, square = 0;
+    const double G = shifted_gap(count, square);
+    const double tau = step_length(G, count, square);
+    p_old_.swap(p_);
+    const auto [total_p, changed] = take_step(tau);
+    // Polonsky & Keer restart the conjugate directions whenever a point joins; here only the first
+    // iteration is steepest descent. A few points joining at nearly every iteration (small spots at
+    // the edges of a rough contact) kept the iteration at steepest descent, several times the
+    // iterations for the same contact set and pressures (docs/performance.md).
+    delta_ = true;
+    const double f = scale_to_load(total_p);
+    out_.iterations = it;
+    if (out_.residual < s_.tolerance) {
+      out_.converged = true;
+      return true;
+    }
+    update_displacements(changed, tau, f);
+    return false;
+  }
 
-  NormalContact out;
-  std::vector<double>& p = out.pressure_Pa;
-  start_pressures(map, s, out);
-  std::vector<double> influence;  // isolated: the kernel at offsets (|di|, |dj|), (n + 1)², row |di|
-  const std::unique_ptr<Convolution> convolution = make_convolution(map, s, W, influence);
-  Convolution& K = *convolution;
-
-  // Separation from the flat touching the highest summit.
-  const double top = *std::max_element(map.h_m.begin(), map.h_m.end());
-  std::vector<double> h0(nn);
-  for (std::size_t k = 0; k < nn; ++k) h0[k] = top - map.h_m[k];
-
-  std::vector<double> u(nn), g(nn), t(nn, 0.0), r(nn), p_old(nn);
-  const double direct_max = std::max(2.0, static_cast<double>(std::bit_width(n)) * 4.0);
-  DirectCorrection direct(n, influence, W, s.periodic);
-  K.apply(p, u);
-  out.convolutions = 1;
-  double G_old = 1.0;
-  bool delta = false;  // whether t may be conjugated with the last direction
-  double gbar = 0;
-  for (int it = 1; it <= s.max_iterations; ++it) {
-    // u = K p here. Gap on the contact set, shifted by its mean there (the unknown approach).
-    const auto [sum, count, square] = block_sums<3>(nn, W, [&](std::size_t k, auto& a) {
-      g[k] = u[k] + h0[k];
-      if (p[k] > 0) a[0] += g[k], a[1] += 1, a[2] += g[k] * g[k];
+  // The contact area, the approach and the gap of the final pressures.
+  void finish() {
+    const std::size_t nn = nn_;
+    K_.apply(p_, u_);
+    ++out_.convolutions;
+    const auto [area_count, shift_sum] = block_sums<2>(nn, W_, [&](std::size_t k, auto& a) {
+      if (p_[k] > 0) a[0] += 1, a[1] += u_[k] + h0_[k];
     });
-    const double nc = count;
-    gbar = nc > 0 ? sum / nc : 0.0;
-    const double G = block_sums<1>(nn, W, [&](std::size_t k, auto& a) {
-      g[k] -= gbar;
-      if (p[k] > 0) a[0] += g[k] * g[k];
+    out_.area_m2 = area_count * A_;
+    const double shift = area_count > 0 ? shift_sum / area_count : 0.0;  // u + h0 on the contact = approach
+    out_.approach_m = shift;
+    out_.gap_m.resize(nn);
+    for (std::size_t k = 0; k < nn; ++k) out_.gap_m[k] = std::max(0.0, u_[k] + h0_[k] - shift);
+  }
+
+ private:
+  // Separation from the flat touching the highest summit.
+  static std::vector<double> separation_from_top(const HeightMap& map) {
+    const std::size_t nn = map.n * map.n;
+    const double top = *std::max_element(map.h_m.begin(), map.h_m.end());
+    std::vector<double> h0(nn);
+    for (std::size_t k = 0; k < nn; ++k) h0[k] = top - map.h_m[k];
+    return h0;
+  }
+
+  // u = K p here. Gap on the contact set, shifted by its mean there (the unknown approach); returns
+  // its squared norm there, with the contact's point count and the squared norm before the shift.
+  double shifted_gap(double& count, double& square) {
+    const std::size_t nn = nn_;
+    const auto [sum, n_contact, sum_square] = block_sums<3>(nn, W_, [&](std::size_t k, auto& a) {
+      g_[k] = u_[k] + h0_[k];
+      if (p_[k] > 0) a[0] += g_[k], a[1] += 1, a[2] += g_[k] * g_[k];
+    });
+    count = n_contact;
+    square = sum_square;
+    const double gbar = count > 0 ? sum / count : 0.0;
+    return block_sums<1>(nn, W_, [&](std::size_t k, auto& a) {
+      g_[k] -= gbar;
+      if (p_[k] > 0) a[0] += g_[k] * g_[k];
     })[0];
-    // Conjugate direction on the contact set.
-    const double beta = delta && G_old > 0 ? G / G_old : 0.0;  // G_old = 0: the last step was exact
-    for_each_pixel(nn, W, [&](std::size_t k) { t[k] = p[k] > 0 ? g[k] + beta * t[k] : 0.0; });
-    G_old = G;
-    K.apply(t, r);
-    ++out.convolutions;
-    const double rsum = block_sums<1>(nn, W, [&](std::size_t k, auto& a) {
-      if (p[k] > 0) a[0] += r[k];
+  }
+
+  // The conjugate direction t on the contact set, r = K t, and the step length along t.
+  double step_length(double G, double nc, double square) {
+    const std::size_t nn = nn_;
+    const double beta = delta_ && G_old_ > 0 ? G / G_old_ : 0.0;  // G_old = 0: the last step was exact
+    for_each_pixel(nn, W_, [&](std::size_t k) { t_[k] = p_[k] > 0 ? g_[k] + beta * t_[k] : 0.0; });
+    G_old_ = G;
+    K_.apply(t_, r_);
+    ++out_.convolutions;
+    const double rsum = block_sums<1>(nn, W_, [&](std::size_t k, auto& a) {
+      if (p_[k] > 0) a[0] += r_[k];
     })[0];
     const double rbar = nc > 0 ? rsum / nc : 0.0;
-    const auto [gt, rt] = block_sums<2>(nn, W, [&](std::size_t k, auto& a) {
-      if (p[k] > 0) a[0] += g[k] * t[k], a[1] += (r[k] - rbar) * t[k];
+    const auto [gt, rt] = block_sums<2>(nn, W_, [&](std::size_t k, auto& a) {
+      if (p_[k] > 0) a[0] += g_[k] * t_[k], a[1] += (r_[k] - rbar) * t_[k];
     });
     // A gap flat on the contact to rounding (rms deviation ≤ 1e-12 of its rms) is the answer: a step
     // would be rounding over rounding (at Westergaard's full contact such steps grew until the CG
     // broke down).
     const bool exact = G <= 1e-24 * square;
-    const double tau = rt != 0 && !exact ? gt / rt : 0.0;
-    p_old.swap(p);
-    // The step; points outside the contact that the flat overlaps join it. `changed` counts the
-    // points where the new pressures are not p − τt (clipped at zero, or joining).
-    const auto [total_p, changed] = block_sums<2>(nn, W, [&](std::size_t k, auto& a) {
+    return rt != 0 && !exact ? gt / rt : 0.0;
+  }
+
+  // The step from p_old; points outside the contact that the flat overlaps join it. Returns the sum
+  // of the new pressures and the count of points where they are not p − τt (clipped at zero, or
+  // joining).
+  std::array<double, 2> take_step(double tau) {
+    return block_sums<2>(nn_, W_, [&](std::size_t k, auto& a) {
       double x = 0;
-      if (p_old[k] > 0) {
-        x = p_old[k] - tau * t[k];
+      if (p_old_[k] > 0) {
+        x = p_old_[k] - tau * t_[k];
         if (x < 0) x = 0, a[1] += 1;
-      } else if (g[k] < 0) {
-        x = -tau * g[k];
+      } else if (g_[k] < 0) {
+        x = -tau * g_[k];
         a[1] += 1;
       }
-      p[k] = x;
+      p_[k] = x;
       a[0] += x;
     });
-    // Polonsky & Keer restart the conjugate directions whenever a point joins; here only the first
-    // iteration is steepest descent. A few points joining at nearly every iteration (small spots at
-    // the edges of a rough contact) kept the iteration at steepest descent, several times the
-    // iterations for the same contact set and pressures (docs/performance.md).
-    delta = true;
-    // The load.
-    const double total = total_p * A;
-    if (!(total > 0)) throw std::runtime_error("normal contact: the pressures vanished (CG breakdown)");
-    const double f = s.load_N / total;
-    const double change = block_sums<1>(nn, W, [&](std::size_t k, auto& a) {
-      p[k] *= f;
-      a[0] += std::abs(p[k] - p_old[k]);
-    })[0];
-    out.iterations = it;
-    out.residual = change * A / s.load_N;
-    if (out.residual < s.tolerance) {
-      out.converged = true;
-      break;
-    }
-    // u = K p for the next iteration. Where no point was clipped or joined, p = f (p_old − τ t), so
-    // K p = f (u − τ r) by linearity, without a convolution (within rounding: u is recomputed at the
-    // end). Where a few points were (isolated contacts), p = f (p_old − τ t + δ) with δ nonzero at
-    // those points only, and K p = f (u − τ r + K δ), K δ summed directly from the kernel (n² terms a
-    // point): cheaper than a convolution up to about 4 log2(n) points, at the convolved pressures
-    // within rounding (docs/topography.md, "Speed"; docs/performance.md).
-    // Not for periodic maps: at Westergaard's exact full contact the steps are rounding over
-    // rounding and the updated u drifted from K p until the CG broke down (a recomputed u stays at
-    // rounding).
-    if (changed == 0 && !s.periodic)
-      for_each_pixel(nn, W, [&](std::size_t k) { u[k] = f * (u[k] - tau * r[k]); });
-    else if (!s.periodic && changed <= direct_max)
-      direct.update(p_old, t, g, r, tau, f, u);
-    else
-      K.apply(p, u), ++out.convolutions;
   }
-  K.apply(p, u);
-  ++out.convolutions;
-  const auto [area_count, shift_sum] = block_sums<2>(nn, W, [&](std::size_t k, auto& a) {
-    if (p[k] > 0) a[0] += 1, a[1] += u[k] + h0[k];
-  });
-  out.area_m2 = area_count * A;
-  const double shift = area_count > 0 ? shift_sum / area_count : 0.0;  // u + h0 on the contact = approach
-  out.approach_m = shift;
-  out.gap_m.resize(nn);
-  for (std::size_t k = 0; k < nn; ++k) out.gap_m[k] = std::max(0.0, u[k] + h0[k] - shift);
+
+  // Scales the pressures to the load; returns the factor and sets the residual (the relative change
+  // of the pressures).
+  double scale_to_load(double total_p) {
+    const double total = total_p * A_;
+    if (!(total > 0)) throw std::runtime_error("normal contact: the pressures vanished (CG breakdown)");
+    const double f = s_.load_N / total;
+    const double change = block_sums<1>(nn_, W_, [&](std::size_t k, auto& a) {
+      p_[k] *= f;
+      a[0] += std::abs(p_[k] - p_old_[k]);
+    })[0];
+    out_.residual = change * A_ / s_.load_N;
+    return f;
+  }
+
+  // u = K p for the next iteration. Where no point was clipped or joined, p = f (p_old − τ t), so
+  // K p = f (u − τ r) by linearity, without a convolution (within rounding: u is recomputed at the
+  // end). Where a few points were (isolated contacts), p = f (p_old − τ t + δ) with δ nonzero at
+  // those points only, and K p = f (u − τ r + K δ), K δ summed directly from the kernel (n² terms a
+  // point): cheaper than a convolution up to about 4 log2(n) points, at the convolved pressures
+  // within rounding (docs/topography.md, "Speed"; docs/performance.md).
+  // Not for periodic maps: at Westergaard's exact full contact the steps are rounding over
+  // rounding and the updated u drifted from K p until the CG broke down (a recomputed u stays at
+  // rounding).
+  void update_displacements(double changed, double tau, double f) {
+    if (changed == 0 && !s_.periodic)
+      for_each_pixel(nn_, W_, [&](std::size_t k) { u_[k] = f * (u_[k] - tau * r_[k]); });
+    else if (!s_.periodic && changed <= direct_max_)
+      direct_.update(p_old_, t_, g_, r_, tau, f, u_);
+    else
+      K_.apply(p_, u_), ++out_.convolutions;
+  }
+
+  const NormalContactSettings& s_;
+  const std::size_t nn_;
+  const double A_;  // pixel area
+  Workers& W_;
+  Convolution& K_;
+  NormalContact& out_;
+  std::vector<double>& p_;
+  const std::vector<double> h0_;
+  std::vector<double> u_, g_, t_, r_, p_old_;
+  const double direct_max_;
+  DirectCorrection direct_;
+  double G_old_ = 1.0;
+  bool delta_ = false;  // whether t may be conjugated with the last direction
+};
+
+}  // namespace
+
+NormalContact solve_normal_contact(const HeightMap& map, const NormalContactSettings& s) {
+  check_inputs(map, s);
+  Workers W(s.threads);
+  NormalContact out;
+  start_pressures(map, s, out);
+  std::vector<double> influence;  // isolated: the kernel at offsets (|di|, |dj|), (n + 1)², row |di|
+  const std::unique_ptr<Convolution> convolution = make_convolution(map, s, W, influence);
+  PressureCg cg(map, s, W, *convolution, influence, out);
+  for (int it = 1; it <= s.max_iterations; ++it)
+    if (cg.iterate(it)) break;
+  cg.finish();
   return out;
 }
 

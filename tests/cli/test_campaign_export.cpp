@@ -37,7 +37,7 @@ std::vector<std::vector<std::string>> query(const fs::path& db, const std::strin
       if (type == SQLITE_NULL)
         r.push_back("NULL");
       else if (type == SQLITE_FLOAT)
-        r.push_back(scene_io::format_double(sqlite3_column_double(st, c)));  // exact
+        r.push_back(io::format_double(sqlite3_column_double(st, c)));  // exact
       else
         r.push_back(reinterpret_cast<const char*>(sqlite3_column_text(st, c)));
     }

@@ -270,7 +270,7 @@ TEST_CASE("topography recipes: bad values refused at their line", "[generate][to
     m.h_m[3 * m.n + 5] = spike;
     write_height_map_binary(d / "spike.yaml", "spike.f64", m);
     const std::string expected = (d / "spike.yaml").string() + ":3: data: row 4, column 6 of " +
-                                 (d / "spike.f64").string() + ": height " + scene_io::format_double(spike) +
+                                 (d / "spike.f64").string() + ": height " + io::format_double(spike) +
                                  " m: the heights span 1e+308 m";
     CHECK(build_error(recipe_text("  file: spike.yaml\n")).rfind(expected, 0) == 0);
   }
@@ -317,7 +317,7 @@ TEST_CASE("topography recipe: same bytes twice, measured map = synthetic heights
   write_height_map_csv(d / "map.csv", map);
   write_height_map_binary(d / "map.yaml", "map.f64", map);
   write_text(d / "measured_csv.yaml",
-             recipe_text("  file: map.csv\n  pixel_m: " + scene_io::format_double(map.pixel_m) + "\n"));
+             recipe_text("  file: map.csv\n  pixel_m: " + io::format_double(map.pixel_m) + "\n"));
   write_text(d / "measured_bin.yaml", recipe_text("  file: map.yaml\n"));
   REQUIRE(run_argv(d, {"generate", "--recipe", "measured_csv.yaml", "--out", "mcsv", "--quiet"}).status == 0);
   REQUIRE(run_argv(d, {"generate", "--recipe", "measured_bin.yaml", "--out", "mbin", "--quiet"}).status == 0);

@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
+#include "io/numbers.hpp"
 #include "physics/interface_law.hpp"
 
 namespace asperity {
@@ -23,12 +23,6 @@ RunLimits run_limits(const Scene& scene) {
 
 namespace {
 
-std::string g(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", x);
-  return buf;
-}
-
 // Smallest distance (1 − ε) f_s / k the slider travels between a repin and the next slip of a
 // junction (at its first-slip area), and that junction's area.
 std::pair<double, double> smallest_slip_distance(const Scene& scene) {
@@ -45,9 +39,10 @@ std::pair<double, double> smallest_slip_distance(const Scene& scene) {
 }  // namespace
 
 std::string limit_message(const Scene& scene, const RunLimits& limits, LimitHit hit, double t_end, std::int64_t slips) {
-  const std::string at = " at simulated t = " + g(t_end) + " s of " + g(scene.stop.time) + " s";
+  const std::string at =
+      " at simulated t = " + io::format_short(t_end) + " s of " + io::format_short(scene.stop.time) + " s";
   if (hit == LimitHit::wall_time)
-    return "stop.wall_time: run stopped after " + g(limits.wall_time_s) + " s of wall time" + at +
+    return "stop.wall_time: run stopped after " + io::format_short(limits.wall_time_s) + " s of wall time" + at +
            " (raise stop.wall_time, or look for what makes it slow: solver.tolerance, model.eta, "
            "a huge population)";
   std::string m = "stop.max_slips: run stopped after " + std::to_string(slips) + " slips" + at;
@@ -57,7 +52,8 @@ std::string limit_message(const Scene& scene, const RunLimits& limits, LimitHit 
   m += " (the default: 10^6 + 10^4 per junction and simulated second; set stop.max_slips if that many are "
        "expected); a junction that slips while the slider is slower than c_min*v repins at once and slips again "
        "after (1 - epsilon) f_s/k of travel: the smallest such distance here is " +
-       g(d) + " m (junction of " + g(area) + " m^2); check the junction areas and sigma_exp";
+       io::format_short(d) + " m (junction of " + io::format_short(area) +
+       " m^2); check the junction areas and sigma_exp";
   return m;
 }
 

@@ -114,9 +114,16 @@ FftCoupling::FftCoupling(const std::vector<double>& x, const std::vector<double>
   const double ox = *xmin - half * h_, oy = *ymin - half * h_;
   const std::size_t side = static_cast<std::size_t>(wide / h_) + p_ + 2;
   M_ = fft_size(2 * side - 1);
-  const std::size_t M = M_;
+  place_patches(x, y, radius, weighting, ox, oy);
+  const std::vector<double> kernel = grid_kernel(E, nu);
+  const double extent = std::max({std::abs(*xmin), std::abs(*xmax), std::abs(*ymin), std::abs(*ymax)});
+  correct_near_pairs(x, y, radius, E, nu, weighting, s.near_cells, extent, kernel);
+}
 
-  // Each junction's patch and weights S_a L: Σ_m s_m a^2m Σ_k C(m, k) ∂x^2k L_a ∂y^2(m−k) L_b.
+// Each junction's patch and weights S_a L: Σ_m s_m a^2m Σ_k C(m, k) ∂x^2k L_a ∂y^2(m−k) L_b.
+void FftCoupling::place_patches(const std::vector<double>& x, const std::vector<double>& y,
+                                const std::vector<double>& radius, TractionWeighting weighting, double ox, double oy) {
+  const int half = p_ / 2;
   const auto basis = lagrange_basis(p_);
   const int m_max = (p_ - 1) / 2;  // ∇^2m of a polynomial of degree p − 1
   std::vector<double> coefficient(m_max + 1);
@@ -147,9 +154,13 @@ FftCoupling::FftCoupling(const std::vector<double>& x, const std::vector<double>
       }
     }
   }
+}
 
-  // The point kernel on the grid's offsets (circular: offset −d at M − d; none aliases since M ≥
-  // 2 side − 1), 0 at zero offset (every pair that sees it is in the near table), and its spectrum.
+// The point kernel on the grid's offsets (circular: offset −d at M − d; none aliases since M ≥
+// 2 side − 1), 0 at zero offset (every pair that sees it is in the near table); its spectrum goes
+// to the FFT buffers.
+std::vector<double> FftCoupling::grid_kernel(double E, double nu) {
+  const std::size_t M = M_;
   std::vector<double> kernel(M * M);
   for (std::size_t i = 0; i < M; ++i)
     for (std::size_t j = 0; j < M; ++j) {
@@ -164,36 +175,44 @@ FftCoupling::FftCoupling(const std::vector<double>& x, const std::vector<double>
   const double norm = 1.0 / (double(M) * double(M));
   for (std::size_t k = 0; k < nc; ++k)
     fft_->kernel_spectrum[k] = std::complex<double>(fft_->grid.spectrum()[k][0], fft_->grid.spectrum()[k][1]) * norm;
+  return kernel;
+}
 
-  // The grid's own value of a pair: Σ w_i[a][b] w_j[c][d] K(offset of the nodes).
-  const auto grid_pair = [&](std::size_t i, std::size_t j) {
-    const double *wi = w_.data() + i * pp, *wj = w_.data() + j * pp;
-    const long ex = bx_[i] - bx_[j], ey = by_[i] - by_[j];
-    double sum = 0;
-    for (int a = 0; a < p_; ++a)
-      for (int c = 0; c < p_; ++c) {
-        const long e = ex + a - c;
-        const double* krow = kernel.data() + static_cast<std::size_t>(e >= 0 ? e : e + long(M)) * M;
-        for (int b = 0; b < p_; ++b) {
-          double inner = 0;
-          for (int d = 0; d < p_; ++d) {
-            const long f = ey + b - d;
-            inner += wj[c * p_ + d] * krow[f >= 0 ? f : f + long(M)];
-          }
-          sum += wi[a * p_ + b] * inner;
+// The grid's own value of a pair: Σ w_i[a][b] w_j[c][d] K(offset of the nodes).
+double FftCoupling::grid_pair(const std::vector<double>& kernel, std::size_t i, std::size_t j) const {
+  const std::size_t M = M_, pp = static_cast<std::size_t>(p_) * p_;
+  const double *wi = w_.data() + i * pp, *wj = w_.data() + j * pp;
+  const long ex = bx_[i] - bx_[j], ey = by_[i] - by_[j];
+  double sum = 0;
+  for (int a = 0; a < p_; ++a)
+    for (int c = 0; c < p_; ++c) {
+      const long e = ex + a - c;
+      const double* krow = kernel.data() + static_cast<std::size_t>(e >= 0 ? e : e + long(M)) * M;
+      for (int b = 0; b < p_; ++b) {
+        double inner = 0;
+        for (int d = 0; d < p_; ++d) {
+          const long f = ey + b - d;
+          inner += wj[c * p_ + d] * krow[f >= 0 ? f : f + long(M)];
         }
+        sum += wi[a * p_ + b] * inner;
       }
-    return sum;
-  };
+    }
+  return sum;
+}
 
-  // Near pairs by a cell list of cell size R = near_cells · h. The grid's error of a pair d apart
-  // is about Σ_m (a/d)^2m (h/d)^(p − 2m) (the m-th smoothing term comes from the 2m-th derivative
-  // of the interpolant); a disc wider than a cell keeps it at (h/R)^p out to R · a/h.
-  const double R = s.near_cells * h_;
+// Near pairs by a cell list of cell size R = near_cells · h. The grid's error of a pair d apart is
+// about Σ_m (a/d)^2m (h/d)^(p − 2m) (the m-th smoothing term comes from the 2m-th derivative of
+// the interpolant); a disc wider than a cell keeps it at (h/R)^p out to R · a/h. Each near pair's
+// exact compliance minus the grid's own value goes to the near table.
+void FftCoupling::correct_near_pairs(const std::vector<double>& x, const std::vector<double>& y,
+                                     const std::vector<double>& radius, double E, double nu,
+                                     TractionWeighting weighting, double near_cells, double extent,
+                                     const std::vector<double>& kernel) {
+  const double R = near_cells * h_;
   const auto reach = [&](std::size_t i) { return R * std::max(1.0, radius[i] / h_); };
   const double widest = *std::max_element(radius.begin(), radius.end());
   const auto rings = static_cast<std::int64_t>(std::ceil(std::max(1.0, widest / h_)));
-  NeighbourGrid grid(R, std::max({std::abs(*xmin), std::abs(*xmax), std::abs(*ymin), std::abs(*ymax)}));
+  NeighbourGrid grid(R, extent);
   for (std::size_t j = 0; j < n_; ++j) grid.insert(j, x[j], y[j]);
   // Every j > i within the reach of i or j, in the cells around i.
   const auto for_near = [&](std::size_t i, auto&& visit) {
@@ -210,24 +229,28 @@ FftCoupling::FftCoupling(const std::vector<double>& x, const std::vector<double>
   if (pairs > kMaxNearPairs)
     throw std::runtime_error("FftCoupling: " + std::to_string(pairs) +
                              " exact pairs (the junctions are too clustered for the grid)");
-  std::vector<std::vector<std::pair<std::uint32_t, double>>> upper(n_);  // j > i
+  NearRows upper(n_);  // j > i
   std::vector<double> self(n_);
   std::atomic<bool> overlap{false};  // no exception may leave the parallel loop
 #pragma omp parallel for schedule(dynamic, 16)
   for (std::size_t i = 0; i < n_; ++i) {
-    self[i] = -grid_pair(i, i);
+    self[i] = -grid_pair(kernel, i, i);
     for_near(i, [&](std::size_t j, double dx, double dy) {
       if (!(std::hypot(dx, dy) >= radius[i] + radius[j]) || !(radius[i] >= 0) || !(radius[j] >= 0)) {
         overlap = true;
         return;
       }
       const double exact = disc_compliance(dx, dy, radius[i], radius[j], E, nu, weighting);
-      upper[i].emplace_back(static_cast<std::uint32_t>(j), exact - grid_pair(i, j));
+      upper[i].emplace_back(static_cast<std::uint32_t>(j), exact - grid_pair(kernel, i, j));
     });
     std::sort(upper[i].begin(), upper[i].end());
   }
   if (overlap) throw std::invalid_argument("FftCoupling: two junctions' discs overlap, or a radius is invalid");
-  // Both triangles and the diagonal, rows in column order.
+  store_near_table(upper, self);
+}
+
+// Both triangles and the diagonal, rows in column order.
+void FftCoupling::store_near_table(const NearRows& upper, const std::vector<double>& self) {
   row_.assign(n_ + 1, 0);
   for (std::size_t i = 0; i < n_; ++i) {
     row_[i + 1] += upper[i].size() + 1;
@@ -242,7 +265,6 @@ FftCoupling::FftCoupling(const std::vector<double>& x, const std::vector<double>
     for (const auto& [j, v] : upper[i]) col_[next[i]] = j, val_[next[i]++] = v;
   }
 }
-
 void FftCoupling::apply(const double* x, double* y) const {
   if (n_ == 0) return;
   const std::size_t M = M_, pp = static_cast<std::size_t>(p_) * p_;

@@ -17,6 +17,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "physics/elastic_interaction.hpp"
@@ -55,6 +56,17 @@ class FftCoupling {
 
  private:
   struct Fft;
+  using NearRows = std::vector<std::vector<std::pair<std::uint32_t, double>>>;  // row i: (j > i, value)
+  // The constructor's steps: each junction's patch and weights on the grid, the grid's kernel
+  // and its spectrum, the near pairs' corrections, and their table.
+  void place_patches(const std::vector<double>& x, const std::vector<double>& y, const std::vector<double>& radius,
+                     TractionWeighting weighting, double ox, double oy);
+  std::vector<double> grid_kernel(double E, double nu);
+  double grid_pair(const std::vector<double>& kernel, std::size_t i, std::size_t j) const;
+  void correct_near_pairs(const std::vector<double>& x, const std::vector<double>& y, const std::vector<double>& radius,
+                          double E, double nu, TractionWeighting weighting, double near_cells, double extent,
+                          const std::vector<double>& kernel);
+  void store_near_table(const NearRows& upper, const std::vector<double>& self);
   std::size_t n_ = 0, M_ = 0;
   int p_ = 0;
   double h_ = 0;

@@ -83,7 +83,7 @@ TEST_CASE("A fit whose model runs end before the peak fails, with the reason", "
   const fs::path f = write_text(c.dir / "f.yaml",
                                 "objective: quadratic_alpha\n"
                                 "experiments: [{scene: scene.yaml, set: {stop.time: " +
-                                    scene_io::format_double(t_stop) +
+                                    io::format_double(t_stop) +
                                     "}}]\n"
                                     "parameters: {model.alpha_b: {lo: 1e-16, hi: 5e-15, start: 1e-15, scale: log}}\n"
                                     "profile: false\n");

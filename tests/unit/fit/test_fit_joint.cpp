@@ -47,9 +47,9 @@ JointCase make_joint_case(const std::string& tag, double alpha_b, double epsilon
   JointCase c;
   c.base = make_fit_case(tag, alpha_b, 1.5);
   c.alpha_b = alpha_b, c.epsilon = epsilon, c.eta = eta;
-  const std::vector<std::string> truth_set{"model.alpha_b=" + scene_io::format_double(alpha_b),
-                                           "model.epsilon=" + scene_io::format_double(epsilon),
-                                           "model.eta=" + scene_io::format_double(eta)};
+  const std::vector<std::string> truth_set{"model.alpha_b=" + io::format_double(alpha_b),
+                                           "model.epsilon=" + io::format_double(epsilon),
+                                           "model.eta=" + io::format_double(eta)};
   auto with = [&](std::vector<std::string> extra) {
     extra.insert(extra.begin(), truth_set.begin(), truth_set.end());
     return extra;
@@ -58,9 +58,9 @@ JointCase make_joint_case(const std::string& tag, double alpha_b, double epsilon
       simulate(load_scene(c.base.dir / "scene.yaml", with({"stop.at_first_peak=true", "output.series=[]"})));
   REQUIRE(peak.obs.peak_found);
   c.t_end = 1.15 * peak.obs.t_peak;
-  const RunResult r = simulate(load_scene(
-      c.base.dir / "scene.yaml", with({"stop.at_first_peak=false", "stop.time=" + scene_io::format_double(c.t_end),
-                                       "output.every=0.005", "output.series=[t, Q]"})));
+  const RunResult r = simulate(
+      load_scene(c.base.dir / "scene.yaml", with({"stop.at_first_peak=false", "stop.time=" + io::format_double(c.t_end),
+                                                  "output.every=0.005", "output.series=[t, Q]"})));
   Gauss z(seed);
   MeasuredCurve m;
   std::vector<double> Q;

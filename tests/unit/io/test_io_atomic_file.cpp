@@ -37,7 +37,7 @@ TEST_CASE("write_file_atomically writes the exact bytes and leaves no temporary"
   // Replacing a file: the new text, whole.
   write_file_durably(d / "f.csv", "short\n");
   CHECK(read_file_text(d / "f.csv") == "short\n");
-  scene_io::write_text_file(d / "g.txt", "");
+  io::write_text_file(d / "g.txt", "");
   CHECK(fs::file_size(d / "g.txt") == 0);
   CHECK(entries(d) == 2);
   fs::remove_all(d);

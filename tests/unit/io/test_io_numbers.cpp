@@ -8,7 +8,7 @@
 
 #include "io/numbers.hpp"
 
-using namespace asperity::scene_io;
+using namespace asperity::io;
 
 TEST_CASE("report cells print as printf, and a dash where there is no value", "[io][numbers]") {
   for (const double x : {0.0, -1.5, 3.296430016634404, 7.25e-16, 1e300}) {

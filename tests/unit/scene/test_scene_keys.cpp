@@ -98,7 +98,7 @@ TEST_CASE("scene keys: a typed variant equals the tree with the same values, err
     std::vector<NumberSetting> settings;
     bool typed_ok = true;
     for (const auto& [k, v] : c.set) {
-      label += k + "=" + scene_io::format_double(v) + " ";
+      label += k + "=" + io::format_double(v) + " ";
       const SceneKey* key = find_scene_key(k);
       typed_ok = typed_ok && TypedScene::settable(key, v);
       settings.push_back({key, v});
@@ -107,7 +107,7 @@ TEST_CASE("scene keys: a typed variant equals the tree with the same values, err
     const std::string by_tree = outcome([&] {
       YAML::Node t;
       t.reset(tree);
-      for (const auto& [k, v] : c.set) t.reset(apply_override(t, k, YAML::Node(scene_io::format_double(v))));
+      for (const auto& [k, v] : c.set) t.reset(apply_override(t, k, YAML::Node(io::format_double(v))));
       return scene_from_tree(t, kScene);
     });
     errors += by_tree.rfind("error: ", 0) == 0 ? 1 : 0;

@@ -61,10 +61,9 @@ void check_recovery(const RecoveryCase& c) {
   // The window: to `window` times the first peak at the truth (1.15 as test_fit_joint.cpp's),
   // found by a run that stops there.
   const RunResult peak = simulate(load_scene(
-      base,
-      {"model.alpha_b=" + scene_io::format_double(c.truth.alpha_b),
-       "model.epsilon=" + scene_io::format_double(c.truth.epsilon), "model.eta=" + scene_io::format_double(c.truth.eta),
-       "model.interactions=" + c.truth.interactions, "stop.at_first_peak=true", "output.series=[]"}));
+      base, {"model.alpha_b=" + io::format_double(c.truth.alpha_b),
+             "model.epsilon=" + io::format_double(c.truth.epsilon), "model.eta=" + io::format_double(c.truth.eta),
+             "model.interactions=" + c.truth.interactions, "stop.at_first_peak=true", "output.series=[]"}));
   REQUIRE(peak.obs.peak_found);
   const double end = std::ceil(c.window * peak.obs.t_peak / 0.005) * 0.005;
   const SyntheticRecipe recipe = load_synthetic_recipe(
@@ -82,13 +81,13 @@ void check_recovery(const RecoveryCase& c) {
       fit_text(dir / "syn" / "truth.yaml", head +
                                                "intervals: false\nparameters:\n"
                                                "  model.alpha_b: {lo: 1e-16, hi: 5e-15, start: " +
-                                               scene_io::format_double(truth[0]) +
+                                               io::format_double(truth[0]) +
                                                ", scale: log}\n"
                                                "  model.epsilon: {lo: 0.5, hi: 0.99, start: " +
-                                               scene_io::format_double(truth[1]) +
+                                               io::format_double(truth[1]) +
                                                "}\n"
                                                "  model.eta: {lo: 30, hi: 300, start: " +
-                                               scene_io::format_double(truth[2]) +
+                                               io::format_double(truth[2]) +
                                                ", scale: log}\n"
                                                "optimizer: {algorithm: LN_BOBYQA, max_evaluations: 1}\n");
   const double j_truth = at_truth.fits.at(0).objective;

@@ -71,7 +71,7 @@ Outcome run_with(Scene s, SolverMethod m, double Ct_or_tol) {
   return run(s);
 }
 
-// The reference is first order through its lagged damping term (tests/unit/observe/test_solvers.cpp): its
+// The reference is first order through its lagged damping term (tests/unit/solve/test_solvers.cpp): its
 // error on Q is a few η·dt (plus the k_L v dt of its late sampling).
 double reference_bound(const Outcome& ref, double eta) { return 10.0 * std::max(eta, 1.0) * ref.info.dt + 1e-6; }
 
