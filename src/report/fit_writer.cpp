@@ -19,6 +19,7 @@
 #include "io/hash.hpp"
 #include "io/numbers.hpp"
 #include "io/provenance.hpp"
+#include "report/fit_figures.hpp"
 #include "report/run_writer.hpp"
 #include "report/units.hpp"
 #include "scene/input_files.hpp"
@@ -33,24 +34,6 @@ namespace {
 // Numbers of the fit tables: %.17g round-trips, "nan" for NaN (gnuplot and CSV readers parse it).
 using io::format_g17;
 constexpr double kGravity = 9.81;  // m/s², P = M g (as the stand-in recipe)
-
-// File-name stem for an experiment (names are free text). A name made only of letters, digits,
-// '.', '-' and '_' (not starting with '.', at most 80 bytes) is its own stem; any other name gets
-// its other bytes replaced by '_' and "+" and the FNV-1a 64 hash of the whole name appended, so
-// that "x y" and "x_y" (or two long names with a common start) never share files. '+' is not in
-// the plain set, so a hashed stem never equals a plain one.
-std::string file_stem(const std::string& name) {
-  const auto plain = [](char c) {
-    return std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-' || c == '_';
-  };
-  const bool as_is =
-      !name.empty() && name.size() <= 80 && name.front() != '.' && std::all_of(name.begin(), name.end(), plain);
-  if (as_is) return name;
-  std::string s;
-  for (char c : name.substr(0, 60)) s += plain(c) ? c : '_';
-  if (!s.empty() && s.front() == '.') s.front() = '_';
-  return s + "+" + hex16(fnv1a64(name));
-}
 
 // Draws the fit's figures from the CSVs beside them; the script is kept as `gp_name` in the
 // folder (`gnuplot NAME.gp` there redraws them).
@@ -98,7 +81,7 @@ std::vector<Range> error_bar_ranges(const Optimization& o) {
 }
 
 std::string fit_subdir(const FitSpec& spec, const Optimization& o) {
-  return spec.separate ? file_stem(o.label) : std::string();
+  return spec.separate ? fit_file_stem(o.label) : std::string();
 }
 
 std::string evaluations_csv(const Optimization& o, const FitSpec& spec) {
@@ -128,133 +111,64 @@ std::string profile_csv(const std::vector<ProfilePoint>& points) {
   return c.str();
 }
 
-// The tic format of an axis spanning the values `v`: as many digits as tell tics about a fifth
-// of the span apart (gnuplot's default keeps too few for a narrow span far from zero, e.g. a
-// profile of α_b ± 10 %, and repeats one label), short %g otherwise ("7.2e-16", not "7.2x10^{-16}").
-std::string tic_format(const char* axis, const std::vector<double>& v) {
-  double lo = INFINITY, hi = -INFINITY;
-  for (const double x : v)
-    if (std::isfinite(x)) lo = std::min(lo, x), hi = std::max(hi, x);
-  int digits = 3;
-  if (hi > lo)
-    digits = std::clamp(
-        static_cast<int>(std::ceil(std::log10(std::max(std::abs(lo), std::abs(hi)) / ((hi - lo) / 5)))) + 1, 3, 12);
-  return std::string("set format ") + axis + " '%." + std::to_string(digits) + "g'\n";
+// A Q_N,A_m2 or t_s,Q_N table of two columns.
+template <class Row>
+std::string two_columns(const char* header, std::size_t n, Row row) {
+  std::ostringstream t;
+  t << header << "\n";
+  for (std::size_t k = 0; k < n; ++k) {
+    const auto [x, y] = row(k);
+    t << format_g17(x) << "," << format_g17(y) << "\n";
+  }
+  return t.str();
 }
 
-std::vector<double> profile_values(const std::vector<ProfilePoint>& points) {
-  std::vector<double> v;
-  for (const auto& p : points) v.push_back(p.value);
-  return v;
+// The tables of one optimization: evaluations, profiles, and each experiment's curves at the fit.
+void write_optimization_tables(const fs::path& d, const FitSpec& spec, const Optimization& o) {
+  io::write_text_file(d / "evaluations.csv", evaluations_csv(o, spec));
+  if (!o.profile.empty()) io::write_text_file(d / "profile.csv", profile_csv(o.profile));
+  // Every further profiled parameter: profile_<key>.csv (the first one is profile.csv).
+  for (std::size_t q = 1; q < o.profiles.size(); ++q)
+    io::write_text_file(d / ("profile_" + fit_file_stem(spec.parameters[o.profiles[q].parameter].key) + ".csv"),
+                        profile_csv(o.profiles[q].points));
+  for (const auto& r : o.best_runs) {
+    const std::string stem = "AQ_" + fit_file_stem(spec.experiments[r.experiment].name);
+    io::write_text_file(d / (stem + "_model.csv"), two_columns("Q_N,A_m2", r.loading.size(), [&](std::size_t k) {
+                          return std::pair{r.loading[k].Q, r.loading[k].A};
+                        }));
+    if (r.measured)
+      io::write_text_file(d / (stem + "_measured.csv"),
+                          two_columns("Q_N,A_m2", r.measured->Q_N.size(), [&](std::size_t k) {
+                            return std::pair{r.measured->Q_N[k], r.measured->A_m2[k]};
+                          }));
+    if (r.force) {  // area_and_force: the model's Q(t) at the fit and the measured Q(t)
+      const std::string qstem = "Qt_" + fit_file_stem(spec.experiments[r.experiment].name);
+      io::write_text_file(d / (qstem + "_model.csv"), two_columns("t_s,Q_N", r.series.size(), [&](std::size_t k) {
+                            return std::pair{r.series[k].t, r.series[k].Q};
+                          }));
+      io::write_text_file(d / (qstem + "_measured.csv"),
+                          two_columns("t_s,Q_N", r.force->t_s.size(), [&](std::size_t k) {
+                            return std::pair{r.force->t_s[k], r.force->Q_N[k]};
+                          }));
+    }
+  }
 }
 
 // Writes the files of one optimization into `d` (plots when `plots`).
 void write_optimization(const fs::path& d, const FitSpec& spec, const Optimization& o, bool plots,
                         const FigureFormats& figures) {
   fs::create_directories(d);
-  io::write_text_file(d / "evaluations.csv", evaluations_csv(o, spec));
-  if (!o.profile.empty()) io::write_text_file(d / "profile.csv", profile_csv(o.profile));
-  // Every further profiled parameter: profile_<key>.csv (the first one is profile.csv).
-  for (std::size_t q = 1; q < o.profiles.size(); ++q)
-    io::write_text_file(d / ("profile_" + file_stem(spec.parameters[o.profiles[q].parameter].key) + ".csv"),
-                        profile_csv(o.profiles[q].points));
-  for (const auto& r : o.best_runs) {
-    const std::string stem = "AQ_" + file_stem(spec.experiments[r.experiment].name);
-    std::ostringstream m;
-    m << "Q_N,A_m2\n";
-    for (const auto& s : r.loading) m << format_g17(s.Q) << "," << format_g17(s.A) << "\n";
-    io::write_text_file(d / (stem + "_model.csv"), m.str());
-    if (r.measured) {
-      std::ostringstream x;
-      x << "Q_N,A_m2\n";
-      for (std::size_t j = 0; j < r.measured->Q_N.size(); ++j)
-        x << format_g17(r.measured->Q_N[j]) << "," << format_g17(r.measured->A_m2[j]) << "\n";
-      io::write_text_file(d / (stem + "_measured.csv"), x.str());
-    }
-    if (r.force) {  // area_and_force: the model's Q(t) at the fit and the measured Q(t)
-      const std::string qstem = "Qt_" + file_stem(spec.experiments[r.experiment].name);
-      std::ostringstream mq, xq;
-      mq << "t_s,Q_N\n";
-      for (const auto& s : r.series) mq << format_g17(s.t) << "," << format_g17(s.Q) << "\n";
-      io::write_text_file(d / (qstem + "_model.csv"), mq.str());
-      xq << "t_s,Q_N\n";
-      for (std::size_t k = 0; k < r.force->t_s.size(); ++k)
-        xq << format_g17(r.force->t_s[k]) << "," << format_g17(r.force->Q_N[k]) << "\n";
-      io::write_text_file(d / (qstem + "_measured.csv"), xq.str());
-    }
-  }
+  write_optimization_tables(d, spec, o);
   if (!plots) return;
   bool stand_in = false;
   for (const auto& r : o.best_runs) stand_in = stand_in || r.stand_in;
   // The figures of every chosen format, each format's terminal before its figures.
   std::string script;
-  const std::string area_scale = io::format_double(figure_unit("A").scale);
   for (const fs::path& probe : figure_files("convergence.png", figures)) {
     const std::string ext = probe.extension().string();
-    std::ostringstream gp;
-    gp << "set datafile separator ','\nset grid\n" << stand_in_mark(stand_in);
-    gp << "set output " << gnuplot_quote("convergence" + ext) << "\n"
-       << "set title "
-       << gnuplot_text(spec.name + " / " + o.label + ": objective (" + objective_name(spec.objective) + ")")
-       << " . \"\\n\" . " << gnuplot_text(spec.algorithm + ", stop " + o.stop_reason) << "\n"
-       << "set xlabel 'evaluation number'\nset ylabel 'objective [1] (dimensionless)'\nset logscale y\nset key top "
-          "right\n"
-       << "best = 1e300\n"
-       << "plot 'evaluations.csv' skip 1 using 1:($" << (o.variables.size() + 2) << " > 0 ? $"
-       << (o.variables.size() + 2) << " : 1/0) with linespoints pt 7 ps 0.6 title 'objective', "
-       << "'' skip 1 using 1:(($" << (o.variables.size() + 2) << " > 0 && $" << (o.variables.size() + 2)
-       << " < best) ? (best = $" << (o.variables.size() + 2) << ") : best) with steps lw 2 title 'best so far'\n"
-       << "unset logscale y\n";
-    if (!o.profile.empty()) {
-      const std::string& key = spec.parameters[o.profile_parameter].key;
-      gp << "set output " << gnuplot_quote("profile" + ext) << "\n"
-         << "set title " << gnuplot_text(o.label) << " . " << gnuplot_quote(": objective around the optimum, ") << " . "
-         << gnuplot_quote(column_symbol(key)) << " . " << gnuplot_quote(" varied (others fixed)") << "\nset xlabel "
-         << gnuplot_quote(axis_markup(key)) << "\nset ylabel 'objective [1] (dimensionless)'\nset key off\n"
-         << "set rmargin 6\n"  // room for the last x tic label
-         << tic_format("x", profile_values(o.profile))
-         << "plot 'profile.csv' skip 1 using 2:($3 == $3 ? $3 : 1/0) with linespoints pt 7 lw 1.5\n"
-         << "set rmargin -1\nset format x '% h'\n";
-    }
-    for (std::size_t q = 1; q < o.profiles.size(); ++q) {
-      const std::string& key = spec.parameters[o.profiles[q].parameter].key;
-      const std::string stem = "profile_" + file_stem(key);
-      gp << "set output " << gnuplot_quote(stem + ext) << "\n"
-         << "set title " << gnuplot_text(o.label) << " . " << gnuplot_quote(": objective around the optimum, ") << " . "
-         << gnuplot_quote(column_symbol(key)) << " . " << gnuplot_quote(" varied (others fixed)") << "\nset xlabel "
-         << gnuplot_quote(axis_markup(key)) << "\nset ylabel 'objective [1] (dimensionless)'\nset key off\n"
-         << "set rmargin 6\n"
-         << tic_format("x", profile_values(o.profiles[q].points)) << "plot " << gnuplot_quote(stem + ".csv")
-         << " skip 1 using 2:($3 == $3 ? $3 : 1/0) with linespoints pt 7 lw 1.5\n"
-         << "set rmargin -1\nset format x '% h'\n";
-    }
-    for (const auto& r : o.best_runs) {
-      if (!r.force) continue;
-      const std::string name = spec.experiments[r.experiment].name;
-      const std::string qstem = "Qt_" + file_stem(name);
-      gp << "set output " << gnuplot_quote(qstem + ext) << "\n"
-         << "set title " << gnuplot_text(name + ": Q(t) at the fit") << "\nset xlabel "
-         << gnuplot_quote(axis_markup("t")) << "\nset ylabel " << gnuplot_quote(axis_markup("Q"))
-         << "\nset key top left\n"
-         << "plot " << gnuplot_quote(qstem + "_measured.csv") << " skip 1 using 1:2 with points pt 7 ps 0.3 title '"
-         << (r.stand_in ? "stand-in measurement" : "measurement") << "', " << gnuplot_quote(qstem + "_model.csv")
-         << " skip 1 using 1:2 with lines lw 1.5 title 'model (fitted)'\n";
-    }
-    for (const auto& r : o.best_runs) {
-      const std::string name = spec.experiments[r.experiment].name;
-      const std::string stem = "AQ_" + file_stem(name);
-      gp << "set output " << gnuplot_quote(stem + ext) << "\n"
-         << "set title " << gnuplot_text(name + ": A(Q) on the loading branch at the fit") << "\nset xlabel "
-         << gnuplot_quote(axis_markup("Q")) << "\nset ylabel " << gnuplot_quote(axis_markup("A"))
-         << "\nset key bottom left\n"
-         << "plot " << gnuplot_quote(stem + "_model.csv") << " skip 1 using 1:($2*" << area_scale
-         << ") with lines lw 2 title 'model (fitted)'";
-      if (r.measured)
-        gp << ", " << gnuplot_quote(stem + "_measured.csv") << " skip 1 using 1:($2*" << area_scale
-           << ") with points pt 7 ps 0.7 title '" << (r.stand_in ? "stand-in measurement" : "measurement") << "'";
-      gp << "\n";
-    }
-    script += terminal_for(probe, kFitPlotWidth, kFitPlotHeight) + "\n" + script_for_terminal(probe, gp.str());
+    const std::string gp =
+        "set datafile separator ','\nset grid\n" + stand_in_mark(stand_in) + optimization_figures(spec, o, ext);
+    script += terminal_for(probe, kFitPlotWidth, kFitPlotHeight) + "\n" + script_for_terminal(probe, gp);
   }
   plot_quietly(d, script, "plots.gp");
 }
@@ -440,7 +354,7 @@ void write_profiles(std::ostream& y, const FitSpec& spec, const Optimization& o)
     if (q == 1) y << "    more_profiles:   # the further profiled parameters (same span and points)\n";
     const std::string& key = spec.parameters[o.profiles[q].parameter].key;
     const std::string sub = fit_subdir(spec, o);
-    const std::string file = "profile_" + file_stem(key) + ".csv";
+    const std::string file = "profile_" + fit_file_stem(key) + ".csv";
     y << "      - {parameter: " << key << ", file: " << yaml_quoted(sub.empty() ? file : sub + "/" + file) << "}\n";
   }
 }
