@@ -2,10 +2,13 @@
 // Files and temporary folders for tests (no asperity header: usable by the tests of every layer).
 #include <unistd.h>
 
+#include <cstdint>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace asperity::testing {
 // The whole text of a file (empty when it cannot be read).
@@ -41,5 +44,21 @@ inline std::filesystem::path fresh_dir(const std::string& stem) {
   std::filesystem::remove_all(d);
   std::filesystem::create_directories(d);
   return d;
+}
+// The lines of a text, without their line ends.
+inline std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  for (std::string l; std::getline(in, l);) out.push_back(l);
+  return out;
+}
+
+// FNV-1a 64 written out from its definition (offset basis and prime), independent of io/hash.
+inline std::string fnv1a64_hex(const std::string& bytes) {
+  std::uint64_t h = 14695981039346656037ull;
+  for (const unsigned char c : bytes) h = (h ^ c) * 1099511628211ull;
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+  return buf;
 }
 }  // namespace asperity::testing

@@ -16,18 +16,7 @@ namespace fs = std::filesystem;
 using namespace asperity;
 using namespace asperity::testing;
 
-namespace {
-
-// FNV-1a 64 written out from its definition (offset basis and prime), independent of io/hash.
-std::string fnv1a64_hex(const std::string& bytes) {
-  std::uint64_t h = 14695981039346656037ull;
-  for (const unsigned char c : bytes) h = (h ^ c) * 1099511628211ull;
-  char buf[17];
-  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
-  return buf;
-}
-
-}  // namespace
+namespace {}  // namespace
 
 TEST_CASE("a store's provenance names the command and the data each base scene reads", "[io][provenance][campaign]") {
   const fs::path data = fs::path(ASPERITY_SOURCE_DIR) / "tests" / "data";

@@ -38,12 +38,7 @@ fs::path temp_dir() {
 }
 using asperity::testing::slurp;
 
-std::vector<std::string> lines_of(const std::string& text) {
-  std::vector<std::string> out;
-  std::istringstream in(text);
-  for (std::string l; std::getline(in, l);) out.push_back(l);
-  return out;
-}
+using asperity::testing::lines_of;
 
 // points.csv without the wall_s column (the only value allowed to differ between runs).
 std::vector<std::string> values_of(const fs::path& store) {

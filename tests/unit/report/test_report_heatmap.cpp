@@ -26,12 +26,7 @@ fs::path temp_dir() {
 }
 using asperity::testing::slurp;
 
-std::vector<std::string> lines_of(const std::string& text) {
-  std::vector<std::string> out;
-  std::istringstream in(text);
-  for (std::string l; std::getline(in, l);) out.push_back(l);
-  return out;
-}
+using asperity::testing::lines_of;
 
 SweepReport sweep(const Campaign& c, const fs::path& out, int threads) {
   SweepOptions o;
