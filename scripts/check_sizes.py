@@ -118,6 +118,19 @@ def function_name(header):
     return head[k:]
 
 
+def matching_brace(code, i):
+    """Index of the brace closing the one at code[i] (len(code) when unclosed)."""
+    depth = 0
+    for j in range(i, len(code)):
+        if code[j] == "{":
+            depth += 1
+        elif code[j] == "}":
+            depth -= 1
+            if depth == 0:
+                return j
+    return len(code)
+
+
 def functions(text):
     """(name, first line, lines of code) of each function defined in `text`, outermost only."""
     code = blank_out(text)
@@ -156,27 +169,10 @@ def functions(text):
                 in_init_list = re.search(r"\)\s*(noexcept\s*)?:[^:]", label)
                 open_parens = label.count("(") - label.count(")")
                 if in_init_list and (open_parens > 0 or re.search(r"[\w>]\s*$", label)):
-                    depth, j = 0, i
-                    while j < n:
-                        if code[j] == "{":
-                            depth += 1
-                        elif code[j] == "}":
-                            depth -= 1
-                            if depth == 0:
-                                break
-                        j += 1
-                    i = j + 1
+                    i = matching_brace(code, i) + 1
                     continue
                 # The body: to its matching brace.
-                depth, j = 0, i
-                while j < n:
-                    if code[j] == "{":
-                        depth += 1
-                    elif code[j] == "}":
-                        depth -= 1
-                        if depth == 0:
-                            break
-                    j += 1
+                j = matching_brace(code, i)
                 first = start + (len(header) - len(header.lstrip()))
                 last = min(j, n)
                 code_lines = sum(1 for ln in code[first:last + 1].split("\n") if ln.strip())

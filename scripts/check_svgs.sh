@@ -16,7 +16,7 @@
 # Prints one line per figure (OK or what differs) and exits 1 when any differs. Results of a
 # run: docs/commands.md (Figures).
 set -eu
-OUT=${1:-$(mktemp -d /tmp/asperity-svgs.XXXXXX)}
+OUT=${1:-$(mktemp -d -t asperity-svgs.XXXXXX)}
 BUILD=${BUILD:-build}
 CHROMIUM=${CHROMIUM:-$(command -v chromium || command -v chromium-browser || true)}
 [ -n "$CHROMIUM" ] || { echo "check_svgs: chromium not found (apt-get install chromium)" >&2; exit 2; }

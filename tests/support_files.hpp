@@ -45,6 +45,19 @@ inline std::filesystem::path fresh_dir(const std::string& stem) {
   std::filesystem::create_directories(d);
   return d;
 }
+
+// A fresh folder per call: fresh_dir(stem_N), N counting the calls in this process.
+inline std::filesystem::path numbered_dir(const std::string& stem) {
+  static int calls = 0;
+  return fresh_dir(stem + "_" + std::to_string(calls++));
+}
+
+#ifdef ASPERITY_SOURCE_DIR
+// The small campaigns and scenes the store, sweep and heat-map tests share.
+inline const std::filesystem::path kCampaignData =
+    std::filesystem::path(ASPERITY_SOURCE_DIR) / "tests" / "data" / "campaign";
+#endif
+
 // The lines of a text, without their line ends.
 inline std::vector<std::string> lines_of(const std::string& text) {
   std::vector<std::string> out;

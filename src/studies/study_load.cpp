@@ -38,26 +38,29 @@ fs::path input_file_at(const MapView& m, const fs::path& folder, const YAML::Nod
   return p;
 }
 
-std::vector<fs::path> input_files_at(const MapView& m, const fs::path& folder, const YAML::Node& n,
-                                     const std::string& k) {
-  if (!n.IsSequence() || n.size() == 0) m.fail_at(n, k, "expected a non-empty list of files, got " + node_kind(n));
+// A list of paths. Inputs the study cannot run without: non-empty, each a regular file, none
+// listed twice. Results of other commands: read when they exist (absent: no evidence).
+enum class Listed { inputs, results };
+std::vector<fs::path> files_at(const MapView& m, const fs::path& folder, const YAML::Node& n, const std::string& k,
+                               Listed listed) {
+  const bool inputs = listed == Listed::inputs;
+  if (!n.IsSequence() || (inputs && n.size() == 0))
+    m.fail_at(n, k,
+              std::string(inputs ? "expected a non-empty list of files, got " : "expected a list of files, got ") +
+                  node_kind(n));
   std::vector<fs::path> out;
   for (std::size_t i = 0; i < n.size(); ++i) {
     const std::string ki = k + "[" + std::to_string(i) + "]";
+    if (!inputs) {
+      out.push_back(path_at(m, folder, n[i], ki));
+      continue;
+    }
     out.push_back(input_file_at(m, folder, n[i], ki));
     for (std::size_t j = 0; j + 1 < out.size(); ++j) {
       std::error_code ec;
       if (fs::equivalent(out[j], out.back(), ec)) m.fail_at(n[i], ki, quote(n[i].Scalar()) + " listed twice");
     }
   }
-  return out;
-}
-
-// Results of other commands that the study reads when they exist (absent: no evidence).
-std::vector<fs::path> paths_at(const MapView& m, const fs::path& folder, const YAML::Node& n, const std::string& k) {
-  if (!n.IsSequence()) m.fail_at(n, k, "expected a list of files, got " + node_kind(n));
-  std::vector<fs::path> out;
-  for (std::size_t i = 0; i < n.size(); ++i) out.push_back(path_at(m, folder, n[i], k + "[" + std::to_string(i) + "]"));
   return out;
 }
 
@@ -72,14 +75,16 @@ int integer_in(const MapView& m, const std::string& k, int lo, int hi, int fallb
 
 InteractionStudyOptions interactions_options(const MapView& m, const fs::path& folder) {
   InteractionStudyOptions o;
-  o.scenes = input_files_at(m, folder, m.require("scenes"), "scenes");
+  o.scenes = files_at(m, folder, m.require("scenes"), "scenes", Listed::inputs);
   const MapView cal(m.source(), m.require("calibrations"), "calibrations", {"independent", "interacting"});
   o.fit_independent = path_at(cal, folder, cal.require("independent"), "independent");
   o.fit_interacting = path_at(cal, folder, cal.require("interacting"), "interacting");
   if (const auto j = m.find("joint")) {
     const MapView joint(m.source(), *j, "joint", {"independent", "interacting"});
-    if (const auto n = joint.find("independent")) o.joint_independent = paths_at(joint, folder, *n, "independent");
-    if (const auto n = joint.find("interacting")) o.joint_interacting = paths_at(joint, folder, *n, "interacting");
+    if (const auto n = joint.find("independent"))
+      o.joint_independent = files_at(joint, folder, *n, "independent", Listed::results);
+    if (const auto n = joint.find("interacting"))
+      o.joint_interacting = files_at(joint, folder, *n, "interacting", Listed::results);
   }
   if (const auto n = m.find("sweep")) o.sweep_store = path_at(m, folder, *n, "sweep");
   if (const auto n = m.find("topography")) o.topography_table = path_at(m, folder, *n, "topography");
@@ -91,7 +96,7 @@ InteractionStudyOptions interactions_options(const MapView& m, const fs::path& f
 
 RecoveryMatrixOptions recovery_options(const MapView& m, const fs::path& folder) {
   RecoveryMatrixOptions o;
-  o.recipes = input_files_at(m, folder, m.require("recipes"), "recipes");
+  o.recipes = files_at(m, folder, m.require("recipes"), "recipes", Listed::inputs);
   const YAML::Node models = m.require("models");
   if (!models.IsSequence() || models.size() < 2)
     m.fail_at(models, "models", "expected a list of two fitting models or more, got " + node_kind(models));

@@ -217,8 +217,7 @@ template <class V, class Rows>
 // Rows [r0, r1) of the stored triangle times (w1, w2): row r's own sums into p[r], its entries'
 // transposed products into p[c > r]. Four rows at a time, then a pair and an odd row: each load
 // of w and each update of p serves four rows of G (the loop is bound by loads and stores, not
-// arithmetic; a throw-away microbenchmark, one thread, AVX2: 1.16x the two-row form at n = 1,200
-// in double, 1.2-1.4x at 3,500-5,000 on the single-precision copy). Every sum has one fixed order
+// arithmetic; measured in docs/performance.md, "Four rows a pass"). Every sum has one fixed order
 // (four lanes, combined pairwise; a row's entries left of the lanes, the quad's diagonal block,
 // first): the same bits from every form (AVX-512, AVX2, 16-byte vectors), on any number of
 // threads. Each
@@ -267,8 +266,8 @@ __attribute__((target("arch=x86-64-v3"))) void product_rows_single_avx2(const fl
 }
 // The same four-double code again for CPUs with AVX-512 (x86-64-v4), for its 32 vector registers
 // (the quad's eight sums, eight weights and its entries fit without spilling): the same
-// operations, so the same bits. Microbenchmark, one thread: 1.16-1.6x the AVX2 form on the
-// single-precision copy at n = 2,400-5,000, equal in double.
+// operations, so the same bits; faster on the single-precision copy, equal in double
+// (docs/performance.md, "Four rows a pass").
 __attribute__((target("arch=x86-64-v4"))) void product_rows_avx512(const double* G, std::size_t N, std::size_t n,
                                                                    std::size_t r0, std::size_t r1, const double* w1,
                                                                    const double* w2, double* p1, double* p2) {

@@ -15,12 +15,9 @@ using Catch::Matchers::Contains;
 
 namespace {
 
-const fs::path kData = fs::path(ASPERITY_SOURCE_DIR) / "tests" / "data" / "campaign";
+const fs::path& kData = asperity::testing::kCampaignData;
 
-fs::path temp_dir() {
-  static int counter = 0;
-  return asperity::testing::fresh_dir("asperity_campaign_in_" + std::to_string(counter++));
-}
+fs::path temp_dir() { return asperity::testing::numbered_dir("asperity_campaign_in"); }
 
 // A campaign file whose line 1 is the scene list; `body` starts at line 2.
 fs::path campaign_file(const std::string& body) {

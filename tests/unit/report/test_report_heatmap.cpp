@@ -18,12 +18,9 @@ using Catch::Matchers::Contains;
 
 namespace {
 
-const fs::path kData = fs::path(ASPERITY_SOURCE_DIR) / "tests" / "data" / "campaign";
+const fs::path& kData = asperity::testing::kCampaignData;
 
-fs::path temp_dir() {
-  static int counter = 0;
-  return asperity::testing::fresh_dir("asperity_heatmap_" + std::to_string(counter++));
-}
+fs::path temp_dir() { return asperity::testing::numbered_dir("asperity_heatmap"); }
 using asperity::testing::slurp;
 
 using asperity::testing::lines_of;
