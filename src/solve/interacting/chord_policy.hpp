@@ -1,5 +1,5 @@
 #pragma once
-// The chord iteration's rules (InteractingJunctions' exact solves, docs/model.md §8): when a
+// The chord iteration's rules (ChordSolver's exact solves, docs/model.md §8): when a
 // solve stops, when its passes count as slow, and when the slow passes have cost enough to pay
 // for a rebuild of G at the current compliances (a Newton step). Plain data and pure functions:
 // the iteration keeps the counts, the policy only judges them.

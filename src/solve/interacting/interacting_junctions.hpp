@@ -28,21 +28,17 @@
 #include <string>
 #include <vector>
 
-#include "solve/core/adaptive_team.hpp"
 #include "solve/core/junction_state.hpp"
 #include "solve/core/problem.hpp"
-#include "solve/core/run_info.hpp"
-#include "solve/interacting/anderson.hpp"
-#include "solve/interacting/chord_policy.hpp"
-#include "solve/interacting/eq3_displacement.hpp"
+#include "solve/interacting/chord_solver.hpp"
 #include "solve/interacting/force_cache.hpp"
 #include "solve/interacting/pinned_compliance.hpp"
 
 namespace asperity {
 
-// The jobs are split: PinnedCompliance keeps G and the load vectors of the pinned set,
-// Eq3Displacement the junctions' own nonlinear law, ForceCache the exact solves between events
-// and their interpolants; this class runs the chord iteration (solve) and the events (slip
+// The jobs are split: ChordSolver runs the exact solves of the pinned set (with the operator G
+// and the load vectors, the junctions' own nonlinear law, the cache of solves between events and
+// their interpolants); this class keeps the junctions' states and runs the events (slip
 // positions, avalanches, repins).
 class InteractingJunctions {
  public:
@@ -60,7 +56,7 @@ class InteractingJunctions {
   double next_threshold() const { return x_up_; }  // m: the next slip as X grows
   bool has_threshold_below() const;
   double next_threshold_below() const { return x_down_; }  // m: the next slip as X decreases
-  std::int64_t n_slipping() const { return static_cast<std::int64_t>(N_ - pinned_.size()); }
+  std::int64_t n_slipping() const { return static_cast<std::int64_t>(N_ - solver_.pinned().size()); }
   std::int64_t n_intact() const { return n_intact_; }
   std::int64_t force_evals() const { return force_evals_; }
   std::int64_t slips() const { return slips_; }
@@ -76,8 +72,8 @@ class InteractingJunctions {
   // (its solves, their rebuilds, an avalanche) can take minutes to hours, and so can the first
   // event search in the constructor. The deadline starts as the problem's stop.wall_time from
   // construction; set_deadline only brings it closer, clear_deadline removes it.
-  void set_deadline(std::chrono::steady_clock::time_point deadline) { deadline_ = std::min(deadline_, deadline); }
-  void clear_deadline() { deadline_ = std::chrono::steady_clock::time_point::max(); }
+  void set_deadline(std::chrono::steady_clock::time_point deadline) { solver_.set_deadline(deadline); }
+  void clear_deadline() { solver_.clear_deadline(); }
 
   // Every junction's force at X (N, by junction) for the current pinned set; for tests and
   // the force-spread study.
@@ -107,49 +103,10 @@ class InteractingJunctions {
  private:
   static constexpr std::size_t npos = static_cast<std::size_t>(-1);
 
-  // The chord iteration drove the junction at position q far over its slip force: past φ = 1
-  // (where u' grows without bound and the iteration cannot follow it to the root just below 1),
-  // or over its threshold while the iteration, long past its usual passes, cannot settle (a
-  // step-limited cycle between two states over it). Such a junction is over its threshold:
-  // inside an avalanche settle() slips it (the most overloaded by the iterate); anywhere else it
-  // is the SolverError it derives from.
-  struct Overloaded : SolverError {
-    Overloaded(const std::string& what, std::size_t position) : SolverError(what), q(position) {}
-    std::size_t q;
-  };
-
-  // Own displacement u(f) [m] and du/df [m/N] of the junction at position q of P.
-  void own(std::size_t q, double f, double& u, double& du);
-  // Exact solve at X by the chord iteration, warm-started from the cache: a new node, converged to
-  // `tol` of the slip forces (solver.interaction_tolerance unless given).
-  ForceNode solve(double X) { return solve(X, tol_); }
-  ForceNode solve(double X, double tol);
-  // The steps of a solve's chord iteration (interacting_solve.cpp), on the work vectors of one
-  // solve: from node's warm start to the fixed point at X (returns the passes); its start; the
-  // junctions' own laws at the iterate; the chord map's image (one pass over G); the damped or
-  // accelerated step (returns the largest change, of the slip forces); a rebuild of G at the
-  // current compliances.
-  struct ChordPass;
-  int chord_iteration(double X, const ChordPolicy& policy, ForceNode& node);
-  ChordPass start_chord(double tol) const;
-  void own_laws(const ForceNode& node, ChordPass& w);
-  void chord_image(double X, const ForceNode& node, ChordPass& w);
-  double take_step(double X, double damp, ForceNode& node, const ChordPass& w);
-  void refresh_reference(const ForceNode& node, ChordPass& w);
-  // One chord iteration's step on the active positions: damps it (returns the factor) or
-  // replaces g by Anderson's accelerated iterate when that stays within the same bound.
-  double chord_step(double X, const std::vector<std::size_t>& active, double a_scale, const std::vector<double>& y1,
-                    const std::vector<double>& y2, const std::vector<double>& z, std::vector<double>& g,
-                    Anderson& aa) const;
-  void add_totals(ForceNode& node) const;  // F, dF/dX, A, dA/dX of a solved node
-  // Throws Overloaded when an iterate f (per position) puts a junction past φ = 1, or over its
-  // threshold while the iteration's last change is still above `stuck` (of the slip forces).
-  void overloaded_check(double X, const std::vector<std::size_t>& active, const std::vector<double>& f, double change,
-                        double stuck) const;
-  // The iteration's start at X: f and df/dX per position of P (see the .cpp).
-  void warm_start(double X, std::vector<double>& f, std::vector<double>& a) const;
-  double threshold(std::size_t q) const;  // N, the slip force of position q
-  void after_change(double X);            // new event point: node, thresholds
+  ForceNode solve(double X) { return solver_.solve(X); }
+  double threshold(std::size_t q) const { return solver_.threshold(q); }  // N, position q
+  const PinnedCompliance& pinned() const { return solver_.pinned(); }
+  void after_change(double X);  // new event point: node, thresholds
   // Junction k (npos: none) slips at X, then every pinned one at or over its threshold, one at a
   // time, most overloaded first; then the new slip positions. Returns how many slipped.
   std::int64_t settle(double X, std::size_t k);
@@ -158,45 +115,19 @@ class InteractingJunctions {
   // any junction found over its threshold before it, the earliest first; returns the slip
   // position and leaves k on the position that slips there.
   double refine_crossing(double X, int dir, double best, std::size_t& k);
-  // Position q leaves P carrying f_slip; at_X: the old set's solution nearest X (or null), from
-  // which the new set's seed at X is predicted.
-  // other: at_X's neighbour in the old cache (or null), for the curvatures.
-  void remove_pinned(std::size_t q, double f_slip, const ForceNode* at_X, const ForceNode* other, double X);
   void start_slip(std::size_t i, double X);
 
-  const Problem& p_;
   const ContactLaw& law_;
   AreaLaw area_law_;
   bool nonlinear_law_;
-  double tol_;  // solver.interaction_tolerance: of the slip force, per solve and slip position
   std::size_t N_ = 0;
   JunctionState J_;
-  Eq3Displacement eq3_;
-  // G, D, a0, b0 change with the reference compliances, a choice of the iteration, not of the
-  // solution: refreshed inside solves. The cache is a memo of the solves.
-  PinnedCompliance pinned_;
-  ForceCache cache_;
-  double sum_a0_ = 0, sum_b0_ = 0, F_slip_ = 0, A_fixed_ = 0;
+  ChordSolver<PinnedCompliance> solver_;  // reads J_: constructed after it
+  double sum_a0_ = 0, sum_b0_ = 0;        // of the pinned set: F = X Σa0 + Σb0 + F_slip when all are linear
   std::int64_t n_intact_ = 0, slips_ = 0, repins_ = 0, overloaded_ = 0;
   double x_up_ = 0, x_down_ = 0;
-  std::chrono::steady_clock::time_point deadline_ = std::chrono::steady_clock::time_point::max();
   std::size_t k_up_ = npos, k_down_ = npos;  // junctions of the next slips
-  std::vector<double> last_f_, last_a_;      // by junction: the last solve (warm start)
-  // After a slip at seed_X_: the new set's forces and slopes there, predicted (warm start).
-  bool seed_valid_ = false;
-  double seed_X_ = 0;
-  std::vector<double> seed_f_, seed_a_, seed_c_;  // c: d²f/dX² (empty: unknown)
-  double seed_h_ = 0;                             // m: the spacing of the old nodes the curvatures come from
-  std::int64_t force_evals_ = 0, solves_ = 0, iterations_ = 0;
-  // Chord passes that contracted slowly since G was last rebuilt (rebuild count slow_since_).
-  std::int64_t slow_passes_ = 0, slow_since_ = -1;
-  // The threads of the per-junction loops of a chord pass (the laws; the iterate's update), chosen
-  // by measuring them (adaptive_team.hpp); from 512 junctions on two threads pay on a quiet machine.
-  struct Teams {
-    explicit Teams(int threads) : laws(threads, 512), updates(threads, 512) {}
-    AdaptiveTeam laws, updates;
-  };
-  Teams teams_;
+  std::int64_t force_evals_ = 0;
 };
 
 }  // namespace asperity

@@ -1,6 +1,6 @@
-// InteractingJunctions' exact solves (docs/model.md §8): the chord iteration at one slider
-// position, warm-started from the cache, its steps, and the totals of a solved node. The rules
-// that stop it and rebuild G are ChordPolicy's.
+// The pinned set's exact solves (docs/model.md §8): the chord iteration at one slider position,
+// warm-started from the cache, its steps, and the totals of a solved node; the changes of the
+// set. The rules that stop the iteration and rebuild G are ChordPolicy's.
 #include <omp.h>
 
 #include <algorithm>
@@ -12,12 +12,153 @@
 #include "solve/core/run_limits.hpp"
 #include "solve/interacting/anderson.hpp"
 #include "solve/interacting/chord_policy.hpp"
-#include "solve/interacting/interacting_junctions.hpp"
+#include "solve/interacting/chord_solver.hpp"
 #include "solve/interacting/solver_failure.hpp"
 
 namespace asperity {
 
-void InteractingJunctions::warm_start(double X, std::vector<double>& f, std::vector<double>& a) const {
+namespace {
+
+// u'(0) = 1/k0 for both kinds of junction: the first reference compliances.
+std::vector<double> initial_reference(const JunctionState& J) {
+  std::vector<double> D(J.k.size());
+  for (std::size_t i = 0; i < D.size(); ++i) D[i] = 1.0 / J.k[i];
+  return D;
+}
+
+}  // namespace
+
+template <PinnedOperator Op>
+ChordSolver<Op>::ChordSolver(const Problem& problem, const JunctionState& J, bool nonlinear_law,
+                             std::size_t single_from)
+    : J_(J),
+      tol_(problem.solver.interaction_tolerance),
+      eq3_(nonlinear_law ? Eq3Displacement(problem.law, J.A0) : Eq3Displacement()),
+      pinned_(problem, initial_reference(J), nonlinear_law, single_from),
+      cache_([this](double X) { return solve(X); }, 0.1 * problem.solver.tolerance),
+      teams_(omp_get_max_threads()) {
+  const std::size_t N = J.A0.size();
+  if (!nonlinear_law)
+    for (std::size_t i = 0; i < N; ++i) A_fixed_ += J.A0[i];
+  last_f_.assign(N, 0.0);
+  last_a_.assign(N, 0.0);
+  // The first event search (solves, rebuilds: over eight minutes at N = 20,000) counts.
+  deadline_ = wall_deadline(problem.limits);
+}
+
+template <PinnedOperator Op>
+double ChordSolver<Op>::threshold(std::size_t q) const {
+  const std::size_t i = pinned_.junction(q);
+  // Eq. (3) junctions slip at f = σ A(f), φ = φ_s; the others at σ times their frozen area.
+  return pinned_.nonlinear(q) ? eq3_.slip_force(i) : J_.f_s[i];
+}
+
+template <PinnedOperator Op>
+void ChordSolver<Op>::own(std::size_t q, double f, double& u, double& du) {
+  const std::size_t i = pinned_.junction(q);
+  if (pinned_.nonlinear(q)) return eq3_.at(i, f, u, du);
+  u = f / J_.k[i];
+  du = 1.0 / J_.k[i];
+}
+
+template <PinnedOperator Op>
+const std::vector<double>* ChordSolver<Op>::curvatures_at(double X) const {
+  return seed_valid_ && seed_X_ == X && seed_c_.size() == pinned_.size() ? &seed_c_ : nullptr;
+}
+
+template <PinnedOperator Op>
+void ChordSolver<Op>::slip(std::size_t q, double f_slip, double frozen_area_m2, double X) {
+  if (pinned_.nonlinear(q)) A_fixed_ += frozen_area_m2;
+  F_slip_ += f_slip;
+  // The old set's solution nearest X (the slip position's node: X is its event, located to the
+  // integrator's resolution), from which the new set's seed at X is predicted.
+  const ForceNode* near = nullptr;
+  for (const ForceNode& m : cache_.nodes())
+    if (!near || std::abs(m.X - X) < std::abs(near->X - X)) near = &m;
+  // The node farthest from it (the last Newton iterates sit within rounding of each other, too
+  // close for a second difference): with it, the per-junction curvature at X.
+  const ForceNode* other = nullptr;
+  for (const ForceNode& m : cache_.nodes())
+    if (near && (!other || std::abs(m.X - near->X) > std::abs(other->X - near->X))) other = &m;
+  predict_seed(q, f_slip, near, other, X);
+  pinned_.remove(q, f_slip);
+  cache_.clear();
+}
+
+template <PinnedOperator Op>
+double ChordSolver<Op>::repin(std::size_t j, bool nonlinear, double f, double frozen_area_m2) {
+  const std::size_t q = pinned_.add(j, nonlinear);
+  double u, du;
+  own(q, f, u, du);
+  pinned_.set_reference(q, du);
+  if (pinned_.nonlinear(q)) A_fixed_ -= frozen_area_m2;
+  return u;
+}
+
+template <PinnedOperator Op>
+void ChordSolver<Op>::repinned(const std::vector<double>& anchor_m) {
+  pinned_.set_anchors(anchor_m);  // nobody slips: h = x
+  F_slip_ = 0.0;
+  cache_.clear();  // its nodes belong to the old set
+  seed_valid_ = false;
+  seed_c_.clear();
+  pinned_.rebuild();
+}
+
+template <PinnedOperator Op>
+void ChordSolver<Op>::predict_seed(std::size_t q, double f_sl, const ForceNode* at_X, const ForceNode* other,
+                                   double X) {
+  const std::size_t n = pinned_.size();
+  // The new set's solution at X, to first order: the others take up the slipped junction's
+  // force change through column q of G (exact for linear junctions, where Δ = 0; for Eq. (3)
+  // junctions off only by the drift of u' from D over the redistribution), from the old
+  // solution at X (first order from the node at_X): the seed of the next solve there. Its
+  // slopes likewise, the slipping force being constant.
+  seed_valid_ = at_X != nullptr;
+  if (seed_valid_) {
+    const std::vector<double> g = pinned_.row(q);
+    const double gqq = g[q];
+    seed_X_ = X;
+    seed_f_.resize(n);
+    seed_a_.resize(n);
+    const double dX = X - at_X->X;
+    const double df = f_sl - (at_X->f[q] + at_X->a[q] * dX), da = -at_X->a[q];
+    for (std::size_t r = 0; r < n; ++r) {
+      seed_f_[r] = at_X->f[r] + at_X->a[r] * dX + g[r] / gqq * df;
+      seed_a_[r] = at_X->a[r] + g[r] / gqq * da;
+    }
+    // Curvatures d²f/dX² at X: the old set's, from the cubic Hermite of at_X and its neighbour,
+    // redistributed like the slopes (the slipping force's is zero). They make the first solve
+    // away from X (Newton on the next slip position) start at second order instead of first.
+    seed_c_.clear();
+    if (other && other->X != at_X->X && other->f.size() == n) {
+      const bool right = at_X->X > other->X;  // at_X is the piece's right end
+      const ForceNode& a = right ? *other : *at_X;
+      const ForceNode& b = right ? *at_X : *other;
+      const double h = b.X - a.X;
+      seed_h_ = h;
+      seed_c_.resize(n);
+      for (std::size_t r = 0; r < n; ++r) {
+        const double c2 = 3 * (b.f[r] - a.f[r]) - h * (2 * a.a[r] + b.a[r]);
+        const double c3 = 2 * (a.f[r] - b.f[r]) + h * (a.a[r] + b.a[r]);
+        seed_c_[r] = (2 * c2 + (right ? 6 * c3 : 0.0)) / (h * h);
+      }
+      const double dc = -seed_c_[q];
+      for (std::size_t r = 0; r < n; ++r) seed_c_[r] += g[r] / gqq * dc;
+    }
+    // The positions as the operator's remove leaves them: the last moves into q.
+    if (q != n - 1) seed_f_[q] = seed_f_[n - 1], seed_a_[q] = seed_a_[n - 1];
+    seed_f_.pop_back();
+    seed_a_.pop_back();
+    if (!seed_c_.empty()) {
+      if (q != n - 1) seed_c_[q] = seed_c_[n - 1];
+      seed_c_.pop_back();
+    }
+  }
+}
+
+template <PinnedOperator Op>
+void ChordSolver<Op>::warm_start(double X, std::vector<double>& f, std::vector<double>& a) const {
   const std::size_t n = pinned_.size();
   // Per junction, f and df/dX are smooth between events: the cubic Hermite of the two nodes
   // around X (or of the two nearest on one side, extrapolated no farther than their spacing
@@ -67,7 +208,8 @@ void InteractingJunctions::warm_start(double X, std::vector<double>& f, std::vec
   }
 }
 
-ForceNode InteractingJunctions::solve(double X, double tol) {
+template <PinnedOperator Op>
+ForceNode ChordSolver<Op>::solve(double X, double tol) {
   const std::size_t n = pinned_.size();
   ForceNode node;
   node.X = X;
@@ -93,18 +235,20 @@ ForceNode InteractingJunctions::solve(double X, double tol) {
 
 // The work vectors of one solve's chord iteration, by position of P (dl, da, y1, y2) or on the
 // active positions, forces then slopes, scaled (z, g).
-struct InteractingJunctions::ChordPass {
+template <PinnedOperator Op>
+struct ChordSolver<Op>::ChordPass {
   std::vector<std::size_t> active;  // the nonlinear positions
   std::size_t nA = 0;
   double a_scale = 1;  // the mean |a0| over the active positions
   std::vector<double> dl, da, y1, y2, z, g;
   Anderson aa;
   bool single = false;  // passes may read G's single-precision copy
-  PinnedCompliance::PassBudget budget;
+  typename Op::PassBudget budget;
   explicit ChordPass(std::size_t nA_) : nA(nA_), aa(2 * nA_) {}
 };
 
-int InteractingJunctions::chord_iteration(double X, const ChordPolicy& policy, ForceNode& node) {
+template <PinnedOperator Op>
+int ChordSolver<Op>::chord_iteration(double X, const ChordPolicy& policy, ForceNode& node) {
   const std::size_t n = pinned_.size();
   ChordPass w = start_chord(policy.tol);
   double previous = HUGE_VAL;
@@ -120,7 +264,7 @@ int InteractingJunctions::chord_iteration(double X, const ChordPolicy& policy, F
     const double change = take_step(X, damp, node, w);
     // Long after a solve normally ends, an iterate past φ = 1, or over a threshold while still
     // far from any fixed point: a junction far over its threshold, which the iteration cannot
-    // follow (see Overloaded; the stand-in P6.40N at α_b = 2.06e-16, ε = 0.503, η = 300 cycled
+    // follow (see OverloadedJunction; the stand-in P6.40N at α_b = 2.06e-16, ε = 0.503, η = 300 cycled
     // between φ = 0.89 and 0.99 of a junction whose threshold is 0.63).
     if (iter >= ChordPolicy::kOverloadCheckFrom) overloaded_check(X, w.active, node.f, change, policy.stuck());
     if (policy.converged(iter, change, previous)) break;
@@ -143,7 +287,8 @@ int InteractingJunctions::chord_iteration(double X, const ChordPolicy& policy, F
   return iter;
 }
 
-InteractingJunctions::ChordPass InteractingJunctions::start_chord(double tol) const {
+template <PinnedOperator Op>
+typename ChordSolver<Op>::ChordPass ChordSolver<Op>::start_chord(double tol) const {
   const std::size_t n = pinned_.size();
   std::vector<std::size_t> active;
   active.reserve(pinned_.n_nonlinear());
@@ -181,7 +326,8 @@ InteractingJunctions::ChordPass InteractingJunctions::start_chord(double tol) co
   return w;
 }
 
-void InteractingJunctions::own_laws(const ForceNode& node, ChordPass& w) {
+template <PinnedOperator Op>
+void ChordSolver<Op>::own_laws(const ForceNode& node, ChordPass& w) {
   // The junctions' own laws, each independent of the others (the same numbers on any number of
   // threads): a tenth of a pass's time, worth splitting from a few hundred on.
   const std::size_t nA = w.nA;
@@ -197,7 +343,8 @@ void InteractingJunctions::own_laws(const ForceNode& node, ChordPass& w) {
   }
 }
 
-void InteractingJunctions::chord_image(double X, const ForceNode& node, ChordPass& w) {
+template <PinnedOperator Op>
+void ChordSolver<Op>::chord_image(double X, const ForceNode& node, ChordPass& w) {
   // y = G [Δ, Δ'a]: one pass over the rows of the nonlinear positions.
   if (w.single)
     pinned_.apply(w.active, w.dl, w.da, w.y1, w.y2, w.budget);
@@ -222,7 +369,8 @@ void InteractingJunctions::chord_image(double X, const ForceNode& node, ChordPas
   }
 }
 
-double InteractingJunctions::take_step(double X, double damp, ForceNode& node, const ChordPass& w) {
+template <PinnedOperator Op>
+double ChordSolver<Op>::take_step(double X, double damp, ForceNode& node, const ChordPass& w) {
   const std::size_t n = pinned_.size(), nA = w.nA;
   const double a_scale = w.a_scale;
   double change = 0;
@@ -247,7 +395,8 @@ double InteractingJunctions::take_step(double X, double damp, ForceNode& node, c
   return change;
 }
 
-void InteractingJunctions::refresh_reference(const ForceNode& node, ChordPass& w) {
+template <PinnedOperator Op>
+void ChordSolver<Op>::refresh_reference(const ForceNode& node, ChordPass& w) {
   // The reference compliances at the current forces, and G rebuilt (a Newton step's Jacobian).
   for (std::size_t q : w.active) {
     double u, du;
@@ -258,8 +407,9 @@ void InteractingJunctions::refresh_reference(const ForceNode& node, ChordPass& w
   w.aa.clear();
 }
 
-void InteractingJunctions::overloaded_check(double X, const std::vector<std::size_t>& active,
-                                            const std::vector<double>& f, double change, double stuck) const {
+template <PinnedOperator Op>
+void ChordSolver<Op>::overloaded_check(double X, const std::vector<std::size_t>& active, const std::vector<double>& f,
+                                       double change, double stuck) const {
   std::size_t worst = npos;
   double ratio = 0, phi_max = 0;
   for (std::size_t q : active) {
@@ -272,12 +422,13 @@ void InteractingJunctions::overloaded_check(double X, const std::vector<std::siz
                 "interacting event solver: a pinned junction is driven past its slip force (%.3g times it, phi up "
                 "to %.3g) and the coupled solve cannot settle, outside an avalanche, at X = %.6g m",
                 ratio, phi_max, X);
-  throw Overloaded(what, worst);
+  throw OverloadedJunction(what, worst);
 }
 
-double InteractingJunctions::chord_step(double X, const std::vector<std::size_t>& active, double a_scale,
-                                        const std::vector<double>& y1, const std::vector<double>& y2,
-                                        const std::vector<double>& z, std::vector<double>& g, Anderson& aa) const {
+template <PinnedOperator Op>
+double ChordSolver<Op>::chord_step(double X, const std::vector<std::size_t>& active, double a_scale,
+                                   const std::vector<double>& y1, const std::vector<double>& y2,
+                                   const std::vector<double>& z, std::vector<double>& g, Anderson& aa) const {
   const std::size_t nA = active.size();
   // Damped: no nonlinear junction's φ = s f moves by more than 0.1 in one iteration (far
   // from the solution, e.g. a poor warm start, the full step can overshoot into φ → 1).
@@ -310,7 +461,8 @@ double InteractingJunctions::chord_step(double X, const std::vector<std::size_t>
   return damp;
 }
 
-void InteractingJunctions::add_totals(ForceNode& node) const {
+template <PinnedOperator Op>
+void ChordSolver<Op>::add_totals(ForceNode& node) const {
   // Totals and their X-derivatives.
   const std::size_t n = pinned_.size();
   double F = F_slip_, dF = 0, A = A_fixed_, dA = 0;
@@ -329,5 +481,7 @@ void InteractingJunctions::add_totals(ForceNode& node) const {
   node.A = A;
   node.dA = dA;
 }
+
+template class ChordSolver<PinnedCompliance>;
 
 }  // namespace asperity
