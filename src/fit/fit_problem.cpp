@@ -61,7 +61,7 @@ ExperimentEval run_experiment(const FitSpec& spec, std::size_t e, const std::vec
       out.obs = r.obs;
       out.loading = r.recorder.loading_branch();
       out.mass_kg = scene.experiment.mass_kg;
-      out.stand_in = scene.experiment.description.find("STAND-IN") != std::string::npos;
+      out.stand_in = is_stand_in(scene.experiment);
       out.measured = scene.experiment.measured;
       if (spec.objective == FitObjective::area_and_force) out.series = r.recorder.series();
     }

@@ -67,13 +67,30 @@ std::string profile_figure(const std::string& label, const std::string& key, con
   return gp.str();
 }
 
+// What an objective measures, in a reader's words (its key, objective_name, is the file's).
+std::string objective_words(FitObjective o) {
+  switch (o) {
+    case FitObjective::quadratic_alpha:
+      return "A(Q)'s quadratic coefficient";
+    case FitObjective::area_curve:
+      return "A(Q) curve";
+    case FitObjective::stick_slip:
+      return "stick-slip drop and period";
+    case FitObjective::area_and_force:
+      return "chi-square of A(Q) and Q(t)";
+    case FitObjective::user:
+      return "the caller's objective";
+  }
+  return "objective";
+}
+
 // The objective over the evaluations, and its best so far.
 std::string convergence_figure(const FitSpec& spec, const Optimization& o, const std::string& ext) {
   const std::string col = std::to_string(o.variables.size() + 2);
   std::ostringstream gp;
   gp << "set output " << gnuplot_quote("convergence" + ext) << "\n"
      << "set title "
-     << gnuplot_text(spec.name + " / " + o.label + ": objective (" + objective_name(spec.objective) + ")")
+     << gnuplot_text(spec.name + " / " + o.label + ": objective (" + objective_words(spec.objective) + ")")
      << " . \"\\n\" . " << gnuplot_text(spec.algorithm + ", stop " + o.stop_reason) << "\n"
      << "set xlabel 'evaluation number'\nset ylabel 'objective [1] (dimensionless)'\nset logscale y\nset key top "
         "right\n"

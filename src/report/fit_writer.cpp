@@ -202,7 +202,6 @@ const char* const kFitYamlObservables[] = {"alpha",
 
 // The fit's statistical uncertainty (area_and_force with intervals): method, s², σ, intervals, correlation.
 void write_uncertainty(std::ostream& y, const Optimization& o) {
-  auto num = [](double x) { return yaml_double(x); };
   const Uncertainty& un = o.uncertainty;
   y << "    uncertainty:\n";
   if (!o.certified()) {  // no numbers around a point no second start confirms as the minimum
@@ -212,7 +211,7 @@ void write_uncertainty(std::ostream& y, const Optimization& o) {
   y << "      certified: true\n";
   y << "      method: \"chi-square: Hessian H of the objective at the optimum by central differences (relative steps "
        "from "
-    << num(un.step)
+    << yaml_double(un.step)
     << ", rescaled until each parameter's own rise is 1-16 s^2), covariance 2 s^2 H^-1, s^2 = objective / (residuals - "
        "free variables) (the reduced chi-square); "
        "sigma: marginal standard deviation; interval95: value +- 1.96 sigma; profile_interval: where the one-parameter "
@@ -220,8 +219,8 @@ void write_uncertainty(std::ostream& y, const Optimization& o) {
        "sqrt(s^2/c) "
        "of the least-squares parabola through the profile's points (conditional; robust to jumps of the objective "
        "below the points' spacing, where sigma is not)\"\n";
-  y << "      residuals: " << un.residuals << "\n      reduced_chi2: " << num(un.reduced_chi2) << "\n";
-  y << "      evaluations: " << un.evaluations << "\n      wall_s: " << num(un.wall_s) << "\n";
+  y << "      residuals: " << un.residuals << "\n      reduced_chi2: " << yaml_double(un.reduced_chi2) << "\n";
+  y << "      evaluations: " << un.evaluations << "\n      wall_s: " << yaml_double(un.wall_s) << "\n";
   if (!un.computed) {
     y << "      failure: " << yaml_quoted(un.failure) << "\n";
   } else {
@@ -232,15 +231,16 @@ void write_uncertainty(std::ostream& y, const Optimization& o) {
       for (const ParameterProfile& pp : o.profiles)
         if (pp.parameter == o.variables[i].parameter && o.variables[i].experiment < 0)
           plo = pp.lo, phi = pp.hi, psg = pp.parabola_sigma;
-      y << "        " << yaml_quoted(o.variables[i].label) << ": {value: " << num(x) << ", step: " << num(un.steps[i])
-        << ", sigma: " << num(sg) << ", sigma_relative: " << num(sg / std::abs(x)) << ", interval95: ["
-        << num(x - 1.96 * sg) << ", " << num(x + 1.96 * sg) << "], profile_interval: [" << num(plo) << ", " << num(phi)
-        << "], profile_sigma: " << num(psg) << "}\n";
+      y << "        " << yaml_quoted(o.variables[i].label) << ": {value: " << yaml_double(x)
+        << ", step: " << yaml_double(un.steps[i]) << ", sigma: " << yaml_double(sg)
+        << ", sigma_relative: " << yaml_double(sg / std::abs(x)) << ", interval95: [" << yaml_double(x - 1.96 * sg)
+        << ", " << yaml_double(x + 1.96 * sg) << "], profile_interval: [" << yaml_double(plo) << ", "
+        << yaml_double(phi) << "], profile_sigma: " << yaml_double(psg) << "}\n";
     }
     y << "      correlation:\n";
     for (std::size_t i = 0; i < o.variables.size(); ++i) {
       y << "        - [";
-      for (std::size_t j = 0; j < o.variables.size(); ++j) y << (j ? ", " : "") << num(un.correlation[i][j]);
+      for (std::size_t j = 0; j < o.variables.size(); ++j) y << (j ? ", " : "") << yaml_double(un.correlation[i][j]);
       y << "]\n";
     }
   }
@@ -248,7 +248,6 @@ void write_uncertainty(std::ostream& y, const Optimization& o) {
 
 // The starts of one optimization and the verdict on them (fit/convergence.hpp).
 void write_convergence(std::ostream& y, const Optimization& o) {
-  auto num = [](double x) { return yaml_double(x); };
   y << "    converged: " << converged_name(o.converged)
     << "   # yes: >= 2 starts in the best basin; no: only the best start; unverified: one start\n";
   y << "    convergence: " << yaml_quoted(o.convergence) << "\n";
@@ -256,22 +255,23 @@ void write_convergence(std::ostream& y, const Optimization& o) {
   y << "    best_start: " << o.best_start + 1 << "   # its stop_reason above\n";
   y << "    in_best_basin: " << o.in_best_basin << "\n";
   y << "    spread:   # of the optima of the starts in the best basin\n";
-  y << "      scaled: " << num(o.spread) << "   # largest distance from the best, scaled coordinates\n";
+  y << "      scaled: " << yaml_double(o.spread) << "   # largest distance from the best, scaled coordinates\n";
   y << "      parameters:\n";
   for (std::size_t i = 0; i < o.variables.size(); ++i) {
     double lo = Observables::nan, hi = Observables::nan;
     for (const StartRun& s : o.starts)
       if (s.in_best_basin && i < s.best.size()) lo = std::fmin(lo, s.best[i]), hi = std::fmax(hi, s.best[i]);
-    y << "        " << yaml_quoted(o.variables[i].label) << ": [" << num(lo) << ", " << num(hi) << "]\n";
+    y << "        " << yaml_quoted(o.variables[i].label) << ": [" << yaml_double(lo) << ", " << yaml_double(hi)
+      << "]\n";
   }
   y << "    start_runs:\n";
   for (std::size_t k = 0; k < o.starts.size(); ++k) {
     const StartRun& s = o.starts[k];
     y << "      - {start: " << k + 1 << ", from: [";
-    for (std::size_t i = 0; i < s.from.size(); ++i) y << (i ? ", " : "") << num(s.from[i]);
+    for (std::size_t i = 0; i < s.from.size(); ++i) y << (i ? ", " : "") << yaml_double(s.from[i]);
     y << "], best: [";
-    for (std::size_t i = 0; i < s.best.size(); ++i) y << (i ? ", " : "") << num(s.best[i]);
-    y << "], objective: " << num(s.objective) << ", evaluations: " << s.evaluations
+    for (std::size_t i = 0; i < s.best.size(); ++i) y << (i ? ", " : "") << yaml_double(s.best[i]);
+    y << "], objective: " << yaml_double(s.objective) << ", evaluations: " << s.evaluations
       << ", stop_reason: " << yaml_quoted(s.stop_reason) << ", in_best_basin: " << (s.in_best_basin ? "true" : "false");
     if (!s.failure.empty()) y << ", failure: " << yaml_quoted(s.failure);
     y << "}\n";
@@ -280,7 +280,6 @@ void write_convergence(std::ostream& y, const Optimization& o) {
 
 // fit.yaml's settings: the header, the fit file, the algorithm and its stopping rules, wall times.
 void write_fit_settings(std::ostream& y, const FitSpec& spec, const FitResult& result, bool stand_in) {
-  auto num = [](double x) { return yaml_double(x); };
   y << "asperity_version: " << yaml_quoted(build_info().version) << "\n";
   y << "fit_file: " << yaml_quoted(result_path(spec.file)) << "\n";
   y << "name: " << yaml_quoted(spec.name) << "\n";
@@ -294,17 +293,17 @@ void write_fit_settings(std::ostream& y, const FitSpec& spec, const FitResult& r
   if (!spec.polish_algorithm.empty())
     y << "polish: {algorithm: " << spec.polish_algorithm << ", max_evaluations: " << spec.polish_max_evaluations
       << "}\n";
-  y << "xtol_rel: " << num(spec.xtol_rel) << "\nftol_rel: " << num(spec.ftol_rel)
-    << "\nftol_abs: " << num(spec.ftol_abs) << "\n";
-  y << "max_evaluations: " << spec.max_evaluations << "\ninitial_step: " << num(spec.initial_step) << "\n";
+  y << "xtol_rel: " << yaml_double(spec.xtol_rel) << "\nftol_rel: " << yaml_double(spec.ftol_rel)
+    << "\nftol_abs: " << yaml_double(spec.ftol_abs) << "\n";
+  y << "max_evaluations: " << spec.max_evaluations << "\ninitial_step: " << yaml_double(spec.initial_step) << "\n";
   y << "starts: " << spec.starts << "   # the algorithm from the start, then the local stage from Sobol points\n";
-  y << "basin: {tolerance: " << num(spec.basin_tolerance) << ", distance: " << num(spec.basin_distance)
+  y << "basin: {tolerance: " << yaml_double(spec.basin_tolerance) << ", distance: " << yaml_double(spec.basin_distance)
     << "}   # a start is in the best basin within this relative objective or scaled distance\n";
   y << "certify: " << (spec.certify ? "true" : "false")
     << "   # true: a fit no second start confirms is a failed check (exit 1)\n";
   y << "threads: " << result.threads << "\n";
-  y << "wall_s: " << num(result.wall_s) << "   # everything: fits, re-runs, profiles, error-bar refits\n";
-  y << "fit_wall_s: " << num(result.fit_wall_s) << "   # sum of the optimizations alone\n";
+  y << "wall_s: " << yaml_double(result.wall_s) << "   # everything: fits, re-runs, profiles, error-bar refits\n";
+  y << "fit_wall_s: " << yaml_double(result.fit_wall_s) << "   # sum of the optimizations alone\n";
   int total = 0;
   for (const auto& o : result.fits) total += o.evaluations;
   y << "evaluations: " << total << "   # of the optimizations (without profiles and refits)\n";
@@ -312,31 +311,29 @@ void write_fit_settings(std::ostream& y, const FitSpec& spec, const FitResult& r
 
 // The best run of each experiment of one optimization.
 void write_best_runs(std::ostream& y, const FitSpec& spec, const Optimization& o) {
-  auto num = [](double x) { return yaml_double(x); };
   y << "    runs:   # the best run of each experiment\n";
   for (const auto& r : o.best_runs) {
     const Observables& b = r.obs;
     y << "      " << yaml_quoted(spec.experiments[r.experiment].name) << ":\n";
     y << "        stand_in: " << (r.stand_in ? "true" : "false") << "\n";
-    y << "        mass: " << num(r.mass_kg) << "\n";
-    y << "        term: " << num(r.residual) << "\n";
+    y << "        mass: " << yaml_double(r.mass_kg) << "\n";
+    y << "        term: " << yaml_double(r.residual) << "\n";
     if (spec.objective == FitObjective::area_and_force)
-      y << "        chi2: {area: " << num(r.terms.area) << ", n_area: " << r.terms.n_area
-        << ", force: " << num(r.terms.force) << ", n_force: " << r.terms.n_force
-        << ", score: " << force_score_name(r.terms.score) << ", cycles: " << num(r.terms.cycles)
-        << ", n_cycles: " << r.terms.n_cycles << ", stick_slip: " << num(r.terms.stick_slip)
+      y << "        chi2: {area: " << yaml_double(r.terms.area) << ", n_area: " << r.terms.n_area
+        << ", force: " << yaml_double(r.terms.force) << ", n_force: " << r.terms.n_force
+        << ", score: " << force_score_name(r.terms.score) << ", cycles: " << yaml_double(r.terms.cycles)
+        << ", n_cycles: " << r.terms.n_cycles << ", stick_slip: " << yaml_double(r.terms.stick_slip)
         << ", n_stick_slip: " << r.terms.n_stick_slip << "}\n";
     for (const char* name : kFitYamlObservables) {
       const ObservableField& f = observable_field(name);
       y << "        " << f.name << ": " << observable_text(f, b, yaml_double) << "\n";
     }
-    y << "        run_wall_s: " << num(b.wall_s) << "\n";
+    y << "        run_wall_s: " << yaml_double(b.wall_s) << "\n";
   }
 }
 
 // The objective profiles of one optimization (the first, then the further parameters).
 void write_profiles(std::ostream& y, const FitSpec& spec, const Optimization& o) {
-  auto num = [](double x) { return yaml_double(x); };
   if (!o.profile.empty()) {
     const ProfileSettings& ps = spec.profile_settings;
     double fmin = Observables::nan, fmin_at = Observables::nan;
@@ -344,11 +341,11 @@ void write_profiles(std::ostream& y, const FitSpec& spec, const Optimization& o)
       if (std::isfinite(p.objective) && !(p.objective >= fmin)) fmin = p.objective, fmin_at = p.factor;
     y << "    profile:\n";
     y << "      parameter: " << spec.parameters[ps.parameter].key << "\n";
-    y << "      span: " << num(ps.span) << "\n      points: " << o.profile.size() << "\n";
+    y << "      span: " << yaml_double(ps.span) << "\n      points: " << o.profile.size() << "\n";
     const std::string sub = fit_subdir(spec, o);
     y << "      file: " << yaml_quoted(sub.empty() ? "profile.csv" : sub + "/profile.csv") << "\n";
-    y << "      lowest_objective_at_factor: " << num(fmin_at) << "   # 1: the fit is the profile's minimum\n";
-    y << "      wall_s: " << num(o.profile_wall_s) << "\n";
+    y << "      lowest_objective_at_factor: " << yaml_double(fmin_at) << "   # 1: the fit is the profile's minimum\n";
+    y << "      wall_s: " << yaml_double(o.profile_wall_s) << "\n";
   }
   for (std::size_t q = 1; q < o.profiles.size(); ++q) {
     if (q == 1) y << "    more_profiles:   # the further profiled parameters (same span and points)\n";
@@ -361,20 +358,19 @@ void write_profiles(std::ostream& y, const FitSpec& spec, const Optimization& o)
 
 // The error-bar refits of one optimization and the ranges they give.
 void write_error_bars(std::ostream& y, const Optimization& o) {
-  auto num = [](double x) { return yaml_double(x); };
   if (o.refits.empty()) return;
   y << "    error_bars:\n";
   y << "      method: \"one at a time: refit (from the optimum) with each quantity at nominal - bar and nominal + "
        "bar, "
        "the others nominal; min/max over the fit and all refits; sigma = quadrature sum over quantities of "
        "|x(+bar) - x(-bar)|/2 (linear propagation of independent errors)\"\n";
-  y << "      wall_s: " << num(o.refits_wall_s) << "\n";
+  y << "      wall_s: " << yaml_double(o.refits_wall_s) << "\n";
   y << "      refits:\n";
   for (const auto& rf : o.refits) {
-    y << "        - {key: " << rf.key << ", shift: " << num(rf.sign * rf.bar);
+    y << "        - {key: " << rf.key << ", shift: " << yaml_double(rf.sign * rf.bar);
     for (std::size_t i = 0; i < o.variables.size(); ++i)
-      y << ", " << yaml_quoted(o.variables[i].label) << ": " << num(rf.best[i]);
-    y << ", objective: " << num(rf.objective) << ", evaluations: " << rf.evaluations
+      y << ", " << yaml_quoted(o.variables[i].label) << ": " << yaml_double(rf.best[i]);
+    y << ", objective: " << yaml_double(rf.objective) << ", evaluations: " << rf.evaluations
       << ", stop_reason: " << rf.stop_reason;
     if (!rf.failure.empty()) y << ", failure: " << yaml_quoted(rf.failure);
     y << "}\n";
@@ -382,16 +378,16 @@ void write_error_bars(std::ostream& y, const Optimization& o) {
   const std::vector<Range> ranges = error_bar_ranges(o);
   y << "      ranges:\n";
   for (std::size_t i = 0; i < ranges.size(); ++i)
-    y << "        " << yaml_quoted(o.variables[i].label) << ": {value: " << num(ranges[i].value)
-      << ", min: " << num(ranges[i].min) << ", max: " << num(ranges[i].max) << ", sigma: " << num(ranges[i].sigma)
-      << ", sigma_relative: " << num(ranges[i].sigma / std::abs(ranges[i].value)) << "}\n";
+    y << "        " << yaml_quoted(o.variables[i].label) << ": {value: " << yaml_double(ranges[i].value)
+      << ", min: " << yaml_double(ranges[i].min) << ", max: " << yaml_double(ranges[i].max)
+      << ", sigma: " << yaml_double(ranges[i].sigma)
+      << ", sigma_relative: " << yaml_double(ranges[i].sigma / std::abs(ranges[i].value)) << "}\n";
 }
 
 }  // namespace
 
 std::string fit_yaml(const FitSpec& spec, const FitResult& result, const std::string& command_line) {
   std::ostringstream y;
-  auto num = [](double x) { return yaml_double(x); };
   bool stand_in = false;
   for (const auto& o : result.fits)
     for (const auto& r : o.best_runs) stand_in = stand_in || r.stand_in;
@@ -413,13 +409,13 @@ std::string fit_yaml(const FitSpec& spec, const FitResult& result, const std::st
     y << "    stop_reason: " << o.stop_reason << "   # NLopt result\n";
     write_convergence(y, o);
     y << "    evaluations: " << o.evaluations << "\n";
-    y << "    wall_s: " << num(o.wall_s) << "\n";
-    y << "    objective: " << num(o.objective) << "\n";
+    y << "    wall_s: " << yaml_double(o.wall_s) << "\n";
+    y << "    objective: " << yaml_double(o.objective) << "\n";
     y << "    parameters:\n";
     for (std::size_t i = 0; i < o.variables.size(); ++i) {
       const FitParameter& p = spec.parameters[o.variables[i].parameter];
-      y << "      " << yaml_quoted(o.variables[i].label) << ": {value: " << num(o.best[i])
-        << ", start: " << num(o.start[i]) << ", lo: " << num(p.lo) << ", hi: " << num(p.hi)
+      y << "      " << yaml_quoted(o.variables[i].label) << ": {value: " << yaml_double(o.best[i])
+        << ", start: " << yaml_double(o.start[i]) << ", lo: " << yaml_double(p.lo) << ", hi: " << yaml_double(p.hi)
         << ", scale: " << (p.log_scale ? "log" : "linear");
       const bool at_bound = o.best[i] == p.lo || o.best[i] == p.hi;
       y << ", at_bound: " << (at_bound ? "true" : "false") << "}\n";

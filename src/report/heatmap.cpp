@@ -126,9 +126,10 @@ HeatmapReport plot_heatmap(const fs::path& store, const HeatmapOptions& opt) {
         ++rep.blank;
         continue;
       }
-      const auto f = [](double x) { return io::format_double(x); };
-      gp << f(xv[i]) << ' ' << f(yv[j]) << ' ' << f(xe[i].first) << ' ' << f(xe[i].second) << ' ' << f(ye[j].first)
-         << ' ' << f(ye[j].second) << ' ' << f(z * zscale) << '\n';
+      using io::format_double;
+      gp << format_double(xv[i]) << ' ' << format_double(yv[j]) << ' ' << format_double(xe[i].first) << ' '
+         << format_double(xe[i].second) << ' ' << format_double(ye[j].first) << ' ' << format_double(ye[j].second)
+         << ' ' << format_double(z * zscale) << '\n';
     }
   gp << "EOD\n";
   if (rep.blank < rep.cells)

@@ -17,11 +17,6 @@ namespace asperity {
 
 namespace {
 
-const auto fmt = io::format_printf;
-
-// Numbers of a table cell; "–" for unknown.
-std::string cell(const char* f, double x) { return std::isnan(x) ? std::string("–") : fmt(f, x); }
-
 std::string verdict_bold(Verdict v) { return std::string("**") + verdict_text(v) + "**"; }
 
 const VariantRun* find_run(const std::vector<VariantRun>& v, const std::string& exp, const std::string& label) {
@@ -44,7 +39,7 @@ const CalibratedRun* find_calibration(const Calibration& cal, const std::string&
   return nullptr;
 }
 
-std::string eta_text(double eta) { return fmt("%g", eta); }
+std::string eta_text(double eta) { return io::format_printf("%g", eta); }
 
 }  // namespace
 
@@ -140,7 +135,7 @@ void write_intro(std::ostream& r, const ReportInputs& x, const std::string& data
     std::string s = st.at_first_peak ? "to the first peak"
                     : st.cycles >= 0 ? "through the first peak and " + std::to_string(st.cycles) + " stick-slip cycles"
                                      : "without a cycle limit";
-    stops.insert(s + " or stop.time = " + fmt("%g", st.time) + " s");
+    stops.insert(s + " or stop.time = " + io::format_printf("%g", st.time) + " s");
     min_cycles = std::min(min_cycles, b.obs.ss_cycles);
     max_cycles = std::max(max_cycles, b.obs.ss_cycles);
     peaks += b.obs.peak_found ? 1 : 0;
@@ -166,10 +161,10 @@ void write_claim1(std::ostream& r, const ReportInputs& x) {
   const bool standin = x.standin;
   r << "## 1. dt ≈ 1 µs at C_t = 1e4 for the mid loads\n\n| experiment | N | dt [µs] |\n|---|---:|---:|\n";
   for (const auto& l : co.loads)
-    r << "| " << l.experiment << " | " << l.base.N << " | " << cell("%.3f", l.base.dt * 1e6) << " |\n";
+    r << "| " << l.experiment << " | " << l.base.N << " | " << io::format_cell("%.3f", l.base.dt * 1e6) << " |\n";
   r << "\n"
-    << verdict_bold(claim1_dt(co, rules)) << " (rule: " << fmt("%g", rules.dt_lo * 1e6) << " µs < dt < "
-    << fmt("%g", rules.dt_hi * 1e6) << " µs at every load but the smallest and the largest)"
+    << verdict_bold(claim1_dt(co, rules)) << " (rule: " << io::format_printf("%g", rules.dt_lo * 1e6) << " µs < dt < "
+    << io::format_printf("%g", rules.dt_hi * 1e6) << " µs at every load but the smallest and the largest)"
     << (standin ? "; by construction: the stand-ins were generated to satisfy it, so this is a check of the "
                   "generator, not evidence"
                 : "")
@@ -185,8 +180,8 @@ void write_claim2(std::ostream& r, const ReportInputs& x) {
        "|\n|---|---:|---:|---:|---:|---|\n";
   for (const auto& l : co.loads) {
     const auto& o = l.base;
-    r << "| " << l.experiment << " | " << o.ss_cycles << " | " << cell("%.4g", o.ss_drop) << " | "
-      << cell("%.3f", o.ss_drop / o.Q_s) << " | " << cell("%.4g", o.ss_period) << " | "
+    r << "| " << l.experiment << " | " << o.ss_cycles << " | " << io::format_cell("%.4g", o.ss_drop) << " | "
+      << io::format_cell("%.3f", o.ss_drop / o.Q_s) << " | " << io::format_cell("%.4g", o.ss_period) << " | "
       << verdict_text(claim2_stick_slip(l)) << " |\n";
   }
   r << "\n"
@@ -233,7 +228,7 @@ void write_claim3(std::ostream& r, const ReportInputs& x) {
         r << " – |";
         continue;
       }
-      r << " " << o->ss_cycles << " (" << cell("%.3f", o->ss_drop / o->Q_s) << ") |";
+      r << " " << o->ss_cycles << " (" << io::format_cell("%.3f", o->ss_drop / o->Q_s) << ") |";
     }
     const VanishBracket vb = claim3_vanish_bracket(l, rules);
     vanish.push_back(vb.verdict);
@@ -242,12 +237,14 @@ void write_claim3(std::ostream& r, const ReportInputs& x) {
   }
   const EtaComparison e50 = claim3_eta50_vs_base(co, rules);
   const Verdict v3b = combine(std::span<const Verdict>(vanish));
-  r << "\nLargest relative difference between η = 50 and η = 100, all loads: " << cell("%.3g", e50.loading_diff)
-    << " over the loading branch and first peak (Q_s, A_s, t_peak, α; rule < " << fmt("%g", rules.same_loading) << "); "
-    << cell("%.3g", e50.stick_slip_diff) << " over the mean stick-slip drop and period (rule < "
-    << fmt("%g", rules.same_stick_slip) << "). Stick-slip vanishes in a bracket that meets η ∈ ["
-    << fmt("%g", rules.vanish_min) << ", " << fmt("%g", rules.vanish_max) << "] (the claim's 180–200 ± 10 %) at "
-    << vanish_ok << " of " << co.loads.size() << " loads.\n\n"
+  r << "\nLargest relative difference between η = 50 and η = 100, all loads: "
+    << io::format_cell("%.3g", e50.loading_diff)
+    << " over the loading branch and first peak (Q_s, A_s, t_peak, α; rule < "
+    << io::format_printf("%g", rules.same_loading) << "); " << io::format_cell("%.3g", e50.stick_slip_diff)
+    << " over the mean stick-slip drop and period (rule < " << io::format_printf("%g", rules.same_stick_slip)
+    << "). Stick-slip vanishes in a bracket that meets η ∈ [" << io::format_printf("%g", rules.vanish_min) << ", "
+    << io::format_printf("%g", rules.vanish_max) << "] (the claim's 180–200 ± 10 %) at " << vanish_ok << " of "
+    << co.loads.size() << " loads.\n\n"
     << "First half: " << verdict_bold(e50.verdict) << ". Second half: " << verdict_bold(v3b) << ".\n\n";
 }
 
@@ -258,7 +255,7 @@ void write_claim4(std::ostream& r, const ReportInputs& x) {
   const MaxDifference c4 = claim4_c_min(co, rules);
   r << "## 4. c_min = 1e-5 and 0.01 indistinguishable\n\nLargest relative difference over Q_s, A_s, t_peak, "
        "stick-slip drop and period, all loads: "
-    << cell("%.3g", c4.diff) << " (rule < " << fmt("%g", rules.same_c_min) << ").\n\n"
+    << io::format_cell("%.3g", c4.diff) << " (rule < " << io::format_printf("%g", rules.same_c_min) << ").\n\n"
     << verdict_bold(c4.verdict) << ".\n\n";
 }
 
@@ -282,7 +279,8 @@ void write_claim5(std::ostream& r, const ReportInputs& x) {
       const CalibratedRun& c = calibration.runs[i];
       r << (i ? ", " : "") << c.experiment << " ";
       if (c.failure.empty())
-        r << fmt("%.4g", c.alpha_b * 1e15) << "e-15 (" << c.evaluations << " runs, " << c.stop_reason << ")";
+        r << io::format_printf("%.4g", c.alpha_b * 1e15) << "e-15 (" << c.evaluations << " runs, " << c.stop_reason
+          << ")";
       else
         r << "FAILED";
     }
@@ -309,20 +307,21 @@ void write_claim5(std::ostream& r, const ReportInputs& x) {
        "[mm²/N] | measured | n model | n measured |\n|---|---:|---|---:|---:|---:|---:|---:|---:|\n";
   for (const auto& l : co.loads) {
     const AreaComparison& a = l.calibrated ? *l.calibrated : l.at_scene_alpha_b;
-    r << "| " << l.experiment << " | " << cell("%.3f", a.alpha_b * 1e15) << " | " << (l.calibrated ? "yes" : "**no**")
-      << " | " << cell("%.3f", a.decay_model) << " | " << cell("%.3f", a.decay_measured) << " | "
-      << cell("%.3f", a.slope_model * 1e6) << " | " << cell("%.3f", a.slope_measured * 1e6) << " | "
-      << cell("%.2f", a.n_model) << " | " << cell("%.2f", a.n_measured) << " |\n";
+    r << "| " << l.experiment << " | " << io::format_cell("%.3f", a.alpha_b * 1e15) << " | "
+      << (l.calibrated ? "yes" : "**no**") << " | " << io::format_cell("%.3f", a.decay_model) << " | "
+      << io::format_cell("%.3f", a.decay_measured) << " | " << io::format_cell("%.3f", a.slope_model * 1e6) << " | "
+      << io::format_cell("%.3f", a.slope_measured * 1e6) << " | " << io::format_cell("%.2f", a.n_model) << " | "
+      << io::format_cell("%.2f", a.n_measured) << " |\n";
   }
   const Claim5Verdicts c5 = claim5_calibrated(co, rules);
   r << "\n(Area decay = 1 − A_s/A0 at the peak; incipient slope = least-squares dA/dQ over Q ≤ 0.3 Q_max. Rules: "
        "decay and slope within "
-    << fmt("%g", rules.match * 100)
+    << io::format_printf("%g", rules.match * 100)
     << " % of the measured ones, calibrated runs only; "
        "shape: model n < "
-    << fmt("%g", rules.quasi_linear_n) << " and measured n > " << fmt("%g", rules.quadratic_n)
-    << ".)\n\n**Area decay: " << verdict_text(c5.decay) << ". Incipient slope: " << verdict_text(c5.slope)
-    << ". Shape contrast: " << verdict_text(c5.shape) << ".**";
+    << io::format_printf("%g", rules.quasi_linear_n) << " and measured n > "
+    << io::format_printf("%g", rules.quadratic_n) << ".)\n\n**Area decay: " << verdict_text(c5.decay)
+    << ". Incipient slope: " << verdict_text(c5.slope) << ". Shape contrast: " << verdict_text(c5.shape) << ".**";
   if (standin)
     r << " The stand-in \"measured\" curves are parabolas plus noise (docs/model.md §7): their slope at Q = 0 "
          "is zero, so a quasi-linear model cannot match the incipient slope, and their quadratic shape is "
@@ -351,12 +350,12 @@ void write_claim6(std::ostream& r, const ReportInputs& x) {
     const Scene& s = base[i].scene;
     const double a = o.A0 / static_cast<double>(o.N);
     const double theory = s.model.alpha_b / (static_cast<double>(o.N) * std::pow(a, s.model.p));
-    r << cell("%.6f", o.alpha_R2) << " | " << cell("%.3f", o.shape_exponent) << " | " << cell("%.4f", o.alpha / theory)
-      << " | " << verdict_text(v6.back()) << " |\n";
+    r << io::format_cell("%.6f", o.alpha_R2) << " | " << io::format_cell("%.3f", o.shape_exponent) << " | "
+      << io::format_cell("%.4f", o.alpha / theory) << " | " << verdict_text(v6.back()) << " |\n";
   }
   r << "\n(α uses Q; the closed form holds for the junction force F = Q − M(Ẍ + ηẊ), which differs by the "
        "viscous term. Rule: R² > "
-    << fmt("%g", rules.quadratic_R2) << " with a confirmed peak.)\n\n"
+    << io::format_printf("%g", rules.quadratic_R2) << " with a confirmed peak.)\n\n"
     << verdict_bold(combine(std::span<const Verdict>(v6))) << ".\n\n";
 }
 
@@ -372,8 +371,8 @@ void write_claim7(std::ostream& r, const ReportInputs& x) {
       r << "Reference run (" << v->label << ") on " << v->experiment << " failed: " << v->error << "\n\n";
     else
       r << "Reference solver (" << v->label << ") on " << v->experiment << ": " << v->obs.slips << " slips; max over "
-        << "junctions and steps of f/(σA) = " << cell("%.6f", v->obs.max_f_over_sigmaA)
-        << ", of f/(σ_exp A) = " << cell("%.6f", v->obs.max_f_over_sigma_exp_A) << ".\n\n";
+        << "junctions and steps of f/(σA) = " << io::format_cell("%.6f", v->obs.max_f_over_sigmaA)
+        << ", of f/(σ_exp A) = " << io::format_cell("%.6f", v->obs.max_f_over_sigma_exp_A) << ".\n\n";
   } else {
     r << "No reference run in this reproduction.\n\n";
   }
@@ -392,14 +391,14 @@ void write_claim8(std::ostream& r, const ReportInputs& x) {
   std::vector<Verdict> v8;
   for (const auto& l : co.loads) {
     v8.push_back(claim8_shape_robust(l, rules));
-    r << "| " << l.experiment << " | " << cell("%.2f", l.base.shape_exponent) << " | "
-      << (l.circular ? cell("%.2f", l.circular->shape_exponent) : "–") << " | "
-      << (l.area_law_always ? cell("%.2f", l.area_law_always->shape_exponent) : "–") << " | " << verdict_text(v8.back())
-      << " |\n";
+    r << "| " << l.experiment << " | " << io::format_cell("%.2f", l.base.shape_exponent) << " | "
+      << (l.circular ? io::format_cell("%.2f", l.circular->shape_exponent) : "–") << " | "
+      << (l.area_law_always ? io::format_cell("%.2f", l.area_law_always->shape_exponent) : "–") << " | "
+      << verdict_text(v8.back()) << " |\n";
   }
   r << "\n"
-    << verdict_bold(combine(std::span<const Verdict>(v8))) << " (rule: n < " << fmt("%g", rules.quasi_linear_n)
-    << " in all three at every load).\n\n";
+    << verdict_bold(combine(std::span<const Verdict>(v8))) << " (rule: n < "
+    << io::format_printf("%g", rules.quasi_linear_n) << " in all three at every load).\n\n";
 }
 
 // The runs that failed, if any.

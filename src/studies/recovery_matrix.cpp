@@ -204,8 +204,6 @@ std::string recovered_text(const RecoveryCell& c) {
   return "yes";
 }
 
-std::string cell_number(const char* format, double x) { return std::isfinite(x) ? io::format_cell(format, x) : "–"; }
-
 }  // namespace
 
 std::vector<RecoveryCell> run_recovery_matrix(const RecoveryMatrixOptions& opt) {
@@ -302,19 +300,19 @@ void write_recovery_matrix_md(std::ostream& md, const std::vector<RecoveryCell>&
   auto param = [](const RecoveryCell& c, const char* key, double unit, const char* format) -> std::string {
     for (const RecoveryParameter& p : c.parameters)
       if (p.key == key) {
-        std::string s = cell_number(format, p.value / unit);
-        if (std::isfinite(p.sigma)) s += " ± " + cell_number(format, p.sigma / unit);
-        return s + " (" + cell_number(format, p.truth / unit) + ")";
+        std::string s = io::format_cell(format, p.value / unit);
+        if (std::isfinite(p.sigma)) s += " ± " + io::format_cell(format, p.sigma / unit);
+        return s + " (" + io::format_cell(format, p.truth / unit) + ")";
       }
     return "–";
   };
   for (const RecoveryCell& c : cells)
-    md << "| " << c.load << " | " << c.data_model << " | " << c.fit_model << " | " << cell_number("%.6g", c.objective)
-       << " | " << cell_number("%.6g", c.objective_at_truth) << " | " << c.residuals << " | "
-       << cell_number("%.4g", c.reduced_chi2()) << " | " << c.converged << " (" << c.in_best_basin << " of " << c.starts
-       << ") | " << param(c, "model.alpha_b", 1e-15, "%.4f") << " | " << param(c, "model.epsilon", 1, "%.4f") << " | "
-       << param(c, "model.eta", 1, "%.2f") << " | " << param(c, "model.position_scale", 1, "%.4f") << " | "
-       << recovered_text(c) << " | " << c.status << " |\n";
+    md << "| " << c.load << " | " << c.data_model << " | " << c.fit_model << " | "
+       << io::format_cell("%.6g", c.objective) << " | " << io::format_cell("%.6g", c.objective_at_truth) << " | "
+       << c.residuals << " | " << io::format_cell("%.4g", c.reduced_chi2()) << " | " << c.converged << " ("
+       << c.in_best_basin << " of " << c.starts << ") | " << param(c, "model.alpha_b", 1e-15, "%.4f") << " | "
+       << param(c, "model.epsilon", 1, "%.4f") << " | " << param(c, "model.eta", 1, "%.2f") << " | "
+       << param(c, "model.position_scale", 1, "%.4f") << " | " << recovered_text(c) << " | " << c.status << " |\n";
   md << "\n(± the Hessian's standard deviation where the fit gave one; J at truth: the generating model's objective at "
         "the generating values, on the diagonal only. A recovery holds where J ≤ J at truth (1 + 1e-3) and the truth "
         "lies within 2σ.)\n\n";
