@@ -129,7 +129,8 @@ $indep << EOD
 0.2735965912
 0.2713864899
 EOD
-set title 'STAND-IN P4.00N' . ': f/(σA) at half the time of the first peak' . "\n" . 'junctions of equal area (9.53e-08–1.05e-07 m^2)'
+set label 99 'STAND-IN data, not measurements' at screen 0.995, 0.012 right front textcolor rgb '#b2182b' font ',8'
+set title 'P4.00N' . ': f/(σA) at half the time of the first peak' . "\n" . 'junctions of equal area (0.0953–0.105 mm^2)'
 set xlabel 'f_i / (σ A_i) [1]'
 set ylabel 'junctions [1]'
 bin(x) = 0.02*floor(x/0.02) + 0.01

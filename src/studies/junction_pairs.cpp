@@ -173,8 +173,11 @@ std::string pairs_plot(const JunctionPairsEvidence& e) {
   gp << stand_in_mark(e.stand_in) << "set multiplot layout 2,1 title "
      << gnuplot_quote(enhanced_literal(e.experiment) +
                       ": equal-area junction pairs, crowded (solid) vs sparse (dashed)")
-     << " . \"\\n\" . " << gnuplot_quote("thick: interacting, thin: independent; dotted: the first peaks")
-     << "\nset key outside right top\nset grid\nset xlabel " << gnuplot_quote(axis_markup("t")) << "\n"
+     << " . \"\\n\" . "
+     << gnuplot_quote("thick: interacting, thin: independent; dotted: the first peaks")
+     // Both panels share their margins (the key sits right of the first only), so their t axes align.
+     << "\nset key outside right top\nset lmargin at screen 0.08\nset rmargin at screen 0.76\nset grid\nset xlabel "
+     << gnuplot_quote(axis_markup("t")) << "\n"
      << "set ylabel 'f_i / (σ A_{0,i}) [1]'\n"
      << "set arrow from " << csv_number(e.t_peak_interacting_s) << ", graph 0 to " << csv_number(e.t_peak_interacting_s)
      << ", graph 1 nohead dt 3 lc rgb 'black'\n"
