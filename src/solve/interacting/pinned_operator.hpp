@@ -31,7 +31,7 @@ bool, std::size_t > &&requires(Op op, const Op& c, std::size_t q, double x, cons
   { c.b0(q) } -> std::same_as<double>;
   { c.reference(q) } -> std::same_as<double>;
   { c.coupling(q, q) } -> std::same_as<double>;
-  { c.row(q) } -> std::same_as<std::vector<double>>;  // G's row q
+  { op.row(q) } -> std::same_as<std::vector<double>>;  // G's row q
   // y1 = G w1, y2 = G w2 over the columns given: exact, or within a budget of errors.
   op.apply(columns, w, w, y, y);
   op.apply(columns, w, w, y, y, budget);
