@@ -92,9 +92,9 @@ void InteractingJunctions::find_thresholds(double X) {
   for (int dir : {1, -1}) {
     const ForceNode& base = solver_.at(X);
     // Right after a slip the new set's curvatures d²f/dX² at X are known (predicted from the old
-    // set's cubic, ChordSolver::slip). The first-order prediction put Newton's first solve within the
-    // tolerance in 8 % (N = 1,200) and 14 % (2,400) of the slips; extrapolated from those solves,
-    // the second-order one would in 79 % and 90 %. Measured: exact solves −22 % at both sizes.
+    // set's cubic, ChordSolver::slip): Newton's first solve then starts far closer to the slip
+    // position than at first order (fewer exact solves: docs/performance.md, "Figures behind the
+    // code's choices").
     const std::vector<double>* c = dir > 0 ? solver_.curvatures_at(X) : nullptr;
     // The earliest crossing by that prediction from X.
     std::size_t k = npos;
