@@ -123,6 +123,14 @@ std::string stand_in_mark(bool stand_in) {
          " at screen 0.995, 0.012 right front textcolor rgb '#b2182b' font ',8'\n";
 }
 
+std::string y_tics_for_span(const std::string& source, const std::string& column, bool from_zero) {
+  const std::string span = from_zero ? "STATS_max" : "(STATS_max - STATS_min)";
+  // The smallest step of 1, 2 or 5 times a power of ten leaving at most five intervals.
+  return "stats " + source + " using " + column + " nooutput\nstep = " + span + " > 0 ? 10**floor(log10(" + span +
+         " / 5.0)) : 1\nm = " + span + " > 0 ? " + span + " / (5.0 * step) : 1\n" +
+         "tic = (m <= 1 ? 1 : (m <= 2 ? 2 : (m <= 5 ? 5 : 10))) * step\nset ytics tic\n";
+}
+
 FigureFormats parse_figure_formats(const std::string& list) {
   FigureFormats f{false, false, false};
   std::size_t begin = 0;

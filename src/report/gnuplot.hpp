@@ -44,6 +44,13 @@ inline constexpr const char* kStandInMark = "STAND-IN data, not measurements";
 // panels draw it over itself). Set before the first plot; label tag 99 is kept for it.
 std::string stand_in_mark(bool stand_in);
 
+// gnuplot commands setting the y tic step to the smallest 1-2-5 step that divides the data's
+// span into at most five intervals (more than two): gnuplot's own choice (up to ten) overlaps in
+// a short panel at a journal column's size. `source`: a data block ($d) or a quoted file name with its options
+// ('series.csv' skip 1); `column`: a `using` expression; from_zero: the span runs from 0 (bars).
+// Sets the gnuplot variables step, m and tic.
+std::string y_tics_for_span(const std::string& source, const std::string& column, bool from_zero = false);
+
 // The figure formats a command writes (--figures png,svg,pdf; default png alone).
 struct FigureFormats {
   bool png = true, svg = false, pdf = false;
