@@ -317,9 +317,8 @@ typename ChordSolver<Op>::ChordPass ChordSolver<Op>::start_chord(double tol) con
   // A pass may read G's single-precision copy where its error stays within a tenth of the
   // tolerance of each slip force (the fixed point then moves by at most that over 1 − ρ; the
   // stopping rule is unchanged) and within ten times the tolerance of the slopes' mean scale
-  // (the slopes only shape the interpolants and Newton's rate: at N = 2,400, 711 more passes on
-  // the copy than with the tolerance itself, of 17,363, and the peak equal to 1e-15; a tenth
-  // held the copy back every other pass).
+  // (the slopes only shape the interpolants and Newton's rate; a budget of the tolerance itself
+  // held the copy back more often: docs/performance.md, "The copy's budget for the slopes").
   w.single = pinned_.single_kept();
   if (w.single) {
     w.budget.y1.resize(n);
