@@ -6,6 +6,7 @@
 // nonlinear law (with its warm starts), the cache of solves between events and its interpolants,
 // the seeds a slip leaves, the deadline and the work counters. InteractingJunctions owns the
 // junctions' states and the events, and tells the solver when the pinned set changes.
+#include <algorithm>
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
