@@ -50,7 +50,11 @@ double nlopt_objective(unsigned n, const double* u, double* /*grad: derivative-f
   }
   const Evaluation& ev = *journaled;
   pb.log.push_back(ev);
-  tick(pb, pb.part.rfind("refit", 0) == 0 ? "refit" : "fit", ev.objective);
+  tick(pb,
+       pb.part.rfind("refit", 0) == 0       ? "refit"
+       : pb.part.rfind("bootstrap", 0) == 0 ? "bootstrap"
+                                            : "fit",
+       ev.objective);
   if (ev.status != "ok") {
     // Every digit: a solver failure may hang on the exact point (the 6-digit rounding ran through).
     pb.failure = "evaluation " + std::to_string(ev.index) + " (" + values_text(pb, x, true) + "): " + ev.status;
@@ -303,6 +307,9 @@ long long optimization_budget(const FitSpec& spec, const FitOptions& options, st
     const auto v = static_cast<long long>(n);
     b += 10 * v + 2 * v + 2 * v * (v - 1);  // settle_steps: <= 5 rounds of +-h_i; hessian_at
   }
+  if (options.error_bars && spec.intervals && spec.objective == FitObjective::area_and_force)
+    b += static_cast<long long>(spec.bootstrap_draws) *  // a bootstrap refit runs the local stage alone
+         (spec.polish_algorithm.empty() ? spec.max_evaluations : spec.polish_max_evaluations);
   if (options.error_bars && !spec.error_bars.empty())  // a refit runs the local stage alone
     b += 2LL * static_cast<long long>(spec.error_bars.size()) *
          (spec.polish_algorithm.empty() ? spec.max_evaluations : spec.polish_max_evaluations);
@@ -343,9 +350,10 @@ void run_task(const FitSpec& spec, const FitOptions& options, Optimization& o, s
   if (have_best && o.ok() && options.profile && spec.profile) run_profile(spec, pb, o);
   if (have_best && o.ok() && options.error_bars && spec.intervals && spec.objective == FitObjective::area_and_force) {
     // Intervals describe a minimum: around a point no second start confirms they describe a slope.
-    if (o.certified())
+    if (o.certified()) {
       run_uncertainty(spec, pb, o);
-    else
+      if (spec.bootstrap_draws > 0) run_bootstrap(spec, pb, o);
+    } else
       o.uncertainty.failure =
           std::string("not certified (converged: ") + converged_name(o.converged) + "): " + o.convergence;
   }

@@ -172,6 +172,26 @@ struct Uncertainty {
   double wall_s = 0;
 };
 
+// One synthetic data set of the parametric bootstrap (FitSpec::bootstrap_draws) and its refit.
+struct BootstrapDraw {
+  std::vector<double> best;  // SI, per free variable (NaN when it failed)
+  double objective = std::numeric_limits<double>::quiet_NaN();
+  int evaluations = 0;
+  std::string stop_reason;
+  std::string failure;
+};
+
+// The spread of the bootstrap refits' optima: per free variable their mean and standard
+// deviation (n − 1), over the draws whose refit succeeded.
+struct Bootstrap {
+  std::vector<BootstrapDraw> draws;
+  int succeeded = 0;
+  std::vector<double> mean, sigma;  // SI, per free variable (empty when fewer than 2 succeeded)
+  std::string failure;              // why no σ (the model's curves, too few refits)
+  int evaluations = 0;
+  double wall_s = 0;
+};
+
 struct ErrorBarRefit {
   std::string key;
   double bar = 0;
@@ -221,6 +241,7 @@ struct Optimization {
   std::size_t profile_parameter = 0;
   std::vector<ParameterProfile> profiles;  // every profiled parameter
   Uncertainty uncertainty;
+  Bootstrap bootstrap;  // FitSpec::bootstrap_draws > 0 at a certified optimum
   std::vector<ErrorBarRefit> refits;
   double profile_wall_s = 0, refits_wall_s = 0;
   bool ok() const { return failure.empty(); }

@@ -28,7 +28,7 @@ const std::vector<std::string> kFitKeys{"name",        "description", "objective
                                         "error_bars",  "noise",       "intervals", "force_score"};
 const std::vector<std::string> kExperimentKeys{"scene", "set", "target", "force"};
 const std::vector<std::string> kNoiseKeys{"area", "force", "stick_slip"};
-const std::vector<std::string> kIntervalKeys{"hessian_step"};
+const std::vector<std::string> kIntervalKeys{"hessian_step", "bootstrap", "bootstrap_seed"};
 const std::vector<std::string> kTargetKeys{"drop", "period"};
 const std::vector<std::string> kParameterKeys{"lo", "hi", "start", "scale", "per_experiment"};
 const std::vector<std::string> kProfileKeys{"parameter", "span", "points"};
@@ -474,6 +474,14 @@ void read_noise_and_intervals(const Source& src, const MapView& root, FitSpec& s
           iv.fail_at(*n, "hessian_step",
                      "must be in (0, 0.2] (relative step of each parameter), got " + format_double(spec.hessian_step));
       }
+      if (auto n = iv.find("bootstrap")) {
+        spec.bootstrap_draws = iv.integer(*n, "bootstrap");
+        if (spec.bootstrap_draws != 0 && (spec.bootstrap_draws < kBootstrapMin || spec.bootstrap_draws > kBootstrapMax))
+          iv.fail_at(*n, "bootstrap",
+                     "must be 0 (none) or in [" + std::to_string(kBootstrapMin) + ", " + std::to_string(kBootstrapMax) +
+                         "] synthetic data sets, got " + std::to_string(spec.bootstrap_draws));
+      }
+      if (auto n = iv.find("bootstrap_seed")) spec.bootstrap_seed = iv.seed(*n, "bootstrap_seed");
     }
     if (spec.intervals && spec.objective != FitObjective::area_and_force)
       root.fail_at(*in, "intervals",

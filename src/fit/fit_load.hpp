@@ -23,7 +23,9 @@
 //   noise: {area: 0.002, force: 0.002, stick_slip: 0.05}   # area_and_force: residual units, each
 //                                  # in [kNoiseMin, kNoiseMax] = [1e-12, 1e3] (below)
 //   force_score: auto              # or pointwise | loading_and_cycles | loading_and_peaks; area_and_force only (objective.hpp)
-//   intervals: true                # or {hessian_step: 0.01}; area_and_force only (default true)
+//   intervals: true                # or {hessian_step: 0.01, bootstrap: 0, bootstrap_seed: 1};
+//                                  # area_and_force only (default true); bootstrap: 0 or in
+//                                  # [kBootstrapMin, kBootstrapMax] synthetic data sets (below)
 //   profile: {parameter: model.alpha_b, span: 0.2, points: 11}   # or false; parameter: a key, a list, or all
 //   error_bars: {experiment.E: 0.1e6, experiment.k_L: 200, ...}  # one-at-a-time ± refits
 //
@@ -60,6 +62,11 @@ namespace asperity {
 // degenerate objective that every parameter value minimises).
 inline constexpr double kNoiseMin = 1e-12;
 inline constexpr double kNoiseMax = 1e3;
+
+// The number of bootstrap draws (FitSpec::bootstrap_draws): two at least for a spread; each is a
+// refit of up to the polish's budget, so a thousand is already hours of runs.
+inline constexpr int kBootstrapMin = 2;
+inline constexpr int kBootstrapMax = 1000;
 
 // How the runs are scored. By default, the file's `objective`. With user_objective (the Python
 // module's callable, FitOptions::user_term): FitObjective::user, the `objective` key must be

@@ -26,7 +26,8 @@ ExperimentEval run_experiment(const FitSpec& spec, std::size_t e, const std::vec
   ExperimentEval out;
   try {
     const FitExperiment& fe = spec.experiments[e];
-    const Scene scene = fe.scene.build(settings);
+    Scene scene = fe.scene.build(settings);
+    if (fe.measured_override) scene.experiment.measured = *fe.measured_override;
     RunResult r = simulate(scene, 0, monitor);
     if (spec.objective == FitObjective::user) {
       if (!user_term || !*user_term)

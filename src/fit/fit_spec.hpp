@@ -3,6 +3,7 @@
 // fit YAML file, tests may build it in code).
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <limits>
 #include <optional>
@@ -46,6 +47,9 @@ struct FitExperiment {
   StickSlipTarget target;              // stick_slip objective; optional with area_and_force
   std::optional<MeasuredForce> force;  // measured Q(t): area_and_force objective (required there)
   std::filesystem::path force_file;    // its CSV (provenance, inputs.txt)
+  // Replaces the scene's measured A(Q) in every run (a bootstrap draw's synthetic data); unset:
+  // the scene's own.
+  std::optional<MeasuredCurve> measured_override;
   bool has_target() const { return std::isfinite(target.drop_N) && std::isfinite(target.period_s); }
 };
 
@@ -129,6 +133,14 @@ struct FitSpec {
   // covariance 2 s² H⁻¹ with s² the reduced chi-square at the optimum (fit.hpp, Uncertainty).
   bool intervals = false;  // default true for area_and_force
   double hessian_step = 0.01;
+  // Parametric bootstrap at a certified optimum (area_and_force with intervals): this many
+  // synthetic data sets, the model's curves at the optimum plus Gaussian noise at the levels of
+  // `noise` times s, the root of the reduced chi-square (as the Hessian's covariance 2 s² H⁻¹;
+  // seeded from bootstrap_seed), each refitted by the local stage from the optimum; σ
+  // is the spread of their optima (fit.hpp, Bootstrap). For an objective that is not quadratic
+  // on the scale of σ, where the Hessian's σ understates the scatter. 0: none.
+  int bootstrap_draws = 0;
+  std::uint64_t bootstrap_seed = 1;
 };
 
 }  // namespace asperity

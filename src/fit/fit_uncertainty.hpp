@@ -18,6 +18,11 @@ void run_profile(const FitSpec& spec, const Problem& pb, Optimization& o);
 // Also the profiles' conditional intervals at the same rise s².
 void run_uncertainty(const FitSpec& spec, const Problem& pb, Optimization& o);
 
+// The parametric bootstrap (FitSpec::bootstrap_draws): each draw's synthetic data from the
+// optimum's runs (Optimization::best_runs) plus noise, refitted by the local stage from the
+// optimum (in parallel, journaled as part "bootstrap K"); fit_bootstrap.cpp.
+void run_bootstrap(const FitSpec& spec, const Problem& pb, Optimization& o);
+
 // The refits with each error-bar key shifted by -bar and +bar (in parallel, journaled).
 void run_refits(const FitSpec& spec, const FitOptions& options, Optimization& o, Counts& counts, const StopFlag& stop,
                 std::atomic<int>& ticked);

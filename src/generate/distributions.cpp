@@ -1,29 +1,11 @@
 #include "generate/distributions.hpp"
 
-#include <boost/math/distributions/normal.hpp>
 #include <cmath>
 #include <stdexcept>
 
 #include "io/numbers.hpp"
 
 namespace asperity {
-
-std::uint64_t splitmix64(std::uint64_t x) {
-  x += 0x9E3779B97F4A7C15ULL;
-  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ULL;
-  x = (x ^ (x >> 27)) * 0x94D049BB133111EBULL;
-  return x ^ (x >> 31);
-}
-
-double normal_quantile(double u) {
-  static const boost::math::normal_distribution<double> z(0.0, 1.0);
-  return boost::math::quantile(z, u);
-}
-
-double normal_cdf(double x) {
-  static const boost::math::normal_distribution<double> z(0.0, 1.0);
-  return boost::math::cdf(z, x);
-}
 
 namespace {
 
@@ -70,9 +52,9 @@ double PowerLaw::moment(double k) const {
 
 double LogNormal::quantile(double u) const {
   const double mu = std::log(median);
-  const double lo = a_min > 0.0 ? normal_cdf((std::log(a_min) - mu) / sigma_ln) : 0.0;
-  const double hi = std::isfinite(a_max) ? normal_cdf((std::log(a_max) - mu) / sigma_ln) : 1.0;
-  const double a = std::exp(mu + sigma_ln * normal_quantile(lo + u * (hi - lo)));
+  const double lo = a_min > 0.0 ? io::normal_cdf((std::log(a_min) - mu) / sigma_ln) : 0.0;
+  const double hi = std::isfinite(a_max) ? io::normal_cdf((std::log(a_max) - mu) / sigma_ln) : 1.0;
+  const double a = std::exp(mu + sigma_ln * io::normal_quantile(lo + u * (hi - lo)));
   return std::min(std::max(a, a_min), a_max);
 }
 
@@ -80,9 +62,9 @@ double LogNormal::cdf(double a) const {
   if (a <= a_min || a <= 0.0) return 0.0;
   if (a >= a_max) return 1.0;
   const double mu = std::log(median);
-  const double lo = a_min > 0.0 ? normal_cdf((std::log(a_min) - mu) / sigma_ln) : 0.0;
-  const double hi = std::isfinite(a_max) ? normal_cdf((std::log(a_max) - mu) / sigma_ln) : 1.0;
-  return (normal_cdf((std::log(a) - mu) / sigma_ln) - lo) / (hi - lo);
+  const double lo = a_min > 0.0 ? io::normal_cdf((std::log(a_min) - mu) / sigma_ln) : 0.0;
+  const double hi = std::isfinite(a_max) ? io::normal_cdf((std::log(a_max) - mu) / sigma_ln) : 1.0;
+  return (io::normal_cdf((std::log(a) - mu) / sigma_ln) - lo) / (hi - lo);
 }
 
 // ---- components and mixtures ------------------------------------------------------------
@@ -141,7 +123,7 @@ double Mixture::cdf(double a) const {
 
 // ---- distribution -----------------------------------------------------------------------
 
-double Distribution::draw(Uniform01& u) const {
+double Distribution::draw(io::Uniform01& u) const {
   if (const auto* m = std::get_if<Mixture>(&family)) {
     const double u_pick = u();
     const double u_draw = u();
@@ -181,7 +163,7 @@ std::string Distribution::describe() const {
 
 namespace {
 
-double normal_cdf_or_limit(double z) { return std::isinf(z) ? (z > 0 ? 1.0 : 0.0) : normal_cdf(z); }
+double normal_cdf_or_limit(double z) { return std::isinf(z) ? (z > 0 ? 1.0 : 0.0) : io::normal_cdf(z); }
 
 void check(bool ok, const std::string& what) {
   if (!ok) throw std::invalid_argument("distribution: " + what);
@@ -227,7 +209,7 @@ void validate(const Distribution& d) {
 
 JunctionPopulation draw_population(const Distribution& d, std::size_t n, std::uint64_t seed, double square_side_m) {
   validate(d);
-  Uniform01 u(seed);
+  io::Uniform01 u(seed);
   JunctionPopulation pop;
   pop.area_m2.reserve(n);
   for (std::size_t i = 0; i < n; ++i) pop.area_m2.push_back(d.draw(u));

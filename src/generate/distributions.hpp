@@ -2,42 +2,18 @@
 // Junction-area distributions for the stand-in generator (docs/model.md §7).
 //
 // Every family is a small value type with an explicit inverse CDF, so a draw is
-// quantile(uniform) and the bytes of a generated population depend only on
-// std::mt19937_64 (whose output sequence the C++ standard specifies), on our own 53-bit
-// conversion to a double in (0, 1), and on the elementary functions of libm / Boost.Math —
-// never on the standard library's <random> distributions, whose algorithms are unspecified.
+// quantile(uniform) of io/random.hpp's stream and the bytes of a generated population depend
+// only on it and on the elementary functions of libm / Boost.Math.
 #include <cstdint>
 #include <limits>
-#include <random>
 #include <string>
 #include <variant>
 #include <vector>
 
+#include "io/random.hpp"
 #include "scene/scene.hpp"
 
 namespace asperity {
-
-// Uniform doubles in the open interval (0, 1) from the top 53 bits of std::mt19937_64:
-// u = (k + 1/2) / 2^53, k ∈ [0, 2^53). Never returns 0 or 1, so quantiles stay finite.
-class Uniform01 {
- public:
-  explicit Uniform01(std::uint64_t seed) : gen_(seed) {}
-  double operator()() {
-    const std::uint64_t k = gen_() >> 11;
-    return (static_cast<double>(k) + 0.5) * 0x1.0p-53;
-  }
-
- private:
-  std::mt19937_64 gen_;
-};
-
-// SplitMix64 finaliser: a fixed bijection of 64-bit integers, used to derive independent
-// seeds (per experiment, per stream) from one base seed.
-std::uint64_t splitmix64(std::uint64_t x);
-
-// Standard normal quantile Φ⁻¹(u) (Boost.Math).
-double normal_quantile(double u);
-double normal_cdf(double z);
 
 // Truncated power law p(a) ∝ a^(−τ) on [a_min, a_max] (any real τ; τ = 1 is log-uniform).
 struct PowerLaw {
@@ -91,7 +67,7 @@ struct Distribution {
   std::variant<PowerLaw, LogNormal, Fixed, Mixture> family;
 
   // Draws one area, consuming one uniform (two for a mixture).
-  double draw(Uniform01& u) const;
+  double draw(io::Uniform01& u) const;
   double cdf(double a) const;
   // One line for provenance (README, experiment description), e.g.
   // "power law tau=1.5 on [1e-09, 1e-07] m^2".

@@ -27,7 +27,7 @@ Positions place_in_contact_disc(const std::vector<double>& areas, double R, std:
   // the 3 × 3 cells around a candidate.
   NeighbourGrid grid(2 * r_max, R);
   Positions p{std::vector<double>(n), std::vector<double>(n)};
-  Uniform01 u(seed);
+  io::Uniform01 u(seed);
   for (const std::size_t i : order) {
     bool placed = false;
     for (int attempt = 0; attempt < max_tries && !placed; ++attempt) {

@@ -11,18 +11,18 @@
 namespace asperity {
 
 std::uint64_t experiment_seed(const StandinRecipe& r, std::size_t i) {
-  return splitmix64(r.seed + static_cast<std::uint64_t>(i));
+  return io::splitmix64(r.seed + static_cast<std::uint64_t>(i));
 }
 
 std::uint64_t noise_seed(std::uint64_t experiment_seed) {
-  return splitmix64(experiment_seed ^ 0x6e6f697365ULL);  // "noise"
+  return io::splitmix64(experiment_seed ^ 0x6e6f697365ULL);  // "noise"
 }
 
 std::uint64_t positions_seed(std::uint64_t experiment_seed) {
-  return splitmix64(experiment_seed ^ 0x706f736974696f6eull);
+  return io::splitmix64(experiment_seed ^ 0x706f736974696f6eull);
 }
 
-std::uint64_t force_seed(std::uint64_t experiment_seed) { return splitmix64(experiment_seed ^ 0x666f726365ULL); }
+std::uint64_t force_seed(std::uint64_t experiment_seed) { return io::splitmix64(experiment_seed ^ 0x666f726365ULL); }
 
 namespace {
 

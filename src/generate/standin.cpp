@@ -62,14 +62,14 @@ Scene generation_scene(const StandinRecipe& r, const Experiment& e) {
 MeasuredCurve standin_measured_curve(double A0, double Q_s, double alpha_exp, int points, double noise_relative,
                                      std::uint64_t seed) {
   if (points < 2) throw std::invalid_argument("standin_measured_curve: need at least 2 points");
-  Uniform01 u(seed);
+  io::Uniform01 u(seed);
   MeasuredCurve c;
   c.Q_N.reserve(static_cast<std::size_t>(points));
   c.A_m2.reserve(static_cast<std::size_t>(points));
   for (int j = 0; j < points; ++j) {
     // Q_j = Q_s j/(points−1), exactly Q_s at the last point.
     const double Q = j + 1 == points ? Q_s : Q_s * static_cast<double>(j) / static_cast<double>(points - 1);
-    const double z = normal_quantile(u());
+    const double z = io::normal_quantile(u());
     c.Q_N.push_back(Q);
     c.A_m2.push_back(A0 - alpha_exp * Q * Q + A0 * noise_relative * z);
   }
@@ -78,13 +78,13 @@ MeasuredCurve standin_measured_curve(double A0, double Q_s, double alpha_exp, in
 
 MeasuredForce standin_measured_force(const std::vector<Sample>& series, double t_end, double Q_s, double noise_relative,
                                      std::uint64_t seed) {
-  Uniform01 u(seed);
+  io::Uniform01 u(seed);
   MeasuredForce f;
   for (const Sample& s : series) {
     if (s.t > t_end) break;
     if (!f.t_s.empty() && !(s.t > f.t_s.back())) continue;  // one value per instant
     f.t_s.push_back(s.t);
-    f.Q_N.push_back(s.Q + Q_s * noise_relative * normal_quantile(u()));
+    f.Q_N.push_back(s.Q + Q_s * noise_relative * io::normal_quantile(u()));
   }
   return f;
 }

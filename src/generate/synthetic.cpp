@@ -51,11 +51,11 @@ MeasuredCurve synthetic_area(const SyntheticRecipe& r, const RunResult& run, std
   for (int j = 0; j < r.points; ++j)
     Q.push_back(j + 1 == r.points ? run.obs.Q_s : run.obs.Q_s * static_cast<double>(j) / (r.points - 1));
   const std::vector<double> A = model_area_at(run.recorder.loading_branch(), run.obs.Q_s, run.obs.A_s, Q);
-  Uniform01 u(seed);
+  io::Uniform01 u(seed);
   MeasuredCurve c;
   for (std::size_t j = 0; j < Q.size(); ++j) {
     c.Q_N.push_back(Q[j]);
-    c.A_m2.push_back(A[j] + r.noise_area * run.obs.A0 * normal_quantile(u()));
+    c.A_m2.push_back(A[j] + r.noise_area * run.obs.A0 * io::normal_quantile(u()));
   }
   return c;
 }
@@ -72,8 +72,8 @@ MeasuredForce synthetic_force(const SyntheticRecipe& r, const std::vector<Sample
     f.Q_N.push_back(s.Q);
     scale = std::max(scale, s.Q);
   }
-  Uniform01 u(seed);
-  for (double& q : f.Q_N) q += r.noise_force * scale * normal_quantile(u());
+  io::Uniform01 u(seed);
+  for (double& q : f.Q_N) q += r.noise_force * scale * io::normal_quantile(u());
   return f;
 }
 

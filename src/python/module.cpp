@@ -91,7 +91,7 @@ py::list profiles_list(const FitSpec& spec, const Optimization& o) {
   return out;
 }
 
-// An optimization's statistical uncertainty (fit.hpp, Uncertainty): sigma per free variable.
+// An optimization's statistical uncertainty (fit.hpp, Uncertainty, Bootstrap): sigma per free variable.
 py::dict uncertainty_dict(const Optimization& o) {
   const Uncertainty& u = o.uncertainty;
   py::dict d, sigma;
@@ -102,6 +102,11 @@ py::dict uncertainty_dict(const Optimization& o) {
   for (std::size_t k = 0; k < o.variables.size() && k < u.sigma.size(); ++k)
     sigma[py::str(o.variables[k].label)] = u.sigma[k];
   d["sigma"] = sigma;
+  py::dict boot;  // the parametric bootstrap's (FitSpec::bootstrap_draws): empty without one
+  for (std::size_t k = 0; k < o.variables.size() && k < o.bootstrap.sigma.size(); ++k)
+    boot[py::str(o.variables[k].label)] = o.bootstrap.sigma[k];
+  d["bootstrap_sigma"] = boot;
+  d["bootstrap_failure"] = o.bootstrap.failure;
   return d;
 }
 

@@ -200,8 +200,41 @@ const char* const kFitYamlObservables[] = {"alpha",
                                            "ss_drop",
                                            "ss_period"};
 
+// The parametric bootstrap's spread (FitSpec::bootstrap_draws), beside the Hessian's σ.
+void write_bootstrap(std::ostream& y, const Optimization& o, std::uint64_t seed) {
+  const Bootstrap& bs = o.bootstrap;
+  y << "      bootstrap:\n";
+  y << "        method: \"parametric: synthetic data sets, the model's A(Q) and Q(t) at the optimum plus Gaussian "
+       "noise at the fit's noise levels times s (the root of the reduced chi-square, as the Hessian's covariance), "
+       "each refitted by the local stage from the optimum; sigma: standard "
+       "deviation of their optima; interval95: value +- 1.96 sigma; hessian_ratio: sigma over the Hessian's "
+       "sigma\"\n";
+  y << "        draws: " << bs.draws.size() << "\n        succeeded: " << bs.succeeded << "\n        seed: " << seed
+    << "\n        evaluations: " << bs.evaluations << "\n        wall_s: " << yaml_double(bs.wall_s) << "\n";
+  if (!bs.failure.empty()) {
+    y << "        failure: " << yaml_quoted(bs.failure) << "\n";
+    return;
+  }
+  const Uncertainty& un = o.uncertainty;
+  y << "        parameters:\n";
+  for (std::size_t i = 0; i < o.variables.size(); ++i) {
+    const double x = o.best[i], sg = bs.sigma[i];
+    const double ratio = un.computed ? sg / un.sigma[i] : Observables::nan;
+    y << "          " << yaml_quoted(o.variables[i].label) << ": {value: " << yaml_double(x)
+      << ", sigma: " << yaml_double(sg) << ", sigma_relative: " << yaml_double(sg / std::abs(x)) << ", interval95: ["
+      << yaml_double(x - 1.96 * sg) << ", " << yaml_double(x + 1.96 * sg) << "], mean: " << yaml_double(bs.mean[i])
+      << ", hessian_ratio: " << yaml_double(ratio) << "}\n";
+  }
+  y << "        optima:   # per draw: objective, then the free variables in the order above\n";
+  for (const BootstrapDraw& bd : bs.draws) {
+    y << "          - [" << yaml_double(bd.objective);
+    for (const double v : bd.best) y << ", " << yaml_double(v);
+    y << "]\n";
+  }
+}
+
 // The fit's statistical uncertainty (area_and_force with intervals): method, s², σ, intervals, correlation.
-void write_uncertainty(std::ostream& y, const Optimization& o) {
+void write_uncertainty(std::ostream& y, const Optimization& o, std::uint64_t seed) {
   const Uncertainty& un = o.uncertainty;
   y << "    uncertainty:\n";
   if (!o.certified()) {  // no numbers around a point no second start confirms as the minimum
@@ -244,6 +277,7 @@ void write_uncertainty(std::ostream& y, const Optimization& o) {
       y << "]\n";
     }
   }
+  if (!o.bootstrap.draws.empty() || !o.bootstrap.failure.empty()) write_bootstrap(y, o, seed);
 }
 
 // The starts of one optimization and the verdict on them (fit/convergence.hpp).
@@ -422,7 +456,7 @@ std::string fit_yaml(const FitSpec& spec, const FitResult& result, const std::st
     }
     write_best_runs(y, spec, o);
     write_profiles(y, spec, o);
-    if (spec.objective == FitObjective::area_and_force && spec.intervals) write_uncertainty(y, o);
+    if (spec.objective == FitObjective::area_and_force && spec.intervals) write_uncertainty(y, o, spec.bootstrap_seed);
     write_error_bars(y, o);
   }
   // Provenance: the build, the command, and the fit file and every experiment's input files.

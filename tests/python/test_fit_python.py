@@ -7,6 +7,7 @@ import signal
 import time
 
 import numpy as np
+import yaml
 import pytest
 
 import asperity
@@ -240,6 +241,32 @@ def test_fit_result_intervals_at_a_certified_chi_square(source, tmp_path):
     assert profile["parabola_sigma"] == pytest.approx(sigma, rel=0.15)
     lo, hi = profile["interval"]
     assert lo < value < hi
+    assert np.isnan(params["bootstrap_sigma"][0]) and f["uncertainty"]["bootstrap_sigma"] == {}  # none asked
+
+
+def test_fit_result_bootstrap_sigma_is_fit_yaml_s(source, tmp_path):
+    """intervals: {bootstrap: N}: the spread of N refits of synthetic data drawn at the optimum
+    (its agreement with the Hessian where the objective is quadratic is tested in C++,
+    tests/unit/fit/test_fit_joint.cpp) reaches Python as written in fit.yaml, per parameter."""
+    base = source / "tests" / "data" / "scene"
+    run = asperity.run(asperity.load_scene(small_scene(source), {"model.alpha_b": ALPHA_B_TRUE}))
+    t, Q = np.asarray(run.series["t"]), np.asarray(run.series["Q"])
+    pick = np.linspace(0, len(t) - 1, 40).astype(int)
+    force = tmp_path / "Qt.csv"
+    force.write_text("t_s,Q_N\n" + "".join(f"{t[i]!r},{Q[i]!r}\n" for i in pick))
+    d = spec(objective="area_and_force", noise={"area": 0.002, "force": 0.002},
+             experiments=[{"scene": str(small_scene(source)), "force": str(force)}],
+             intervals={"bootstrap": 4, "bootstrap_seed": 3})
+    d["optimizer"]["starts"] = 2
+    result = asperity.fit(d, base=base, threads=1, progress=False)
+    (f,) = result["fits"]
+    assert f["uncertainty"]["computed"] and f["uncertainty"]["bootstrap_failure"] == "", f
+    (written,) = yaml.safe_load(result["fit_yaml"])["fits"]
+    boot = written["uncertainty"]["bootstrap"]
+    assert boot["draws"] == boot["succeeded"] == 4 and boot["seed"] == 3
+    sigma = boot["parameters"]["model.alpha_b"]["sigma"]
+    assert sigma > 0 and f["uncertainty"]["bootstrap_sigma"]["model.alpha_b"] == sigma
+    assert result.parameters["bootstrap_sigma"][0] == sigma
 
 
 def area_term(summary):  # a Python objective with a source file: journaled under its digest

@@ -309,20 +309,22 @@ class FitResult(dict):
 
     @property
     def parameters(self):
-        """value, sigma (marginal), lo95 and hi95 (value -+ 1.96 sigma), the fit's objective,
-        converged and reduced_chi2, one row per fit and free parameter."""
+        """value, sigma (marginal), lo95 and hi95 (value -+ 1.96 sigma), bootstrap_sigma (the
+        spread of the parametric bootstrap's refits, `intervals: {bootstrap: N}`; else NaN), the
+        fit's objective, converged and reduced_chi2, one row per fit and free parameter."""
         import pandas as pd  # only needed here
         rows = []
         for f in self["fits"]:
             u = f.get("uncertainty", {})
             for key, value in f["best"].items():
                 sigma = u.get("sigma", {}).get(key, float("nan")) if u.get("computed") else float("nan")
+                boot = u.get("bootstrap_sigma", {}).get(key, float("nan"))
                 rows.append({"fit": f["label"], "parameter": key, "value": value, "sigma": sigma,
-                             "lo95": value - 1.96 * sigma, "hi95": value + 1.96 * sigma,
+                             "lo95": value - 1.96 * sigma, "hi95": value + 1.96 * sigma, "bootstrap_sigma": boot,
                              "objective": f["objective"], "converged": f["converged"],
                              "reduced_chi2": u.get("reduced_chi2", float("nan"))})
-        return pd.DataFrame(rows, columns=["fit", "parameter", "value", "sigma", "lo95", "hi95", "objective",
-                                           "converged", "reduced_chi2"])
+        return pd.DataFrame(rows, columns=["fit", "parameter", "value", "sigma", "lo95", "hi95", "bootstrap_sigma",
+                                           "objective", "converged", "reduced_chi2"])
 
     @property
     def profiles(self):
@@ -372,7 +374,8 @@ def fit(spec: _Union[_PathLike, _Mapping[str, _Any]], out: _PathLike = "", threa
     "evaluations", "stop_reason", "failure", "converged", "starts", "in_best_basin", "spread",
     "runs": {experiment: summary}, "profiles": [{"parameter", "factor", "value", "objective",
     "interval", "parabola_sigma"}], "uncertainty": {"computed", "failure", "residuals",
-    "reduced_chi2", "sigma": {key: sigma}}}], "wall_s", "replayed", "computed", "fit_yaml"}
+    "reduced_chi2", "sigma": {key: sigma}, "bootstrap_sigma": {key: sigma}, "bootstrap_failure"}}],
+    "wall_s", "replayed", "computed", "fit_yaml"}
     (replayed: evaluations answered from the journal in `out`; computed: run now), whose
     .parameters, .profiles and .runs are DataFrames.
     `progress`: a tqdm counter of the optimizations' evaluations when tqdm is installed (False:

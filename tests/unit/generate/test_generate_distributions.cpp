@@ -30,7 +30,7 @@ double power_law_second_moment(double tau, double lo, double hi) {
 }  // namespace
 
 TEST_CASE("Uniform01 gives doubles strictly inside (0, 1) from mt19937_64's top 53 bits", "[generate]") {
-  Uniform01 u(42);
+  io::Uniform01 u(42);
   std::mt19937_64 g(42);
   for (int i = 0; i < 1000; ++i) {
     const double x = u();
@@ -87,8 +87,8 @@ TEST_CASE("power-law sample mean agrees with the closed-form mean within its sta
 TEST_CASE("lognormal quantile: median, one sigma, truncation, CDF round trip", "[generate]") {
   const LogNormal d{1e-8, 0.6};
   CHECK(d.quantile(0.5) == Approx(1e-8).epsilon(1e-14));
-  CHECK(d.quantile(normal_cdf(1.0)) == Approx(1e-8 * std::exp(0.6)).epsilon(1e-12));
-  CHECK(d.quantile(normal_cdf(-2.0)) == Approx(1e-8 * std::exp(-1.2)).epsilon(1e-12));
+  CHECK(d.quantile(io::normal_cdf(1.0)) == Approx(1e-8 * std::exp(0.6)).epsilon(1e-12));
+  CHECK(d.quantile(io::normal_cdf(-2.0)) == Approx(1e-8 * std::exp(-1.2)).epsilon(1e-12));
   for (double u : kUs) CHECK(std::abs(d.cdf(d.quantile(u)) - u) < 1e-12);
 
   const LogNormal t{1e-8, 1.0, 2e-9, 5e-8};
