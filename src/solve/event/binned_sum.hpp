@@ -20,8 +20,8 @@
 namespace asperity {
 
 // Bin width δ (relative, in c) for a relative error of the sums well below `tol` when
-// ψ ≤ psi_max: the Taylor remainder |g⁗|(ψ δ/2)⁴/24 is small for the universal law (measured
-// ≈ 1.5e-11 at tol = 1e-9, 1e-14 at 1e-12; tests/unit/solve/test_binned_sum.cpp), capped at 20 %.
+// ψ ≤ psi_max: the Taylor remainder |g⁗|(ψ δ/2)⁴/24 is small for the universal law (its error
+// in docs/solvers.md, measured by tests/unit/solve/test_binned_sum.cpp), capped at 20 %.
 inline double binned_rel_width(double tol, double psi_max) {
   const double d = 10.0 * std::pow(tol, 0.25) / (psi_max > 1.0 ? psi_max : 1.0);
   return d < 0.2 ? d : 0.2;

@@ -45,7 +45,8 @@ ChordSolver<Op>::ChordSolver(const Problem& problem, const JunctionState& J, boo
     for (std::size_t i = 0; i < N; ++i) A_fixed_ += J.A0[i];
   last_f_.assign(N, 0.0);
   last_a_.assign(N, 0.0);
-  // The first event search (solves, rebuilds: over eight minutes at N = 20,000) counts.
+  // The first event search counts: at large N its solves and rebuilds alone can outlast a limit
+  // (docs/performance.md, "Interacting solver", the N = 20,000 runs).
   deadline_ = wall_deadline(problem.limits);
 }
 
@@ -258,8 +259,8 @@ int ChordSolver<Op>::chord_iteration(double X, const ChordPolicy& policy, ForceN
   int iter = 0, refreshes = 0;
   for (;;) {
     ++iter;
-    // The run's wall-time limit, read at every pass: at N = 20,000 one step's solves and their
-    // Newton refreshes (rebuilds of about 90 s) took over ten minutes past it.
+    // The run's wall-time limit, read at every pass: at large N one step's solves and their
+    // Newton refreshes can run minutes past it (docs/performance.md, "Interacting solver").
     if (std::chrono::steady_clock::now() >= deadline_) throw WallTimeReached();
     own_laws(node, w);
     chord_image(X, node, w);
