@@ -7,7 +7,7 @@
 namespace asperity {
 
 InputsFingerprint::InputsFingerprint(std::string_view first_line, std::string_view build_id, std::string_view part,
-                                     const Shard& shard, std::string_view extra) {
+                                     const io::Shard& shard, std::string_view extra) {
   text_.append(first_line).append("\nbuild ").append(build_id).append("\n").append(part).append(" ");
   text_.append(std::to_string(shard.index)).append("/").append(std::to_string(shard.count));
   if (!extra.empty()) text_.append(" ").append(extra);
@@ -22,7 +22,7 @@ void InputsFingerprint::add_file(std::string_view role, std::string_view relativ
                                  const std::function<std::uint64_t()>& digest) {
   std::string sum(16, '-');
   try {
-    sum = hex16(digest());
+    sum = io::hex16(digest());
   } catch (const std::exception&) {
   }
   text_.append("file ").append(sum).append(" ");
@@ -32,12 +32,12 @@ void InputsFingerprint::add_file(std::string_view role, std::string_view relativ
 
 std::optional<std::string> read_inputs(const std::filesystem::path& dir) {
   std::string text;
-  if (!read_regular(dir / kInputsFileName, text, "--out")) return std::nullopt;
+  if (!io::read_regular(dir / kInputsFileName, text, "--out")) return std::nullopt;
   return text;
 }
 
 void write_inputs(const std::filesystem::path& dir, const std::string& text) {
-  write_file_durably(dir / kInputsFileName, text);
+  io::write_file_durably(dir / kInputsFileName, text);
 }
 
 }  // namespace asperity

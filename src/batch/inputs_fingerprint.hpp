@@ -24,8 +24,8 @@ inline constexpr std::string_view kInputsFileName = "inputs.txt";
 
 class InputsFingerprint {
  public:
-  InputsFingerprint(std::string_view first_line, std::string_view build_id, std::string_view part, const Shard& shard,
-                    std::string_view extra = "");
+  InputsFingerprint(std::string_view first_line, std::string_view build_id, std::string_view part,
+                    const io::Shard& shard, std::string_view extra = "");
 
   void add(std::string_view key, std::string_view value);  // "KEY VALUE"
   // "file HASH [ROLE ]PATH", HASH = hex16(digest()), or 16 '-' when digest() throws (a missing or

@@ -22,7 +22,7 @@ namespace {
 }  // namespace
 
 JournalFile::JournalFile(const std::filesystem::path& path, bool readable, std::string name) : name_(std::move(name)) {
-  fd_ = open_regular(path, (readable ? O_RDWR : O_WRONLY) | O_APPEND, "--out");
+  fd_ = io::open_regular(path, (readable ? O_RDWR : O_WRONLY) | O_APPEND, "--out");
   if (fd_ < 0) sys_fail("cannot open", path.string());
 }
 
@@ -31,13 +31,13 @@ JournalFile::~JournalFile() {
 }
 
 std::size_t JournalFile::append(std::string_view row) {
-  const std::string line = journal_line(row);
-  if (!write_fully(fd_, line)) sys_fail("cannot write", name_);
+  const std::string line = io::journal_line(row);
+  if (!io::write_fully(fd_, line)) sys_fail("cannot write", name_);
   return line.size();
 }
 
 void JournalFile::append_durably(std::string_view row) {
-  if (!write_fully(fd_, journal_line(row)) || ::fdatasync(fd_) != 0) sys_fail("cannot write", name_);
+  if (!io::write_fully(fd_, io::journal_line(row)) || ::fdatasync(fd_) != 0) sys_fail("cannot write", name_);
 }
 
 void JournalFile::sync() {

@@ -37,7 +37,7 @@ ShardBalance parse_shard_balance(const std::string& text) {
   throw std::invalid_argument("--balance " + text + ": expected index (round robin) or cost (by expected run time)");
 }
 
-ShardPlan ShardPlan::round_robin(Shard shard, std::uint64_t total, ShardBalance label) {
+ShardPlan ShardPlan::round_robin(io::Shard shard, std::uint64_t total, ShardBalance label) {
   ShardPlan p;
   p.shard_ = shard;
   p.total_ = total;
@@ -46,7 +46,7 @@ ShardPlan ShardPlan::round_robin(Shard shard, std::uint64_t total, ShardBalance 
   return p;
 }
 
-ShardPlan ShardPlan::by_cost(Shard shard, std::uint64_t total, const std::function<double(std::uint64_t)>& cost) {
+ShardPlan ShardPlan::by_cost(io::Shard shard, std::uint64_t total, const std::function<double(std::uint64_t)>& cost) {
   ShardPlan p;
   p.shard_ = shard;
   p.total_ = total;

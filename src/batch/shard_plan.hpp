@@ -34,20 +34,20 @@ ShardBalance parse_shard_balance(const std::string& text);
 class ShardPlan {
  public:
   ShardPlan() = default;  // 0/1 of an empty batch
-  static ShardPlan round_robin(Shard shard, std::uint64_t total, ShardBalance label = ShardBalance::index);
+  static ShardPlan round_robin(io::Shard shard, std::uint64_t total, ShardBalance label = ShardBalance::index);
   // `cost(i)` for i = 0 … total − 1 in order, each once; a cost that is not finite and > 0 counts 0.
-  static ShardPlan by_cost(Shard shard, std::uint64_t total, const std::function<double(std::uint64_t)>& cost);
+  static ShardPlan by_cost(io::Shard shard, std::uint64_t total, const std::function<double(std::uint64_t)>& cost);
 
   bool contains(std::uint64_t point) const;
   std::uint64_t size() const { return size_; }   // points of this shard
   std::uint64_t next(std::uint64_t from) const;  // its least point ≥ from, or total
-  const Shard& shard() const { return shard_; }
+  const io::Shard& shard() const { return shard_; }
   ShardBalance balance() const { return balance_; }
   // Expected seconds of every shard (by_cost only; empty otherwise).
   const std::vector<double>& expected_s() const { return expected_s_; }
 
  private:
-  Shard shard_;
+  io::Shard shard_;
   std::uint64_t total_ = 0, size_ = 0;
   ShardBalance balance_ = ShardBalance::index;
   std::vector<bool> mine_;  // by_cost: one bit per item (10⁷ items: 1.25 MB)

@@ -129,10 +129,10 @@ void write_contact_bench(const fs::path& dir, const std::vector<ContactBenchRow>
        "convolutions,tangential_converged,max_rss_kB\n";
   for (const auto& r : rows)
     o << r.n << ',' << 2 * r.n << ',' << r.threads << ',' << r.iterations << ',' << r.coarse_iterations << ','
-      << r.convolutions << ',' << (r.converged ? "true" : "false") << ',' << csv_number(r.wall_s) << ','
-      << csv_number(r.per_iteration_s) << ',' << csv_number(r.fft_pair_s) << ','
-      << csv_number(r.per_iteration_s / (2 * r.fft_pair_s)) << ',' << csv_number(r.area_m2) << ','
-      << csv_number(r.tangential_wall_s) << ',' << csv_number(r.tangential_wall_s / r.wall_s) << ','
+      << r.convolutions << ',' << (r.converged ? "true" : "false") << ',' << io::csv_number(r.wall_s) << ','
+      << io::csv_number(r.per_iteration_s) << ',' << io::csv_number(r.fft_pair_s) << ','
+      << io::csv_number(r.per_iteration_s / (2 * r.fft_pair_s)) << ',' << io::csv_number(r.area_m2) << ','
+      << io::csv_number(r.tangential_wall_s) << ',' << io::csv_number(r.tangential_wall_s / r.wall_s) << ','
       << r.tangential_iterations << ',' << r.tangential_convolutions << ','
       << (r.tangential_converged ? "true" : "false") << ',' << r.max_rss_kB << '\n';
   fs::create_directories(dir);

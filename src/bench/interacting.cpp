@@ -195,11 +195,11 @@ void write_interacting_bench(const fs::path& dir, const std::vector<InteractingB
   o << "what,N,interaction_tolerance,wall_s,t_end_s,Q_s_N,A_s_m2,t_peak_s,steps,slips,repins,solves,chord_iterations,"
        "rank_one_updates,rebuilds,samples,max_rss_kB,N2_doubles_kB,single_passes,single_refreshes\n";
   for (const auto& r : rows)
-    o << r.what << ',' << r.N << ',' << csv_number(r.interaction_tolerance) << ',' << csv_number(r.wall_s) << ','
-      << csv_number(r.t_end) << ',' << csv_number(r.Q_s) << ',' << csv_number(r.A_s) << ',' << csv_number(r.t_peak)
-      << ',' << r.steps << ',' << r.slips << ',' << r.repins << ',' << r.solves << ',' << r.iterations << ','
-      << r.rank_one << ',' << r.rebuilds << ',' << r.samples << ',' << r.max_rss_kB << ',' << csv_number(r.bound_kB)
-      << ',' << r.single_passes << ',' << r.single_refreshes << '\n';
+    o << r.what << ',' << r.N << ',' << io::csv_number(r.interaction_tolerance) << ',' << io::csv_number(r.wall_s)
+      << ',' << io::csv_number(r.t_end) << ',' << io::csv_number(r.Q_s) << ',' << io::csv_number(r.A_s) << ','
+      << io::csv_number(r.t_peak) << ',' << r.steps << ',' << r.slips << ',' << r.repins << ',' << r.solves << ','
+      << r.iterations << ',' << r.rank_one << ',' << r.rebuilds << ',' << r.samples << ',' << r.max_rss_kB << ','
+      << io::csv_number(r.bound_kB) << ',' << r.single_passes << ',' << r.single_refreshes << '\n';
   fs::create_directories(dir);
   io::write_text_file(dir / "interacting.csv", o.str());
 }
@@ -249,10 +249,11 @@ void write_interacting_tradeoff(const fs::path& dir, const std::vector<Interacti
   for (const auto& n : robust_names()) o << ',' << n << ',' << n << "_rel_error";
   o << '\n';
   for (const auto& r : rows) {
-    o << r.knob << ',' << csv_number(r.tolerance) << ',' << csv_number(r.interaction_tolerance) << ','
-      << csv_number(r.cutoff_m) << ',' << csv_number(r.wall_s) << ',' << csv_number(r.cpu_s);
+    o << r.knob << ',' << io::csv_number(r.tolerance) << ',' << io::csv_number(r.interaction_tolerance) << ','
+      << io::csv_number(r.cutoff_m) << ',' << io::csv_number(r.wall_s) << ',' << io::csv_number(r.cpu_s);
     for (std::size_t i = 0; i < r.value.size(); ++i)
-      o << ',' << csv_number(r.value[i]) << ',' << (r.knob == "converged" ? std::string() : csv_number(r.error[i]));
+      o << ',' << io::csv_number(r.value[i]) << ','
+        << (r.knob == "converged" ? std::string() : io::csv_number(r.error[i]));
     o << '\n';
   }
   fs::create_directories(dir);

@@ -83,10 +83,11 @@ void write_threads_bench(const fs::path& dir, const std::vector<ThreadsBenchRow>
        "m2,"
        "t_peak_s\n";
   for (const auto& r : rows)
-    o << r.load << ',' << r.N << ',' << r.threads << ',' << csv_number(r.wall_s) << ',' << csv_number(r.pass_s) << ','
-      << csv_number(r.fold_s) << ',' << csv_number(r.rebuild_s) << ',' << csv_number(r.remove_s) << ','
-      << csv_number(r.law_s) << ',' << csv_number(r.update_s) << ',' << csv_number(r.rest_s()) << ',' << r.slips << ','
-      << r.iterations << ',' << csv_number(r.Q_s) << ',' << csv_number(r.A_s) << ',' << csv_number(r.t_peak) << '\n';
+    o << r.load << ',' << r.N << ',' << r.threads << ',' << io::csv_number(r.wall_s) << ',' << io::csv_number(r.pass_s)
+      << ',' << io::csv_number(r.fold_s) << ',' << io::csv_number(r.rebuild_s) << ',' << io::csv_number(r.remove_s)
+      << ',' << io::csv_number(r.law_s) << ',' << io::csv_number(r.update_s) << ',' << io::csv_number(r.rest_s()) << ','
+      << r.slips << ',' << r.iterations << ',' << io::csv_number(r.Q_s) << ',' << io::csv_number(r.A_s) << ','
+      << io::csv_number(r.t_peak) << '\n';
   fs::create_directories(dir);
   io::write_text_file(dir / "interacting_threads.csv", o.str());
 }

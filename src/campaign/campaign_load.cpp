@@ -182,7 +182,7 @@ void read_base_scenes(const MapView& m, const fs::path& yaml, Campaign& c) {
     const fs::path p = yaml.parent_path() / scene_texts[i];
     std::error_code ec;
     if (!fs::is_regular_file(p, ec))
-      m.fail_at(at, k, "scene file not found: " + quote(scene_texts[i]) + " (looked for " + input_path(p) + ")");
+      m.fail_at(at, k, "scene file not found: " + quote(scene_texts[i]) + " (looked for " + io::input_path(p) + ")");
     for (const auto& q : c.scenes)
       if (fs::equivalent(q, p, ec)) m.fail_at(at, k, "scene " + quote(scene_texts[i]) + " listed twice");
     c.scenes.push_back(p.lexically_normal());
@@ -248,7 +248,7 @@ void probe_axes(const Campaign& c, const std::string& display) {
       for (const std::uint64_t i : probe) {
         try {
           scenes.scene(Point{0, gi, 0, {PointValue{&ax, ax.value(i)}}});
-        } catch (const InputError& e) {
+        } catch (const io::InputError& e) {
           rethrow_at_campaign_line(e, display, ax.line, ax.key);
         }
       }
@@ -258,7 +258,7 @@ void probe_axes(const Campaign& c, const std::string& display) {
 }  // namespace
 
 Campaign load_campaign(const fs::path& yaml) {
-  const std::string display = input_path(yaml);
+  const std::string display = io::input_path(yaml);
   const Source src{display, nullptr};
   const YAML::Node root = load_yaml_file(yaml, display);
   const MapView m(src, root, "", kCampaignKeys, 1);
@@ -282,8 +282,8 @@ Campaign load_campaign(const fs::path& yaml) {
     for (const Axis& ax : g.axes)
       for (std::size_t i = 0; i < c.set.size(); ++i)
         if (c.set[i].first == ax.key)
-          throw InputError(display, ax.line, ax.key,
-                           "also fixed by set (line " + std::to_string(set_lines[i]) + "); keep one");
+          throw io::InputError(display, ax.line, ax.key,
+                               "also fixed by set (line " + std::to_string(set_lines[i]) + "); keep one");
 
   // Semantic checks against the scenes: every base scene with `set`, then every axis value.
   check_base_scenes(c, set_lines);

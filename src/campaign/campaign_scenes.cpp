@@ -18,11 +18,11 @@ namespace fs = std::filesystem;
 using io::format_double;
 
 // A scene tree error caused by an override, re-reported at the campaign line that set it.
-[[noreturn]] void rethrow_at_campaign_line(const InputError& e, const std::string& campaign_file, int line,
+[[noreturn]] void rethrow_at_campaign_line(const io::InputError& e, const std::string& campaign_file, int line,
                                            const std::string& key) {
   std::string msg = e.message;
   if (!e.key.empty() && e.key != key) msg = e.key + ": " + msg;
-  throw InputError(campaign_file, line, key, msg + " (on " + e.file + ")");
+  throw io::InputError(campaign_file, line, key, msg + " (on " + e.file + ")");
 }
 
 namespace {
@@ -54,7 +54,8 @@ YAML::Node parse_base(const BaseScene& b) {
   try {
     return YAML::Load(b.text);  // the text passed load_scene_tree's checks when it was read
   } catch (const YAML::Exception& e) {
-    throw InputError(input_path(b.file), e.mark.is_null() ? 0 : e.mark.line + 1, "", "malformed YAML: " + e.msg);
+    throw io::InputError(io::input_path(b.file), e.mark.is_null() ? 0 : e.mark.line + 1, "",
+                         "malformed YAML: " + e.msg);
   }
 }
 
@@ -70,9 +71,9 @@ YAML::Node base_tree(const Campaign& c, const BaseScene& b, const std::vector<in
     try {
       tree.reset(apply_override(tree, key, override_value(key, v, dir)));
       if (set_lines) scene_from_tree(tree, b.file, cache);
-    } catch (const InputError& e) {
+    } catch (const io::InputError& e) {
       if (!set_lines) throw;
-      rethrow_at_campaign_line(e, input_path(c.file), (*set_lines)[i], "set." + key);
+      rethrow_at_campaign_line(e, io::input_path(c.file), (*set_lines)[i], "set." + key);
     }
   }
   return tree;
@@ -85,7 +86,7 @@ std::vector<BaseScene> base_scenes(const Campaign& c) {
   for (const fs::path& p : c.scenes) {
     load_scene_tree(p);
     // Read again with the same bounded reader (a file swapped since is caught, never unbounded).
-    out.push_back({p, io::read_input_file(p, input_path(p), io::kMaxYamlBytes)});
+    out.push_back({p, io::read_input_file(p, io::input_path(p), io::kMaxYamlBytes)});
   }
   return out;
 }
@@ -146,7 +147,7 @@ Scene CampaignScenes::scene(const Point& point) const {
         for (const PointValue* pv : other)
           tree.reset(apply_override(tree, pv->axis->key, override_value(pv->axis->key, pv->value, dir)));
         t.emplace(typed_scene_from_tree(tree, b.file, im.topography));
-      } catch (const InputError&) {
+      } catch (const io::InputError&) {
         // Reported point by point below (the point's numbers may also make it valid).
       }
       it = im.checked.emplace(id, std::move(t)).first;

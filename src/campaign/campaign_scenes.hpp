@@ -49,7 +49,7 @@ class CampaignScenes {
 void check_base_scenes(const Campaign& c, const std::vector<int>& set_lines);
 
 // A scene error caused by a campaign value, re-reported at the campaign line that set it.
-[[noreturn]] void rethrow_at_campaign_line(const InputError& e, const std::string& campaign_file, int line,
+[[noreturn]] void rethrow_at_campaign_line(const io::InputError& e, const std::string& campaign_file, int line,
                                            const std::string& key);
 
 }  // namespace asperity

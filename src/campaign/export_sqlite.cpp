@@ -112,11 +112,12 @@ struct TempFile {
 // FILE must be new, in a folder that exists (export makes no folders, replaces no file).
 void check_export_target(const fs::path& file) {
   if (fs::exists(fs::symlink_status(file)))
-    throw InputError(file.string(), 0, "--sqlite", "exists; export writes a new file only (choose another name)");
+    throw io::InputError(file.string(), 0, "--sqlite", "exists; export writes a new file only (choose another name)");
   const fs::path folder = file.parent_path().empty() ? fs::path(".") : file.parent_path();
   if (!fs::is_directory(folder))
-    throw InputError(file.string(), 0, "--sqlite",
-                     "its folder " + folder.string() + " does not exist (export writes a file, it makes no folders)");
+    throw io::InputError(
+        file.string(), 0, "--sqlite",
+        "its folder " + folder.string() + " does not exist (export writes a file, it makes no folders)");
 }
 
 // The store's columns as the table holds them, and where its rows are read from (for messages).
@@ -144,7 +145,7 @@ void set_column_types(const StoreReader& s, std::size_t status, ExportColumns& x
   }
   if (x.varied.empty()) return;
   for (const StoredRow& r : s.rows()) {
-    const std::vector<std::string> f = csv_split(s.row(r));
+    const std::vector<std::string> f = io::csv_split(s.row(r));
     for (const std::size_t c : x.varied) {
       double v = 0;
       if (x.types[c] == Type::real && c < f.size() && !f[c].empty() && !store_number(f[c], v)) x.types[c] = Type::text;
@@ -154,12 +155,12 @@ void set_column_types(const StoreReader& s, std::size_t status, ExportColumns& x
 
 ExportColumns export_columns(const StoreReader& s, const fs::path& store) {
   ExportColumns x;
-  x.names = csv_split(s.header());
+  x.names = io::csv_split(s.header());
   x.where = fs::exists(store / "journal.csv") ? (store / "journal.csv").string() : (store / "points.csv").string();
   const bool has_status = std::find(x.names.begin(), x.names.end(), "status") != x.names.end();
   const std::size_t status = has_status ? Journal::status_column(s.header()) : 0;
   if (status < 4 || x.names.size() < 4 || x.names[0] != "index" || x.names[1] != "hash")
-    throw InputError(x.where, 1, "", "not a sweep store header: " + s.header().substr(0, 80));
+    throw io::InputError(x.where, 1, "", "not a sweep store header: " + s.header().substr(0, 80));
   set_column_types(s, status, x);
   // Unique column names (an `experiment` axis repeats the experiment column): NAME_2, NAME_3.
   x.cols = x.names;
@@ -222,14 +223,14 @@ void write_database(const fs::path& tmp, const StoreReader& s, const fs::path& s
   for (std::size_t c = 0; c < x.cols.size(); ++c) insert += c ? ", ?" : "?";
   sqlite3_stmt* st = db.prepare(insert + ")");
   for (const StoredRow& r : s.rows()) {
-    bind_row(st, csv_split(s.row(r)), x, r.index);
+    bind_row(st, io::csv_split(s.row(r)), x, r.index);
     db.step_reset(st);
     ++rep.rows;
   }
   sqlite3_stmt* files = db.prepare("INSERT INTO store_files VALUES (?, ?)");
   for (const std::string name : {"provenance.yaml", "campaign.yaml"}) {
     if (!fs::exists(store / name)) continue;
-    const std::string text = read_file_text(store / name);
+    const std::string text = io::read_file_text(store / name);
     sqlite3_bind_text(files, 1, name.data(), static_cast<int>(name.size()), SQLITE_TRANSIENT);
     sqlite3_bind_text(files, 2, text.data(), static_cast<int>(text.size()), SQLITE_TRANSIENT);
     db.step_reset(files);
@@ -247,12 +248,12 @@ SqliteExportReport export_sqlite(const fs::path& store, const fs::path& file) {
   check_export_target(file);
   const StoreReader s(store);
   const ExportColumns x = export_columns(s, store);
-  const fs::path tmp = file.parent_path() / temp_name(file.filename().string());
+  const fs::path tmp = file.parent_path() / io::temp_name(file.filename().string());
   // An export killed before it could remove its temporary (kill -9, a lost node) left it here.
-  remove_stale_temporaries(file.parent_path().empty() ? fs::path(".") : file.parent_path(),
-                           temp_prefix(file.filename().string()));
+  io::remove_stale_temporaries(file.parent_path().empty() ? fs::path(".") : file.parent_path(),
+                               io::temp_prefix(file.filename().string()));
   TempFile guard{tmp};
-  const TempGuard on_signal(tmp);
+  const io::TempGuard on_signal(tmp);
   SqliteExportReport rep;
   rep.columns = x.cols.size();
   write_database(tmp, s, store, x, rep);

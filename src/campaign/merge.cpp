@@ -32,8 +32,8 @@ std::string provenance_line(const std::string& text, const std::string& key) {
 // agree; otherwise one of the stores is stale and merging would keep either silently.
 void check_same_point(std::uint64_t index, const std::string& kept, const std::string& other, const fs::path& kept_in,
                       const fs::path& other_in, const std::string& header) {
-  const auto a = csv_split(kept), b = csv_split(other);
-  const auto names = csv_split(header);
+  const auto a = io::csv_split(kept), b = io::csv_split(other);
+  const auto names = io::csv_split(header);
   const std::string point =
       "merge: point " + std::to_string(index) + " (grid " + a.at(2) + ", experiment " + a.at(3) + ")";
   if (a.at(1) != b.at(1))
@@ -59,7 +59,7 @@ std::vector<StoreReader> open_inputs(const std::vector<fs::path>& inputs, std::s
   stores.reserve(inputs.size());
   for (const fs::path& in : inputs) {
     const StoreReader& s = stores.emplace_back(in);
-    const std::string prov = read_file_text(in / "provenance.yaml");
+    const std::string prov = io::read_file_text(in / "provenance.yaml");
     const std::string h = provenance_line(prov, "campaign_fnv1a64");
     if (header.empty()) {
       header = s.header(), campaign_hash = h, first_provenance = prov;
@@ -137,7 +137,7 @@ std::map<std::uint64_t, std::size_t> choose_duplicates(const std::vector<StoreRe
       const std::string row = row_of(stores[holders[k]], index);
       check_same_point(index, kept_row, row, inputs[kept], inputs[holders[k]], header);
       // Both agree (or one failed): keep a row that ran to the end.
-      if (csv_split(kept_row).at(status_col) != "ok") kept = holders[k], kept_row = row;
+      if (io::csv_split(kept_row).at(status_col) != "ok") kept = holders[k], kept_row = row;
     }
     chosen[index] = kept;
   });
@@ -154,7 +154,7 @@ std::string merged_provenance(const std::string& provenance, const std::vector<f
     if (line.rfind("shard_balance:", 0) == 0) continue;  // one store: nothing dealt
     if (line.rfind("shard:", 0) == 0) {
       prov += "shard: \"0/1\"  # merged\nmerged_from:\n";
-      for (const fs::path& in : inputs) prov += "  - " + yaml_quoted(in.string()) + "\n";
+      for (const fs::path& in : inputs) prov += "  - " + io::yaml_quoted(in.string()) + "\n";
     } else {
       prov += line;
     }
@@ -187,34 +187,35 @@ MergeReport merge_stores(const std::vector<fs::path>& inputs, const fs::path& ou
   const std::map<std::uint64_t, std::size_t> chosen = choose_duplicates(stores, inputs, header, rep);
   fs::create_directories(out);
   StoreLock lock(out);
-  remove_stale_temporaries(out);  // of a merge stopped by kill -9 or a lost node
-  AtomicFileWriter journal(out / "journal.csv", Durability::synced), points(out / "points.csv", Durability::synced);
-  journal.write(journal_header(header) + "\n");
+  io::remove_stale_temporaries(out);  // of a merge stopped by kill -9 or a lost node
+  io::AtomicFileWriter journal(out / "journal.csv", io::Durability::synced),
+      points(out / "points.csv", io::Durability::synced);
+  journal.write(io::journal_header(header) + "\n");
   points.write(header + "\n");
-  std::optional<AtomicFileWriter> series_out;
+  std::optional<io::AtomicFileWriter> series_out;
   if (!series_header.empty()) {
-    series_out.emplace(out / "series.csv", Durability::synced);
+    series_out.emplace(out / "series.csv", io::Durability::synced);
     series_out->write(series_header + "\n");
   }
   for_each_point(stores, [&](std::uint64_t index, const std::vector<std::size_t>& holders) {
     const auto it = holders.size() > 1 ? chosen.find(index) : chosen.end();
     const std::size_t input = it != chosen.end() ? it->second : holders[0];
     const std::string row = row_of(stores[input], index);
-    journal.write(journal_line(row));
+    journal.write(io::journal_line(row));
     points.write(row + "\n");
     // The point's series block from the input whose row is kept, when it has the row's hash.
     if (series_out && series[input]) {
-      const auto f = csv_split(row);
+      const auto f = io::csv_split(row);
       const SeriesBlock* b = series[input]->find(index);
-      if (b && hex16(b->hash) == f.at(1)) series_out->write(series_block(index, b->hash, series[input]->rows(*b)));
+      if (b && io::hex16(b->hash) == f.at(1)) series_out->write(series_block(index, b->hash, series[input]->rows(*b)));
     }
     ++rep.rows;
-    if (csv_split(row).at(status_col) != "ok") ++rep.failed;
+    if (io::csv_split(row).at(status_col) != "ok") ++rep.failed;
   });
   // provenance.yaml first (merge_remnant knows the folder by it), journal.csv last (the merge is
   // done when it is there).
-  write_file_durably(out / "provenance.yaml", merged_provenance(provenance, inputs));
-  write_file_durably(out / "campaign.yaml", read_file_text(inputs[0] / "campaign.yaml"));
+  io::write_file_durably(out / "provenance.yaml", merged_provenance(provenance, inputs));
+  io::write_file_durably(out / "campaign.yaml", io::read_file_text(inputs[0] / "campaign.yaml"));
   copy_legacy_series(inputs, out);
   if (series_out) series_out->commit();
   points.commit();

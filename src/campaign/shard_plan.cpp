@@ -20,7 +20,7 @@ bool sets_cost(const std::string& key) {
 
 }  // namespace
 
-ShardPlan plan_shard(const Campaign& c, Shard shard, ShardBalance balance) {
+ShardPlan plan_shard(const Campaign& c, io::Shard shard, ShardBalance balance) {
   const std::uint64_t total = c.size();
   if (balance == ShardBalance::index || shard.count == 1) return ShardPlan::round_robin(shard, total, balance);
   if (total > kMaxCostBalancedPoints)

@@ -19,6 +19,6 @@ inline constexpr std::uint64_t kMaxCostBalancedPoints = 100'000'000;
 // and other non-numeric values, stop.time, solver.Ct, experiment.mass, experiment.k_L); a point
 // whose scene is invalid costs the fixed per-run part. Throws std::invalid_argument past
 // kMaxCostBalancedPoints.
-ShardPlan plan_shard(const Campaign& campaign, Shard shard, ShardBalance balance);
+ShardPlan plan_shard(const Campaign& campaign, io::Shard shard, ShardBalance balance);
 
 }  // namespace asperity

@@ -38,7 +38,7 @@ bool parse_u64(std::string_view s, std::uint64_t& out, int base = 10) {
 class LineReader {
  public:
   // Opened without following a link, a regular file only (io/safe_open.hpp).
-  explicit LineReader(const fs::path& path) : fd_(open_regular(path, O_RDONLY, "--out")) {
+  explicit LineReader(const fs::path& path) : fd_(io::open_regular(path, O_RDONLY, "--out")) {
     if (fd_ < 0) throw std::runtime_error("cannot open " + path.string() + ": " + std::strerror(errno));
   }
   ~LineReader() { ::close(fd_); }
@@ -122,7 +122,7 @@ std::size_t max_rows(const fs::path& file, const std::string& header, bool journ
 }  // namespace
 
 std::size_t Journal::status_column(const std::string& header) {
-  const auto cols = csv_split(header);
+  const auto cols = io::csv_split(header);
   for (std::size_t i = 0; i < cols.size(); ++i)
     if (cols[i] == "status") return i;
   throw std::runtime_error("store header has no status column");
@@ -172,16 +172,16 @@ bool Journal::scan(const fs::path& path) {
     dropped_ += in.torn() ? 1 : 0;
     return false;
   }
-  const std::optional<JournalDigest> digest = journal_digest_of(line, header_);
+  const std::optional<io::JournalDigest> digest = io::journal_digest_of(line, header_);
   if (!digest)
-    throw InputError(
+    throw io::InputError(
         path.string(), 1, "header",
         "written for another campaign or version (its header differs); use another --out or remove the store");
   digest_ = *digest;
-  bool clean = digest_ == JournalDigest::sha256;  // a legacy journal is rewritten with SHA-256
+  bool clean = digest_ == io::JournalDigest::sha256;  // a legacy journal is rewritten with SHA-256
   while (in.next(line, offset)) {
     std::string_view row;
-    if (checked_journal_row(line, row, digest_))
+    if (io::checked_journal_row(line, row, digest_))
       add_entry(row, offset);
     else
       ++dropped_, clean = false;
@@ -200,7 +200,7 @@ Journal::Journal(const fs::path& dir, const std::string& header, JournalSync syn
   // rows are added, and the index never moves while this object appends at most `room` rows.
   const fs::path sized = fs::exists(path) || !fs::exists(dir / "points.csv") ? path : dir / "points.csv";
   index_.reserve(max_rows(sized, header_, sized == path) + static_cast<std::size_t>(room));
-  const std::string head = journal_header(header_) + "\n";
+  const std::string head = io::journal_header(header_) + "\n";
   std::string line;
   std::uint64_t offset = 0;
   bool indexed = false;
@@ -212,26 +212,26 @@ Journal::Journal(const fs::path& dir, const std::string& header, JournalSync syn
       throw std::runtime_error((dir / "points.csv").string() +
                                " was written for another campaign or version "
                                "(header differs); use another --out or remove the store");
-    AtomicFileWriter out(path, Durability::synced);
+    io::AtomicFileWriter out(path, io::Durability::synced);
     out.write(head);
-    while (in.next(line, offset)) out.write(journal_line(line));
+    while (in.next(line, offset)) out.write(io::journal_line(line));
     out.commit();
   } else if (!fs::exists(path)) {
-    write_file_durably(path, head);
+    io::write_file_durably(path, head);
   } else if (scan(path)) {
     indexed = true;  // intact: appended to as it is
   } else {
     // Recovered: rewritten atomically without the torn or corrupt lines (streamed), every line
     // with SHA-256 (a legacy journal's FNV-1a lines are checked as such, then re-digested).
-    AtomicFileWriter out(path, Durability::synced);
+    io::AtomicFileWriter out(path, io::Durability::synced);
     out.write(head);
     LineReader in(path);
     for (bool first = true; in.next(line, offset); first = false) {
       std::string_view row;
-      if (!first && checked_journal_row(line, row, digest_)) out.write(journal_line(row));
+      if (!first && io::checked_journal_row(line, row, digest_)) out.write(io::journal_line(row));
     }
     out.commit();
-    digest_ = JournalDigest::sha256;
+    digest_ = io::JournalDigest::sha256;
   }
   file_ = std::make_unique<JournalFile>(path, true, "journal.csv");
   if (!indexed) {  // the offsets into the file as it is now
@@ -267,14 +267,14 @@ void Journal::sync() {
 
 std::string Journal::row(const StoredRow& e) const {
   std::string line = file_->line_at(e.offset());
-  line.resize(journal_row(line).size());  // without ",digest"
+  line.resize(io::journal_row(line).size());  // without ",digest"
   return line;
 }
 
 std::string Journal::write_points(const fs::path& dir, const std::function<bool(std::uint64_t)>& keep) {
   settle();
-  AtomicFileWriter out(dir / "points.csv", Durability::synced);
-  Sha256 digest;
+  io::AtomicFileWriter out(dir / "points.csv", io::Durability::synced);
+  io::Sha256 digest;
   const auto put = [&](const std::string& text) {
     out.write(text);
     digest.update(text);
@@ -291,31 +291,32 @@ StoreReader::StoreReader(const fs::path& dir) {
   const bool journal = fs::exists(file_);
   if (!journal) {  // a store without its journal (e.g. committed): its points.csv
     file_ = dir / "points.csv";
-    if (!fs::exists(file_)) throw InputError(dir.string(), 0, "", "not a sweep store (no journal.csv or points.csv)");
+    if (!fs::exists(file_))
+      throw io::InputError(dir.string(), 0, "", "not a sweep store (no journal.csv or points.csv)");
   }
   LineReader in(file_);
   std::string line;
   std::uint64_t offset = 0;
-  if (!in.next(line, offset)) throw InputError(file_.string(), 0, "", "empty file, not a sweep store");
+  if (!in.next(line, offset)) throw io::InputError(file_.string(), 0, "", "empty file, not a sweep store");
   header_ = line;
-  JournalDigest digest = JournalDigest::sha256;
+  io::JournalDigest digest = io::JournalDigest::sha256;
   if (journal) {
-    header_.resize(journal_row(line).size());
-    const std::optional<JournalDigest> d = journal_digest_of(line, header_);
-    if (!d) throw InputError(file_.string(), 1, "", "malformed journal header");
+    header_.resize(io::journal_row(line).size());
+    const std::optional<io::JournalDigest> d = io::journal_digest_of(line, header_);
+    if (!d) throw io::InputError(file_.string(), 1, "", "malformed journal header");
     digest = *d;
   }
   journal_ = journal;
   rows_.reserve(max_rows(file_, header_, journal));
   while (in.next(line, offset)) {
     std::string_view row = line;
-    if (journal && !checked_journal_row(line, row, digest)) continue;
+    if (journal && !io::checked_journal_row(line, row, digest)) continue;
     const std::size_t comma = row.find(',');
     std::uint64_t index = 0;
     if (comma != std::string_view::npos && parse_u64(row.substr(0, comma), index)) rows_.add(index, offset, false);
   }
   rows_.settle();
-  fd_ = open_regular(file_, O_RDONLY, "--out");
+  fd_ = io::open_regular(file_, O_RDONLY, "--out");
   if (fd_ < 0) sys_fail("cannot open", file_);
 }
 
@@ -334,7 +335,7 @@ StoreReader::StoreReader(StoreReader&& o) noexcept
 
 std::string StoreReader::row(const StoredRow& r) const {
   std::string line = read_line_at(fd_, r.offset(), file_.string());
-  if (journal_) line.resize(journal_row(line).size());  // without ",digest"
+  if (journal_) line.resize(io::journal_row(line).size());  // without ",digest"
   return line;
 }
 
@@ -366,13 +367,13 @@ bool parse_trailer(std::string_view line, std::uint64_t& index, std::uint64_t& h
 std::string series_block(std::uint64_t index, std::uint64_t hash, const std::string& rows) {
   std::uint64_t n = 0;
   for (const char c : rows) n += c == '\n' ? 1 : 0;
-  return rows + "#end," + std::to_string(index) + "," + hex16(hash) + "," + std::to_string(n) + "," +
-         hex16(fnv1a64(rows)) + "\n";
+  return rows + "#end," + std::to_string(index) + "," + io::hex16(hash) + "," + std::to_string(n) + "," +
+         io::hex16(io::fnv1a64(rows)) + "\n";
 }
 
 SeriesFile::SeriesFile(const fs::path& dir, bool append, const std::vector<std::string>& columns)
     : path_(dir / "series.csv") {
-  if (append && !fs::exists(path_)) write_file_durably(path_, series_header(columns) + "\n");
+  if (append && !fs::exists(path_)) io::write_file_durably(path_, series_header(columns) + "\n");
   // Index the whole blocks; the good prefix ends after the last one that is whole (a block is
   // whole when its trailer names its index and its row count and the checksum of its rows
   // matches; anything after the first bad one is a torn or corrupt tail).
@@ -382,12 +383,12 @@ SeriesFile::SeriesFile(const fs::path& dir, bool append, const std::vector<std::
   if (!in.next(line, offset) || line.rfind("index", 0) != 0)
     throw std::runtime_error(path_.string() + ": not a store's series file (no header)");
   header_ = line;
-  const auto names = csv_split(line);
+  const auto names = io::csv_split(line);
   columns_.assign(names.begin() + 1, names.end());
   if (!columns.empty() && line != series_header(columns))
     throw std::runtime_error(path_.string() + " holds series columns " + line + ", the campaign asks for " +
                              series_header(columns) + "; use another --out or remove the store");
-  std::uint64_t good_end = in.offset(), block_start = good_end, rows = 0, sum = fnv1a64(std::string_view());
+  std::uint64_t good_end = in.offset(), block_start = good_end, rows = 0, sum = io::fnv1a64(std::string_view());
   std::uint64_t first_index = 0;
   bool bad = false;
   std::vector<SeriesBlock> all;
@@ -400,7 +401,7 @@ SeriesFile::SeriesFile(const fs::path& dir, bool append, const std::vector<std::
         break;
       }
       all.push_back({index, hash, block_start, offset});
-      good_end = in.offset(), block_start = good_end, rows = 0, sum = fnv1a64(std::string_view());
+      good_end = in.offset(), block_start = good_end, rows = 0, sum = io::fnv1a64(std::string_view());
       continue;
     }
     std::uint64_t index = 0;
@@ -411,7 +412,7 @@ SeriesFile::SeriesFile(const fs::path& dir, bool append, const std::vector<std::
     }
     first_index = index;
     ++rows;
-    sum = fnv1a64_extend(fnv1a64_extend(sum, line), "\n");
+    sum = io::fnv1a64_extend(io::fnv1a64_extend(sum, line), "\n");
   }
   const std::uint64_t file_size = fs::file_size(path_);
   dropped_ = static_cast<std::size_t>(file_size - good_end);
@@ -426,7 +427,7 @@ SeriesFile::SeriesFile(const fs::path& dir, bool append, const std::vector<std::
       blocks_.push_back(all[i]);
     }
   }
-  fd_ = open_regular(path_, append ? O_RDWR | O_APPEND : O_RDONLY, "--out");
+  fd_ = io::open_regular(path_, append ? O_RDWR | O_APPEND : O_RDONLY, "--out");
   if (fd_ < 0) sys_fail("cannot open", path_);
   if (append && dropped_ > 0) {  // cut off the torn tail, durably, before appending after it
     if (::ftruncate(fd_, static_cast<off_t>(good_end)) != 0 || ::fdatasync(fd_) != 0)
@@ -461,7 +462,7 @@ std::string SeriesFile::rows(const SeriesBlock& b) const {
 
 void SeriesFile::append(std::uint64_t index, std::uint64_t hash, const std::string& rows) {
   const std::string block = series_block(index, hash, rows);
-  if (!write_fully(fd_, block)) sys_fail("cannot write", path_);
+  if (!io::write_fully(fd_, block)) sys_fail("cannot write", path_);
   size_ += block.size();
   unsynced_ = true;
   if (find(index)) superseded_ = true;
@@ -478,7 +479,7 @@ void SeriesFile::compact(const std::function<bool(std::uint64_t, std::uint64_t)>
   sync();
   // Re-index the file as it is now (appended blocks included): a reader of the current bytes.
   const SeriesFile now(path_.parent_path(), false);
-  AtomicFileWriter out(path_, Durability::synced);
+  io::AtomicFileWriter out(path_, io::Durability::synced);
   out.write(header_ + "\n");
   for (const SeriesBlock& b : now.blocks_)
     if (keep(b.index, b.hash)) {
@@ -487,7 +488,7 @@ void SeriesFile::compact(const std::function<bool(std::uint64_t, std::uint64_t)>
   out.commit();
   // This object's descriptor still names the old file: reopen for appending.
   ::close(fd_);
-  fd_ = open_regular(path_, O_RDWR | O_APPEND, "--out");
+  fd_ = io::open_regular(path_, O_RDWR | O_APPEND, "--out");
   if (fd_ < 0) sys_fail("cannot open", path_);
   size_ = fs::file_size(path_);
   superseded_ = false;
@@ -508,7 +509,7 @@ std::map<std::uint64_t, std::string> read_point_series(const fs::path& dir, cons
     const std::string hash = row.substr(a, b - a);
     if (series) {
       const SeriesBlock* blk = series->find(index);
-      if (!blk || hex16(blk->hash) != hash) continue;
+      if (!blk || io::hex16(blk->hash) != hash) continue;
       std::string text;
       for (std::size_t j = 0; j < series->columns().size(); ++j) text += (j ? "," : "") + series->columns()[j];
       text += '\n';
@@ -520,7 +521,7 @@ std::map<std::uint64_t, std::string> read_point_series(const fs::path& dir, cons
       }
       out[index] = std::move(text);
     } else if (const fs::path f = dir / "series" / (hash + ".csv"); fs::exists(f)) {
-      out[index] = read_file_text(f);
+      out[index] = io::read_file_text(f);
     }
   }
   return out;

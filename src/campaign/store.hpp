@@ -125,7 +125,7 @@ class Journal {
   bool scan(const std::filesystem::path& path);
   void add_entry(std::string_view row, std::uint64_t offset);
   std::string header_;
-  JournalDigest digest_ = JournalDigest::sha256;  // of the journal as read (legacy: rewritten at open)
+  io::JournalDigest digest_ = io::JournalDigest::sha256;  // of the journal as read (legacy: rewritten at open)
   std::size_t status_col_;
   std::unique_ptr<JournalFile> file_;  // open once the journal is recovered
   std::uint64_t size_ = 0;
@@ -231,9 +231,9 @@ std::map<std::uint64_t, std::string> read_point_series(const std::filesystem::pa
 
 // An exclusive lock on DIR/.lock held for the object's lifetime (std::runtime_error "another sweep
 // is writing DIR ..." when another process holds it).
-class StoreLock : public DirLock {
+class StoreLock : public io::DirLock {
  public:
-  explicit StoreLock(const std::filesystem::path& dir) : DirLock(dir, "sweep") {}
+  explicit StoreLock(const std::filesystem::path& dir) : io::DirLock(dir, "sweep") {}
 };
 
 }  // namespace asperity

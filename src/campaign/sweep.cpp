@@ -80,14 +80,14 @@ class Progress {
   std::atomic<std::uint64_t> skipped_;  // incremented by the build stage while the writer reads it
   std::uint64_t done_ = 0, failed_ = 0;
   SweepCounters* counters_;
-  ProgressLine line_;
+  io::ProgressLine line_;
 };
 
 }  // namespace
 
 std::string store_header(const Campaign& c) {
   std::string h = "index,hash,grid,experiment";
-  for (const std::string& k : c.varied_keys()) h.append(",").append(csv_field(k));
+  for (const std::string& k : c.varied_keys()) h.append(",").append(io::csv_field(k));
   h += ",status,error";
   for (const ObservableField& f : observable_fields())
     if (f.per_point) h += std::string(",") + f.name;
@@ -98,22 +98,22 @@ namespace {
 
 // One process holds an index entry per point of its shard (16 bytes, reserved up front): a
 // shard larger than this is refused before anything is created, whatever the campaign's size.
-void check_shard_size(const Campaign& c, const Shard& shard) {
+void check_shard_size(const Campaign& c, const io::Shard& shard) {
   if (const std::uint64_t mine = shard.size(c.size()); mine > kMaxShardPoints)
-    throw InputError("", 0, "--shard",
-                     "this shard has " + std::to_string(mine) + " of the campaign's " + std::to_string(c.size()) +
-                         " points, more than the " + std::to_string(kMaxShardPoints) +
-                         " one process may hold; run it as at least " +
-                         std::to_string((c.size() + kMaxShardPoints - 1) / kMaxShardPoints) + " shards");
+    throw io::InputError("", 0, "--shard",
+                         "this shard has " + std::to_string(mine) + " of the campaign's " + std::to_string(c.size()) +
+                             " points, more than the " + std::to_string(kMaxShardPoints) +
+                             " one process may hold; run it as at least " +
+                             std::to_string((c.size() + kMaxShardPoints - 1) / kMaxShardPoints) + " shards");
 }
 
 // The shard's plan, its size and expected costs noted in the report.
-ShardPlan plan_and_report(const Campaign& c, const Shard& shard, SweepReport& rep) {
+ShardPlan plan_and_report(const Campaign& c, const io::Shard& shard, SweepReport& rep) {
   const ShardPlan plan = [&] {
     try {
       return plan_shard(c, shard, rep.balance);
     } catch (const std::invalid_argument& e) {  // --balance cost on too large a campaign: bad input
-      throw InputError("", 0, "--balance", e.what());
+      throw io::InputError("", 0, "--balance", e.what());
     }
   }();
   rep.points = plan.size();
@@ -194,11 +194,11 @@ std::string run_failure(const Campaign& c, const RunResult& r) {
 // The journal row of a job: index, hash, grid, experiment, varied values, status, error,
 // observables (empty when failed), wall time.
 std::string job_row(const Campaign& c, const Job& job, const std::optional<RunResult>& r, double wall) {
-  std::string row = std::to_string(job.point.index) + "," + hex16(job.hash) + "," +
-                    csv_field(c.grids[job.point.grid].name) + "," +
-                    csv_field(job.scene ? job.scene->experiment.name : "");
-  for (const std::string& v : job.varied) row.append(",").append(csv_field(v));
-  row += job.failed ? ",failed," + csv_field(job.error) : ",ok,";
+  std::string row = std::to_string(job.point.index) + "," + io::hex16(job.hash) + "," +
+                    io::csv_field(c.grids[job.point.grid].name) + "," +
+                    io::csv_field(job.scene ? job.scene->experiment.name : "");
+  for (const std::string& v : job.varied) row.append(",").append(io::csv_field(v));
+  row += job.failed ? ",failed," + io::csv_field(job.error) : ",ok,";
   for (const ObservableField& f : observable_fields())
     if (f.per_point)
       row.append(",").append(r && !job.failed ? observable_text(f, r->obs, io::format_exact) : std::string());
@@ -302,11 +302,11 @@ class ShardRun {
     job->point = point_at(c_, index);
     try {
       job->scene = scenes_.scene(job->point);
-      job->hash = fnv1a64(canonical_scene_text(*job->scene, c_.file.parent_path(), data_hashes_));
+      job->hash = io::fnv1a64(canonical_scene_text(*job->scene, c_.file.parent_path(), data_hashes_));
     } catch (const std::exception& e) {  // a bad combination of values: recorded, not fatal
       job->scene.reset();
       job->error = e.what();
-      job->hash = fnv1a64("invalid point: " + job->error);
+      job->hash = io::fnv1a64("invalid point: " + job->error);
     }
     if (st) {
       const bool same = row_hash(journal_.row(*st)) == job->hash;  // pread of an old row: safe while the writer appends
@@ -351,7 +351,7 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
   check_shard_size(c, opt.shard);
   fs::create_directories(rep.store);
   StoreLock lock(rep.store);
-  remove_stale_temporaries(rep.store);  // of a sweep or merge that died while writing (kill -9, a lost node)
+  io::remove_stale_temporaries(rep.store);  // of a sweep or merge that died while writing (kill -9, a lost node)
   rep.balance = prepare_store(rep.store, c, opt);
   const ShardPlan shard = plan_and_report(c, opt.shard, rep);
   // Room for one row per point of the shard: the index the build stage reads (entries()) does
@@ -372,7 +372,7 @@ SweepReport run_sweep(const Campaign& c, const SweepOptions& opt) {
     points_digest = take_points_digest(*old);
     rep.trusted =
         !opt.build_id.empty() && inputs_text(c, opt.build_id, shard, listed_inputs(*old, c), data_hashes) == *old;
-    remove_file_durably(rep.store / kInputsFileName);
+    io::remove_file_durably(rep.store / kInputsFileName);
   }
   std::vector<std::uint8_t> current(journal.entries().size(), 1);
   if (!rep.trusted) current = recheck_stored(c, opt, shard, journal, data_hashes, runner, rep.rehashed);

@@ -58,7 +58,7 @@ struct SweepCounters {
 
 struct SweepOptions {
   int threads = 0;  // 0: all hardware threads
-  Shard shard;      // default 0/1: every point
+  io::Shard shard;  // default 0/1: every point
   // How the points are dealt to shards (shard_plan.hpp). Empty: the store's own (provenance.yaml
   // shard_balance; a store written before it was recorded: index), cost for a new store.
   std::optional<ShardBalance> balance;

@@ -58,31 +58,31 @@ std::string store_provenance_yaml(const Campaign& c, const std::string& campaign
                                   ShardBalance balance) {
   std::ostringstream y;
   y << kStoreProvenanceFirstLine << '\n';
-  y << "campaign: " << yaml_quoted(c.name) << '\n';
-  y << "campaign_file: " << yaml_quoted(result_path(c.file)) << '\n';
-  y << "campaign_fnv1a64: " << yaml_quoted(hex16(fnv1a64(campaign_text))) << '\n';
+  y << "campaign: " << io::yaml_quoted(c.name) << '\n';
+  y << "campaign_file: " << io::yaml_quoted(io::result_path(c.file)) << '\n';
+  y << "campaign_fnv1a64: " << io::yaml_quoted(io::hex16(io::fnv1a64(campaign_text))) << '\n';
   y << "points: " << c.size() << '\n';
-  y << "shard: " << yaml_quoted(std::to_string(opt.shard.index) + "/" + std::to_string(opt.shard.count)) << '\n';
-  y << "shard_balance: " << yaml_quoted(shard_balance_name(balance)) << "  # how points are dealt to shards\n";
-  y << "asperity_version: " << yaml_quoted(build_info().version) << '\n';
-  y << "build_type: " << yaml_quoted(build_info().build_type) << '\n';
-  y << "started_utc: " << yaml_quoted(utc_now()) << '\n';
+  y << "shard: " << io::yaml_quoted(std::to_string(opt.shard.index) + "/" + std::to_string(opt.shard.count)) << '\n';
+  y << "shard_balance: " << io::yaml_quoted(shard_balance_name(balance)) << "  # how points are dealt to shards\n";
+  y << "asperity_version: " << io::yaml_quoted(io::build_info().version) << '\n';
+  y << "build_type: " << io::yaml_quoted(io::build_info().build_type) << '\n';
+  y << "started_utc: " << io::yaml_quoted(utc_now()) << '\n';
   y << "stand_in_data: " << (uses_stand_ins(c) ? "true  # STAND-IN experiments, not measurements" : "false") << '\n';
   y << "hash: \"FNV-1a 64 of the resolved scene (scene_to_yaml, experiment file relative to the campaign folder) and "
        "of the bytes of its junctions and measured CSVs\"\n";
   // The input files as they were when the store started (each point's hash covers its own data,
   // so a resume after a CSV changed recomputes the points that use it and says so).
-  std::vector<DataFile> files{{"campaign", c.file}};
+  std::vector<io::DataFile> files{{"campaign", c.file}};
   const CampaignScenes scenes(c);
   const std::uint64_t per_scene = c.grids.front().size();
   for (std::size_t s = 0; s < c.scenes.size(); ++s) {
     try {
-      const std::vector<DataFile> f = input_files(scenes.scene(point_at(c, s * per_scene)));
+      const std::vector<io::DataFile> f = input_files(scenes.scene(point_at(c, s * per_scene)));
       files.insert(files.end(), f.begin(), f.end());
     } catch (const std::exception&) {  // an invalid first point: its error is in the journal
     }
   }
-  y << provenance_yaml(opt.command_line, files);
+  y << io::provenance_yaml(opt.command_line, files);
   return y.str();
 }
 
@@ -130,17 +130,17 @@ void check_store_folder(const fs::path& dir) {
     if (std::find(std::begin(known), std::end(known), n) == std::end(known) && n.find(".tmp-") == std::string::npos &&
         e.path().extension() != ".png" && e.path().extension() != ".svg" && e.path().extension() != ".pdf" &&
         e.path().extension() != ".gp")  // figures drawn from the store and their kept scripts
-      throw InputError(dir.string(), 0, "--out",
-                       "refusing to use it as a sweep store: it holds '" + n + "', which no store holds");
+      throw io::InputError(dir.string(), 0, "--out",
+                           "refusing to use it as a sweep store: it holds '" + n + "', which no store holds");
   }
 }
 
 ShardBalance prepare_store(const fs::path& dir, const Campaign& c, const SweepOptions& opt) {
-  const std::string text = read_file_text(c.file);
+  const std::string text = io::read_file_text(c.file);
   const fs::path prov = dir / "provenance.yaml";
   if (fs::exists(prov)) {
-    const std::string old = read_file_text(prov);
-    const std::string want = "campaign_fnv1a64: " + yaml_quoted(hex16(fnv1a64(text)));
+    const std::string old = io::read_file_text(prov);
+    const std::string want = "campaign_fnv1a64: " + io::yaml_quoted(io::hex16(io::fnv1a64(text)));
     if (old.find(want) == std::string::npos)
       throw std::runtime_error("the campaign file changed since " + dir.string() +
                                " was started (see its provenance.yaml); use another --out or remove the store");
@@ -148,30 +148,30 @@ ShardBalance prepare_store(const fs::path& dir, const Campaign& c, const SweepOp
     // Another plan would give this shard other points: the ones stored would be orphaned and
     // other shards' points run twice.
     if (opt.balance && *opt.balance != had && opt.shard.count > 1)
-      throw InputError("", 0, "--balance",
-                       shard_balance_name(*opt.balance) + ": " + dir.string() + " deals its points by " +
-                           shard_balance_name(had) +
-                           " (its provenance.yaml); every shard of a campaign must use the same --balance");
+      throw io::InputError("", 0, "--balance",
+                           shard_balance_name(*opt.balance) + ": " + dir.string() + " deals its points by " +
+                               shard_balance_name(had) +
+                               " (its provenance.yaml); every shard of a campaign must use the same --balance");
     return had;
   }
   // Cost by default; a campaign too large for a cost plan deals round robin unless asked (then refused).
   const ShardBalance balance =
       opt.balance.value_or(c.size() > kMaxCostBalancedPoints ? ShardBalance::index : ShardBalance::cost);
-  write_file_durably(dir / "campaign.yaml", text);
-  write_file_durably(prov, store_provenance_yaml(c, text, opt, balance));
+  io::write_file_durably(dir / "campaign.yaml", text);
+  io::write_file_durably(prov, store_provenance_yaml(c, text, opt, balance));
   return balance;
 }
 
 std::string inputs_text(const Campaign& c, const std::string& build_id, const ShardPlan& plan,
                         const std::vector<fs::path>& files, FileHashes& hashes) {
-  const Shard& shard = plan.shard();
+  const io::Shard& shard = plan.shard();
   InputsFingerprint t(
       kInputsFirstLine, build_id, "shard", shard,
       plan.balance() == ShardBalance::index || shard.count == 1 ? std::string() : shard_balance_name(plan.balance()));
   // The effective `set` (the campaign's, then --set): --set changes points without changing the campaign text.
   for (const auto& [key, v] : c.set)
-    t.add("set", hex16(fnv1a64(key + "\n" + std::to_string(v.is_number) + std::to_string(v.is_yaml) + "\n" +
-                               io::format_double(v.number) + "\n" + v.text)));
+    t.add("set", io::hex16(io::fnv1a64(key + "\n" + std::to_string(v.is_number) + std::to_string(v.is_yaml) + "\n" +
+                                       io::format_double(v.number) + "\n" + v.text)));
   const fs::path base = fs::absolute(c.file.parent_path()).lexically_normal();
   for (const fs::path& f : files)
     t.add_file("", f.lexically_relative(base).generic_string(), [&] { return hashes.of(f); });
@@ -225,13 +225,13 @@ std::vector<std::uint8_t> recheck_stored(const Campaign& c, const SweepOptions& 
       try {
         // The typed scene first (no file read, no YAML), the checked one when it differs or has none.
         if (const auto quick = scenes->unchecked_scene(p))
-          current[i] = fnv1a64(canonical_scene_text(*quick, base_dir, data_hashes)) == stored_hash;
+          current[i] = io::fnv1a64(canonical_scene_text(*quick, base_dir, data_hashes)) == stored_hash;
         if (!current[i]) {
           std::uint64_t h = 0;
           try {
-            h = fnv1a64(canonical_scene_text(scenes->scene(p), base_dir, data_hashes));
+            h = io::fnv1a64(canonical_scene_text(scenes->scene(p), base_dir, data_hashes));
           } catch (const std::exception& e) {  // an invalid point is stored with the hash of its error
-            h = fnv1a64("invalid point: " + std::string(e.what()));
+            h = io::fnv1a64("invalid point: " + std::string(e.what()));
           }
           current[i] = h == stored_hash;
         }
@@ -263,7 +263,7 @@ bool points_current(const SweepReport& rep, const std::string& points_digest) {
         fs::is_regular_file(fs::symlink_status(points_path))))
     return false;
   try {
-    return sha256_file_hex(points_path) == points_digest;
+    return io::sha256_file_hex(points_path) == points_digest;
   } catch (const std::exception&) {
     return false;
   }
@@ -271,13 +271,13 @@ bool points_current(const SweepReport& rep, const std::string& points_digest) {
 
 }  // namespace sweep_detail
 
-std::string SweepOptions::default_build_id() { return clean_build_id(); }
+std::string SweepOptions::default_build_id() { return io::clean_build_id(); }
 
 std::uint64_t FileHashes::of(const fs::path& file) {
   const std::string key = fs::absolute(file).lexically_normal().string();
   const std::lock_guard<std::mutex> lock(mutex_);
   if (const auto it = by_path_.find(key); it != by_path_.end()) return it->second;
-  return by_path_[key] = fnv1a64(read_file_text(file));
+  return by_path_[key] = io::fnv1a64(io::read_file_text(file));
 }
 
 void FileHashes::note(const fs::path& file) {
@@ -307,26 +307,29 @@ std::string canonical_scene_text(const Scene& scene, const fs::path& base_dir, F
   const Experiment& e = scene.experiment;
   const fs::path& f = e.file;
   if (!f.empty()) {
-    const std::string line = "  file: " + yaml_quoted(fs::absolute(f).lexically_normal().string()) + "\n";
+    const std::string line = "  file: " + io::yaml_quoted(fs::absolute(f).lexically_normal().string()) + "\n";
     std::error_code ec;
     fs::path base = fs::weakly_canonical(fs::absolute(base_dir), ec);
     if (ec) base = fs::absolute(base_dir).lexically_normal();
     const std::string rel = fs::absolute(f).lexically_normal().lexically_relative(base).generic_string();
     const std::size_t at = text.find(line);
-    if (at != std::string::npos) text.replace(at, line.size(), "  file: " + yaml_quoted(rel) + "\n");
+    if (at != std::string::npos) text.replace(at, line.size(), "  file: " + io::yaml_quoted(rel) + "\n");
   }
   // The data by content, not by name (an edited CSV keeps its name).
   data.note(scene.file);  // read into the text above
   data.note(f);
   text += "data:\n";
   text +=
-      "  junctions_fnv1a64: " + yaml_quoted(e.junctions_file.empty() ? "" : hex16(data.of(e.junctions_file))) + "\n";
-  text += "  measured_fnv1a64: " + yaml_quoted(e.measured_file.empty() ? "" : hex16(data.of(e.measured_file))) + "\n";
+      "  junctions_fnv1a64: " + io::yaml_quoted(e.junctions_file.empty() ? "" : io::hex16(data.of(e.junctions_file))) +
+      "\n";
+  text += "  measured_fnv1a64: " + io::yaml_quoted(e.measured_file.empty() ? "" : io::hex16(data.of(e.measured_file))) +
+          "\n";
   // A topography scene's text holds its whole recipe; a measured height map is named by path, so
   // its bytes count too. Only then: other scenes keep their text (and stored hashes).
   if (const auto& t = scene.topography) {
     data.note(t->file);
-    if (!t->map_file.empty()) text += "  height_map_fnv1a64: " + yaml_quoted(hex16(data.of(t->map_file))) + "\n";
+    if (!t->map_file.empty())
+      text += "  height_map_fnv1a64: " + io::yaml_quoted(io::hex16(data.of(t->map_file))) + "\n";
   }
   return text;
 }

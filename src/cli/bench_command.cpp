@@ -103,7 +103,7 @@ int tradeoff(const BenchOptions& b) {
     o.repeats = 1;
   }
   machine_line(b);
-  ProgressLine progress("bench tradeoff", "settings", 0, b.quiet);
+  io::ProgressLine progress("bench tradeoff", "settings", 0, b.quiet);
   o.on_setting = [&](std::size_t done, std::size_t total) {
     progress.set_total(static_cast<double>(total));
     progress.update(static_cast<double>(done));
@@ -163,7 +163,7 @@ int accuracy(const BenchOptions& b) {
   if (b.quick && b.scenes.empty()) o.scenes.resize(std::min<std::size_t>(2, o.scenes.size()));
   o.tolerances = b.tolerances;
   o.log = &std::cout;
-  ProgressLine progress("bench accuracy", "runs", 0, b.quiet);
+  io::ProgressLine progress("bench accuracy", "runs", 0, b.quiet);
   o.on_run = [&](std::size_t done, std::size_t total) {
     progress.set_total(static_cast<double>(total));
     progress.update(static_cast<double>(done));

@@ -23,7 +23,7 @@ Command add_export_command(CLI::App& app) {
   add_quiet_flag(sub, a->quiet);
   return Command{sub, [a](const Invocation&) {
                    namespace fs = std::filesystem;
-                   if (!fs::is_directory(a->store)) throw InputError(a->store, 0, "store", "no such store folder");
+                   if (!fs::is_directory(a->store)) throw io::InputError(a->store, 0, "store", "no such store folder");
                    const SqliteExportReport r = export_sqlite(a->store, a->sqlite);
                    if (!a->quiet)
                      std::printf("exported %llu points, %zu columns, %zu indexes -> %s (table points)\n",

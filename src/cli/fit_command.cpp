@@ -50,15 +50,16 @@ struct FitCliOptions {
 namespace fs = std::filesystem;
 
 // The journal folder of one writer: DIR itself, or DIR/tasks/I-of-N for an array task.
-fs::path task_dir(const fs::path& out, const Shard& t) {
+fs::path task_dir(const fs::path& out, const io::Shard& t) {
   return out / "tasks" / (std::to_string(t.index) + "-of-" + std::to_string(t.count));
 }
 
 // --collect: the tasks' journals (read-only), each checked against its task's inputs; every task
 // I of one N must be there, none running.
-std::vector<std::unique_ptr<DirLock>> open_task_journals(FitJournal& journal, const fs::path& out, const FitSpec& spec,
-                                                         const std::vector<std::string>& overrides,
-                                                         const std::string& build) {
+std::vector<std::unique_ptr<io::DirLock>> open_task_journals(FitJournal& journal, const fs::path& out,
+                                                             const FitSpec& spec,
+                                                             const std::vector<std::string>& overrides,
+                                                             const std::string& build) {
   const fs::path tasks = out / "tasks";
   std::uint64_t count = 0;
   std::vector<std::uint64_t> seen;
@@ -67,30 +68,30 @@ std::vector<std::unique_ptr<DirLock>> open_task_journals(FitJournal& journal, co
     for (const auto& e : fs::directory_iterator(tasks)) {
       const std::string n = e.path().filename().string();
       if (n.rfind(".", 0) == 0) continue;  // temporaries
-      Shard t;
+      io::Shard t;
       try {
         const std::size_t of = n.find("-of-");
         if (of == std::string::npos) throw std::invalid_argument(n);
-        t = parse_shard(n.substr(0, of) + "/" + n.substr(of + 4), {}, "--collect");
+        t = io::parse_shard(n.substr(0, of) + "/" + n.substr(of + 4), {}, "--collect");
       } catch (const std::invalid_argument&) {
-        throw InputError(e.path().string(), 0, "--collect", "not a task folder (expected I-of-N)");
+        throw io::InputError(e.path().string(), 0, "--collect", "not a task folder (expected I-of-N)");
       }
       if (count != 0 && t.count != count)
-        throw InputError(e.path().string(), 0, "--collect",
-                         "tasks of two splits (" + std::to_string(count) + " and " + std::to_string(t.count) +
-                             " tasks); remove the stale ones");
+        throw io::InputError(e.path().string(), 0, "--collect",
+                             "tasks of two splits (" + std::to_string(count) + " and " + std::to_string(t.count) +
+                                 " tasks); remove the stale ones");
       count = t.count;
       seen.push_back(t.index);
     }
   if (count == 0)
-    throw InputError(tasks.string(), 0, "--collect",
-                     "no array task has run into " + out.string() + " (asperity fit FIT --task I/N)");
-  std::vector<std::unique_ptr<DirLock>> locks;
+    throw io::InputError(tasks.string(), 0, "--collect",
+                         "no array task has run into " + out.string() + " (asperity fit FIT --task I/N)");
+  std::vector<std::unique_ptr<io::DirLock>> locks;
   for (std::uint64_t i = 0; i < count; ++i) {
-    const Shard t{i, count};
+    const io::Shard t{i, count};
     const fs::path d = task_dir(out, t);
     if (std::find(seen.begin(), seen.end(), i) == seen.end() || !fs::exists(d / "journal.csv"))
-      throw InputError(
+      throw io::InputError(
           d.string(), 0, "--collect",
           "task " + std::to_string(i) + "/" + std::to_string(count) + " has not run (no journal); run it first");
     locks.push_back(lock_fit_journal_dir(d, "--out"));  // a task still writing is refused here
@@ -101,27 +102,27 @@ std::vector<std::unique_ptr<DirLock>> open_task_journals(FitJournal& journal, co
 }
 
 // --task I/N|auto (0/1 without it).
-Shard parse_task(const FitCliOptions& opt) {
+io::Shard parse_task(const FitCliOptions& opt) {
   if (opt.task.empty()) return {};
   try {
-    return parse_shard(
+    return io::parse_shard(
         opt.task, [](const char* n) { return std::getenv(n); }, "--task");
   } catch (const std::invalid_argument& e) {
-    throw InputError("", 0, "--task", e.what());
+    throw io::InputError("", 0, "--task", e.what());
   }
 }
 
 // The locks a fit holds while it runs: its journal folder's, and with --collect every task's.
 struct JournalLocks {
-  std::unique_ptr<DirLock> own;
-  std::vector<std::unique_ptr<DirLock>> tasks;
+  std::unique_ptr<io::DirLock> own;
+  std::vector<std::unique_ptr<io::DirLock>> tasks;
 };
 
 // Opens the journal this run appends to (OUT/ or its task's folder), or with --collect every
 // task's journal for replay.
 JournalLocks open_journals(FitJournal& journal, const FitCliOptions& opt, const fs::path& out, const FitSpec& spec,
-                           const Shard& task) {
-  const std::string build = code_build_id();
+                           const io::Shard& task) {
+  const std::string build = io::code_build_id();
   JournalLocks locks;
   if (opt.collect) {
     locks.own = lock_fit_journal_dir(out, "--out");
@@ -131,10 +132,10 @@ JournalLocks open_journals(FitJournal& journal, const FitCliOptions& opt, const 
   const fs::path dir = opt.task.empty() ? out : task_dir(out, task);
   // tasks/ and tasks/I-of-N/ must be real folders inside --out: a link there would put the
   // journal elsewhere.
-  check_real_folders(out, dir.lexically_relative(out), "--out");
+  io::check_real_folders(out, dir.lexically_relative(out), "--out");
   fs::create_directories(dir);
   locks.own = lock_fit_journal_dir(dir, "--out");
-  remove_stale_temporaries(dir);  // of a fit that died while writing (kill -9, a lost node)
+  io::remove_stale_temporaries(dir);  // of a fit that died while writing (kill -9, a lost node)
   open_fit_journal(journal, dir, fit_inputs_text(spec, opt.overrides, build, task));
   return locks;
 }
@@ -168,7 +169,7 @@ class EvaluationProgress {
   void close() { line_.close(); }
 
  private:
-  ProgressLine line_;
+  io::ProgressLine line_;
   std::size_t fits_;
   std::mutex mutex_;
   double done_ = 0;
@@ -218,9 +219,9 @@ int run(const FitCliOptions& opt, const Invocation& inv) {
   const std::filesystem::path out =
       opt.out.empty() ? std::filesystem::path("results") / "fits" / spec.name : std::filesystem::path(opt.out);
   const bool sharded = !opt.task.empty();
-  const Shard task = parse_task(opt);
+  const io::Shard task = parse_task(opt);
   if ((sharded || opt.collect) && !spec.separate)
-    throw InputError(
+    throw io::InputError(
         opt.fit_file, 0, sharded ? "--task" : "--collect",
         "a joint fit (separate: false) is one optimization and cannot be split into array tasks; run it without " +
             std::string(sharded ? "--task" : "--collect"));
@@ -250,7 +251,7 @@ int run(const FitCliOptions& opt, const Invocation& inv) {
                 spec.algorithm.c_str(), threads_or_all(opt.threads));
     std::fflush(stdout);
     fo.progress = [](const std::string& line) {
-      print_line(stdout, "  " + line);
+      io::print_line(stdout, "  " + line);
     };  // never glued onto the progress line
   }
   const std::size_t optimizations = sharded ? fo.only.size() : spec.separate ? spec.experiments.size() : 1;
@@ -263,14 +264,14 @@ int run(const FitCliOptions& opt, const Invocation& inv) {
     result = run_fit(spec, fo);
   } catch (const RunInterrupted&) {
     const std::filesystem::path journal_file = (sharded ? task_dir(out, task) : out) / "journal.csv";
-    print_line(stderr, "fit: interrupted; " + std::to_string(journal.size()) + " evaluation(s) kept in " +
-                           journal_file.string() + "; rerun the same command to resume");
+    io::print_line(stderr, "fit: interrupted; " + std::to_string(journal.size()) + " evaluation(s) kept in " +
+                               journal_file.string() + "; rerun the same command to resume");
     return exit_interrupted;
   } catch (const NotJournaled& e) {
-    throw InputError((out / "tasks").string(), 0, "--collect",
-                     std::string(e.what()) +
-                         ": a task has not finished (run it again: it resumes) or ran with other "
-                         "--no-profile/--no-error-bars/--set options than this collect");
+    throw io::InputError((out / "tasks").string(), 0, "--collect",
+                         std::string(e.what()) +
+                             ": a task has not finished (run it again: it resumes) or ran with other "
+                             "--no-profile/--no-error-bars/--set options than this collect");
   }
   progress.close();  // what follows starts on a line of its own
   if (!opt.quiet) {

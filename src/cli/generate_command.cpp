@@ -36,7 +36,8 @@ constexpr const char* kTopographyMarker = "generate topography";
 int generate_topography(const GenerateCliOptions& o) {
   const TopographyRecipe recipe = load_topography_recipe(o.recipe);
   if (!o.scenes.empty())
-    throw InputError("--scenes", 0, "", "a topography recipe writes one experiment and no scenes; leave out --scenes");
+    throw io::InputError("--scenes", 0, "",
+                         "a topography recipe writes one experiment and no scenes; leave out --scenes");
   check_publishable(o.out, kTopographyMarker, "--out");  // before the solve: a refused folder costs nothing
   const TopographyJunctions t = build_topography_junctions(recipe, threads_or_all(o.threads));
   publish_dir(o.out, kTopographyMarker, "--out",
@@ -58,8 +59,8 @@ constexpr const char* kSyntheticMarker = "generate synthetic";
 int generate_synthetic(const GenerateCliOptions& o) {
   const SyntheticRecipe recipe = load_synthetic_recipe(o.recipe);
   if (!o.scenes.empty())
-    throw InputError("--scenes", 0, "",
-                     "a synthetic recipe writes one experiment folder (with its scene.yaml); leave out --scenes");
+    throw io::InputError("--scenes", 0, "",
+                         "a synthetic recipe writes one experiment folder (with its scene.yaml); leave out --scenes");
   check_publishable(o.out, kSyntheticMarker, "--out");  // before the run: a refused folder costs no simulation
   const SyntheticExperiment x = build_synthetic(recipe);
   publish_dir(o.out, kSyntheticMarker, "--out",

@@ -50,7 +50,7 @@ int run_cli(int argc, char** argv) {
   CLI::App app{
       "asperity: onset of sliding of elastomer multicontacts "
       "(independent-asperity model, Scheibert, Sahli & Peyrard 2020)"};
-  app.set_version_flag("--version", asperity::version_line());
+  app.set_version_flag("--version", asperity::io::version_line());
   app.require_subcommand(1);
 
   // Registration: one line per subcommand.
@@ -87,7 +87,7 @@ int run_cli(int argc, char** argv) {
   try {
     for (const auto& c : commands)
       if (c.sub->parsed()) return c.run(invocation);
-  } catch (const asperity::InputError& e) {
+  } catch (const asperity::io::InputError& e) {
     print_line("", e.what());
     return cli::exit_input;
   } catch (const asperity::SolverError& e) {
@@ -103,7 +103,7 @@ int run_cli(int argc, char** argv) {
 // Everything that escapes a command (a library's exception, memory exhausted) becomes one line
 // and a non-zero exit, never std::terminate's "terminate called after...".
 int main(int argc, char** argv) {
-  asperity::install_signal_cleanup();  // SIGINT/SIGTERM/SIGHUP remove our temporaries; SIGXFSZ -> EFBIG
+  asperity::io::install_signal_cleanup();  // SIGINT/SIGTERM/SIGHUP remove our temporaries; SIGXFSZ -> EFBIG
   try {
     return run_cli(argc, argv);
   } catch (const std::bad_alloc&) {

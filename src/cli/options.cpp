@@ -6,20 +6,20 @@
 
 namespace asperity::cli {
 
-int threads_or_all(int threads) { return threads > 0 ? threads : hardware_threads(); }
+int threads_or_all(int threads) { return threads > 0 ? threads : io::hardware_threads(); }
 
 void add_threads_option(CLI::App* sub, int& threads, const std::string& what) {
-  const std::string fallback = threads > 0 ? std::to_string(threads) : "all " + std::to_string(hardware_threads());
+  const std::string fallback = threads > 0 ? std::to_string(threads) : "all " + std::to_string(io::hardware_threads());
   // The range and message of io/arguments.hpp, which the Python module checks too; CLI11 then
   // converts the count as checked (plain decimal).
   sub->add_option("-j,--threads", threads, what + " (default: " + fallback + ")")
       ->check(CLI::Validator(
           [](std::string& v) {
-            std::string why = threads_problem(v);
-            if (why.empty()) v = std::to_string(checked_threads(v, "--threads"));
+            std::string why = io::threads_problem(v);
+            if (why.empty()) v = std::to_string(io::checked_threads(v, "--threads"));
             return why;
           },
-          "INT in [" + std::to_string(kMinThreads) + " - " + std::to_string(kMaxThreads) + "]"));
+          "INT in [" + std::to_string(io::kMinThreads) + " - " + std::to_string(io::kMaxThreads) + "]"));
 }
 
 void add_set_option(CLI::App* sub, std::vector<std::string>& sets, const std::string& what) {

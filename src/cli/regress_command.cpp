@@ -39,12 +39,12 @@ std::string today() {
 int regress(const RegressOptions& opt) {
   namespace fs = std::filesystem;
   if (opt.update && opt.reason.empty())
-    throw InputError("--reason", 0, "reason", "--update needs --reason \"why the results changed\"");
+    throw io::InputError("--reason", 0, "reason", "--update needs --reason \"why the results changed\"");
   const RegressSuite suite = load_regress_suite(opt.suite);
   Golden golden;
   if (!opt.update) {
     if (!fs::exists(opt.golden))
-      throw InputError(opt.golden, 0, "", "no golden results: bless them with --update --reason \"...\"");
+      throw io::InputError(opt.golden, 0, "", "no golden results: bless them with --update --reason \"...\"");
     golden = load_golden(opt.golden);
   } else if (fs::exists(opt.golden)) {
     golden = load_golden(opt.golden);  // keep the history
@@ -56,7 +56,7 @@ int regress(const RegressOptions& opt) {
 
   if (opt.update) {
     auto history = golden.history;
-    history.push_back({today(), build_info().version, opt.reason});
+    history.push_back({today(), io::build_info().version, opt.reason});
     const Golden fresh = bless(results, history);
     fs::create_directories(fs::path(opt.golden).parent_path());
     io::write_text_file(opt.golden, golden_to_yaml(fresh));

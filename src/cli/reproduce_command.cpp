@@ -47,9 +47,9 @@ FitSpec calibration_spec(const std::string& fit) {
   FitSpec spec = load_fit(fit);
   if (spec.objective != FitObjective::quadratic_alpha || !spec.separate || spec.parameters.size() != 1 ||
       spec.parameters.front().key != "model.alpha_b")
-    throw InputError(fit, 0, "",
-                     "reproduce --fit needs a per-experiment (separate) quadratic_alpha fit of "
-                     "model.alpha_b alone, like fits/paper_alpha_b.yaml");
+    throw io::InputError(fit, 0, "",
+                         "reproduce --fit needs a per-experiment (separate) quadratic_alpha fit of "
+                         "model.alpha_b alone, like fits/paper_alpha_b.yaml");
   return spec;
 }
 
@@ -60,9 +60,9 @@ std::vector<std::filesystem::path> run_dirs(const std::vector<std::string>& scen
   for (const auto& s : scenes) {
     dirs.push_back(out / fs::path(s).stem());
     if (std::count(dirs.begin(), dirs.end(), dirs.back()) > 1)
-      throw InputError(s, 0, "",
-                       "two scenes share the file name " + fs::path(s).filename().string() + ": their run folders in " +
-                           out.string() + " would collide");
+      throw io::InputError(s, 0, "",
+                           "two scenes share the file name " + fs::path(s).filename().string() +
+                               ": their run folders in " + out.string() + " would collide");
     check_run_dir(dirs.back());
   }
   return dirs;
@@ -72,7 +72,7 @@ std::vector<std::filesystem::path> run_dirs(const std::vector<std::string>& scen
 void run_paper(std::vector<PaperRun>& runs, const std::vector<std::filesystem::path>& dirs, const ReproduceOptions& opt,
                const Invocation& inv, int threads) {
   std::vector<std::string> errors(runs.size());
-  ProgressLine progress("reproduce", "runs", static_cast<double>(runs.size()), opt.quiet);
+  io::ProgressLine progress("reproduce", "runs", static_cast<double>(runs.size()), opt.quiet);
   ParallelRunner(threads).for_each(
       runs.size(),
       [&](std::size_t i) {
@@ -114,8 +114,8 @@ Calibration calibrate(const FitSpec& spec, const std::string& fit_file, int thre
   fo.threads = threads;
   fo.profile = false;
   fo.error_bars = false;
-  ProgressLine fp("reproduce", "calibration evaluations (at most)", static_cast<double>(fit_run_budget(spec, fo)),
-                  quiet);
+  io::ProgressLine fp("reproduce", "calibration evaluations (at most)", static_cast<double>(fit_run_budget(spec, fo)),
+                      quiet);
   std::atomic<int> evaluations{0};  // a finished calibration adds what it left of its budget
   fo.on_evaluation = [&](const FitTick& t) { fp.update(evaluations += t.counted()); };
   const FitResult fr = run_fit(spec, fo);
@@ -146,7 +146,7 @@ std::size_t write_claims(const std::filesystem::path& out, const std::vector<Pap
                          const std::string& label) {
   std::vector<Scene> base;
   for (const auto& r : runs) base.push_back(r.scene);
-  ProgressLine vp("reproduce", "claim-variant runs", 0, opt.quiet);
+  io::ProgressLine vp("reproduce", "claim-variant runs", 0, opt.quiet);
   const auto variants = run_variants(base, paper_claim_variants(), threads, [&](std::size_t done, std::size_t total) {
     vp.set_total(static_cast<double>(total));
     vp.update(static_cast<double>(done));

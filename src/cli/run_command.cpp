@@ -99,7 +99,7 @@ int run(const RunOptions& opt, const Invocation& inv) {
       opt.out.empty() ? std::filesystem::path("results") / "runs" / std::filesystem::path(opt.scene).stem()
                       : std::filesystem::path(opt.out);
   check_run_dir(out);  // fail before the run, not after it
-  ProgressLine progress("run", "s simulated", scene.stop.time, opt.quiet);
+  io::ProgressLine progress("run", "s simulated", scene.stop.time, opt.quiet);
   RunMonitor monitor;
   monitor.period_s = 0.1;
   std::optional<RunResult> result;
@@ -119,7 +119,7 @@ int run(const RunOptions& opt, const Invocation& inv) {
   write_run(out, scene, r.obs, r.recorder, RunWriteOptions{opt.plot, inv.command_line, opt.figures});
   if (!opt.quiet) print_summary(scene, r.obs, out);
   // A warning, which -q keeps: a result without its peak is one a quiet script must hear of.
-  if (const std::string why = missing_peak_reason(scene, r.obs); !why.empty()) warn(why);
+  if (const std::string why = missing_peak_reason(scene, r.obs); !why.empty()) io::warn(why);
   return exit_ok;
 }
 

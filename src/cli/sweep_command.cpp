@@ -31,14 +31,14 @@ int sweep(const SweepArgs& a, const Invocation& inv) {
   SweepOptions opt;
   opt.command_line = inv.command_line;
   try {
-    opt.shard = parse_shard(a.shard);
+    opt.shard = io::parse_shard(a.shard);
   } catch (const std::invalid_argument& e) {
-    throw InputError("", 0, "--shard", e.what());
+    throw io::InputError("", 0, "--shard", e.what());
   }
   try {
     if (!a.balance.empty()) opt.balance = parse_shard_balance(a.balance);
   } catch (const std::invalid_argument& e) {
-    throw InputError("", 0, "--balance", e.what());
+    throw io::InputError("", 0, "--balance", e.what());
   }
   Campaign c = load_campaign(a.campaign);
   // --set: checked on every base scene (one-line errors as `run --set`), then applied to every

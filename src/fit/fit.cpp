@@ -277,7 +277,7 @@ void keep_best_runs(const Problem& pb, Optimization& o) {
                   "the journaled best evaluation of %s has objective %.10g but its re-run gives %.10g: the "
                   "line was edited or forged; remove it (or the folder) and rerun",
                   o.label.c_str(), o.objective, ev.objective);
-    throw InputError(at->first, at->second, "objective", msg);
+    throw io::InputError(at->first, at->second, "objective", msg);
   }
 }
 

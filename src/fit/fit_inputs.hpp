@@ -20,7 +20,7 @@
 namespace asperity {
 
 std::string fit_inputs_text(const FitSpec& spec, const std::vector<std::string>& overrides, const std::string& build_id,
-                            const Shard& task);
+                            const io::Shard& task);
 
 // Throws InputError naming `file` (an inputs.txt), the line that differs and what differs, when
 // its text is not `expected` ("build", "task", "set", "file PATH" keys; exit 2 in the CLI).

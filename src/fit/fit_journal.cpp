@@ -51,7 +51,7 @@ std::string journal_values(const std::vector<double>& x) {
   std::string s;
   for (std::size_t i = 0; i < x.size(); ++i) {
     if (i) s += ';';
-    s += csv_number(x[i]);
+    s += io::csv_number(x[i]);
   }
   return s;
 }
@@ -65,27 +65,27 @@ namespace {
 // One evaluation from the fields of a good line (InputError "FILE:LINE: KEY: ..." when malformed).
 Evaluation parse_evaluation(const std::vector<std::string>& f, const std::string& name, int lineno) {
   if (f.size() != 8)
-    throw InputError(name, lineno, f.size() < 8 ? kColumns[f.size()] : "check",
-                     "expected 8 fields and a checksum, got " + std::to_string(f.size()) + " fields");
+    throw io::InputError(name, lineno, f.size() < 8 ? kColumns[f.size()] : "check",
+                         "expected 8 fields and a checksum, got " + std::to_string(f.size()) + " fields");
   Evaluation ev;
   if (!io::parse_int(f[2], ev.index) || ev.index < 1)
-    throw InputError(name, lineno, "evaluation", "not a positive whole number: " + io::quote(f[2]));
+    throw io::InputError(name, lineno, "evaluation", "not a positive whole number: " + io::quote(f[2]));
   if (!parse_list(f[3], ev.values) || ev.values.empty())
-    throw InputError(name, lineno, "x", "not a ';'-separated list of numbers: " + io::quote(f[3]));
+    throw io::InputError(name, lineno, "x", "not a ';'-separated list of numbers: " + io::quote(f[3]));
   if (!parse_number(f[4], ev.objective))
-    throw InputError(name, lineno, "objective", "not a number: " + io::quote(f[4]));
+    throw io::InputError(name, lineno, "objective", "not a number: " + io::quote(f[4]));
   if (!parse_list(f[5], ev.residuals))
-    throw InputError(name, lineno, "terms", "not a ';'-separated list of numbers: " + io::quote(f[5]));
-  if (f[6].empty()) throw InputError(name, lineno, "status", "empty");
+    throw io::InputError(name, lineno, "terms", "not a ';'-separated list of numbers: " + io::quote(f[5]));
+  if (f[6].empty()) throw io::InputError(name, lineno, "status", "empty");
   ev.status = f[6];
-  if (!parse_number(f[7], ev.wall_s)) throw InputError(name, lineno, "wall_s", "not a number: " + io::quote(f[7]));
+  if (!parse_number(f[7], ev.wall_s)) throw io::InputError(name, lineno, "wall_s", "not a number: " + io::quote(f[7]));
   return ev;
 }
 
 // What a strict read of a journal's text found.
 struct JournalScan {
   std::uint64_t good_end = 0;  // bytes up to the end of the last good line
-  JournalDigest digest = JournalDigest::sha256;
+  io::JournalDigest digest = io::JournalDigest::sha256;
   std::size_t dropped = 0;                                  // torn or damaged tail lines
   std::map<std::string, std::pair<Evaluation, int>> found;  // key → evaluation, line
 };
@@ -109,28 +109,29 @@ JournalScan scan_journal(const std::string& text, const std::string& name) {
     offset = end;
     if (lineno == 1) {
       if (!whole) break;  // torn header: as good as an empty journal
-      const std::optional<JournalDigest> d = journal_digest_of(line, kColumnsLine);
+      const std::optional<io::JournalDigest> d = io::journal_digest_of(line, kColumnsLine);
       if (!d)
-        throw InputError(name, 1, "header",
-                         "not an asperity fit journal (expected '" + journal_header(kColumnsLine) + "')");
+        throw io::InputError(name, 1, "header",
+                             "not an asperity fit journal (expected '" + io::journal_header(kColumnsLine) + "')");
       scan.digest = *d;
       scan.good_end = end;
       continue;
     }
     std::string_view row;
-    if (!whole || !checked_journal_row(line, row, scan.digest)) {
+    if (!whole || !io::checked_journal_row(line, row, scan.digest)) {
       if (first_bad == 0) first_bad = lineno;
       continue;
     }
     if (first_bad != 0)
-      throw InputError(name, first_bad, "check",
-                       "damaged line (its checksum does not match) followed by good ones: the journal was edited or "
-                       "corrupted; remove that line or the folder");
+      throw io::InputError(
+          name, first_bad, "check",
+          "damaged line (its checksum does not match) followed by good ones: the journal was edited or "
+          "corrupted; remove that line or the folder");
     std::vector<std::string> f;
     try {
-      f = csv_split(row);
+      f = io::csv_split(row);
     } catch (const std::exception& e) {
-      throw InputError(name, lineno, "part", e.what());
+      throw io::InputError(name, lineno, "part", e.what());
     }
     Evaluation ev = parse_evaluation(f, name, lineno);
     scan.good_end = end;
@@ -141,12 +142,12 @@ JournalScan scan_journal(const std::string& text, const std::string& name) {
 }
 
 // A journal from before SHA-256: its good lines (checked with FNV-1a) re-digested, under a new header.
-std::string redigested(std::string_view text, JournalDigest digest) {
-  std::string out = journal_header(kColumnsLine) + "\n";
+std::string redigested(std::string_view text, io::JournalDigest digest) {
+  std::string out = io::journal_header(kColumnsLine) + "\n";
   std::size_t at = text.find('\n') + 1;
   for (std::size_t nl; at < text.size() && (nl = text.find('\n', at)) != std::string::npos; at = nl + 1) {
     std::string_view row;
-    if (checked_journal_row(text.substr(at, nl - at), row, digest)) out += journal_line(row);
+    if (io::checked_journal_row(text.substr(at, nl - at), row, digest)) out += io::journal_line(row);
   }
   return out;
 }
@@ -158,7 +159,7 @@ void FitJournal::read(const fs::path& file, bool append) {
   JournalScan scan;
   // Read without following a link, a regular file only (a FIFO would block): io/safe_open.hpp.
   std::string text;
-  if (read_regular(file, text, "--out")) {
+  if (io::read_regular(file, text, "--out")) {
     scan = scan_journal(text, name);
     dropped_ += scan.dropped;
     const std::lock_guard<std::mutex> lock(mutex_);
@@ -172,11 +173,11 @@ void FitJournal::read(const fs::path& file, bool append) {
   // the fresh header away).
   bool rewritten = true;
   if (scan.good_end == 0) {
-    write_file_durably(file, journal_header(kColumnsLine) + "\n");
-  } else if (scan.digest == JournalDigest::fnv1a64_legacy) {
+    io::write_file_durably(file, io::journal_header(kColumnsLine) + "\n");
+  } else if (scan.digest == io::JournalDigest::fnv1a64_legacy) {
     // Written atomically in its place; a torn or damaged tail goes with it.
     text.resize(scan.good_end);
-    write_file_durably(file, redigested(text, scan.digest));
+    io::write_file_durably(file, redigested(text, scan.digest));
   } else {
     rewritten = false;
   }
@@ -197,9 +198,9 @@ std::optional<Evaluation> FitJournal::find(const std::string& part, const std::s
 
 void FitJournal::append(const std::string& part, const std::string& optimization, const Evaluation& ev) {
   const std::string x = journal_values(ev.values);
-  const std::string row = csv_field(part) + "," + csv_field(optimization) + "," + std::to_string(ev.index) + "," + x +
-                          "," + csv_number(ev.objective) + "," + journal_values(ev.residuals) + "," +
-                          csv_field(ev.status) + "," + csv_number(ev.wall_s);
+  const std::string row = io::csv_field(part) + "," + io::csv_field(optimization) + "," + std::to_string(ev.index) +
+                          "," + x + "," + io::csv_number(ev.objective) + "," + journal_values(ev.residuals) + "," +
+                          io::csv_field(ev.status) + "," + io::csv_number(ev.wall_s);
   const std::lock_guard<std::mutex> lock(mutex_);
   if (!file_) throw std::logic_error("FitJournal::append: no journal opened for appending");
   file_->append_durably(row);
@@ -219,11 +220,11 @@ std::size_t FitJournal::size() const {
   return index_.size();
 }
 
-std::unique_ptr<DirLock> lock_fit_journal_dir(const fs::path& dir, const std::string& option) {
+std::unique_ptr<io::DirLock> lock_fit_journal_dir(const fs::path& dir, const std::string& option) {
   try {
-    return std::make_unique<DirLock>(dir, "asperity fit");
+    return std::make_unique<io::DirLock>(dir, "asperity fit");
   } catch (const std::runtime_error& e) {
-    throw InputError(dir.string(), 0, option, e.what());
+    throw io::InputError(dir.string(), 0, option, e.what());
   }
 }
 
@@ -231,9 +232,9 @@ void open_fit_journal(FitJournal& journal, const fs::path& dir, const std::strin
   const fs::path file = dir / "journal.csv", in = dir / kInputsFileName;
   if (fs::exists(file)) {
     if (!fs::exists(in))
-      throw InputError(file.string(), 0, "",
-                       "no inputs.txt beside it, so what its evaluations were computed from is "
-                       "unknown; use another --out or remove the folder");
+      throw io::InputError(file.string(), 0, "",
+                           "no inputs.txt beside it, so what its evaluations were computed from is "
+                           "unknown; use another --out or remove the folder");
     check_fit_inputs(in, inputs);
   } else {
     write_inputs(dir, inputs);

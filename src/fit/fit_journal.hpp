@@ -75,7 +75,7 @@ std::string journal_values(const std::vector<double>& x);
 
 // One writer per journal folder (DirLock "asperity fit"); another process holding it → InputError
 // naming `dir`, key `option` ("--out" on the command line, "out" in Python).
-std::unique_ptr<DirLock> lock_fit_journal_dir(const std::filesystem::path& dir, const std::string& option);
+std::unique_ptr<io::DirLock> lock_fit_journal_dir(const std::filesystem::path& dir, const std::string& option);
 
 // Opens DIR/journal.csv for appending after checking DIR/inputs.txt says it was computed from
 // `inputs` (fit_inputs.hpp; InputError otherwise). A new journal: inputs.txt is written first,

@@ -221,13 +221,13 @@ void check_measured(const Scene& scene, const std::string& name, const FitSpec& 
     sv.fail_at(scene_node, skey,
                std::string("objective ") + objective_name(spec.objective) +
                    " needs a measured A(Q) curve, and experiment " + quote(name) + " (" +
-                   input_path(scene.experiment.file) + ") has none (key `measured`)");
+                   io::input_path(scene.experiment.file) + ") has none (key `measured`)");
   double A0_sum = 0;
   for (const double a : scene.experiment.junctions.area_m2) A0_sum += a;
   const std::string why = measured_curve_problem(*scene.experiment.measured, A0_sum);
   if (why.empty()) return;
   const fs::path& ef = scene.experiment.file;
-  const std::string edisplay = input_path(ef);
+  const std::string edisplay = io::input_path(ef);
   int line = 0;
   try {
     const YAML::Node m = load_yaml_file(ef, edisplay)["measured"];
@@ -235,9 +235,9 @@ void check_measured(const Scene& scene, const std::string& name, const FitSpec& 
   } catch (const std::exception&) {
     // the file was read a moment ago; without it the message keeps no line
   }
-  throw InputError(
-      edisplay, line, "measured",
-      why + " (" + input_path(scene.experiment.measured_file) + ", experiment " + quote(name) + " of " + display + ")");
+  throw io::InputError(edisplay, line, "measured",
+                       why + " (" + io::input_path(scene.experiment.measured_file) + ", experiment " + quote(name) +
+                           " of " + display + ")");
 }
 
 // Every value the optimizer may try must make a valid scene: the bounds checked on `fe`.
@@ -248,7 +248,7 @@ void check_bounds(const Source& src, const MapView& root, const FitSpec& spec, c
     for (const auto& [which, x, node] : {std::tuple{"lo", p.lo, pnodes[j].lo}, std::tuple{"hi", p.hi, pnodes[j].hi}}) {
       try {
         fe.scene.build({{p.key, x}});
-      } catch (const InputError& e) {
+      } catch (const io::InputError& e) {
         const MapView pv(src, root.require("parameters")[p.key], "parameters." + p.key, kParameterKeys);
         pv.fail_at(node, which, "invalid for experiment " + quote(fe.name) + ": " + e.message);
       }
@@ -284,10 +284,10 @@ std::optional<MeasuredForce> read_experiment_force(const ExperimentContext& cx, 
     const auto st = fs::status(force_file, e3);
     if (!fs::exists(st))
       x.view->fail_at(*fn, "force",
-                      "force CSV not found: " + quote(frel) + " (looked for " + input_path(force_file) + ")");
+                      "force CSV not found: " + quote(frel) + " (looked for " + io::input_path(force_file) + ")");
     if (!fs::is_regular_file(st))
-      x.view->fail_at(*fn, "force", "force CSV is not a regular file: " + input_path(force_file));
-    return read_force_csv(force_file, input_path(force_file));
+      x.view->fail_at(*fn, "force", "force CSV is not a regular file: " + io::input_path(force_file));
+    return read_force_csv(force_file, io::input_path(force_file));
   }
   if (spec.objective == FitObjective::area_and_force)
     sv.fail_at(
@@ -309,8 +309,9 @@ FitExperiment read_experiment(const ExperimentContext& cx, const YAML::Node& en,
     const auto st = fs::status(scene_path, e2);
     if (!fs::exists(st))
       sv.fail_at(x.scene_node, skey,
-                 "scene file not found: " + quote(rel) + " (looked for " + input_path(scene_path) + ")");
-    if (fs::is_directory(st)) sv.fail_at(x.scene_node, skey, "scene file is a directory: " + input_path(scene_path));
+                 "scene file not found: " + quote(rel) + " (looked for " + io::input_path(scene_path) + ")");
+    if (fs::is_directory(st))
+      sv.fail_at(x.scene_node, skey, "scene file is a directory: " + io::input_path(scene_path));
   }
   if (spec.objective == FitObjective::stick_slip && !x.has_target)
     sv.fail_at(en[i], x.view ? "target" : skey,
@@ -331,7 +332,7 @@ FitExperiment read_experiment(const ExperimentContext& cx, const YAML::Node& en,
     double every = dt_min;
     try {
       every = std::min(dt_min, SceneTemplate::load(scene_path, x.fixed).build().output.every);
-    } catch (const InputError&) {
+    } catch (const io::InputError&) {
       // reported with its location by the load below
     }
     x.fixed.emplace_back("stop.time", format_double(force->t_s.back()));
@@ -345,7 +346,7 @@ FitExperiment read_experiment(const ExperimentContext& cx, const YAML::Node& en,
   try {
     fe.scene = SceneTemplate::load(scene_path, x.fixed);
     base_scene = fe.scene.build();
-  } catch (const InputError& e) {
+  } catch (const io::InputError& e) {
     // A value from `set` carries no line of the scene file: name the fit file's line.
     for (const auto& [k, kn] : x.set_nodes)
       if (e.line == 0 && (e.key == k || e.key.rfind(k + ".", 0) == 0 || k.rfind(e.key, 0) == 0))
@@ -427,7 +428,7 @@ void read_error_bars(const Source& src, const MapView& root, FitSpec& spec) {
       for (const double x : {nominal - eb.bar, nominal + eb.bar}) {
         try {
           e.scene.build({{k, x}});
-        } catch (const InputError& err) {
+        } catch (const io::InputError& err) {
           b.fail_at(it->second, k,
                     "nominal ± bar gives an invalid scene for experiment " + quote(e.name) + ": " + err.message);
         }
@@ -524,7 +525,7 @@ FitSpec fit_from_tree(const YAML::Node& root_node, const fs::path& path, const f
 }  // namespace
 
 FitSpec load_fit(const fs::path& path, const std::vector<std::string>& overrides, const FitLoadOptions& options) {
-  const std::string display = input_path(path);
+  const std::string display = io::input_path(path);
   return fit_from_tree(load_yaml_file(path, display), path, path.parent_path(), display, overrides, options);
 }
 

@@ -132,7 +132,7 @@ void check_algorithm_accepts(const FitSpec& spec, const MapView& root, const YAM
     const std::string msg =
         "NLopt rejects " + spec.algorithm + " with " + std::to_string(n) + " free variable(s): " + e.what();
     if (algorithm_node.IsDefined()) root.fail_at(algorithm_node, "optimizer.algorithm", msg);
-    throw InputError(display, 0, "optimizer.algorithm", msg);
+    throw io::InputError(display, 0, "optimizer.algorithm", msg);
   } catch (const std::exception&) {
     // Other stops of a 3-evaluation trial (e.g. roundoff) say nothing about the input.
   }

@@ -52,7 +52,7 @@ ExperimentEval run_experiment(const FitSpec& spec, std::size_t e, const std::vec
       // peak there is a poor fit, scored as such, not a broken run.)
       // Without a confirmed peak, Q_s, the loading branch and every objective built on them
       // come from wherever the run stopped: a number, but not the one the fit is about.
-      out.error = fe.name + " (" + result_path(scene.experiment.file) +
+      out.error = fe.name + " (" + io::result_path(scene.experiment.file) +
                   "): no confirmed static friction peak before stop.time = " + io::format_significant(scene.stop.time) +
                   " s (highest Q " + io::format_significant(r.obs.Q_s) +
                   " N at t = " + io::format_significant(r.obs.t_peak) +

@@ -10,7 +10,7 @@
 
 namespace asperity {
 
-std::vector<std::size_t> task_optimizations(const FitSpec& spec, const Shard& task) {
+std::vector<std::size_t> task_optimizations(const FitSpec& spec, const io::Shard& task) {
   if (!spec.separate) throw std::invalid_argument("a joint fit is one optimization and cannot be split into tasks");
   const std::size_t n = spec.experiments.size();
   std::vector<double> cost(n);

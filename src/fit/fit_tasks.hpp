@@ -15,6 +15,6 @@ namespace asperity {
 
 // Indices of the optimizations (= experiments, file order) of `task`, ascending. A joint fit is
 // one optimization: std::invalid_argument.
-std::vector<std::size_t> task_optimizations(const FitSpec& spec, const Shard& task);
+std::vector<std::size_t> task_optimizations(const FitSpec& spec, const io::Shard& task);
 
 }  // namespace asperity

@@ -229,7 +229,7 @@ void read_runs(const Source& src, const MapView& top, StandinRecipe& r) {
 }  // namespace
 
 StandinRecipe load_recipe(const std::filesystem::path& path) {
-  const std::string display = input_path(path);
+  const std::string display = io::input_path(path);
   const YAML::Node root = io::load_yaml_file(path, display);
   const Source src{display, nullptr};
   StandinRecipe r;

@@ -81,12 +81,12 @@ MeasuredForce synthetic_force(const SyntheticRecipe& r, const std::vector<Sample
 [[noreturn]] void fail_at_end(const SyntheticRecipe& r, const std::string& message) {
   int line = 0;
   try {
-    const YAML::Node n = io::load_yaml_file(r.file, input_path(r.file))["synthetic"]["measured_force"]["end"];
+    const YAML::Node n = io::load_yaml_file(r.file, io::input_path(r.file))["synthetic"]["measured_force"]["end"];
     if (n.IsDefined()) line = n.Mark().line + 1;
   } catch (const std::exception&) {
     // read a moment ago; without it the message keeps no line
   }
-  throw InputError(input_path(r.file), line, "synthetic.measured_force.end", message);
+  throw io::InputError(io::input_path(r.file), line, "synthetic.measured_force.end", message);
 }
 
 }  // namespace
@@ -137,7 +137,7 @@ std::string labelled_csv(const std::string& first_line, const std::string& heade
   for (std::size_t i = 0; i < columns.front()->size(); ++i) {
     for (std::size_t c = 0; c < columns.size(); ++c) {
       if (c) s += ',';
-      s += csv_number((*columns[c])[i]);
+      s += io::csv_number((*columns[c])[i]);
     }
     s += '\n';
   }

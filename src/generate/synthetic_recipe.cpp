@@ -37,7 +37,7 @@ bool settable(const std::string& key) { return key.rfind("model.", 0) == 0 || ke
 
 // The base scene with `set` applied. A bad value is reported at its line in the recipe.
 Scene truth_scene(const MapView& top, SyntheticRecipe& r, const YAML::Node& scene_node, const YAML::Node* set_node) {
-  YAML::Node tree = io::load_yaml_file(r.scene_file, input_path(r.scene_file));
+  YAML::Node tree = io::load_yaml_file(r.scene_file, io::input_path(r.scene_file));
   std::vector<std::pair<std::string, YAML::Node>> entries;
   if (set_node) {
     if (!set_node->IsMap() || set_node->size() == 0)
@@ -56,13 +56,13 @@ Scene truth_scene(const MapView& top, SyntheticRecipe& r, const YAML::Node& scen
   for (const auto& [key, value] : entries) {
     try {
       tree = apply_override(tree, key, value);
-    } catch (const InputError& e) {
+    } catch (const io::InputError& e) {
       top.fail_at(value, "set." + key, e.message);
     }
   }
   try {
     return scene_from_tree(tree, r.scene_file);
-  } catch (const InputError& e) {
+  } catch (const io::InputError& e) {
     for (const auto& [key, value] : entries)  // the error is one of ours when it names our key
       if (e.key == key || e.key.rfind(key + ".", 0) == 0) top.fail_at(value, "set." + key, e.message);
     top.fail_at(scene_node, "scene", std::string("the base scene is not valid: ") + e.what());
@@ -72,7 +72,7 @@ Scene truth_scene(const MapView& top, SyntheticRecipe& r, const YAML::Node& scen
 }  // namespace
 
 bool is_synthetic_recipe(const fs::path& path) {
-  const YAML::Node root = io::load_yaml_file(path, input_path(path));
+  const YAML::Node root = io::load_yaml_file(path, io::input_path(path));
   if (!root.IsMap()) return false;
   for (auto it = root.begin(); it != root.end(); ++it)
     if (it->first.IsScalar() && it->first.Scalar() == "synthetic") return true;
@@ -80,7 +80,7 @@ bool is_synthetic_recipe(const fs::path& path) {
 }
 
 SyntheticRecipe load_synthetic_recipe(const fs::path& path) {
-  const std::string display = input_path(path);
+  const std::string display = io::input_path(path);
   const YAML::Node root = io::load_yaml_file(path, display);
   const Source src{display, nullptr};
   const MapView outer(src, root, "", {"synthetic"});
@@ -95,8 +95,9 @@ SyntheticRecipe load_synthetic_recipe(const fs::path& path) {
   {
     std::error_code ec;
     if (!fs::is_regular_file(r.scene_file, ec))
-      top.fail_at(sn, "scene",
-                  "scene file not found: " + io::quote(r.scene_rel) + " (looked for " + input_path(r.scene_file) + ")");
+      top.fail_at(
+          sn, "scene",
+          "scene file not found: " + io::quote(r.scene_rel) + " (looked for " + io::input_path(r.scene_file) + ")");
   }
   const auto set_node = top.find("set");
   r.scene = truth_scene(top, r, sn, set_node ? &*set_node : nullptr);

@@ -21,7 +21,7 @@ void comment(std::string& s, const std::string& text) { s += "# " + text + "\n";
 
 TopographyJunctions build_topography_junctions(const TopographyRecipe& r, int threads) {
   TopographyJunctions t;
-  t.recipe_sha256 = sha256_hex(io::read_input_file(r.file, input_path(r.file), io::kMaxYamlBytes));
+  t.recipe_sha256 = io::sha256_hex(io::read_input_file(r.file, io::input_path(r.file), io::kMaxYamlBytes));
   static_cast<TopographyContact&>(t) = solve_topography_contact(r, threads);
   t.experiment = topography_experiment(r, t,
                                        "Written by `asperity generate` from " + r.file.filename().string() +
@@ -56,15 +56,15 @@ std::string topography_junctions_csv(const TopographyRecipe& r, const Topography
   comment(s, "junctions: " + std::to_string(J.size()) + ", total area_m2: " + io::format_double(total));
   s += "area_m2,x_m,y_m\n";
   for (std::size_t i = 0; i < J.size(); ++i)
-    s += csv_number(J.area_m2[i]) + ',' + csv_number(J.x_m[i]) + ',' + csv_number(J.y_m[i]) + '\n';
+    s += io::csv_number(J.area_m2[i]) + ',' + io::csv_number(J.x_m[i]) + ',' + io::csv_number(J.y_m[i]) + '\n';
   return s;
 }
 
 void write_topography_experiment(const TopographyRecipe& r, const TopographyJunctions& t, const fs::path& out_dir) {
   fs::create_directories(out_dir);
-  write_file_atomically(out_dir / "junctions.csv", topography_junctions_csv(r, t), Durability::unsynced);
-  write_file_atomically(out_dir / "experiment.yaml", experiment_to_yaml(t.experiment, "junctions.csv", ""),
-                        Durability::unsynced);
+  io::write_file_atomically(out_dir / "junctions.csv", topography_junctions_csv(r, t), io::Durability::unsynced);
+  io::write_file_atomically(out_dir / "experiment.yaml", experiment_to_yaml(t.experiment, "junctions.csv", ""),
+                            io::Durability::unsynced);
 }
 
 }  // namespace asperity

@@ -6,7 +6,7 @@
 
 #include "io/input_error.hpp"
 
-namespace asperity {
+namespace asperity::io {
 
 int hardware_threads() { return static_cast<int>(std::max(1u, std::thread::hardware_concurrency())); }
 
@@ -35,4 +35,4 @@ void check_no_nul(std::string_view text, const std::string& argument) {
                    "holds a NUL byte (character " + std::to_string(at + 1) + "), which would end the text there");
 }
 
-}  // namespace asperity
+}  // namespace asperity::io

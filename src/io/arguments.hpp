@@ -5,7 +5,7 @@
 #include <string>
 #include <string_view>
 
-namespace asperity {
+namespace asperity::io {
 
 // Worker threads: 1 to 1024 (more than any node has; TBB fails on absurd counts).
 inline constexpr int kMinThreads = 1, kMaxThreads = 1024;
@@ -25,4 +25,4 @@ int checked_threads(std::string_view text, const std::string& argument);
 // every system call, and the YAML of a --set value, would take the text as ending there.
 void check_no_nul(std::string_view text, const std::string& argument);
 
-}  // namespace asperity
+}  // namespace asperity::io

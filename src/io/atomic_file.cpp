@@ -11,7 +11,7 @@
 #include <stdexcept>
 #include <system_error>
 
-namespace asperity {
+namespace asperity::io {
 namespace fs = std::filesystem;
 
 namespace {
@@ -131,4 +131,4 @@ std::string read_file_text(const fs::path& path) {
   return ss.str();
 }
 
-}  // namespace asperity
+}  // namespace asperity::io

@@ -12,7 +12,7 @@
 
 #include "io/temp_files.hpp"  // unique_tmp_suffix, TempGuard: the temporaries' names and cleanup
 
-namespace asperity {
+namespace asperity::io {
 
 enum class Durability { unsynced, synced };
 
@@ -57,11 +57,9 @@ bool write_fully(int fd, std::string_view bytes);
 // Reads a whole file (std::runtime_error when it cannot).
 std::string read_file_text(const std::filesystem::path& path);
 
-namespace io {
 // Temp sibling + rename, no fsync (CSVs, YAML and reports a command writes once).
 inline void write_text_file(const std::filesystem::path& path, const std::string& text) {
   write_file_atomically(path, text, Durability::unsynced);
 }
-}  // namespace io
 
-}  // namespace asperity
+}  // namespace asperity::io

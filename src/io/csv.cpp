@@ -9,9 +9,7 @@
 #include "io/numbers.hpp"
 #include "io/yaml_util.hpp"
 
-namespace asperity {
-
-using namespace io;
+namespace asperity::io {
 
 std::string csv_field(std::string_view in) {
   std::string s(in);
@@ -240,4 +238,4 @@ TextTable read_text_table(const std::filesystem::path& path, const std::string& 
   return t;
 }
 
-}  // namespace asperity
+}  // namespace asperity::io

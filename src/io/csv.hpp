@@ -15,7 +15,7 @@
 #include <string_view>
 #include <vector>
 
-namespace asperity {
+namespace asperity::io {
 
 // --- text fields --------------------------------------------------------------------------
 // Quoted ("..." with "" escapes) when the field holds ',', '"' or blanks at the ends; newlines
@@ -74,4 +74,4 @@ struct TextTable {
 // header, an unterminated quote, or more than max_rows rows: InputError at its line.
 TextTable read_text_table(const std::filesystem::path& path, const std::string& display, std::size_t max_rows);
 
-}  // namespace asperity
+}  // namespace asperity::io

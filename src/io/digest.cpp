@@ -5,7 +5,7 @@
 #include <fstream>
 #include <stdexcept>
 
-namespace asperity {
+namespace asperity::io {
 namespace {
 
 std::string hex_of(const unsigned char* d, unsigned n) {
@@ -61,4 +61,4 @@ std::string Sha256::hex() {
   return hex_of(d, n);
 }
 
-}  // namespace asperity
+}  // namespace asperity::io

@@ -9,7 +9,7 @@
 #include <string>
 #include <string_view>
 
-namespace asperity {
+namespace asperity::io {
 
 // SHA-256 of `bytes` as 64 lowercase hex digits.
 std::string sha256_hex(std::string_view bytes);
@@ -31,4 +31,4 @@ class Sha256 {
   void* ctx_;  // EVP_MD_CTX (kept out of this header)
 };
 
-}  // namespace asperity
+}  // namespace asperity::io

@@ -10,7 +10,7 @@
 
 #include "io/safe_open.hpp"
 
-namespace asperity {
+namespace asperity::io {
 
 DirLock::DirLock(const std::filesystem::path& dir, const std::string& who) {
   const std::filesystem::path p = dir / ".lock";
@@ -27,4 +27,4 @@ DirLock::~DirLock() {
   if (fd_ >= 0) ::close(fd_);
 }
 
-}  // namespace asperity
+}  // namespace asperity::io

@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <string>
 
-namespace asperity {
+namespace asperity::io {
 
 class DirLock {
  public:
@@ -20,4 +20,4 @@ class DirLock {
   int fd_ = -1;
 };
 
-}  // namespace asperity
+}  // namespace asperity::io

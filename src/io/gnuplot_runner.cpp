@@ -16,7 +16,7 @@
 
 extern char** environ;
 
-namespace asperity {
+namespace asperity::io {
 namespace fs = std::filesystem;
 
 namespace {
@@ -111,4 +111,4 @@ void run_gnuplot(const fs::path& workdir, const std::string& script) {
   throw std::runtime_error("gnuplot failed (status " + std::to_string(code) + "): " + first);
 }
 
-}  // namespace asperity
+}  // namespace asperity::io

@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <string>
 
-namespace asperity {
+namespace asperity::io {
 
 // True when `gnuplot` is on the PATH.
 bool gnuplot_available();
@@ -15,4 +15,4 @@ bool gnuplot_available();
 // gnuplot is missing or fails.
 void run_gnuplot(const std::filesystem::path& workdir, const std::string& script);
 
-}  // namespace asperity
+}  // namespace asperity::io

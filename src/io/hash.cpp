@@ -1,6 +1,6 @@
 #include "io/hash.hpp"
 
-namespace asperity {
+namespace asperity::io {
 
 std::uint64_t fnv1a64_extend(std::uint64_t h, std::string_view more) {
   for (const unsigned char c : more) {
@@ -19,4 +19,4 @@ std::string hex16(std::uint64_t h) {
   return s;
 }
 
-}  // namespace asperity
+}  // namespace asperity::io

@@ -6,11 +6,11 @@
 #include <string>
 #include <string_view>
 
-namespace asperity {
+namespace asperity::io {
 
 std::uint64_t fnv1a64(std::string_view bytes);
 // The FNV-1a 64 of text given in pieces: fnv1a64_extend(fnv1a64(a), b) == fnv1a64(a + b).
 std::uint64_t fnv1a64_extend(std::uint64_t h, std::string_view more);
 std::string hex16(std::uint64_t h);  // 16 lowercase hex digits
 
-}  // namespace asperity
+}  // namespace asperity::io

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <utility>
 
-namespace asperity {
+namespace asperity::io {
 
 InputError::InputError(std::string file_, int line_, std::string key_, std::string message_, int column_)
     : std::runtime_error(format(file_, line_, column_, key_, message_)),
@@ -29,4 +29,4 @@ std::string InputError::format(const std::string& file, int line, int column, co
 
 std::string input_path(const std::filesystem::path& file) { return file.lexically_normal().string(); }
 
-}  // namespace asperity
+}  // namespace asperity::io

@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace asperity {
+namespace asperity::io {
 
 struct InputError : std::runtime_error {
   std::string file;     // path as the user gave it (lexically normalised), or "--set key=value"
@@ -26,4 +26,4 @@ struct InputError : std::runtime_error {
 // normalised. (A result names a file otherwise: result_path of io/provenance.hpp.)
 std::string input_path(const std::filesystem::path& file);
 
-}  // namespace asperity
+}  // namespace asperity::io

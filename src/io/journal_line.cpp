@@ -6,7 +6,7 @@
 #include "io/digest.hpp"
 #include "io/hash.hpp"
 
-namespace asperity {
+namespace asperity::io {
 
 std::string journal_line(std::string_view row) {
   std::string line(row);
@@ -55,4 +55,4 @@ std::string_view journal_row(std::string_view line) {
   return comma == std::string_view::npos ? line : line.substr(0, comma);
 }
 
-}  // namespace asperity
+}  // namespace asperity::io

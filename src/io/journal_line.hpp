@@ -9,7 +9,7 @@
 #include <string>
 #include <string_view>
 
-namespace asperity {
+namespace asperity::io {
 
 enum class JournalDigest { sha256, fnv1a64_legacy };
 
@@ -32,4 +32,4 @@ std::optional<JournalDigest> journal_digest_of(std::string_view first_line, std:
 // The row of a line known to be good (the text before its last comma).
 std::string_view journal_row(std::string_view line);
 
-}  // namespace asperity
+}  // namespace asperity::io

@@ -8,7 +8,7 @@
 
 #include "io/numbers.hpp"
 
-namespace asperity {
+namespace asperity::io {
 
 namespace {
 
@@ -110,4 +110,4 @@ void ProgressLine::update(double done, const std::string& extra) {
   std::fflush(stderr);
 }
 
-}  // namespace asperity
+}  // namespace asperity::io

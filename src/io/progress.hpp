@@ -10,7 +10,7 @@
 #include <cstdio>
 #include <string>
 
-namespace asperity {
+namespace asperity::io {
 
 // "45s", "3m07s", "2h05m"; "?" when not finite.
 std::string duration_text(double seconds);
@@ -49,4 +49,4 @@ class ProgressLine {
   bool drawn_ = false;
 };
 
-}  // namespace asperity
+}  // namespace asperity::io

@@ -10,7 +10,7 @@
 #include "io/hash.hpp"
 #include "io/yaml_util.hpp"
 
-namespace asperity {
+namespace asperity::io {
 
 namespace fs = std::filesystem;
 
@@ -93,4 +93,4 @@ std::string provenance_yaml(const std::string& command_line, const std::vector<D
   return y.str();
 }
 
-}  // namespace asperity
+}  // namespace asperity::io

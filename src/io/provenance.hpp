@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-namespace asperity {
+namespace asperity::io {
 
 struct BuildInfo {
   std::string version;     // project version, e.g. "0.1.0"
@@ -50,4 +50,4 @@ struct DataFile {
 // Files listed twice (same path) appear once.
 std::string provenance_yaml(const std::string& command_line, const std::vector<DataFile>& files);
 
-}  // namespace asperity
+}  // namespace asperity::io

@@ -10,7 +10,7 @@
 
 #include "io/input_error.hpp"
 
-namespace asperity {
+namespace asperity::io {
 namespace fs = std::filesystem;
 namespace {
 
@@ -137,4 +137,4 @@ bool read_regular(const fs::path& path, std::string& text, const std::string& ke
   return true;
 }
 
-}  // namespace asperity
+}  // namespace asperity::io

@@ -10,7 +10,7 @@
 #include <filesystem>
 #include <string>
 
-namespace asperity {
+namespace asperity::io {
 
 // Opens `folder`/`rel` with `flags` (O_CREAT allowed; O_NOFOLLOW, O_CLOEXEC and, for the open
 // itself, O_NONBLOCK are added). Returns the descriptor, or -1 with errno = ENOENT when the file
@@ -32,4 +32,4 @@ void check_real_folders(const std::filesystem::path& folder, const std::filesyst
 // The whole text of `path` read through open_regular into `text`; false when it does not exist.
 bool read_regular(const std::filesystem::path& path, std::string& text, const std::string& key = "");
 
-}  // namespace asperity
+}  // namespace asperity::io

@@ -3,7 +3,7 @@
 #include <charconv>
 #include <stdexcept>
 
-namespace asperity {
+namespace asperity::io {
 
 namespace {
 
@@ -53,4 +53,4 @@ Shard parse_shard(const std::string& text, const std::function<const char*(const
   return s;
 }
 
-}  // namespace asperity
+}  // namespace asperity::io

@@ -9,7 +9,7 @@
 #include <functional>
 #include <string>
 
-namespace asperity {
+namespace asperity::io {
 
 struct Shard {
   std::uint64_t index = 0, count = 1;
@@ -24,4 +24,4 @@ Shard parse_shard(
     const std::function<const char*(const char*)>& env = [](const char* n) { return std::getenv(n); },
     const std::string& option = "--shard");
 
-}  // namespace asperity
+}  // namespace asperity::io

@@ -15,7 +15,7 @@
 
 #include "io/hash.hpp"
 
-namespace asperity {
+namespace asperity::io {
 namespace fs = std::filesystem;
 namespace {
 
@@ -192,4 +192,4 @@ std::size_t remove_stale_temporaries(const fs::path& folder, std::string_view pr
   return removed;
 }
 
-}  // namespace asperity
+}  // namespace asperity::io

@@ -9,7 +9,7 @@
 #include <string>
 #include <string_view>
 
-namespace asperity {
+namespace asperity::io {
 
 // "HOST-PID-N": unique on the machine while the process lives, and telling which machine and
 // process made a temporary (a cluster's nodes share folders).
@@ -51,4 +51,4 @@ void install_signal_cleanup();
 // Names without a host ("PID-N", written before hosts were recorded) count as this host's.
 std::size_t remove_stale_temporaries(const std::filesystem::path& folder, std::string_view prefix = ".");
 
-}  // namespace asperity
+}  // namespace asperity::io

@@ -6,7 +6,7 @@
 
 #include "io/progress.hpp"
 
-namespace asperity {
+namespace asperity::io {
 
 namespace {
 
@@ -58,4 +58,4 @@ WarningSink set_warning_sink(WarningSink sink) {
   return sink;
 }
 
-}  // namespace asperity
+}  // namespace asperity::io

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-namespace asperity {
+namespace asperity::io {
 
 void warn(const std::string& text);
 
@@ -35,4 +35,4 @@ class HeldWarnings {
   bool holding_ = true;
 };
 
-}  // namespace asperity
+}  // namespace asperity::io

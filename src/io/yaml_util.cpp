@@ -505,10 +505,6 @@ std::vector<std::string> MapView::string_list(const YAML::Node& n, const std::st
   return out;
 }
 
-}  // namespace asperity::io
-
-namespace asperity {
-
 // A double-quoted YAML scalar with escapes (the one quoting used for every file we write).
 std::string yaml_quoted(const std::string& s) {
   static const char* hex = "0123456789ABCDEF";
@@ -543,4 +539,4 @@ std::string yaml_quoted(const std::string& s) {
   return out + "\"";
 }
 
-}  // namespace asperity
+}  // namespace asperity::io

@@ -129,10 +129,8 @@ class MapView {
   std::vector<std::pair<std::string, std::pair<YAML::Node, YAML::Node>>> entries_;  // key → (key node, value)
 };
 
-}  // namespace asperity::io
-
-namespace asperity {
 // A double-quoted YAML scalar with escapes (the one quoting used for every file we write;
 // deterministic bytes).
 std::string yaml_quoted(const std::string& s);
-}  // namespace asperity
+
+}  // namespace asperity::io

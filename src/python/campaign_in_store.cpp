@@ -26,8 +26,8 @@ void absolute_scene(YAML::Node node, const fs::path& base) {
 
 fs::path campaign_into_store(YAML::Node tree, const fs::path& base, const fs::path& store) {
   if (store.empty())
-    throw InputError("", 0, "out", "a campaign given as a dict needs out= (the store folder, which keeps it)");
-  if (!tree.IsMap()) throw InputError("", 0, "campaign", "expected a dict of a campaign file's keys");
+    throw io::InputError("", 0, "out", "a campaign given as a dict needs out= (the store folder, which keeps it)");
+  if (!tree.IsMap()) throw io::InputError("", 0, "campaign", "expected a dict of a campaign file's keys");
   const YAML::Node& lookup = tree;  // const: a missing key is not added
   if (lookup["scene"]) absolute_scene(tree["scene"], base);
   if (lookup["scenes"] && lookup["scenes"].IsSequence()) {
@@ -43,14 +43,15 @@ fs::path campaign_into_store(YAML::Node tree, const fs::path& base, const fs::pa
   const fs::path file = store / "campaign.yaml";
   std::error_code ec;
   const auto st = fs::symlink_status(file, ec);
-  if (fs::is_symlink(st)) throw InputError(file.string(), 0, "out", "refusing to write through a symbolic link");
+  if (fs::is_symlink(st)) throw io::InputError(file.string(), 0, "out", "refusing to write through a symbolic link");
   if (fs::exists(st)) {
-    if (read_file_text(file) == text) return file;  // the same campaign: a resume
-    throw InputError(store.string(), 0, "out",
-                     "holds the store of another campaign (its campaign.yaml differs); choose a new or empty folder");
+    if (io::read_file_text(file) == text) return file;  // the same campaign: a resume
+    throw io::InputError(
+        store.string(), 0, "out",
+        "holds the store of another campaign (its campaign.yaml differs); choose a new or empty folder");
   }
   fs::create_directories(store);
-  write_file_durably(file, text);
+  io::write_file_durably(file, text);
   return file;
 }
 

@@ -114,7 +114,7 @@ py::dict uncertainty_dict(const Optimization& o) {
 std::filesystem::path base_dir(const py::object& base) {
   if (base.is_none()) return std::filesystem::current_path();
   const std::string b = py::str(base);
-  check_no_nul(b, "base");
+  io::check_no_nul(b, "base");
   return b;
 }
 
@@ -179,8 +179,9 @@ py::dict run_scene(const Scene& scene) {
 int threads_argument(const py::object& value, const char* argument, int fallback) {
   if (value.is_none()) return fallback;
   if (!PyLong_Check(value.ptr()) || PyBool_Check(value.ptr()))
-    throw py::type_error(std::string(argument) + ": an int from 1 to " + std::to_string(kMaxThreads) + " (or None)");
-  return checked_threads(std::string(py::str(value)), argument);
+    throw py::type_error(std::string(argument) + ": an int from 1 to " + std::to_string(io::kMaxThreads) +
+                         " (or None)");
+  return io::checked_threads(std::string(py::str(value)), argument);
 }
 
 // Runs `work` (engine only: it never touches Python) on a worker thread, the GIL released, while
@@ -233,12 +234,12 @@ std::function<void()> progress_tick(const py::object& progress,
 PYBIND11_MODULE(_asperity, m) {
   m.doc() = "asperity engine (compiled part; use the `asperity` package)";
   // One-line messages `file:line: key: message`, as the command line prints them.
-  static py::exception<InputError> input_error(m, "InputError", PyExc_ValueError);
+  static py::exception<io::InputError> input_error(m, "InputError", PyExc_ValueError);
   static py::exception<SolverError> solver_error(m, "SolverError", PyExc_RuntimeError);
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);
-    } catch (const InputError& e) {
+    } catch (const io::InputError& e) {
       PyErr_SetString(input_error.ptr(), e.what());
     } catch (const SolverError& e) {
       PyErr_SetString(solver_error.ptr(), e.what());
@@ -276,13 +277,13 @@ PYBIND11_MODULE(_asperity, m) {
                " junctions, from " + (s.file.empty() ? std::string("memory") : s.file.string()) + ">";
       });
 
-  m.def("check_no_nul", &check_no_nul, py::arg("text"), py::arg("argument"),
+  m.def("check_no_nul", &io::check_no_nul, py::arg("text"), py::arg("argument"),
         "InputError naming `argument` when `text` holds a NUL byte (which every system call would cut)");
   m.def(
       "load_scene",
       [](const std::string& path, const std::vector<std::string>& overrides) {
-        check_no_nul(path, "path");
-        for (const std::string& o : overrides) check_no_nul(o, "overrides");
+        io::check_no_nul(path, "path");
+        for (const std::string& o : overrides) io::check_no_nul(o, "overrides");
         return load_scene(path, overrides, "overrides:");
       },
       py::arg("path"), py::arg("overrides") = std::vector<std::string>{});
@@ -305,25 +306,25 @@ PYBIND11_MODULE(_asperity, m) {
       "sweep",
       [](const py::object& campaign_arg, const std::string& out, const py::object& threads, const std::string& shard,
          const py::object& progress, const py::object& base) {
-        check_no_nul(out, "out");
+        io::check_no_nul(out, "out");
         std::string campaign;  // the campaign file (a dict's: written into the store, campaign_in_store.hpp)
         if (py::isinstance<py::dict>(campaign_arg)) {
           campaign = python::campaign_into_store(python::yaml_node(campaign_arg, ""), base_dir(base), out).string();
         } else {
           if (!base.is_none())
-            throw InputError("", 0, "base", "is for a dict campaign; a file's paths are relative to the file");
+            throw io::InputError("", 0, "base", "is for a dict campaign; a file's paths are relative to the file");
           campaign = py::str(campaign_arg);
-          check_no_nul(campaign, "campaign");
+          io::check_no_nul(campaign, "campaign");
         }
         SweepOptions o;
         o.threads = threads_argument(threads, "threads", 0);  // 0: every hardware thread
         const Campaign c = load_campaign(campaign);
         o.out = out;
         try {
-          o.shard = parse_shard(
+          o.shard = io::parse_shard(
               shard, [](const char* n) { return std::getenv(n); }, "shard");
         } catch (const std::invalid_argument& e) {  // as the command line's --shard
-          throw InputError("", 0, "shard", e.what());
+          throw io::InputError("", 0, "shard", e.what());
         }
         o.quiet = true;
         o.command_line = "python: asperity.sweep(" + campaign + ")";
@@ -349,9 +350,9 @@ PYBIND11_MODULE(_asperity, m) {
       [](const py::object& fit_spec, const std::string& out, const py::object& threads, bool profile, bool error_bars,
          const py::object& progress, const py::object& objective, bool series, const py::object& base,
          const std::string& objective_id) {
-        check_no_nul(out, "out");
+        io::check_no_nul(out, "out");
         FitOptions fo;
-        fo.threads = threads_argument(threads, "threads", hardware_threads());
+        fo.threads = threads_argument(threads, "threads", io::hardware_threads());
         // A Python objective: `objective(summary, series)` (series None unless asked; __init__.py
         // wraps the user's callable) gives each experiment's term; the spec's `objective` key is
         // then absent. Journaled under `objective_id` (__init__.py: a digest of the callable's source),
@@ -359,13 +360,13 @@ PYBIND11_MODULE(_asperity, m) {
         FitLoadOptions lo;
         if (!objective.is_none()) {
           if (!out.empty() && objective_id.empty())
-            throw InputError("", 0, "out",
-                             "a fit with a Python objective is journaled only under an identity of the callable");
+            throw io::InputError("", 0, "out",
+                                 "a fit with a Python objective is journaled only under an identity of the callable");
           lo.user_objective = true;
           lo.user_series = series;
           lo.user_objective_name = "the Python callable given as objective=";
         } else if (series) {
-          throw InputError("", 0, "series", "passes the series to a Python objective; give objective= too");
+          throw io::InputError("", 0, "series", "passes the series to a Python objective; give objective= too");
         }
         std::string what;  // the spec, as the provenance's command line names it
         FitSpec spec;
@@ -374,9 +375,9 @@ PYBIND11_MODULE(_asperity, m) {
           what = "dict";
         } else {
           if (!base.is_none())
-            throw InputError("", 0, "base", "is for a dict spec; a fit file's paths are relative to the file");
+            throw io::InputError("", 0, "base", "is for a dict spec; a fit file's paths are relative to the file");
           what = py::str(fit_spec);
-          check_no_nul(what, "fit_file");
+          io::check_no_nul(what, "fit_file");
           spec = load_fit(what, {}, lo);
         }
         if (!objective.is_none()) spec.user_objective_id = objective_id;
@@ -408,12 +409,12 @@ PYBIND11_MODULE(_asperity, m) {
         // journaled there as it finishes, so a fit stopped by Ctrl-C (or killed) resumes when run
         // again into the same folder (by Python or by the command line: the same inputs.txt).
         FitJournal journal;
-        std::unique_ptr<DirLock> lock;
+        std::unique_ptr<io::DirLock> lock;
         if (!out.empty()) {
           claim_fit_dir(out);
           lock = lock_fit_journal_dir(out, "out");
-          remove_stale_temporaries(out);  // of a fit that died while writing
-          open_fit_journal(journal, out, fit_inputs_text(spec, {}, code_build_id(), Shard{}));
+          io::remove_stale_temporaries(out);  // of a fit that died while writing
+          open_fit_journal(journal, out, fit_inputs_text(spec, {}, io::code_build_id(), io::Shard{}));
           fo.journal = &journal;
         }
         fo.profile = profile;
@@ -477,7 +478,7 @@ PYBIND11_MODULE(_asperity, m) {
   m.def(
       "store_series",
       [](const std::string& store, const std::vector<std::uint64_t>& indices) {
-        check_no_nul(store, "path");  // asperity.read_series(path, index)
+        io::check_no_nul(store, "path");  // asperity.read_series(path, index)
         std::map<std::uint64_t, std::string> texts;
         {
           py::gil_scoped_release release;
@@ -487,8 +488,8 @@ PYBIND11_MODULE(_asperity, m) {
       },
       py::arg("store"), py::arg("indices"));
 
-  m.def("version", [] { return version_line(); });
-  m.attr("__version__") = build_info().version;  // the number `asperity --version` prints
+  m.def("version", [] { return io::version_line(); });
+  m.attr("__version__") = io::build_info().version;  // the number `asperity --version` prints
 
   // Units of every column a result holds, from the engine's tables (report/units.hpp): SI text,
   // "1" dimensionless, "" not a number (flags, names).

@@ -62,7 +62,7 @@ YAML::Node junction_column(const py::object& column, const std::string& where, c
                          std::string(py::str(column.get_type().attr("__name__"))));
   }
   if (a.ndim() != 1)
-    throw InputError(
+    throw io::InputError(
         where, 0, name,
         "expected one value per junction (one dimension), got " + std::to_string(a.ndim()) + " dimensions");
   YAML::Node s(YAML::NodeType::Sequence);
@@ -78,7 +78,7 @@ YAML::Node measured_node(const py::object& measured, const std::string& where) {
   for (const py::handle c : columns) {
     const std::string n = py::str(c);
     if (n != "Q_N" && n != "A_m2")
-      throw InputError(where, 0, "measured", "unknown column " + io::quote(n) + "; valid: Q_N, A_m2");
+      throw io::InputError(where, 0, "measured", "unknown column " + io::quote(n) + "; valid: Q_N, A_m2");
     m[n] = junction_column(py::object(measured[c]), where, n);
   }
   return m;
@@ -94,31 +94,32 @@ Scene scene_from_dict(const py::dict& d, py::object areas, py::object x, py::obj
   YAML::Node tree = yaml_node(d, "");
   if (py::hasattr(areas, "columns")) {  // a pandas DataFrame
     if (!x.is_none() || !y.is_none())
-      throw InputError(where, 0, "x", "give x_m and y_m as columns of the DataFrame or as arrays, not both");
+      throw io::InputError(where, 0, "x", "give x_m and y_m as columns of the DataFrame or as arrays, not both");
     const py::object df = areas;
     areas = py::none();
     const std::vector<std::string> valid{"area_m2", "x_m", "y_m"};
     for (const py::handle c : df.attr("columns")) {
       const std::string n = py::str(c);
       if (std::find(valid.begin(), valid.end(), n) == valid.end())
-        throw InputError(where, 0, "areas",
-                         "unknown column " + io::quote(n) + io::did_you_mean(n, valid) + "; valid: area_m2, x_m, y_m");
+        throw io::InputError(
+            where, 0, "areas",
+            "unknown column " + io::quote(n) + io::did_you_mean(n, valid) + "; valid: area_m2, x_m, y_m");
       (n == "area_m2" ? areas : n == "x_m" ? x : y) = py::object(df[c]);
     }
-    if (areas.is_none()) throw InputError(where, 0, "areas", "missing column 'area_m2'");
+    if (areas.is_none()) throw io::InputError(where, 0, "areas", "missing column 'area_m2'");
   }
   if (areas.is_none()) {
-    if (!x.is_none() || !y.is_none()) throw InputError(where, 0, "areas", "x and y need the junction areas");
-    if (!measured.is_none()) throw InputError(where, 0, "measured", "needs the junction areas too");
+    if (!x.is_none() || !y.is_none()) throw io::InputError(where, 0, "areas", "x and y need the junction areas");
+    if (!measured.is_none()) throw io::InputError(where, 0, "measured", "needs the junction areas too");
   } else {
     const YAML::Node& view = tree;
     if (!view["experiment"].IsDefined() || view["experiment"].IsNull())
       tree["experiment"] = YAML::Node(YAML::NodeType::Map);
     YAML::Node e = tree["experiment"];
     if (!e.IsMap())
-      throw InputError(where, 0, "experiment",
-                       "with junction arrays, the experiment is a map of its values {name, mass, k_L, v, E, nu, "
-                       "sigma_exp}, not a file");
+      throw io::InputError(where, 0, "experiment",
+                           "with junction arrays, the experiment is a map of its values {name, mass, k_L, v, E, nu, "
+                           "sigma_exp}, not a file");
     YAML::Node j(YAML::NodeType::Map);
     j["area_m2"] = junction_column(areas, where, "area_m2");
     if (!x.is_none()) j["x_m"] = junction_column(x, where, "x_m");

@@ -39,16 +39,16 @@ SurfaceContactInput surface_contact_input(const std::string& where, const py::ob
                          std::string(py::str(heights.get_type().attr("__name__"))));
   }
   if (a.ndim() != 2 || a.shape(0) != a.shape(1) || a.shape(0) < 2)
-    throw InputError(where, 0, "heights", "expected a square n x n array with n >= 2");
+    throw io::InputError(where, 0, "heights", "expected a square n x n array with n >= 2");
   const auto n = static_cast<std::size_t>(a.shape(0));
   if (n > kMaxHeightMapSide)
-    throw InputError(where, 0, "heights",
-                     std::to_string(n) + " pixels a side: at most " + std::to_string(kMaxHeightMapSide));
-  if (const std::string why = pixel_size_problem(pixel_m); !why.empty()) throw InputError(where, 0, "pixel_m", why);
+    throw io::InputError(where, 0, "heights",
+                         std::to_string(n) + " pixels a side: at most " + std::to_string(kMaxHeightMapSide));
+  if (const std::string why = pixel_size_problem(pixel_m); !why.empty()) throw io::InputError(where, 0, "pixel_m", why);
   // The recipe's own ranges (scene/topography_recipe.hpp), named by the argument.
   const auto in_range = [&](const char* argument, const char* key, double v) {
     if (const std::string why = topography_number_problem(key, v); !why.empty())
-      throw InputError(where, 0, argument, why);
+      throw io::InputError(where, 0, argument, why);
   };
   in_range("sphere_radius_m", "sphere_radius_m", sphere_radius_m), in_range("load_N", "load_N", load_N);
   in_range("E", "E", E), in_range("nu", "nu", nu), in_range("tolerance", "contact.tolerance", tolerance);
@@ -61,9 +61,9 @@ SurfaceContactInput surface_contact_input(const std::string& where, const py::ob
   map.h_m.assign(a.data(), a.data() + n * n);
   for (std::size_t k = 0; k < n * n; ++k)
     if (!std::isfinite(map.h_m[k]))
-      throw InputError(where, 0, "heights",
-                       "heights[" + std::to_string(k / n) + ", " + std::to_string(k % n) + "] is not finite");
-  if (const auto p = height_range_problem(map)) throw InputError(where, 0, "heights", p->message);
+      throw io::InputError(where, 0, "heights",
+                           "heights[" + std::to_string(k / n) + ", " + std::to_string(k % n) + "] is not finite");
+  if (const auto p = height_range_problem(map)) throw io::InputError(where, 0, "heights", p->message);
   TopographyRecipe& r = in.recipe;
   r.name = "numpy";
   r.display = where;
@@ -111,21 +111,21 @@ py::dict tangential_contact(const py::object& heights, double pixel_m, double sp
   SurfaceContactInput in =
       surface_contact_input(where, heights, pixel_m, sphere_radius_m, load_N, E, nu, tolerance, max_iterations, 8);
   if (nu != 0.5)
-    throw InputError(where, 0, "nu", "the tangential contact is solved at nu = 0.5 only (docs/continuum.md)");
+    throw io::InputError(where, 0, "nu", "the tangential contact is solved at nu = 0.5 only (docs/continuum.md)");
   if ((shear_strength_Pa > 0) == (friction_coefficient > 0))
-    throw InputError(where, 0, "shear_strength_Pa", "give one bound: shear_strength_Pa or friction_coefficient");
+    throw io::InputError(where, 0, "shear_strength_Pa", "give one bound: shear_strength_Pa or friction_coefficient");
   if (!std::isfinite(shear_strength_Pa) || shear_strength_Pa < 0)
-    throw InputError(where, 0, "shear_strength_Pa", "must be finite and positive");
+    throw io::InputError(where, 0, "shear_strength_Pa", "must be finite and positive");
   if (!std::isfinite(friction_coefficient) || friction_coefficient < 0)
-    throw InputError(where, 0, "friction_coefficient", "must be finite and positive");
-  if (!(tangential_tolerance > 0)) throw InputError(where, 0, "tangential_tolerance", "must be positive");
+    throw io::InputError(where, 0, "friction_coefficient", "must be finite and positive");
+  if (!(tangential_tolerance > 0)) throw io::InputError(where, 0, "tangential_tolerance", "must be positive");
   double last = 0;
   for (const double d : displacements_m) {
     if (!(d >= last) || !std::isfinite(d))
-      throw InputError(where, 0, "displacements_m", "must be finite and increase from 0");
+      throw io::InputError(where, 0, "displacements_m", "must be finite and increase from 0");
     last = d;
   }
-  if (displacements_m.size() > 100000) throw InputError(where, 0, "displacements_m", "at most 100,000 points");
+  if (displacements_m.size() > 100000) throw io::InputError(where, 0, "displacements_m", "at most 100,000 points");
   TangentialCurve c;
   TopographyContact t;
   {

@@ -95,8 +95,8 @@ std::string golden_to_yaml(const Golden& g) {
        "# derived from the measured solver error of each entry (see README, Regression runs).\n";
   s << (g.history.empty() ? "history: []\n" : "history:\n");
   for (const auto& r : g.history)
-    s << "  - {date: " << yaml_quoted(r.date) << ", version: " << yaml_quoted(r.version)
-      << ", reason: " << yaml_quoted(r.reason) << "}\n";
+    s << "  - {date: " << io::yaml_quoted(r.date) << ", version: " << io::yaml_quoted(r.version)
+      << ", reason: " << io::yaml_quoted(r.reason) << "}\n";
   s << "entries:\n";
   for (const auto& [name, obs] : g.entries) {
     s << "  " << name << ":\n";

@@ -27,7 +27,7 @@ std::string fit_file_stem(const std::string& name) {
   std::string s;
   for (char c : name.substr(0, 60)) s += plain(c) ? c : '_';
   if (!s.empty() && s.front() == '.') s.front() = '_';
-  return s + "+" + hex16(fnv1a64(name));
+  return s + "+" + io::hex16(io::fnv1a64(name));
 }
 
 // The tic format of an axis spanning the values `v`: as many digits as tell tics about a fifth

@@ -44,7 +44,7 @@ void plot_quietly(const fs::path& dir, const std::string& script, const std::str
   keep_plot_script(dir / gp_name,
                    "# asperity plot script: `gnuplot " + gp_name + "` redraws this fit's figures\n" + script);
   try {
-    run_gnuplot(dir, script);
+    io::run_gnuplot(dir, script);
   } catch (const std::exception&) {  // a failed plot is not a failed fit
   }
 }
@@ -87,9 +87,9 @@ std::string fit_subdir(const FitSpec& spec, const Optimization& o) {
 std::string evaluations_csv(const Optimization& o, const FitSpec& spec) {
   std::ostringstream c;
   c << "evaluation";
-  for (const auto& v : o.variables) c << "," << csv_field(v.label);
+  for (const auto& v : o.variables) c << "," << io::csv_field(v.label);
   c << ",objective";
-  for (const auto e : o.experiments) c << "," << csv_field("term_" + spec.experiments[e].name);
+  for (const auto e : o.experiments) c << "," << io::csv_field("term_" + spec.experiments[e].name);
   c << ",wall_s,status\n";
   for (const auto& ev : o.log) {
     c << ev.index;
@@ -97,7 +97,7 @@ std::string evaluations_csv(const Optimization& o, const FitSpec& spec) {
     c << "," << format_g17(ev.objective);
     for (std::size_t k = 0; k < o.experiments.size(); ++k)
       c << "," << format_g17(k < ev.residuals.size() ? ev.residuals[k] : Observables::nan);
-    c << "," << format_g17(ev.wall_s) << "," << csv_field(ev.status) << "\n";
+    c << "," << format_g17(ev.wall_s) << "," << io::csv_field(ev.status) << "\n";
   }
   return c.str();
 }
@@ -107,7 +107,7 @@ std::string profile_csv(const std::vector<ProfilePoint>& points) {
   c << "factor,value,objective,status\n";
   for (const auto& p : points)
     c << format_g17(p.factor) << "," << format_g17(p.value) << "," << format_g17(p.objective) << ","
-      << csv_field(p.status) << "\n";
+      << io::csv_field(p.status) << "\n";
   return c.str();
 }
 
@@ -212,7 +212,7 @@ void write_bootstrap(std::ostream& y, const Optimization& o, std::uint64_t seed)
   y << "        draws: " << bs.draws.size() << "\n        succeeded: " << bs.succeeded << "\n        seed: " << seed
     << "\n        evaluations: " << bs.evaluations << "\n        wall_s: " << yaml_double(bs.wall_s) << "\n";
   if (!bs.failure.empty()) {
-    y << "        failure: " << yaml_quoted(bs.failure) << "\n";
+    y << "        failure: " << io::yaml_quoted(bs.failure) << "\n";
     return;
   }
   const Uncertainty& un = o.uncertainty;
@@ -220,7 +220,7 @@ void write_bootstrap(std::ostream& y, const Optimization& o, std::uint64_t seed)
   for (std::size_t i = 0; i < o.variables.size(); ++i) {
     const double x = o.best[i], sg = bs.sigma[i];
     const double ratio = un.computed ? sg / un.sigma[i] : Observables::nan;
-    y << "          " << yaml_quoted(o.variables[i].label) << ": {value: " << yaml_double(x)
+    y << "          " << io::yaml_quoted(o.variables[i].label) << ": {value: " << yaml_double(x)
       << ", sigma: " << yaml_double(sg) << ", sigma_relative: " << yaml_double(sg / std::abs(x)) << ", interval95: ["
       << yaml_double(x - 1.96 * sg) << ", " << yaml_double(x + 1.96 * sg) << "], mean: " << yaml_double(bs.mean[i])
       << ", hessian_ratio: " << yaml_double(ratio) << "}\n";
@@ -238,7 +238,7 @@ void write_uncertainty(std::ostream& y, const Optimization& o, std::uint64_t see
   const Uncertainty& un = o.uncertainty;
   y << "    uncertainty:\n";
   if (!o.certified()) {  // no numbers around a point no second start confirms as the minimum
-    y << "      certified: false\n      failure: " << yaml_quoted(un.failure) << "\n";
+    y << "      certified: false\n      failure: " << io::yaml_quoted(un.failure) << "\n";
     return;
   }
   y << "      certified: true\n";
@@ -255,7 +255,7 @@ void write_uncertainty(std::ostream& y, const Optimization& o, std::uint64_t see
   y << "      residuals: " << un.residuals << "\n      reduced_chi2: " << yaml_double(un.reduced_chi2) << "\n";
   y << "      evaluations: " << un.evaluations << "\n      wall_s: " << yaml_double(un.wall_s) << "\n";
   if (!un.computed) {
-    y << "      failure: " << yaml_quoted(un.failure) << "\n";
+    y << "      failure: " << io::yaml_quoted(un.failure) << "\n";
   } else {
     y << "      parameters:\n";
     for (std::size_t i = 0; i < o.variables.size(); ++i) {
@@ -264,7 +264,7 @@ void write_uncertainty(std::ostream& y, const Optimization& o, std::uint64_t see
       for (const ParameterProfile& pp : o.profiles)
         if (pp.parameter == o.variables[i].parameter && o.variables[i].experiment < 0)
           plo = pp.lo, phi = pp.hi, psg = pp.parabola_sigma;
-      y << "        " << yaml_quoted(o.variables[i].label) << ": {value: " << yaml_double(x)
+      y << "        " << io::yaml_quoted(o.variables[i].label) << ": {value: " << yaml_double(x)
         << ", step: " << yaml_double(un.steps[i]) << ", sigma: " << yaml_double(sg)
         << ", sigma_relative: " << yaml_double(sg / std::abs(x)) << ", interval95: [" << yaml_double(x - 1.96 * sg)
         << ", " << yaml_double(x + 1.96 * sg) << "], profile_interval: [" << yaml_double(plo) << ", "
@@ -284,7 +284,7 @@ void write_uncertainty(std::ostream& y, const Optimization& o, std::uint64_t see
 void write_convergence(std::ostream& y, const Optimization& o) {
   y << "    converged: " << converged_name(o.converged)
     << "   # yes: >= 2 starts in the best basin; no: only the best start; unverified: one start\n";
-  y << "    convergence: " << yaml_quoted(o.convergence) << "\n";
+  y << "    convergence: " << io::yaml_quoted(o.convergence) << "\n";
   y << "    starts: " << o.starts.size() << "\n";
   y << "    best_start: " << o.best_start + 1 << "   # its stop_reason above\n";
   y << "    in_best_basin: " << o.in_best_basin << "\n";
@@ -295,7 +295,7 @@ void write_convergence(std::ostream& y, const Optimization& o) {
     double lo = Observables::nan, hi = Observables::nan;
     for (const StartRun& s : o.starts)
       if (s.in_best_basin && i < s.best.size()) lo = std::fmin(lo, s.best[i]), hi = std::fmax(hi, s.best[i]);
-    y << "        " << yaml_quoted(o.variables[i].label) << ": [" << yaml_double(lo) << ", " << yaml_double(hi)
+    y << "        " << io::yaml_quoted(o.variables[i].label) << ": [" << yaml_double(lo) << ", " << yaml_double(hi)
       << "]\n";
   }
   y << "    start_runs:\n";
@@ -306,18 +306,19 @@ void write_convergence(std::ostream& y, const Optimization& o) {
     y << "], best: [";
     for (std::size_t i = 0; i < s.best.size(); ++i) y << (i ? ", " : "") << yaml_double(s.best[i]);
     y << "], objective: " << yaml_double(s.objective) << ", evaluations: " << s.evaluations
-      << ", stop_reason: " << yaml_quoted(s.stop_reason) << ", in_best_basin: " << (s.in_best_basin ? "true" : "false");
-    if (!s.failure.empty()) y << ", failure: " << yaml_quoted(s.failure);
+      << ", stop_reason: " << io::yaml_quoted(s.stop_reason)
+      << ", in_best_basin: " << (s.in_best_basin ? "true" : "false");
+    if (!s.failure.empty()) y << ", failure: " << io::yaml_quoted(s.failure);
     y << "}\n";
   }
 }
 
 // fit.yaml's settings: the header, the fit file, the algorithm and its stopping rules, wall times.
 void write_fit_settings(std::ostream& y, const FitSpec& spec, const FitResult& result, bool stand_in) {
-  y << "asperity_version: " << yaml_quoted(build_info().version) << "\n";
-  y << "fit_file: " << yaml_quoted(result_path(spec.file)) << "\n";
-  y << "name: " << yaml_quoted(spec.name) << "\n";
-  y << "description: " << yaml_quoted(spec.description) << "\n";
+  y << "asperity_version: " << io::yaml_quoted(io::build_info().version) << "\n";
+  y << "fit_file: " << io::yaml_quoted(io::result_path(spec.file)) << "\n";
+  y << "name: " << io::yaml_quoted(spec.name) << "\n";
+  y << "description: " << io::yaml_quoted(spec.description) << "\n";
   y << "data: " << (stand_in ? "stand-in" : "measured") << "\n";
   y << "objective: " << objective_name(spec.objective) << "\n";
   if (spec.objective == FitObjective::area_and_force)
@@ -348,7 +349,7 @@ void write_best_runs(std::ostream& y, const FitSpec& spec, const Optimization& o
   y << "    runs:   # the best run of each experiment\n";
   for (const auto& r : o.best_runs) {
     const Observables& b = r.obs;
-    y << "      " << yaml_quoted(spec.experiments[r.experiment].name) << ":\n";
+    y << "      " << io::yaml_quoted(spec.experiments[r.experiment].name) << ":\n";
     y << "        stand_in: " << (r.stand_in ? "true" : "false") << "\n";
     y << "        mass: " << yaml_double(r.mass_kg) << "\n";
     y << "        term: " << yaml_double(r.residual) << "\n";
@@ -377,7 +378,7 @@ void write_profiles(std::ostream& y, const FitSpec& spec, const Optimization& o)
     y << "      parameter: " << spec.parameters[ps.parameter].key << "\n";
     y << "      span: " << yaml_double(ps.span) << "\n      points: " << o.profile.size() << "\n";
     const std::string sub = fit_subdir(spec, o);
-    y << "      file: " << yaml_quoted(sub.empty() ? "profile.csv" : sub + "/profile.csv") << "\n";
+    y << "      file: " << io::yaml_quoted(sub.empty() ? "profile.csv" : sub + "/profile.csv") << "\n";
     y << "      lowest_objective_at_factor: " << yaml_double(fmin_at) << "   # 1: the fit is the profile's minimum\n";
     y << "      wall_s: " << yaml_double(o.profile_wall_s) << "\n";
   }
@@ -386,7 +387,7 @@ void write_profiles(std::ostream& y, const FitSpec& spec, const Optimization& o)
     const std::string& key = spec.parameters[o.profiles[q].parameter].key;
     const std::string sub = fit_subdir(spec, o);
     const std::string file = "profile_" + fit_file_stem(key) + ".csv";
-    y << "      - {parameter: " << key << ", file: " << yaml_quoted(sub.empty() ? file : sub + "/" + file) << "}\n";
+    y << "      - {parameter: " << key << ", file: " << io::yaml_quoted(sub.empty() ? file : sub + "/" + file) << "}\n";
   }
 }
 
@@ -403,16 +404,16 @@ void write_error_bars(std::ostream& y, const Optimization& o) {
   for (const auto& rf : o.refits) {
     y << "        - {key: " << rf.key << ", shift: " << yaml_double(rf.sign * rf.bar);
     for (std::size_t i = 0; i < o.variables.size(); ++i)
-      y << ", " << yaml_quoted(o.variables[i].label) << ": " << yaml_double(rf.best[i]);
+      y << ", " << io::yaml_quoted(o.variables[i].label) << ": " << yaml_double(rf.best[i]);
     y << ", objective: " << yaml_double(rf.objective) << ", evaluations: " << rf.evaluations
       << ", stop_reason: " << rf.stop_reason;
-    if (!rf.failure.empty()) y << ", failure: " << yaml_quoted(rf.failure);
+    if (!rf.failure.empty()) y << ", failure: " << io::yaml_quoted(rf.failure);
     y << "}\n";
   }
   const std::vector<Range> ranges = error_bar_ranges(o);
   y << "      ranges:\n";
   for (std::size_t i = 0; i < ranges.size(); ++i)
-    y << "        " << yaml_quoted(o.variables[i].label) << ": {value: " << yaml_double(ranges[i].value)
+    y << "        " << io::yaml_quoted(o.variables[i].label) << ": {value: " << yaml_double(ranges[i].value)
       << ", min: " << yaml_double(ranges[i].min) << ", max: " << yaml_double(ranges[i].max)
       << ", sigma: " << yaml_double(ranges[i].sigma)
       << ", sigma_relative: " << yaml_double(ranges[i].sigma / std::abs(ranges[i].value)) << "}\n";
@@ -432,14 +433,14 @@ std::string fit_yaml(const FitSpec& spec, const FitResult& result, const std::st
   write_fit_settings(y, spec, result, stand_in);
   y << "fits:\n";
   for (const auto& o : result.fits) {
-    y << "  - label: " << yaml_quoted(o.label) << "\n";
-    y << "    files: " << yaml_quoted(fit_subdir(spec, o).empty() ? "." : fit_subdir(spec, o)) << "\n";
+    y << "  - label: " << io::yaml_quoted(o.label) << "\n";
+    y << "    files: " << io::yaml_quoted(fit_subdir(spec, o).empty() ? "." : fit_subdir(spec, o)) << "\n";
     y << "    experiments: [";
     for (std::size_t k = 0; k < o.experiments.size(); ++k)
-      y << (k ? ", " : "") << yaml_quoted(spec.experiments[o.experiments[k]].name);
+      y << (k ? ", " : "") << io::yaml_quoted(spec.experiments[o.experiments[k]].name);
     y << "]\n";
     y << "    status: " << (o.ok() ? "ok" : "failed") << "\n";
-    if (!o.ok()) y << "    failure: " << yaml_quoted(o.failure) << "\n";
+    if (!o.ok()) y << "    failure: " << io::yaml_quoted(o.failure) << "\n";
     y << "    stop_reason: " << o.stop_reason << "   # NLopt result\n";
     write_convergence(y, o);
     y << "    evaluations: " << o.evaluations << "\n";
@@ -448,7 +449,7 @@ std::string fit_yaml(const FitSpec& spec, const FitResult& result, const std::st
     y << "    parameters:\n";
     for (std::size_t i = 0; i < o.variables.size(); ++i) {
       const FitParameter& p = spec.parameters[o.variables[i].parameter];
-      y << "      " << yaml_quoted(o.variables[i].label) << ": {value: " << yaml_double(o.best[i])
+      y << "      " << io::yaml_quoted(o.variables[i].label) << ": {value: " << yaml_double(o.best[i])
         << ", start: " << yaml_double(o.start[i]) << ", lo: " << yaml_double(p.lo) << ", hi: " << yaml_double(p.hi)
         << ", scale: " << (p.log_scale ? "log" : "linear");
       const bool at_bound = o.best[i] == p.lo || o.best[i] == p.hi;
@@ -460,12 +461,12 @@ std::string fit_yaml(const FitSpec& spec, const FitResult& result, const std::st
     write_error_bars(y, o);
   }
   // Provenance: the build, the command, and the fit file and every experiment's input files.
-  std::vector<DataFile> files{{"fit", spec.file}};
+  std::vector<io::DataFile> files{{"fit", spec.file}};
   for (const FitExperiment& e : spec.experiments) {
-    const std::vector<DataFile> f = input_files(e.scene.build());
+    const std::vector<io::DataFile> f = input_files(e.scene.build());
     files.insert(files.end(), f.begin(), f.end());
   }
-  y << provenance_yaml(command_line, files);
+  y << io::provenance_yaml(command_line, files);
   return y.str();
 }
 
@@ -490,14 +491,14 @@ void write_fit(const fs::path& dir, const FitSpec& spec, const FitResult& result
   // The results go in beside the fit's journals (journal.csv, inputs.txt, tasks/), which stay
   // where they are: publish_dir replaces only the result files the last write listed.
   publish_dir(dir, "fit", "--out", [&](const fs::path& tmp) {
-    const bool plots = gnuplot_available();
+    const bool plots = io::gnuplot_available();
     for (const auto& o : result.fits) write_optimization(tmp / fit_subdir(spec, o), spec, o, plots, figures);
 
     // fitted.csv: one row per (optimization, experiment).
     std::ostringstream c;
     c << "fit,experiment,stand_in,mass_kg,P_N";
     for (const auto& p : spec.parameters)
-      c << "," << csv_field(p.key) << "," << csv_field(p.key + "_min") << "," << csv_field(p.key + "_max");
+      c << "," << io::csv_field(p.key) << "," << io::csv_field(p.key + "_min") << "," << io::csv_field(p.key + "_max");
     c << ",objective,term";
     for (const auto& [column, field] : kFittedObservables) c << "," << column;
     c << ",evaluations,wall_s,stop_reason,status\n";
@@ -505,7 +506,7 @@ void write_fit(const fs::path& dir, const FitSpec& spec, const FitResult& result
     for (const auto& o : result.fits) {
       const std::vector<Range> ranges = error_bar_ranges(o);
       for (const auto& r : o.best_runs) {
-        c << csv_field(o.label) << "," << csv_field(spec.experiments[r.experiment].name) << ","
+        c << io::csv_field(o.label) << "," << io::csv_field(spec.experiments[r.experiment].name) << ","
           << (r.stand_in ? "true" : "false") << "," << format_g17(r.mass_kg) << "," << format_g17(r.mass_kg * kGravity);
         for (std::size_t j = 0; j < spec.parameters.size(); ++j) {
           Range v;
@@ -521,7 +522,7 @@ void write_fit(const fs::path& dir, const FitSpec& spec, const FitResult& result
         c << "," << format_g17(o.objective) << "," << format_g17(r.residual);
         for (const auto& [column, field] : kFittedObservables)
           c << "," << format_g17(observable_field(field).value(r.obs));
-        c << "," << o.evaluations << "," << format_g17(o.wall_s) << "," << csv_field(o.stop_reason) << ","
+        c << "," << o.evaluations << "," << format_g17(o.wall_s) << "," << io::csv_field(o.stop_reason) << ","
           << (o.ok() ? "ok" : "failed") << "\n";
       }
     }

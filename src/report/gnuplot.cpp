@@ -59,7 +59,7 @@ bool tag_png(const fs::path& png) {
   put32(crc32(reinterpret_cast<const unsigned char*>(body.data()), body.size()) ^ 0xffffffffu);
   s.insert(33, chunk);
   try {
-    write_file_atomically(png, s, Durability::unsynced);
+    io::write_file_atomically(png, s, io::Durability::unsynced);
   } catch (const std::runtime_error&) {
     return false;
   }
@@ -239,7 +239,7 @@ bool keep_plot_script(const fs::path& gp, const std::string& script) {
   std::error_code ec;
   if (fs::exists(fs::symlink_status(gp, ec)) && read_all(gp, kScriptHeader.size()) != kScriptHeader) return false;
   try {
-    write_file_atomically(gp, script, Durability::unsynced);
+    io::write_file_atomically(gp, script, io::Durability::unsynced);
   } catch (const std::runtime_error&) {
     return false;
   }
@@ -267,21 +267,21 @@ std::string kept_script(const std::vector<fs::path>& figures, const std::string&
 
 // Draws one figure (the script kept by the caller).
 bool draw(const fs::path& figure, const std::string& script, int width, int height, std::string* error) {
-  if (!gnuplot_available()) {
+  if (!io::gnuplot_available()) {
     if (error) *error = "gnuplot not found on the PATH";
     return false;
   }
   // gnuplot writes to a name of our own making (no user text in `set output`), in the target's
   // folder so that the rename is atomic.
   const fs::path dir = figure.parent_path().empty() ? fs::path(".") : figure.parent_path();
-  const std::string tmp_name = ".plot.tmp-" + unique_tmp_suffix();  // the ".NAME.tmp-*" pattern of output_dir
+  const std::string tmp_name = ".plot.tmp-" + io::unique_tmp_suffix();  // the ".NAME.tmp-*" pattern of output_dir
   const fs::path tmp = dir / tmp_name;
-  const TempGuard on_signal(tmp);
+  const io::TempGuard on_signal(tmp);
   const std::string text = terminal_for(figure, width, height) + "\nset output " + gnuplot_quote(tmp_name) + "\n" +
                            script_for_terminal(figure, script) + "\nunset output\n";
   std::error_code ec;
   try {
-    run_gnuplot(dir, text);
+    io::run_gnuplot(dir, text);
   } catch (const std::exception& e) {
     if (error) *error = e.what();
     fs::remove(tmp, ec);

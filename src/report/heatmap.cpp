@@ -52,9 +52,10 @@ Cells cells_of(const StoreTable& t, const std::vector<Row>& rows, const HeatmapO
         if (!first) first = c;
       }
     if (!differ.empty())
-      throw InputError("asperity plot", 0, "--where",
-                       "several points fall on " + opt.x + " = " + r[cx] + ", " + opt.y + " = " + r[cy] +
-                           "; they differ in " + differ + ": pick one, e.g. --where " + t.cols[first] + "=" + r[first]);
+      throw io::InputError("asperity plot", 0, "--where",
+                           "several points fall on " + opt.x + " = " + r[cx] + ", " + opt.y + " = " + r[cy] +
+                               "; they differ in " + differ + ": pick one, e.g. --where " + t.cols[first] + "=" +
+                               r[first]);
   }
   return cell;
 }
@@ -97,7 +98,7 @@ HeatmapReport plot_heatmap(const fs::path& store, const HeatmapOptions& opt) {
   const std::size_t cstatus = t.column("status", "status"), cgrid = t.column("grid", "grid");
   std::vector<Row> rows = t.rows_with_numbers({cx, cy});
   if (rows.empty())
-    throw InputError("asperity plot", 0, "--where", "no point of the store matches (or x/y are not numbers)");
+    throw io::InputError("asperity plot", 0, "--where", "no point of the store matches (or x/y are not numbers)");
 
   HeatmapReport rep;
   // Prefer the grids in which both x and y vary.

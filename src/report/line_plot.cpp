@@ -36,9 +36,10 @@ Lines lines_of(const StoreTable& t, const std::vector<Row>& rows, const LinePlot
     if (fresh) continue;
     for (std::size_t c = 2; c < cstatus; ++c)
       if (c != cx && c != cexp && !same_value((*it->second)[c], r[c]))
-        throw InputError("asperity plot", 0, "--where",
-                         "several points of " + r[cexp] + " fall on " + opt.x + " = " + r[cx] + "; they differ in " +
-                             t.cols[c] + ": pick one, e.g. --where " + t.cols[c] + "=" + r[c]);
+        throw io::InputError("asperity plot", 0, "--where",
+                             "several points of " + r[cexp] + " fall on " + opt.x + " = " + r[cx] +
+                                 "; they differ in " + t.cols[c] + ": pick one, e.g. --where " + t.cols[c] + "=" +
+                                 r[c]);
   }
   return lines;
 }
@@ -71,7 +72,7 @@ LinePlotReport plot_lines(const fs::path& store, const LinePlotOptions& opt) {
   t.column("experiment", "experiment");
   std::vector<Row> rows = t.rows_with_numbers({cx});
   if (rows.empty())
-    throw InputError("asperity plot", 0, "--where", "no point of the store matches (or x is not a number)");
+    throw io::InputError("asperity plot", 0, "--where", "no point of the store matches (or x is not a number)");
 
   LinePlotReport rep;
   rep.used_grid = keep_grids_varying(rows, cgrid, {cx});  // the grids in which x varies

@@ -64,11 +64,11 @@ void write_marker_files(const fs::path& dir, const std::string& command,
   std::string text = marker_head(command);
   for (const auto& [path, digests] : files)
     for (const std::string& d : digests) text += d + " " + path + "\n";
-  write_file_atomically(dir / kMarkerFile, text, Durability::synced);
+  io::write_file_atomically(dir / kMarkerFile, text, io::Durability::synced);
 }
 
 [[noreturn]] void refuse(const fs::path& where, const std::string& option, const std::string& why) {
-  throw InputError(where.string(), 0, option, why);
+  throw io::InputError(where.string(), 0, option, why);
 }
 
 }  // namespace
@@ -102,7 +102,7 @@ void check_ours(const fs::path& dir, const std::string& command, const std::stri
   const std::string why = fs::is_symlink(st)      ? "it is a symbolic link"
                           : !fs::is_directory(st) ? "it is a file, not a folder"
                                                   : "it is not empty and was not written by asperity " + command;
-  throw InputError(dir.string(), 0, option, "refusing to write there: " + why + "; choose a new or empty folder");
+  throw io::InputError(dir.string(), 0, option, "refusing to write there: " + why + "; choose a new or empty folder");
 }
 
 void claim_dir(const fs::path& dir, const std::string& command, const std::string& option,
@@ -116,9 +116,9 @@ void claim_dir(const fs::path& dir, const std::string& command, const std::strin
   }
   fs::create_directories(target.parent_path(), ec);
   const std::string name = target.filename().string();
-  const fs::path tmp = target.parent_path() / temp_name(name);
-  remove_stale_temporaries(target.parent_path(), temp_prefix(name));
-  const TempGuard on_signal(tmp);  // before it exists: a signal in between would leave it behind
+  const fs::path tmp = target.parent_path() / io::temp_name(name);
+  io::remove_stale_temporaries(target.parent_path(), io::temp_prefix(name));
+  const io::TempGuard on_signal(tmp);  // before it exists: a signal in between would leave it behind
   if (!fs::create_directory(tmp, ec) || ec)
     throw std::runtime_error("cannot create " + tmp.string() + ": " + ec.message());
   write_marker(tmp, command, file_list);
@@ -155,13 +155,13 @@ void publish_dir(const fs::path& dir, const std::string& command, const std::str
   std::error_code ec;
   fs::create_directories(parent, ec);
   if (ec) throw std::runtime_error("cannot create " + parent.string() + ": " + ec.message());
-  const std::string own = temp_prefix(target.filename().string());  // starts our temporaries
-  const fs::path tmp = parent / (own + "tmp-" + unique_tmp_suffix());
+  const std::string own = io::temp_prefix(target.filename().string());  // starts our temporaries
+  const fs::path tmp = parent / (own + "tmp-" + io::unique_tmp_suffix());
   // Temporaries of earlier writes whose process died (kill -9, a lost node): beside the folder
   // and inside it (it is ours: checked above).
-  remove_stale_temporaries(parent, own);
-  if (kind_of(target) == Kind::dir) remove_stale_temporaries(target);
-  const TempGuard on_signal(tmp);  // before it exists: a signal in between would leave it behind
+  io::remove_stale_temporaries(parent, own);
+  if (kind_of(target) == Kind::dir) io::remove_stale_temporaries(target);
+  const io::TempGuard on_signal(tmp);  // before it exists: a signal in between would leave it behind
   if (!fs::create_directory(tmp, ec) || ec)
     throw std::runtime_error("cannot create " + tmp.string() + ": " + ec.message());
   struct Cleanup {  // the temporary folder goes whatever happens (renamed into place: nothing to do)
@@ -180,7 +180,7 @@ void publish_dir(const fs::path& dir, const std::string& command, const std::str
     if (!it->is_regular_file(ec) || it->is_symlink(ec)) continue;
     const std::string rel = it->path().lexically_relative(tmp).generic_string();
     if (rel == kMarkerFile) continue;
-    made[rel].insert(sha256_file_hex(it->path()));
+    made[rel].insert(io::sha256_file_hex(it->path()));
   }
   fs::remove(tmp / kMarkerFile, ec);
 
@@ -206,7 +206,7 @@ void publish_dir(const fs::path& dir, const std::string& command, const std::str
       if (!last && k != Kind::dir) refuse(at, option, "refusing to write through it: not a folder (a link or a file)");
       if (last) {
         const auto listed = old.find(rel);
-        if (k != Kind::file || listed == old.end() || !listed->second.count(sha256_file_hex(at)))
+        if (k != Kind::file || listed == old.end() || !listed->second.count(io::sha256_file_hex(at)))
           refuse(at, option,
                  "refusing to replace it: not a file asperity " + command +
                      " wrote there (added, edited or copied in); move it away or choose a new folder");
@@ -232,7 +232,7 @@ void publish_dir(const fs::path& dir, const std::string& command, const std::str
     bool real_path = true;  // no link on the way
     for (fs::path p = at.parent_path(); p != target && real_path; p = p.parent_path())
       real_path = kind_of(p) == Kind::dir;
-    if (real_path && kind_of(at) == Kind::file && digests.count(sha256_file_hex(at))) {
+    if (real_path && kind_of(at) == Kind::file && digests.count(io::sha256_file_hex(at))) {
       fs::remove(at, ec);
       for (fs::path p = at.parent_path(); p != target && fs::is_empty(p, ec); p = p.parent_path()) fs::remove(p, ec);
     }

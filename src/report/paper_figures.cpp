@@ -139,12 +139,12 @@ std::string paper_table_csv(const std::vector<PaperRun>& runs) {
   s << kPaperTableHeader << '\n';
   for (const PaperRun& r : runs) {
     const Observables& o = r.obs;
-    s << csv_field(r.scene.experiment.name) << ',' << o.N << ',' << io::format_g17(o.A0) << ',' << io::format_g17(o.dt)
-      << ',' << io::format_g17(o.Q_s) << ',' << io::format_g17(o.A_s) << ',' << io::format_g17(o.t_peak) << ','
-      << io::format_g17(o.alpha) << ',' << io::format_g17(o.alpha_R2) << ',' << io::format_g17(o.alpha_measured) << ','
-      << io::format_g17(o.shape_exponent) << ',' << io::format_g17(o.shape_exponent_measured) << ','
-      << io::format_g17(o.area_drop_fraction) << ',' << o.ss_cycles << ',' << io::format_g17(o.ss_drop) << ','
-      << io::format_g17(o.ss_period) << '\n';
+    s << io::csv_field(r.scene.experiment.name) << ',' << o.N << ',' << io::format_g17(o.A0) << ','
+      << io::format_g17(o.dt) << ',' << io::format_g17(o.Q_s) << ',' << io::format_g17(o.A_s) << ','
+      << io::format_g17(o.t_peak) << ',' << io::format_g17(o.alpha) << ',' << io::format_g17(o.alpha_R2) << ','
+      << io::format_g17(o.alpha_measured) << ',' << io::format_g17(o.shape_exponent) << ','
+      << io::format_g17(o.shape_exponent_measured) << ',' << io::format_g17(o.area_drop_fraction) << ',' << o.ss_cycles
+      << ',' << io::format_g17(o.ss_drop) << ',' << io::format_g17(o.ss_period) << '\n';
   }
   return s.str();
 }

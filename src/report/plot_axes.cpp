@@ -59,7 +59,8 @@ std::vector<std::string> distinct_sorted(const std::vector<std::vector<std::stri
 void check_png_target(const fs::path& png, const fs::path& store, bool from_out) {
   const std::string ext = png.extension().string();
   if (from_out && ext != ".png" && ext != ".svg" && ext != ".pdf")
-    throw InputError(png.string(), 0, "--out", "must name a .png, .svg or .pdf file (a plot never writes other files)");
+    throw io::InputError(png.string(), 0, "--out",
+                         "must name a .png, .svg or .pdf file (a plot never writes other files)");
   std::error_code ec;
   const auto st = fs::symlink_status(png, ec);
   if (!fs::exists(st) || png_is_ours(png)) return;
@@ -69,9 +70,10 @@ void check_png_target(const fs::path& png, const fs::path& store, bool from_out)
     std::ifstream(png, std::ios::binary).read(head, sizeof head);
     if (std::string(head, sizeof head) == std::string("\x89PNG\r\n\x1a\n", 8)) return;
   }
-  throw InputError(png.string(), 0, from_out ? "--out" : "plot",
-                   "refusing to replace a file asperity did not write (only figures drawn by asperity are replaced); "
-                   "choose a new name");
+  throw io::InputError(
+      png.string(), 0, from_out ? "--out" : "plot",
+      "refusing to replace a file asperity did not write (only figures drawn by asperity are replaced); "
+      "choose a new name");
 }
 
 std::string keep_grids_varying(std::vector<std::vector<std::string>>& rows, std::size_t grid_column,
@@ -93,7 +95,7 @@ std::string keep_grids_varying(std::vector<std::vector<std::string>>& rows, std:
 }
 
 bool store_is_stand_in(const fs::path& store) {
-  return read_file_text(store / "provenance.yaml").find("stand_in_data: true") != std::string::npos;
+  return io::read_file_text(store / "provenance.yaml").find("stand_in_data: true") != std::string::npos;
 }
 
 std::string where_title(const std::vector<std::string>& where) {
@@ -173,16 +175,16 @@ std::string axis_settings(const char* axis, const std::string& column, const std
 StoreTable::StoreTable(const fs::path& dir, const std::vector<std::string>& where) : store(dir) {
   const StoreReader s(dir);
   header = s.header();
-  cols = csv_split(header);
+  cols = io::csv_split(header);
   std::vector<std::pair<std::size_t, std::string>> filters;
   for (const std::string& w : where) {
     const std::size_t eq = w.find('=');
     if (eq == std::string::npos)
-      throw InputError("asperity plot", 0, "--where", "expected column=value, got '" + w + "'");
+      throw io::InputError("asperity plot", 0, "--where", "expected column=value, got '" + w + "'");
     filters.emplace_back(column(w.substr(0, eq), "--where"), w.substr(eq + 1));
   }
   for (const StoredRow& stored : s.rows()) {
-    auto r = csv_split(s.row(stored));
+    auto r = io::csv_split(s.row(stored));
     if (r.size() != cols.size()) continue;
     bool keep = true;
     for (const auto& [c, v] : filters) keep = keep && same_value(r[c], v);
@@ -193,8 +195,8 @@ StoreTable::StoreTable(const fs::path& dir, const std::vector<std::string>& wher
 std::size_t StoreTable::column(const std::string& name, const char* option) const {
   const auto it = std::find(cols.begin(), cols.end(), name);
   if (it == cols.end())
-    throw InputError("asperity plot", 0, option,
-                     "no column '" + name + "' in the store " + store.string() + "; columns: " + header);
+    throw io::InputError("asperity plot", 0, option,
+                         "no column '" + name + "' in the store " + store.string() + "; columns: " + header);
   return static_cast<std::size_t>(it - cols.begin());
 }
 

@@ -52,9 +52,9 @@ std::string summary_yaml(const Scene& scene, const Observables& o, const std::ve
   std::ostringstream y;
   auto d = [&](const char* key, double v) { y << key << ": " << yaml_double(v) << '\n'; };
   y << kSummaryHeader << '\n';
-  y << "asperity_version: " << yaml_quoted(build_info().version) << '\n';
-  y << "scene_file: " << yaml_quoted(scene.file.string()) << '\n';
-  y << "experiment: " << yaml_quoted(scene.experiment.name) << '\n';
+  y << "asperity_version: " << io::yaml_quoted(io::build_info().version) << '\n';
+  y << "scene_file: " << io::yaml_quoted(scene.file.string()) << '\n';
+  y << "experiment: " << io::yaml_quoted(scene.experiment.name) << '\n';
   y << "method: " << method_name(scene.solver.method) << '\n';
   d("Ct", scene.solver.Ct);
   d("tolerance", scene.solver.tolerance);
@@ -75,7 +75,7 @@ std::string summary_yaml(const Scene& scene, const Observables& o, const std::ve
         << ", A_max: " << yaml_double(p.max.A) << ", t_min: " << yaml_double(p.min.t)
         << ", Q_min: " << yaml_double(p.min.Q) << ", A_min: " << yaml_double(p.min.A) << "}\n";
   }
-  y << provenance_yaml(command_line, input_files(scene));
+  y << io::provenance_yaml(command_line, input_files(scene));
   return y.str();
 }
 
@@ -108,7 +108,7 @@ bool write_run_plot(const fs::path& dir, std::string* error, const FigureFormats
   if (!in || !std::getline(in, header)) return false;
   std::vector<std::string> cols;
   try {
-    cols = csv_split(header);
+    cols = io::csv_split(header);
   } catch (const std::runtime_error&) {
     return false;
   }

@@ -34,25 +34,25 @@ JunctionPopulation read_junctions_csv(const std::filesystem::path& csv, const st
 
 JunctionPopulation read_junctions_csv(const std::filesystem::path& csv, const std::string& display,
                                       std::vector<int>& lines) {
-  const CsvTable t = read_numeric_csv(csv, display, {"area_m2", "x_m", "y_m"}, {"area_m2"});
+  const io::CsvTable t = io::read_numeric_csv(csv, display, {"area_m2", "x_m", "y_m"}, {"area_m2"});
   lines = t.lines;
   const int ca = t.column("area_m2"), cx = t.column("x_m"), cy = t.column("y_m");
   if ((cx < 0) != (cy < 0)) {
     const std::string missing = cx < 0 ? "x_m" : "y_m";
-    throw InputError(display, t.header_line, missing, "x_m and y_m must be given together (or neither)");
+    throw io::InputError(display, t.header_line, missing, "x_m and y_m must be given together (or neither)");
   }
   JunctionPopulation p;
   p.area_m2.reserve(t.rows.size());
   for (std::size_t i = 0; i < t.rows.size(); ++i) {
     const double a = t.rows[i][static_cast<std::size_t>(ca)];
     if (const std::string why = junction_area_problem(a); !why.empty())
-      throw InputError(display, t.lines[i], "area_m2", why, ca + 1);
+      throw io::InputError(display, t.lines[i], "area_m2", why, ca + 1);
     p.area_m2.push_back(a);
     if (cx >= 0) {
       for (const int c : {cx, cy}) {
         const double v = t.rows[i][static_cast<std::size_t>(c)];
         if (const std::string why = junction_coordinate_problem(v); !why.empty())
-          throw InputError(display, t.lines[i], t.columns[static_cast<std::size_t>(c)], why, c + 1);
+          throw io::InputError(display, t.lines[i], t.columns[static_cast<std::size_t>(c)], why, c + 1);
       }
       p.x_m.push_back(t.rows[i][static_cast<std::size_t>(cx)]);
       p.y_m.push_back(t.rows[i][static_cast<std::size_t>(cy)]);
@@ -62,15 +62,15 @@ JunctionPopulation read_junctions_csv(const std::filesystem::path& csv, const st
 }
 
 MeasuredCurve read_measured_csv(const std::filesystem::path& csv, const std::string& display) {
-  const CsvTable t = read_numeric_csv(csv, display, {"Q_N", "A_m2"}, {"Q_N", "A_m2"});
+  const io::CsvTable t = io::read_numeric_csv(csv, display, {"Q_N", "A_m2"}, {"Q_N", "A_m2"});
   const int cq = t.column("Q_N"), ca = t.column("A_m2");
   MeasuredCurve m;
   for (std::size_t i = 0; i < t.rows.size(); ++i) {
     const double q = t.rows[i][static_cast<std::size_t>(cq)], a = t.rows[i][static_cast<std::size_t>(ca)];
     if (const std::string why = measured_force_problem(q); !why.empty())
-      throw InputError(display, t.lines[i], "Q_N", why, cq + 1);
+      throw io::InputError(display, t.lines[i], "Q_N", why, cq + 1);
     if (const std::string why = measured_area_problem(a); !why.empty())
-      throw InputError(display, t.lines[i], "A_m2", why, ca + 1);
+      throw io::InputError(display, t.lines[i], "A_m2", why, ca + 1);
     m.Q_N.push_back(q);
     m.A_m2.push_back(a);
   }
@@ -78,34 +78,36 @@ MeasuredCurve read_measured_csv(const std::filesystem::path& csv, const std::str
 }
 
 MeasuredForce read_force_csv(const std::filesystem::path& csv, const std::string& display) {
-  const CsvTable t = read_numeric_csv(csv, display, {"t_s", "Q_N"}, {"t_s", "Q_N"});
+  const io::CsvTable t = io::read_numeric_csv(csv, display, {"t_s", "Q_N"}, {"t_s", "Q_N"});
   const int ct = t.column("t_s"), cq = t.column("Q_N");
   MeasuredForce f;
   for (std::size_t i = 0; i < t.rows.size(); ++i) {
     const double time = t.rows[i][static_cast<std::size_t>(ct)], q = t.rows[i][static_cast<std::size_t>(cq)];
     if (!(time >= 0))
-      throw InputError(display, t.lines[i], "t_s", "time must be >= 0, got " + format_double(time), ct + 1);
+      throw io::InputError(display, t.lines[i], "t_s", "time must be >= 0, got " + format_double(time), ct + 1);
     if (!f.t_s.empty() && !(time > f.t_s.back()))
-      throw InputError(display, t.lines[i], "t_s",
-                       "times must increase strictly: " + format_double(time) + " after " +
-                           format_double(f.t_s.back()) + " (line " + std::to_string(t.lines[i - 1]) + ")",
-                       ct + 1);
+      throw io::InputError(display, t.lines[i], "t_s",
+                           "times must increase strictly: " + format_double(time) + " after " +
+                               format_double(f.t_s.back()) + " (line " + std::to_string(t.lines[i - 1]) + ")",
+                           ct + 1);
     f.t_s.push_back(time);
     f.Q_N.push_back(q);
   }
   if (f.t_s.size() < 2)
-    throw InputError(display, t.header_line, "t_s",
-                     "a force history needs at least 2 samples, got " + std::to_string(f.t_s.size()));
+    throw io::InputError(display, t.header_line, "t_s",
+                         "a force history needs at least 2 samples, got " + std::to_string(f.t_s.size()));
   return f;
 }
 
-MeasuredForce read_force_csv(const std::filesystem::path& csv) { return read_force_csv(csv, input_path(csv)); }
+MeasuredForce read_force_csv(const std::filesystem::path& csv) { return read_force_csv(csv, io::input_path(csv)); }
 
 JunctionPopulation read_junctions_csv(const std::filesystem::path& csv) {
-  return read_junctions_csv(csv, input_path(csv));
+  return read_junctions_csv(csv, io::input_path(csv));
 }
 
-MeasuredCurve read_measured_csv(const std::filesystem::path& csv) { return read_measured_csv(csv, input_path(csv)); }
+MeasuredCurve read_measured_csv(const std::filesystem::path& csv) {
+  return read_measured_csv(csv, io::input_path(csv));
+}
 
 void write_junctions_csv(const std::filesystem::path& csv, const JunctionPopulation& j) {
   const bool xy = !j.x_m.empty() || !j.y_m.empty();
@@ -113,12 +115,12 @@ void write_junctions_csv(const std::filesystem::path& csv, const JunctionPopulat
     throw std::invalid_argument("write_junctions_csv: x_m/y_m must be empty or as long as area_m2");
   std::string s = xy ? "area_m2,x_m,y_m\n" : "area_m2\n";
   for (std::size_t i = 0; i < j.size(); ++i) {
-    s += csv_number(j.area_m2[i]);
+    s += io::csv_number(j.area_m2[i]);
     if (xy) {
       s += ',';
-      s += csv_number(j.x_m[i]);
+      s += io::csv_number(j.x_m[i]);
       s += ',';
-      s += csv_number(j.y_m[i]);
+      s += io::csv_number(j.y_m[i]);
     }
     s += '\n';
   }
@@ -129,9 +131,9 @@ void write_measured_csv(const std::filesystem::path& csv, const MeasuredCurve& m
   if (m.Q_N.size() != m.A_m2.size()) throw std::invalid_argument("write_measured_csv: Q_N and A_m2 differ in length");
   std::string s = "Q_N,A_m2\n";
   for (std::size_t i = 0; i < m.Q_N.size(); ++i) {
-    s += csv_number(m.Q_N[i]);
+    s += io::csv_number(m.Q_N[i]);
     s += ',';
-    s += csv_number(m.A_m2[i]);
+    s += io::csv_number(m.A_m2[i]);
     s += '\n';
   }
   io::write_text_file(csv, s);
@@ -144,9 +146,9 @@ void write_force_csv(const std::filesystem::path& csv, const MeasuredForce& f,
   for (const std::string& line : comment) s += "# " + line + "\n";
   s += "t_s,Q_N\n";
   for (std::size_t i = 0; i < f.t_s.size(); ++i) {
-    s += csv_number(f.t_s[i]);
+    s += io::csv_number(f.t_s[i]);
     s += ',';
-    s += csv_number(f.Q_N[i]);
+    s += io::csv_number(f.Q_N[i]);
     s += '\n';
   }
   io::write_text_file(csv, s);

@@ -8,7 +8,7 @@
 
 namespace asperity {
 
-inline std::vector<DataFile> input_files(const Scene& scene) {
+inline std::vector<io::DataFile> input_files(const Scene& scene) {
   const Experiment& e = scene.experiment;
   if (const auto& t = scene.topography)
     return {{"scene", scene.file}, {"topography", t->file}, {"height map", t->map_file}};

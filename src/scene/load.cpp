@@ -69,8 +69,8 @@ fs::path referenced_file(const MapView& v, const YAML::Node& n, const std::strin
   const fs::path p = base_dir / fs::path(rel);
   const std::string why = input_file_problem(p, max_bytes);
   if (why == "file not found")
-    v.fail_at(n, k, std::string(what) + " not found: " + quote(rel) + " (looked for " + input_path(p) + ")");
-  if (!why.empty()) v.fail_at(n, k, std::string(what) + " " + why + ": " + input_path(p));
+    v.fail_at(n, k, std::string(what) + " not found: " + quote(rel) + " (looked for " + io::input_path(p) + ")");
+  if (!why.empty()) v.fail_at(n, k, std::string(what) + " " + why + ": " + io::input_path(p));
   return p;
 }
 
@@ -192,12 +192,12 @@ Experiment load_experiment_impl(const fs::path& path, const std::string& display
     const YAML::Node n = f.require("junctions");
     const fs::path csv = referenced_file(f, n, "junctions", base, "junctions CSV", kMaxCsvBytes);
     e.junctions_file = resolved(csv);
-    e.junctions = read_junctions_csv(csv, input_path(csv));
+    e.junctions = read_junctions_csv(csv, io::input_path(csv));
   }
   if (auto n = f.find("measured")) {
     const fs::path csv = referenced_file(f, *n, "measured", base, "measured CSV", kMaxCsvBytes);
     e.measured_file = resolved(csv);
-    e.measured = read_measured_csv(csv, input_path(csv));
+    e.measured = read_measured_csv(csv, io::input_path(csv));
   }
   return std::move(e);
 }
@@ -301,7 +301,7 @@ void read_topography(const MapView& root, const YAML::Node& tn, const fs::path& 
   std::shared_ptr<const TopographyContact> contact;
   try {
     contact = topography_contact(r, cache);
-  } catch (const InputError& e) {
+  } catch (const io::InputError& e) {
     // What the solve finds in the scene's own section (the contact at the map's edge, a junction
     // out of range) may come of a value a --set gave: named as a key's own check names it (the
     // --set, or the section's line), not as the scene without a line.
@@ -314,7 +314,7 @@ void read_topography(const MapView& root, const YAML::Node& tn, const fs::path& 
 
 Scene scene_from_tree_impl(const YAML::Node& tree, const fs::path& origin, const fs::path& base_dir,
                            const std::string& display, const std::vector<SetRecord>* sets, TopographyCache* cache) {
-  HeldWarnings warnings;  // said once the scene is accepted: a refused one says its error alone
+  io::HeldWarnings warnings;  // said once the scene is accepted: a refused one says its error alone
   const Source src{display, sets, &scene_key_names()};
   const MapView root(src, tree, "", kSceneKeys, origin.empty() ? 0 : 1);  // a tree in memory has no lines
   Scene s;
@@ -350,7 +350,7 @@ Scene scene_from_tree_impl(const YAML::Node& tree, const fs::path& origin, const
     } else {
       const fs::path p = referenced_file(*fv, fn, fk, base_dir, "experiment file", kMaxYamlBytes);
       s.experiment_ref = fn.Scalar();
-      s.experiment = load_experiment_impl(p, input_path(p), ov ? &*ov : nullptr);
+      s.experiment = load_experiment_impl(p, io::input_path(p), ov ? &*ov : nullptr);
     }
   }
 
@@ -381,8 +381,8 @@ Scene scene_from_tree_impl(const YAML::Node& tree, const fs::path& origin, const
 }  // namespace
 
 Experiment load_experiment(const fs::path& yaml, const YAML::Node* overrides) {
-  const std::string display = input_path(yaml);
-  HeldWarnings warnings;  // said once the experiment is accepted
+  const std::string display = io::input_path(yaml);
+  io::HeldWarnings warnings;  // said once the experiment is accepted
   std::optional<MapView> ov;
   if (overrides) ov.emplace(Source{"overrides of " + display, nullptr}, *overrides, "experiment", kExperimentMapKeys);
   Experiment e = load_experiment_impl(yaml, display, ov ? &*ov : nullptr);
@@ -390,10 +390,10 @@ Experiment load_experiment(const fs::path& yaml, const YAML::Node* overrides) {
   return e;
 }
 
-YAML::Node load_scene_tree(const fs::path& yaml) { return load_yaml_file(yaml, input_path(yaml)); }
+YAML::Node load_scene_tree(const fs::path& yaml) { return load_yaml_file(yaml, io::input_path(yaml)); }
 
 Scene scene_from_tree(const YAML::Node& tree, const fs::path& origin_file, TopographyCache* topography) {
-  return scene_from_tree_impl(tree, origin_file, origin_file.parent_path(), input_path(origin_file), nullptr,
+  return scene_from_tree_impl(tree, origin_file, origin_file.parent_path(), io::input_path(origin_file), nullptr,
                               topography);
 }
 
@@ -415,21 +415,21 @@ TypedScene typed_scene_from_tree(const YAML::Node& tree, const fs::path& origin_
         lines[std::string(sec) + "." + it->first.Scalar()] =
             it->second.IsDefined() && !it->second.IsNull() ? line_of(it->second) : line_of(it->first);
   }
-  return TypedScene(std::move(s), input_path(origin_file), std::move(lines), std::move(topography));
+  return TypedScene(std::move(s), io::input_path(origin_file), std::move(lines), std::move(topography));
 }
 
 Scene load_scene(const fs::path& yaml, const std::vector<std::string>& overrides, const std::string& override_label) {
-  const std::string display = input_path(yaml);
+  const std::string display = io::input_path(yaml);
   YAML::Node tree = load_yaml_file(yaml, display);
   std::vector<SetRecord> sets;
   for (const std::string& o : overrides) {
     const std::string where = override_label + " " + o;
     const std::size_t eq = o.find('=');
     if (eq == std::string::npos)
-      throw InputError(where, 0, "", "expected key=value, e.g. " + override_label + " model.eta=50");
+      throw io::InputError(where, 0, "", "expected key=value, e.g. " + override_label + " model.eta=50");
     const std::string key(trim(std::string_view(o).substr(0, eq)));
     const YAML::Node value = load_yaml_text(o.substr(eq + 1), where, key);
-    if (value.IsNull()) throw InputError(where, 0, key, "missing value after '=' (write \"\" for empty text)");
+    if (value.IsNull()) throw io::InputError(where, 0, key, "missing value after '=' (write \"\" for empty text)");
     tree = apply_override_at(tree, key, value, where);
     sets.push_back({key, where});
   }

@@ -22,7 +22,7 @@ std::vector<std::string> split_key(const std::string& dotted, const std::string&
     const bool ok = !p.empty() && std::all_of(p.begin(), p.end(), [](char c) {
       return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
     });
-    if (!ok) throw InputError(where, 0, dotted, "malformed key (expected names joined by dots, e.g. model.eta)");
+    if (!ok) throw io::InputError(where, 0, dotted, "malformed key (expected names joined by dots, e.g. model.eta)");
     if (dot == std::string::npos) break;
     start = dot + 1;
   }
@@ -46,7 +46,7 @@ YAML::Node set_path(const YAML::Node& node, const std::vector<std::string>& part
     cur.reset(m);  // rebind: `cur = m` would turn the caller's (shared) node into the map
   }
   if (cur.IsDefined() && !cur.IsNull() && !cur.IsMap())
-    throw InputError(
+    throw io::InputError(
         where, 0, dotted,
         "cannot set " + dotted + ": " + (here.empty() ? "the scene" : here) + " is " + node_kind(cur) + ", not a map");
   auto child_value = [&](const YAML::Node& old) {
@@ -73,7 +73,7 @@ YAML::Node set_path(const YAML::Node& node, const std::vector<std::string>& part
 YAML::Node apply_override_at(const YAML::Node& tree, const std::string& dotted, const YAML::Node& value,
                              const std::string& where) {
   const std::vector<std::string> parts = split_key(dotted, where);
-  if (!value.IsDefined()) throw InputError(where, 0, dotted, "undefined value");
+  if (!value.IsDefined()) throw io::InputError(where, 0, dotted, "undefined value");
   return set_path(tree, parts, 0, strip_marks(value), where, dotted);
 }
 

@@ -30,7 +30,7 @@ SceneTemplate SceneTemplate::load(const std::filesystem::path& scene_file,
   t.impl_->tree.reset(tree);
   try {
     t.impl_->typed.emplace(typed_scene_from_tree(tree, scene_file));
-  } catch (const InputError&) {
+  } catch (const io::InputError&) {
     // build() reports it (or the settings repair it) through the tree.
   }
   return t;

@@ -5,7 +5,7 @@
 namespace asperity {
 
 std::shared_ptr<const TopographyContact> TopographyCache::contact(const TopographyRecipe& recipe) {
-  const std::string key = sha256_hex(topography_section_yaml(recipe, false));
+  const std::string key = io::sha256_hex(topography_section_yaml(recipe, false));
   std::promise<std::shared_ptr<const TopographyContact>> mine;
   const Result own = mine.get_future().share();
   Result found;

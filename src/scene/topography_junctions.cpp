@@ -30,7 +30,7 @@ namespace fs = std::filesystem;
 namespace {
 
 std::string heights_sha256(const HeightMap& m) {
-  Sha256 h;
+  io::Sha256 h;
   std::string bytes(8, '\0');
   for (const double x : m.h_m) {
     const auto u = std::bit_cast<std::uint64_t>(x);
@@ -80,11 +80,12 @@ HeightMap topography_surface(const TopographyRecipe& r) {
       try {
         return self_affine_surface(r.self_affine);
       } catch (const std::invalid_argument& e) {  // a combination the key checks let through
-        throw InputError(r.display, r.topography_line, "topography.self_affine", e.what());
+        throw io::InputError(r.display, r.topography_line, "topography.self_affine", e.what());
       }
     case TopographyKind::measured:
-      if (r.map_file.extension() == ".csv") return read_height_map_csv(r.map_file, input_path(r.map_file), r.pixel_m);
-      return read_height_map_binary(r.map_file, input_path(r.map_file));
+      if (r.map_file.extension() == ".csv")
+        return read_height_map_csv(r.map_file, io::input_path(r.map_file), r.pixel_m);
+      return read_height_map_binary(r.map_file, io::input_path(r.map_file));
   }
   throw std::logic_error("topography_surface: unknown kind");
 }
@@ -300,13 +301,13 @@ TopographyContact solve_surface_contact(HeightMap map, const TopographyRecipe& r
   try {
     c = solve_normal_contact(map, s);
   } catch (const std::invalid_argument& e) {
-    throw InputError(r.display, r.topography_line, "topography", e.what());
+    throw io::InputError(r.display, r.topography_line, "topography", e.what());
   }
   if (!c.converged)
-    throw InputError(r.display, 0, r.file.empty() ? "topography.contact.max_iterations" : "contact.max_iterations",
-                     "the normal contact did not converge in " + std::to_string(c.iterations) +
-                         " iterations (residual " + io::format_short(c.residual) + " > tolerance " +
-                         io::format_double(r.tolerance) + "); raise contact.max_iterations or contact.tolerance");
+    throw io::InputError(r.display, 0, r.file.empty() ? "topography.contact.max_iterations" : "contact.max_iterations",
+                         "the normal contact did not converge in " + std::to_string(c.iterations) +
+                             " iterations (residual " + io::format_short(c.residual) + " > tolerance " +
+                             io::format_double(r.tolerance) + "); raise contact.max_iterations or contact.tolerance");
   t.iterations = c.iterations;
   t.residual = c.residual;
   t.contact_area_m2 = c.area_m2;
@@ -321,9 +322,9 @@ TopographyContact solve_surface_contact(HeightMap map, const TopographyRecipe& r
   }
   // A contact cut by the map's edge would be a smaller, wrong one (the solve is not periodic).
   if (edge)
-    throw InputError(r.display, r.topography_line, "topography",
-                     "the contact reaches the edge of the " + std::to_string(n) + " x " + std::to_string(n) +
-                         " map: enlarge the map (or lower load_N, or the sphere_radius_m)");
+    throw io::InputError(r.display, r.topography_line, "topography",
+                         "the contact reaches the edge of the " + std::to_string(n) + " x " + std::to_string(n) +
+                             " map: enlarge the map (or lower load_N, or the sphere_radius_m)");
   const auto clusters = contact_clusters(mask, n, map.pixel_m, r.connectivity);
   t.clusters = clusters.size();
   for (const auto& k : clusters) {
@@ -334,10 +335,11 @@ TopographyContact solve_surface_contact(HeightMap map, const TopographyRecipe& r
   try {
     t.merges = merge_overlapping_junctions(t.junctions);
   } catch (const std::length_error&) {
-    throw InputError(r.display, r.topography_line, "topography",
-                     "merging the overlapping discs of the " + std::to_string(t.clusters) +
-                         " contact clusters needs more than " + io::format_short(static_cast<double>(kMaxMergeWork)) +
-                         " disc comparisons: use contact.connectivity 8 or a coarser map");
+    throw io::InputError(r.display, r.topography_line, "topography",
+                         "merging the overlapping discs of the " + std::to_string(t.clusters) +
+                             " contact clusters needs more than " +
+                             io::format_short(static_cast<double>(kMaxMergeWork)) +
+                             " disc comparisons: use contact.connectivity 8 or a coarser map");
   }
   // The junctions must pass what a junctions file's rows pass (what generate writes is read back
   // as one): a pixel of 1e-11 m or a map of 1e5 m pixels makes areas no command accepts.
@@ -347,10 +349,10 @@ TopographyContact solve_surface_contact(HeightMap map, const TopographyRecipe& r
     for (const double v : {J.x_m[i], J.y_m[i]})
       if (why.empty()) why = junction_coordinate_problem(v);
     if (!why.empty())
-      throw InputError(r.display, r.topography_line, "topography",
-                       "junction " + std::to_string(i + 1) + " of the " + std::to_string(J.size()) +
-                           " this surface makes: " + why + " (the map's pixel size, load_N and sphere_radius_m " +
-                           "set the junctions' sizes)");
+      throw io::InputError(r.display, r.topography_line, "topography",
+                           "junction " + std::to_string(i + 1) + " of the " + std::to_string(J.size()) +
+                               " this surface makes: " + why + " (the map's pixel size, load_N and sphere_radius_m " +
+                               "set the junctions' sizes)");
   }
   if (normal) *normal = std::move(c);
   return t;

@@ -45,7 +45,7 @@ std::string topography_section_yaml(const TopographyRecipe& r, bool with_slider)
   auto line = [&](int indent, const std::string& key, const std::string& value) {
     y += std::string(static_cast<std::size_t>(indent), ' ') + key + ":" + (value.empty() ? "" : " " + value) + "\n";
   };
-  if (with_slider) line(2, "name", yaml_quoted(r.name));
+  if (with_slider) line(2, "name", io::yaml_quoted(r.name));
   switch (r.kind) {
     case TopographyKind::smooth:
       line(2, "smooth", "");
@@ -69,7 +69,7 @@ std::string topography_section_yaml(const TopographyRecipe& r, bool with_slider)
     }
     case TopographyKind::measured:
       // Absolute: the scene written elsewhere still finds its map.
-      line(2, "file", yaml_quoted(std::filesystem::absolute(r.map_file).lexically_normal().string()));
+      line(2, "file", io::yaml_quoted(std::filesystem::absolute(r.map_file).lexically_normal().string()));
       if (r.map_file.extension() == ".csv") line(2, "pixel_m", io::format_scene_number(r.pixel_m));
       break;
   }

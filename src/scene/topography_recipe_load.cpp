@@ -107,8 +107,8 @@ void read_surface(const MapView& t, const YAML::Node& tn, const fs::path& base_d
     const std::string why = io::input_file_problem(r.map_file, csv ? io::kMaxCsvBytes : io::kMaxYamlBytes);
     if (why == "file not found")
       t.fail_at(*fi, "file",
-                "height map not found: " + io::quote(rel) + " (looked for " + input_path(r.map_file) + ")");
-    if (!why.empty()) t.fail_at(*fi, "file", "height map " + why + ": " + input_path(r.map_file));
+                "height map not found: " + io::quote(rel) + " (looked for " + io::input_path(r.map_file) + ")");
+    if (!why.empty()) t.fail_at(*fi, "file", "height map " + why + ": " + io::input_path(r.map_file));
     if (csv)
       r.pixel_m = pixel_checked(t, "pixel_m", positive(t, "pixel_m", "m"));
     else if (const auto p = t.find("pixel_m"))
@@ -197,7 +197,7 @@ YAML::Node merged(const YAML::Node& base, const YAML::Node& over) {
 }  // namespace
 
 bool is_topography_recipe(const fs::path& path) {
-  const YAML::Node root = io::load_yaml_file(path, input_path(path));
+  const YAML::Node root = io::load_yaml_file(path, io::input_path(path));
   if (!root.IsMap()) return false;
   for (auto it = root.begin(); it != root.end(); ++it)
     if (it->first.IsScalar() && it->first.Scalar() == "topography") return true;
@@ -205,7 +205,7 @@ bool is_topography_recipe(const fs::path& path) {
 }
 
 TopographyRecipe load_topography_recipe(const fs::path& path) {
-  const std::string display = input_path(path);
+  const std::string display = io::input_path(path);
   const YAML::Node root = io::load_yaml_file(path, display);
   const Source src{display, nullptr};
   TopographyRecipe r;
@@ -234,12 +234,12 @@ TopographyRecipe topography_recipe_from_scene(const Source& src, const YAML::Nod
     if (io::trim(rel).empty()) top.fail_at(*rn, "recipe", "empty path (expected a topography recipe)");
     const fs::path p = base_dir / fs::path(rel);
     if (const std::string why = io::input_file_problem(p, io::kMaxYamlBytes); !why.empty())
-      top.fail_at(*rn, "recipe", "topography recipe " + why + ": " + input_path(p));
+      top.fail_at(*rn, "recipe", "topography recipe " + why + ": " + io::input_path(p));
     r = load_topography_recipe(p);
     YAML::Node over(YAML::NodeType::Map);
     for (auto it = section.begin(); it != section.end(); ++it)
       if (it->first.Scalar() != "recipe") over[it->first] = it->second;
-    tree = merged(lifted_file_tree(io::load_yaml_file(p, input_path(p))), over);
+    tree = merged(lifted_file_tree(io::load_yaml_file(p, io::input_path(p))), over);
     map_dir = p.parent_path();  // a height map named in the file is relative to it
     const fs::path file = r.file;
     r = TopographyRecipe{};

@@ -26,7 +26,7 @@ class VariantOrigins final : public KeyOrigins {
   [[noreturn]] void fail(const std::string& dotted, const std::string& message) const override {
     const auto it = lines_.find(dotted);
     const int line = set_here(dotted) || it == lines_.end() ? 0 : it->second;
-    throw InputError(display_, line, dotted, message);
+    throw io::InputError(display_, line, dotted, message);
   }
 
  private:
@@ -64,24 +64,24 @@ Scene TypedScene::with(const std::vector<NumberSetting>& settings) const {
     if (!last) continue;
     if (!settable(last->key, last->value)) throw std::logic_error(std::string("TypedScene: cannot set ") + k.name);
     // A value set from outside the file has no line: the loader names the scene file alone.
-    if (!k.allowed(last->value)) throw InputError(display_, 0, k.name, out_of_range_message(k, last->value));
+    if (!k.allowed(last->value)) throw io::InputError(display_, 0, k.name, out_of_range_message(k, last->value));
     const std::string name = k.name;
     // A topography scene's experiment is its recipe's: set the recipe, never the experiment
     // (scene.yaml writes the recipe, so an experiment value set here would not be repeated).
     if (name.rfind("topography.", 0) == 0) {
       if (!s.topography)
-        throw InputError(display_, 0, name, "the scene has no topography section (its junctions come from a file)");
+        throw io::InputError(display_, 0, name, "the scene has no topography section (its junctions come from a file)");
       if (name.rfind("topography.self_affine.", 0) == 0 && s.topography->kind != TopographyKind::self_affine)
-        throw InputError(display_, 0, name, "the scene's topography is not self_affine");
+        throw io::InputError(display_, 0, name, "the scene's topography is not self_affine");
       recipe_changed = true;
     } else if (s.topography && name.rfind("experiment.", 0) == 0) {
-      throw InputError(display_, 0, name,
-                       "a topography scene's experiment comes from its recipe: set topography.* instead");
+      throw io::InputError(display_, 0, name,
+                           "a topography scene's experiment comes from its recipe: set topography.* instead");
     }
     k.set(s, last->value);
   }
   if (recipe_changed) {
-    if (const auto p = topography_recipe_problem(*s.topography)) throw InputError(display_, 0, p->key, p->message);
+    if (const auto p = topography_recipe_problem(*s.topography)) throw io::InputError(display_, 0, p->key, p->message);
     const TopographyRecipe& r = *s.topography;
     s.experiment = topography_experiment(r, *topography_contact(r, topography_.get()), scene_made_by(r));
   }

@@ -100,7 +100,7 @@ void check_area_law_domain(const Scene& s, const KeyOrigins& o) {
         " Pa; at least " + format_short(kMinSlipAreaFraction) + " is needed for the law to be meaningful)";
     if (!key.empty()) o.fail(key, msg);
     // Neither key set in the scene: the experiment (areas, sigma_exp) is what is out of range.
-    throw InputError(s.experiment.junctions_file.string(), 0, "area_m2", msg);
+    throw io::InputError(s.experiment.junctions_file.string(), 0, "area_m2", msg);
   }
 }
 
@@ -121,13 +121,13 @@ void check_interactions(const Scene& s, const KeyOrigins& o) {
                std::to_string(J.size()) + " junctions, more than " + std::to_string(kMaxInteractingJunctions));
   for (std::size_t i = 0; i < J.size(); ++i) {
     if (!std::isfinite(J.x_m[i]) || !std::isfinite(J.y_m[i]))
-      throw InputError(csv, 0, "x_m", "junction " + std::to_string(i + 1) + " has a non-finite position");
+      throw io::InputError(csv, 0, "x_m", "junction " + std::to_string(i + 1) + " has a non-finite position");
     // The positions the run uses stay within the CSV reader's bound (finite squared distances).
     const double reach = std::max(std::abs(J.x_m[i]), std::abs(J.y_m[i]));
     if (reach > kMaxJunctionCoordinate_m)
-      throw InputError(csv, 0, "x_m",
-                       "junction " + std::to_string(i + 1) + " is centred " + format_short(reach) +
-                           " m away; centres must be within +-" + format_short(kMaxJunctionCoordinate_m) + " m");
+      throw io::InputError(csv, 0, "x_m",
+                           "junction " + std::to_string(i + 1) + " is centred " + format_short(reach) +
+                               " m away; centres must be within +-" + format_short(kMaxJunctionCoordinate_m) + " m");
     if (reach * s.model.position_scale > kMaxJunctionCoordinate_m)
       o.fail("model.position_scale", "junction " + std::to_string(i + 1) + " of " + csv + " would be centred " +
                                          format_short(reach * s.model.position_scale) +
@@ -151,7 +151,7 @@ void check_interactions(const Scene& s, const KeyOrigins& o) {
                             format_short(disc_radius(J.area_m2[j])) +
                             " m); elastic interactions need separate junctions";
     if (csv.empty() && o.given("experiment.junctions")) o.fail("experiment.junctions", msg);  // inline
-    if (csv.empty()) throw InputError("", 0, "x_m", msg);
+    if (csv.empty()) throw io::InputError("", 0, "x_m", msg);
     // The CSV's row of the second junction (read again: only on this error path).
     std::vector<int> lines;
     try {
@@ -159,7 +159,7 @@ void check_interactions(const Scene& s, const KeyOrigins& o) {
     } catch (const std::exception&) {  // changed since it was read: no line then
       lines.clear();
     }
-    throw InputError(csv, j < lines.size() ? lines[j] : 0, "x_m", msg);
+    throw io::InputError(csv, j < lines.size() ? lines[j] : 0, "x_m", msg);
   }
 }
 

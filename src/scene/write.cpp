@@ -50,7 +50,7 @@ std::string sections_yaml(const Scene& s, std::initializer_list<std::string_view
       y += sec + ":\n", open = sec;
     }
     const std::string text = k.text(s);
-    y += "  " + k.leaf() + ": " + (k.kind == KeyKind::text ? yaml_quoted(text) : text) + "\n";
+    y += "  " + k.leaf() + ": " + (k.kind == KeyKind::text ? io::yaml_quoted(text) : text) + "\n";
   }
   if (open == "experiment" && s.experiment.file.empty()) y += inline_data_yaml(s.experiment);
   return y;
@@ -77,8 +77,8 @@ std::string scene_to_yaml(const Scene& s) {
 std::string experiment_to_yaml(const Experiment& e, const std::string& junctions_rel, const std::string& measured_rel) {
   if (junctions_rel.empty()) throw std::invalid_argument("experiment_to_yaml: junctions_rel must not be empty");
   std::string y;
-  y += "name: " + yaml_quoted(e.name) + "\n";
-  if (!e.description.empty()) y += "description: " + yaml_quoted(e.description) + "\n";
+  y += "name: " + io::yaml_quoted(e.name) + "\n";
+  if (!e.description.empty()) y += "description: " + io::yaml_quoted(e.description) + "\n";
   auto field = [&](const char* key, double x, const char* unit) {
     std::string l = std::string(key) + ": " + io::format_scene_number(x);
     if (unit) l += std::string(l.size() < 28 ? 28 - l.size() : 1, ' ') + "# " + unit;
@@ -90,8 +90,8 @@ std::string experiment_to_yaml(const Experiment& e, const std::string& junctions
   field("E", e.E, "Pa");
   field("nu", e.nu, nullptr);
   field("sigma_exp", e.sigma_exp, "Pa");
-  y += "junctions: " + yaml_quoted(junctions_rel) + "\n";
-  if (!measured_rel.empty()) y += "measured: " + yaml_quoted(measured_rel) + "\n";
+  y += "junctions: " + io::yaml_quoted(junctions_rel) + "\n";
+  if (!measured_rel.empty()) y += "measured: " + io::yaml_quoted(measured_rel) + "\n";
   return y;
 }
 

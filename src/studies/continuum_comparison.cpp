@@ -90,7 +90,7 @@ ContinuumStudy run_continuum_study(const ContinuumStudyOptions& o) {
   if (o.points < 2 || o.points > 10000) throw std::invalid_argument("study continuum: points must be in [2, 10000]");
   TopographyRecipe recipe = load_topography_recipe(o.recipe);
   if (recipe.nu != 0.5)
-    throw InputError(o.recipe.string(), 0, "nu", "the continuum reference solves nu = 0.5 only (the paper's PDMS)");
+    throw io::InputError(o.recipe.string(), 0, "nu", "the continuum reference solves nu = 0.5 only (the paper's PDMS)");
   const double E = recipe.E_Pa, sigma = recipe.sigma_exp;  // ε = 1: σ = σ_exp
   ContinuumStudy study;
   for (const double P : o.loads_N) {
@@ -223,20 +223,20 @@ void write_files(const ContinuumStudyOptions& o, const ContinuumStudy& s, const 
        "stiffness_error,q10_over_qfull,q50_over_qfull,full_sliding_displacement_m,full_sliding_error,rms_error,"
        "converged,monotone\n";
   for (const ContinuumRow& r : s.rows)
-    t << csv_number(r.load_N) << ',' << r.junctions << ',' << csv_number(r.contact_area_m2) << ','
-      << csv_number(r.pixels_per_junction) << ',' << csv_number(r.coverage_hertz) << ','
-      << csv_number(r.coverage_population) << ',' << csv_number(r.stiffness_ratio) << ',' << r.model << ','
-      << csv_number(r.initial_stiffness_N_per_m) << ',' << csv_number(r.stiffness_error) << ',' << csv_number(r.q10)
-      << ',' << csv_number(r.q50) << ',' << csv_number(r.full_sliding_displacement_m) << ','
-      << csv_number(r.full_sliding_error) << ',' << csv_number(r.rms_error) << ',' << (r.converged ? "true" : "false")
-      << ',' << (r.monotone ? "true" : "false") << '\n';
+    t << io::csv_number(r.load_N) << ',' << r.junctions << ',' << io::csv_number(r.contact_area_m2) << ','
+      << io::csv_number(r.pixels_per_junction) << ',' << io::csv_number(r.coverage_hertz) << ','
+      << io::csv_number(r.coverage_population) << ',' << io::csv_number(r.stiffness_ratio) << ',' << r.model << ','
+      << io::csv_number(r.initial_stiffness_N_per_m) << ',' << io::csv_number(r.stiffness_error) << ','
+      << io::csv_number(r.q10) << ',' << io::csv_number(r.q50) << ',' << io::csv_number(r.full_sliding_displacement_m)
+      << ',' << io::csv_number(r.full_sliding_error) << ',' << io::csv_number(r.rms_error) << ','
+      << (r.converged ? "true" : "false") << ',' << (r.monotone ? "true" : "false") << '\n';
   io::write_text_file(o.out / "table.csv", t.str());
   std::ostringstream c;
   c << "# " << kSynthetic << ": Q(delta) of each model, `" << study_command(o.study_file)
     << "`\nload_N,model,displacement_m,force_N,slip_area_fraction\n";
   for (const ContinuumCurvePoint& p : s.curves)
-    c << csv_number(p.load_N) << ',' << p.model << ',' << csv_number(p.displacement_m) << ',' << csv_number(p.force_N)
-      << ',' << csv_number(p.slip_area_fraction) << '\n';
+    c << io::csv_number(p.load_N) << ',' << p.model << ',' << io::csv_number(p.displacement_m) << ','
+      << io::csv_number(p.force_N) << ',' << io::csv_number(p.slip_area_fraction) << '\n';
   io::write_text_file(o.out / "curves.csv", c.str());
 
   std::vector<double> cov, err;
@@ -248,8 +248,8 @@ void write_files(const ContinuumStudyOptions& o, const ContinuumStudy& s, const 
      << study_command(o.study_file) << "`\n"
      << "prefactor,exponent,ratio_min,ratio_max,points\n";
   if (rule)
-    rl << csv_number(rule->prefactor) << ',' << csv_number(rule->exponent) << ',' << csv_number(rule->ratio_min) << ','
-       << csv_number(rule->ratio_max) << ',' << rule->points << '\n';
+    rl << io::csv_number(rule->prefactor) << ',' << io::csv_number(rule->exponent) << ','
+       << io::csv_number(rule->ratio_min) << ',' << io::csv_number(rule->ratio_max) << ',' << rule->points << '\n';
   io::write_text_file(o.out / "rule.csv", rl.str());
 
   std::ostringstream md;

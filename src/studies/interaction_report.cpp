@@ -47,9 +47,9 @@ std::vector<std::map<std::string, std::string>> sweep_rows(const fs::path& store
   std::vector<std::map<std::string, std::string>> rows;
   if (!fs::exists(store / "points.csv") && !fs::exists(store / "journal.csv")) return rows;
   const StoreReader reader(store);
-  const auto header = csv_split(reader.header());
+  const auto header = io::csv_split(reader.header());
   for (const StoredRow& sr : reader.rows()) {
-    const auto f = csv_split(reader.row(sr));
+    const auto f = io::csv_split(reader.row(sr));
     std::map<std::string, std::string> r;
     for (std::size_t i = 0; i < header.size() && i < f.size(); ++i) r[header[i]] = f[i];
     rows.push_back(std::move(r));
@@ -468,16 +468,17 @@ void write_table_csv(const fs::path& out, const std::vector<StudyRow>& rows) {
   for (const auto& r : rows)
     for (const auto* s : {&r.indep, &r.inter}) {
       if (!s->ran) continue;
-      t << r.name << ',' << (s == &r.indep ? "independent" : "interacting") << ',' << csv_number(s->alpha_b) << ','
-        << csv_number(s->obs.Q_s) << ',' << csv_number(s->obs.t_peak) << ',' << csv_number(s->obs.shape_exponent) << ','
-        << csv_number(s->areas.n_measured) << ',' << csv_number(s->areas.decay_model) << ','
-        << csv_number(s->areas.decay_measured) << ',' << csv_number(s->areas.slope_model) << ','
-        << csv_number(s->areas.slope_measured) << ',' << s->obs.ss_cycles << ',' << csv_number(s->obs.ss_drop) << ','
-        << csv_number(s->wall_s) << ',' << csv_number(s->shape.alpha_model) << ','
-        << csv_number(s->shape.alpha_measured) << ',' << csv_number(s->shape.alpha_measured_sd) << ','
-        << csv_number(s->shape.n_measured_sd) << ',' << csv_number(s->shape.residual_rms) << ','
-        << csv_number(s->shape.residual_rms_sd) << ',' << csv_number(s->shape.noise_rms) << ','
-        << csv_number(s->shape.noise_rms_p95) << ',' << s->shape.points_used << '\n';
+      t << r.name << ',' << (s == &r.indep ? "independent" : "interacting") << ',' << io::csv_number(s->alpha_b) << ','
+        << io::csv_number(s->obs.Q_s) << ',' << io::csv_number(s->obs.t_peak) << ','
+        << io::csv_number(s->obs.shape_exponent) << ',' << io::csv_number(s->areas.n_measured) << ','
+        << io::csv_number(s->areas.decay_model) << ',' << io::csv_number(s->areas.decay_measured) << ','
+        << io::csv_number(s->areas.slope_model) << ',' << io::csv_number(s->areas.slope_measured) << ','
+        << s->obs.ss_cycles << ',' << io::csv_number(s->obs.ss_drop) << ',' << io::csv_number(s->wall_s) << ','
+        << io::csv_number(s->shape.alpha_model) << ',' << io::csv_number(s->shape.alpha_measured) << ','
+        << io::csv_number(s->shape.alpha_measured_sd) << ',' << io::csv_number(s->shape.n_measured_sd) << ','
+        << io::csv_number(s->shape.residual_rms) << ',' << io::csv_number(s->shape.residual_rms_sd) << ','
+        << io::csv_number(s->shape.noise_rms) << ',' << io::csv_number(s->shape.noise_rms_p95) << ','
+        << s->shape.points_used << '\n';
     }
   io::write_text_file(out / "table.csv", t.str());
 }
@@ -487,10 +488,10 @@ void write_forces_csv(const fs::path& out, const Spread& sp) {
   t << "junction,A0_m2,x_m,y_m,crowding,equal_area_set,f_over_sigmaA_interacting,f_over_sigmaA_independent,"
        "f_over_sigmaA_interacting_half,f_over_sigmaA_independent_half\n";
   for (std::size_t i = 0; i < sp.A0.size(); ++i)
-    t << i + 1 << ',' << csv_number(sp.A0[i]) << ',' << csv_number(sp.x[i]) << ',' << csv_number(sp.y[i]) << ','
-      << csv_number(sp.crowding[i]) << ',' << int(sp.equal[i]) << ',' << csv_number(sp.ratio_inter[i]) << ','
-      << csv_number(sp.ratio_indep[i]) << ',' << csv_number(sp.half_inter[i]) << ',' << csv_number(sp.half_indep[i])
-      << '\n';
+    t << i + 1 << ',' << io::csv_number(sp.A0[i]) << ',' << io::csv_number(sp.x[i]) << ',' << io::csv_number(sp.y[i])
+      << ',' << io::csv_number(sp.crowding[i]) << ',' << int(sp.equal[i]) << ',' << io::csv_number(sp.ratio_inter[i])
+      << ',' << io::csv_number(sp.ratio_indep[i]) << ',' << io::csv_number(sp.half_inter[i]) << ','
+      << io::csv_number(sp.half_indep[i]) << '\n';
   io::write_text_file(out / "forces_at_peak.csv", t.str());
 }
 
@@ -514,16 +515,17 @@ void write_joint_csv(const fs::path& out, const std::vector<JointRow>& rows) {
       for (const char* k : {"model.alpha_b", "model.epsilon", "model.eta"}) {
         const auto it = s->fit.parameters.find(k);
         const JointParameter p = it == s->fit.parameters.end() ? JointParameter{} : it->second;
-        t << ',' << csv_number(p.value) << ',' << csv_number(p.lo95) << ',' << csv_number(p.hi95) << ','
-          << csv_number(p.profile_sigma);
+        t << ',' << io::csv_number(p.value) << ',' << io::csv_number(p.lo95) << ',' << io::csv_number(p.hi95) << ','
+          << io::csv_number(p.profile_sigma);
       }
-      t << ',' << csv_number(s->fit.reduced_chi2) << ',' << csv_number(s->fit.objective) << ','
-        << csv_number(s->objective) << ',' << csv_number(s->obs.t_peak) << ',' << (s->obs.peak_found ? "true" : "false")
-        << ',' << csv_number(s->obs.Q_s) << ',' << csv_number(s->force.rms) << ',' << csv_number(s->force.rms_sd) << ','
-        << csv_number(s->force.noise) << ',' << csv_number(s->force.noise_p95) << ',' << s->force.n << ','
-        << (q_within(*s) ? "true" : "false") << ',' << csv_number(s->shape.residual_rms) << ','
-        << csv_number(s->shape.noise_rms_p95) << ',' << (a_within(*s) ? "true" : "false") << ','
-        << csv_number(s->wall_s) << '\n';
+      t << ',' << io::csv_number(s->fit.reduced_chi2) << ',' << io::csv_number(s->fit.objective) << ','
+        << io::csv_number(s->objective) << ',' << io::csv_number(s->obs.t_peak) << ','
+        << (s->obs.peak_found ? "true" : "false") << ',' << io::csv_number(s->obs.Q_s) << ','
+        << io::csv_number(s->force.rms) << ',' << io::csv_number(s->force.rms_sd) << ','
+        << io::csv_number(s->force.noise) << ',' << io::csv_number(s->force.noise_p95) << ',' << s->force.n << ','
+        << (q_within(*s) ? "true" : "false") << ',' << io::csv_number(s->shape.residual_rms) << ','
+        << io::csv_number(s->shape.noise_rms_p95) << ',' << (a_within(*s) ? "true" : "false") << ','
+        << io::csv_number(s->wall_s) << '\n';
     }
   io::write_text_file(out / "joint.csv", t.str());
 }

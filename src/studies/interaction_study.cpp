@@ -44,7 +44,7 @@ std::map<std::string, double> calibrated_alpha_b(const fs::path& fit_yaml) {
       if (p && p["value"]) out[f["label"].as<std::string>()] = p["value"].as<double>();
     }
   } catch (const YAML::Exception& e) {  // not a fit.yaml of `asperity fit`
-    throw InputError(fit_yaml.string(), e.mark.is_null() ? 0 : e.mark.line + 1, "fits", e.msg);
+    throw io::InputError(fit_yaml.string(), e.mark.is_null() ? 0 : e.mark.line + 1, "fits", e.msg);
   }
   return out;
 }
@@ -54,9 +54,9 @@ Side run_side(const fs::path& scene_file, std::vector<std::string> set, std::opt
               double stop_time_s) {
   Side s;
   if (!alpha_b) return s;
-  set.push_back("model.alpha_b=" + csv_number(*alpha_b));
+  set.push_back("model.alpha_b=" + io::csv_number(*alpha_b));
   set.push_back("stop.cycles=5");
-  set.push_back("stop.time=" + csv_number(stop_time_s));
+  set.push_back("stop.time=" + io::csv_number(stop_time_s));
   const Scene scene = load_scene(scene_file, set);
   const RunResult r = simulate(scene);
   s.ran = true;
@@ -100,7 +100,8 @@ Ratios ratios_at_half_and_peak(const Scene& base) {
 Spread force_spread(const fs::path& scene_file, double alpha_b, const std::string& name) {
   Spread sp;
   sp.experiment = name;
-  const Scene scene = load_scene(scene_file, {"model.interactions=elastic", "model.alpha_b=" + csv_number(alpha_b)});
+  const Scene scene =
+      load_scene(scene_file, {"model.interactions=elastic", "model.alpha_b=" + io::csv_number(alpha_b)});
   const auto& J = scene.experiment.junctions;
   const std::size_t n = J.size();
   sp.A0 = J.area_m2;

@@ -109,7 +109,7 @@ std::map<std::string, JointFitEntry> read_joint_fits(const std::vector<fs::path>
         out[e.label] = std::move(e);
       }
     } catch (const YAML::Exception& ex) {  // not a fit.yaml of `asperity fit`
-      throw InputError(file.string(), ex.mark.is_null() ? 0 : ex.mark.line + 1, "fits", ex.msg);
+      throw io::InputError(file.string(), ex.mark.is_null() ? 0 : ex.mark.line + 1, "fits", ex.msg);
     }
   }
   return out;

@@ -118,10 +118,10 @@ void write_pairs_csv(const fs::path& out, const JunctionPairsEvidence& e) {
         const JunctionTrace& tr = trace_of(e, m == 0, k, sp == 1);
         const double A0 = e.A0_m2[tr.junction];
         for (std::size_t j = 0; j < tr.t_s.size(); ++j)
-          t << k + 1 << ',' << (sp ? "sparse" : "crowded") << ',' << tr.junction + 1 << ',' << csv_number(A0) << ','
-            << csv_number(e.crowding[tr.junction]) << ',' << (m == 0 ? "interacting" : "independent") << ','
-            << csv_number(tr.t_s[j]) << ',' << csv_number(tr.f_N[j]) << ',' << csv_number(tr.A_m2[j]) << ','
-            << csv_number(tr.f_N[j] / (e.sigma_Pa * tr.A_m2[j])) << ',' << csv_number(tr.A_m2[j] / A0) << '\n';
+          t << k + 1 << ',' << (sp ? "sparse" : "crowded") << ',' << tr.junction + 1 << ',' << io::csv_number(A0) << ','
+            << io::csv_number(e.crowding[tr.junction]) << ',' << (m == 0 ? "interacting" : "independent") << ','
+            << io::csv_number(tr.t_s[j]) << ',' << io::csv_number(tr.f_N[j]) << ',' << io::csv_number(tr.A_m2[j]) << ','
+            << io::csv_number(tr.f_N[j] / (e.sigma_Pa * tr.A_m2[j])) << ',' << io::csv_number(tr.A_m2[j] / A0) << '\n';
       }
   io::write_text_file(out / "junction_pairs.csv", t.str());
 }
@@ -179,10 +179,10 @@ std::string pairs_plot(const JunctionPairsEvidence& e) {
      << "\nset key outside right top\nset lmargin at screen 0.08\nset rmargin at screen 0.76\nset grid\nset xlabel "
      << gnuplot_quote(axis_markup("t")) << "\n"
      << "set ylabel 'f_i / (σ A_{0,i}) [1]'\n"
-     << "set arrow from " << csv_number(e.t_peak_interacting_s) << ", graph 0 to " << csv_number(e.t_peak_interacting_s)
-     << ", graph 1 nohead dt 3 lc rgb 'black'\n"
-     << "set arrow from " << csv_number(e.t_peak_independent_s) << ", graph 0 to " << csv_number(e.t_peak_independent_s)
-     << ", graph 1 nohead dt 3 lc rgb 'gray50'\n"
+     << "set arrow from " << io::csv_number(e.t_peak_interacting_s) << ", graph 0 to "
+     << io::csv_number(e.t_peak_interacting_s) << ", graph 1 nohead dt 3 lc rgb 'black'\n"
+     << "set arrow from " << io::csv_number(e.t_peak_independent_s) << ", graph 0 to "
+     << io::csv_number(e.t_peak_independent_s) << ", graph 1 nohead dt 3 lc rgb 'gray50'\n"
      << plot_command(e, 2) << "\nset ylabel 'A_i / A_{0,i} [1]'\n"
      << plot_command(e, 3) << "\nunset multiplot\n";
   return gp.str();

@@ -177,15 +177,16 @@ void write_matrix_csv(const fs::path& file, const std::vector<RecoveryCell>& cel
   }
   t << '\n';
   for (const RecoveryCell& c : cells) {
-    t << c.load << ',' << csv_number(c.mass_kg) << ',' << c.junctions << ',' << c.data_model << ',' << c.fit_model
-      << ',' << csv_field(c.status) << ',' << csv_number(c.objective) << ',' << csv_number(c.objective_at_truth) << ','
-      << c.residuals << ',' << c.free_parameters << ',' << csv_number(c.reduced_chi2()) << ',' << c.converged << ','
-      << c.in_best_basin << ',' << c.starts << ',' << c.evaluations << ',' << csv_number(c.wall_s);
+    t << c.load << ',' << io::csv_number(c.mass_kg) << ',' << c.junctions << ',' << c.data_model << ',' << c.fit_model
+      << ',' << io::csv_field(c.status) << ',' << io::csv_number(c.objective) << ','
+      << io::csv_number(c.objective_at_truth) << ',' << c.residuals << ',' << c.free_parameters << ','
+      << io::csv_number(c.reduced_chi2()) << ',' << c.converged << ',' << c.in_best_basin << ',' << c.starts << ','
+      << c.evaluations << ',' << io::csv_number(c.wall_s);
     for (const char* k : kParameterKeys) {
       RecoveryParameter p;
       for (const RecoveryParameter& q : c.parameters)
         if (q.key == k) p = q;
-      t << ',' << csv_number(p.value) << ',' << csv_number(p.sigma) << ',' << csv_number(p.truth);
+      t << ',' << io::csv_number(p.value) << ',' << io::csv_number(p.sigma) << ',' << io::csv_number(p.truth);
     }
     t << '\n';
   }
@@ -236,9 +237,9 @@ std::vector<RecoveryCell> run_recovery_matrix(const RecoveryMatrixOptions& opt) 
       const std::string budget = budget_text(specs.back());
       if (first_budget.empty()) first_budget = budget;
       if (budget != first_budget)
-        throw InputError(model.fit_template.generic_string(), line_of_key(templates[m], "optimizer"), "optimizer",
-                         "budget " + budget + " differs from " + first_budget +
-                             " (the first template's): the matrix compares models at equal budgets");
+        throw io::InputError(model.fit_template.generic_string(), line_of_key(templates[m], "optimizer"), "optimizer",
+                             "budget " + budget + " differs from " + first_budget +
+                                 " (the first template's): the matrix compares models at equal budgets");
     }
     for (std::size_t m = 0; m < opt.models.size(); ++m) {
       const RecoveryModel& model = opt.models[m];
@@ -320,7 +321,7 @@ void write_recovery_matrix_md(std::ostream& md, const std::vector<RecoveryCell>&
 
 std::vector<RecoveryCell> read_recovery_matrix(const fs::path& file) {
   // A matrix is a few dozen cells; a wrong file stops at this many rows.
-  const TextTable t = read_text_table(file, file.generic_string(), 10000);
+  const io::TextTable t = io::read_text_table(file, file.generic_string(), 10000);
   std::vector<RecoveryCell> cells;
   for (std::size_t r = 0; r < t.rows.size(); ++r) {
     const std::vector<std::string>& f = t.rows[r];
@@ -330,7 +331,7 @@ std::vector<RecoveryCell> read_recovery_matrix(const fs::path& file) {
       double x = 0;
       if (f[c] == "nan") return std::numeric_limits<double>::quiet_NaN();
       if (io::parse_double(f[c], x) != io::NumberParse::ok)
-        throw InputError(t.display, t.lines[r], name, "not a number: '" + f[c] + "'", static_cast<int>(c) + 1);
+        throw io::InputError(t.display, t.lines[r], name, "not a number: '" + f[c] + "'", static_cast<int>(c) + 1);
       return x;
     };
     RecoveryCell c;

@@ -138,7 +138,7 @@ ContinuumStudyOptions continuum_options(const MapView& m, const fs::path& folder
 }  // namespace
 
 StudySpec load_study(const fs::path& yaml) {
-  const std::string display = input_path(yaml);
+  const std::string display = io::input_path(yaml);
   const Source src{display, nullptr};
   const YAML::Node root = load_yaml_file(yaml, display);
   if (!root.IsMap()) fail(src, root, "study", "expected a study file: a map with 'study: interactions' or the like");

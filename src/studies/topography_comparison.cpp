@@ -14,7 +14,7 @@ namespace asperity {
 
 std::vector<TopographyShapeRow> read_topography_table(const std::filesystem::path& file) {
   // A results table: far below this; the cap keeps a wrong file from exhausting memory.
-  const TextTable t = read_text_table(file, file.generic_string(), 100000);
+  const io::TextTable t = io::read_text_table(file, file.generic_string(), 100000);
   std::vector<TopographyShapeRow> rows;
   if (t.columns.empty()) return rows;
   const std::size_t c_seed = t.column("seed"), c_load = t.column("P_N"), c_n_junctions = t.column("N"),
@@ -26,8 +26,8 @@ std::vector<TopographyShapeRow> read_topography_table(const std::filesystem::pat
     auto number = [&](std::size_t c) {
       double x = 0;
       if (io::parse_double(f[c], x) != io::NumberParse::ok || !std::isfinite(x))
-        throw InputError(t.display, t.lines[i], t.columns[c], "not a finite number: '" + f[c] + "'",
-                         static_cast<int>(c) + 1);
+        throw io::InputError(t.display, t.lines[i], t.columns[c], "not a finite number: '" + f[c] + "'",
+                             static_cast<int>(c) + 1);
       return x;
     };
     TopographyShapeRow r;
@@ -36,8 +36,8 @@ std::vector<TopographyShapeRow> read_topography_table(const std::filesystem::pat
     r.junctions = static_cast<int>(number(c_n_junctions));
     r.model = f[c_model];
     if (r.model != "independent" && r.model != "interacting")
-      throw InputError(t.display, t.lines[i], "model", "'" + r.model + "' is neither independent nor interacting",
-                       static_cast<int>(c_model) + 1);
+      throw io::InputError(t.display, t.lines[i], "model", "'" + r.model + "' is neither independent nor interacting",
+                           static_cast<int>(c_model) + 1);
     r.alpha_b = number(c_alpha);
     r.shape_exponent = number(c_n);
     r.endpoint_residual = number(c_end);

@@ -45,19 +45,19 @@ std::optional<HeightRangeProblem> height_range_problem(const HeightMap& map) {
 }
 
 HeightMap read_height_map_csv(const fs::path& csv, const std::string& display, double pixel_m) {
-  if (const std::string why = pixel_size_problem(pixel_m); !why.empty()) throw InputError(display, 0, "", why);
-  const CsvMatrix m = read_numeric_matrix_csv(csv, display, "h_m", kMaxHeightMapSide, kMaxHeightMapSide);
+  if (const std::string why = pixel_size_problem(pixel_m); !why.empty()) throw io::InputError(display, 0, "", why);
+  const io::CsvMatrix m = io::read_numeric_matrix_csv(csv, display, "h_m", kMaxHeightMapSide, kMaxHeightMapSide);
   if (m.rows != m.columns)
-    throw InputError(display, m.first_line, "h_m",
-                     "height map is " + std::to_string(m.rows) + " rows of " + std::to_string(m.columns) +
-                         " values; it must be square (n rows of n heights)");
-  if (m.rows < 2) throw InputError(display, m.first_line, "h_m", "height map must be at least 2 x 2");
+    throw io::InputError(display, m.first_line, "h_m",
+                         "height map is " + std::to_string(m.rows) + " rows of " + std::to_string(m.columns) +
+                             " values; it must be square (n rows of n heights)");
+  if (m.rows < 2) throw io::InputError(display, m.first_line, "h_m", "height map must be at least 2 x 2");
   HeightMap map;
   map.n = m.rows;
   map.pixel_m = pixel_m;
   map.h_m = m.values;
   if (const auto p = height_range_problem(map))
-    throw InputError(display, m.lines[p->index / map.n], "h_m", p->message, static_cast<int>(p->index % map.n) + 1);
+    throw io::InputError(display, m.lines[p->index / map.n], "h_m", p->message, static_cast<int>(p->index % map.n) + 1);
   return map;
 }
 
@@ -84,13 +84,13 @@ HeightMap read_height_map_binary(const fs::path& header_yaml, const std::string&
     std::error_code ec;
     if (why != "file not found" && fs::is_regular_file(data, ec)) why = "is larger than expected";
     v.fail_at(dn, "data",
-              "height file " + why + ": " + input_path(data) + " (expected n^2 x 8 = " + std::to_string(bytes) +
+              "height file " + why + ": " + io::input_path(data) + " (expected n^2 x 8 = " + std::to_string(bytes) +
                   " bytes of float64 little-endian)");
   }
-  const std::string raw = io::read_input_file(data, input_path(data), bytes);
+  const std::string raw = io::read_input_file(data, io::input_path(data), bytes);
   if (raw.size() != bytes)
     v.fail_at(dn, "data",
-              "height file " + input_path(data) + " has " + std::to_string(raw.size()) +
+              "height file " + io::input_path(data) + " has " + std::to_string(raw.size()) +
                   " bytes, expected n^2 x 8 = " + std::to_string(bytes) + " (float64 little-endian)");
   HeightMap map;
   map.n = n;
@@ -104,27 +104,28 @@ HeightMap read_height_map_binary(const fs::path& header_yaml, const std::string&
     if (!std::isfinite(h))
       v.fail_at(dn, "data",
                 "height at row " + std::to_string(k / n + 1) + ", column " + std::to_string(k % n + 1) + " of " +
-                    input_path(data) + " is " + (std::isnan(h) ? "NaN" : "infinite") + "; every height must be finite");
+                    io::input_path(data) + " is " + (std::isnan(h) ? "NaN" : "infinite") +
+                    "; every height must be finite");
     map.h_m[k] = h;
   }
   if (const auto p = height_range_problem(map))
     v.fail_at(dn, "data",
               "row " + std::to_string(p->index / n + 1) + ", column " + std::to_string(p->index % n + 1) + " of " +
-                  input_path(data) + ": " + p->message);
+                  io::input_path(data) + ": " + p->message);
   return map;
 }
 
 void write_height_map_csv(const fs::path& csv, const HeightMap& map) {
   std::string s = "# height map: " + std::to_string(map.n) + " x " + std::to_string(map.n) +
-                  " heights in metres, pixel_m = " + csv_number(map.pixel_m) + "\n";
+                  " heights in metres, pixel_m = " + io::csv_number(map.pixel_m) + "\n";
   for (std::size_t i = 0; i < map.n; ++i) {
     for (std::size_t j = 0; j < map.n; ++j) {
       if (j) s += ',';
-      s += csv_number(map.h_m[i * map.n + j]);
+      s += io::csv_number(map.h_m[i * map.n + j]);
     }
     s += '\n';
   }
-  write_file_atomically(csv, s, Durability::unsynced);
+  io::write_file_atomically(csv, s, io::Durability::unsynced);
 }
 
 void write_height_map_binary(const fs::path& header_yaml, const std::string& data_name, const HeightMap& map) {
@@ -133,11 +134,11 @@ void write_height_map_binary(const fs::path& header_yaml, const std::string& dat
     const auto u = std::bit_cast<std::uint64_t>(map.h_m[k]);
     for (std::size_t b = 0; b < 8; ++b) raw[k * 8 + b] = static_cast<char>((u >> (8 * b)) & 0xff);
   }
-  write_file_atomically(header_yaml.parent_path() / data_name, raw, Durability::unsynced);
-  write_file_atomically(header_yaml,
-                        "n: " + std::to_string(map.n) + "\npixel_m: " + io::format_double(map.pixel_m) +
-                            "\ndata: " + yaml_quoted(data_name) + "\nformat: float64_le\n",
-                        Durability::unsynced);
+  io::write_file_atomically(header_yaml.parent_path() / data_name, raw, io::Durability::unsynced);
+  io::write_file_atomically(header_yaml,
+                            "n: " + std::to_string(map.n) + "\npixel_m: " + io::format_double(map.pixel_m) +
+                                "\ndata: " + io::yaml_quoted(data_name) + "\nformat: float64_le\n",
+                            io::Durability::unsynced);
 }
 
 }  // namespace asperity

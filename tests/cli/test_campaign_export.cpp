@@ -74,7 +74,7 @@ TEST_CASE("export --sqlite: typed columns, SQL aggregates equal those of points.
   std::vector<std::vector<std::string>> rows;
   for (std::size_t at = 0; at < text.size();) {
     const std::size_t nl = text.find('\n', at);
-    rows.push_back(csv_split(text.substr(at, nl - at)));
+    rows.push_back(io::csv_split(text.substr(at, nl - at)));
     at = nl + 1;
   }
   const std::vector<std::string> header = rows.front();

@@ -57,17 +57,17 @@ TEST_CASE("threads (-j, --threads) mean the same in every command and are checke
 }
 
 TEST_CASE("the library's thread range and NUL check, shared by --threads and the Python module", "[io][options]") {
-  CHECK(threads_problem("1").empty());
-  CHECK(threads_problem("1024").empty());
-  CHECK(checked_threads("16", "threads") == 16);
+  CHECK(io::threads_problem("1").empty());
+  CHECK(io::threads_problem("1024").empty());
+  CHECK(io::checked_threads("16", "threads") == 16);
   for (const char* bad : {"0", "-1", "1025", "1000000000", "99999999999999999999", "", "4x", "abc"})
-    CHECK(threads_problem(bad) == "Value " + std::string(bad) + " not in range 1 to 1024");
-  CHECK_THROWS_WITH(checked_threads("-1", "threads"), "threads: Value -1 not in range 1 to 1024");
-  CHECK_NOTHROW(check_no_nul("a/b.yaml", "campaign"));
+    CHECK(io::threads_problem(bad) == "Value " + std::string(bad) + " not in range 1 to 1024");
+  CHECK_THROWS_WITH(io::checked_threads("-1", "threads"), "threads: Value -1 not in range 1 to 1024");
+  CHECK_NOTHROW(io::check_no_nul("a/b.yaml", "campaign"));
   using namespace std::string_literals;
-  CHECK_THROWS_WITH(check_no_nul("a.yaml\0x"s, "campaign"),
+  CHECK_THROWS_WITH(io::check_no_nul("a.yaml\0x"s, "campaign"),
                     "a.yaml\\0x: campaign: holds a NUL byte (character 7), which would end the text there");
-  CHECK_THROWS_AS(check_no_nul("\0"s, "out"), InputError);
+  CHECK_THROWS_AS(io::check_no_nul("\0"s, "out"), io::InputError);
 }
 
 TEST_CASE("sweep --set equals the value in the campaign and fit --set equals it in the fit file", "[cli][options]") {
@@ -165,15 +165,15 @@ TEST_CASE("Ctrl-C stops a run within a fraction of a second, exit 130, nothing w
 }
 
 TEST_CASE("the progress line's ETA is elapsed x remaining / done", "[io][progress]") {
-  CHECK(eta_seconds(10, 25, 100) == 30);
-  CHECK(std::isnan(eta_seconds(10, 0, 100)));
-  CHECK(eta_seconds(10, 100, 100) == 0);
-  CHECK(duration_text(45) == "45s");
-  CHECK(duration_text(187) == "3m07s");
-  CHECK(duration_text(7500) == "2h05m");
-  const ProgressLine p("fit", "evaluations", 60, true);
+  CHECK(io::eta_seconds(10, 25, 100) == 30);
+  CHECK(std::isnan(io::eta_seconds(10, 0, 100)));
+  CHECK(io::eta_seconds(10, 100, 100) == 0);
+  CHECK(io::duration_text(45) == "45s");
+  CHECK(io::duration_text(187) == "3m07s");
+  CHECK(io::duration_text(7500) == "2h05m");
+  const io::ProgressLine p("fit", "evaluations", 60, true);
   CHECK(p.text(15, 30, "best 1.2e-3") == "fit: 15/60 evaluations, 30s elapsed, ETA 1m30s, best 1.2e-3");
-  const ProgressLine q("run", "s simulated", 10, true);
+  const io::ProgressLine q("run", "s simulated", 10, true);
   CHECK(q.text(2.5, 4, "") == "run: 2.5/10 s simulated, 4s elapsed, ETA 12s");
 }
 

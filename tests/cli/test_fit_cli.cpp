@@ -51,7 +51,7 @@ TEST_CASE("asperity fit writes the results directory", "[fit][cli]") {
   // Provenance: the command as typed, the fit file and the experiment's data by content.
   CHECK(y.find("command_line: \"asperity fit f.yaml --quiet --threads 2\"") != std::string::npos);
   CHECK(y.find("{role: \"fit\", path: \"f.yaml\", fnv1a64: \"" +
-               asperity::hex16(asperity::fnv1a64(slurp(c.dir / "f.yaml"))) + "\"}") != std::string::npos);
+               asperity::io::hex16(asperity::io::fnv1a64(slurp(c.dir / "f.yaml"))) + "\"}") != std::string::npos);
   CHECK(y.find("{role: \"measured\"") != std::string::npos);
   // One CSV row per evaluation, as counted in fit.yaml.
   const auto at = y.find("\n    evaluations: ");

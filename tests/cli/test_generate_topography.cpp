@@ -64,7 +64,7 @@ std::string load_error(const fs::path& dir, const std::string& text) {
   write_text(dir / "bad.yaml", text);
   try {
     load_topography_recipe(dir / "bad.yaml");
-  } catch (const InputError& e) {
+  } catch (const io::InputError& e) {
     return e.what();
   }
   return "";
@@ -251,7 +251,7 @@ TEST_CASE("topography recipes: bad values refused at their line", "[generate][to
     write_text(d / "bad.yaml", text);
     try {
       build_topography_junctions(load_topography_recipe(d / "bad.yaml"));
-    } catch (const InputError& e) {
+    } catch (const io::InputError& e) {
       return std::string(e.what());
     }
     return std::string();

@@ -62,7 +62,7 @@ fs::path hostile_case(const std::string& tag) {
   fs::copy_file(kExp / "measured.csv", w / "measured.csv");
   for (std::size_t i = 0; i < kHostile.size(); ++i) {
     write_text(w / (numbered("e", i, ".yaml")),
-               "# hostile name on line 2\nname: " + asperity::yaml_quoted(kHostile[i]) +
+               "# hostile name on line 2\nname: " + asperity::io::yaml_quoted(kHostile[i]) +
                    "\nmass: 0.1\nk_L: 9200\nv: 1.0e-4\nE: 1.6e6\nnu: 0.5\nsigma_exp: 0.23e6\n"
                    "junctions: junctions.csv\nmeasured: measured.csv\n");
     write_text(w / (numbered("s", i, ".yaml")),
@@ -89,12 +89,12 @@ std::vector<std::string> csv_lines(const std::string& text) {
 
 std::multiset<std::string> hostile_set() { return {kHostile.begin(), kHostile.end()}; }
 
-bool drawn(const fs::path& png) { return !asperity::gnuplot_available() || fs::file_size(png) > 1000; }
+bool drawn(const fs::path& png) { return !asperity::io::gnuplot_available() || fs::file_size(png) > 1000; }
 
 }  // namespace
 
 TEST_CASE("gnuplot_quote: gnuplot reads every byte back as written, control characters as '?'", "[report][hostile]") {
-  if (!asperity::gnuplot_available()) {
+  if (!asperity::io::gnuplot_available()) {
     WARN("gnuplot not installed: nothing to check");
     return;
   }
@@ -113,7 +113,7 @@ TEST_CASE("gnuplot_quote: gnuplot reads every byte back as written, control char
   std::ostringstream gp;
   gp << "set print 'got.txt'\n";
   for (const auto& t : texts) gp << "s = " << asperity::gnuplot_quote(t) << "\nprint s\n";
-  asperity::run_gnuplot(w, gp.str());
+  asperity::io::run_gnuplot(w, gp.str());
   std::string want;
   for (std::size_t k = 0; k + 1 < texts.size(); ++k) want += texts[k] + "\n";
   want += "a?b?c?d?e?f\\\n";
@@ -150,8 +150,8 @@ TEST_CASE("hostile names and paths through run --plot, reproduce, fit, sweep and
     REQUIRE(lines.size() == n + 1);
     std::multiset<std::string> names;
     for (std::size_t k = 1; k < lines.size(); ++k) {
-      const auto f = asperity::csv_split(lines[k]);
-      CHECK(f.size() == asperity::csv_split(lines[0]).size());
+      const auto f = asperity::io::csv_split(lines[k]);
+      CHECK(f.size() == asperity::io::csv_split(lines[0]).size());
       names.insert(f.at(0));
     }
     CHECK(names == hostile_set());
@@ -172,7 +172,7 @@ TEST_CASE("hostile names and paths through run --plot, reproduce, fit, sweep and
     const auto lines = csv_lines(slurp(w / out / "fitted.csv"));
     REQUIRE(lines.size() == n + 1);
     std::multiset<std::string> names;
-    for (std::size_t k = 1; k < lines.size(); ++k) names.insert(asperity::csv_split(lines[k]).at(1));
+    for (std::size_t k = 1; k < lines.size(); ++k) names.insert(asperity::io::csv_split(lines[k]).at(1));
     CHECK(names == hostile_set());
     // One folder per fit, each with its A(Q) plot: no two names share files.
     std::size_t pngs = 0, folders = 0;
@@ -187,13 +187,13 @@ TEST_CASE("hostile names and paths through run --plot, reproduce, fit, sweep and
       }
     CHECK(folders == n);
     CHECK(drawn(w / out / "fitted.png"));  // fitted values against the load, all fits
-    if (asperity::gnuplot_available()) CHECK(pngs == n);
+    if (asperity::io::gnuplot_available()) CHECK(pngs == n);
   }
 
   // A campaign named with a quote payload (its store folder), over all hostile experiments;
   // plot with the default output, a hostile --out and --where experiment=<each name>.
   {
-    std::string camp = "name: " + asperity::yaml_quoted(kHostile[0]) + "\nscenes: [";
+    std::string camp = "name: " + asperity::io::yaml_quoted(kHostile[0]) + "\nscenes: [";
     for (std::size_t i = 0; i < n; ++i) camp += (i ? ", s" : "s") + std::to_string(i) + ".yaml";
     camp += "]\nset: {stop.time: 0.3}\naxes:\n  model.eta: [0, 100]\n  model.epsilon: [0.5, 0.9]\n";
     write_text(w / "camp.yaml", camp);

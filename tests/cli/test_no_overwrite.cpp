@@ -185,13 +185,13 @@ TEST_CASE("plot --out writes only figure files (.png, .svg, .pdf) and replaces o
   REQUIRE(run_argv(w, {"sweep", "camp.yaml", "--quiet", "-j", "1"}).status == 0);
   check_refused(w, plot_args("user/thesis.tex"), "user/thesis.tex: --out: must name a .png, .svg or .pdf file");
   check_refused(w, plot_args("new.tex"), "new.tex: --out: must name a .png, .svg or .pdf file");
-  if (!asperity::gnuplot_available()) {
+  if (!asperity::io::gnuplot_available()) {
     WARN("gnuplot not installed: the PNG cases are not checked");
     fs::remove_all(w);
     return;
   }
   // A PNG drawn by gnuplot directly (not by asperity) is the user's.
-  asperity::run_gnuplot(w / "user", "set terminal pngcairo size 200,100\nset output 'photo.png'\nplot x\n");
+  asperity::io::run_gnuplot(w / "user", "set terminal pngcairo size 200,100\nset output 'photo.png'\nplot x\n");
   REQUIRE(fs::file_size(w / "user" / "photo.png") > 100);
   CHECK_FALSE(asperity::png_is_ours(w / "user" / "photo.png"));
   check_refused(w, plot_args("user/photo.png"),

@@ -65,7 +65,7 @@ TEST_CASE("enhanced_literal escapes every markup character and round-trips", "[r
 }
 
 TEST_CASE("a hostile name prints literally in every format and runs nothing", "[report][figures]") {
-  if (!gnuplot_available()) {
+  if (!io::gnuplot_available()) {
     WARN("gnuplot not installed: nothing to draw");
     return;
   }
@@ -157,7 +157,7 @@ TEST_CASE("figure formats: png, svg and pdf files of the right kind, sized for a
   CHECK(terminal_for("f.pdf", 1200, 900) == "set terminal pdfcairo size 17.80cm,13.35cm enhanced font 'Sans,8.5'");
   CHECK(terminal_for("f.svg", 1000, 650) == "set terminal svg size 325,211 enhanced font 'Sans,8.5' fontscale 1.33333");
 
-  if (!gnuplot_available()) {
+  if (!io::gnuplot_available()) {
     WARN("gnuplot not installed: nothing to draw");
     return;
   }
@@ -180,7 +180,7 @@ TEST_CASE("figure formats: png, svg and pdf files of the right kind, sized for a
 
 TEST_CASE("run --plot --figures chooses the formats of the plot, a bad list is a one-line usage error",
           "[cli][figures]") {
-  if (!gnuplot_available()) {
+  if (!io::gnuplot_available()) {
     WARN("gnuplot not installed: nothing to draw");
     return;
   }

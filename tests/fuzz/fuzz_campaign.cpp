@@ -14,10 +14,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     for (const std::uint64_t i : {std::uint64_t(0), n - 1}) {
       try {
         (void)scenes.scene(asperity::point_at(c, i));
-      } catch (const asperity::InputError&) {
+      } catch (const asperity::io::InputError&) {
       }
     }
-  } catch (const asperity::InputError&) {
+  } catch (const asperity::io::InputError&) {
   }
   return 0;
 }

@@ -7,11 +7,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const auto path = asperity::fuzz::write_input("fuzzed.csv", data, size);
   try {
     (void)asperity::read_junctions_csv(path);
-  } catch (const asperity::InputError&) {
+  } catch (const asperity::io::InputError&) {
   }
   try {
     (void)asperity::read_measured_csv(path);
-  } catch (const asperity::InputError&) {
+  } catch (const asperity::io::InputError&) {
   }
   return 0;
 }

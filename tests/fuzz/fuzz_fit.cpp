@@ -7,7 +7,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const auto path = asperity::fuzz::write_input("fuzzed_fit.yaml", data, size);
   try {
     (void)asperity::load_fit(path);
-  } catch (const asperity::InputError&) {
+  } catch (const asperity::io::InputError&) {
   }
   return 0;
 }

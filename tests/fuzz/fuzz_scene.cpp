@@ -6,7 +6,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const auto path = asperity::fuzz::write_input("scene.yaml", data, size);
   try {
     (void)asperity::load_scene(path);
-  } catch (const asperity::InputError&) {
+  } catch (const asperity::io::InputError&) {
   }
   return 0;
 }

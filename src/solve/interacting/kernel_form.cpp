@@ -38,12 +38,12 @@ KernelForm kernel_form() {
   for (KernelForm f : {KernelForm::portable, KernelForm::avx2, KernelForm::avx512}) {
     if (want != kernel_form_name(f)) continue;
     if (std::find(forms.begin(), forms.end(), f) == forms.end())
-      throw InputError("environment", 0, "ASPERITY_KERNEL",
-                       "'" + want + "': this CPU lacks that form (it runs " + names + ")");
+      throw io::InputError("environment", 0, "ASPERITY_KERNEL",
+                           "'" + want + "': this CPU lacks that form (it runs " + names + ")");
     return f;
   }
-  throw InputError("environment", 0, "ASPERITY_KERNEL",
-                   "'" + want.substr(0, 40) + "' is not a kernel form (auto, portable, avx2 or avx512)");
+  throw io::InputError("environment", 0, "ASPERITY_KERNEL",
+                       "'" + want.substr(0, 40) + "' is not a kernel form (auto, portable, avx2 or avx512)");
 }
 
 }  // namespace asperity

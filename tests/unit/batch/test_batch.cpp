@@ -124,20 +124,20 @@ TEST_CASE("deal_by_cost: each item to the least loaded part, ties to the lower p
   CHECK(part == std::vector<std::uint64_t>{0, 1, 2, 1, 2, 1, 2});
   CHECK(load == std::vector<double>{5, 3, 5});
   // Equal costs in index order: round robin exactly.
-  const ShardPlan plan = ShardPlan::by_cost(Shard{1, 3}, 10, [](std::uint64_t) { return 2.0; });
+  const ShardPlan plan = ShardPlan::by_cost(io::Shard{1, 3}, 10, [](std::uint64_t) { return 2.0; });
   for (std::uint64_t i = 0; i < 10; ++i) CHECK(plan.contains(i) == (i % 3 == 1));
   CHECK(plan.size() == 3);
 }
 
 TEST_CASE("inputs fingerprint: the first line, build, slice, the caller's lines and files, byte for byte", "[batch]") {
-  InputsFingerprint t("# kind", "asperity 1 commit abc", "shard", Shard{1, 4}, "cost-v1");
+  InputsFingerprint t("# kind", "asperity 1 commit abc", "shard", io::Shard{1, 4}, "cost-v1");
   t.add("set", "0123456789abcdef");
   t.add_file("", "a/b.yaml", [] { return std::uint64_t{0x1a2b}; });
   t.add_file("scene", "c.yaml", []() -> std::uint64_t { throw std::runtime_error("unreadable"); });
   CHECK(t.text() ==
         "# kind\nbuild asperity 1 commit abc\nshard 1/4 cost-v1\nset 0123456789abcdef\n"
         "file 0000000000001a2b a/b.yaml\nfile ---------------- scene c.yaml\n");
-  CHECK(InputsFingerprint("# k", "b", "task", Shard{0, 1}).text() == "# k\nbuild b\ntask 0/1\n");
+  CHECK(InputsFingerprint("# k", "b", "task", io::Shard{0, 1}).text() == "# k\nbuild b\ntask 0/1\n");
   const fs::path d = fresh_dir("asperity_batch_inputs");
   CHECK_FALSE(read_inputs(d));
   write_inputs(d, t.text());
@@ -151,11 +151,11 @@ TEST_CASE("journal file: checked lines appended, read back by offset, a torn tai
   {
     JournalFile j(file, true, "journal.csv");
     const std::size_t first = j.append("1,x");
-    CHECK(first == journal_line("1,x").size());
+    CHECK(first == io::journal_line("1,x").size());
     j.append("2,y");
     j.sync();
-    CHECK(j.line_at(11) == journal_line("1,x").substr(0, first - 1));
-    CHECK(journal_row(j.line_at(11 + first)) == "2,y");
+    CHECK(j.line_at(11) == io::journal_line("1,x").substr(0, first - 1));
+    CHECK(io::journal_row(j.line_at(11 + first)) == "2,y");
   }
   const std::string good = slurp(file);
   write_text(file, good + "3,z,torn");

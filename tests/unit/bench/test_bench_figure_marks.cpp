@@ -12,7 +12,7 @@ using namespace asperity;
 using namespace asperity::testing;
 
 TEST_CASE("bench figures: the mark exactly from stand-ins", "[bench][figures]") {
-  if (!gnuplot_available()) {
+  if (!io::gnuplot_available()) {
     WARN("gnuplot not installed: nothing to draw");
     return;
   }

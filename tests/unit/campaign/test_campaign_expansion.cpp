@@ -117,7 +117,7 @@ TEST_CASE("shards partition the points: every index in exactly one shard", "[cam
       std::vector<int> seen(total, 0);
       std::uint64_t sizes = 0;
       for (std::uint64_t i = 0; i < n; ++i) {
-        const Shard s{i, n};
+        const io::Shard s{i, n};
         std::uint64_t mine = 0;
         for (std::uint64_t k = 0; k < total; ++k)
           if (s.contains(k)) ++seen[k], ++mine;
@@ -130,10 +130,10 @@ TEST_CASE("shards partition the points: every index in exactly one shard", "[cam
 }
 
 TEST_CASE("shard text I/N is parsed strictly", "[campaign]") {
-  CHECK(parse_shard("0/1").count == 1);
-  CHECK(parse_shard("3/4").index == 3);
+  CHECK(io::parse_shard("0/1").count == 1);
+  CHECK(io::parse_shard("3/4").index == 3);
   for (const char* bad : {"4/4", "1", "/4", "1/0", "-1/4", "1/4x", "a/b", ""})
-    CHECK_THROWS_AS(parse_shard(bad), std::invalid_argument);
+    CHECK_THROWS_AS(io::parse_shard(bad), std::invalid_argument);
 }
 
 TEST_CASE("shard auto (--shard auto) reads the SLURM array task", "[campaign][slurm]") {
@@ -142,13 +142,13 @@ TEST_CASE("shard auto (--shard auto) reads the SLURM array task", "[campaign][sl
     const auto it = vars.find(n);
     return it == vars.end() ? nullptr : it->second.c_str();
   };
-  CHECK_THROWS_WITH(parse_shard("auto", env), Catch::Contains("SLURM_ARRAY_TASK_ID is not set"));
+  CHECK_THROWS_WITH(io::parse_shard("auto", env), Catch::Contains("SLURM_ARRAY_TASK_ID is not set"));
   // sbatch --array=1-4, the third task: shard 2/4.
   vars = {{"SLURM_ARRAY_TASK_ID", "3"},
           {"SLURM_ARRAY_TASK_MIN", "1"},
           {"SLURM_ARRAY_TASK_MAX", "4"},
           {"SLURM_ARRAY_TASK_COUNT", "4"}};
-  const Shard s = parse_shard("auto", env);
+  const io::Shard s = io::parse_shard("auto", env);
   CHECK(s.index == 2);
   CHECK(s.count == 4);
   // --array=0-6:2 (not contiguous) would leave points of no task: refused.
@@ -156,17 +156,17 @@ TEST_CASE("shard auto (--shard auto) reads the SLURM array task", "[campaign][sl
           {"SLURM_ARRAY_TASK_MIN", "0"},
           {"SLURM_ARRAY_TASK_MAX", "6"},
           {"SLURM_ARRAY_TASK_COUNT", "4"}};
-  CHECK_THROWS_WITH(parse_shard("auto", env), Catch::Contains("must be contiguous"));
+  CHECK_THROWS_WITH(io::parse_shard("auto", env), Catch::Contains("must be contiguous"));
   vars["SLURM_ARRAY_TASK_COUNT"] = "x7";
-  CHECK_THROWS_WITH(parse_shard("auto", env), Catch::Contains("'x7', not a whole number"));
+  CHECK_THROWS_WITH(io::parse_shard("auto", env), Catch::Contains("'x7', not a whole number"));
 }
 
 TEST_CASE("FNV-1a 64 matches the published test vectors", "[campaign]") {
   // Reference values of the FNV specification (draft-eastlake-fnv), independent of this code.
-  CHECK(fnv1a64("") == 0xcbf29ce484222325ull);
-  CHECK(fnv1a64("a") == 0xaf63dc4c8601ec8cull);
-  CHECK(fnv1a64("foobar") == 0x85944171f73967e8ull);
-  CHECK(hex16(0xaf63dc4c8601ec8cull) == "af63dc4c8601ec8c");
+  CHECK(io::fnv1a64("") == 0xcbf29ce484222325ull);
+  CHECK(io::fnv1a64("a") == 0xaf63dc4c8601ec8cull);
+  CHECK(io::fnv1a64("foobar") == 0x85944171f73967e8ull);
+  CHECK(io::hex16(0xaf63dc4c8601ec8cull) == "af63dc4c8601ec8c");
 }
 
 TEST_CASE("CSV fields with commas quotes and newlines survive a split", "[campaign]") {
@@ -174,9 +174,9 @@ TEST_CASE("CSV fields with commas quotes and newlines survive a split", "[campai
   std::string line;
   for (std::size_t i = 0; i < fields.size(); ++i) {
     if (i) line += ',';
-    line += csv_field(fields[i]);
+    line += io::csv_field(fields[i]);
   }
-  const auto back = csv_split(line);
+  const auto back = io::csv_split(line);
   REQUIRE(back.size() == fields.size());
   CHECK(back[0] == "plain");
   CHECK(back[1] == "a,b");

@@ -46,11 +46,11 @@ SweepReport sweep(const fs::path& campaign, const fs::path& out) {
 // Column `name` of every row of DIR/points.csv, by point index.
 std::vector<std::string> column(const fs::path& store, const std::string& name) {
   const StoreReader s(store);
-  const auto header = csv_split(s.header());
+  const auto header = io::csv_split(s.header());
   const auto at = static_cast<std::size_t>(std::find(header.begin(), header.end(), name) - header.begin());
   REQUIRE(at < header.size());
   std::vector<std::string> out;
-  for (const StoredRow& r : s.rows()) out.push_back(csv_split(s.row(r)).at(at));
+  for (const StoredRow& r : s.rows()) out.push_back(io::csv_split(s.row(r)).at(at));
   return out;
 }
 
@@ -150,7 +150,7 @@ TEST_CASE("a resume trusts stored hashes while every input is unchanged and re-h
   // inputs.txt names every file the points' hashes depend on, with the FNV-1a 64 of its bytes.
   const std::string inputs = slurp(dir / "store" / "inputs.txt");
   for (const char* f : {"campaign.yaml", "scene.yaml", "exp/experiment.yaml", "exp/junctions.csv", "exp/measured.csv"})
-    CHECK_THAT(inputs, Contains("file " + hex16(fnv1a64(slurp(dir / f))) + " " + f + "\n"));
+    CHECK_THAT(inputs, Contains("file " + io::hex16(io::fnv1a64(slurp(dir / f))) + " " + f + "\n"));
   CHECK_THAT(inputs, Contains("build test build 1\nshard 0/1\n"));
   const std::string points = slurp(dir / "store" / "points.csv");
 

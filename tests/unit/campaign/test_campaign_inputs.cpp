@@ -36,7 +36,7 @@ void check_error(const std::string& body, const Expect& e) {
   try {
     load_campaign(p);
     FAIL("no error for:\n" << body);
-  } catch (const InputError& err) {
+  } catch (const io::InputError& err) {
     INFO(err.what());
     CHECK(err.file == p.lexically_normal().string());
     CHECK(err.line == e.line);
@@ -120,7 +120,7 @@ TEST_CASE("missing or bad scene lists are reported", "[campaign]") {
   try {
     load_campaign(d / "b.yaml");
     FAIL("no error");
-  } catch (const InputError& e) {
+  } catch (const io::InputError& e) {
     CHECK(e.line == 2);
     CHECK_THAT(e.message, Contains("scene file not found"));
   }

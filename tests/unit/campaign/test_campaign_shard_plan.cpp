@@ -48,7 +48,7 @@ TEST_CASE("a cost plan over equal costs is round robin, point for point", "[camp
   for (std::uint64_t total : {0, 1, 7, 100, 101})
     for (std::uint64_t count : {1, 2, 3, 7})
       for (std::uint64_t s = 0; s < count; ++s) {
-        const Shard shard{s, count};
+        const io::Shard shard{s, count};
         const ShardPlan cost = ShardPlan::by_cost(shard, total, [](std::uint64_t) { return 0.25; });
         const ShardPlan rr = ShardPlan::round_robin(shard, total);
         std::vector<std::uint64_t> modulo;
@@ -70,7 +70,7 @@ TEST_CASE("a cost plan partitions the points and keeps the greedy bound", "[camp
   std::vector<double> load(count, 0.0);
   std::vector<double> expected;
   for (std::uint64_t s = 0; s < count; ++s) {
-    const ShardPlan p = ShardPlan::by_cost(Shard{s, count}, total, [&](std::uint64_t i) { return cost[i]; });
+    const ShardPlan p = ShardPlan::by_cost(io::Shard{s, count}, total, [&](std::uint64_t i) { return cost[i]; });
     for (std::uint64_t i = 0; i < total; ++i)
       if (p.contains(i)) ++owners[i], load[s] += cost[i];
     CHECK(points_of(p, total).size() == p.size());
@@ -86,9 +86,9 @@ TEST_CASE("a cost plan partitions the points and keeps the greedy bound", "[camp
   // (spread 99 per pair); the cost plan stays within one costly point.
   std::vector<double> alt(1000);
   for (std::size_t i = 0; i < alt.size(); ++i) alt[i] = i % 2 == 0 ? 100.0 : 1.0;
-  const ShardPlan p = ShardPlan::by_cost(Shard{0, 2}, alt.size(), [&](std::uint64_t i) { return alt[i]; });
+  const ShardPlan p = ShardPlan::by_cost(io::Shard{0, 2}, alt.size(), [&](std::uint64_t i) { return alt[i]; });
   CHECK(std::abs(p.expected_s()[0] - p.expected_s()[1]) <= 100.0);
-  const ShardPlan rr = ShardPlan::round_robin(Shard{0, 2}, alt.size());
+  const ShardPlan rr = ShardPlan::round_robin(io::Shard{0, 2}, alt.size());
   double rr0 = 0, rr1 = 0;
   for (std::size_t i = 0; i < alt.size(); ++i) (rr.contains(i) ? rr0 : rr1) += alt[i];
   CHECK(rr0 - rr1 == 99.0 * 500);
@@ -112,8 +112,8 @@ TEST_CASE("a sweep deals reference points over both shards, merges to the unshar
     cost.push_back(expected_run_seconds(make_problem(scenes.scene(point_at(c, i)))));
   REQUIRE(cost[0] > 3 * cost[1]);  // reference ≫ event on these settings
   for (std::uint64_t s = 0; s < 2; ++s) {
-    const ShardPlan rr = plan_shard(c, Shard{s, 2}, ShardBalance::index);
-    const ShardPlan p = plan_shard(c, Shard{s, 2}, ShardBalance::cost);
+    const ShardPlan rr = plan_shard(c, io::Shard{s, 2}, ShardBalance::index);
+    const ShardPlan p = plan_shard(c, io::Shard{s, 2}, ShardBalance::cost);
     int reference = 0, reference_rr = 0;
     double load = 0;
     for (std::uint64_t i = 0; i < c.size(); ++i) {
@@ -126,7 +126,7 @@ TEST_CASE("a sweep deals reference points over both shards, merges to the unshar
     CHECK(p.expected_s()[s] == Approx(load).epsilon(1e-12));
   }
 
-  auto sweep = [&](const fs::path& out, Shard shard, std::optional<ShardBalance> balance) {
+  auto sweep = [&](const fs::path& out, io::Shard shard, std::optional<ShardBalance> balance) {
     SweepOptions o;
     o.out = out;
     o.threads = 1;
@@ -136,8 +136,8 @@ TEST_CASE("a sweep deals reference points over both shards, merges to the unshar
     return run_sweep(c, o);
   };
   sweep(d / "whole", {}, std::nullopt);
-  const SweepReport s0 = sweep(d / "s0", Shard{0, 2}, std::nullopt);
-  const SweepReport s1 = sweep(d / "s1", Shard{1, 2}, std::nullopt);
+  const SweepReport s0 = sweep(d / "s0", io::Shard{0, 2}, std::nullopt);
+  const SweepReport s1 = sweep(d / "s1", io::Shard{1, 2}, std::nullopt);
   CHECK(s0.balance == ShardBalance::cost);
   CHECK(s0.ran == s0.points);
   CHECK(s0.ran + s1.ran == c.size());
@@ -149,16 +149,16 @@ TEST_CASE("a sweep deals reference points over both shards, merges to the unshar
   CHECK_THAT(slurp(d / "merged" / "provenance.yaml"), !Contains("shard_balance"));
 
   // A resumed store keeps its plan; asking another is refused (it would orphan stored points).
-  CHECK(sweep(d / "s0", Shard{0, 2}, std::nullopt).ran == 0);
-  CHECK_THROWS_WITH(sweep(d / "s0", Shard{0, 2}, ShardBalance::index), Contains("must use the same --balance"));
+  CHECK(sweep(d / "s0", io::Shard{0, 2}, std::nullopt).ran == 0);
+  CHECK_THROWS_WITH(sweep(d / "s0", io::Shard{0, 2}, ShardBalance::index), Contains("must use the same --balance"));
   // A store from before the plan was recorded dealt round robin, and resumes so.
-  const SweepReport old = sweep(d / "old", Shard{1, 2}, ShardBalance::index);
+  const SweepReport old = sweep(d / "old", io::Shard{1, 2}, ShardBalance::index);
   CHECK(old.ran == 4);
   std::string prov = slurp(d / "old" / "provenance.yaml");
   prov.erase(prov.find("shard_balance:"),
              prov.find('\n', prov.find("shard_balance:")) + 1 - prov.find("shard_balance:"));
   std::ofstream(d / "old" / "provenance.yaml", std::ios::binary) << prov;
-  const SweepReport again = sweep(d / "old", Shard{1, 2}, std::nullopt);
+  const SweepReport again = sweep(d / "old", io::Shard{1, 2}, std::nullopt);
   CHECK(again.balance == ShardBalance::index);
   CHECK(again.ran == 0);
   fs::remove_all(d);

@@ -44,7 +44,7 @@ std::vector<std::string> values_of(const fs::path& store) {
   return out;
 }
 
-SweepReport sweep(const Campaign& c, const fs::path& out, int threads = 1, Shard shard = {}) {
+SweepReport sweep(const Campaign& c, const fs::path& out, int threads = 1, io::Shard shard = {}) {
   SweepOptions o;
   o.out = out;
   o.threads = threads;
@@ -155,9 +155,9 @@ TEST_CASE("sweep values are identical for 1 and 2 threads and for merged shards"
   CHECK(one.size() == c.size() + 1);
   CHECK(values_of(d / "two") == one);
 
-  const SweepReport s0 = sweep(c, d / "s0", 2, Shard{0, 3});
-  const SweepReport s1 = sweep(c, d / "s1", 1, Shard{1, 3});
-  const SweepReport s2 = sweep(c, d / "s2", 2, Shard{2, 3});
+  const SweepReport s0 = sweep(c, d / "s0", 2, io::Shard{0, 3});
+  const SweepReport s1 = sweep(c, d / "s1", 1, io::Shard{1, 3});
+  const SweepReport s2 = sweep(c, d / "s2", 2, io::Shard{2, 3});
   CHECK(s0.ran + s1.ran + s2.ran == c.size());
   CHECK(values_of(d / "s1").size() == 1 + 4);  // indices 1, 4, 7, 10
   const MergeReport m = merge_stores({d / "s2", d / "s0", d / "s1"}, d / "merged");
@@ -165,7 +165,7 @@ TEST_CASE("sweep values are identical for 1 and 2 threads and for merged shards"
   std::vector<fs::path> fifths;
   for (std::uint64_t i = 0; i < 5; ++i) {
     fifths.push_back(d / ("f" + std::to_string(i)));
-    sweep(c, fifths.back(), 1, Shard{i, 5});
+    sweep(c, fifths.back(), 1, io::Shard{i, 5});
   }
   merge_stores(fifths, d / "merged5");
   CHECK(values_of(d / "merged5") == one);
@@ -191,12 +191,12 @@ TEST_CASE("a failing point is recorded with its error and counted and the campai
   CHECK(r.ok == 1);
   const auto rows = lines_of(slurp(d / "store" / "points.csv"));
   REQUIRE(rows.size() == 3);
-  const auto header = csv_split(rows[0]);
-  const auto failed = csv_split(rows[1]);
+  const auto header = io::csv_split(rows[0]);
+  const auto failed = io::csv_split(rows[1]);
   const std::size_t status = Journal::status_column(rows[0]);
   CHECK(failed[status] == "failed");
   CHECK_THAT(failed[status + 1], Contains("unstable"));
-  CHECK(csv_split(rows[2])[status] == "ok");
+  CHECK(io::csv_split(rows[2])[status] == "ok");
 
   // The command line counts it and exits 1.
   const std::string cmd = "'" + std::string(ASPERITY_BINARY) + "' sweep '" + (d / "fail.yaml").string() + "' --out '" +
@@ -324,8 +324,8 @@ TEST_CASE("series: one append-only file per store, read back per point, torn tai
   CHECK(slurp(s / "series.csv") == full);
 
   // Merged shards hold every point's block.
-  sweep(c, d / "a", 1, Shard{0, 2});
-  sweep(c, d / "b", 1, Shard{1, 2});
+  sweep(c, d / "a", 1, io::Shard{0, 2});
+  sweep(c, d / "b", 1, io::Shard{1, 2});
   CHECK(read_point_series(d / "a", {0, 1, 2}).size() == 2);
   merge_stores({d / "b", d / "a"}, d / "m");
   CHECK(read_point_series(d / "m", {0, 1, 2}) == truth);
@@ -445,9 +445,9 @@ TEST_CASE(
   REQUIRE(lines.size() == 3);
   CHECK(lines[0] == kHeader + ",sha256");
   // Independent: the line's digest is the FIPS SHA-256 of its row (as checked in test_io_digest).
-  CHECK(lines[1] == "0,00000000000000aa,g,ok,1.5," + sha256_hex("0,00000000000000aa,g,ok,1.5"));
+  CHECK(lines[1] == "0,00000000000000aa,g,ok,1.5," + io::sha256_hex("0,00000000000000aa,g,ok,1.5"));
   // A legacy journal (header ",check", FNV-1a 64 per line), as written before SHA-256.
-  const auto fnv_line = [](const std::string& row) { return row + "," + hex16(fnv1a64(row)) + "\n"; };
+  const auto fnv_line = [](const std::string& row) { return row + "," + io::hex16(io::fnv1a64(row)) + "\n"; };
   std::ofstream(d / "journal.csv", std::ios::binary | std::ios::trunc)
       << kHeader + ",check\n" + fnv_line("0,00000000000000aa,g,ok,1.5") + fnv_line("1,00000000000000bb,g,ok,2.5");
   {

@@ -116,9 +116,9 @@ TEST_CASE("every committed results/ store: a sample of its points rerun by this 
       std::string line;
       REQUIRE(std::getline(in, line));
       REQUIRE(line == store_header(c));
-      const std::vector<std::string> header = csv_split(line);
+      const std::vector<std::string> header = io::csv_split(line);
       std::vector<std::vector<std::string>> rows;
-      while (std::getline(in, line)) rows.push_back(csv_split(line));
+      while (std::getline(in, line)) rows.push_back(io::csv_split(line));
       REQUIRE(rows.size() == c.size());
       const auto col = [&](const std::string& k) {
         for (std::size_t i = 0; i < header.size(); ++i)
@@ -143,7 +143,7 @@ TEST_CASE("every committed results/ store: a sample of its points rerun by this 
         REQUIRE(std::stoull(row[0]) == index);
         const Scene s = scenes.scene(point_at(c, index));
         INFO(name << " point " << index << " (" << row[col("experiment")] << ")");
-        CHECK(row[col("hash")] == hex16(fnv1a64(canonical_scene_text(s, base, data))));
+        CHECK(row[col("hash")] == io::hex16(io::fnv1a64(canonical_scene_text(s, base, data))));
         REQUIRE(row[col("status")] == "ok");
         const RunResult r = simulate(s, c.time_limit_s);
         const bool chaotic = named.count(index) && s.model.eta == 0;

@@ -60,7 +60,7 @@ const std::string kRun = "stop: {time: 0.05}\noutput: {every: 0.001, series: []}
 std::string error_of(const fs::path& scene, const std::vector<std::string>& sets = {}) {
   try {
     load_scene(scene, sets);
-  } catch (const InputError& e) {
+  } catch (const io::InputError& e) {
     return e.what();
   }
   return "no error";
@@ -175,7 +175,7 @@ TEST_CASE("topography scenes: bad keys and values are one line naming file, line
   try {
     typed.with({{find_scene_key("topography.self_affine.hurst"), 1.0}});
     FAIL("no error");
-  } catch (const InputError& e) {
+  } catch (const io::InputError& e) {
     CHECK(std::string(e.what()) ==
           (d / "named.yaml").string() + ": topography.self_affine.hurst: must be in (0, 1), got 1");
   }

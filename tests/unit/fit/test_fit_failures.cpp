@@ -51,7 +51,7 @@ void require_refused(const FitCase& c, const std::string& what) {
   try {
     (void)load_fit(f);
     FAIL("load_fit accepted it");
-  } catch (const InputError& e) {
+  } catch (const io::InputError& e) {
     CHECK(e.key == "measured");
     CHECK(e.line == line);
     CHECK(fs::path(e.file).filename() == "experiment.yaml");

@@ -99,7 +99,7 @@ TEST_CASE(
   }
   CHECK(slurp(file) == damaged);
   // A line whose checksum is right but whose fields are not numbers (hand-made): named by key.
-  write_text(file, good + journal_line("fit,m010,3,0.5;abc,0.1,0.1,ok,0.01"));
+  write_text(file, good + io::journal_line("fit,m010,3,0.5;abc,0.1,0.1,ok,0.01"));
   {
     FitJournal j;
     CHECK_THROWS_WITH(j.open(file, false), Catch::StartsWith(file.string() + ":4: x: not a ';'-separated list"));
@@ -202,7 +202,7 @@ TEST_CASE("array tasks of a separate fit: experiments dealt longest first to the
   joint.separate = false;
   CHECK_THROWS_AS(task_optimizations(joint, {0, 2}), std::invalid_argument);
   // --task names its option in parse errors (the sweep's parser, shared).
-  CHECK_THROWS_WITH(parse_shard("3/3", {}, "--task"), Catch::StartsWith("--task 3/3: expected I/N"));
+  CHECK_THROWS_WITH(io::parse_shard("3/3", {}, "--task"), Catch::StartsWith("--task 3/3: expected I/N"));
 }
 
 TEST_CASE("fit inputs.txt: a resume with another build, task, --set or file content is refused naming the key",
@@ -215,7 +215,7 @@ TEST_CASE("fit inputs.txt: a resume with another build, task, --set or file cont
   CHECK_NOTHROW(check_fit_inputs(file, mine));
   // Every input file is listed by content, relative to the fit file: 1 fit file + 3 × 4 files.
   CHECK(std::count(mine.begin(), mine.end(), '\n') == 1 + 2 + 13);
-  CHECK(mine.find("\nfile " + hex16(fnv1a64(slurp(kFixture))) + " fit fit.yaml\n") != std::string::npos);
+  CHECK(mine.find("\nfile " + io::hex16(io::fnv1a64(slurp(kFixture))) + " fit fit.yaml\n") != std::string::npos);
   CHECK(mine.find(" measured m025/measured.csv\n") != std::string::npos);
   CHECK_THROWS_WITH(
       check_fit_inputs(file,
@@ -262,14 +262,14 @@ TEST_CASE(
   int best_line = 0;
   std::string forged = lines[0] + "\n";
   for (std::size_t i = 1; i < lines.size(); ++i) {
-    std::vector<std::string> fld = csv_split(std::string(journal_row(lines[i])));
+    std::vector<std::string> fld = io::csv_split(std::string(io::journal_row(lines[i])));
     if (fld[3] == best_x && best_line == 0) {
       best_line = static_cast<int>(i) + 1;
       fld[4] = "0";
       fld[5] = "0";
       std::string row = fld[0];
       for (std::size_t k = 1; k < fld.size(); ++k) row += "," + fld[k];
-      forged += journal_line(row);
+      forged += io::journal_line(row);
     } else {
       forged += lines[i] + "\n";
     }
@@ -283,7 +283,7 @@ TEST_CASE(
     try {
       run_fit(spec, o);
       FAIL("a forged best evaluation was taken as computed");
-    } catch (const InputError& e) {
+    } catch (const io::InputError& e) {
       CHECK(e.file == (d / "journal.csv").string());
       CHECK(e.line == best_line);
       CHECK(e.key == "objective");
@@ -294,20 +294,21 @@ TEST_CASE(
   // a damaged line: refused where good lines follow it, never taken as computed.
   std::string fnv_forged = lines[0] + "\n";
   for (std::size_t i = 1; i < lines.size(); ++i) {
-    const std::string row(journal_row(lines[i]));
-    fnv_forged += static_cast<int>(i) + 1 == best_line ? row + "," + hex16(fnv1a64(row)) + "\n" : lines[i] + "\n";
+    const std::string row(io::journal_row(lines[i]));
+    fnv_forged +=
+        static_cast<int>(i) + 1 == best_line ? row + "," + io::hex16(io::fnv1a64(row)) + "\n" : lines[i] + "\n";
   }
   write_text(d / "journal.csv", fnv_forged);
   if (best_line < static_cast<int>(lines.size())) {
     FitJournal j;
-    CHECK_THROWS_AS(j.open(d / "journal.csv", true), InputError);
+    CHECK_THROWS_AS(j.open(d / "journal.csv", true), io::InputError);
   }
   // A whole journal from before SHA-256 (header "...,check", FNV-1a lines): replayed as it is, then
   // rewritten with SHA-256 lines holding the same rows.
   std::string legacy = lines[0].substr(0, lines[0].rfind(',')) + ",check\n";
   for (std::size_t i = 1; i < lines.size(); ++i) {
-    const std::string row(journal_row(lines[i]));
-    legacy += row + "," + hex16(fnv1a64(row)) + "\n";
+    const std::string row(io::journal_row(lines[i]));
+    legacy += row + "," + io::hex16(io::fnv1a64(row)) + "\n";
   }
   write_text(d / "journal.csv", legacy);
   {

@@ -32,11 +32,11 @@ const char* kGood =
     "optimizer: {algorithm: LN_BOBYQA}\n";                                 // 5
 
 // The InputError of loading `text` as a fit file in the case folder.
-InputError load_error(const std::string& text) {
+io::InputError load_error(const std::string& text) {
   const auto f = write_text(shared_case().dir / "bad.yaml", text);
   try {
     load_fit(f);
-  } catch (const InputError& e) {
+  } catch (const io::InputError& e) {
     return e;
   }
   FAIL("no InputError for:\n" << text);
@@ -87,48 +87,48 @@ TEST_CASE("Building a scene variant leaves the template unchanged", "[fit][load]
 
 TEST_CASE("Fit file errors name file, line and key", "[fit][load]") {
   SECTION("unknown key") {
-    const InputError e = load_error(std::string(kGood) + "optimiser: {}\n");
+    const io::InputError e = load_error(std::string(kGood) + "optimiser: {}\n");
     CHECK(e.line == 6);
     CHECK(e.key == "optimiser");
     CHECK(e.message.find("did you mean 'optimizer'") != std::string::npos);
   }
   SECTION("lo >= hi") {
-    const InputError e = load_error(with(kGood, "hi: 5e-15", "hi: 1e-16"));
+    const io::InputError e = load_error(with(kGood, "hi: 5e-15", "hi: 1e-16"));
     CHECK(e.line == 4);
     CHECK(e.key == "parameters.model.alpha_b.hi");
   }
   SECTION("start outside the bounds") {
-    const InputError e = load_error(with(kGood, "start: 7e-16", "start: 7e-15"));
+    const io::InputError e = load_error(with(kGood, "start: 7e-16", "start: 7e-15"));
     CHECK(e.line == 4);
     CHECK(e.key == "parameters.model.alpha_b.start");
   }
   SECTION("log scale with lo <= 0") {
-    const InputError e = load_error(with(kGood, "lo: 1e-16", "lo: 0"));
+    const io::InputError e = load_error(with(kGood, "lo: 1e-16", "lo: 0"));
     CHECK(e.key == "parameters.model.alpha_b.scale");
   }
   SECTION("unknown parameter key") {
-    const InputError e = load_error(with(kGood, "model.alpha_b:", "model.alpha:"));
+    const io::InputError e = load_error(with(kGood, "model.alpha_b:", "model.alpha:"));
     CHECK(e.line == 4);
     CHECK(e.message.find("did you mean 'model.alpha_b'") != std::string::npos);
   }
   SECTION("unknown algorithm") {
-    const InputError e = load_error(with(kGood, "LN_BOBYQA", "LN_BOBYQUA"));
+    const io::InputError e = load_error(with(kGood, "LN_BOBYQA", "LN_BOBYQUA"));
     CHECK(e.line == 5);
     CHECK(e.key == "optimizer.algorithm");
     CHECK(e.message.find("did you mean 'LN_BOBYQA'") != std::string::npos);
   }
   SECTION("gradient-based algorithm") {
-    const InputError e = load_error(with(kGood, "LN_BOBYQA", "LD_MMA"));
+    const io::InputError e = load_error(with(kGood, "LN_BOBYQA", "LD_MMA"));
     CHECK(e.message.find("gradients") != std::string::npos);
   }
   SECTION("algorithm that needs two variables") {
-    const InputError e = load_error(with(kGood, "LN_BOBYQA", "LN_NEWUOA_BOUND"));
+    const io::InputError e = load_error(with(kGood, "LN_BOBYQA", "LN_NEWUOA_BOUND"));
     CHECK(e.line == 5);
     CHECK(e.message.find("1 free variable") != std::string::npos);
   }
   SECTION("a bound the scene rejects") {
-    const InputError e = load_error(with(kGood, "model.alpha_b: {lo: 1e-16, hi: 5e-15, start: 7e-16, scale: log}",
-                                         "model.epsilon: {lo: 0.5, hi: 1.5, start: 0.9}"));
+    const io::InputError e = load_error(with(kGood, "model.alpha_b: {lo: 1e-16, hi: 5e-15, start: 7e-16, scale: log}",
+                                             "model.epsilon: {lo: 0.5, hi: 1.5, start: 0.9}"));
     CHECK(e.line == 4);
     CHECK(e.key == "parameters.model.epsilon.hi");
     CHECK(e.message.find("(0, 1]") != std::string::npos);
@@ -138,46 +138,46 @@ TEST_CASE("Fit file errors name file, line and key", "[fit][load]") {
                "name: no-measured\nmass: 0.1\nk_L: 9200\nv: 1e-4\nE: 1.6e6\nnu: 0.5\nsigma_exp: 0.23e6\njunctions: "
                "junctions.csv\n");
     write_text(shared_case().dir / "nomeas_scene.yaml", "experiment: nomeas.yaml\n");
-    const InputError e = load_error(with(kGood, "[scene.yaml]", "[nomeas_scene.yaml]"));
+    const io::InputError e = load_error(with(kGood, "[scene.yaml]", "[nomeas_scene.yaml]"));
     CHECK(e.line == 2);
     CHECK(e.message.find("needs a measured A(Q) curve") != std::string::npos);
   }
   SECTION("stick_slip needs targets") {
-    const InputError e = load_error(with(kGood, "quadratic_alpha", "stick_slip"));
+    const io::InputError e = load_error(with(kGood, "quadratic_alpha", "stick_slip"));
     CHECK(e.line == 2);
     CHECK(e.message.find("target") != std::string::npos);
   }
   SECTION("target only with stick_slip") {
-    const InputError e =
+    const io::InputError e =
         load_error(with(kGood, "[scene.yaml]", "[{scene: scene.yaml, target: {drop: 0.1, period: 0.1}}]"));
     CHECK(e.key == "experiments[0].target");
   }
   SECTION("missing scene file") {
-    const InputError e = load_error(with(kGood, "[scene.yaml]", "[nothere.yaml]"));
+    const io::InputError e = load_error(with(kGood, "[scene.yaml]", "[nothere.yaml]"));
     CHECK(e.line == 2);
     CHECK(e.message.find("not found") != std::string::npos);
   }
   SECTION("a bad value in set names the fit file") {
-    const InputError e = load_error(with(kGood, "[scene.yaml]", "[{scene: scene.yaml, set: {model.eta: -3}}]"));
+    const io::InputError e = load_error(with(kGood, "[scene.yaml]", "[{scene: scene.yaml, set: {model.eta: -3}}]"));
     CHECK(e.line == 2);
     CHECK(e.file.find("bad.yaml") != std::string::npos);
   }
   SECTION("error bar on a free parameter") {
-    const InputError e = load_error(std::string(kGood) + "error_bars: {model.alpha_b: 1e-16}\n");
+    const io::InputError e = load_error(std::string(kGood) + "error_bars: {model.alpha_b: 1e-16}\n");
     CHECK(e.line == 6);
   }
   SECTION("error bar in wrong units") {
-    const InputError e = load_error(std::string(kGood) + "error_bars: {experiment.E: 0.1 MPa}\n");
+    const io::InputError e = load_error(std::string(kGood) + "error_bars: {experiment.E: 0.1 MPa}\n");
     CHECK(e.key == "error_bars.experiment.E");
     CHECK(e.message.find("Pa") != std::string::npos);
   }
   SECTION("per_experiment with separate fits") {
-    const InputError e =
+    const io::InputError e =
         load_error(with(std::string(kGood) + "separate: true\n", "scale: log", "per_experiment: true"));
     CHECK(e.key == "parameters.model.alpha_b.per_experiment");
   }
   SECTION("profile of a parameter that is not free") {
-    const InputError e = load_error(std::string(kGood) + "profile: {parameter: model.p}\n");
+    const io::InputError e = load_error(std::string(kGood) + "profile: {parameter: model.p}\n");
     CHECK(e.key == "profile.parameter");
   }
 }

@@ -48,7 +48,7 @@ std::string recipe_error(const TempDir& dir, const std::string& text) {
   std::ofstream(p, std::ios::binary) << text;
   try {
     load_recipe(p);
-  } catch (const InputError& e) {
+  } catch (const io::InputError& e) {
     return e.what();
   }
   return "";

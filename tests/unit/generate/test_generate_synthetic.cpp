@@ -25,7 +25,7 @@ std::string recipe_error(const fs::path& dir, const std::string& text) {
   const fs::path f = write_text(dir / "bad.yaml", text);
   try {
     load_synthetic_recipe(f);
-  } catch (const InputError& e) {
+  } catch (const io::InputError& e) {
     return e.what();
   }
   return "";

@@ -25,7 +25,7 @@ std::string message_of(const std::string& text, Read read) {
   std::string message;
   try {
     read(p);
-  } catch (const InputError& e) {
+  } catch (const io::InputError& e) {
     message = e.what();
   }
   fs::remove(p);
@@ -34,7 +34,7 @@ std::string message_of(const std::string& text, Read read) {
 
 // ... of read_numeric_csv.
 std::string error_of(const std::string& text) {
-  return message_of(text, [](const fs::path& p) { read_numeric_csv(p, "t.csv", {"a", "b"}, {"a"}); });
+  return message_of(text, [](const fs::path& p) { io::read_numeric_csv(p, "t.csv", {"a", "b"}, {"a"}); });
 }
 
 }  // namespace
@@ -44,32 +44,32 @@ TEST_CASE("csv_field and csv_split round-trip any field", "[io][csv]") {
   std::string line;
   for (std::size_t i = 0; i < fields.size(); ++i) {
     if (i) line += ',';
-    line += csv_field(fields[i]);
+    line += io::csv_field(fields[i]);
   }
-  CHECK(csv_split(line) == fields);
-  CHECK(csv_field("a,b") == "\"a,b\"");
-  CHECK(csv_field("say \"hi\"") == "\"say \"\"hi\"\"\"");
-  CHECK(csv_field("two\nlines\rhere") == "two lines here");  // one line per row, always
-  CHECK(csv_split("1,,x") == std::vector<std::string>{"1", "", "x"});
-  CHECK_THROWS_WITH(csv_split("\"open,1"), "unterminated quote in CSV line");
+  CHECK(io::csv_split(line) == fields);
+  CHECK(io::csv_field("a,b") == "\"a,b\"");
+  CHECK(io::csv_field("say \"hi\"") == "\"say \"\"hi\"\"\"");
+  CHECK(io::csv_field("two\nlines\rhere") == "two lines here");  // one line per row, always
+  CHECK(io::csv_split("1,,x") == std::vector<std::string>{"1", "", "x"});
+  CHECK_THROWS_WITH(io::csv_split("\"open,1"), "unterminated quote in CSV line");
 }
 
 TEST_CASE("csv_number is the shortest text that reads back to the same double", "[io][csv]") {
-  CHECK(csv_number(0.1) == "0.1");
-  CHECK(csv_number(2e-8) == "2e-08");
-  CHECK(csv_number(7.25e-16) == "7.25e-16");
+  CHECK(io::csv_number(0.1) == "0.1");
+  CHECK(io::csv_number(2e-8) == "2e-08");
+  CHECK(io::csv_number(7.25e-16) == "7.25e-16");
   for (const double x : {0.1 + 0.2, 1.0 / 3.0, 5e-324, std::numeric_limits<double>::max(), -1e-20}) {
-    const std::string s = csv_number(x);
+    const std::string s = io::csv_number(x);
     CHECK(std::strtod(s.c_str(), nullptr) == x);
     CHECK(s.size() <= 24);  // never the 17-digit %.17g spelling when shorter suffices
   }
-  CHECK(csv_number(0.3) == "0.3");  // %.17g would give 0.29999999999999999
+  CHECK(io::csv_number(0.3) == "0.3");  // %.17g would give 0.29999999999999999
 }
 
 TEST_CASE("read_numeric_csv reads a header, comments, blanks and numbers", "[io][csv]") {
   const fs::path p = write_text(temp_path("asperity-io-csv-ok", ".csv"),
                                 "\xEF\xBB\xBF# made by hand\n\nb , a\n# a comment row\n 2.5e-3,1\n-4,+0.125\n\n");
-  const CsvTable t = read_numeric_csv(p, "t.csv", {"a", "b"}, {"a"});
+  const io::CsvTable t = io::read_numeric_csv(p, "t.csv", {"a", "b"}, {"a"});
   CHECK(t.columns == std::vector<std::string>{"b", "a"});
   CHECK(t.header_line == 3);
   CHECK(t.lines == std::vector<int>{5, 6});
@@ -102,7 +102,7 @@ namespace {
 // The one-line message read_numeric_matrix_csv gives for `text` (empty when it reads), with
 // caps of 3 rows and 3 columns.
 std::string matrix_error_of(const std::string& text) {
-  return message_of(text, [](const fs::path& p) { read_numeric_matrix_csv(p, "m.csv", "h_m", 3, 3); });
+  return message_of(text, [](const fs::path& p) { io::read_numeric_matrix_csv(p, "m.csv", "h_m", 3, 3); });
 }
 
 }  // namespace
@@ -110,7 +110,7 @@ std::string matrix_error_of(const std::string& text) {
 TEST_CASE("numeric matrices: rows without a header, comments, caps and located errors", "[io][csv]") {
   const fs::path p = write_text(temp_path("asperity-io-csv-matrix-ok", ".csv"),
                                 "# heights\n\n1, -2e-6,3\n# between rows\n4,5,6.5\n\n");
-  const CsvMatrix m = read_numeric_matrix_csv(p, "m.csv", "h_m", 3, 3);
+  const io::CsvMatrix m = io::read_numeric_matrix_csv(p, "m.csv", "h_m", 3, 3);
   fs::remove(p);
   CHECK(m.rows == 2);
   CHECK(m.columns == 3);
@@ -131,8 +131,8 @@ TEST_CASE("read_text_table: comments and blanks skipped, quoted fields kept, bad
   using asperity::testing::fresh_dir;
   using asperity::testing::write_text;
   const std::filesystem::path dir = fresh_dir("asperity-text-table");
-  CHECK(read_text_table(dir / "absent.csv", "absent.csv", 10).columns.empty());
-  const TextTable t = read_text_table(
+  CHECK(io::read_text_table(dir / "absent.csv", "absent.csv", 10).columns.empty());
+  const io::TextTable t = io::read_text_table(
       write_text(dir / "t.csv", "# a table we wrote\n\na,b,c\n1,\"x, y\",3\n# between\n4,5,6\r\n"), "t.csv", 10);
   REQUIRE(t.columns == std::vector<std::string>{"a", "b", "c"});
   CHECK(t.header_line == 3);
@@ -143,8 +143,8 @@ TEST_CASE("read_text_table: comments and blanks skipped, quoted fields kept, bad
   CHECK(t.column("c") == 2);
   auto error = [&](const std::string& text, std::size_t max_rows) {
     try {
-      read_text_table(write_text(dir / "bad.csv", text), "bad.csv", max_rows);
-    } catch (const InputError& e) {
+      io::read_text_table(write_text(dir / "bad.csv", text), "bad.csv", max_rows);
+    } catch (const io::InputError& e) {
       return std::string(e.what());
     }
     return std::string("no error");
@@ -155,7 +155,7 @@ TEST_CASE("read_text_table: comments and blanks skipped, quoted fields kept, bad
   try {
     (void)t.column("d");
     FAIL("no error");
-  } catch (const InputError& e) {
+  } catch (const io::InputError& e) {
     CHECK(std::string(e.what()).rfind("t.csv:3: d: column missing", 0) == 0);
   }
   std::filesystem::remove_all(dir);

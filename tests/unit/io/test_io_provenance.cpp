@@ -36,14 +36,14 @@ TEST_CASE("the provenance block names the build, the command and each input file
   fs::create_directories(dir);
   const fs::path a = write_text(dir / "junctions.csv", "area_m2\n1e-9\n2e-9\n");
   const std::string command = "asperity run \"it's\" --set model.eta=5";
-  const std::string text = provenance_yaml(
+  const std::string text = io::provenance_yaml(
       command,
       {{"junctions", a}, {"junctions", dir / "." / "junctions.csv"}, {"measured", dir / "missing.csv"}, {"none", ""}});
   const YAML::Node p = YAML::Load(text)["provenance"];
   REQUIRE(p);
   CHECK(p["command_line"].as<std::string>() == command);  // quoted so that it reads back as is
-  CHECK(p["asperity_version"].as<std::string>() == build_info().version);
-  CHECK(p["git_commit"].as<std::string>() == build_info().git_commit);
+  CHECK(p["asperity_version"].as<std::string>() == io::build_info().version);
+  CHECK(p["git_commit"].as<std::string>() == io::build_info().git_commit);
   CHECK_THAT(p["libraries"].as<std::string>(), Catch::Contains("NLopt 2.") && Catch::Contains("TBB 20"));
   REQUIRE(p["files"].size() == 2);  // the same file once; an empty path not at all
   CHECK(p["files"][0]["role"].as<std::string>() == "junctions");
@@ -55,7 +55,7 @@ TEST_CASE("the provenance block names the build, the command and each input file
 TEST_CASE("the build's commit is the checkout's HEAD", "[io][provenance]") {
   const std::string head =
       command_output("git -C '" + std::string(ASPERITY_SOURCE_DIR) + "' rev-parse --short=12 HEAD 2>/dev/null");
-  const std::string commit = build_info().git_commit;
+  const std::string commit = io::build_info().git_commit;
   if (head.empty()) {
     CHECK(commit == "unknown");
   } else {
@@ -64,10 +64,10 @@ TEST_CASE("the build's commit is the checkout's HEAD", "[io][provenance]") {
     CHECK(std::regex_match(commit, std::regex("[0-9a-f]{12}(-dirty)?")));
     CHECK(commit.substr(0, 12) == head);
   }
-  CHECK_THAT(version_line(), Catch::Contains("commit " + commit));
+  CHECK_THAT(io::version_line(), Catch::Contains("commit " + commit));
 }
 
 TEST_CASE("result_path is relative inside the working directory and as given outside", "[io][provenance]") {
-  CHECK(result_path(fs::current_path() / "a" / "b.csv") == "a/b.csv");
-  CHECK(result_path("/nonexistent_root_dir/x.csv") == "/nonexistent_root_dir/x.csv");
+  CHECK(io::result_path(fs::current_path() / "a" / "b.csv") == "a/b.csv");
+  CHECK(io::result_path("/nonexistent_root_dir/x.csv") == "/nonexistent_root_dir/x.csv");
 }

@@ -31,7 +31,7 @@ pid_t dead_pid() {
 }
 
 std::string host_of_suffix() {
-  const std::string s = unique_tmp_suffix();  // HOST-PID-N
+  const std::string s = io::unique_tmp_suffix();  // HOST-PID-N
   const std::size_t n = s.rfind('-'), p = s.rfind('-', n - 1);
   return s.substr(0, p);
 }
@@ -53,7 +53,7 @@ TEST_CASE("remove_stale_temporaries: only temporaries whose process is gone, or 
   fs::last_write_time(d / ".ancient.tmp-othernode-1-3", fs::file_time_type::clock::now() - std::chrono::hours(48));
   write_text(d / "notes.tmp-1-2", "a user's file (no leading dot)");
   write_text(d / "points.csv", "ours, not a temporary");
-  CHECK(remove_stale_temporaries(d) == 4);
+  CHECK(io::remove_stale_temporaries(d) == 4);
   CHECK(!fs::exists(d / (".points.csv.tmp-" + host + "-" + dead + "-3")));
   CHECK(!fs::exists(d / (".run.tmp-" + host + "-" + dead + "-0")));
   CHECK(!fs::exists(d / (".old.tmp-" + dead + "-1")));
@@ -65,7 +65,7 @@ TEST_CASE("remove_stale_temporaries: only temporaries whose process is gone, or 
   // A prefix limits it to one output's temporaries.
   write_text(d / (".a.tmp-" + host + "-" + dead + "-0"), "");
   write_text(d / (".b.tmp-" + host + "-" + dead + "-0"), "");
-  CHECK(remove_stale_temporaries(d, ".a.") == 1);
+  CHECK(io::remove_stale_temporaries(d, ".a.") == 1);
   CHECK(fs::exists(d / (".b.tmp-" + host + "-" + dead + "-0")));
   fs::remove_all(d);
 }
@@ -78,12 +78,12 @@ TEST_CASE("a signal removes the temporaries being written and ends the process a
     REQUIRE(::pipe(ready) == 0);
     const pid_t child = ::fork();
     if (child == 0) {  // install, write a temporary folder and an atomic file, wait to be stopped
-      install_signal_cleanup();
-      const fs::path tmp = d / (".out.tmp-" + unique_tmp_suffix());
+      io::install_signal_cleanup();
+      const fs::path tmp = d / (".out.tmp-" + io::unique_tmp_suffix());
       fs::create_directories(tmp / "sub");
       write_text(tmp / "sub" / "fit.yaml", "half");
-      const TempGuard guard(tmp);
-      AtomicFileWriter w(d / "points.csv", Durability::unsynced);
+      const io::TempGuard guard(tmp);
+      io::AtomicFileWriter w(d / "points.csv", io::Durability::unsynced);
       w.write("index,hash\n");
       (void)!::write(ready[1], "x", 1);
       for (;;) ::pause();
@@ -106,11 +106,11 @@ TEST_CASE("past the file-size limit a write fails (EFBIG) and leaves no temporar
   fs::create_directories(d);
   const pid_t child = ::fork();
   if (child == 0) {
-    install_signal_cleanup();  // SIGXFSZ ignored
+    io::install_signal_cleanup();  // SIGXFSZ ignored
     const rlimit lim{4096, 4096};
     ::setrlimit(RLIMIT_FSIZE, &lim);
     try {
-      write_file_atomically(d / "points.csv", std::string(1 << 20, 'x'), Durability::synced);
+      io::write_file_atomically(d / "points.csv", std::string(1 << 20, 'x'), io::Durability::synced);
       ::_exit(3);
     } catch (const std::runtime_error& e) {
       ::_exit(std::string(e.what()).find("File too large") != std::string::npos ? 0 : 4);
@@ -129,27 +129,27 @@ TEST_CASE("temporaries of names up to 255 bytes stay within NAME_MAX and are fou
   fs::remove_all(d);
   fs::create_directories(d);
   // Short names keep their name; long ones (ASCII and 2-byte UTF-8) a cut at a character and a hash.
-  CHECK(temp_prefix("points.csv") == ".points.csv.");
+  CHECK(io::temp_prefix("points.csv") == ".points.csv.");
   std::string utf8;
   while (utf8.size() < 250) utf8 += "é";
   for (const std::string& name : {std::string(250, 'a'), std::string(255, 'b'), utf8}) {
-    const std::string p = temp_prefix(name), t = temp_name(name);
+    const std::string p = io::temp_prefix(name), t = io::temp_name(name);
     CHECK(t.rfind(p + "tmp-", 0) == 0);
     CHECK(t.size() <= 255);
-    CHECK(p == temp_prefix(name));                                    // the same name, the same prefix
-    CHECK(p != temp_prefix(name.substr(0, name.size() - 2) + "zz"));  // another name, another one
+    CHECK(p == io::temp_prefix(name));                                    // the same name, the same prefix
+    CHECK(p != io::temp_prefix(name.substr(0, name.size() - 2) + "zz"));  // another name, another one
     const std::string kept = p.substr(1, p.find('~') - 1);
     CHECK(kept.size() >= 140);
     CHECK(name.rfind(kept, 0) == 0);
     CHECK((static_cast<unsigned char>(name[kept.size()]) & 0xC0) != 0x80);  // cut between characters
     // The file is made, written and published, and a dead process's temporary is found again.
-    write_file_atomically(d / name, "x\n", Durability::unsynced);
-    CHECK(read_file_text(d / name) == "x\n");
+    io::write_file_atomically(d / name, "x\n", io::Durability::unsynced);
+    CHECK(io::read_file_text(d / name) == "x\n");
     std::string stale = p + "tmp-" + host_of_suffix() + "-" + std::to_string(dead_pid()) + "-0";
     CHECK(stale.size() <= 255);
     { std::ofstream(d / stale) << "half"; }
     REQUIRE(fs::exists(d / stale));
-    CHECK(remove_stale_temporaries(d, p) == 1);
+    CHECK(io::remove_stale_temporaries(d, p) == 1);
     CHECK_FALSE(fs::exists(d / stale));
   }
   fs::remove_all(d);

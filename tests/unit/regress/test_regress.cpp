@@ -130,7 +130,7 @@ TEST_CASE("a golden file with a duplicate entry or observable, or an unknown obs
     try {
       (void)load_golden(f);
       FAIL("load_golden accepted it");
-    } catch (const InputError& e) {
+    } catch (const io::InputError& e) {
       CHECK(e.file == f.string());
       CHECK(e.line == g.line);
       CHECK(e.key == g.key);

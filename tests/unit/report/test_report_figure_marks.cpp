@@ -51,7 +51,7 @@ FigureFormats svg_only() { return FigureFormats{false, true, false}; }
 }  // namespace
 
 TEST_CASE("store figures: the mark exactly from stand-ins, axes in the table's units", "[report][figures]") {
-  if (!gnuplot_available()) {
+  if (!io::gnuplot_available()) {
     WARN("gnuplot not installed: nothing to draw");
     return;
   }
@@ -86,7 +86,7 @@ TEST_CASE("store figures: the mark exactly from stand-ins, axes in the table's u
 }
 
 TEST_CASE("run and paper figures: the mark exactly from stand-ins, axes in the table's units", "[report][figures]") {
-  if (!gnuplot_available()) {
+  if (!io::gnuplot_available()) {
     WARN("gnuplot not installed: nothing to draw");
     return;
   }
@@ -112,7 +112,7 @@ TEST_CASE("run and paper figures: the mark exactly from stand-ins, axes in the t
 }
 
 TEST_CASE("fit figures: the mark exactly from stand-ins, axes in the table's units", "[report][figures][fit]") {
-  if (!gnuplot_available()) {
+  if (!io::gnuplot_available()) {
     WARN("gnuplot not installed: nothing to draw");
     return;
   }

@@ -41,11 +41,11 @@ TEST_CASE("plot draws a PNG heat map with one cell per grid point and blanks for
   sweep(c, d / "s", 2);
   // Independent count of the blank cells: eta_eps rows whose ss_drop is not a finite number.
   const auto rows = lines_of(slurp(d / "s" / "points.csv"));
-  const auto header = csv_split(rows[0]);
+  const auto header = io::csv_split(rows[0]);
   const std::size_t col = static_cast<std::size_t>(std::find(header.begin(), header.end(), "ss_drop") - header.begin());
   std::size_t nan_cells = 0;
   for (std::size_t i = 1; i < rows.size(); ++i) {
-    const auto f = csv_split(rows[i]);
+    const auto f = io::csv_split(rows[i]);
     if (f[2] == "eta_eps" && (f[col] == "nan" || f[col].empty())) ++nan_cells;
   }
   HeatmapOptions o;

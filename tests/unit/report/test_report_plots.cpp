@@ -68,7 +68,7 @@ TEST_CASE("heat map and line plot of a logspace grid: log axis, units, one line 
   h.x = "model.c_min";
   h.y = "model.eta";
   h.z = "Q_s";
-  const bool drawn = gnuplot_available();
+  const bool drawn = io::gnuplot_available();
   const fs::path gp = w / "store" / "heatmap_Q_s_over_model_c_min_model_eta.gp";
   if (drawn) {
     const HeatmapReport r = plot_heatmap(w / "store", h);

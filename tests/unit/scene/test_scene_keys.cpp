@@ -23,7 +23,7 @@ template <class F>
 std::string outcome(F&& build) {
   try {
     return scene_to_yaml(build());
-  } catch (const InputError& e) {
+  } catch (const io::InputError& e) {
     return std::string("error: ") + e.what();
   }
 }
@@ -58,7 +58,7 @@ TEST_CASE("scene keys: number defaults are the struct defaults and the writer pr
       CHECK(text.find("  " + k.leaf() + ": ") == std::string::npos);
       continue;
     }
-    CHECK(text.find("  " + k.leaf() + ": " + (k.kind == KeyKind::text ? yaml_quoted(v) : v) + "\n") !=
+    CHECK(text.find("  " + k.leaf() + ": " + (k.kind == KeyKind::text ? io::yaml_quoted(v) : v) + "\n") !=
           std::string::npos);
   }
   CHECK(scene_value_text(s, "model.eta") == "50");

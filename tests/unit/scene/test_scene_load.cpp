@@ -109,7 +109,7 @@ std::string expect_error(const Sandbox& box, const std::function<void()>& load,
   bool thrown = false;
   try {
     load();
-  } catch (const InputError& e) {
+  } catch (const io::InputError& e) {
     thrown = true;
     what = e.what();
   }
@@ -364,7 +364,7 @@ TEST_CASE("scene: a scene given entirely by overrides validates like a file", "[
   std::string from_set, from_file;
   try {
     load_scene(empty, {"experiment=exp/experiment.yaml", "model.epsilon=1.5"});
-  } catch (const InputError& e) {
+  } catch (const io::InputError& e) {
     from_set = e.message;
     CHECK(e.file == "--set model.epsilon=1.5");
     CHECK(e.key == "model.epsilon");
@@ -372,7 +372,7 @@ TEST_CASE("scene: a scene given entirely by overrides validates like a file", "[
   }
   try {
     load_scene(box.scene("experiment: exp/experiment.yaml\nmodel: {epsilon: 1.5}\n", "file.yaml"));
-  } catch (const InputError& e) {
+  } catch (const io::InputError& e) {
     from_file = e.message;
     CHECK(e.line == 2);
     CHECK(e.key == "model.epsilon");

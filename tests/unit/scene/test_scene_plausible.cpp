@@ -23,11 +23,11 @@ const fs::path kScene = kSource / "tests" / "data" / "scene" / "small_scene.yaml
 // The warnings given while it lives (each test starts with none said).
 struct CapturedWarnings {
   std::vector<std::string> texts;
-  WarningSink previous;
+  io::WarningSink previous;
   CapturedWarnings() {
-    previous = set_warning_sink([this](const std::string& t) { texts.push_back(t); });
+    previous = io::set_warning_sink([this](const std::string& t) { texts.push_back(t); });
   }
-  ~CapturedWarnings() { set_warning_sink(std::move(previous)); }
+  ~CapturedWarnings() { io::set_warning_sink(std::move(previous)); }
 };
 
 }  // namespace
@@ -103,7 +103,7 @@ TEST_CASE("plausible ranges: one warning from the loader for --set and for file 
   }
   SECTION("a scene refused after the warning says its error alone") {
     CapturedWarnings w;
-    CHECK_THROWS_AS(load_scene(kScene, {"experiment.E=1.6", "model.epsilon=1.5"}), InputError);
+    CHECK_THROWS_AS(load_scene(kScene, {"experiment.E=1.6", "model.epsilon=1.5"}), io::InputError);
     CHECK(w.texts.empty());
     load_scene(kScene, {"experiment.E=1.6"});
     CHECK(w.texts.size() == 1);

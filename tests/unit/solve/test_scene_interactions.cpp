@@ -32,7 +32,7 @@ fs::path experiment_with(const fs::path& dir, const std::string& junctions_csv) 
 std::string error_of(const fs::path& scene, const std::vector<std::string>& sets = {}) {
   try {
     load_scene(scene, sets);
-  } catch (const InputError& e) {
+  } catch (const io::InputError& e) {
     return e.what();
   }
   return "";

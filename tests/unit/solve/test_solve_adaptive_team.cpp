@@ -84,13 +84,13 @@ TEST_CASE("kernel form: ASPERITY_KERNEL picks any form this CPU has and refuses 
   try {
     kernel_form();
     FAIL("an unknown form was taken");
-  } catch (const InputError& e) {
+  } catch (const io::InputError& e) {
     CHECK(e.key == "ASPERITY_KERNEL");
     CHECK(std::string(e.what()).find("'sse9' is not a kernel form") != std::string::npos);
   }
   if (forms.size() < 3) {  // a form this CPU lacks
     setenv("ASPERITY_KERNEL", "avx512", 1);
-    CHECK_THROWS_AS(kernel_form(), InputError);
+    CHECK_THROWS_AS(kernel_form(), io::InputError);
   }
   if (before)
     setenv("ASPERITY_KERNEL", saved.c_str(), 1);

@@ -26,10 +26,10 @@ std::vector<std::map<std::string, std::string>> rows_of(const std::filesystem::p
   std::ifstream in(p);
   std::string line;
   REQUIRE(std::getline(in, line));
-  const std::vector<std::string> head = csv_split(line);
+  const std::vector<std::string> head = io::csv_split(line);
   std::vector<std::map<std::string, std::string>> rows;
   while (std::getline(in, line)) {
-    const std::vector<std::string> f = csv_split(line);
+    const std::vector<std::string> f = io::csv_split(line);
     std::map<std::string, std::string> row;
     for (std::size_t k = 0; k < head.size() && k < f.size(); ++k) row[head[k]] = f[k];
     rows.push_back(row);

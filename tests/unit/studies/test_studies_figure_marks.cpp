@@ -11,7 +11,7 @@ using namespace asperity;
 using namespace asperity::testing;
 
 TEST_CASE("junction pairs figure: the mark exactly from stand-ins, a key per pair", "[report][pairs][figures]") {
-  if (!gnuplot_available()) {
+  if (!io::gnuplot_available()) {
     WARN("gnuplot not installed: nothing to draw");
     return;
   }

@@ -113,7 +113,7 @@ TEST_CASE("recovery matrix: matrix.csv is read by its columns; a bad field names
         write_text(dir / "bad.csv", head + "L,0.25,36,interacting,interacting,ok,4x2,442.7,411,4,1,yes,2,8,"
                                            "2402,46,7e-16,1e-18,7e-16,0.9,0.001,0.9,100,2,100,1,0.01,1\n"));
     FAIL("no error");
-  } catch (const InputError& e) {
+  } catch (const io::InputError& e) {
     CHECK(std::string(e.what()).find("bad.csv:3:7: objective") != std::string::npos);
   }
   fs::remove_all(dir);
@@ -200,7 +200,7 @@ TEST_CASE("recovery matrix: templates with different budgets stop the study befo
   try {
     run_recovery_matrix(o);
     FAIL("no error");
-  } catch (const InputError& e) {
+  } catch (const io::InputError& e) {
     INFO(e.what());
     CHECK(e.line == static_cast<int>(optimizer_line));
     CHECK(e.key == "optimizer");

@@ -64,7 +64,7 @@ TEST_CASE("study files: a path relative to the file, run from elsewhere, names t
   try {
     load_study(twice);
     FAIL("no error");
-  } catch (const InputError& e) {
+  } catch (const io::InputError& e) {
     CHECK(e.line == 3);
     CHECK(e.key == "recipes[1]");
     CHECK(e.message == "'./r.yaml' listed twice");

@@ -54,16 +54,16 @@ TEST_CASE("topography table: absent means no rows, and a bad field or model is r
   try {
     read_topography_table(nan);
     FAIL("a NaN shape exponent was accepted");
-  } catch (const InputError& e) {
+  } catch (const io::InputError& e) {
     CHECK(e.line == 2);
     CHECK(e.column == 7);
     CHECK(e.key == "n");
   }
   const auto model =
       write_text(dir / "model.csv", kHeader + "2019,0.98,621,637,coupled,2.1e-16,1.2,0.1,2e-08,3e-09,x\n");
-  CHECK_THROWS_AS(read_topography_table(model), InputError);
+  CHECK_THROWS_AS(read_topography_table(model), io::InputError);
   const auto short_row = write_text(dir / "short.csv", kHeader + "2019,0.98,621\n");
-  CHECK_THROWS_AS(read_topography_table(short_row), InputError);
+  CHECK_THROWS_AS(read_topography_table(short_row), io::InputError);
   const auto no_column = write_text(dir / "no_column.csv", "seed,P_N,N,model\n2019,1,2,independent\n");
-  CHECK_THROWS_AS(read_topography_table(no_column), InputError);
+  CHECK_THROWS_AS(read_topography_table(no_column), io::InputError);
 }
