@@ -2,12 +2,17 @@
 
 #include <chrono>
 #include <cstdio>
+#include <limits>
+#include <map>
 #include <sstream>
 #include <system_error>
 
 #include "bench/bench_scene.hpp"
+#include "bench/read_back.hpp"
 #include "bench/timed_run.hpp"
 #include "io/atomic_file.hpp"
+#include "io/csv.hpp"
+#include "io/input_error.hpp"
 #include "io/numbers.hpp"
 #include "observe/simulate.hpp"
 #include "report/gnuplot.hpp"
@@ -100,21 +105,49 @@ std::vector<SavingRow> run_savings(const SavingsOptions& opt) {
   return rows;
 }
 
-void write_savings(const fs::path& dir, const std::vector<SavingRow>& rows, const FigureFormats& figures) {
-  fs::create_directories(dir);
+std::string savings_csv(const std::vector<SavingRow>& rows) {
   std::ostringstream o;
   o << "experiment,saving,variant,baseline,wall_s,cpu_s,write_s,total_s,repeats,t_end_s,steps,force_evals,series_"
        "bytes\n";
   for (const auto& r : rows)
-    o << r.experiment << ',' << r.saving << ',' << r.variant << ',' << (r.baseline ? "yes" : "no") << ','
-      << format_significant(r.wall_s, 4) << ',' << format_significant(r.cpu_s, 4) << ','
-      << format_significant(r.write_s, 4) << ',' << format_significant(r.total_s(), 4) << ',' << r.repeats << ','
+    o << io::csv_field(r.experiment) << ',' << io::csv_field(r.saving) << ',' << io::csv_field(r.variant) << ','
+      << (r.baseline ? "yes" : "no") << ',' << format_significant(r.wall_s, 4) << ',' << format_significant(r.cpu_s, 4)
+      << ',' << format_significant(r.write_s, 4) << ',' << format_significant(r.total_s(), 4) << ',' << r.repeats << ','
       << format_significant(r.t_end, 6) << ',' << r.steps << ',' << r.force_evals << ',' << r.series_bytes << '\n';
-  io::write_text_file(dir / "savings.csv", o.str());
-  if (rows.empty()) return;
+  return o.str();
+}
 
-  // Bar chart of the first scene: baseline and variant side by side per saving, in ms of CPU
-  // time (integration + writing): on a shared machine the wall time also measures the others.
+std::vector<SavingRow> read_savings_csv(const fs::path& csv, std::vector<int>* lines) {
+  const BenchCsv t(csv, "asperity bench savings");
+  std::vector<SavingRow> rows;
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    SavingRow r;
+    r.experiment = t.text(i, "experiment");
+    r.saving = t.text(i, "saving");
+    r.variant = t.text(i, "variant");
+    r.baseline = t.yes_no(i, "baseline");
+    r.wall_s = t.number(i, "wall_s");
+    r.cpu_s = t.number(i, "cpu_s");
+    r.write_s = t.number(i, "write_s");
+    t.number(i, "total_s");  // wall_s + write_s, checked as a number and recomputed
+    const std::int64_t repeats = t.count(i, "repeats");
+    if (repeats < 1 || repeats > std::numeric_limits<int>::max()) t.fail(i, "repeats", "expected a run count >= 1");
+    r.repeats = static_cast<int>(repeats);
+    r.t_end = t.number(i, "t_end_s");
+    r.steps = t.count(i, "steps");
+    r.force_evals = t.count(i, "force_evals");
+    r.series_bytes = static_cast<std::size_t>(t.count(i, "series_bytes"));
+    rows.push_back(std::move(r));
+    if (lines) lines->push_back(t.line(i));
+  }
+  return rows;
+}
+
+namespace {
+
+// Bar chart of the first scene: baseline and variant side by side per saving, in ms of CPU
+// time (integration + writing): on a shared machine the wall time also measures the others.
+std::string savings_script(const std::vector<SavingRow>& rows) {
   const std::string exp = rows.front().experiment;
   std::ostringstream gp;
   gp << "$d << EOD\n";
@@ -135,9 +168,49 @@ void write_savings(const fs::path& dir, const std::vector<SavingRow>& rows, cons
      << y_tics_for_span("$d", "($2 > $3 ? $2 : $3)", true)
      << "plot $d using 2:xticlabels(1) title 'baseline' lc rgb '#4477aa', "
         "'' using 3 title 'variant (saving)' lc rgb '#ee6677'\n";
-  // Page width for SVG and PDF (over 1,000 pixels): three clustered bars with two-line scene
-  // settings under them do not fit a column.
-  render_figures(dir / "savings.png", gp.str(), 1200, 600, figures);
+  return gp.str();
+}
+
+// Page width for SVG and PDF (over 1,000 pixels): three clustered bars with two-line scene
+// settings under them do not fit a column.
+bool draw_savings(const fs::path& dir, const std::vector<SavingRow>& rows, const FigureFormats& figures,
+                  std::string* error) {
+  return render_figures(dir / "savings.png", savings_script(rows), 1200, 600, figures, error);
+}
+
+}  // namespace
+
+void write_savings(const fs::path& dir, const std::vector<SavingRow>& rows, const FigureFormats& figures) {
+  fs::create_directories(dir);
+  io::write_text_file(dir / "savings.csv", savings_csv(rows));
+  if (rows.empty()) return;
+  std::vector<SavingRow> drawn = read_savings_csv(dir / "savings.csv");
+  for (std::size_t i = 0; i < drawn.size(); ++i) drawn[i].stand_in = rows[i].stand_in;
+  draw_savings(dir, drawn, figures, nullptr);
+}
+
+bool redraw_savings(const fs::path& dir, const std::vector<fs::path>& scenes, const FigureFormats& figures,
+                    std::string* error) {
+  std::vector<int> lines;
+  std::vector<SavingRow> rows = read_savings_csv(dir / "savings.csv", &lines);
+  // The stand-in flag as run_savings sets it: is_stand_in of the scene's experiment.
+  std::map<std::string, bool> stand_in;
+  std::string given;
+  for (const fs::path& path : scenes) {
+    const Scene scene = bench_scene(path, {});
+    stand_in[scene.experiment.name] = is_stand_in(scene.experiment);
+    given += (given.empty() ? "" : ", ") + path.generic_string();
+  }
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const auto it = stand_in.find(rows[i].experiment);
+    if (it == stand_in.end())
+      throw io::InputError(io::input_path(dir / "savings.csv"), lines[i], "experiment",
+                           io::quote(rows[i].experiment) + " is the experiment of none of the scenes (" + given +
+                               "): pass those the bench ran with --scene");
+    rows[i].stand_in = it->second;
+  }
+  check_redraw_targets(dir / "savings.png", figures);
+  return draw_savings(dir, rows, figures, error);
 }
 
 }  // namespace asperity

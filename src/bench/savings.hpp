@@ -38,8 +38,27 @@ struct SavingRow {
 
 std::vector<SavingRow> run_savings(const SavingsOptions& opt);
 
-// DIR/savings.csv and DIR/savings.png (bar chart of the first scene; skipped without gnuplot).
+// DIR/savings.csv and DIR/savings.png (bar chart of the first scene; skipped without gnuplot),
+// the figure drawn from the numbers as the CSV holds them (read back: read_savings_csv), so that
+// redraw_savings draws it again byte for byte.
 void write_savings(const std::filesystem::path& dir, const std::vector<SavingRow>& rows,
                    const FigureFormats& figures = {});
+
+// The CSV text of the rows (header + one line per row): DIR/savings.csv.
+std::string savings_csv(const std::vector<SavingRow>& rows);
+
+// The rows of a savings.csv, numbers to its printed precision; stand_in, which the CSV does not
+// hold, is false. `lines`, when given, receives each row's 1-based line. A missing file or
+// column, or a field that is not a number (yes/no for baseline): InputError "FILE:LINE:COL:
+// COLUMN: message".
+std::vector<SavingRow> read_savings_csv(const std::filesystem::path& csv, std::vector<int>* lines = nullptr);
+
+// `asperity bench savings --redraw`: DIR/savings.png (and its .gp, in `figures`) drawn again from
+// DIR/savings.csv as write_savings drew it; nothing else is written. The stand-in mark as
+// run_savings sets it, from the experiment of each of `scenes` (the ones the bench ran); a row of
+// another experiment is an InputError at its line. Returns false when gnuplot did not draw (the
+// reason in `*error`).
+bool redraw_savings(const std::filesystem::path& dir, const std::vector<std::filesystem::path>& scenes,
+                    const FigureFormats& figures = {}, std::string* error = nullptr);
 
 }  // namespace asperity

@@ -3,11 +3,15 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <sstream>
 
 #include "bench/bench_scene.hpp"
+#include "bench/read_back.hpp"
 #include "bench/timed_run.hpp"
 #include "io/atomic_file.hpp"
+#include "io/csv.hpp"
+#include "io/input_error.hpp"
 #include "io/numbers.hpp"
 #include "report/gnuplot.hpp"
 #include "report/units.hpp"
@@ -116,7 +120,7 @@ std::string work_precision_csv(const std::vector<WorkPrecisionRow>& rows) {
   for (const auto& n : robust_names()) o << ",relerr_" << n;
   o << '\n';
   for (const auto& r : rows) {
-    o << r.experiment << ',' << r.method << ',' << format_significant(r.setting) << ','
+    o << io::csv_field(r.experiment) << ',' << io::csv_field(r.method) << ',' << format_significant(r.setting) << ','
       << format_significant(r.wall_s, 4) << ',' << format_significant(r.cpu_s, 4) << ',' << r.repeats << ','
       << format_significant(r.t_end, 10) << ',' << r.steps;
     for (double x : r.value) o << ',' << exact(x);
@@ -124,6 +128,32 @@ std::string work_precision_csv(const std::vector<WorkPrecisionRow>& rows) {
     o << '\n';
   }
   return o.str();
+}
+
+std::vector<WorkPrecisionRow> read_work_precision_csv(const fs::path& csv, std::vector<int>* lines) {
+  const BenchCsv t(csv, "asperity bench tradeoff");
+  std::vector<WorkPrecisionRow> rows;
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    WorkPrecisionRow r;
+    r.experiment = t.text(i, "experiment");
+    r.method = t.text(i, "method");
+    if (r.method != "reference" && r.method != "event") t.fail(i, "method", "expected reference or event");
+    r.setting = t.number(i, "setting");
+    r.wall_s = t.number(i, "wall_s");
+    r.cpu_s = t.number(i, "cpu_s");
+    const std::int64_t repeats = t.count(i, "repeats");
+    if (repeats < 1 || repeats > std::numeric_limits<int>::max()) t.fail(i, "repeats", "expected a run count >= 1");
+    r.repeats = static_cast<int>(repeats);
+    r.t_end = t.number(i, "t_end_s");
+    r.steps = t.count(i, "steps");
+    for (std::size_t k = 0; k < n_robust; ++k) {
+      r.value[k] = t.measured(i, "value_" + robust_names()[k]);
+      r.error[k] = t.measured(i, "relerr_" + robust_names()[k]);
+    }
+    rows.push_back(std::move(r));
+    if (lines) lines->push_back(t.line(i));
+  }
+  return rows;
 }
 
 namespace {
@@ -140,7 +170,9 @@ std::string order_csv(const std::vector<OrderRow>& rows) {
 // Six log-log panels, error against wall time, one curve per method; errors below 1e-16
 // (or exactly 0) are drawn at 1e-16. Only the two ends of each curve carry their setting (the
 // inner ones crowd on the steep event curve); the key names the range, under each panel (inside,
-// any corner meets a curve or an end label on some data).
+// any corner meets a curve or an end label on some data). The panels are 5 % shorter and raised,
+// so that the lower right key clears the stand-in mark in the corner below it; each y range
+// reaches 5 % beyond the data, so that an end label on a decade is not cut by the border.
 std::string plot_script(const TradeoffResult& r) {
   std::ostringstream gp;
   std::string range[2];
@@ -171,11 +203,12 @@ std::string plot_script(const TradeoffResult& r) {
                                  (rows.size() > 1 ? " … " + format_significant(rows.back()->setting) : "");
   }
   const std::string exp = r.rows.empty() ? "" : r.rows.front().experiment;
-  gp << stand_in_mark(r.stand_in) << "set multiplot layout 2,3 title "
+  gp << stand_in_mark(r.stand_in) << "set multiplot layout 2,3 scale 1, 0.95 offset 0, 0.012 title "
      << gnuplot_text("Work-precision on bench experiment " + exp +
                      " (60 junctions): error vs converged event run (tol 1e-12)")
      << "\n"
-     << "set logscale xy\nset format y '10^{%T}'\nset format x '10^{%T}'\nset grid\n"
+     << "set logscale xy\nset offsets 0, 0, graph 0.05, graph 0.05\n"
+     << "set format y '10^{%T}'\nset format x '10^{%T}'\nset grid\n"
      << "set xlabel 'wall time [s]'\nset ylabel 'relative error [1]'\nset key bmargin center horizontal font ',9'\n";
   for (std::size_t i = 0; i < n_robust; ++i) {
     const int c = static_cast<int>(i) + 3;
@@ -191,13 +224,37 @@ std::string plot_script(const TradeoffResult& r) {
   return gp.str();
 }
 
+bool draw_tradeoff(const fs::path& dir, const TradeoffResult& r, const FigureFormats& figures, std::string* error) {
+  return render_figures(dir / "work_precision.png", plot_script(r), 1500, 900, figures, error);
+}
+
 }  // namespace
 
 void write_tradeoff(const fs::path& dir, const TradeoffResult& r, const FigureFormats& figures) {
   fs::create_directories(dir);
   io::write_text_file(dir / "work_precision.csv", work_precision_csv(r.rows));
   io::write_text_file(dir / "reference_order.csv", order_csv(r.orders));
-  render_figures(dir / "work_precision.png", plot_script(r), 1500, 900, figures);
+  TradeoffResult drawn;
+  drawn.stand_in = r.stand_in;
+  drawn.rows = r.rows.empty() ? r.rows : read_work_precision_csv(dir / "work_precision.csv");
+  draw_tradeoff(dir, drawn, figures, nullptr);
+}
+
+bool redraw_tradeoff(const fs::path& dir, const fs::path& scene, const FigureFormats& figures, std::string* error) {
+  const fs::path csv = dir / "work_precision.csv";
+  std::vector<int> lines;
+  TradeoffResult r;
+  r.rows = read_work_precision_csv(csv, &lines);
+  // The stand-in flag as run_tradeoff sets it: is_stand_in of the scene's experiment.
+  const Experiment e = bench_scene(scene, {}).experiment;
+  r.stand_in = is_stand_in(e);
+  for (std::size_t i = 0; i < r.rows.size(); ++i)
+    if (r.rows[i].experiment != e.name)
+      throw io::InputError(io::input_path(csv), lines[i], "experiment",
+                           io::quote(r.rows[i].experiment) + " is not the experiment of " + scene.generic_string() +
+                               " (" + io::quote(e.name) + "): pass the scene the bench ran with --scene");
+  check_redraw_targets(dir / "work_precision.png", figures);
+  return draw_tradeoff(dir, r, figures, error);
 }
 
 }  // namespace asperity

@@ -60,10 +60,27 @@ struct TradeoffResult {
 TradeoffResult run_tradeoff(const TradeoffOptions& opt);
 
 // Writes DIR/work_precision.csv, DIR/reference_order.csv and
-// DIR/work_precision.png (skipped when gnuplot is missing). Creates DIR.
+// DIR/work_precision.png (skipped when gnuplot is missing). Creates DIR. The figure is drawn from
+// the rows as the CSV holds them (read back: read_work_precision_csv), so that redraw_tradeoff
+// draws it again byte for byte.
 void write_tradeoff(const std::filesystem::path& dir, const TradeoffResult& r, const FigureFormats& figures = {});
 
 // The CSV text of the rows (header + one line per row).
 std::string work_precision_csv(const std::vector<WorkPrecisionRow>& rows);
+
+// The rows of a work_precision.csv, numbers to its printed precision (values exact; a value or
+// error that could not be measured as nan). `lines`, when given, receives each row's 1-based
+// line. A missing file or column, or a field that is not a number: InputError
+// "FILE:LINE:COL: COLUMN: message".
+std::vector<WorkPrecisionRow> read_work_precision_csv(const std::filesystem::path& csv,
+                                                      std::vector<int>* lines = nullptr);
+
+// `asperity bench tradeoff --redraw`: DIR/work_precision.png (and its .gp, in `figures`) drawn
+// again from DIR/work_precision.csv as write_tradeoff drew it; nothing else is written. The
+// stand-in mark as run_tradeoff sets it, from the experiment of `scene` (the one the bench ran);
+// a row of another experiment is an InputError at its line. Returns false when gnuplot did not
+// draw (the reason in `*error`).
+bool redraw_tradeoff(const std::filesystem::path& dir, const std::filesystem::path& scene,
+                     const FigureFormats& figures = {}, std::string* error = nullptr);
 
 }  // namespace asperity

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -23,6 +24,7 @@
 #include "cli/commands.hpp"
 #include "cli/options.hpp"
 #include "io/progress.hpp"
+#include "report/gnuplot.hpp"
 #include "report/output_dir.hpp"
 #include "solve/interacting/kernel_form.hpp"
 
@@ -36,6 +38,7 @@ struct BenchOptions {
   int threads = 1;
   bool quiet = false;
   FigureFormats figures;  // of work_precision and savings (--figures)
+  bool redraw = false;    // tradeoff, savings: the figure again from the CSV in --out, nothing measured
   // tradeoff
   std::string scene = "bench/scenes/P0.20N.yaml";
   std::vector<double> Ct;
@@ -91,7 +94,25 @@ void machine_line(const BenchOptions& b) {
       omp_get_max_threads(), std::thread::hardware_concurrency(), load_average().c_str());
 }
 
+// --redraw: `figure` (and its .gp) drawn again from the CSV the bench wrote in --out by `draw`;
+// nothing is measured and nothing else written. Exit 1 when gnuplot did not draw it.
+int redraw(const BenchOptions& b, const std::string& figure, const std::function<bool(std::string*)>& draw) {
+  std::string why;
+  const std::filesystem::path png = std::filesystem::path(b.out) / figure;
+  if (!draw(&why)) {
+    std::fprintf(stderr, "%s: not drawn: %s\n", png.string().c_str(), why.c_str());
+    return exit_failure;
+  }
+  std::string drawn;
+  for (const auto& f : figure_files(png, b.figures)) drawn += (drawn.empty() ? "" : ", ") + f.string();
+  std::printf("-> %s (and %s), redrawn from the CSV\n", drawn.c_str(), plot_script_path(png).string().c_str());
+  return exit_ok;
+}
+
 int tradeoff(const BenchOptions& b) {
+  if (b.redraw)
+    return redraw(b, "work_precision.png",
+                  [&](std::string* why) { return redraw_tradeoff(b.out, b.scene, b.figures, why); });
   TradeoffOptions o;
   o.scene = b.scene;
   o.repeats = b.repeats;
@@ -238,6 +259,8 @@ int contact(const BenchOptions& b) {
 int savings(const BenchOptions& b) {
   SavingsOptions o;
   if (!b.scenes.empty()) o.scenes = {b.scenes.begin(), b.scenes.end()};
+  if (b.redraw)
+    return redraw(b, "savings.png", [&](std::string* why) { return redraw_savings(b.out, o.scenes, b.figures, why); });
   o.repeats = b.quick ? 1 : b.repeats;
   o.scratch = std::filesystem::path(b.out) / ".savings-scratch";
   o.log = &std::cout;
@@ -280,6 +303,9 @@ Command add_bench_command(CLI::App& app) {
   t->add_option("--scene", opt->scene, "Work-precision experiment (the reference must finish it)")
       ->capture_default_str();
   t->add_option("--ct", opt->Ct, "Reference C_t values (default 1e2 1e3 1e4)")->check(CLI::PositiveNumber);
+  t->add_flag("--redraw", opt->redraw,
+              "Measure nothing: draw work_precision.png (and .gp) again from the work_precision.csv in --out "
+              "(--scene: the one it was run on, for the stand-in mark)");
   CLI::App* sp = sub->add_subcommand("speed",
                                      "Reference vs event solver over the whole run (peak + 5 cycles) of "
                                      "a paper scene, each with its error against a tight event run");
@@ -300,6 +326,9 @@ Command add_bench_command(CLI::App& app) {
       ->check(CLI::PositiveNumber);
   CLI::App* s = sub->add_subcommand("savings", "Wall time saved by series=[], stop.at_first_peak, alpha_b=0");
   s->add_option("--scene", opt->scenes, "Scene(s) (default scenes/paper/P4.00N.yaml)");
+  s->add_flag("--redraw", opt->redraw,
+              "Measure nothing: draw savings.png (and .gp) again from the savings.csv in --out "
+              "(--scene: those it was run on, for the stand-in mark)");
   CLI::App* in = sub->add_subcommand("interacting",
                                      "Interacting event solver: time to the first peak vs N "
                                      "(fitted exponent), peak memory vs N^2 doubles, P4.00N whole run");

@@ -1,7 +1,9 @@
-// `asperity bench`: bad input is reported with the file named; accuracy writes its CSV.
+// `asperity bench`: bad input is reported with the file named; accuracy writes its CSV; --redraw
+// draws savings.png from a committed CSV and refuses a bad one at its line.
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdlib>
@@ -11,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "report/gnuplot.hpp"
 #include "scene/load.hpp"
 #include "solve/integrate.hpp"
 #include "support_files.hpp"
@@ -141,5 +144,32 @@ TEST_CASE("bench speed: whole-run ratios follow from the runs, the extrapolation
     }
   }
   CHECK(rows >= 3);  // whole run, extrapolated, window (+ equal accuracy when a tolerance matches)
+  fs::remove_all(w);
+}
+
+TEST_CASE("bench savings --redraw: the committed CSV redrawn, a bad one refused in one line", "[bench][cli]") {
+  const fs::path w = fs::temp_directory_path() / ("asperity-bench-redraw-" + std::to_string(::getpid()));
+  fs::remove_all(w);
+  fs::create_directories(w / "out");
+  const fs::path source = ASPERITY_SOURCE_DIR;
+  const std::string csv = slurp(source / "results/bench/savings.csv");
+  asperity::testing::write_text(w / "out/savings.csv", csv);
+  const std::string scene = " --scene '" + (source / "scenes/paper/P4.00N.yaml").string() + "'";
+  std::string err;
+  CHECK(run_cli("bench savings --redraw --out out" + scene, w, &err) == (asperity::io::gnuplot_available() ? 0 : 1));
+  CHECK_THAT(slurp(w / "out/savings.gp"), Catch::Matchers::Contains(asperity::kStandInMark));
+  CHECK(slurp(w / "out/savings.csv") == csv);
+  // The third line's cpu_s (sixth column) not a number: that line and column, exit 2.
+  std::string bad = csv;
+  std::size_t at = 0;
+  for (int line = 1; line < 3; ++line) at = bad.find('\n', at) + 1;
+  for (int comma = 0; comma < 5; ++comma) at = bad.find(',', at) + 1;
+  bad.insert(at, "x");
+  asperity::testing::write_text(w / "out/savings.csv", bad);
+  CHECK(run_cli("bench savings --redraw --out out" + scene, w, &err) == 2);
+  CHECK_THAT(err, Catch::Matchers::StartsWith("out/savings.csv:3:6: cpu_s: expected a number, got 'x"));
+  CHECK(std::count(err.begin(), err.end(), '\n') == 1);
+  CHECK(run_cli("bench tradeoff --redraw --out out", w, &err) == 2);
+  CHECK_THAT(err, Catch::Matchers::StartsWith("out/work_precision.csv: file not found"));
   fs::remove_all(w);
 }
