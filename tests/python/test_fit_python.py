@@ -214,20 +214,25 @@ def test_fit_result_tables_match_its_dict(source):
     assert runs.attrs["units"]["Q_s"] == "N"
 
 
-def test_fit_result_intervals_at_a_certified_chi_square(source, tmp_path):
-    """A chi-square objective (area_and_force, against a Q(t) the model made) at a certified
-    optimum: sigma is the Hessian's, and a second method, the parabola through the profile,
-    agrees with it (measured 4 % apart); the 95 % interval is value -+ 1.96 sigma."""
-    base = source / "tests" / "data" / "scene"
+def chi_square_spec(source, tmp_path, **extra):
+    """An area_and_force fit of the small scene against 40 samples of the model's own Q(t) at
+    ALPHA_B_TRUE, two starts: (spec, base)."""
     run = asperity.run(asperity.load_scene(small_scene(source), {"model.alpha_b": ALPHA_B_TRUE}))
     t, Q = np.asarray(run.series["t"]), np.asarray(run.series["Q"])
     pick = np.linspace(0, len(t) - 1, 40).astype(int)
     force = tmp_path / "Qt.csv"
     force.write_text("t_s,Q_N\n" + "".join(f"{t[i]!r},{Q[i]!r}\n" for i in pick))
     d = spec(objective="area_and_force", noise={"area": 0.002, "force": 0.002},
-             experiments=[{"scene": str(small_scene(source)), "force": str(force)}],
-             profile={"parameter": "model.alpha_b", "span": 0.1, "points": 5})
+             experiments=[{"scene": str(small_scene(source)), "force": str(force)}], **extra)
     d["optimizer"]["starts"] = 2
+    return d, source / "tests" / "data" / "scene"
+
+
+def test_fit_result_intervals_at_a_certified_chi_square(source, tmp_path):
+    """A chi-square objective (area_and_force, against a Q(t) the model made) at a certified
+    optimum: sigma is the Hessian's, and a second method, the parabola through the profile,
+    agrees with it (measured 4 % apart); the 95 % interval is value -+ 1.96 sigma."""
+    d, base = chi_square_spec(source, tmp_path, profile={"parameter": "model.alpha_b", "span": 0.1, "points": 5})
     result = asperity.fit(d, base=base, threads=1, progress=False)
     (f,) = result["fits"]
     assert f["converged"] == "yes" and f["uncertainty"]["computed"], f
@@ -248,16 +253,7 @@ def test_fit_result_bootstrap_sigma_is_fit_yaml_s(source, tmp_path):
     """intervals: {bootstrap: N}: the spread of N refits of synthetic data drawn at the optimum
     (its agreement with the Hessian where the objective is quadratic is tested in C++,
     tests/unit/fit/test_fit_joint.cpp) reaches Python as written in fit.yaml, per parameter."""
-    base = source / "tests" / "data" / "scene"
-    run = asperity.run(asperity.load_scene(small_scene(source), {"model.alpha_b": ALPHA_B_TRUE}))
-    t, Q = np.asarray(run.series["t"]), np.asarray(run.series["Q"])
-    pick = np.linspace(0, len(t) - 1, 40).astype(int)
-    force = tmp_path / "Qt.csv"
-    force.write_text("t_s,Q_N\n" + "".join(f"{t[i]!r},{Q[i]!r}\n" for i in pick))
-    d = spec(objective="area_and_force", noise={"area": 0.002, "force": 0.002},
-             experiments=[{"scene": str(small_scene(source)), "force": str(force)}],
-             intervals={"bootstrap": 4, "bootstrap_seed": 3})
-    d["optimizer"]["starts"] = 2
+    d, base = chi_square_spec(source, tmp_path, intervals={"bootstrap": 4, "bootstrap_seed": 3})
     result = asperity.fit(d, base=base, threads=1, progress=False)
     (f,) = result["fits"]
     assert f["uncertainty"]["computed"] and f["uncertainty"]["bootstrap_failure"] == "", f
