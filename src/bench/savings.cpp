@@ -165,7 +165,7 @@ std::string savings_script(const std::vector<SavingRow>& rows) {
      << "set xtics noenhanced\n"  // the tic labels are scene settings (output.series=[]), not markup
      << "set bmargin 5\nset boxwidth 0.9\nset ylabel 'CPU time [ms]'\nset grid ytics\nset yrange [0:*]\nset key top "
         "right\n"
-     << y_tics_for_span("$d", "($2 > $3 ? $2 : $3)", true)
+     << tics_for_span("y", "$d", "($2 > $3 ? $2 : $3)", true)
      << "plot $d using 2:xticlabels(1) title 'baseline' lc rgb '#4477aa', "
         "'' using 3 title 'variant (saving)' lc rgb '#ee6677'\n";
   return gp.str();

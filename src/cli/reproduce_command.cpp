@@ -92,7 +92,7 @@ void run_paper(std::vector<PaperRun>& runs, const std::vector<std::filesystem::p
 }
 
 // table.csv and Figures 3 and 4 (a figure gnuplot could not draw is said, its script kept).
-void write_paper_outputs(const std::filesystem::path& out, const std::vector<PaperRun>& runs, const std::string& label,
+void write_paper_outputs(const std::filesystem::path& out, const std::vector<PaperRun>& runs,
                          const FigureFormats& figures) {
   std::filesystem::remove(out / "REPORT.md");  // a previous one would describe other runs
   io::write_text_file(out / "table.csv", paper_table_csv(runs));
@@ -193,7 +193,7 @@ int reproduce(const ReproduceOptions& opt, const Invocation& inv) {
   bool standin = false;
   for (const auto& r : runs) standin = standin || r.scene.experiment.description.find("STAND-IN") != std::string::npos;
   const std::string label = standin ? "STAND-IN data, not measurements" : "";
-  write_paper_outputs(out, runs, label, opt.figures);
+  write_paper_outputs(out, runs, opt.figures);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   double wall_claims = 0;
   std::size_t n_variant_runs = 0;

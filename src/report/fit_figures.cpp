@@ -57,13 +57,14 @@ std::string profile_figure(const std::string& label, const std::string& key, con
                            const std::vector<ProfilePoint>& points, const std::string& ext) {
   std::ostringstream gp;
   gp << "set output " << gnuplot_quote(stem + ext) << "\n"
-     << "set title " << gnuplot_text(label) << " . " << gnuplot_quote(": objective around the optimum, ") << " . "
+     << "set title " << title_lines(label + ": objective around the optimum,") << " . \"\\n\" . "
      << gnuplot_quote(column_symbol(key)) << " . " << gnuplot_quote(" varied (others fixed)") << "\nset xlabel "
      << gnuplot_quote(axis_markup(key)) << "\nset ylabel 'objective [1] (dimensionless)'\nset key off\n"
      << "set rmargin 6\n"  // room for the last x tic label
-     << tic_format("x", profile_values(points)) << "plot " << gnuplot_quote(stem + ".csv")
+     << tic_format("x", profile_values(points)) << tics_for_span("x", gnuplot_quote(stem + ".csv") + " skip 1", "2")
+     << "plot " << gnuplot_quote(stem + ".csv")
      << " skip 1 using 2:($3 == $3 ? $3 : 1/0) with linespoints pt 7 lw 1.5\n"
-     << "set rmargin -1\nset format x '% h'\n";
+     << "set rmargin -1\nset format x '% h'\nset xtics autofreq\n";
   return gp.str();
 }
 
@@ -90,10 +91,10 @@ std::string convergence_figure(const FitSpec& spec, const Optimization& o, const
   std::ostringstream gp;
   gp << "set output " << gnuplot_quote("convergence" + ext) << "\n"
      << "set title "
-     << gnuplot_text(spec.name + " / " + o.label + ": objective (" + objective_words(spec.objective) + ")")
-     << " . \"\\n\" . " << gnuplot_text(spec.algorithm + ", stop " + o.stop_reason) << "\n"
-     << "set xlabel 'evaluation number'\nset ylabel 'objective [1] (dimensionless)'\nset logscale y\nset key top "
-        "right\n"
+     << title_lines(spec.name + " / " + o.label + ": objective (" + objective_words(spec.objective) + ")")
+     << " . \"\\n\" . " << title_lines(spec.algorithm + ", stop " + o.stop_reason) << "\n"
+     << "set xlabel 'evaluation number'\nset ylabel 'objective [1] (dimensionless)'\nset logscale y\n"
+     << "set key bottom left Left reverse\n"  // the corner a falling objective leaves empty
      << "best = 1e300\n"
      << "plot 'evaluations.csv' skip 1 using 1:($" << col << " > 0 ? $" << col
      << " : 1/0) with linespoints pt 7 ps 0.6 title 'objective', "
@@ -112,25 +113,27 @@ std::string experiment_figures(const FitSpec& spec, const Optimization& o, const
     const std::string name = spec.experiments[r.experiment].name;
     const std::string qstem = "Qt_" + fit_file_stem(name);
     gp << "set output " << gnuplot_quote(qstem + ext) << "\n"
-       << "set title " << gnuplot_text(name + ": Q(t) at the fit") << "\nset xlabel " << gnuplot_quote(axis_markup("t"))
-       << "\nset ylabel " << gnuplot_quote(axis_markup("Q")) << "\nset key top left\n"
-       << "plot " << gnuplot_quote(qstem + "_measured.csv") << " skip 1 using 1:2 with points pt 7 ps 0.3 title '"
+       << "set title " << title_lines(name + ": Q(t) at the fit") << "\nset xlabel " << gnuplot_quote(axis_markup("t"))
+       << "\nset ylabel " << gnuplot_quote(axis_markup("Q")) << "\nset key top left Left reverse\n"
+       << tics_for_span("x", gnuplot_quote(qstem + "_model.csv") + " skip 1", "1") << "plot "
+       << gnuplot_quote(qstem + "_measured.csv") << " skip 1 using 1:2 with points pt 7 ps 0.3 title '"
        << (r.stand_in ? "stand-in measurement" : "measurement") << "', " << gnuplot_quote(qstem + "_model.csv")
-       << " skip 1 using 1:2 with lines lw 1.5 title 'model (fitted)'\n";
+       << " skip 1 using 1:2 with lines lw 1.5 title 'model (fitted)'\nset xtics autofreq\n";
   }
   for (const auto& r : o.best_runs) {
     const std::string name = spec.experiments[r.experiment].name;
     const std::string stem = "AQ_" + fit_file_stem(name);
     gp << "set output " << gnuplot_quote(stem + ext) << "\n"
-       << "set title " << gnuplot_text(name + ": A(Q) on the loading branch at the fit") << "\nset xlabel "
+       << "set title " << title_lines(name + ": A(Q) on the loading branch at the fit") << "\nset xlabel "
        << gnuplot_quote(axis_markup("Q")) << "\nset ylabel " << gnuplot_quote(axis_markup("A"))
-       << "\nset key bottom left\n"
-       << "plot " << gnuplot_quote(stem + "_model.csv") << " skip 1 using 1:($2*" << area_scale
+       << "\nset key bottom left Left reverse\n"
+       << tics_for_span("x", gnuplot_quote(stem + "_model.csv") + " skip 1", "1") << "plot "
+       << gnuplot_quote(stem + "_model.csv") << " skip 1 using 1:($2*" << area_scale
        << ") with lines lw 2 title 'model (fitted)'";
     if (r.measured)
       gp << ", " << gnuplot_quote(stem + "_measured.csv") << " skip 1 using 1:($2*" << area_scale
          << ") with points pt 7 ps 0.7 title '" << (r.stand_in ? "stand-in measurement" : "measurement") << "'";
-    gp << "\n";
+    gp << "\nset xtics autofreq\n";
   }
   return gp.str();
 }

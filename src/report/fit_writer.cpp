@@ -539,7 +539,7 @@ void write_fit(const fs::path& dir, const FitSpec& spec, const FitResult& result
       for (const fs::path& probe : figure_files("fitted.png", figures)) {
         std::ostringstream gp;
         gp << "set grid\nset output " << gnuplot_quote(probe.string()) << "\n"
-           << stand_in_mark(stand_in) << "set title " << gnuplot_text(spec.name) << " . "
+           << stand_in_mark(stand_in) << "set title " << title_lines(spec.name, kColumnTitleChars - 26) << " . "
            << gnuplot_quote(": fitted " + column_symbol(spec.parameters[0].key) + " per experiment")
            << "\nset xlabel 'P = M g [N]'\nset ylabel " << gnuplot_quote(axis_markup(spec.parameters[0].key)) << "\n"
            << kErrorBarKey << tic_format("y", values)

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <sstream>
 #include <stdexcept>
 #include <system_error>
 #include <utility>
@@ -123,12 +124,43 @@ std::string stand_in_mark(bool stand_in) {
          " at screen 0.995, 0.012 right front textcolor rgb '#b2182b' font ',8'\n";
 }
 
-std::string y_tics_for_span(const std::string& source, const std::string& column, bool from_zero) {
+std::string tics_for_span(const char* axis, const std::string& source, const std::string& column, bool from_zero) {
   const std::string span = from_zero ? "STATS_max" : "(STATS_max - STATS_min)";
   // The smallest step of 1, 2 or 5 times a power of ten leaving at most five intervals.
   return "stats " + source + " using " + column + " nooutput\nstep = " + span + " > 0 ? 10**floor(log10(" + span +
          " / 5.0)) : 1\nm = " + span + " > 0 ? " + span + " / (5.0 * step) : 1\n" +
-         "tic = (m <= 1 ? 1 : (m <= 2 ? 2 : (m <= 5 ? 5 : 10))) * step\nset ytics tic\n";
+         "tic = (m <= 1 ? 1 : (m <= 2 ? 2 : (m <= 5 ? 5 : 10))) * step\nset " + axis + "tics tic\n";
+}
+
+std::string title_lines(const std::string& text, std::size_t width) {
+  // Greedy word wrap; a word longer than a line is cut. Lengths count UTF-8 characters.
+  const auto chars = [](const std::string& s) {
+    return static_cast<std::size_t>(std::count_if(s.begin(), s.end(), [](char c) { return (c & 0xC0) != 0x80; }));
+  };
+  std::vector<std::string> lines;
+  std::string line;
+  const auto flush = [&] {
+    if (!line.empty()) lines.push_back(line), line.clear();
+  };
+  std::istringstream words(text);
+  for (std::string w; words >> w;) {
+    while (chars(w) > width) {
+      std::size_t cut = 0;
+      for (std::size_t n = 0; n < width; ++n) do
+          ++cut;
+        while (cut < w.size() && (w[cut] & 0xC0) == 0x80);
+      flush();
+      lines.push_back(w.substr(0, cut));
+      w.erase(0, cut);
+    }
+    if (!line.empty() && chars(line) + 1 + chars(w) > width) flush();
+    line += (line.empty() ? "" : " ") + w;
+  }
+  flush();
+  if (lines.empty()) lines.emplace_back();
+  std::string expr;
+  for (std::size_t i = 0; i < lines.size(); ++i) expr += (i ? " . \"\\n\" . " : "") + gnuplot_text(lines[i]);
+  return expr;
 }
 
 FigureFormats parse_figure_formats(const std::string& list) {

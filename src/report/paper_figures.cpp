@@ -76,7 +76,7 @@ std::string write_figure3(const fs::path& out_dir, const PaperRun& small, const 
     // Q rises from the lower left, A falls from the upper left (the measured points start
     // there): each key sits in the corner its curves leave empty.
     gp << "set title " << gnuplot_text(r.scene.experiment.name + " (N = " + std::to_string(r.obs.N) + ")") << "\n"
-       << "set key " << (area ? "bottom left" : "top left") << " opaque box\n"
+       << "set key " << (area ? "bottom left" : "top left") << " Left reverse opaque box\n"
        << "set xlabel " << label_of("t") << "\nset ylabel " << label_of(area ? "A" : "Q") << "\n"
        << "plot $" << model << " using 1:" << (area ? 3 : 2) << " with lines lw 1.5 lc rgb '#1f4e9a' title 'model'";
     if (area && r.scene.experiment.measured)

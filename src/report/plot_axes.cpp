@@ -147,23 +147,53 @@ std::vector<std::pair<double, double>> cell_edges(const std::vector<double>& v, 
   return e;
 }
 
+namespace {
+
+// Which of the tic labels `labels` at the sorted values `v` to print so that none overlaps the
+// last one printed: at one journal column's width a heat map's or line plot's x axis holds about
+// 28 characters and its y axis about 10 lines of tic text. A label needs its half width on either
+// side plus one character (x; two characters in all when rotated) or one and a half lines (y).
+std::vector<bool> labels_that_fit(const std::vector<double>& v, const std::vector<std::string>& labels,
+                                  std::pair<double, double> range, bool log, bool x, bool rotated) {
+  const auto at = [&](double value) { return log ? std::log10(value) : value; };
+  const double lo = at(range.first), span = at(range.second) - lo, length = x ? 28.0 : 10.0;
+  std::vector<bool> keep(v.size(), true);
+  if (!(span > 0)) return keep;
+  const auto size = [&](std::size_t i) { return !x ? 1.0 : (rotated ? 1.0 : static_cast<double>(labels[i].size())); };
+  double last_at = 0, last_size = 0;
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    const double p = (at(v[i]) - lo) / span * length;
+    keep[i] = i == 0 || p - last_at >= 0.5 * (last_size + size(i)) + (x ? 1.0 : 0.5);
+    if (keep[i]) last_at = p, last_size = size(i);
+  }
+  return keep;
+}
+
+}  // namespace
+
 // The axis settings of a numeric axis: its label with unit, log scale when it reads better,
-// tics at the values themselves (their store texts) when there are few, the range of the cells.
+// tics at the values themselves (their store texts) when there are few, labelled where the
+// labels fit a journal column, the range of the cells.
 std::string axis_settings(const char* axis, const std::string& column, const std::vector<std::string>& texts,
                           const std::vector<std::pair<double, double>>& edges, bool log) {
   std::ostringstream gp;
   gp << "set " << axis << "label " << gnuplot_quote(axis_markup(column)) << "\n";
   if (log) gp << "set logscale " << axis << "\n";
-  if (texts.size() <= 12) {
+  if (!texts.empty() && texts.size() <= 12) {
     const double scale = figure_unit(column).scale;
-    gp << "set " << axis << "tics (";
+    std::vector<double> v(texts.size());
+    std::vector<std::string> labels(texts.size());
     for (std::size_t i = 0; i < texts.size(); ++i) {
-      double v = 0;
-      number_of(texts[i], v);
-      v *= scale;
-      // Labels to 6 digits (the store's exact texts can be 17); positions exact.
-      gp << (i ? ", " : "") << gnuplot_text(io::format_short(v)) << " " << io::format_double(v);
+      number_of(texts[i], v[i]);
+      v[i] *= scale;
+      labels[i] = io::format_short(v[i]);  // to 6 digits (the store's exact texts can be 17); positions exact
     }
+    const auto range =
+        edges.empty() ? std::pair{v.front(), v.back()} : std::pair{edges.front().first, edges.back().second};
+    const std::vector<bool> keep = labels_that_fit(v, labels, range, log, axis[0] == 'x', texts.size() > 8);
+    gp << "set " << axis << "tics (";
+    for (std::size_t i = 0; i < texts.size(); ++i)
+      gp << (i ? ", " : "") << gnuplot_text(keep[i] ? labels[i] : "") << " " << io::format_double(v[i]);
     gp << ")\n";
   }
   if (!edges.empty())

@@ -125,20 +125,22 @@ bool write_run_plot(const fs::path& dir, std::string* error, const FigureFormats
   // Labels and the area's unit (mm²) from the units table, as every figure.
   const auto label = [](const char* column) { return gnuplot_quote(axis_markup(column)); };
   const std::string area = "($" + a + "*" + io::format_double(figure_unit("A").scale) + ")";
-  // Three panels stacked: each with few y tics (y_tics_for_span), or a journal column's height
-  // overlaps them.
-  const auto y_tics = [](const std::string& column) { return y_tics_for_span("'series.csv' skip 1", column); };
+  // Three panels stacked: each with few tics (tics_for_span), or a journal column's height and
+  // width overlap them.
+  const auto tics = [](const std::string& x, const std::string& y) {
+    return tics_for_span("x", "'series.csv' skip 1", x) + tics_for_span("y", "'series.csv' skip 1", y);
+  };
   std::ostringstream gp;
   gp << "set datafile separator ','\n"
      << stand_in_mark(stand_in) << "set key off\n"
      << "set grid\n"
      << "set multiplot layout 3,1\n"
      << "set xlabel " << label("t") << "\nset ylabel " << label("Q") << "\n"
-     << y_tics(q) << "plot 'series.csv' skip 1 using " << t << ":" << q << " with lines lw 1.5\n"
+     << tics(t, q) << "plot 'series.csv' skip 1 using " << t << ":" << q << " with lines lw 1.5\n"
      << "set ylabel " << label("A") << "\n"
-     << y_tics(area) << "plot 'series.csv' skip 1 using " << t << ":" << area << " with lines lw 1.5\n"
+     << tics(t, area) << "plot 'series.csv' skip 1 using " << t << ":" << area << " with lines lw 1.5\n"
      << "set xlabel " << label("Q") << "\nset ylabel " << label("A") << "\n"
-     << y_tics(area) << "plot 'series.csv' skip 1 using " << q << ":" << area << " with lines lw 1.5\n"
+     << tics(q, area) << "plot 'series.csv' skip 1 using " << q << ":" << area << " with lines lw 1.5\n"
      << "unset multiplot\n";
   return render_figures(dir / "plot.png", gp.str(), 900, 1000, formats, error);
 }

@@ -81,17 +81,29 @@ std::string force_spread_plot(const Spread& sp) {
   for (const auto& v : indep)
     if (std::isfinite(v[0]))
       lo = std::isnan(lo) ? v[0] : std::min(lo, v[0]), hi = std::isnan(hi) ? v[0] : std::max(hi, v[0]);
+  // y tics: at most four intervals up to the tallest bar (the panel is squat at a column's width).
+  std::map<long, int> bars;
+  int tallest = 1;
+  for (const auto* group : {&crowded, &sparse})
+    for (const auto& v : *group)
+      if (std::isfinite(v[0]))
+        tallest = std::max(tallest, ++bars[(group == &crowded ? 1 : -1) * (1 + std::lround(std::floor(v[0] / 0.02)))]);
+  const double raw = tallest / 4.0, decade = std::pow(10.0, std::floor(std::log10(raw))), m = raw / decade;
+  const double y_step = std::max(1.0, (m <= 1 ? 1 : (m <= 2 ? 2 : (m <= 5 ? 5 : 10))) * decade);
   const FigureUnit area = figure_unit("A0");  // areas as every figure shows them (mm²)
   std::ostringstream gp;
   gp << gnuplot_block("crowded", crowded) << gnuplot_block("sparse", sparse) << gnuplot_block("indep", indep)
      << stand_in_mark(is_stand_in(sp.inter.experiment)) << "set title " << gnuplot_text(sp.experiment) << " . "
      << gnuplot_quote(": f/(σA) at half the time of the first peak")
-     << " . \"\\n\" . "  // two lines: one column wide in a PDF
+     << " . \"\\n\" . "  // short lines and key entries: one column wide in a PDF
      << gnuplot_quote("junctions of equal area (" + io::format_cell("%.3g", sp.area_lo * area.scale) + "–" +
                       io::format_cell("%.3g", sp.area_hi * area.scale) + " " + unit_markup(area.unit) + ")")
-     << "\nset xlabel " << gnuplot_quote("f_i / (σ A_i) [1]") << "\nset ylabel " << gnuplot_quote("junctions [1]")
+     << " . \"\\n\" . " << gnuplot_quote("crowded: k_i Σ_j C_{ij} ≥ median") << "\nset xlabel "
+     << gnuplot_quote("f_i / (σ A_i) [1]") << "\nset ylabel " << gnuplot_quote("junctions [1]")
      << "\nbin(x) = 0.02*floor(x/0.02) + 0.01\nset style fill transparent solid 0.5\nset boxwidth 0.02\nset key top "
-        "right\n"
+        "right\nset ytics "
+     << io::format_double(y_step)
+     << "\n"
      // The independent model gives the junctions of equal area one f/(σA) (a range narrower
      // than a bin): a band and a line across the plot, not a bar as tall as all the junctions
      // (which squashed the histograms); the y range is the histograms'.
@@ -102,13 +114,10 @@ std::string force_spread_plot(const Spread& sp) {
                                  io::format_cell("%.10g", 0.5 * (lo + hi)) + ", graph 0 to first " +
                                  io::format_cell("%.10g", 0.5 * (lo + hi)) + ", graph 1 nohead lw 3 lc rgb '#56b4e9'\n"
                            : std::string())
-     << "plot $crowded using (bin($1)):(1) smooth frequency with boxes title "
-     << gnuplot_quote("interacting, crowded (k_i Σ_j C_{ij} ≥ median)")
+     << "plot $crowded using (bin($1)):(1) smooth frequency with boxes title " << gnuplot_quote("interacting, crowded")
      << ", $sparse using (bin($1)):(1) smooth frequency "
      << "with boxes title " << gnuplot_quote("interacting, sparse") << ", NaN with lines lw 3 lc rgb '#56b4e9' title "
-     << gnuplot_quote("independent model (same junctions): " + io::format_cell("%.3g", lo) +
-                      (hi > lo ? "–" + io::format_cell("%.3g", hi) : ""))
-     << "\n";
+     << gnuplot_quote("independent model") << "\n";
   return gp.str();
 }
 

@@ -39,6 +39,45 @@ TEST_CASE("axes: log scale for logspace or wide values, cells between the values
   CHECK_THAT(log[2].second, WithinRel(std::pow(10.0, 2.5), 1e-14));
 }
 
+TEST_CASE("tic labels and titles fit one journal column", "[report][plots]") {
+  using namespace plot_detail;
+  // η of the shipped campaign, cells over [-25, 275] on an x axis of 28 characters: 150 and 180
+  // sit 2.8 characters apart, less than half of two 3-character labels plus one; 200 sits 4.7
+  // from 150. Every value keeps its tic.
+  const std::vector<std::string> eta{"0", "50", "100", "150", "180", "200", "250"};
+  const std::string x =
+      axis_settings("x", "model.eta", eta, cell_edges({0, 50, 100, 150, 180, 200, 250}, false), false);
+  CHECK_THAT(x, Contains("'100' 100, '150' 150, '' 180, '200' 200, '250' 250)"));
+  // ε over [0.45, 1.01] on a y axis of 10 lines: 0.95 sits 0.9 lines above 0.9 (1.5 needed).
+  const std::vector<double> eps{0.5, 0.6, 0.7, 0.8, 0.9, 0.95, 0.99};
+  const std::string y = axis_settings("y", "model.epsilon", {"0.5", "0.6", "0.7", "0.8", "0.9", "0.95", "0.99"},
+                                      cell_edges(eps, false), false);
+  CHECK_THAT(y, Contains("'0.9' 0.9, '' 0.95, '0.99' 0.99)"));
+  // Titles: broken at spaces into lines of at most 50 characters, every word kept in order, a
+  // word longer than a line cut.
+  const std::string words = "calibration of the six loads / P0.98N: objective (chi-square of A(Q) and Q(t))";
+  const std::string long_word(60, 'w');
+  for (const std::string& text : {words, long_word, std::string("short")}) {
+    const std::string expr = title_lines(text);
+    std::string joined, line;
+    std::size_t lines = 0;
+    for (std::size_t from = 0;;) {
+      const std::string between = " . \"\\n\" . ";
+      const std::size_t cut = expr.find(between, from);
+      line = expr.substr(from, cut == std::string::npos ? std::string::npos : cut - from);
+      REQUIRE(line.size() >= 2);
+      line = line.substr(1, line.size() - 2);  // the quotes of gnuplot_text (no markup in these texts)
+      CHECK(line.size() <= kColumnTitleChars);
+      joined += (joined.empty() || text == long_word ? "" : " ") + line;
+      ++lines;
+      if (cut == std::string::npos) break;
+      from = cut + between.size();
+    }
+    CHECK(joined == text);
+    CHECK(lines == (text.size() + kColumnTitleChars - 1) / kColumnTitleChars);
+  }
+}
+
 TEST_CASE("units of columns come from the key and observable tables", "[report][plots]") {
   CHECK(axis_label("model.eta") == "model.eta [1/s]");
   CHECK(axis_label("model.epsilon") == "model.epsilon [1]");
