@@ -6,7 +6,7 @@ $d << EOD
 "stop\nstop.at_first_peak=true\nvs peak + 5 cycles" 127.28 121.28
 "area_law\nalpha_b=0 (linear)\nvs alpha_b=7.25e-16" 129.79 16.935
 EOD
-set label 99 'STAND-IN data, not measurements' at screen 0.995, 0.012 right front textcolor rgb '#b2182b' font ',8'
+set label 99 'STAND-IN data' at screen 0.995, 0.012 right front textcolor rgb '#b2182b' font ',8'
 set title 'Model only what a scene requires: P4.00N' . "\n" . 'CPU time of integration + writing the run directory'
 set style data histograms
 set style histogram clustered gap 1

@@ -26,7 +26,7 @@ $event_ends << EOD
 0.001742 0.0001 4.343e-06 3.662e-08 3.26e-07 1.929e-07 8.171e-05 3.116e-05
 0.05708 1e-13 1.072e-13 3.052e-16 3.651e-14 1.444e-15 1.684e-11 2.032e-12
 EOD
-set label 99 'STAND-IN data, not measurements' at screen 0.995, 0.012 right front textcolor rgb '#b2182b' font ',8'
+set label 99 'STAND-IN data' at screen 0.995, 0.012 right front textcolor rgb '#b2182b' font ',8'
 set multiplot layout 2,3 scale 1, 0.95 offset 0, 0.012 title 'Work-precision on bench experiment P0.20N (60 junctions): error vs converged event run (tol 1e-12)'
 set logscale xy
 set offsets 0, 0, graph 0.05, graph 0.05

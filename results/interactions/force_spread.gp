@@ -129,18 +129,19 @@ $indep << EOD
 0.2735965912
 0.2713864899
 EOD
-set label 99 'STAND-IN data, not measurements' at screen 0.995, 0.012 right front textcolor rgb '#b2182b' font ',8'
-set title 'P4.00N' . ': f/(σA) at half the time of the first peak' . "\n" . 'junctions of equal area (0.0953–0.105 mm^2)'
+set label 99 'STAND-IN data' at screen 0.995, 0.012 right front textcolor rgb '#b2182b' font ',8'
+set title 'P4.00N' . ': f/(σA) at half the time of the first peak' . "\n" . 'junctions of equal area (0.0953–0.105 mm^2)' . "\n" . 'crowded: k_i Σ_j C_{ij} ≥ median'
 set xlabel 'f_i / (σ A_i) [1]'
 set ylabel 'junctions [1]'
 bin(x) = 0.02*floor(x/0.02) + 0.01
 set style fill transparent solid 0.5
 set boxwidth 0.02
 set key top right
+set ytics 2
 set yrange [0:*]
 set offsets 0, 0, graph 0.1, 0
 set object 1 rect from first 0.2702658955, graph 0 to first 0.2797509775, graph 1 behind fc rgb '#56b4e9' fs solid 0.35 noborder
 set arrow 1 from first 0.2750084365, graph 0 to first 0.2750084365, graph 1 nohead lw 3 lc rgb '#56b4e9'
-plot $crowded using (bin($1)):(1) smooth frequency with boxes title 'interacting, crowded (k_i Σ_j C_{ij} ≥ median)', $sparse using (bin($1)):(1) smooth frequency with boxes title 'interacting, sparse', NaN with lines lw 3 lc rgb '#56b4e9' title 'independent model (same junctions): 0.27–0.28'
+plot $crowded using (bin($1)):(1) smooth frequency with boxes title 'interacting, crowded', $sparse using (bin($1)):(1) smooth frequency with boxes title 'interacting, sparse', NaN with lines lw 3 lc rgb '#56b4e9' title 'independent model'
 
 unset output

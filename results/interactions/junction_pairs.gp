@@ -3637,7 +3637,7 @@ $p2ns << EOD
 8.167958942 0.7908191664 0.8836307505
 8.19527653 0.7945046994 0.8836307505
 EOD
-set label 99 'STAND-IN data, not measurements' at screen 0.995, 0.012 right front textcolor rgb '#b2182b' font ',8'
+set label 99 'STAND-IN data' at screen 0.995, 0.012 right front textcolor rgb '#b2182b' font ',8'
 set multiplot layout 2,1 title 'P4.00N: equal-area junction pairs, crowded (solid) vs sparse (dashed)' . "\n" . 'thick: interacting, thin: independent; dotted: the first peaks'
 set key outside right top
 set lmargin at screen 0.08

@@ -1,12 +1,12 @@
 # asperity plot script: `gnuplot Q_s_over_alpha_b.gp` redraws Q_s_over_alpha_b.png (data inline; restyle freely)
 set terminal pngcairo size 1000,650 enhanced
 set output 'Q_s_over_alpha_b.png'
-set label 99 'STAND-IN data, not measurements' at screen 0.995, 0.012 right front textcolor rgb '#b2182b' font ',8'
+set label 99 'STAND-IN data' at screen 0.995, 0.012 right front textcolor rgb '#b2182b' font ',8'
 set title 'Q_s over α_b'
 set grid
 set key outside right
 set xlabel 'α_b [m^{2p+2} N^{-2}]'
-set xtics ('3e-16' 3e-16, '4.5e-16' 4.5e-16, '6e-16' 6e-16, '7.5e-16' 7.5e-16, '9e-16' 9e-16, '1.05e-15' 1.0500000000000001e-15, '1.2e-15' 1.2e-15)
+set xtics ('3e-16' 3e-16, '' 4.5e-16, '6e-16' 6e-16, '' 7.5e-16, '9e-16' 9e-16, '' 1.0500000000000001e-15, '1.2e-15' 1.2e-15)
 set ylabel 'Q_s [N]'
 $line0 << EOD
 3e-16 0.825961852570549

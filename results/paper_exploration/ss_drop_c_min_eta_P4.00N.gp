@@ -1,7 +1,7 @@
 # asperity plot script: `gnuplot ss_drop_c_min_eta_P4.00N.gp` redraws ss_drop_c_min_eta_P4.00N.png (data inline; restyle freely)
 set terminal pngcairo size 900,700 enhanced
 set output 'ss_drop_c_min_eta_P4.00N.png'
-set label 99 'STAND-IN data, not measurements' at screen 0.995, 0.012 right front textcolor rgb '#b2182b' font ',8'
+set label 99 'STAND-IN data' at screen 0.995, 0.012 right front textcolor rgb '#b2182b' font ',8'
 set title 'stick-slip drop ΔQ_{ss} over c_{min} × η, P4.00N' . "\n" . '(blank: no value (NaN), or a failed point)'
 set rmargin at screen 0.74
 set cblabel 'stick-slip drop ΔQ_{ss} [N]'
@@ -11,7 +11,7 @@ set logscale x
 set xtics ('1e-05' 1e-05, '0.01' 0.01)
 set xrange [3.162277660168379e-07:0.31622776601683794]
 set ylabel 'η [s^{-1}]'
-set ytics ('0' 0, '50' 50, '100' 100, '150' 150, '180' 180, '200' 200, '250' 250)
+set ytics ('0' 0, '50' 50, '100' 100, '150' 150, '' 180, '200' 200, '250' 250)
 set yrange [-25:275]
 $cells << EOD
 1e-05 0 3.162277660168379e-07 0.00031622776601683794 -25 25 0.3714675104413341

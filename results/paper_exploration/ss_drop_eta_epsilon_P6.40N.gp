@@ -1,16 +1,16 @@
 # asperity plot script: `gnuplot ss_drop_eta_epsilon_P6.40N.gp` redraws ss_drop_eta_epsilon_P6.40N.png (data inline; restyle freely)
 set terminal pngcairo size 900,700 enhanced
 set output 'ss_drop_eta_epsilon_P6.40N.png'
-set label 99 'STAND-IN data, not measurements' at screen 0.995, 0.012 right front textcolor rgb '#b2182b' font ',8'
+set label 99 'STAND-IN data' at screen 0.995, 0.012 right front textcolor rgb '#b2182b' font ',8'
 set title 'stick-slip drop ΔQ_{ss} over η × ε, P6.40N' . "\n" . '(blank: no value (NaN), or a failed point)'
 set rmargin at screen 0.74
 set cblabel 'stick-slip drop ΔQ_{ss} [N]'
 set palette defined (0 '#440154', 1 '#3b528b', 2 '#21908d', 3 '#5dc963', 4 '#fde725')
 set xlabel 'η [s^{-1}]'
-set xtics ('0' 0, '50' 50, '100' 100, '150' 150, '180' 180, '200' 200, '250' 250)
+set xtics ('0' 0, '50' 50, '100' 100, '150' 150, '' 180, '200' 200, '250' 250)
 set xrange [-25:275]
 set ylabel 'ε [1]'
-set ytics ('0.5' 0.5, '0.6' 0.6, '0.7' 0.7, '0.8' 0.8, '0.9' 0.9, '0.95' 0.95, '0.99' 0.99)
+set ytics ('0.5' 0.5, '0.6' 0.6, '0.7' 0.7, '0.8' 0.8, '0.9' 0.9, '' 0.95, '0.99' 0.99)
 set yrange [0.45:1.01]
 $cells << EOD
 0 0.5 -25 25 0.45 0.55 0.8868706610843227
