@@ -37,6 +37,7 @@ out, chromium = pathlib.Path(sys.argv[1]), sys.argv[2]
 
 
 def plain(s):  # enhanced-text markup and escapes dropped, as a reader sees the text
+    s = s.replace("' . \"'\" . '", "'")  # gnuplot_quote's apostrophe: 'A(Q)' . "'" . 's'
     s = re.sub(r"'\s*\.\s*'", "", s)  # gnuplot's 'a' . 'b' string joins: one text
     return re.sub(r"[\\^_{}]", "", html.unescape(s))
 
