@@ -118,7 +118,7 @@ std::string savings_csv(const std::vector<SavingRow>& rows) {
 }
 
 std::vector<SavingRow> read_savings_csv(const fs::path& csv, std::vector<int>* lines) {
-  const BenchCsv t(csv, "asperity bench savings");
+  const io::TextTable t = read_bench_csv(csv, "asperity bench savings");
   std::vector<SavingRow> rows;
   for (std::size_t i = 0; i < t.size(); ++i) {
     SavingRow r;

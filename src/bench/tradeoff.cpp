@@ -131,7 +131,7 @@ std::string work_precision_csv(const std::vector<WorkPrecisionRow>& rows) {
 }
 
 std::vector<WorkPrecisionRow> read_work_precision_csv(const fs::path& csv, std::vector<int>* lines) {
-  const BenchCsv t(csv, "asperity bench tradeoff");
+  const io::TextTable t = read_bench_csv(csv, "asperity bench tradeoff");
   std::vector<WorkPrecisionRow> rows;
   for (std::size_t i = 0; i < t.size(); ++i) {
     WorkPrecisionRow r;

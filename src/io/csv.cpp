@@ -1,9 +1,13 @@
 #include "io/csv.hpp"
 
 #include <algorithm>
+#include <charconv>
+#include <cmath>
 #include <filesystem>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
+#include <system_error>
 
 #include "io/input_error.hpp"
 #include "io/numbers.hpp"
@@ -205,6 +209,53 @@ std::size_t TextTable::column(const std::string& name) const {
   const auto it = std::find(columns.begin(), columns.end(), name);
   if (it == columns.end()) throw InputError(display, header_line, name, "column missing");
   return static_cast<std::size_t>(it - columns.begin());
+}
+
+const std::string& TextTable::text(std::size_t row, const std::string& name) const { return rows[row][column(name)]; }
+
+void TextTable::fail(std::size_t row, const std::string& name, const std::string& message) const {
+  throw InputError(display, lines[row], name, message, static_cast<int>(column(name)) + 1);
+}
+
+double TextTable::number(std::size_t row, const std::string& name) const {
+  const std::string& s = text(row, name);
+  double x = 0;
+  switch (parse_double(s, x)) {
+    case NumberParse::ok:
+      return x;
+    case NumberParse::empty:
+      fail(row, name, "empty field (expected a number)");
+    case NumberParse::not_finite:
+      fail(row, name, "must be a finite number, got " + quote(s));
+    default:
+      fail(row, name, "expected a number, got " + quote(s));
+  }
+}
+
+double TextTable::measured(std::size_t row, const std::string& name) const {
+  const std::string_view s = trim(text(row, name));
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  if (s == "nan") return nan;
+  if (s == "-nan") return std::copysign(nan, -1.0);  // printf's spelling of a NaN with its sign bit set
+  if (s == "inf") return inf;
+  if (s == "-inf") return -inf;
+  return number(row, name);
+}
+
+std::int64_t TextTable::count(std::size_t row, const std::string& name) const {
+  const std::string_view s = trim(text(row, name));
+  std::int64_t n = -1;
+  const auto r = std::from_chars(s.data(), s.data() + s.size(), n);
+  if (s.empty() || r.ec != std::errc() || r.ptr != s.data() + s.size() || n < 0)
+    fail(row, name, "expected a whole number >= 0, got " + quote(text(row, name)));
+  return n;
+}
+
+bool TextTable::yes_no(std::size_t row, const std::string& name) const {
+  const std::string& s = text(row, name);
+  if (s == "yes") return true;
+  if (s == "no") return false;
+  fail(row, name, "expected yes or no, got " + quote(s));
 }
 
 TextTable read_text_table(const std::filesystem::path& path, const std::string& display, std::size_t max_rows) {

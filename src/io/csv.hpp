@@ -10,6 +10,8 @@
 // Numbers are written as the shortest text that reads back bit for bit (csv_number) or, where a
 // file has always used it, as %.17g (format_g17 in io/numbers.hpp); either way the bytes depend
 // only on the values. Rows end in '\n'.
+#include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <string_view>
@@ -67,6 +69,18 @@ struct TextTable {
   std::size_t column(const std::string& name) const;
   std::string display;
   int header_line = 0;
+
+  std::size_t size() const { return rows.size(); }
+  int line(std::size_t row) const { return lines[row]; }
+  // The fields by row and column name. A bad field is an InputError "DISPLAY:LINE:COL: NAME:
+  // message" at the row's line and the column's place.
+  const std::string& text(std::size_t row, const std::string& name) const;
+  double number(std::size_t row, const std::string& name) const;  // a finite plain number
+  // A number, or one that could not be measured as our writers spell it: nan (-nan), inf, -inf.
+  double measured(std::size_t row, const std::string& name) const;
+  std::int64_t count(std::size_t row, const std::string& name) const;  // a whole number >= 0
+  bool yes_no(std::size_t row, const std::string& name) const;         // "yes" or "no"
+  [[noreturn]] void fail(std::size_t row, const std::string& name, const std::string& message) const;
 };
 
 // Reads `path` (at most kMaxCsvBytes): '#' lines and blank lines skipped, the first other line the

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <cmath>
 #include <map>
 #include <sstream>
@@ -323,32 +324,28 @@ std::vector<RecoveryCell> read_recovery_matrix(const fs::path& file) {
   // A matrix is a few dozen cells; a wrong file stops at this many rows.
   const io::TextTable t = io::read_text_table(file, file.generic_string(), 10000);
   std::vector<RecoveryCell> cells;
-  for (std::size_t r = 0; r < t.rows.size(); ++r) {
-    const std::vector<std::string>& f = t.rows[r];
-    auto text = [&](const std::string& name) { return f[t.column(name)]; };
-    auto number = [&](const std::string& name) {
-      const std::size_t c = t.column(name);
-      double x = 0;
-      if (f[c] == "nan") return std::numeric_limits<double>::quiet_NaN();
-      if (io::parse_double(f[c], x) != io::NumberParse::ok)
-        throw io::InputError(t.display, t.lines[r], name, "not a number: '" + f[c] + "'", static_cast<int>(c) + 1);
-      return x;
+  for (std::size_t r = 0; r < t.size(); ++r) {
+    auto text = [&](const std::string& name) { return t.text(r, name); };
+    // Quantities are written as measured (nan where a fit gave none); counts as whole numbers.
+    auto number = [&](const std::string& name) { return t.measured(r, name); };
+    auto count = [&](const std::string& name) {
+      return static_cast<int>(std::min<std::int64_t>(t.count(r, name), 1 << 30));
     };
     RecoveryCell c;
     c.load = text("load");
     c.mass_kg = number("mass_kg");
-    c.junctions = static_cast<int>(number("junctions"));
+    c.junctions = count("junctions");
     c.data_model = text("data_model");
     c.fit_model = text("fit_model");
     c.status = text("status");
     c.objective = number("objective");
     c.objective_at_truth = number("objective_at_truth");
-    c.residuals = static_cast<int>(number("residuals"));
-    c.free_parameters = static_cast<int>(number("free_parameters"));
+    c.residuals = count("residuals");
+    c.free_parameters = count("free_parameters");
     c.converged = text("converged");
-    c.in_best_basin = static_cast<int>(number("in_best_basin"));
-    c.starts = static_cast<int>(number("starts"));
-    c.evaluations = static_cast<int>(number("evaluations"));
+    c.in_best_basin = count("in_best_basin");
+    c.starts = count("starts");
+    c.evaluations = count("evaluations");
     c.wall_s = number("wall_s");
     for (const char* k : kParameterKeys) {
       const std::string leaf = std::string(k).substr(6);

@@ -17,32 +17,23 @@ std::vector<TopographyShapeRow> read_topography_table(const std::filesystem::pat
   const io::TextTable t = io::read_text_table(file, file.generic_string(), 100000);
   std::vector<TopographyShapeRow> rows;
   if (t.columns.empty()) return rows;
-  const std::size_t c_seed = t.column("seed"), c_load = t.column("P_N"), c_n_junctions = t.column("N"),
-                    c_model = t.column("model"), c_alpha = t.column("alpha_b"), c_n = t.column("n"),
-                    c_end = t.column("endpoint_residual"), c_res = t.column("residual_rms_m2"),
-                    c_noise = t.column("noise_rms_p95_m2");
-  for (std::size_t i = 0; i < t.rows.size(); ++i) {
-    const std::vector<std::string>& f = t.rows[i];
-    auto number = [&](std::size_t c) {
-      double x = 0;
-      if (io::parse_double(f[c], x) != io::NumberParse::ok || !std::isfinite(x))
-        throw io::InputError(t.display, t.lines[i], t.columns[c], "not a finite number: '" + f[c] + "'",
-                             static_cast<int>(c) + 1);
-      return x;
-    };
+  for (const char* name :
+       {"seed", "P_N", "N", "model", "alpha_b", "n", "endpoint_residual", "residual_rms_m2", "noise_rms_p95_m2"})
+    t.column(name);  // every column present, rows or not
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    auto number = [&](const char* name) { return t.number(i, name); };
     TopographyShapeRow r;
-    r.seed = static_cast<int>(number(c_seed));
-    r.load_N = number(c_load);
-    r.junctions = static_cast<int>(number(c_n_junctions));
-    r.model = f[c_model];
+    r.seed = static_cast<int>(number("seed"));
+    r.load_N = number("P_N");
+    r.junctions = static_cast<int>(number("N"));
+    r.model = t.text(i, "model");
     if (r.model != "independent" && r.model != "interacting")
-      throw io::InputError(t.display, t.lines[i], "model", "'" + r.model + "' is neither independent nor interacting",
-                           static_cast<int>(c_model) + 1);
-    r.alpha_b = number(c_alpha);
-    r.shape_exponent = number(c_n);
-    r.endpoint_residual = number(c_end);
-    r.residual_rms_m2 = number(c_res);
-    r.noise_rms_p95_m2 = number(c_noise);
+      t.fail(i, "model", "'" + r.model + "' is neither independent nor interacting");
+    r.alpha_b = number("alpha_b");
+    r.shape_exponent = number("n");
+    r.endpoint_residual = number("endpoint_residual");
+    r.residual_rms_m2 = number("residual_rms_m2");
+    r.noise_rms_p95_m2 = number("noise_rms_p95_m2");
     rows.push_back(std::move(r));
   }
   return rows;
