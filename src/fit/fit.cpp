@@ -112,6 +112,10 @@ std::string nlopt_stage(Problem& pb, const std::string& algorithm, int max_evalu
 
 // Runs the optimization's problem (Problem::part set) from `start`: the algorithm, then the
 // polish stage from its best point when the spec has one (fit_problem.hpp).
+LocalOptimum local_optimum(const OptimizeResult& r) {
+  return {r.best, r.objective, static_cast<int>(r.log.size()), r.stop_reason, r.failure};
+}
+
 OptimizeResult optimize(Problem pb, const std::vector<double>& start, double initial_step, bool polish_only) {
   const FitSpec& spec = *pb.spec;
   const auto n = static_cast<unsigned>(pb.vars.size());
@@ -215,8 +219,7 @@ void run_starts(const FitSpec& spec, const Problem& pb, Optimization& o) {
   std::vector<StartEnd> ends;
   for (std::size_t k = 0; k < results.size(); ++k) {
     OptimizeResult& r = results[k];
-    StartRun sr{start_part(k), from[k],   r.best, r.objective, static_cast<int>(r.log.size()),
-                r.stop_reason, r.failure, false};
+    StartRun sr{local_optimum(r), start_part(k), from[k], false};
     if (o.failure.empty() && !r.failure.empty())
       o.failure = (k == 0 ? "" : "start " + std::to_string(k + 1) + ": ") + r.failure;
     StartEnd e{std::vector<double>(r.best.size()), r.objective};

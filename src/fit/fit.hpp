@@ -172,14 +172,17 @@ struct Uncertainty {
   double wall_s = 0;
 };
 
-// One synthetic data set of the parametric bootstrap (FitSpec::bootstrap_draws) and its refit.
-struct BootstrapDraw {
+// Where one local search ended: a start, an error-bar refit, a bootstrap refit.
+struct LocalOptimum {
   std::vector<double> best;  // SI, per free variable (NaN when it failed)
   double objective = std::numeric_limits<double>::quiet_NaN();
   int evaluations = 0;
   std::string stop_reason;
   std::string failure;
 };
+
+// One synthetic data set of the parametric bootstrap (FitSpec::bootstrap_draws): its refit.
+using BootstrapDraw = LocalOptimum;
 
 // The spread of the bootstrap refits' optima: per free variable their mean and standard
 // deviation (n − 1), over the draws whose refit succeeded.
@@ -192,28 +195,18 @@ struct Bootstrap {
   double wall_s = 0;
 };
 
-struct ErrorBarRefit {
+struct ErrorBarRefit : LocalOptimum {
   std::string key;
   double bar = 0;
-  int sign = 0;              // −1: nominal − bar, +1: nominal + bar
-  std::vector<double> best;  // SI, per free variable (NaN when it failed)
-  double objective = std::numeric_limits<double>::quiet_NaN();
-  int evaluations = 0;
-  std::string stop_reason;
-  std::string failure;
+  int sign = 0;  // −1: nominal − bar, +1: nominal + bar
 };
 
 // One start of an optimization (FitSpec::starts): the first runs the algorithm (then the polish)
 // from the file's start, journaled as part "fit"; start K ≥ 2 runs the local stage from a Sobol
 // point, part "fit start K".
-struct StartRun {
-  std::string part;          // its journal part
-  std::vector<double> from;  // SI
-  std::vector<double> best;  // SI (NaN before any successful evaluation)
-  double objective = std::numeric_limits<double>::quiet_NaN();
-  int evaluations = 0;
-  std::string stop_reason;
-  std::string failure;
+struct StartRun : LocalOptimum {  // best: NaN before any successful evaluation
+  std::string part;               // its journal part
+  std::vector<double> from;       // SI
   bool in_best_basin = false;
 };
 

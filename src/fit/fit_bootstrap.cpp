@@ -81,12 +81,7 @@ void run_bootstrap(const FitSpec& spec, const Problem& pb, Optimization& o) {
     q.log.clear();
     q.failure.clear();
     // From the optimum, where the draw's truth lies, with the error-bar refits' smaller step.
-    const OptimizeResult r = optimize(std::move(q), o.best, spec.initial_step * 0.25, /*polish_only=*/true);
-    bd.best = r.best;
-    bd.objective = r.objective;
-    bd.evaluations = static_cast<int>(r.log.size());
-    bd.stop_reason = r.stop_reason;
-    bd.failure = r.failure;
+    bd = local_optimum(optimize(std::move(q), o.best, spec.initial_step * 0.25, /*polish_only=*/true));
   });
   std::vector<const BootstrapDraw*> ok;
   for (const BootstrapDraw& bd : bs.draws) {

@@ -102,4 +102,7 @@ struct OptimizeResult {
 // journaled. (fit.cpp, with NLopt's objective and stages.)
 OptimizeResult optimize(Problem pb, const std::vector<double>& start, double initial_step, bool polish_only = false);
 
+// Where the search of `r` ended, as Optimization records it.
+LocalOptimum local_optimum(const OptimizeResult& r);
+
 }  // namespace asperity::fit_detail

@@ -300,7 +300,7 @@ void run_refits(const FitSpec& spec, const FitOptions& options, Optimization& o,
   const auto t0 = Clock::now();
   std::vector<ErrorBarRefit> refits;
   for (const auto& eb : spec.error_bars)
-    for (const int sign : {-1, +1}) refits.push_back({eb.key, eb.bar, sign, {}, Observables::nan, 0, "", ""});
+    for (const int sign : {-1, +1}) refits.push_back({{}, eb.key, eb.bar, sign});
   for_each_nested(refits.size(), [&](std::size_t i) {
     ErrorBarRefit& rf = refits[i];
     Problem q;
@@ -321,12 +321,8 @@ void run_refits(const FitSpec& spec, const FitOptions& options, Optimization& o,
       q.extra.push_back({{rf.key, nominal + rf.sign * rf.bar}});
     }
     // Start at the optimum with a smaller first step: the shift moves it little.
-    OptimizeResult rr = optimize(std::move(q), o.best, spec.initial_step * 0.25, /*polish_only=*/true);
-    rf.best = rr.best;
-    rf.objective = rr.objective;
-    rf.evaluations = static_cast<int>(rr.log.size());
-    rf.stop_reason = rr.stop_reason;
-    rf.failure = rr.failure;
+    static_cast<LocalOptimum&>(rf) =
+        local_optimum(optimize(std::move(q), o.best, spec.initial_step * 0.25, /*polish_only=*/true));
   });
   o.refits = std::move(refits);
   o.refits_wall_s = seconds_since(t0);
