@@ -146,9 +146,10 @@ std::string title_lines(const std::string& text, std::size_t width) {
   for (std::string w; words >> w;) {
     while (chars(w) > width) {
       std::size_t cut = 0;
-      for (std::size_t n = 0; n < width; ++n) do
-          ++cut;
-        while (cut < w.size() && (w[cut] & 0xC0) == 0x80);
+      for (std::size_t n = 0; n < width; ++n) {
+        ++cut;  // past one character: its lead byte, then its continuation bytes
+        while (cut < w.size() && (w[cut] & 0xC0) == 0x80) ++cut;
+      }
       flush();
       lines.push_back(w.substr(0, cut));
       w.erase(0, cut);

@@ -115,7 +115,6 @@ HeatmapReport plot_heatmap(const fs::path& store, const HeatmapOptions& opt) {
   const bool xlog = log_axis(xv), ylog = log_axis(yv);
   const auto xe = cell_edges(xv, xlog), ye = cell_edges(yv, ylog);
   gp << axis_settings("x", opt.x, xs, xe, xlog) << axis_settings("y", opt.y, ys, ye, ylog);
-  if (xs.size() > 8) gp << "set xtics rotate by 60 right\n";
   gp << "$cells << EOD\n";
   for (std::size_t i = 0; i < xs.size(); ++i)
     for (std::size_t j = 0; j < ys.size(); ++j) {

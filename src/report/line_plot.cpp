@@ -53,7 +53,6 @@ std::string line_head(const fs::path& store, const LinePlotOptions& opt, const s
   gp << "\nset grid\nset key outside right\n";
   gp << axis_settings("x", opt.x, xtexts, {}, xlog);
   gp << "set ylabel " << gnuplot_quote(axis_markup(opt.y)) << "\n";
-  if (xtexts.size() > 8) gp << "set xtics rotate by 60 right\n";
   if (xlog && xv.size() > 1)
     gp << "set xrange [" << io::format_double(xv.front() / std::pow(xv.back() / xv.front(), 0.03)) << ":"
        << io::format_double(xv.back() * std::pow(xv.back() / xv.front(), 0.03)) << "]\n";

@@ -173,9 +173,10 @@ std::vector<bool> labels_that_fit(const std::vector<double>& v, const std::vecto
 
 // The axis settings of a numeric axis: its label with unit, log scale when it reads better,
 // tics at the values themselves (their store texts) when there are few, labelled where the
-// labels fit a journal column, the range of the cells.
+// labels fit a journal column (more than eight x labels rotated), the range of the cells.
 std::string axis_settings(const char* axis, const std::string& column, const std::vector<std::string>& texts,
                           const std::vector<std::pair<double, double>>& edges, bool log) {
+  const bool x = axis[0] == 'x', rotated = x && texts.size() > 8;  // many x labels: rotated
   std::ostringstream gp;
   gp << "set " << axis << "label " << gnuplot_quote(axis_markup(column)) << "\n";
   if (log) gp << "set logscale " << axis << "\n";
@@ -190,12 +191,13 @@ std::string axis_settings(const char* axis, const std::string& column, const std
     }
     const auto range =
         edges.empty() ? std::pair{v.front(), v.back()} : std::pair{edges.front().first, edges.back().second};
-    const std::vector<bool> keep = labels_that_fit(v, labels, range, log, axis[0] == 'x', texts.size() > 8);
+    const std::vector<bool> keep = labels_that_fit(v, labels, range, log, x, rotated);
     gp << "set " << axis << "tics (";
     for (std::size_t i = 0; i < texts.size(); ++i)
       gp << (i ? ", " : "") << gnuplot_text(keep[i] ? labels[i] : "") << " " << io::format_double(v[i]);
     gp << ")\n";
   }
+  if (rotated) gp << "set xtics rotate by 60 right\n";
   if (!edges.empty())
     gp << "set " << axis << "range [" << io::format_double(edges.front().first) << ":"
        << io::format_double(edges.back().second) << "]\n";

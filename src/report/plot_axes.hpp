@@ -65,7 +65,8 @@ std::vector<std::pair<double, double>> cell_edges(const std::vector<double>& sor
 
 // gnuplot settings of a numeric axis ("x" or "y"): the label with its unit, log scale when
 // `log`, tics at the values (their store texts) when there are at most 12, labelled where the
-// labels clear each other at a journal column's width (the others unlabelled), the range `edges`
+// labels clear each other at a journal column's width (the others unlabelled; more than eight x
+// labels rotated by 60°), the range `edges`
 // span (none when `edges` is empty). Values and edges are in the column's figure unit
 // (figure_unit: the store's SI value times its scale).
 std::string axis_settings(const char* axis, const std::string& column, const std::vector<std::string>& texts,
