@@ -1,5 +1,7 @@
 #include "bench/read_back.hpp"
 
+#include <cstdint>
+#include <limits>
 #include <system_error>
 
 #include "io/input_error.hpp"
@@ -17,6 +19,12 @@ io::TextTable read_bench_csv(const fs::path& file, const std::string& command, s
   if (table.rows.empty())
     throw io::InputError(display, table.header_line, "", "no data rows (written by `" + command + "`)");
   return table;
+}
+
+int read_repeats(const io::TextTable& table, std::size_t row) {
+  const std::int64_t repeats = table.count(row, "repeats");
+  if (repeats < 1 || repeats > std::numeric_limits<int>::max()) table.fail(row, "repeats", "expected a run count >= 1");
+  return static_cast<int>(repeats);
 }
 
 void check_redraw_targets(const fs::path& figure, const FigureFormats& formats) {

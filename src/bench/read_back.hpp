@@ -20,6 +20,10 @@ namespace asperity {
 io::TextTable read_bench_csv(const std::filesystem::path& file, const std::string& command,
                              std::size_t max_rows = 100000);
 
+// The `repeats` column of `row`: over how many runs each time was measured, a whole number in
+// [1, INT_MAX] (InputError at its place otherwise).
+int read_repeats(const io::TextTable& table, std::size_t row);
+
 // Before a redraw replaces `figure` in each of `formats`: an existing file that asperity did not
 // draw (report/gnuplot.hpp png_is_ours) is refused (InputError naming it).
 void check_redraw_targets(const std::filesystem::path& figure, const FigureFormats& formats);

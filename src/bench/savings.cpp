@@ -2,7 +2,6 @@
 
 #include <chrono>
 #include <cstdio>
-#include <limits>
 #include <map>
 #include <sstream>
 #include <system_error>
@@ -130,9 +129,7 @@ std::vector<SavingRow> read_savings_csv(const fs::path& csv, std::vector<int>* l
     r.cpu_s = t.number(i, "cpu_s");
     r.write_s = t.number(i, "write_s");
     t.number(i, "total_s");  // wall_s + write_s, checked as a number and recomputed
-    const std::int64_t repeats = t.count(i, "repeats");
-    if (repeats < 1 || repeats > std::numeric_limits<int>::max()) t.fail(i, "repeats", "expected a run count >= 1");
-    r.repeats = static_cast<int>(repeats);
+    r.repeats = read_repeats(t, i);
     r.t_end = t.number(i, "t_end_s");
     r.steps = t.count(i, "steps");
     r.force_evals = t.count(i, "force_evals");

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <limits>
 #include <sstream>
 
 #include "bench/bench_scene.hpp"
@@ -141,9 +140,7 @@ std::vector<WorkPrecisionRow> read_work_precision_csv(const fs::path& csv, std::
     r.setting = t.number(i, "setting");
     r.wall_s = t.number(i, "wall_s");
     r.cpu_s = t.number(i, "cpu_s");
-    const std::int64_t repeats = t.count(i, "repeats");
-    if (repeats < 1 || repeats > std::numeric_limits<int>::max()) t.fail(i, "repeats", "expected a run count >= 1");
-    r.repeats = static_cast<int>(repeats);
+    r.repeats = read_repeats(t, i);
     r.t_end = t.number(i, "t_end_s");
     r.steps = t.count(i, "steps");
     for (std::size_t k = 0; k < n_robust; ++k) {

@@ -82,12 +82,13 @@ std::string force_spread_plot(const Spread& sp) {
     if (std::isfinite(v[0]))
       lo = std::isnan(lo) ? v[0] : std::min(lo, v[0]), hi = std::isnan(hi) ? v[0] : std::max(hi, v[0]);
   // y tics: at most four intervals up to the tallest bar (the panel is squat at a column's width).
-  std::map<long, int> bars;
+  constexpr double kBin = 0.02;  // the histograms' bin width (bin(x) below)
   int tallest = 1;
-  for (const auto* group : {&crowded, &sparse})
+  for (const auto* group : {&crowded, &sparse}) {
+    std::map<long, int> bars;
     for (const auto& v : *group)
-      if (std::isfinite(v[0]))
-        tallest = std::max(tallest, ++bars[(group == &crowded ? 1 : -1) * (1 + std::lround(std::floor(v[0] / 0.02)))]);
+      if (std::isfinite(v[0])) tallest = std::max(tallest, ++bars[std::lround(std::floor(v[0] / kBin))]);
+  }
   const double raw = tallest / 4.0, decade = std::pow(10.0, std::floor(std::log10(raw))), m = raw / decade;
   const double y_step = std::max(1.0, (m <= 1 ? 1 : (m <= 2 ? 2 : (m <= 5 ? 5 : 10))) * decade);
   const FigureUnit area = figure_unit("A0");  // areas as every figure shows them (mm²)
@@ -100,7 +101,10 @@ std::string force_spread_plot(const Spread& sp) {
                       io::format_cell("%.3g", sp.area_hi * area.scale) + " " + unit_markup(area.unit) + ")")
      << " . \"\\n\" . " << gnuplot_quote("crowded: k_i Σ_j C_{ij} ≥ median") << "\nset xlabel "
      << gnuplot_quote("f_i / (σ A_i) [1]") << "\nset ylabel " << gnuplot_quote("junctions [1]")
-     << "\nbin(x) = 0.02*floor(x/0.02) + 0.01\nset style fill transparent solid 0.5\nset boxwidth 0.02\nset key top "
+     << "\nbin(x) = " << io::format_double(kBin) << "*floor(x/" << io::format_double(kBin) << ") + "
+     << io::format_double(kBin / 2) << "\nset style fill transparent solid 0.5\nset boxwidth "
+     << io::format_double(kBin)
+     << "\nset key top "
         "right\nset ytics "
      << io::format_double(y_step)
      << "\n"
