@@ -15,7 +15,18 @@
 namespace asperity {
 
 namespace fs = std::filesystem;
-using namespace io;
+using io::fail;
+using io::format_double;
+using io::has_control_char;
+using io::load_yaml_file;
+using io::MapView;
+using io::node_kind;
+using io::NumberParse;
+using io::parse_double;
+using io::parse_int;
+using io::quote;
+using io::Source;
+using io::trim;
 
 namespace {
 

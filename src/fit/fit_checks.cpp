@@ -11,7 +11,10 @@
 
 namespace asperity {
 
-using namespace io;
+using io::did_you_mean;
+using io::format_significant;
+using io::join;
+using io::quote;
 
 const char* objective_name(FitObjective o) {
   switch (o) {

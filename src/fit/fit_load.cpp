@@ -19,7 +19,14 @@
 namespace asperity {
 
 namespace fs = std::filesystem;
-using namespace io;
+using io::did_you_mean;
+using io::format_double;
+using io::join;
+using io::load_yaml_file;
+using io::MapView;
+using io::node_kind;
+using io::quote;
+using io::Source;
 
 namespace {
 

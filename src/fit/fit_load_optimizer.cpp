@@ -11,7 +11,10 @@
 
 namespace asperity {
 
-using namespace io;
+using io::format_double;
+using io::MapView;
+using io::quote;
+using io::Source;
 
 namespace {
 

@@ -10,7 +10,7 @@
 
 namespace asperity {
 
-using namespace io;
+using io::format_double;
 
 std::string junction_area_problem(double a) {
   // 1e-20 m² (0.01 nm², below one atom) to 1 m²: outside it the contact law has no meaning,

@@ -21,7 +21,20 @@
 namespace asperity {
 
 namespace fs = std::filesystem;
-using namespace io;
+using io::did_you_mean;
+using io::has_control_char;
+using io::input_file_problem;
+using io::join;
+using io::kMaxCsvBytes;
+using io::kMaxYamlBytes;
+using io::load_yaml_file;
+using io::load_yaml_text;
+using io::MapView;
+using io::node_kind;
+using io::quote;
+using io::SetRecord;
+using io::Source;
+using io::trim;
 
 namespace {
 

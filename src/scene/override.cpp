@@ -8,7 +8,8 @@
 
 namespace asperity {
 
-using namespace io;
+using io::node_kind;
+using io::strip_marks;
 
 namespace {
 

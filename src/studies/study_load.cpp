@@ -12,7 +12,16 @@
 namespace asperity {
 
 namespace fs = std::filesystem;
-using namespace io;
+using io::did_you_mean;
+using io::fail;
+using io::format_double;
+using io::input_file_problem;
+using io::kMaxYamlBytes;
+using io::load_yaml_file;
+using io::MapView;
+using io::node_kind;
+using io::quote;
+using io::Source;
 
 namespace {
 
