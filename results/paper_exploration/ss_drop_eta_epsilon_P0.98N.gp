@@ -4,14 +4,8 @@ set output 'ss_drop_eta_epsilon_P0.98N.png'
 set label 99 'STAND-IN data' at screen 0.995, 0.012 right front textcolor rgb '#b2182b' font ',8'
 set title 'stick-slip drop ΔQ_{ss} over η × ε, P0.98N' . "\n" . '(blank: no value (NaN), or a failed point)'
 set rmargin at screen 0.74
-set cblabel 'stick-slip drop ΔQ_{ss} [N]'
+if (GPVAL_TERM eq 'svg') { set label 98 'stick-slip drop ΔQ_{ss} [N]' at screen 0.975, graph 0.5 center rotate by 90 } else { set cblabel 'stick-slip drop ΔQ_{ss} [N]' }
 set palette defined (0 '#440154', 1 '#3b528b', 2 '#21908d', 3 '#5dc963', 4 '#fde725')
-set xlabel 'η [s^{-1}]'
-set xtics ('0' 0, '50' 50, '100' 100, '150' 150, '' 180, '200' 200, '250' 250)
-set xrange [-25:275]
-set ylabel 'ε [1]'
-set ytics ('0.5' 0.5, '0.6' 0.6, '0.7' 0.7, '0.8' 0.8, '0.9' 0.9, '' 0.95, '0.99' 0.99)
-set yrange [0.45:1.01]
 $cells << EOD
 0 0.5 -25 25 0.45 0.55 0.16463852016487873
 0 0.6 -25 25 0.55 0.6499999999999999 0.06496282229389753
@@ -51,6 +45,18 @@ $cells << EOD
 250 0.7 225 275 0.6499999999999999 0.75 0.19114662397747645
 250 0.8 225 275 0.75 0.8500000000000001 0.0913939334655485
 EOD
+stats $cells using 7 nooutput
+step = (STATS_max - STATS_min) > 0 ? 10**floor(log10((STATS_max - STATS_min) / 5.0)) : 1
+m = (STATS_max - STATS_min) > 0 ? (STATS_max - STATS_min) / (5.0 * step) : 1
+tic = (m <= 1 ? 1 : (m <= 2 ? 2 : (m <= 5 ? 5 : 10))) * step
+set cbtics tic
+if (STATS_max == STATS_min) { set cbtics (STATS_min) }
+set xlabel 'η [s^{-1}]'
+set xtics ('0' 0, '50' 50, '100' 100, '150' 150, '' 180, '200' 200, '250' 250)
+set xrange [-25:275]
+set ylabel 'ε [1]'
+set ytics ('0.5' 0.5, '0.6' 0.6, '0.7' 0.7, '0.8' 0.8, '0.9' 0.9, '' 0.95, '0.99' 0.99)
+set yrange [0.45:1.01]
 plot $cells using 1:2:3:4:5:6:7 with boxxyerror fs solid 1.0 noborder lc palette notitle
 
 unset output

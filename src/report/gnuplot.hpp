@@ -46,7 +46,7 @@ inline constexpr const char* kStandInMark = "STAND-IN data";
 // panels draw it over itself). Set before the first plot; label tag 99 is kept for it.
 std::string stand_in_mark(bool stand_in);
 
-// gnuplot commands setting the tic step of `axis` ("x", "y") to the smallest 1-2-5 step that
+// gnuplot commands setting the tic step of `axis` ("x", "y", "cb") to the smallest 1-2-5 step that
 // divides the data's span into at most five intervals (more than two): gnuplot's own choice (up
 // to ten) overlaps at a journal column's size, in a short panel's y or in x labels of seven
 // characters ("6.2e-16"). `source`: a data block ($d) or a quoted file name with its options

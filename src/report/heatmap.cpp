@@ -80,7 +80,12 @@ std::string heatmap_head(const fs::path& store, const HeatmapOptions& opt) {
   // Room for the colour box, its tics and its label: at one journal column's width gnuplot
   // left the label out of the SVG and PDF.
   gp << "set rmargin at screen 0.74\n";
-  gp << "set cblabel " << gnuplot_quote(axis_markup(opt.z)) << "\n";
+  // In SVG the colour bar's label sits at a fixed place by the figure's right edge: gnuplot's svg
+  // terminal places cblabel by an estimate of the tic labels' width that falls a character or
+  // two short at a journal column's size, so six-character tics ran into it (cairo measures).
+  const std::string label = gnuplot_quote(axis_markup(opt.z));
+  gp << "if (GPVAL_TERM eq 'svg') { set label 98 " << label
+     << " at screen 0.975, graph 0.5 center rotate by 90 } else { set cblabel " << label << " }\n";
   gp << "set palette defined (0 '#440154', 1 '#3b528b', 2 '#21908d', 3 '#5dc963', 4 '#fde725')\n";
   return gp.str();
 }
@@ -114,7 +119,6 @@ HeatmapReport plot_heatmap(const fs::path& store, const HeatmapOptions& opt) {
   const double zscale = figure_unit(opt.z).scale;
   const bool xlog = log_axis(xv), ylog = log_axis(yv);
   const auto xe = cell_edges(xv, xlog), ye = cell_edges(yv, ylog);
-  gp << axis_settings("x", opt.x, xs, xe, xlog) << axis_settings("y", opt.y, ys, ye, ylog);
   gp << "$cells << EOD\n";
   for (std::size_t i = 0; i < xs.size(); ++i)
     for (std::size_t j = 0; j < ys.size(); ++j) {
@@ -132,6 +136,11 @@ HeatmapReport plot_heatmap(const fs::path& store, const HeatmapOptions& opt) {
          << ' ' << format_double(z * zscale) << '\n';
     }
   gp << "EOD\n";
+  // The colour bar's tics from the values (stats before the x and y ranges, which would filter
+  // them out); one tic at the value when all are equal, where a step has nothing to divide.
+  if (rep.blank < rep.cells)
+    gp << tics_for_span("cb", "$cells", "7") << "if (STATS_max == STATS_min) { set cbtics (STATS_min) }\n";
+  gp << axis_settings("x", opt.x, xs, xe, xlog) << axis_settings("y", opt.y, ys, ye, ylog);
   if (rep.blank < rep.cells)
     gp << "plot $cells using 1:2:3:4:5:6:7 with boxxyerror fs solid 1.0 noborder lc palette notitle\n";
   else

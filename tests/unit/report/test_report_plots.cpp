@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <regex>
 
 #include "campaign/campaign_load.hpp"
 #include "campaign/sweep.hpp"
@@ -121,6 +122,37 @@ TEST_CASE("heat map and line plot of a logspace grid: log axis, units, one line 
                          Contains("set ylabel 'η [s^{-1}]'") && Contains("set cblabel 'Q_s [N]'"));
   CHECK(script.find("set logscale y") == std::string::npos);  // 0, 100, 250: linear
   CHECK(script.rfind("# asperity plot script", 0) == 0);
+  if (drawn) {
+    // At one journal column (SVG) the colour bar's label clears its tic labels: each tic label's
+    // right end from DejaVu Sans's advances (digits 0.636 em, 'e' 0.615, '-' 0.361, '.' and ' '
+    // 0.318), the rotated label's left edge at its ascent (0.76 em). gnuplot's own cblabel sat
+    // 4.5 px into its nine tics. At most six tics.
+    h.out = w / "heat.svg";
+    plot_heatmap(w / "store", h);
+    const std::string svg = slurp(h.out);
+    const std::regex tic(
+        R"re(translate\(([0-9.]+),[0-9.]+\)" stroke="none" fill="black" font-family="Sans" )re"
+        R"re(font-size="([0-9.]+)"  text-anchor="start">\s*<text><tspan font-family="Sans" >( ?[-0-9.e]+)<)re");
+    const std::regex label(R"re(translate\(([0-9.]+),[0-9.]+\) rotate\((?:-90|270)\)" stroke="none" fill="black" )re"
+                           R"re(font-family="Sans" font-size="([0-9.]+)"  text-anchor="middle">\s*<text><tspan )re"
+                           R"re(font-family="Sans" >Q<)re");
+    double tics_right = 0;
+    int cb_tics = 0;
+    for (auto it = std::sregex_iterator(svg.begin(), svg.end(), tic); it != std::sregex_iterator(); ++it) {
+      const double x = std::stod((*it)[1]), em = std::stod((*it)[2]);
+      ++cb_tics;
+      double advance = 0;
+      for (const char c : (*it)[3].str())
+        advance += c == 'e' ? 0.615 : c == '-' ? 0.361 : (c == '.' || c == ' ') ? 0.318 : 0.636;
+      tics_right = std::max(tics_right, x + advance * em);
+    }
+    std::smatch m;
+    REQUIRE(std::regex_search(svg, m, label));
+    const double label_left = std::stod(m[1]) - 0.76 * std::stod(m[2]);
+    CHECK(cb_tics >= 2);
+    CHECK(cb_tics <= 6);
+    CHECK(label_left > tics_right);
+  }
 
   LinePlotOptions l;
   l.x = "model.c_min";
