@@ -24,8 +24,8 @@ TEST_CASE("study files: the committed studies name the repository's inputs and o
   CHECK(i.scenes.front() == (src / "scenes/paper/P0.98N.yaml").lexically_normal());
   CHECK(i.scenes.back() == (src / "scenes/paper/P6.40N.yaml").lexically_normal());
   CHECK(i.fit_independent == (src / "results/fits/paper_alpha_b/fit.yaml").lexically_normal());
-  CHECK(i.joint_interacting.size() == 3);
-  CHECK(i.joint_interacting.back() == (src / "results/fits/joint_interacting_P3.09N/fit.yaml").lexically_normal());
+  CHECK(i.joint_interacting.size() == 5);
+  CHECK(i.joint_interacting.back() == (src / "results/fits/joint_interacting_P6.40N/fit.yaml").lexically_normal());
   CHECK(i.recovery_matrix == (src / "results/recovery/matrix.csv").lexically_normal());
   CHECK(i.out == (src / "results/interactions").lexically_normal());
   CHECK(i.spread_experiment == "P4.00N");
