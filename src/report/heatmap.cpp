@@ -136,12 +136,12 @@ HeatmapReport plot_heatmap(const fs::path& store, const HeatmapOptions& opt) {
          << ' ' << format_double(z * zscale) << '\n';
     }
   gp << "EOD\n";
+  const bool any_value = rep.blank < rep.cells;
   // The colour bar's tics from the values (stats before the x and y ranges, which would filter
   // them out); one tic at the value when all are equal, where a step has nothing to divide.
-  if (rep.blank < rep.cells)
-    gp << tics_for_span("cb", "$cells", "7") << "if (STATS_max == STATS_min) { set cbtics (STATS_min) }\n";
+  if (any_value) gp << tics_for_span("cb", "$cells", "7") << "if (STATS_max == STATS_min) { set cbtics (STATS_min) }\n";
   gp << axis_settings("x", opt.x, xs, xe, xlog) << axis_settings("y", opt.y, ys, ye, ylog);
-  if (rep.blank < rep.cells)
+  if (any_value)
     gp << "plot $cells using 1:2:3:4:5:6:7 with boxxyerror fs solid 1.0 noborder lc palette notitle\n";
   else
     gp << "set label 1 'no finite value' at graph 0.5,0.5 center\nplot NaN notitle\n";
